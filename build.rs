@@ -1,0 +1,125 @@
+//! Generates the PETSc FFI (src/petsc/sys.rs includes it) from Debian's PETSc 3.18,
+//! found through pkg-config, restricted to the calls the binding makes.
+
+use std::env;
+use std::path::PathBuf;
+
+/// Every PETSc function the binding calls; nothing else is generated.
+const FUNCTIONS: &[&str] = &[
+    // system, options, errors, logging
+    "PetscInitialize",
+    "PetscFinalize",
+    "PetscInitialized",
+    "PetscErrorMessage",
+    "PetscPushErrorHandler",
+    "PetscPopErrorHandler",
+    "PetscReturnErrorHandler",
+    "PetscMallocA",
+    "PetscOptionsHasName",
+    "PetscLogStageRegister",
+    "PetscLogStagePush",
+    "PetscLogStagePop",
+    // vectors, index sets, scatters
+    "VecCreateMPI",
+    "VecCreateSeq",
+    "VecDuplicate",
+    "VecDestroy",
+    "VecSet",
+    "VecCopy",
+    "VecNorm",
+    "VecGetOwnershipRange",
+    "VecGetLocalSize",
+    "VecGetSize",
+    "VecGetArray",
+    "VecRestoreArray",
+    "VecGetArrayRead",
+    "VecRestoreArrayRead",
+    "VecSetValues",
+    "VecAssemblyBegin",
+    "VecAssemblyEnd",
+    "ISCreateGeneral",
+    "ISDestroy",
+    "ISGetLocalSize",
+    "ISGetIndices",
+    "ISRestoreIndices",
+    "VecScatterCreate",
+    "VecScatterBegin",
+    "VecScatterEnd",
+    "VecScatterDestroy",
+    // matrices and partitioning
+    "MatCreateAIJ",
+    "MatDestroy",
+    "MatSetOption",
+    "MatSetValues",
+    "MatZeroEntries",
+    "MatAssemblyBegin",
+    "MatAssemblyEnd",
+    "MatCreateMPIAdj",
+    "MatPartitioningCreate",
+    "MatPartitioningSetAdjacency",
+    "MatPartitioningSetNParts",
+    "MatPartitioningSetType",
+    "MatPartitioningSetFromOptions",
+    "MatPartitioningApply",
+    "MatPartitioningDestroy",
+    // linear and nonlinear solvers
+    "KSPSetType",
+    "KSPGetPC",
+    "PCSetType",
+    "PCFactorSetMatSolverType",
+    "SNESCreate",
+    "SNESDestroy",
+    "SNESSetFunction",
+    "SNESSetJacobian",
+    "SNESGetKSP",
+    "SNESGetLineSearch",
+    "SNESLineSearchSetType",
+    "SNESSetFromOptions",
+    "SNESSetConvergenceHistory",
+    "SNESGetConvergenceHistory",
+    "SNESSolve",
+    "SNESGetConvergedReason",
+    "SNESGetIterationNumber",
+    "SNESGetLinearSolveIterations",
+    "SNESSetFunctionDomainError",
+    "SNESSetTolerances",
+];
+
+fn main() {
+    let petsc = pkg_config::Config::new()
+        .atleast_version("3.18")
+        .probe("petsc")
+        .expect("PETSc not found by pkg-config: run ./run.sh (it installs petsc-dev), or set PKG_CONFIG_PATH");
+    // PETSc's headers include <mpi.h>; Debian's petsc.pc does not name its directory.
+    let mpi = pkg_config::Config::new()
+        .cargo_metadata(false)
+        .probe("ompi-c")
+        .or_else(|_| pkg_config::Config::new().cargo_metadata(false).probe("mpi"))
+        .expect("MPI headers not found by pkg-config: install libopenmpi-dev");
+
+    let mut builder = bindgen::Builder::default()
+        .header("src/petsc/wrapper.h")
+        .parse_callbacks(Box::new(bindgen::CargoCallbacks::new()))
+        // C enums become integer constants: a Rust enum holding a value C did not list is UB.
+        .default_enum_style(bindgen::EnumVariation::Consts)
+        // MPI handles come from the `mpi` crate so `comm.as_raw()` passes straight through.
+        .blocklist_type("MPI_.*")
+        .blocklist_type("ompi_.*")
+        .raw_line("pub use mpi::ffi::MPI_Comm;")
+        .layout_tests(false)
+        .generate_comments(false);
+    for f in FUNCTIONS {
+        builder = builder.allowlist_function(f);
+    }
+    for ty in ["PetscBool", "NormType", "InsertMode", "ScatterMode", "MatAssemblyType", "MatOption", "SNESConvergedReason", "PetscErrorType"] {
+        builder = builder.allowlist_type(ty);
+    }
+    for path in petsc.include_paths.iter().chain(mpi.include_paths.iter()) {
+        builder = builder.clang_arg(format!("-I{}", path.display()));
+    }
+    let bindings = builder.generate().expect("bindgen failed on the PETSc headers");
+    let out = PathBuf::from(env::var("OUT_DIR").unwrap()).join("petsc_sys.rs");
+    bindings.write_to_file(&out).expect("cannot write petsc_sys.rs");
+    println!("cargo:rerun-if-changed=src/petsc/wrapper.h");
+    println!("cargo:rerun-if-changed=build.rs");
+}

@@ -1,0 +1,53 @@
+//! The one error type of slideline. Variants carry the offending item so a message names it;
+//! `exit_code` maps them to the CLI's codes (2 bad input, 3 not converged, 1 other).
+
+use std::path::PathBuf;
+
+#[derive(Debug, thiserror::Error)]
+pub enum Error {
+    /// Bad input of any kind: the message names the file, line, set, element or value at fault.
+    #[error("{0}")]
+    Input(String),
+
+    #[error("cannot read {path}: {source}")]
+    Read { path: PathBuf, source: std::io::Error },
+
+    /// A PETSc call returned a non-zero PetscErrorCode; `message` is PETSc's own text.
+    #[error("PETSc call {call} failed (error code {code}): {message}")]
+    Petsc { call: &'static str, code: i32, message: String },
+
+    /// The current iterate left the domain of the residual (inverted element, failed return map).
+    /// SNES is told, the increment is cut back.
+    #[error("{0}")]
+    Domain(String),
+
+    #[error("step {step} did not converge at load factor {load_factor:.6}: {reason}")]
+    NotConverged { step: String, load_factor: f64, reason: String },
+
+    #[error("HDF5 output {path}: {message}")]
+    Output { path: PathBuf, message: String },
+
+    #[error("MPI: {0}")]
+    Mpi(String),
+
+    /// A Rust panic caught at the FFI boundary (a bug, reported rather than unwound through C).
+    #[error("internal error (panic inside a PETSc callback): {0}")]
+    Panic(String),
+}
+
+impl Error {
+    pub fn input(message: impl Into<String>) -> Self {
+        Error::Input(message.into())
+    }
+
+    /// Process exit code for the CLI.
+    pub fn exit_code(&self) -> i32 {
+        match self {
+            Error::Input(_) | Error::Read { .. } => 2,
+            Error::NotConverged { .. } => 3,
+            _ => 1,
+        }
+    }
+}
+
+pub type Result<T> = std::result::Result<T, Error>;

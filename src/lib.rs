@@ -1,0 +1,9 @@
+//! slideline: a parallel nonlinear finite-element solver on PETSc for axisymmetric solids in
+//! contact. Layers (see DESIGN.md): readers -> `model`; pure kernels (`fe`, `material`,
+//! `element`); parallel drivers (`dist`, `solve`, `io`) over the `petsc` binding.
+#![deny(unsafe_code)]
+
+pub mod error;
+pub mod petsc;
+
+pub use error::{Error, Result};

@@ -1,0 +1,28 @@
+//! PETSc logging stages, so `-log_view` shows where slideline spends its time.
+
+use super::{check, sys};
+use crate::error::Result;
+use std::ffi::CString;
+
+/// A registered stage; `push`/`pop` bracket the work it measures.
+#[derive(Clone, Copy, Debug)]
+pub struct LogStage(sys::PetscLogStage);
+
+impl LogStage {
+    pub fn register(name: &str) -> Result<Self> {
+        let cname = CString::new(name).expect("stage names are static and NUL-free");
+        let mut stage = 0;
+        // SAFETY: PETSc copies the name.
+        check(unsafe { sys::PetscLogStageRegister(cname.as_ptr(), &mut stage) }, "PetscLogStageRegister")?;
+        Ok(LogStage(stage))
+    }
+
+    /// Runs `work` inside this stage.
+    pub fn run<T>(self, work: impl FnOnce() -> T) -> Result<T> {
+        // SAFETY: a registered stage id; push and pop are paired around `work`.
+        check(unsafe { sys::PetscLogStagePush(self.0) }, "PetscLogStagePush")?;
+        let out = work();
+        check(unsafe { sys::PetscLogStagePop() }, "PetscLogStagePop")?;
+        Ok(out)
+    }
+}

@@ -1,0 +1,130 @@
+//! Safe owners over the PETSc objects slideline uses. This module tree is the only place with
+//! `unsafe`; everything above it is safe Rust with `Result` errors.
+//!
+//! - [`PetscSession`] initialises PETSc on the `mpi` crate's world and finalises it on drop;
+//!   every owner borrows it (lifetime `'s`) so the compiler orders the drops.
+//! - One owner per handle (`Drop` calls XDestroy and never panics), no `Clone`; borrowed views
+//!   (`*View`) for the handles PETSc passes into callbacks.
+//! - [`check`] turns a non-zero PetscErrorCode into [`Error::Petsc`] with PETSc's own message;
+//!   PETSc's error handler is replaced by the returning one so no trace is printed.
+#![allow(unsafe_code)]
+
+pub mod sys;
+
+mod log;
+mod matrix;
+mod partition;
+mod snes;
+mod vector;
+
+pub use log::LogStage;
+pub use matrix::{MatOps, Matrix, MatrixView};
+pub use partition::partition_graph;
+pub use snes::{NonlinearProblem, Snes, SolveReport};
+pub use vector::{IndexSet, Scatter, VecOps, Vector, VectorView};
+
+use crate::error::{Error, Result};
+use mpi::traits::AsRaw;
+use std::ffi::{c_char, c_int, CStr, CString};
+use std::marker::PhantomData;
+
+pub type Comm = mpi::ffi::MPI_Comm;
+
+/// Turns a PetscErrorCode into a `Result`, fetching the message PETSc recorded for it.
+pub(crate) fn check(code: sys::PetscErrorCode, call: &'static str) -> Result<()> {
+    if code == 0 {
+        return Ok(());
+    }
+    let mut text: *const c_char = std::ptr::null();
+    let mut specific: *mut c_char = std::ptr::null_mut();
+    // SAFETY: PetscErrorMessage only writes two pointers to static strings owned by PETSc.
+    unsafe { sys::PetscErrorMessage(code, &mut text, &mut specific) };
+    let mut message = String::new();
+    for p in [specific as *const c_char, text] {
+        if !p.is_null() {
+            // SAFETY: PETSc returns NUL-terminated static strings.
+            let s = unsafe { CStr::from_ptr(p) }.to_string_lossy();
+            if !s.trim().is_empty() {
+                message = s.trim().to_string();
+                break;
+            }
+        }
+    }
+    Err(Error::Petsc { call, code, message })
+}
+
+/// PETSc initialised on the world of the `mpi` crate. Drop finalises PETSc, then MPI.
+pub struct PetscSession {
+    // Declared before `universe` so PETSc is finalised (in Drop) before MPI is.
+    _args: Vec<CString>,
+    _argv: Vec<*mut c_char>,
+    options: Vec<String>,
+    universe: mpi::environment::Universe,
+}
+
+impl PetscSession {
+    /// Initialises MPI (through the `mpi` crate) and PETSc, with `petsc_options` (e.g.
+    /// `-snes_monitor -pc_type gamg`) put in the options database as if given on the command line.
+    /// The PETSC_OPTIONS environment variable is honoured as well, as PETSc always does.
+    pub fn initialize(petsc_options: &[String]) -> Result<Self> {
+        let universe = mpi::initialize().ok_or_else(|| Error::Mpi("MPI was already initialised".into()))?;
+        let mut args = vec![CString::new("slideline").expect("static name")];
+        for o in petsc_options {
+            args.push(CString::new(o.as_str()).map_err(|_| Error::input(format!("PETSc option {o:?} contains a NUL byte")))?);
+        }
+        let mut argv: Vec<*mut c_char> = args.iter().map(|a| a.as_ptr() as *mut c_char).collect();
+        argv.push(std::ptr::null_mut());
+        let mut argc = c_int::try_from(args.len()).expect("few arguments");
+        let mut argv_ptr = argv.as_mut_ptr();
+        // SAFETY: argc/argv describe NUL-terminated strings kept alive in `self` for the whole
+        // session (PETSc keeps pointers to them); MPI is already initialised, so PETSc uses
+        // MPI_COMM_WORLD as PETSC_COMM_WORLD and leaves MPI_Finalize to the `mpi` crate.
+        let code = unsafe { sys::PetscInitialize(&mut argc, &mut argv_ptr, std::ptr::null(), std::ptr::null()) };
+        check(code, "PetscInitialize")?;
+        // SAFETY: installs PETSc's own handler that returns the error code without printing.
+        check(unsafe { sys::PetscPushErrorHandler(Some(sys::PetscReturnErrorHandler), std::ptr::null_mut()) }, "PetscPushErrorHandler")?;
+        Ok(PetscSession { _args: args, _argv: argv, options: petsc_options.to_vec(), universe })
+    }
+
+    pub fn world(&self) -> mpi::topology::SimpleCommunicator {
+        self.universe.world()
+    }
+
+    /// The raw communicator PETSc objects are created on (MPI_COMM_WORLD).
+    pub fn comm(&self) -> Comm {
+        self.universe.world().as_raw()
+    }
+
+    /// The PETSc options this session was started with.
+    pub fn options(&self) -> &[String] {
+        &self.options
+    }
+
+    /// Whether `name` (e.g. `-pc_type`) is set in the options database.
+    pub fn has_option(&self, name: &str) -> bool {
+        let Ok(cname) = CString::new(name) else { return false };
+        let mut set: sys::PetscBool = sys::PetscBool_PETSC_FALSE;
+        // SAFETY: NULL options object means the global database; `set` is a valid out-pointer.
+        let code = unsafe { sys::PetscOptionsHasName(std::ptr::null_mut(), std::ptr::null(), cname.as_ptr(), &mut set) };
+        code == 0 && set == sys::PetscBool_PETSC_TRUE
+    }
+}
+
+impl Drop for PetscSession {
+    fn drop(&mut self) {
+        // SAFETY: every PETSc object borrows the session, so all are destroyed by now.
+        // Errors at finalisation cannot be reported anywhere useful; they are ignored.
+        unsafe {
+            sys::PetscPopErrorHandler();
+            sys::PetscFinalize();
+        }
+    }
+}
+
+/// Marker tying an owner to the session that must outlive it.
+pub(crate) type SessionBorrow<'s> = PhantomData<&'s PetscSession>;
+
+/// Converts a Rust index to PetscInt, failing loudly on overflow of the 32-bit index type.
+pub(crate) fn to_petsc_int(i: usize) -> Result<sys::PetscInt> {
+    sys::PetscInt::try_from(i).map_err(|_| Error::input(format!("index {i} exceeds PETSc's 32-bit PetscInt")))
+}

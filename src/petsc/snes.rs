@@ -1,0 +1,242 @@
+//! SNES (Newton with line search) and its residual/Jacobian callbacks.
+//!
+//! Callbacks go through generic trampolines whose context is a typed `&mut` to the caller's
+//! problem, set just before SNESSolve: no global state. Each trampoline runs inside
+//! `catch_unwind` so a panic never unwinds into C; an error or panic is stashed and returned
+//! by [`Snes::solve`]. The outcome of every callback is agreed across ranks (MPI max) so a
+//! failure on one rank makes all ranks take the same path instead of deadlocking.
+
+use super::{check, sys, Comm, MatOps, Matrix, MatrixView, PetscSession, SessionBorrow, VecOps, Vector, VectorView};
+use crate::error::{Error, Result};
+use std::ffi::c_void;
+use std::marker::PhantomData;
+use std::panic::{catch_unwind, AssertUnwindSafe};
+
+/// What a nonlinear problem provides to SNES. Implementations must be collective-safe:
+/// every rank is called, and each adds its own contributions.
+pub trait NonlinearProblem {
+    /// F(x) into `f` (global, assembled by the callee).
+    fn residual(&mut self, x: &VectorView<'_>, f: &mut VectorView<'_>) -> Result<()>;
+    /// dF/dx at `x` into `jacobian` (assembled by the callee).
+    fn jacobian(&mut self, x: &VectorView<'_>, jacobian: &mut MatrixView<'_>) -> Result<()>;
+}
+
+/// Summary of one SNESSolve.
+#[derive(Clone, Debug)]
+pub struct SolveReport {
+    /// SNESConvergedReason: positive converged, negative diverged.
+    pub reason: i32,
+    pub newton_iterations: usize,
+    pub linear_iterations: usize,
+    /// ||F|| at each Newton iterate, starting with the initial one.
+    pub residual_norms: Vec<f64>,
+}
+
+impl SolveReport {
+    pub fn converged(&self) -> bool {
+        self.reason > 0
+    }
+
+    /// PETSc's name for the converged reason.
+    pub fn reason_name(&self) -> &'static str {
+        match self.reason {
+            2 => "CONVERGED_FNORM_ABS",
+            3 => "CONVERGED_FNORM_RELATIVE",
+            4 => "CONVERGED_SNORM_RELATIVE",
+            5 => "CONVERGED_ITS",
+            -1 => "DIVERGED_FUNCTION_DOMAIN",
+            -2 => "DIVERGED_FUNCTION_COUNT",
+            -3 => "DIVERGED_LINEAR_SOLVE",
+            -4 => "DIVERGED_FNORM_NAN",
+            -5 => "DIVERGED_MAX_IT",
+            -6 => "DIVERGED_LINE_SEARCH",
+            -7 => "DIVERGED_INNER",
+            -8 => "DIVERGED_LOCAL_MIN",
+            -9 => "DIVERGED_DTOL",
+            -10 => "DIVERGED_JACOBIAN_DOMAIN",
+            -11 => "DIVERGED_TR_DELTA",
+            _ => "UNKNOWN_REASON",
+        }
+    }
+}
+
+const HISTORY_LEN: usize = 1000;
+
+/// An owned SNES configured as Newton + line search (bt) + preonly/LU(MUMPS); every choice
+/// can be overridden from the options database (`-snes_*`, `-ksp_*`, `-pc_*`).
+pub struct Snes<'s> {
+    raw: sys::SNES,
+    comm: Comm,
+    // PETSc writes the residual history into these; boxed so the addresses never move.
+    history: Box<[f64]>,
+    history_its: Box<[sys::PetscInt]>,
+    _session: SessionBorrow<'s>,
+}
+
+impl<'s> Snes<'s> {
+    pub fn new(session: &'s PetscSession, comm: Comm) -> Result<Self> {
+        let mut raw = std::ptr::null_mut();
+        // SAFETY: comm is live; the handle is owned by the returned value.
+        check(unsafe { sys::SNESCreate(comm, &mut raw) }, "SNESCreate")?;
+        let mut snes = Snes { raw, comm, history: vec![0.0; HISTORY_LEN].into_boxed_slice(), history_its: vec![0; HISTORY_LEN].into_boxed_slice(), _session: PhantomData };
+        snes.configure_defaults(session)?;
+        Ok(snes)
+    }
+
+    fn configure_defaults(&mut self, session: &PetscSession) -> Result<()> {
+        // SAFETY: valid SNES; the KSP, PC and line search are borrowed from it, not owned.
+        unsafe {
+            let mut ksp = std::ptr::null_mut();
+            check(sys::SNESGetKSP(self.raw, &mut ksp), "SNESGetKSP")?;
+            check(sys::KSPSetType(ksp, c"preonly".as_ptr()), "KSPSetType")?;
+            let mut pc = std::ptr::null_mut();
+            check(sys::KSPGetPC(ksp, &mut pc), "KSPGetPC")?;
+            check(sys::PCSetType(pc, c"lu".as_ptr()), "PCSetType")?;
+            // MUMPS factorises MPIAIJ on any rank count; only name it when LU stays the PC.
+            if !session.has_option("-pc_type") || session.has_option("-pc_factor_mat_solver_type") {
+                check(sys::PCFactorSetMatSolverType(pc, c"mumps".as_ptr()), "PCFactorSetMatSolverType")?;
+            }
+            let mut ls = std::ptr::null_mut();
+            check(sys::SNESGetLineSearch(self.raw, &mut ls), "SNESGetLineSearch")?;
+            check(sys::SNESLineSearchSetType(ls, c"bt".as_ptr()), "SNESLineSearchSetType")?;
+            check(
+                sys::SNESSetConvergenceHistory(self.raw, self.history.as_mut_ptr(), self.history_its.as_mut_ptr(), HISTORY_LEN as sys::PetscInt, sys::PetscBool_PETSC_TRUE),
+                "SNESSetConvergenceHistory",
+            )?;
+            check(sys::SNESSetFromOptions(self.raw), "SNESSetFromOptions")
+        }
+    }
+
+    /// Overrides the default tolerances (before options are applied again).
+    /// `None` keeps PETSc's current value.
+    pub fn set_tolerances(&mut self, atol: Option<f64>, rtol: Option<f64>, max_iterations: Option<usize>) -> Result<()> {
+        const DEFAULT: f64 = -2.0; // PETSC_DEFAULT
+        let maxit = max_iterations.map(|m| m as sys::PetscInt).unwrap_or(-2);
+        // SAFETY: valid handle.
+        unsafe {
+            check(sys::SNESSetTolerances(self.raw, atol.unwrap_or(DEFAULT), rtol.unwrap_or(DEFAULT), DEFAULT, maxit, -2), "SNESSetTolerances")?;
+            check(sys::SNESSetFromOptions(self.raw), "SNESSetFromOptions")
+        }
+    }
+
+    /// Solves F(x) = 0 from the initial guess in `x`, using `residual` and `jacobian` as work
+    /// storage. A non-converged solve is not an error: read `SolveReport::reason`.
+    pub fn solve<P: NonlinearProblem>(&mut self, problem: &mut P, x: &mut Vector<'_>, residual: &mut Vector<'_>, jacobian: &mut Matrix<'_>) -> Result<SolveReport> {
+        let mut ctx = CallbackContext { problem, comm: self.comm, failure: None };
+        let ctx_ptr = &mut ctx as *mut CallbackContext<'_, P> as *mut c_void;
+        // SAFETY: ctx outlives SNESSolve; the callbacks are cleared again (context NULL) below
+        // so PETSc never holds a dangling pointer after this function returns.
+        let code = unsafe {
+            check(sys::SNESSetFunction(self.raw, residual.raw(), Some(residual_trampoline::<P>), ctx_ptr), "SNESSetFunction")?;
+            check(sys::SNESSetJacobian(self.raw, jacobian.raw(), jacobian.raw(), Some(jacobian_trampoline::<P>), ctx_ptr), "SNESSetJacobian")?;
+            sys::SNESSolve(self.raw, std::ptr::null_mut(), x.raw())
+        };
+        // SAFETY: resetting the contexts to NULL; the function pointers stay but are never
+        // called without a new context from the next solve.
+        unsafe {
+            sys::SNESSetFunction(self.raw, residual.raw(), Some(residual_trampoline::<P>), std::ptr::null_mut());
+            sys::SNESSetJacobian(self.raw, jacobian.raw(), jacobian.raw(), Some(jacobian_trampoline::<P>), std::ptr::null_mut());
+        }
+        if let Some(err) = ctx.failure.take() {
+            return Err(err);
+        }
+        check(code, "SNESSolve")?;
+        self.report()
+    }
+
+    fn report(&self) -> Result<SolveReport> {
+        let mut reason: sys::SNESConvergedReason = 0;
+        let (mut its, mut lits) = (0, 0);
+        let mut hist: *mut f64 = std::ptr::null_mut();
+        let mut hist_its: *mut sys::PetscInt = std::ptr::null_mut();
+        let mut nhist = 0;
+        // SAFETY: valid handle, out-pointers to locals; the history points into self.history.
+        unsafe {
+            check(sys::SNESGetConvergedReason(self.raw, &mut reason), "SNESGetConvergedReason")?;
+            check(sys::SNESGetIterationNumber(self.raw, &mut its), "SNESGetIterationNumber")?;
+            check(sys::SNESGetLinearSolveIterations(self.raw, &mut lits), "SNESGetLinearSolveIterations")?;
+            check(sys::SNESGetConvergenceHistory(self.raw, &mut hist, &mut hist_its, &mut nhist), "SNESGetConvergenceHistory")?;
+        }
+        let n = (nhist.max(0) as usize).min(HISTORY_LEN);
+        Ok(SolveReport { reason: reason as i32, newton_iterations: its as usize, linear_iterations: lits as usize, residual_norms: self.history[..n].to_vec() })
+    }
+}
+
+impl Drop for Snes<'_> {
+    fn drop(&mut self) {
+        // SAFETY: owned handle.
+        unsafe { sys::SNESDestroy(&mut self.raw) };
+    }
+}
+
+struct CallbackContext<'p, P> {
+    problem: &'p mut P,
+    comm: Comm,
+    failure: Option<Error>,
+}
+
+/// Outcome codes agreed across ranks; the largest wins.
+const OK: i32 = 0;
+const DOMAIN: i32 = 1;
+const FAILED: i32 = 2;
+/// PETSC_ERR_USER: what a callback returns to make SNESSolve stop with an error.
+const ERR_USER: sys::PetscErrorCode = 83;
+
+/// Runs a callback body under catch_unwind, agrees on the outcome across ranks and turns it
+/// into the code PETSc expects.
+fn guarded<P>(snes: sys::SNES, ctx: *mut c_void, body: impl FnOnce(&mut P) -> Result<()>) -> sys::PetscErrorCode {
+    if ctx.is_null() {
+        return ERR_USER;
+    }
+    // SAFETY: ctx was set by Snes::solve to a CallbackContext<P> that outlives SNESSolve, and
+    // PETSc calls back on the solving thread only, so this is the only live reference.
+    let ctx = unsafe { &mut *(ctx as *mut CallbackContext<'_, P>) };
+    let outcome = catch_unwind(AssertUnwindSafe(|| body(ctx.problem)));
+    let local = match outcome {
+        Ok(Ok(())) => OK,
+        Ok(Err(Error::Domain(msg))) => {
+            ctx.failure.get_or_insert(Error::Domain(msg));
+            DOMAIN
+        }
+        Ok(Err(e)) => {
+            ctx.failure = Some(e);
+            FAILED
+        }
+        Err(panic) => {
+            let msg = panic.downcast_ref::<&str>().map(|s| s.to_string()).or_else(|| panic.downcast_ref::<String>().cloned()).unwrap_or_else(|| "unknown panic".into());
+            ctx.failure = Some(Error::Panic(msg));
+            FAILED
+        }
+    };
+    let mut global = local;
+    // SAFETY: every rank of the SNES's communicator runs this callback, so the reduction matches.
+    unsafe {
+        mpi::ffi::MPI_Allreduce(&local as *const i32 as *const c_void, &mut global as *mut i32 as *mut c_void, 1, mpi::ffi::RSMPI_INT32_T, mpi::ffi::RSMPI_MAX, ctx.comm);
+    }
+    match global {
+        OK => 0,
+        DOMAIN => {
+            // A domain error is recoverable (the caller cuts the increment back): clear it.
+            if matches!(ctx.failure, Some(Error::Domain(_))) {
+                ctx.failure = None;
+            }
+            // SAFETY: valid SNES handle passed by PETSc.
+            unsafe { sys::SNESSetFunctionDomainError(snes) };
+            0
+        }
+        _ => {
+            if ctx.failure.is_none() {
+                ctx.failure = Some(Error::Mpi("a callback failed on another rank".into()));
+            }
+            ERR_USER
+        }
+    }
+}
+
+unsafe extern "C" fn residual_trampoline<P: NonlinearProblem>(snes: sys::SNES, x: sys::Vec, f: sys::Vec, ctx: *mut c_void) -> sys::PetscErrorCode {
+    guarded::<P>(snes, ctx, |p| p.residual(&VectorView::from_raw(x), &mut VectorView::from_raw(f)))
+}
+
+unsafe extern "C" fn jacobian_trampoline<P: NonlinearProblem>(snes: sys::SNES, x: sys::Vec, a: sys::Mat, _p: sys::Mat, ctx: *mut c_void) -> sys::PetscErrorCode {
+    guarded::<P>(snes, ctx, |p| p.jacobian(&VectorView::from_raw(x), &mut MatrixView::from_raw(a)))
+}
