@@ -7,3 +7,7 @@ pub mod error;
 pub mod petsc;
 
 pub use error::{Error, Result};
+pub mod element;
+pub mod fe;
+pub mod material;
+pub mod model;

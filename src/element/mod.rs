@@ -1,0 +1,4 @@
+//! Element kernels: local residual and tangent from the current state. Pure functions.
+
+pub mod pressure;
+pub mod solid;

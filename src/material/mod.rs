@@ -1,0 +1,3 @@
+//! Constitutive kernels: stress and consistent tangent at a quadrature point.
+
+pub mod elastic;

@@ -1,0 +1,198 @@
+//! The TOML input deck. Unknown keys are rejected; units are mm, N, MPa, degC.
+//!
+//! ```toml
+//! reference_temperature = 20.0      # degC, zero thermal strain; also the initial temperature
+//!
+//! [mesh]
+//! file = "cylinder.msh"             # Gmsh 4.1, relative to the deck; or instead:
+//! # rectangle = { r = [100.0, 130.0], z = [0.0, 10.0], divisions = [12, 2] }
+//!
+//! [[material]]
+//! name = "steel"
+//! model = "elastic"
+//! youngs_modulus = 200000.0         # MPa
+//! poissons_ratio = 0.3
+//! thermal_expansion = 1.2e-5        # 1/degC
+//!
+//! [[section]]                       # optional when there is a single material
+//! elements = "all"
+//! material = "steel"
+//!
+//! [[step]]
+//! name = "load"
+//! increments = 1
+//! temperature = 20.0                # degC at the end of the step (optional)
+//! boundary = [ { set = "bottom", uz = 0.0 }, { set = "top", uz = 0.0 } ]
+//! pressure = [ { surface = "inner", value = 50.0 } ]
+//! ```
+
+use super::mesh::{rectangle, MeshSets};
+use super::{gmsh, Component, Material, MaterialModel, Model, Pressure, PrescribedDisplacement, Step};
+use crate::error::{Error, Result};
+use serde::Deserialize;
+use std::path::{Path, PathBuf};
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct DeckFile {
+    #[serde(default = "default_reference_temperature")]
+    reference_temperature: f64,
+    mesh: MeshSpec,
+    #[serde(default)]
+    material: Vec<MaterialSpec>,
+    #[serde(default)]
+    section: Vec<SectionSpec>,
+    #[serde(default)]
+    step: Vec<StepSpec>,
+}
+
+fn default_reference_temperature() -> f64 {
+    20.0
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct MeshSpec {
+    file: Option<PathBuf>,
+    rectangle: Option<RectangleSpec>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RectangleSpec {
+    r: [f64; 2],
+    z: [f64; 2],
+    divisions: [usize; 2],
+}
+
+#[derive(Deserialize, Clone, Copy, PartialEq, Eq, Debug)]
+#[serde(rename_all = "snake_case")]
+enum MaterialKind {
+    Elastic,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct MaterialSpec {
+    name: String,
+    #[serde(default = "default_kind")]
+    model: MaterialKind,
+    youngs_modulus: f64,
+    poissons_ratio: f64,
+    #[serde(default)]
+    thermal_expansion: f64,
+}
+
+fn default_kind() -> MaterialKind {
+    MaterialKind::Elastic
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct SectionSpec {
+    elements: String,
+    material: String,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct StepSpec {
+    name: Option<String>,
+    #[serde(default = "one")]
+    increments: usize,
+    temperature: Option<f64>,
+    #[serde(default)]
+    boundary: Vec<BoundarySpec>,
+    #[serde(default)]
+    pressure: Vec<PressureSpec>,
+}
+
+fn one() -> usize {
+    1
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct BoundarySpec {
+    set: String,
+    ur: Option<f64>,
+    uz: Option<f64>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct PressureSpec {
+    surface: String,
+    value: f64,
+}
+
+/// Reads and validates a deck file.
+pub fn read(path: &Path) -> Result<Model> {
+    let text = std::fs::read_to_string(path).map_err(|source| Error::Read { path: path.to_path_buf(), source })?;
+    parse(&text, path)
+}
+
+/// Parses deck `text`; `path` names it in messages and anchors relative mesh paths.
+pub fn parse(text: &str, path: &Path) -> Result<Model> {
+    let deck: DeckFile = toml::from_str(text).map_err(|e| Error::input(format!("{}: {}", path.display(), e.to_string().trim_end())))?;
+    let (mesh, sets) = match (&deck.mesh.file, &deck.mesh.rectangle) {
+        (Some(file), None) => {
+            let full = path.parent().unwrap_or(Path::new(".")).join(file);
+            gmsh::read(&full)?
+        }
+        (None, Some(r)) => rectangle(r.r, r.z, r.divisions)?,
+        _ => return Err(Error::input(format!("{}: [mesh] needs exactly one of `file` or `rectangle`", path.display()))),
+    };
+    let MeshSets { node_sets, element_sets, surfaces } = sets;
+
+    let mut materials = Vec::new();
+    for m in &deck.material {
+        if materials.iter().any(|x: &Material| x.name == m.name) {
+            return Err(Error::input(format!("material '{}' is defined twice", m.name)));
+        }
+        let model = match m.model {
+            MaterialKind::Elastic => MaterialModel::Elastic { youngs_modulus: m.youngs_modulus, poissons_ratio: m.poissons_ratio, thermal_expansion: m.thermal_expansion },
+        };
+        materials.push(Material { name: m.name.clone(), model });
+    }
+    if materials.is_empty() {
+        return Err(Error::input(format!("{}: no [[material]] defined", path.display())));
+    }
+
+    let mut element_material = vec![usize::MAX; mesh.elements.len()];
+    if deck.section.is_empty() && materials.len() == 1 {
+        element_material.fill(0);
+    }
+    for s in &deck.section {
+        let mat = materials.iter().position(|m| m.name == s.material).ok_or_else(|| Error::input(format!("section on '{}': unknown material '{}'", s.elements, s.material)))?;
+        let elems = element_sets.get(&s.elements).ok_or_else(|| Error::input(format!("section: unknown element set '{}' (known: {})", s.elements, element_sets.keys().cloned().collect::<Vec<_>>().join(", "))))?;
+        for &e in elems {
+            element_material[e] = mat;
+        }
+    }
+    if let Some(e) = element_material.iter().position(|&m| m == usize::MAX) {
+        return Err(Error::input(format!("element {} has no material: add a [[section]] covering it", mesh.element_ids[e])));
+    }
+
+    let mut steps = Vec::new();
+    for (k, s) in deck.step.iter().enumerate() {
+        let name = s.name.clone().unwrap_or_else(|| format!("step-{}", k + 1));
+        let mut displacements = Vec::new();
+        for b in &s.boundary {
+            if b.ur.is_none() && b.uz.is_none() {
+                return Err(Error::input(format!("step '{name}': boundary on '{}' sets neither ur nor uz", b.set)));
+            }
+            for (component, value) in [(Component::R, b.ur), (Component::Z, b.uz)] {
+                if let Some(value) = value {
+                    displacements.push(PrescribedDisplacement { node_set: b.set.clone(), component, value });
+                }
+            }
+        }
+        let pressures = s.pressure.iter().map(|p| Pressure { surface: p.surface.clone(), value: p.value }).collect();
+        steps.push(Step { name, increments: s.increments, displacements, pressures, temperature: s.temperature });
+    }
+
+    let model = Model { mesh, node_sets, element_sets, surfaces, materials, element_material, reference_temperature: deck.reference_temperature, steps, source_text: text.to_string() };
+    model.validate()?;
+    Ok(model)
+}

@@ -1,0 +1,287 @@
+//! Reader for Gmsh .msh 4.1 ASCII meshes.
+//!
+//! Physical groups become sets: a 2D group becomes an element set (and a node set of its
+//! nodes), a 1D group a surface of 3-node edges (and the node set of its nodes), a 0D group a
+//! node set. Every name is the group's physical name (or `physical_<tag>` if it has none).
+//! Elements must be 8-node quadrilaterals (Gmsh type 16: `Mesh.ElementOrder = 2`,
+//! `Mesh.SecondOrderIncomplete = 1`, recombined). Errors name the file and line.
+//!
+//! (The `mshio` crate was considered: it drops node tags of densely numbered files and ignores
+//! `$PhysicalNames`, which is where set names come from.)
+
+use super::mesh::{Edge, Mesh, MeshSets};
+use crate::error::{Error, Result};
+use crate::fe::shape::edge_nodes;
+use std::collections::{BTreeMap, HashMap};
+use std::path::Path;
+
+const QUAD8: u32 = 16;
+const LINE3: u32 = 8;
+const POINT: u32 = 15;
+
+pub fn read(path: &Path) -> Result<(Mesh, MeshSets)> {
+    let text = std::fs::read_to_string(path).map_err(|source| Error::Read { path: path.to_path_buf(), source })?;
+    parse(&text, &path.display().to_string())
+}
+
+struct Lines<'a> {
+    name: &'a str,
+    lines: std::iter::Enumerate<std::str::Lines<'a>>,
+    line: usize,
+}
+
+impl<'a> Lines<'a> {
+    fn next(&mut self) -> Result<&'a str> {
+        for (i, l) in self.lines.by_ref() {
+            self.line = i + 1;
+            if !l.trim().is_empty() {
+                return Ok(l.trim());
+            }
+        }
+        Err(self.error("unexpected end of file"))
+    }
+
+    fn error(&self, msg: impl std::fmt::Display) -> Error {
+        Error::input(format!("{}:{}: {msg}", self.name, self.line))
+    }
+
+    /// Next line parsed as whitespace-separated numbers.
+    fn numbers<T: std::str::FromStr>(&mut self, what: &str) -> Result<Vec<T>> {
+        let l = self.next()?;
+        l.split_whitespace().map(|t| t.parse::<T>().map_err(|_| self.error(format!("bad number {t:?} in {what}")))).collect()
+    }
+
+    fn expect(&mut self, tag: &str) -> Result<()> {
+        let l = self.next()?;
+        if l != tag {
+            return Err(self.error(format!("expected {tag}, found {l:?}")));
+        }
+        Ok(())
+    }
+}
+
+fn need<T: Copy>(v: &[T], n: usize, lines: &Lines, what: &str) -> Result<()> {
+    if v.len() < n {
+        return Err(lines.error(format!("{what}: expected at least {n} values, found {}", v.len())));
+    }
+    Ok(())
+}
+
+pub fn parse(text: &str, name: &str) -> Result<(Mesh, MeshSets)> {
+    let mut lines = Lines { name, lines: text.lines().enumerate(), line: 0 };
+    let mut physical_names: HashMap<(i32, i32), String> = HashMap::new();
+    // (dim, entity tag) -> physical tags
+    let mut entity_physicals: HashMap<(i32, i32), Vec<i32>> = HashMap::new();
+    let mut node_coords: HashMap<u64, [f64; 2]> = HashMap::new();
+    // (dim, entity, type, tag, node tags)
+    let mut elements: Vec<(i32, i32, u32, u64, Vec<u64>, usize)> = Vec::new();
+    let mut seen_format = false;
+
+    while let Ok(header) = lines.next() {
+        match header {
+            "$MeshFormat" => {
+                let l = lines.next()?;
+                let f: Vec<&str> = l.split_whitespace().collect();
+                if f.first() != Some(&"4.1") {
+                    return Err(lines.error(format!("unsupported .msh version {:?}: slideline reads format 4.1 (Gmsh: -format msh41)", f.first().unwrap_or(&""))));
+                }
+                if f.get(1) != Some(&"0") {
+                    return Err(lines.error("binary .msh files are not supported: save as ASCII (Mesh.Binary = 0)"));
+                }
+                lines.expect("$EndMeshFormat")?;
+                seen_format = true;
+            }
+            "$PhysicalNames" => {
+                let n: Vec<usize> = lines.numbers("$PhysicalNames count")?;
+                need(&n, 1, &lines, "$PhysicalNames")?;
+                for _ in 0..n[0] {
+                    let l = lines.next()?;
+                    let mut it = l.splitn(3, char::is_whitespace);
+                    let dim = it.next().and_then(|t| t.parse().ok());
+                    let tag = it.next().and_then(|t| t.parse().ok());
+                    let nm = it.next().map(|t| t.trim().trim_matches('"').to_string());
+                    match (dim, tag, nm) {
+                        (Some(d), Some(t), Some(nm)) if !nm.is_empty() => {
+                            physical_names.insert((d, t), nm);
+                        }
+                        _ => return Err(lines.error(format!("bad physical name line {l:?}"))),
+                    }
+                }
+                lines.expect("$EndPhysicalNames")?;
+            }
+            "$Entities" => {
+                let counts: Vec<usize> = lines.numbers("$Entities counts")?;
+                need(&counts, 4, &lines, "$Entities")?;
+                for (dim, &count) in counts.iter().take(4).enumerate() {
+                    for _ in 0..count {
+                        let v: Vec<f64> = lines.numbers("entity")?;
+                        // point: tag x y z nphys phys...; others: tag 6 bbox values nphys phys... nbound ...
+                        let at = if dim == 0 { 4 } else { 7 };
+                        need(&v, at + 1, &lines, "entity")?;
+                        let np = v[at] as usize;
+                        need(&v, at + 1 + np, &lines, "entity physical tags")?;
+                        let phys = v[at + 1..at + 1 + np].iter().map(|&p| p as i32).collect();
+                        entity_physicals.insert((dim as i32, v[0] as i32), phys);
+                    }
+                }
+                lines.expect("$EndEntities")?;
+            }
+            "$Nodes" => {
+                let h: Vec<u64> = lines.numbers("$Nodes header")?;
+                need(&h, 4, &lines, "$Nodes header")?;
+                for _ in 0..h[0] {
+                    let b: Vec<i64> = lines.numbers("node block header")?;
+                    need(&b, 4, &lines, "node block header")?;
+                    if b[2] != 0 {
+                        return Err(lines.error("parametric node coordinates are not supported"));
+                    }
+                    let n = b[3] as usize;
+                    let mut tags = Vec::with_capacity(n);
+                    for _ in 0..n {
+                        let t: Vec<u64> = lines.numbers("node tag")?;
+                        need(&t, 1, &lines, "node tag")?;
+                        tags.push(t[0]);
+                    }
+                    for tag in tags {
+                        let c: Vec<f64> = lines.numbers("node coordinates")?;
+                        need(&c, 3, &lines, "node coordinates")?;
+                        if c[2] != 0.0 {
+                            return Err(lines.error(format!("node {tag} has z = {}: the mesh must lie in the x-y plane (x = r, y = z)", c[2])));
+                        }
+                        node_coords.insert(tag, [c[0], c[1]]);
+                    }
+                }
+                lines.expect("$EndNodes")?;
+            }
+            "$Elements" => {
+                let h: Vec<u64> = lines.numbers("$Elements header")?;
+                need(&h, 4, &lines, "$Elements header")?;
+                for _ in 0..h[0] {
+                    let b: Vec<i64> = lines.numbers("element block header")?;
+                    need(&b, 4, &lines, "element block header")?;
+                    let (dim, entity, ty) = (b[0] as i32, b[1] as i32, b[2] as u32);
+                    for _ in 0..b[3] {
+                        let v: Vec<u64> = lines.numbers("element")?;
+                        need(&v, 2, &lines, "element")?;
+                        elements.push((dim, entity, ty, v[0], v[1..].to_vec(), lines.line));
+                    }
+                }
+                lines.expect("$EndElements")?;
+            }
+            other if other.starts_with("$End") => return Err(lines.error(format!("unexpected {other}"))),
+            other if other.starts_with('$') => {
+                // A section slideline does not use ($Periodic, $NodeData, ...): skip it whole.
+                let end = format!("$End{}", &other[1..]);
+                while lines.next()? != end {}
+            }
+            other => return Err(lines.error(format!("expected a section header, found {other:?}"))),
+        }
+    }
+    if !seen_format {
+        return Err(Error::input(format!("{name}: not a Gmsh mesh (no $MeshFormat section)")));
+    }
+
+    // Q8 elements define the mesh; only their nodes are kept.
+    let mut mesh = Mesh::default();
+    let mut node_index: HashMap<u64, usize> = HashMap::new();
+    let mut entity_elements: BTreeMap<i32, Vec<usize>> = BTreeMap::new();
+    for (dim, entity, ty, tag, nodes, line) in &elements {
+        if *dim != 2 {
+            continue;
+        }
+        if *ty != QUAD8 {
+            return Err(Error::input(format!("{name}:{line}: element {tag} is {}; slideline uses 8-node quadrilaterals (Gmsh type 16: Mesh.ElementOrder = 2, Mesh.SecondOrderIncomplete = 1, recombined)", type_name(*ty))));
+        }
+        if nodes.len() != 8 {
+            return Err(Error::input(format!("{name}:{line}: element {tag} lists {} nodes, an 8-node quadrilateral needs 8", nodes.len())));
+        }
+        let mut conn = [0usize; 8];
+        for (k, t) in nodes.iter().enumerate() {
+            let c = *node_coords.get(t).ok_or_else(|| Error::input(format!("{name}:{line}: element {tag} uses node {t}, which is not in $Nodes")))?;
+            conn[k] = *node_index.entry(*t).or_insert_with(|| {
+                mesh.coords.push(c);
+                mesh.node_ids.push(*t);
+                mesh.coords.len() - 1
+            });
+        }
+        entity_elements.entry(*entity).or_default().push(mesh.elements.len());
+        mesh.elements.push(conn);
+        mesh.element_ids.push(*tag);
+    }
+
+    let mut sets = MeshSets::default();
+    sets.element_sets.insert("all".into(), (0..mesh.elements.len()).collect());
+    sets.node_sets.insert("all".into(), (0..mesh.coords.len()).collect());
+    let group_name = |dim: i32, tag: i32| physical_names.get(&(dim, tag)).cloned().unwrap_or_else(|| format!("physical_{tag}"));
+
+    // 2D groups: element sets.
+    for (entity, elems) in &entity_elements {
+        for &p in entity_physicals.get(&(2, *entity)).map(|v| v.as_slice()).unwrap_or(&[]) {
+            sets.element_sets.entry(group_name(2, p)).or_default().extend(elems);
+        }
+    }
+    // 1D groups: surfaces made of element sides; 0D groups: node sets.
+    let mut side_of: HashMap<(usize, usize), Edge> = HashMap::new();
+    for (e, conn) in mesh.elements.iter().enumerate() {
+        for side in 0..4 {
+            let [a, b, _] = edge_nodes(side).map(|k| conn[k]);
+            side_of.insert((a.min(b), a.max(b)), Edge { element: e, side });
+        }
+    }
+    let mut surfaces: BTreeMap<String, Vec<Edge>> = BTreeMap::new();
+    for (dim, entity, ty, tag, nodes, line) in &elements {
+        let phys = entity_physicals.get(&(*dim, *entity)).map(|v| v.as_slice()).unwrap_or(&[]);
+        if phys.is_empty() || *dim > 1 {
+            continue;
+        }
+        let index = |t: &u64| node_index.get(t).copied().ok_or_else(|| Error::input(format!("{name}:{line}: element {tag} uses node {t}, which belongs to no 8-node quadrilateral")));
+        match (*dim, *ty) {
+            (1, LINE3) if nodes.len() == 3 => {
+                let (a, b) = (index(&nodes[0])?, index(&nodes[1])?);
+                let edge = *side_of.get(&(a.min(b), a.max(b))).ok_or_else(|| Error::input(format!("{name}:{line}: line element {tag} is not a side of any quadrilateral")))?;
+                for &p in phys {
+                    surfaces.entry(group_name(1, p)).or_default().push(edge);
+                }
+            }
+            (1, _) => return Err(Error::input(format!("{name}:{line}: element {tag} in a physical curve is {}; surfaces need 3-node lines (type 8)", type_name(*ty)))),
+            (0, POINT) => {
+                let n = index(&nodes[0])?;
+                for &p in phys {
+                    sets.node_sets.entry(group_name(0, p)).or_default().push(n);
+                }
+            }
+            _ => return Err(Error::input(format!("{name}:{line}: element {tag} of type {ty} in a physical point group is not a point"))),
+        }
+    }
+    for (nm, mut edges) in surfaces {
+        edges.sort_unstable();
+        edges.dedup();
+        sets.add_surface(&mesh, &nm, edges);
+    }
+    // Element sets also name their nodes, so boundary conditions can use them.
+    for (nm, elems) in sets.element_sets.clone() {
+        if nm == "all" {
+            continue;
+        }
+        let mut nodes: Vec<usize> = elems.iter().flat_map(|&e| mesh.elements[e]).collect();
+        nodes.sort_unstable();
+        nodes.dedup();
+        sets.node_sets.entry(nm).or_insert(nodes);
+    }
+    for v in sets.node_sets.values_mut() {
+        v.sort_unstable();
+        v.dedup();
+    }
+    Ok((mesh, sets))
+}
+
+fn type_name(ty: u32) -> String {
+    match ty {
+        1 => "a 2-node line (type 1)".into(),
+        2 => "a 3-node triangle (type 2)".into(),
+        3 => "a 4-node quadrilateral (type 3)".into(),
+        9 => "a 6-node triangle (type 9)".into(),
+        10 => "a 9-node quadrilateral (type 10)".into(),
+        other => format!("Gmsh element type {other}"),
+    }
+}

@@ -1,0 +1,159 @@
+//! Axisymmetric mesh of 8-node quadrilaterals in (r, z), and a structured block generator.
+
+use crate::error::{Error, Result};
+use crate::fe::axisymmetric::map_point;
+use crate::fe::quadrature::square_3x3;
+use crate::fe::shape::{edge_nodes, CORNERS};
+use std::collections::BTreeMap;
+
+pub const NODES_PER_ELEMENT: usize = 8;
+
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Mesh {
+    /// (r, z) of each node, mm.
+    pub coords: Vec<[f64; 2]>,
+    /// External node numbers (Gmsh tags), for messages and output.
+    pub node_ids: Vec<u64>,
+    /// Q8 connectivity in internal node indices (order of `fe::shape`).
+    pub elements: Vec<[usize; NODES_PER_ELEMENT]>,
+    /// External element numbers.
+    pub element_ids: Vec<u64>,
+}
+
+/// Side `side` (0..4) of element `element`: a 3-node edge, part of a surface.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+pub struct Edge {
+    pub element: usize,
+    pub side: usize,
+}
+
+impl Mesh {
+    pub fn element_coords(&self, e: usize) -> [[f64; 2]; NODES_PER_ELEMENT] {
+        self.elements[e].map(|n| self.coords[n])
+    }
+
+    /// Global nodes (start, end, middle) of an edge.
+    pub fn edge_nodes(&self, edge: Edge) -> [usize; 3] {
+        edge_nodes(edge.side).map(|a| self.elements[edge.element][a])
+    }
+
+    /// Checks the mesh has elements, lies at r >= 0, and has no inverted or degenerate element.
+    pub fn validate(&self) -> Result<()> {
+        if self.elements.is_empty() {
+            return Err(Error::input("the mesh has no elements (slideline needs 8-node quadrilaterals)"));
+        }
+        let size = self.coords.iter().fold(0.0f64, |m, c| m.max(c[0].abs()).max(c[1].abs())).max(1.0);
+        if let Some((i, c)) = self.coords.iter().enumerate().find(|(_, c)| c[0] < -1e-9 * size || !c[0].is_finite() || !c[1].is_finite()) {
+            return Err(Error::input(format!("node {} at (r, z) = ({}, {}): axisymmetric nodes need a finite r >= 0", self.node_ids[i], c[0], c[1])));
+        }
+        for (e, conn) in self.elements.iter().enumerate() {
+            let x = self.element_coords(e);
+            let points = square_3x3().map(|q| q.0).into_iter().chain(CORNERS.iter().map(|c| [c[0] * 0.999, c[1] * 0.999]));
+            for p in points {
+                if let Err(msg) = map_point(&x, p) {
+                    let nodes: Vec<u64> = conn.iter().map(|&n| self.node_ids[n]).collect();
+                    return Err(Error::input(format!("element {} (nodes {:?}): {msg}", self.element_ids[e], nodes)));
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Named sets that come with a generated or imported mesh.
+#[derive(Clone, Debug, Default)]
+pub struct MeshSets {
+    pub node_sets: BTreeMap<String, Vec<usize>>,
+    pub element_sets: BTreeMap<String, Vec<usize>>,
+    pub surfaces: BTreeMap<String, Vec<Edge>>,
+}
+
+impl MeshSets {
+    /// Adds a surface and the node set of its nodes under the same name.
+    pub fn add_surface(&mut self, mesh: &Mesh, name: &str, edges: Vec<Edge>) {
+        let mut nodes: Vec<usize> = edges.iter().flat_map(|&e| mesh.edge_nodes(e)).collect();
+        nodes.sort_unstable();
+        nodes.dedup();
+        self.node_sets.insert(name.to_string(), nodes);
+        self.surfaces.insert(name.to_string(), edges);
+    }
+}
+
+/// Structured block of `nr x nz` Q8 elements on [r0, r1] x [z0, z1]. Sets: element set `all`,
+/// node set `all`, and surfaces with node sets `inner` (r = r0), `outer` (r = r1),
+/// `bottom` (z = z0), `top` (z = z1).
+pub fn rectangle(r: [f64; 2], z: [f64; 2], divisions: [usize; 2]) -> Result<(Mesh, MeshSets)> {
+    let [nr, nz] = divisions;
+    if nr == 0 || nz == 0 {
+        return Err(Error::input(format!("mesh.rectangle: divisions must be at least 1, got {divisions:?}")));
+    }
+    if !(r[1] > r[0] && z[1] > z[0] && r[0] >= 0.0) {
+        return Err(Error::input(format!("mesh.rectangle: need 0 <= r0 < r1 and z0 < z1, got r = {r:?}, z = {z:?}")));
+    }
+    let (gi, gj) = (2 * nr + 1, 2 * nz + 1);
+    let mut index = vec![usize::MAX; gi * gj];
+    let mut mesh = Mesh::default();
+    for j in 0..gj {
+        for i in 0..gi {
+            if i % 2 == 1 && j % 2 == 1 {
+                continue; // no centre node in the serendipity element
+            }
+            index[j * gi + i] = mesh.coords.len();
+            mesh.coords.push([r[0] + (r[1] - r[0]) * i as f64 / (gi - 1) as f64, z[0] + (z[1] - z[0]) * j as f64 / (gj - 1) as f64]);
+            mesh.node_ids.push(mesh.coords.len() as u64);
+        }
+    }
+    let at = |i: usize, j: usize| index[j * gi + i];
+    let (mut inner, mut outer, mut bottom, mut top) = (vec![], vec![], vec![], vec![]);
+    for ej in 0..nz {
+        for ei in 0..nr {
+            let (i, j) = (2 * ei, 2 * ej);
+            let e = mesh.elements.len();
+            mesh.elements.push([at(i, j), at(i + 2, j), at(i + 2, j + 2), at(i, j + 2), at(i + 1, j), at(i + 2, j + 1), at(i + 1, j + 2), at(i, j + 1)]);
+            mesh.element_ids.push(e as u64 + 1);
+            if ej == 0 {
+                bottom.push(Edge { element: e, side: 0 });
+            }
+            if ei == nr - 1 {
+                outer.push(Edge { element: e, side: 1 });
+            }
+            if ej == nz - 1 {
+                top.push(Edge { element: e, side: 2 });
+            }
+            if ei == 0 {
+                inner.push(Edge { element: e, side: 3 });
+            }
+        }
+    }
+    let mut sets = MeshSets::default();
+    sets.element_sets.insert("all".into(), (0..mesh.elements.len()).collect());
+    sets.node_sets.insert("all".into(), (0..mesh.coords.len()).collect());
+    for (name, edges) in [("inner", inner), ("outer", outer), ("bottom", bottom), ("top", top)] {
+        sets.add_surface(&mesh, name, edges);
+    }
+    Ok((mesh, sets))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rectangle_has_expected_counts_and_valid_elements() {
+        let (mesh, sets) = rectangle([1.0, 3.0], [0.0, 1.0], [4, 2]).unwrap();
+        assert_eq!(mesh.elements.len(), 8);
+        assert_eq!(mesh.coords.len(), 9 * 5 - 4 * 2);
+        mesh.validate().unwrap();
+        assert_eq!(sets.node_sets["inner"].len(), 5);
+        assert_eq!(sets.surfaces["top"].len(), 4);
+        for &n in &sets.node_sets["outer"] {
+            assert_eq!(mesh.coords[n][0], 3.0);
+        }
+    }
+
+    #[test]
+    fn empty_mesh_is_rejected() {
+        let err = Mesh::default().validate().unwrap_err().to_string();
+        assert!(err.contains("no elements"), "{err}");
+    }
+}

@@ -1,0 +1,152 @@
+//! The analysis model as plain data: mesh, named sets and surfaces, materials, sections,
+//! boundary conditions, loads and steps. Every reader and generator produces a [`Model`];
+//! [`Model::validate`] checks it once, and nothing downstream knows where it came from.
+//!
+//! Units: mm, N, MPa, degC. Coordinates are (r, z), r >= 0 the radius, z the axis.
+
+pub mod deck;
+pub mod gmsh;
+pub mod mesh;
+
+pub use mesh::{Edge, Mesh, NODES_PER_ELEMENT};
+
+use crate::error::{Error, Result};
+use std::collections::BTreeMap;
+
+/// Displacement component in the (r, z) plane.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+pub enum Component {
+    R = 0,
+    Z = 1,
+}
+
+impl Component {
+    pub fn name(self) -> &'static str {
+        match self {
+            Component::R => "ur",
+            Component::Z => "uz",
+        }
+    }
+}
+
+/// Constitutive model of a material, with its parameters (MPa, 1/degC).
+#[derive(Clone, Debug, PartialEq)]
+pub enum MaterialModel {
+    /// Isotropic linear elasticity with isotropic thermal expansion.
+    Elastic { youngs_modulus: f64, poissons_ratio: f64, thermal_expansion: f64 },
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct Material {
+    pub name: String,
+    pub model: MaterialModel,
+}
+
+/// A displacement prescribed on every node of a node set; `value` is reached at the end of
+/// the step, ramped linearly from the value at the step's start.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PrescribedDisplacement {
+    pub node_set: String,
+    pub component: Component,
+    pub value: f64,
+}
+
+/// A uniform pressure (MPa) on a surface, positive pushing into the body; its `value` is
+/// reached at the end of the step, ramped from the value at the step's start.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Pressure {
+    pub surface: String,
+    pub value: f64,
+}
+
+/// One load step: targets at its end, reached in `increments` equal increments. What a step
+/// does not mention keeps its value from the previous step (constraints persist, as in Abaqus).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Step {
+    pub name: String,
+    pub increments: usize,
+    pub displacements: Vec<PrescribedDisplacement>,
+    pub pressures: Vec<Pressure>,
+    /// Uniform temperature (degC) at the end of the step; `None` keeps the previous value.
+    pub temperature: Option<f64>,
+}
+
+#[derive(Clone, Debug)]
+pub struct Model {
+    pub mesh: Mesh,
+    pub node_sets: BTreeMap<String, Vec<usize>>,
+    pub element_sets: BTreeMap<String, Vec<usize>>,
+    pub surfaces: BTreeMap<String, Vec<Edge>>,
+    pub materials: Vec<Material>,
+    /// Material index of every element.
+    pub element_material: Vec<usize>,
+    /// Temperature (degC) at which thermal strain is zero, and the initial temperature.
+    pub reference_temperature: f64,
+    pub steps: Vec<Step>,
+    /// The text the model was read from, kept for the output file.
+    pub source_text: String,
+}
+
+impl Model {
+    /// Checks everything the solver relies on; the first problem found is reported by name.
+    pub fn validate(&self) -> Result<()> {
+        self.mesh.validate()?;
+        for m in &self.materials {
+            match m.model {
+                MaterialModel::Elastic { youngs_modulus, poissons_ratio, thermal_expansion } => {
+                    if !(youngs_modulus > 0.0 && youngs_modulus.is_finite()) {
+                        return Err(Error::input(format!("material '{}': Young's modulus must be > 0, got {youngs_modulus}", m.name)));
+                    }
+                    if !(poissons_ratio > -1.0 && poissons_ratio < 0.5) {
+                        return Err(Error::input(format!("material '{}': Poisson's ratio must lie in (-1, 0.5), got {poissons_ratio}", m.name)));
+                    }
+                    if !thermal_expansion.is_finite() {
+                        return Err(Error::input(format!("material '{}': thermal expansion must be finite", m.name)));
+                    }
+                }
+            }
+        }
+        if self.element_material.len() != self.mesh.elements.len() {
+            return Err(Error::input("internal: element_material does not match the element count"));
+        }
+        if self.steps.is_empty() {
+            return Err(Error::input("the model has no steps: add a [[step]]"));
+        }
+        for step in &self.steps {
+            if step.increments == 0 {
+                return Err(Error::input(format!("step '{}': increments must be at least 1", step.name)));
+            }
+            for d in &step.displacements {
+                self.node_set(&d.node_set).map_err(|e| Error::input(format!("step '{}': {e}", step.name)))?;
+                if !d.value.is_finite() {
+                    return Err(Error::input(format!("step '{}': displacement on '{}' is not finite", step.name, d.node_set)));
+                }
+            }
+            for p in &step.pressures {
+                self.surface(&p.surface).map_err(|e| Error::input(format!("step '{}': {e}", step.name)))?;
+            }
+        }
+        Ok(())
+    }
+
+    pub fn node_set(&self, name: &str) -> Result<&[usize]> {
+        self.node_sets.get(name).map(|v| v.as_slice()).ok_or_else(|| Error::input(format!("unknown node set '{name}' (known: {})", known(self.node_sets.keys()))))
+    }
+
+    pub fn element_set(&self, name: &str) -> Result<&[usize]> {
+        self.element_sets.get(name).map(|v| v.as_slice()).ok_or_else(|| Error::input(format!("unknown element set '{name}' (known: {})", known(self.element_sets.keys()))))
+    }
+
+    pub fn surface(&self, name: &str) -> Result<&[Edge]> {
+        self.surfaces.get(name).map(|v| v.as_slice()).ok_or_else(|| Error::input(format!("unknown surface '{name}' (known: {})", known(self.surfaces.keys()))))
+    }
+}
+
+fn known<'a>(names: impl Iterator<Item = &'a String>) -> String {
+    let v: Vec<&str> = names.map(|s| s.as_str()).collect();
+    if v.is_empty() {
+        "none".into()
+    } else {
+        v.join(", ")
+    }
+}
