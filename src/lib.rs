@@ -11,3 +11,6 @@ pub mod element;
 pub mod fe;
 pub mod material;
 pub mod model;
+pub mod dist;
+pub mod io;
+pub mod solve;

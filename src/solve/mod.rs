@@ -1,0 +1,7 @@
+//! Parallel drivers: the discrete problem for SNES and the load-stepping loop.
+
+pub mod problem;
+pub mod schedule;
+pub mod stepping;
+
+pub use stepping::{run, RunOptions, RunSummary};

@@ -1,0 +1,69 @@
+//! What each step asks for: prescribed values, pressures and temperature at its start and end,
+//! interpolated linearly in the step's load factor.
+
+use super::problem::LoadState;
+use crate::model::Model;
+use std::collections::BTreeMap;
+
+/// Start and end of every load quantity over one step.
+#[derive(Clone, Debug)]
+pub struct StepLoads {
+    /// (node, component) -> (value at step start, value at step end).
+    pub prescribed: BTreeMap<(usize, usize), (f64, f64)>,
+    /// surface -> (start, end) pressure.
+    pub pressures: BTreeMap<String, (f64, f64)>,
+    /// (start, end) temperature, degC.
+    pub temperature: (f64, f64),
+    /// Node sets with a prescribed displacement in this or an earlier step (reaction output).
+    pub constrained_sets: Vec<String>,
+}
+
+impl StepLoads {
+    /// Loads of step `index`, given the previous step's loads (None for the first) and the
+    /// current nodal displacements (a newly prescribed DOF ramps from where it is).
+    pub fn new(model: &Model, index: usize, previous: Option<&StepLoads>, displacement: &[[f64; 2]]) -> Self {
+        let step = &model.steps[index];
+        let mut prescribed: BTreeMap<(usize, usize), (f64, f64)> = previous.map(|p| p.prescribed.iter().map(|(&k, &(_, end))| (k, (end, end))).collect()).unwrap_or_default();
+        let mut constrained_sets = previous.map(|p| p.constrained_sets.clone()).unwrap_or_default();
+        for d in &step.displacements {
+            for &n in &model.node_sets[&d.node_set] {
+                let c = d.component as usize;
+                let start = prescribed.get(&(n, c)).map(|v| v.0).unwrap_or(displacement[n][c]);
+                prescribed.insert((n, c), (start, d.value));
+            }
+            if !constrained_sets.contains(&d.node_set) {
+                constrained_sets.push(d.node_set.clone());
+            }
+        }
+        let mut pressures: BTreeMap<String, (f64, f64)> = previous.map(|p| p.pressures.iter().map(|(k, &(_, end))| (k.clone(), (end, end))).collect()).unwrap_or_default();
+        for p in &step.pressures {
+            let start = pressures.get(&p.surface).map(|v| v.0).unwrap_or(0.0);
+            pressures.insert(p.surface.clone(), (start, p.value));
+        }
+        let t0 = previous.map(|p| p.temperature.1).unwrap_or(model.reference_temperature);
+        StepLoads { prescribed, pressures, temperature: (t0, step.temperature.unwrap_or(t0)), constrained_sets }
+    }
+
+    /// Which DOFs are prescribed in this step.
+    pub fn prescribed_mask(&self, nodes: usize) -> Vec<[bool; 2]> {
+        let mut mask = vec![[false; 2]; nodes];
+        for &(n, c) in self.prescribed.keys() {
+            mask[n][c] = true;
+        }
+        mask
+    }
+
+    /// The loads at load factor `lambda` in [0, 1] of this step.
+    pub fn at(&self, model: &Model, lambda: f64) -> LoadState {
+        let lerp = |(a, b): (f64, f64)| a + lambda * (b - a);
+        let mut prescribed = vec![[0.0; 2]; model.mesh.coords.len()];
+        for (&(n, c), &v) in &self.prescribed {
+            prescribed[n][c] = lerp(v);
+        }
+        LoadState {
+            prescribed,
+            temperature_change: lerp(self.temperature) - model.reference_temperature,
+            pressures: self.pressures.iter().map(|(s, &v)| (s.clone(), lerp(v))).collect(),
+        }
+    }
+}
