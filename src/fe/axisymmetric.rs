@@ -24,22 +24,8 @@ pub struct PointGeometry {
 /// message when the Jacobian is not positive (inverted or degenerate element).
 pub fn map_point(x: &[[f64; 2]; 8], p: [f64; 2]) -> Result<PointGeometry, String> {
     let (n, d) = shape::q8(p);
-    // J = d(r,z)/d(xi,eta): j[i][k] = d x_i / d xi_k
-    let mut j = [[0.0; 2]; 2];
-    let mut r = 0.0;
-    for a in 0..8 {
-        r += n[a] * x[a][0];
-        for i in 0..2 {
-            for k in 0..2 {
-                j[i][k] += x[a][i] * d[a][k];
-            }
-        }
-    }
-    let det_j = j[0][0] * j[1][1] - j[0][1] * j[1][0];
-    let scale = (j[0][0].abs() + j[0][1].abs()) * (j[1][0].abs() + j[1][1].abs());
-    if !(det_j > 1e-12 * scale) || !det_j.is_finite() {
-        return Err(format!("non-positive Jacobian determinant {det_j:.3e} at (xi, eta) = ({:.3}, {:.3}): element inverted, degenerate or nodes not counter-clockwise", p[0], p[1]));
-    }
+    let (j, det_j) = jacobian(x, &d, p)?;
+    let r: f64 = (0..8).map(|a| n[a] * x[a][0]).sum();
     if r <= 0.0 {
         return Err(format!("radius {r:.3e} <= 0 at an integration point: the mesh must lie at r >= 0"));
     }
@@ -52,6 +38,25 @@ pub fn map_point(x: &[[f64; 2]; 8], p: [f64; 2]) -> Result<PointGeometry, String
         }
     }
     Ok(PointGeometry { n, grad, r, det_j })
+}
+
+/// J = d(r,z)/d(xi,eta) (`j[i][k] = d x_i / d xi_k`) and its determinant at `p`, given the
+/// shape-function derivatives `d` there; fails when det J is not clearly positive.
+pub fn jacobian(x: &[[f64; 2]; 8], d: &[[f64; 2]; 8], p: [f64; 2]) -> Result<([[f64; 2]; 2], f64), String> {
+    let mut j = [[0.0; 2]; 2];
+    for a in 0..8 {
+        for i in 0..2 {
+            for k in 0..2 {
+                j[i][k] += x[a][i] * d[a][k];
+            }
+        }
+    }
+    let det_j = j[0][0] * j[1][1] - j[0][1] * j[1][0];
+    let scale = (j[0][0].abs() + j[0][1].abs()) * (j[1][0].abs() + j[1][1].abs());
+    if !(det_j > 1e-12 * scale) || !det_j.is_finite() {
+        return Err(format!("non-positive Jacobian determinant {det_j:.3e} at (xi, eta) = ({:.3}, {:.3}): element inverted, degenerate or nodes not counter-clockwise", p[0], p[1]));
+    }
+    Ok((j, det_j))
 }
 
 /// Small strain `[e_rr, e_zz, e_tt, gamma_rz]` at a point from nodal displacements `u`.

@@ -209,6 +209,9 @@ pub fn parse(text: &str, name: &str) -> Result<(Mesh, MeshSets)> {
         mesh.element_ids.push(*tag);
     }
 
+    if mesh.elements.is_empty() {
+        return Err(Error::input(format!("{name}: the mesh has no elements (slideline needs 8-node quadrilaterals, Gmsh type 16)")));
+    }
     let mut sets = MeshSets::default();
     sets.element_sets.insert("all".into(), (0..mesh.elements.len()).collect());
     sets.node_sets.insert("all".into(), (0..mesh.coords.len()).collect());

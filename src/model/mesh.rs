@@ -1,9 +1,9 @@
 //! Axisymmetric mesh of 8-node quadrilaterals in (r, z), and a structured block generator.
 
 use crate::error::{Error, Result};
-use crate::fe::axisymmetric::map_point;
+use crate::fe::axisymmetric::{jacobian, map_point};
 use crate::fe::quadrature::square_3x3;
-use crate::fe::shape::{edge_nodes, CORNERS};
+use crate::fe::shape::{edge_nodes, q8, CORNERS};
 use std::collections::BTreeMap;
 
 pub const NODES_PER_ELEMENT: usize = 8;
@@ -48,9 +48,12 @@ impl Mesh {
         }
         for (e, conn) in self.elements.iter().enumerate() {
             let x = self.element_coords(e);
-            let points = square_3x3().map(|q| q.0).into_iter().chain(CORNERS.iter().map(|c| [c[0] * 0.999, c[1] * 0.999]));
-            for p in points {
-                if let Err(msg) = map_point(&x, p) {
+            // Gauss points (also checks r > 0 there) and corners (a collapsed side or corner
+            // has det J = 0 exactly at the corner).
+            let gauss = square_3x3().map(|q| map_point(&x, q.0).map(|_| ()));
+            let corners = CORNERS.map(|c| jacobian(&x, &q8(c).1, c).map(|_| ()));
+            for check in gauss.into_iter().chain(corners) {
+                if let Err(msg) = check {
                     let nodes: Vec<u64> = conn.iter().map(|&n| self.node_ids[n]).collect();
                     return Err(Error::input(format!("element {} (nodes {:?}): {msg}", self.element_ids[e], nodes)));
                 }
