@@ -2,15 +2,17 @@
 //! contact. Layers (see DESIGN.md): readers -> `model`; pure kernels (`fe`, `material`,
 //! `element`); parallel drivers (`dist`, `solve`, `io`) over the `petsc` binding.
 #![deny(unsafe_code)]
+// Kernels are written in index notation, as their formulas are.
+#![allow(clippy::needless_range_loop)]
 
 pub mod error;
 pub mod petsc;
 
 pub use error::{Error, Result};
+pub mod dist;
 pub mod element;
 pub mod fe;
+pub mod io;
 pub mod material;
 pub mod model;
-pub mod dist;
-pub mod io;
 pub mod solve;

@@ -22,10 +22,24 @@ const C: f64 = 0.05;
 
 fn deck() -> String {
     // boundary node coordinates, in the order of the physical points b1..b8 in patch5.msh
-    let pts = [(10.0, 0.0), (20.0, 0.0), (20.0, 10.0), (10.0, 10.0), (15.0, 0.0), (20.0, 5.0), (15.0, 10.0), (10.0, 5.0)];
+    let pts = [
+        (10.0, 0.0),
+        (20.0, 0.0),
+        (20.0, 10.0),
+        (10.0, 10.0),
+        (15.0, 0.0),
+        (20.0, 5.0),
+        (15.0, 10.0),
+        (10.0, 5.0),
+    ];
     let mut d = String::from("[mesh]\nfile = \"patch5.msh\"\n\n[[material]]\nname = \"m\"\nyoungs_modulus = 200000.0\npoissons_ratio = 0.3\n\n[[step]]\nboundary = [\n");
     for (k, (r, z)) in pts.iter().enumerate() {
-        d.push_str(&format!("  {{ set = \"b{}\", ur = {:e}, uz = {:e} }},\n", k + 1, A * r, B * z + C));
+        d.push_str(&format!(
+            "  {{ set = \"b{}\", ur = {:e}, uz = {:e} }},\n",
+            k + 1,
+            A * r,
+            B * z + C
+        ));
     }
     d.push_str("]\n");
     d
@@ -40,14 +54,28 @@ fn distorted_patch_reproduces_exact_stress_and_displacement() {
     let lambda = e * nu / ((1.0 + nu) * (1.0 - 2.0 * nu));
     let mu = e / (2.0 * (1.0 + nu));
     let tr = 2.0 * A + B;
-    let exact = [lambda * tr + 2.0 * mu * A, lambda * tr + 2.0 * mu * B, lambda * tr + 2.0 * mu * A, 0.0];
+    let exact = [
+        lambda * tr + 2.0 * mu * A,
+        lambda * tr + 2.0 * mu * B,
+        lambda * tr + 2.0 * mu * A,
+        0.0,
+    ];
     let scale = exact.iter().fold(0.0f64, |m, v| m.max(v.abs()));
     let stress = res.f64s(&format!("{}/stress", res.last_increment()));
     assert_eq!(stress.len(), 5 * 9 * 4);
-    let worst = stress.chunks(4).flat_map(|s| (0..4).map(move |i| (s[i] - exact[i]).abs())).fold(0.0f64, f64::max);
-    assert!(worst <= 1e-10 * scale, "max stress error {worst:e} (scale {scale})");
+    let worst = stress
+        .chunks(4)
+        .flat_map(|s| (0..4).map(move |i| (s[i] - exact[i]).abs()))
+        .fold(0.0f64, f64::max);
+    assert!(
+        worst <= 1e-10 * scale,
+        "max stress error {worst:e} (scale {scale})"
+    );
     // interior nodes too follow the field exactly
     for (x, u) in res.nodes() {
-        assert!((u[0] - A * x[0]).abs() < 1e-12 && (u[1] - (B * x[1] + C)).abs() < 1e-12, "node at {x:?}: {u:?}");
+        assert!(
+            (u[0] - A * x[0]).abs() < 1e-12 && (u[1] - (B * x[1] + C)).abs() < 1e-12,
+            "node at {x:?}: {u:?}"
+        );
     }
 }

@@ -32,7 +32,13 @@ pub struct SolidResponse {
 
 /// Evaluates the element with reference nodal coordinates `x` (r, z), nodal displacements `u`
 /// and uniform temperature change `dt` from the reference temperature.
-pub fn compute_solid(x: &[[f64; 2]; NODES], u: &[[f64; 2]; NODES], dt: f64, material: &Elastic, with_tangent: bool) -> Result<SolidResponse, String> {
+pub fn compute_solid(
+    x: &[[f64; 2]; NODES],
+    u: &[[f64; 2]; NODES],
+    dt: f64,
+    material: &Elastic,
+    with_tangent: bool,
+) -> Result<SolidResponse, String> {
     let mut f = ElementVector::zeros();
     let mut k = with_tangent.then(ElementMatrix::zeros);
     let mut stress = [[0.0; 4]; QUADRATURE_POINTS];
@@ -57,7 +63,11 @@ pub fn compute_solid(x: &[[f64; 2]; NODES], u: &[[f64; 2]; NODES], dt: f64, mate
             *k += b.transpose() * db;
         }
     }
-    Ok(SolidResponse { internal_force: f, tangent: k, stress })
+    Ok(SolidResponse {
+        internal_force: f,
+        tangent: k,
+        stress,
+    })
 }
 
 #[cfg(test)]
@@ -65,26 +75,46 @@ mod tests {
     use super::*;
 
     fn element() -> [[f64; 2]; 8] {
-        [[10.0, 0.0], [12.5, 0.3], [12.0, 2.2], [9.7, 2.0], [11.2, 0.1], [12.3, 1.3], [10.9, 2.15], [9.9, 1.0]]
+        [
+            [10.0, 0.0],
+            [12.5, 0.3],
+            [12.0, 2.2],
+            [9.7, 2.0],
+            [11.2, 0.1],
+            [12.3, 1.3],
+            [10.9, 2.15],
+            [9.9, 1.0],
+        ]
     }
 
     #[test]
     fn tangent_matches_central_differences_of_internal_force() {
         let x = element();
         let m = Elastic::new(200e3, 0.3, 1.2e-5);
-        let u: [[f64; 2]; 8] = std::array::from_fn(|a| [1e-3 * (a as f64).sin(), -2e-3 * (a as f64 * 0.7).cos()]);
-        let k = compute_solid(&x, &u, 30.0, &m, true).unwrap().tangent.unwrap();
+        let u: [[f64; 2]; 8] =
+            std::array::from_fn(|a| [1e-3 * (a as f64).sin(), -2e-3 * (a as f64 * 0.7).cos()]);
+        let k = compute_solid(&x, &u, 30.0, &m, true)
+            .unwrap()
+            .tangent
+            .unwrap();
         let h = 1e-6;
         let scale = k.abs().max();
         for j in 0..DOFS {
             let (mut up, mut um) = (u, u);
             up[j / 2][j % 2] += h;
             um[j / 2][j % 2] -= h;
-            let fp = compute_solid(&x, &up, 30.0, &m, false).unwrap().internal_force;
-            let fm = compute_solid(&x, &um, 30.0, &m, false).unwrap().internal_force;
+            let fp = compute_solid(&x, &up, 30.0, &m, false)
+                .unwrap()
+                .internal_force;
+            let fm = compute_solid(&x, &um, 30.0, &m, false)
+                .unwrap()
+                .internal_force;
             let col = (fp - fm) / (2.0 * h);
             let err = (col - k.column(j)).abs().max();
-            assert!(err <= 1e-6 * scale, "column {j}: error {err:e} vs scale {scale:e}");
+            assert!(
+                err <= 1e-6 * scale,
+                "column {j}: error {err:e} vs scale {scale:e}"
+            );
         }
     }
 

@@ -16,12 +16,20 @@ pub struct Elastic {
 impl Elastic {
     pub fn new(youngs_modulus: f64, poissons_ratio: f64, thermal_expansion: f64) -> Self {
         let (e, nu) = (youngs_modulus, poissons_ratio);
-        Elastic { lambda: e * nu / ((1.0 + nu) * (1.0 - 2.0 * nu)), mu: e / (2.0 * (1.0 + nu)), alpha: thermal_expansion }
+        Elastic {
+            lambda: e * nu / ((1.0 + nu) * (1.0 - 2.0 * nu)),
+            mu: e / (2.0 * (1.0 + nu)),
+            alpha: thermal_expansion,
+        }
     }
 
     pub fn from_model(model: &MaterialModel) -> Self {
         match *model {
-            MaterialModel::Elastic { youngs_modulus, poissons_ratio, thermal_expansion } => Elastic::new(youngs_modulus, poissons_ratio, thermal_expansion),
+            MaterialModel::Elastic {
+                youngs_modulus,
+                poissons_ratio,
+                thermal_expansion,
+            } => Elastic::new(youngs_modulus, poissons_ratio, thermal_expansion),
         }
     }
 
@@ -32,13 +40,23 @@ impl Elastic {
         let (n0, n1, n2) = (e[0] - th, e[1] - th, e[2] - th);
         let tr = n0 + n1 + n2;
         let m2 = 2.0 * self.mu;
-        [self.lambda * tr + m2 * n0, self.lambda * tr + m2 * n1, self.lambda * tr + m2 * n2, self.mu * e[3]]
+        [
+            self.lambda * tr + m2 * n0,
+            self.lambda * tr + m2 * n1,
+            self.lambda * tr + m2 * n2,
+            self.mu * e[3],
+        ]
     }
 
     /// d(stress)/d(strain), constant.
     pub fn tangent(&self) -> [[f64; 4]; 4] {
         let (l, m) = (self.lambda, self.mu);
-        [[l + 2.0 * m, l, l, 0.0], [l, l + 2.0 * m, l, 0.0], [l, l, l + 2.0 * m, 0.0], [0.0, 0.0, 0.0, m]]
+        [
+            [l + 2.0 * m, l, l, 0.0],
+            [l, l + 2.0 * m, l, 0.0],
+            [l, l, l + 2.0 * m, 0.0],
+            [0.0, 0.0, 0.0, m],
+        ]
     }
 }
 
@@ -59,7 +77,11 @@ mod tests {
             let (sp, sm) = (m.stress(&ep, 50.0), m.stress(&em, 50.0));
             for i in 0..4 {
                 let fd = (sp[i] - sm[i]) / (2.0 * h);
-                assert!((fd - c[i][j]).abs() <= 1e-6 * c[0][0], "C[{i}][{j}]: {fd} vs {}", c[i][j]);
+                assert!(
+                    (fd - c[i][j]).abs() <= 1e-6 * c[0][0],
+                    "C[{i}][{j}]: {fd} vs {}",
+                    c[i][j]
+                );
             }
         }
     }

@@ -27,7 +27,9 @@
 //! ```
 
 use super::mesh::{rectangle, MeshSets};
-use super::{gmsh, Component, Material, MaterialModel, Model, Pressure, PrescribedDisplacement, Step};
+use super::{
+    gmsh, Component, Material, MaterialModel, Model, PrescribedDisplacement, Pressure, Step,
+};
 use crate::error::{Error, Result};
 use serde::Deserialize;
 use std::path::{Path, PathBuf};
@@ -128,35 +130,61 @@ struct PressureSpec {
 
 /// Reads and validates a deck file.
 pub fn read(path: &Path) -> Result<Model> {
-    let text = std::fs::read_to_string(path).map_err(|source| Error::Read { path: path.to_path_buf(), source })?;
+    let text = std::fs::read_to_string(path).map_err(|source| Error::Read {
+        path: path.to_path_buf(),
+        source,
+    })?;
     parse(&text, path)
 }
 
 /// Parses deck `text`; `path` names it in messages and anchors relative mesh paths.
 pub fn parse(text: &str, path: &Path) -> Result<Model> {
-    let deck: DeckFile = toml::from_str(text).map_err(|e| Error::input(format!("{}: {}", path.display(), e.to_string().trim_end())))?;
+    let deck: DeckFile = toml::from_str(text)
+        .map_err(|e| Error::input(format!("{}: {}", path.display(), e.to_string().trim_end())))?;
     let (mesh, sets) = match (&deck.mesh.file, &deck.mesh.rectangle) {
         (Some(file), None) => {
             let full = path.parent().unwrap_or(Path::new(".")).join(file);
             gmsh::read(&full)?
         }
         (None, Some(r)) => rectangle(r.r, r.z, r.divisions)?,
-        _ => return Err(Error::input(format!("{}: [mesh] needs exactly one of `file` or `rectangle`", path.display()))),
+        _ => {
+            return Err(Error::input(format!(
+                "{}: [mesh] needs exactly one of `file` or `rectangle`",
+                path.display()
+            )))
+        }
     };
-    let MeshSets { node_sets, element_sets, surfaces } = sets;
+    let MeshSets {
+        node_sets,
+        element_sets,
+        surfaces,
+    } = sets;
 
     let mut materials = Vec::new();
     for m in &deck.material {
         if materials.iter().any(|x: &Material| x.name == m.name) {
-            return Err(Error::input(format!("material '{}' is defined twice", m.name)));
+            return Err(Error::input(format!(
+                "material '{}' is defined twice",
+                m.name
+            )));
         }
         let model = match m.model {
-            MaterialKind::Elastic => MaterialModel::Elastic { youngs_modulus: m.youngs_modulus, poissons_ratio: m.poissons_ratio, thermal_expansion: m.thermal_expansion },
+            MaterialKind::Elastic => MaterialModel::Elastic {
+                youngs_modulus: m.youngs_modulus,
+                poissons_ratio: m.poissons_ratio,
+                thermal_expansion: m.thermal_expansion,
+            },
         };
-        materials.push(Material { name: m.name.clone(), model });
+        materials.push(Material {
+            name: m.name.clone(),
+            model,
+        });
     }
     if materials.is_empty() {
-        return Err(Error::input(format!("{}: no [[material]] defined", path.display())));
+        return Err(Error::input(format!(
+            "{}: no [[material]] defined",
+            path.display()
+        )));
     }
 
     let mut element_material = vec![usize::MAX; mesh.elements.len()];
@@ -164,14 +192,31 @@ pub fn parse(text: &str, path: &Path) -> Result<Model> {
         element_material.fill(0);
     }
     for s in &deck.section {
-        let mat = materials.iter().position(|m| m.name == s.material).ok_or_else(|| Error::input(format!("section on '{}': unknown material '{}'", s.elements, s.material)))?;
-        let elems = element_sets.get(&s.elements).ok_or_else(|| Error::input(format!("section: unknown element set '{}' (known: {})", s.elements, element_sets.keys().cloned().collect::<Vec<_>>().join(", "))))?;
+        let mat = materials
+            .iter()
+            .position(|m| m.name == s.material)
+            .ok_or_else(|| {
+                Error::input(format!(
+                    "section on '{}': unknown material '{}'",
+                    s.elements, s.material
+                ))
+            })?;
+        let elems = element_sets.get(&s.elements).ok_or_else(|| {
+            Error::input(format!(
+                "section: unknown element set '{}' (known: {})",
+                s.elements,
+                element_sets.keys().cloned().collect::<Vec<_>>().join(", ")
+            ))
+        })?;
         for &e in elems {
             element_material[e] = mat;
         }
     }
     if let Some(e) = element_material.iter().position(|&m| m == usize::MAX) {
-        return Err(Error::input(format!("element {} has no material: add a [[section]] covering it", mesh.element_ids[e])));
+        return Err(Error::input(format!(
+            "element {} has no material: add a [[section]] covering it",
+            mesh.element_ids[e]
+        )));
     }
 
     let mut steps = Vec::new();
@@ -180,19 +225,49 @@ pub fn parse(text: &str, path: &Path) -> Result<Model> {
         let mut displacements = Vec::new();
         for b in &s.boundary {
             if b.ur.is_none() && b.uz.is_none() {
-                return Err(Error::input(format!("step '{name}': boundary on '{}' sets neither ur nor uz", b.set)));
+                return Err(Error::input(format!(
+                    "step '{name}': boundary on '{}' sets neither ur nor uz",
+                    b.set
+                )));
             }
             for (component, value) in [(Component::R, b.ur), (Component::Z, b.uz)] {
                 if let Some(value) = value {
-                    displacements.push(PrescribedDisplacement { node_set: b.set.clone(), component, value });
+                    displacements.push(PrescribedDisplacement {
+                        node_set: b.set.clone(),
+                        component,
+                        value,
+                    });
                 }
             }
         }
-        let pressures = s.pressure.iter().map(|p| Pressure { surface: p.surface.clone(), value: p.value }).collect();
-        steps.push(Step { name, increments: s.increments, displacements, pressures, temperature: s.temperature });
+        let pressures = s
+            .pressure
+            .iter()
+            .map(|p| Pressure {
+                surface: p.surface.clone(),
+                value: p.value,
+            })
+            .collect();
+        steps.push(Step {
+            name,
+            increments: s.increments,
+            displacements,
+            pressures,
+            temperature: s.temperature,
+        });
     }
 
-    let model = Model { mesh, node_sets, element_sets, surfaces, materials, element_material, reference_temperature: deck.reference_temperature, steps, source_text: text.to_string() };
+    let model = Model {
+        mesh,
+        node_sets,
+        element_sets,
+        surfaces,
+        materials,
+        element_material,
+        reference_temperature: deck.reference_temperature,
+        steps,
+        source_text: text.to_string(),
+    };
     model.validate()?;
     Ok(model)
 }

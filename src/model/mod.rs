@@ -33,7 +33,11 @@ impl Component {
 #[derive(Clone, Debug, PartialEq)]
 pub enum MaterialModel {
     /// Isotropic linear elasticity with isotropic thermal expansion.
-    Elastic { youngs_modulus: f64, poissons_ratio: f64, thermal_expansion: f64 },
+    Elastic {
+        youngs_modulus: f64,
+        poissons_ratio: f64,
+        thermal_expansion: f64,
+    },
 }
 
 #[derive(Clone, Debug, PartialEq)]
@@ -93,52 +97,96 @@ impl Model {
         self.mesh.validate()?;
         for m in &self.materials {
             match m.model {
-                MaterialModel::Elastic { youngs_modulus, poissons_ratio, thermal_expansion } => {
+                MaterialModel::Elastic {
+                    youngs_modulus,
+                    poissons_ratio,
+                    thermal_expansion,
+                } => {
                     if !(youngs_modulus > 0.0 && youngs_modulus.is_finite()) {
-                        return Err(Error::input(format!("material '{}': Young's modulus must be > 0, got {youngs_modulus}", m.name)));
+                        return Err(Error::input(format!(
+                            "material '{}': Young's modulus must be > 0, got {youngs_modulus}",
+                            m.name
+                        )));
                     }
                     if !(poissons_ratio > -1.0 && poissons_ratio < 0.5) {
                         return Err(Error::input(format!("material '{}': Poisson's ratio must lie in (-1, 0.5), got {poissons_ratio}", m.name)));
                     }
                     if !thermal_expansion.is_finite() {
-                        return Err(Error::input(format!("material '{}': thermal expansion must be finite", m.name)));
+                        return Err(Error::input(format!(
+                            "material '{}': thermal expansion must be finite",
+                            m.name
+                        )));
                     }
                 }
             }
         }
         if self.element_material.len() != self.mesh.elements.len() {
-            return Err(Error::input("internal: element_material does not match the element count"));
+            return Err(Error::input(
+                "internal: element_material does not match the element count",
+            ));
         }
         if self.steps.is_empty() {
             return Err(Error::input("the model has no steps: add a [[step]]"));
         }
         for step in &self.steps {
             if step.increments == 0 {
-                return Err(Error::input(format!("step '{}': increments must be at least 1", step.name)));
+                return Err(Error::input(format!(
+                    "step '{}': increments must be at least 1",
+                    step.name
+                )));
             }
             for d in &step.displacements {
-                self.node_set(&d.node_set).map_err(|e| Error::input(format!("step '{}': {e}", step.name)))?;
+                self.node_set(&d.node_set)
+                    .map_err(|e| Error::input(format!("step '{}': {e}", step.name)))?;
                 if !d.value.is_finite() {
-                    return Err(Error::input(format!("step '{}': displacement on '{}' is not finite", step.name, d.node_set)));
+                    return Err(Error::input(format!(
+                        "step '{}': displacement on '{}' is not finite",
+                        step.name, d.node_set
+                    )));
                 }
             }
             for p in &step.pressures {
-                self.surface(&p.surface).map_err(|e| Error::input(format!("step '{}': {e}", step.name)))?;
+                self.surface(&p.surface)
+                    .map_err(|e| Error::input(format!("step '{}': {e}", step.name)))?;
             }
         }
         Ok(())
     }
 
     pub fn node_set(&self, name: &str) -> Result<&[usize]> {
-        self.node_sets.get(name).map(|v| v.as_slice()).ok_or_else(|| Error::input(format!("unknown node set '{name}' (known: {})", known(self.node_sets.keys()))))
+        self.node_sets
+            .get(name)
+            .map(|v| v.as_slice())
+            .ok_or_else(|| {
+                Error::input(format!(
+                    "unknown node set '{name}' (known: {})",
+                    known(self.node_sets.keys())
+                ))
+            })
     }
 
     pub fn element_set(&self, name: &str) -> Result<&[usize]> {
-        self.element_sets.get(name).map(|v| v.as_slice()).ok_or_else(|| Error::input(format!("unknown element set '{name}' (known: {})", known(self.element_sets.keys()))))
+        self.element_sets
+            .get(name)
+            .map(|v| v.as_slice())
+            .ok_or_else(|| {
+                Error::input(format!(
+                    "unknown element set '{name}' (known: {})",
+                    known(self.element_sets.keys())
+                ))
+            })
     }
 
     pub fn surface(&self, name: &str) -> Result<&[Edge]> {
-        self.surfaces.get(name).map(|v| v.as_slice()).ok_or_else(|| Error::input(format!("unknown surface '{name}' (known: {})", known(self.surfaces.keys()))))
+        self.surfaces
+            .get(name)
+            .map(|v| v.as_slice())
+            .ok_or_else(|| {
+                Error::input(format!(
+                    "unknown surface '{name}' (known: {})",
+                    known(self.surfaces.keys())
+                ))
+            })
     }
 }
 

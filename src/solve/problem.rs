@@ -10,7 +10,9 @@ use crate::fe::shape::edge_nodes;
 use crate::material::elastic::Elastic;
 use crate::model::Model;
 use crate::petsc::sys::PetscInt;
-use crate::petsc::{MatOps, MatrixView, NonlinearProblem, PetscSession, Scatter, VecOps, Vector, VectorView};
+use crate::petsc::{
+    MatOps, MatrixView, NonlinearProblem, PetscSession, Scatter, VecOps, Vector, VectorView,
+};
 
 /// Loads and prescribed values at the current load factor.
 #[derive(Clone, Debug, Default)]
@@ -56,10 +58,21 @@ pub struct Problem<'s, 'm> {
 
 impl<'s, 'm> Problem<'s, 'm> {
     /// `layout` is any global vector with the layout of the unknowns.
-    pub fn new(session: &'s PetscSession, model: &'m Model, partition: &Partition, dofs: &DofMap, layout: &Vector<'s>) -> Result<Self> {
+    pub fn new(
+        session: &'s PetscSession,
+        model: &'m Model,
+        partition: &Partition,
+        dofs: &DofMap,
+        layout: &Vector<'s>,
+    ) -> Result<Self> {
         let local = partition.local_elements();
         // Free DOFs this rank's elements touch, fetched by one scatter per evaluation.
-        let mut needed: Vec<PetscInt> = local.iter().flat_map(|&e| model.mesh.elements[e]).flat_map(|n| dofs.dof[n]).filter(|&d| d >= 0).collect();
+        let mut needed: Vec<PetscInt> = local
+            .iter()
+            .flat_map(|&e| model.mesh.elements[e])
+            .flat_map(|n| dofs.dof[n])
+            .filter(|&d| d >= 0)
+            .collect();
         needed.sort_unstable();
         needed.dedup();
         let gathered = Vector::seq(session, needed.len())?;
@@ -75,11 +88,19 @@ impl<'s, 'm> Problem<'s, 'm> {
                         let g = dofs.dof[conn[a]][c];
                         d[2 * a + c] = g;
                         if g >= 0 {
-                            slots[2 * a + c] = needed.binary_search(&g).expect("needed holds every local free DOF");
+                            slots[2 * a + c] = needed
+                                .binary_search(&g)
+                                .expect("needed holds every local free DOF");
                         }
                     }
                 }
-                LocalElement { element: e, coords: model.mesh.element_coords(e), dofs: d, slots, material: model.element_material[e] }
+                LocalElement {
+                    element: e,
+                    coords: model.mesh.element_coords(e),
+                    dofs: d,
+                    slots,
+                    material: model.element_material[e],
+                }
             })
             .collect::<Vec<_>>();
         let mut position = vec![usize::MAX; model.mesh.elements.len()];
@@ -89,10 +110,31 @@ impl<'s, 'm> Problem<'s, 'm> {
         let surface_edges = model
             .surfaces
             .iter()
-            .map(|(name, edges)| (name.clone(), edges.iter().filter(|e| position[e.element] != usize::MAX).map(|e| (position[e.element], e.side)).collect()))
+            .map(|(name, edges)| {
+                (
+                    name.clone(),
+                    edges
+                        .iter()
+                        .filter(|e| position[e.element] != usize::MAX)
+                        .map(|e| (position[e.element], e.side))
+                        .collect(),
+                )
+            })
             .collect();
-        let materials = model.materials.iter().map(|m| Elastic::from_model(&m.model)).collect();
-        Ok(Problem { model, materials, elements, surface_edges, gathered, scatter, load: LoadState::default() })
+        let materials = model
+            .materials
+            .iter()
+            .map(|m| Elastic::from_model(&m.model))
+            .collect();
+        Ok(Problem {
+            model,
+            materials,
+            elements,
+            surface_edges,
+            gathered,
+            scatter,
+            load: LoadState::default(),
+        })
     }
 
     /// Fetches the free DOFs of this rank's elements from the global vector `x`.
@@ -102,26 +144,51 @@ impl<'s, 'm> Problem<'s, 'm> {
 
     fn displacements(&self, el: &LocalElement, gathered: &[f64]) -> [[f64; 2]; NODES] {
         let conn = &self.model.mesh.elements[el.element];
-        std::array::from_fn(|a| std::array::from_fn(|c| if el.dofs[2 * a + c] >= 0 { gathered[el.slots[2 * a + c]] } else { self.load.prescribed[conn[a]][c] }))
+        std::array::from_fn(|a| {
+            std::array::from_fn(|c| {
+                if el.dofs[2 * a + c] >= 0 {
+                    gathered[el.slots[2 * a + c]]
+                } else {
+                    self.load.prescribed[conn[a]][c]
+                }
+            })
+        })
     }
 
     fn domain_error(&self, el: &LocalElement, msg: String) -> Error {
-        Error::Domain(format!("element {}: {msg}", self.model.mesh.element_ids[el.element]))
+        Error::Domain(format!(
+            "element {}: {msg}",
+            self.model.mesh.element_ids[el.element]
+        ))
     }
 
     /// Calls `sink(element, element DOF, node, component, value)` for every entry of
     /// f_int - f_ext of this rank's elements and pressure edges.
-    fn residual_entries(&self, gathered: &[f64], mut on_stress: impl FnMut(usize, &[[f64; 4]; QUADRATURE_POINTS]), mut sink: impl FnMut(&LocalElement, usize, f64)) -> Result<()> {
+    fn residual_entries(
+        &self,
+        gathered: &[f64],
+        mut on_stress: impl FnMut(usize, &[[f64; 4]; QUADRATURE_POINTS]),
+        mut sink: impl FnMut(&LocalElement, usize, f64),
+    ) -> Result<()> {
         for (k, el) in self.elements.iter().enumerate() {
             let u = self.displacements(el, gathered);
-            let out = compute_solid(&el.coords, &u, self.load.temperature_change, &self.materials[el.material], false).map_err(|m| self.domain_error(el, m))?;
+            let out = compute_solid(
+                &el.coords,
+                &u,
+                self.load.temperature_change,
+                &self.materials[el.material],
+                false,
+            )
+            .map_err(|m| self.domain_error(el, m))?;
             on_stress(k, &out.stress);
             for i in 0..DOFS {
                 sink(el, i, out.internal_force[i]);
             }
         }
         for (surface, p) in &self.load.pressures {
-            let Some((_, edges)) = self.surface_edges.iter().find(|(n, _)| n == surface) else { continue };
+            let Some((_, edges)) = self.surface_edges.iter().find(|(n, _)| n == surface) else {
+                continue;
+            };
             for &(k, side) in edges {
                 let el = &self.elements[k];
                 let local = edge_nodes(side);
@@ -143,8 +210,15 @@ impl<'s, 'm> Problem<'s, 'm> {
         let mut stress = vec![[[0.0; 4]; QUADRATURE_POINTS]; self.elements.len()];
         let mut nodal_force = vec![[0.0; 2]; self.model.mesh.coords.len()];
         let conn = |el: &LocalElement| self.model.mesh.elements[el.element];
-        self.residual_entries(&gathered, |k, s| stress[k] = *s, |el, i, v| nodal_force[conn(el)[i / 2]][i % 2] += v)?;
-        Ok(ElementFields { stress, nodal_force })
+        self.residual_entries(
+            &gathered,
+            |k, s| stress[k] = *s,
+            |el, i, v| nodal_force[conn(el)[i / 2]][i % 2] += v,
+        )?;
+        Ok(ElementFields {
+            stress,
+            nodal_force,
+        })
     }
 }
 
@@ -155,12 +229,16 @@ impl NonlinearProblem for Problem<'_, '_> {
         f.set_all(0.0)?;
         let mut rows: Vec<PetscInt> = Vec::with_capacity(DOFS);
         let mut values: Vec<f64> = Vec::with_capacity(DOFS);
-        self.residual_entries(&gathered, |_, _| {}, |el, i, v| {
-            if el.dofs[i] >= 0 {
-                rows.push(el.dofs[i]);
-                values.push(v);
-            }
-        })?;
+        self.residual_entries(
+            &gathered,
+            |_, _| {},
+            |el, i, v| {
+                if el.dofs[i] >= 0 {
+                    rows.push(el.dofs[i]);
+                    values.push(v);
+                }
+            },
+        )?;
         f.add_values(&rows, &values)?;
         f.assemble()
     }
@@ -171,7 +249,14 @@ impl NonlinearProblem for Problem<'_, '_> {
         jacobian.zero_entries()?;
         for el in &self.elements {
             let u = self.displacements(el, &gathered);
-            let out = compute_solid(&el.coords, &u, self.load.temperature_change, &self.materials[el.material], true).map_err(|m| self.domain_error(el, m))?;
+            let out = compute_solid(
+                &el.coords,
+                &u,
+                self.load.temperature_change,
+                &self.materials[el.material],
+                true,
+            )
+            .map_err(|m| self.domain_error(el, m))?;
             let k: ElementMatrix = out.tangent.expect("tangent requested");
             // nalgebra is column-major; PETSc wants row-major: the transpose's storage is.
             jacobian.add_block(&el.dofs, &el.dofs, k.transpose().as_slice())?;

@@ -69,7 +69,12 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
                 return Err(Error::NotConverged {
                     step: step.name.clone(),
                     load_factor: lambda,
-                    reason: format!("{} after {} Newton iterations; converged increments are kept in {}", report.reason_name(), report.newton_iterations, options.output.display()),
+                    reason: format!(
+                        "{} after {} Newton iterations; converged increments are kept in {}",
+                        report.reason_name(),
+                        report.newton_iterations,
+                        options.output.display()
+                    ),
                 });
             }
             let fields = problem.evaluate_fields(&x)?;
@@ -82,7 +87,9 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
                 .constrained_sets
                 .iter()
                 .map(|set| {
-                    let f = model.node_sets[set].iter().fold([0.0; 2], |acc, &n| [acc[0] + force[2 * n], acc[1] + force[2 * n + 1]]);
+                    let f = model.node_sets[set].iter().fold([0.0; 2], |acc, &n| {
+                        [acc[0] + force[2 * n], acc[1] + force[2 * n + 1]]
+                    });
                     (set.clone(), f)
                 })
                 .collect();
@@ -99,17 +106,30 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
             };
             results.write_increment(&step.name, &row, &owned, &fields.stress)?;
             if root && options.progress {
-                println!("{}", progress_line(&step.name, s, model.steps.len(), k, step.increments, &row));
+                println!(
+                    "{}",
+                    progress_line(&step.name, s, model.steps.len(), k, step.increments, &row)
+                );
             }
             history.push(row);
         }
         previous = Some(loads);
     }
-    Ok(RunSummary { history, wall_time: start.elapsed().as_secs_f64(), ranks: partition.size, displacement })
+    Ok(RunSummary {
+        history,
+        wall_time: start.elapsed().as_secs_f64(),
+        ranks: partition.size,
+        displacement,
+    })
 }
 
 /// Puts the current displacement of this rank's free DOFs into `x` (the initial guess).
-fn set_free_values(x: &mut Vector<'_>, dofs: &DofMap, partition: &Partition, displacement: &[[f64; 2]]) -> Result<()> {
+fn set_free_values(
+    x: &mut Vector<'_>,
+    dofs: &DofMap,
+    partition: &Partition,
+    displacement: &[[f64; 2]],
+) -> Result<()> {
     let first = dofs.first() as i32;
     let mut a = x.write()?;
     for &n in partition.owned_nodes() {
@@ -124,25 +144,62 @@ fn set_free_values(x: &mut Vector<'_>, dofs: &DofMap, partition: &Partition, dis
 }
 
 /// Displacement of this rank's owned nodes (partition order): solved values and prescribed ones.
-fn owned_displacement(x: &Vector<'_>, dofs: &DofMap, partition: &Partition, prescribed: &[[f64; 2]]) -> Result<Vec<[f64; 2]>> {
+fn owned_displacement(
+    x: &Vector<'_>,
+    dofs: &DofMap,
+    partition: &Partition,
+    prescribed: &[[f64; 2]],
+) -> Result<Vec<[f64; 2]>> {
     let first = dofs.first() as i32;
     let a = x.read()?;
-    Ok(partition.owned_nodes().iter().map(|&n| std::array::from_fn(|c| if dofs.dof[n][c] >= 0 { a[(dofs.dof[n][c] - first) as usize] } else { prescribed[n][c] })).collect())
+    Ok(partition
+        .owned_nodes()
+        .iter()
+        .map(|&n| {
+            std::array::from_fn(|c| {
+                if dofs.dof[n][c] >= 0 {
+                    a[(dofs.dof[n][c] - first) as usize]
+                } else {
+                    prescribed[n][c]
+                }
+            })
+        })
+        .collect())
 }
 
 /// All ranks' owned displacements into the replicated array (model node order).
-fn gather_displacement(world: &impl Communicator, partition: &Partition, owned: &[[f64; 2]], displacement: &mut [[f64; 2]]) {
-    let counts: Vec<i32> = (0..partition.size).map(|r| 2 * (partition.node_offsets[r + 1] - partition.node_offsets[r]) as i32).collect();
-    let displs: Vec<i32> = partition.node_offsets[..partition.size].iter().map(|&o| 2 * o as i32).collect();
+fn gather_displacement(
+    world: &impl Communicator,
+    partition: &Partition,
+    owned: &[[f64; 2]],
+    displacement: &mut [[f64; 2]],
+) {
+    let counts: Vec<i32> = (0..partition.size)
+        .map(|r| 2 * (partition.node_offsets[r + 1] - partition.node_offsets[r]) as i32)
+        .collect();
+    let displs: Vec<i32> = partition.node_offsets[..partition.size]
+        .iter()
+        .map(|&o| 2 * o as i32)
+        .collect();
     let flat: Vec<f64> = owned.iter().flatten().copied().collect();
     let mut all = vec![0.0; 2 * displacement.len()];
-    world.all_gather_varcount_into(&flat[..], &mut PartitionMut::new(&mut all[..], counts, displs));
+    world.all_gather_varcount_into(
+        &flat[..],
+        &mut PartitionMut::new(&mut all[..], counts, displs),
+    );
     for (k, &n) in partition.node_order.iter().enumerate() {
         displacement[n] = [all[2 * k], all[2 * k + 1]];
     }
 }
 
-fn progress_line(name: &str, s: usize, steps: usize, k: usize, increments: usize, row: &HistoryRow) -> String {
+fn progress_line(
+    name: &str,
+    s: usize,
+    steps: usize,
+    k: usize,
+    increments: usize,
+    row: &HistoryRow,
+) -> String {
     let mut line = format!(
         "step {}/{} {:<10} inc {:>4}/{:<4} lambda {:.4}  newton {:>2}  ksp {:>3}  |F| {:.2e}  {:>7.2} s",
         s + 1,
