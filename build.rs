@@ -111,28 +111,15 @@ fn main() {
     for f in FUNCTIONS {
         builder = builder.allowlist_function(f);
     }
-    for ty in [
-        "PetscBool",
-        "NormType",
-        "InsertMode",
-        "ScatterMode",
-        "MatAssemblyType",
-        "MatOption",
-        "SNESConvergedReason",
-        "PetscErrorType",
-    ] {
+    for ty in ["PetscBool", "NormType", "InsertMode", "ScatterMode", "MatAssemblyType", "MatOption", "SNESConvergedReason", "PetscErrorType"] {
         builder = builder.allowlist_type(ty);
     }
     for path in petsc.include_paths.iter().chain(mpi.include_paths.iter()) {
         builder = builder.clang_arg(format!("-I{}", path.display()));
     }
-    let bindings = builder
-        .generate()
-        .expect("bindgen failed on the PETSc headers");
+    let bindings = builder.generate().expect("bindgen failed on the PETSc headers");
     let out = PathBuf::from(env::var("OUT_DIR").unwrap()).join("petsc_sys.rs");
-    bindings
-        .write_to_file(&out)
-        .expect("cannot write petsc_sys.rs");
+    bindings.write_to_file(&out).expect("cannot write petsc_sys.rs");
     println!("cargo:rerun-if-changed=src/petsc/wrapper.h");
     println!("cargo:rerun-if-changed=build.rs");
 }

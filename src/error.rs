@@ -10,18 +10,11 @@ pub enum Error {
     Input(String),
 
     #[error("cannot read {path}: {source}")]
-    Read {
-        path: PathBuf,
-        source: std::io::Error,
-    },
+    Read { path: PathBuf, source: std::io::Error },
 
     /// A PETSc call returned a non-zero PetscErrorCode; `message` is PETSc's own text.
     #[error("PETSc call {call} failed (error code {code}): {message}")]
-    Petsc {
-        call: &'static str,
-        code: i32,
-        message: String,
-    },
+    Petsc { call: &'static str, code: i32, message: String },
 
     /// The current iterate left the domain of the residual (inverted element, failed return map).
     /// SNES is told, the increment is cut back.
@@ -29,11 +22,7 @@ pub enum Error {
     Domain(String),
 
     #[error("step {step} did not converge at load factor {load_factor:.6}: {reason}")]
-    NotConverged {
-        step: String,
-        load_factor: f64,
-        reason: String,
-    },
+    NotConverged { step: String, load_factor: f64, reason: String },
 
     #[error("HDF5 output {path}: {message}")]
     Output { path: PathBuf, message: String },

@@ -9,6 +9,7 @@ pub mod error;
 pub mod petsc;
 
 pub use error::{Error, Result};
+pub mod ad;
 pub mod dist;
 pub mod element;
 pub mod fe;

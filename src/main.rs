@@ -44,30 +44,14 @@ enum Command {
 fn main() -> ExitCode {
     let cli = Cli::parse();
     match cli.command {
-        Command::Run {
-            deck,
-            output,
-            quiet,
-            petsc,
-        } => {
+        Command::Run { deck, output, quiet, petsc } => {
             let session = match PetscSession::initialize(&petsc) {
                 Ok(s) => s,
                 Err(e) => return fail(&e, true),
             };
             let root = session.world().rank() == 0;
-            let output = output.unwrap_or_else(|| {
-                PathBuf::from(deck.file_stem().unwrap_or_default()).with_extension("h5")
-            });
-            let result = model::deck::read(&deck).and_then(|m| {
-                run(
-                    &session,
-                    &m,
-                    &RunOptions {
-                        output,
-                        progress: !quiet,
-                    },
-                )
-            });
+            let output = output.unwrap_or_else(|| PathBuf::from(deck.file_stem().unwrap_or_default()).with_extension("h5"));
+            let result = model::deck::read(&deck).and_then(|m| run(&session, &m, &RunOptions { output, progress: !quiet }));
             match result {
                 Ok(summary) => {
                     if root {
@@ -92,30 +76,13 @@ fn print_summary(summary: &slideline::solve::RunSummary) {
     let Some(last) = summary.history.last() else {
         return;
     };
-    println!(
-        "done: {} increments in {:.2} s on {} rank(s)",
-        summary.history.len(),
-        summary.wall_time,
-        summary.ranks
-    );
+    println!("done: {} increments in {:.2} s on {} rank(s)", summary.history.len(), summary.wall_time, summary.ranks);
     if !last.reactions.is_empty() {
-        println!(
-            "final reactions (N):            per radian                      full 360-degree ring"
-        );
-        println!(
-            "  {:<20} {:>14} {:>14}   {:>14} {:>14}",
-            "set", "F_r", "F_z", "F_r", "F_z"
-        );
+        println!("final reactions (N):            per radian                      full 360-degree ring");
+        println!("  {:<20} {:>14} {:>14}   {:>14} {:>14}", "set", "F_r", "F_z", "F_r", "F_z");
         let ring = 2.0 * std::f64::consts::PI;
         for (set, f) in &last.reactions {
-            println!(
-                "  {:<20} {:>14.6e} {:>14.6e}   {:>14.6e} {:>14.6e}",
-                set,
-                f[0],
-                f[1],
-                f[0] * ring,
-                f[1] * ring
-            );
+            println!("  {:<20} {:>14.6e} {:>14.6e}   {:>14.6e} {:>14.6e}", set, f[0], f[1], f[0] * ring, f[1] * ring);
         }
     }
 }

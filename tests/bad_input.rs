@@ -4,8 +4,7 @@
 mod common;
 use common::{data, run_deck, Run};
 
-const MATERIAL: &str =
-    "[[material]]\nname = \"steel\"\nyoungs_modulus = 200000.0\npoissons_ratio = 0.3\n";
+const MATERIAL: &str = "[[material]]\nname = \"steel\"\nyoungs_modulus = 200000.0\npoissons_ratio = 0.3\n";
 const STEP: &str = "[[step]]\nboundary = [ { set = \"bottom\", uz = 0.0 } ]\n";
 const RECT: &str = "[mesh]\nrectangle = { r = [1.0, 2.0], z = [0.0, 1.0], divisions = [2, 1] }\n";
 
@@ -15,15 +14,8 @@ fn assert_rejected(run: &Run, needles: &[&str]) {
     for n in needles {
         assert!(err.contains(n), "message should name {n:?}:\n{err}");
     }
-    assert_eq!(
-        err.lines().filter(|l| l.starts_with("error:")).count(),
-        1,
-        "one message:\n{err}"
-    );
-    assert!(
-        !err.contains("panicked") && !err.contains("PETSC ERROR"),
-        "{err}"
-    );
+    assert_eq!(err.lines().filter(|l| l.starts_with("error:")).count(), 1, "one message:\n{err}");
+    assert!(!err.contains("panicked") && !err.contains("PETSC ERROR"), "{err}");
 }
 
 #[test]
@@ -36,22 +28,13 @@ fn missing_deck_file() {
         .env("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1")
         .output()
         .unwrap();
-    let missing = Run {
-        dir: run.dir,
-        output: out,
-        h5: run.h5,
-    };
+    let missing = Run { dir: run.dir, output: out, h5: run.h5 };
     assert_rejected(&missing, &["/nonexistent/deck.toml", "No such file"]);
 }
 
 #[test]
 fn missing_mesh_file() {
-    let run = run_deck(
-        &format!("[mesh]\nfile = \"nowhere.msh\"\n{MATERIAL}{STEP}"),
-        &[],
-        1,
-        &[],
-    );
+    let run = run_deck(&format!("[mesh]\nfile = \"nowhere.msh\"\n{MATERIAL}{STEP}"), &[], 1, &[]);
     assert_rejected(&run, &["nowhere.msh"]);
 }
 
@@ -63,23 +46,13 @@ fn malformed_toml() {
 
 #[test]
 fn unknown_key() {
-    let run = run_deck(
-        &format!("{RECT}{MATERIAL}youngs_modulus_typo = 1.0\n{STEP}"),
-        &[],
-        1,
-        &[],
-    );
+    let run = run_deck(&format!("{RECT}{MATERIAL}youngs_modulus_typo = 1.0\n{STEP}"), &[], 1, &[]);
     assert_rejected(&run, &["youngs_modulus_typo"]);
 }
 
 #[test]
 fn unknown_set_name() {
-    let run = run_deck(
-        &format!("{RECT}{MATERIAL}[[step]]\nboundary = [ {{ set = \"botom\", uz = 0.0 }} ]\n"),
-        &[],
-        1,
-        &[],
-    );
+    let run = run_deck(&format!("{RECT}{MATERIAL}[[step]]\nboundary = [ {{ set = \"botom\", uz = 0.0 }} ]\n"), &[], 1, &[]);
     assert_rejected(&run, &["'botom'", "bottom"]);
 }
 
@@ -99,50 +72,28 @@ fn poissons_ratio_out_of_range() {
 
 #[test]
 fn inverted_element() {
-    let run = run_deck(
-        &format!("[mesh]\nfile = \"m.msh\"\n{MATERIAL}[[step]]\n"),
-        &[("m.msh", &data("inverted.msh"))],
-        1,
-        &[],
-    );
+    let run = run_deck(&format!("[mesh]\nfile = \"m.msh\"\n{MATERIAL}[[step]]\n"), &[("m.msh", &data("inverted.msh"))], 1, &[]);
     assert_rejected(&run, &["element 1", "non-positive Jacobian"]);
 }
 
 #[test]
 fn degenerate_element() {
-    let run = run_deck(
-        &format!("[mesh]\nfile = \"m.msh\"\n{MATERIAL}[[step]]\n"),
-        &[("m.msh", &data("degenerate.msh"))],
-        1,
-        &[],
-    );
+    let run = run_deck(&format!("[mesh]\nfile = \"m.msh\"\n{MATERIAL}[[step]]\n"), &[("m.msh", &data("degenerate.msh"))], 1, &[]);
     assert_rejected(&run, &["element 1", "degenerate"]);
 }
 
 #[test]
 fn mesh_without_elements() {
-    let run = run_deck(
-        &format!("[mesh]\nfile = \"m.msh\"\n{MATERIAL}[[step]]\n"),
-        &[("m.msh", &data("no_elements.msh"))],
-        1,
-        &[],
-    );
+    let run = run_deck(&format!("[mesh]\nfile = \"m.msh\"\n{MATERIAL}[[step]]\n"), &[("m.msh", &data("no_elements.msh"))], 1, &[]);
     assert_rejected(&run, &["no elements"]);
 }
 
 #[test]
 fn four_node_quadrilaterals_are_refused_by_name() {
-    let text = std::fs::read_to_string(data("inverted.msh"))
-        .unwrap()
-        .replace("2 1 16 1\n1 1 4 3 2 8 7 6 5", "2 1 3 1\n1 1 2 3 4");
+    let text = std::fs::read_to_string(data("inverted.msh")).unwrap().replace("2 1 16 1\n1 1 4 3 2 8 7 6 5", "2 1 3 1\n1 1 2 3 4");
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("q4.msh");
     std::fs::write(&path, text).unwrap();
-    let run = run_deck(
-        &format!("[mesh]\nfile = \"q4.msh\"\n{MATERIAL}[[step]]\n"),
-        &[("q4.msh", &path)],
-        1,
-        &[],
-    );
+    let run = run_deck(&format!("[mesh]\nfile = \"q4.msh\"\n{MATERIAL}[[step]]\n"), &[("q4.msh", &path)], 1, &[]);
     assert_rejected(&run, &["q4.msh:", "element 1", "4-node quadrilateral"]);
 }

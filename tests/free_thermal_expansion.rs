@@ -31,17 +31,8 @@ fn uniform_heating_is_stress_free_and_expands_by_alpha_dt() {
     let res = Results::open(&run.h5);
     let strain = 1.2e-5 * 200.0;
     for (x, u) in res.nodes() {
-        assert!(
-            (u[0] - strain * x[0]).abs() < 1e-10,
-            "u_r at {x:?} = {} vs {}",
-            u[0],
-            strain * x[0]
-        );
-        assert!(
-            (u[1] - strain * x[1]).abs() < 1e-10,
-            "u_z at {x:?} = {}",
-            u[1]
-        );
+        assert!((u[0] - strain * x[0]).abs() < 1e-10, "u_r at {x:?} = {} vs {}", u[0], strain * x[0]);
+        assert!((u[1] - strain * x[1]).abs() < 1e-10, "u_z at {x:?} = {}", u[1]);
     }
     let stress = res.f64s(&format!("{}/stress", res.last_increment()));
     let worst = stress.iter().fold(0.0f64, |m, s| m.max(s.abs()));

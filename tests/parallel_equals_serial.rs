@@ -33,10 +33,7 @@ boundary = [ { set = "top", uz = -0.05 } ]
 "#;
 
 fn by_node_id(res: &Results) -> HashMap<u64, [f64; 2]> {
-    res.u64s("mesh/node_ids")
-        .into_iter()
-        .zip(res.nodes().into_iter().map(|(_, u)| u))
-        .collect()
+    res.u64s("mesh/node_ids").into_iter().zip(res.nodes().into_iter().map(|(_, u)| u)).collect()
 }
 
 #[test]
@@ -48,9 +45,7 @@ fn two_ranks_match_one_rank_and_the_file_reads_back() {
     let (r1, r2) = (Results::open(&serial.h5), Results::open(&parallel.h5));
     let (u1, u2) = (by_node_id(&r1), by_node_id(&r2));
     assert_eq!(u1.len(), u2.len());
-    let scale = u1
-        .values()
-        .fold(0.0f64, |m, u| m.max(u[0].abs()).max(u[1].abs()));
+    let scale = u1.values().fold(0.0f64, |m, u| m.max(u[0].abs()).max(u[1].abs()));
     let worst = u1
         .iter()
         .map(|(id, a)| {
@@ -58,56 +53,26 @@ fn two_ranks_match_one_rank_and_the_file_reads_back() {
             (a[0] - b[0]).abs().max((a[1] - b[1]).abs())
         })
         .fold(0.0f64, f64::max);
-    assert!(
-        worst <= 1e-8 * scale,
-        "1 vs 2 ranks differ by {worst:e} (scale {scale:e})"
-    );
+    assert!(worst <= 1e-8 * scale, "1 vs 2 ranks differ by {worst:e} (scale {scale:e})");
 
     // both ranks really assembled elements
-    let ranks = r2
-        .file
-        .dataset("mesh/element_rank")
-        .unwrap()
-        .read_raw::<u32>()
-        .unwrap();
-    assert!(
-        ranks.contains(&0) && ranks.contains(&1),
-        "partition used one rank only: {ranks:?}"
-    );
-    assert_eq!(
-        r2.file.attr("ranks").unwrap().read_scalar::<u32>().unwrap(),
-        2
-    );
+    let ranks = r2.file.dataset("mesh/element_rank").unwrap().read_raw::<u32>().unwrap();
+    assert!(ranks.contains(&0) && ranks.contains(&1), "partition used one rank only: {ranks:?}");
+    assert_eq!(r2.file.attr("ranks").unwrap().read_scalar::<u32>().unwrap(), 2);
 
     // history: one row per increment (2 + 3), with the reaction of the set pushed in step 2
     let steps = r2.f64s("history/step");
     assert_eq!(steps, vec![1.0, 1.0, 2.0, 2.0, 2.0]);
     let top = r2.f64s("history/reaction_top_z");
-    assert!(
-        top[..2].iter().all(|v| v.is_nan()) && top[2..].iter().all(|v| v.is_finite() && *v < 0.0),
-        "{top:?}"
-    );
+    assert!(top[..2].iter().all(|v| v.is_nan()) && top[2..].iter().all(|v| v.is_finite() && *v < 0.0), "{top:?}");
     assert_eq!(r2.f64s("history/reaction_bottom_z").len(), 5);
-    let n = r2
-        .file
-        .group("increments")
-        .unwrap()
-        .member_names()
-        .unwrap()
-        .len();
+    let n = r2.file.group("increments").unwrap().member_names().unwrap().len();
     assert_eq!(n, 5);
 
     // a plain HDF5 tool reads the same file
-    let dump = Command::new("h5dump")
-        .args(["-d", "/history/load_factor"])
-        .arg(&parallel.h5)
-        .output()
-        .expect("h5dump (hdf5-tools) installed");
+    let dump = Command::new("h5dump").args(["-d", "/history/load_factor"]).arg(&parallel.h5).output().expect("h5dump (hdf5-tools) installed");
     let text = String::from_utf8_lossy(&dump.stdout);
-    assert!(
-        dump.status.success() && text.contains("0.5, 1, 0.333333"),
-        "h5dump output:\n{text}"
-    );
+    assert!(dump.status.success() && text.contains("0.5, 1, 0.333333"), "h5dump output:\n{text}");
     // and the XDMF sidecar is well-formed and names every increment
     let xmf = std::fs::read_to_string(parallel.h5.with_extension("xmf")).expect("xmf sidecar");
     assert_eq!(xmf.matches("<Grid Name=\"increment").count(), 5);

@@ -23,25 +23,17 @@ impl DofMap {
         let mut offsets = vec![0; partition.size + 1];
         let mut next: usize = 0;
         for r in 0..partition.size {
-            for &n in
-                &partition.node_order[partition.node_offsets[r]..partition.node_offsets[r + 1]]
-            {
+            for &n in &partition.node_order[partition.node_offsets[r]..partition.node_offsets[r + 1]] {
                 for c in 0..2 {
                     if !prescribed[n][c] {
-                        dof[n][c] = crate::petsc::sys::PetscInt::try_from(next).map_err(|_| {
-                            crate::Error::input("too many unknowns for 32-bit PetscInt")
-                        })?;
+                        dof[n][c] = crate::petsc::sys::PetscInt::try_from(next).map_err(|_| crate::Error::input("too many unknowns for 32-bit PetscInt"))?;
                         next += 1;
                     }
                 }
             }
             offsets[r + 1] = next;
         }
-        Ok(DofMap {
-            dof,
-            offsets,
-            rank: partition.rank,
-        })
+        Ok(DofMap { dof, offsets, rank: partition.rank })
     }
 
     pub fn local_len(&self) -> usize {
@@ -58,21 +50,14 @@ impl DofMap {
 
     /// Exact nonzero counts of this rank's rows, split into the diagonal block (columns this
     /// rank owns) and the off-diagonal block, from the mesh graph.
-    pub fn preallocation(
-        &self,
-        mesh: &Mesh,
-        partition: &Partition,
-    ) -> (Vec<PetscInt>, Vec<PetscInt>) {
+    pub fn preallocation(&self, mesh: &Mesh, partition: &Partition) -> (Vec<PetscInt>, Vec<PetscInt>) {
         let mut node_elements: Vec<Vec<usize>> = vec![Vec::new(); mesh.coords.len()];
         for (e, conn) in mesh.elements.iter().enumerate() {
             for &n in conn {
                 node_elements[n].push(e);
             }
         }
-        let (lo, hi) = (
-            self.offsets[self.rank] as PetscInt,
-            self.offsets[self.rank + 1] as PetscInt,
-        );
+        let (lo, hi) = (self.offsets[self.rank] as PetscInt, self.offsets[self.rank + 1] as PetscInt);
         let mut diag = vec![0; self.local_len()];
         let mut off = vec![0; self.local_len()];
         let mut neighbours = Vec::new();
@@ -118,10 +103,7 @@ mod tests {
             prescribed[n][1] = true;
         }
         let map = DofMap::new(&p, &prescribed).unwrap();
-        assert_eq!(
-            map.total(),
-            2 * mesh.coords.len() - sets.node_sets["bottom"].len()
-        );
+        assert_eq!(map.total(), 2 * mesh.coords.len() - sets.node_sets["bottom"].len());
         let (d, o) = map.preallocation(&mesh, &p);
         assert!(o.iter().all(|&v| v == 0));
         // a corner of the first element only sees that element's 8 nodes

@@ -34,9 +34,7 @@ impl Partition {
         let (rank, size) = (world.rank() as usize, world.size() as usize);
         let ne = mesh.elements.len();
         if ne < size {
-            return Err(Error::input(format!(
-                "the mesh has {ne} elements, fewer than the {size} MPI ranks"
-            )));
+            return Err(Error::input(format!("the mesh has {ne} elements, fewer than the {size} MPI ranks")));
         }
         // Each rank hands PETSc an even block of rows of the dual graph.
         let first = rank * ne / size;
@@ -50,26 +48,16 @@ impl Partition {
         }
         let local_parts = partition_graph(session, session.comm(), ne, &offsets, &adjacency, size)?;
         let local_parts: Vec<u64> = local_parts.into_iter().map(|p| p as u64).collect();
-        let counts: Vec<i32> = (0..size)
-            .map(|r| ((r + 1) * ne / size - r * ne / size) as i32)
-            .collect();
+        let counts: Vec<i32> = (0..size).map(|r| ((r + 1) * ne / size - r * ne / size) as i32).collect();
         let displs: Vec<i32> = (0..size).map(|r| (r * ne / size) as i32).collect();
         let mut all = vec![0u64; ne];
-        world.all_gather_varcount_into(
-            &local_parts[..],
-            &mut PartitionMut::new(&mut all[..], counts, displs),
-        );
+        world.all_gather_varcount_into(&local_parts[..], &mut PartitionMut::new(&mut all[..], counts, displs));
         let element_rank: Vec<usize> = all.into_iter().map(|p| p as usize).collect();
         Ok(Self::from_element_ranks(mesh, element_rank, rank, size))
     }
 
     /// Builds ownership and orders from a given element-to-rank map.
-    pub fn from_element_ranks(
-        mesh: &Mesh,
-        element_rank: Vec<usize>,
-        rank: usize,
-        size: usize,
-    ) -> Self {
+    pub fn from_element_ranks(mesh: &Mesh, element_rank: Vec<usize>, rank: usize, size: usize) -> Self {
         let mut node_owner = vec![usize::MAX; mesh.coords.len()];
         for (e, conn) in mesh.elements.iter().enumerate() {
             for &n in conn {

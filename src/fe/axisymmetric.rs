@@ -27,15 +27,10 @@ pub fn map_point(x: &[[f64; 2]; 8], p: [f64; 2]) -> Result<PointGeometry, String
     let (j, det_j) = jacobian(x, &d, p)?;
     let r: f64 = (0..8).map(|a| n[a] * x[a][0]).sum();
     if r <= 0.0 {
-        return Err(format!(
-            "radius {r:.3e} <= 0 at an integration point: the mesh must lie at r >= 0"
-        ));
+        return Err(format!("radius {r:.3e} <= 0 at an integration point: the mesh must lie at r >= 0"));
     }
     // inverse Jacobian: d xi_k / d x_i
-    let inv = [
-        [j[1][1] / det_j, -j[0][1] / det_j],
-        [-j[1][0] / det_j, j[0][0] / det_j],
-    ];
+    let inv = [[j[1][1] / det_j, -j[0][1] / det_j], [-j[1][0] / det_j, j[0][0] / det_j]];
     let mut grad = [[0.0; 2]; 8];
     for a in 0..8 {
         for i in 0..2 {
@@ -47,11 +42,7 @@ pub fn map_point(x: &[[f64; 2]; 8], p: [f64; 2]) -> Result<PointGeometry, String
 
 /// J = d(r,z)/d(xi,eta) (`j[i][k] = d x_i / d xi_k`) and its determinant at `p`, given the
 /// shape-function derivatives `d` there; fails when det J is not clearly positive.
-pub fn jacobian(
-    x: &[[f64; 2]; 8],
-    d: &[[f64; 2]; 8],
-    p: [f64; 2],
-) -> Result<([[f64; 2]; 2], f64), String> {
+pub fn jacobian(x: &[[f64; 2]; 8], d: &[[f64; 2]; 8], p: [f64; 2]) -> Result<([[f64; 2]; 2], f64), String> {
     let mut j = [[0.0; 2]; 2];
     for a in 0..8 {
         for i in 0..2 {
@@ -63,7 +54,10 @@ pub fn jacobian(
     let det_j = j[0][0] * j[1][1] - j[0][1] * j[1][0];
     let scale = (j[0][0].abs() + j[0][1].abs()) * (j[1][0].abs() + j[1][1].abs());
     if !det_j.is_finite() || det_j <= 1e-12 * scale {
-        return Err(format!("non-positive Jacobian determinant {det_j:.3e} at (xi, eta) = ({:.3}, {:.3}): element inverted, degenerate or nodes not counter-clockwise", p[0], p[1]));
+        return Err(format!(
+            "non-positive Jacobian determinant {det_j:.3e} at (xi, eta) = ({:.3}, {:.3}): element inverted, degenerate or nodes not counter-clockwise",
+            p[0], p[1]
+        ));
     }
     Ok((j, det_j))
 }
@@ -107,35 +101,20 @@ mod tests {
         // a distorted quadrilateral away from the axis with straight edges
         let c = [[10.0, 0.0], [14.0, 0.5], [13.0, 4.0], [9.5, 3.0]];
         let mid = |a: [f64; 2], b: [f64; 2]| [(a[0] + b[0]) / 2.0, (a[1] + b[1]) / 2.0];
-        [
-            c[0],
-            c[1],
-            c[2],
-            c[3],
-            mid(c[0], c[1]),
-            mid(c[1], c[2]),
-            mid(c[2], c[3]),
-            mid(c[3], c[0]),
-        ]
+        [c[0], c[1], c[2], c[3], mid(c[0], c[1]), mid(c[1], c[2]), mid(c[2], c[3]), mid(c[3], c[0])]
     }
 
     #[test]
     fn linear_field_gives_exact_strain() {
         let x = ring_element();
         let (a, b, c, d) = (1e-3, -2e-3, 5e-4, 0.1);
-        let u: [[f64; 2]; 8] =
-            std::array::from_fn(|k| [a * x[k][0] + c * x[k][1], b * x[k][1] + d]);
+        let u: [[f64; 2]; 8] = std::array::from_fn(|k| [a * x[k][0] + c * x[k][1], b * x[k][1] + d]);
         let g = map_point(&x, [0.2, -0.4]).unwrap();
         let e = small_strain(&g, &u);
         let zr = g.n.iter().zip(&x).map(|(n, p)| n * p[1]).sum::<f64>() / g.r;
         let exact = [a, b, a + c * zr, c];
         for k in 0..4 {
-            assert!(
-                (e[k] - exact[k]).abs() < 1e-14,
-                "component {k}: {} vs {}",
-                e[k],
-                exact[k]
-            );
+            assert!((e[k] - exact[k]).abs() < 1e-14, "component {k}: {} vs {}", e[k], exact[k]);
         }
     }
 
@@ -145,9 +124,7 @@ mod tests {
         x.swap(1, 3);
         x.swap(4, 7);
         x.swap(5, 6);
-        assert!(map_point(&x, [0.0, 0.0])
-            .unwrap_err()
-            .contains("non-positive Jacobian"));
+        assert!(map_point(&x, [0.0, 0.0]).unwrap_err().contains("non-positive Jacobian"));
     }
 
     #[test]

@@ -1,11 +1,7 @@
 //! Gauss-Legendre rules on [-1, 1] and their tensor products on the square.
 
 /// 3-point Gauss-Legendre abscissae and weights (exact for degree 5).
-pub const GAUSS3: [(f64, f64); 3] = [
-    (-0.774_596_669_241_483_4, 5.0 / 9.0),
-    (0.0, 8.0 / 9.0),
-    (0.774_596_669_241_483_4, 5.0 / 9.0),
-];
+pub const GAUSS3: [(f64, f64); 3] = [(-0.774_596_669_241_483_4, 5.0 / 9.0), (0.0, 8.0 / 9.0), (0.774_596_669_241_483_4, 5.0 / 9.0)];
 
 /// 3x3 Gauss rule on the reference square: ((xi, eta), weight). Full integration of the
 /// 8-node quadrilateral: no spurious zero-energy modes.

@@ -38,10 +38,7 @@ pub fn q8(p: [f64; 2]) -> ([f64; 8], [[f64; 2]; 8]) {
 /// Quadratic 1D shape functions on [-1, 1] for nodes at -1 (start), +1 (end), 0 (middle),
 /// and their derivatives.
 pub fn line3(s: f64) -> ([f64; 3], [f64; 3]) {
-    (
-        [0.5 * s * (s - 1.0), 0.5 * s * (s + 1.0), 1.0 - s * s],
-        [s - 0.5, s + 0.5, -2.0 * s],
-    )
+    ([0.5 * s * (s - 1.0), 0.5 * s * (s + 1.0), 1.0 - s * s], [s - 0.5, s + 0.5, -2.0 * s])
 }
 
 /// Reference coordinates of the eight Q8 nodes.
@@ -64,10 +61,7 @@ mod tests {
         for (b, &pb) in q8_nodes().iter().enumerate() {
             let (n, _) = q8(pb);
             for (a, &na) in n.iter().enumerate() {
-                assert!(
-                    (na - if a == b { 1.0 } else { 0.0 }).abs() < 1e-14,
-                    "N_{a} at node {b} = {na}"
-                );
+                assert!((na - if a == b { 1.0 } else { 0.0 }).abs() < 1e-14, "N_{a} at node {b} = {na}");
             }
         }
         let (n, d) = q8([0.3, -0.7]);
@@ -89,11 +83,7 @@ mod tests {
             let (nm, _) = q8(pm);
             for a in 0..8 {
                 let fd = (np[a] - nm[a]) / (2.0 * h);
-                assert!(
-                    (fd - d[a][k]).abs() < 1e-9,
-                    "dN{a}/dxi{k}: {fd} vs {}",
-                    d[a][k]
-                );
+                assert!((fd - d[a][k]).abs() < 1e-9, "dN{a}/dxi{k}: {fd} vs {}", d[a][k]);
             }
         }
     }

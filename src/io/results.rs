@@ -12,6 +12,9 @@
 //!     stress             (elements, 9, 4)  [rr, zz, tt, rz] at the 3x3 Gauss points, MPa
 //!     von_mises          (elements, 9)     MPa
 //!     von_mises_mean     (elements)        MPa, element average (for cell plots)
+//!     equivalent_plastic_strain      (elements, 9)
+//!     equivalent_plastic_strain_max  (elements)    element maximum (for cell plots)
+//!     residual_norms     (iterations + 1)  ||F|| at each Newton iterate
 //! /history/COLUMN        one row per converged increment (see HistoryRow)
 //! ```
 //! Metadata operations are collective (every rank calls them with the same arguments); bulk
@@ -42,6 +45,12 @@ pub struct HistoryRow {
     pub newton_iterations: usize,
     pub linear_iterations: usize,
     pub residual_norm: f64,
+    /// ||F|| at each Newton iterate of the converged attempt.
+    pub residual_norms: Vec<f64>,
+    /// Failed attempts (cutbacks) before this increment converged.
+    pub cutbacks: usize,
+    /// Largest equivalent plastic strain over the model.
+    pub max_plastic_strain: f64,
     /// Wall time since the start of the analysis, s.
     pub wall_time: f64,
     /// (set name, [F_r, F_z] per radian), N/rad.
@@ -60,33 +69,17 @@ pub struct ResultsFile {
 }
 
 fn h5err(path: &Path) -> impl Fn(hdf5::Error) -> Error + '_ {
-    move |e| Error::Output {
-        path: path.to_path_buf(),
-        message: e.to_string(),
-    }
+    move |e| Error::Output { path: path.to_path_buf(), message: e.to_string() }
 }
 
 impl ResultsFile {
     /// Creates the file (collective) and writes the attributes and the mesh.
-    pub fn create(
-        path: &Path,
-        session: &PetscSession,
-        model: &Model,
-        partition: &Partition,
-    ) -> Result<Self> {
+    pub fn create(path: &Path, session: &PetscSession, model: &Model, partition: &Partition) -> Result<Self> {
         let err = h5err(path);
         let world = session.world();
-        let file = hdf5::File::with_options()
-            .with_fapl(|p| p.mpio(world.as_raw(), None))
-            .create(path)
-            .map_err(&err)?;
+        let file = hdf5::File::with_options().with_fapl(|p| p.mpio(world.as_raw(), None)).create(path).map_err(&err)?;
         let rank = partition.rank;
-        let text = |s: &str| {
-            s.parse::<VarLenUnicode>().map_err(|e| Error::Output {
-                path: path.to_path_buf(),
-                message: e.to_string(),
-            })
-        };
+        let text = |s: &str| s.parse::<VarLenUnicode>().map_err(|e| Error::Output { path: path.to_path_buf(), message: e.to_string() });
         for (name, value) in [
             ("deck", model.source_text.as_str()),
             ("units", "length mm, force N, stress MPa, temperature degC, time s; forces and reactions per radian unless named _ring (full 360 degrees)"),
@@ -95,82 +88,50 @@ impl ResultsFile {
         ] {
             file.new_attr::<VarLenUnicode>().create(name).map_err(&err)?.write_scalar(&text(value)?).map_err(&err)?;
         }
-        file.new_attr::<u32>()
-            .create("ranks")
-            .map_err(&err)?
-            .write_scalar(&(partition.size as u32))
-            .map_err(&err)?;
+        file.new_attr::<u32>().create("ranks").map_err(&err)?.write_scalar(&(partition.size as u32)).map_err(&err)?;
 
         let mesh = &model.mesh;
         let (nn, ne) = (mesh.coords.len(), mesh.elements.len());
-        let node_slab = (
-            partition.node_offsets[rank],
-            partition.node_offsets[rank + 1],
-        );
-        let element_slab = (
-            partition.element_offsets[rank],
-            partition.element_offsets[rank + 1],
-        );
+        let node_slab = (partition.node_offsets[rank], partition.node_offsets[rank + 1]);
+        let element_slab = (partition.element_offsets[rank], partition.element_offsets[rank + 1]);
         let g = file.create_group("mesh").map_err(&err)?;
         let owned = partition.owned_nodes();
         let local = partition.local_elements();
         let coords: Vec<f64> = owned.iter().flat_map(|&n| mesh.coords[n]).collect();
         write_rows(&g, "coordinates", &[nn, 2], node_slab, &coords, path)?;
-        let conn: Vec<i64> = local
-            .iter()
-            .flat_map(|&e| mesh.elements[e].map(|n| partition.node_position[n] as i64))
-            .collect();
+        let conn: Vec<i64> = local.iter().flat_map(|&e| mesh.elements[e].map(|n| partition.node_position[n] as i64)).collect();
         write_rows(&g, "connectivity", &[ne, 8], element_slab, &conn, path)?;
         let ids: Vec<u64> = owned.iter().map(|&n| mesh.node_ids[n]).collect();
         write_rows(&g, "node_ids", &[nn], node_slab, &ids, path)?;
         let ids: Vec<u64> = local.iter().map(|&e| mesh.element_ids[e]).collect();
         write_rows(&g, "element_ids", &[ne], element_slab, &ids, path)?;
-        let ranks: Vec<u32> = local
-            .iter()
-            .map(|&e| partition.element_rank[e] as u32)
-            .collect();
+        let ranks: Vec<u32> = local.iter().map(|&e| partition.element_rank[e] as u32).collect();
         write_rows(&g, "element_rank", &[ne], element_slab, &ranks, path)?;
         // Sets are small and identical on every rank: rank 0 writes them.
-        for (group, sets, position) in [
-            ("node_sets", &model.node_sets, &partition.node_position),
-            (
-                "element_sets",
-                &model.element_sets,
-                &partition.element_position,
-            ),
-        ] {
+        for (group, sets, position) in
+            [("node_sets", &model.node_sets, &partition.node_position), ("element_sets", &model.element_sets, &partition.element_position)]
+        {
             let sg = g.create_group(group).map_err(&err)?;
             for (name, members) in sets.iter() {
                 let mut pos: Vec<u64> = members.iter().map(|&m| position[m] as u64).collect();
                 pos.sort_unstable();
                 let slab = if rank == 0 { (0, pos.len()) } else { (0, 0) };
-                write_rows(
-                    &sg,
-                    name,
-                    &[pos.len()],
-                    slab,
-                    if rank == 0 { &pos } else { &[] },
-                    path,
-                )?;
+                write_rows(&sg, name, &[pos.len()], slab, if rank == 0 { &pos } else { &[] }, path)?;
             }
         }
         file.create_group("increments").map_err(&err)?;
         file.create_group("history").map_err(&err)?;
         file.flush().map_err(&err)?;
-        Ok(ResultsFile {
-            file,
-            path: path.to_path_buf(),
-            rank,
-            nodes: nn,
-            elements: ne,
-            node_slab,
-            element_slab,
-            increments: Vec::new(),
-        })
+        Ok(ResultsFile { file, path: path.to_path_buf(), rank, nodes: nn, elements: ne, node_slab, element_slab, increments: Vec::new() })
     }
 
     pub fn path(&self) -> &Path {
         &self.path
+    }
+
+    /// Converged increments written so far.
+    pub fn increments_written(&self) -> usize {
+        self.increments.len()
     }
 
     /// Writes one converged increment (collective): this rank's displacement slab (owned
@@ -182,82 +143,36 @@ impl ResultsFile {
         row: &HistoryRow,
         owned_displacement: &[[f64; 2]],
         local_stress: &[[[f64; 4]; QUADRATURE_POINTS]],
+        local_plastic_strain: &[[f64; QUADRATURE_POINTS]],
     ) -> Result<()> {
         let err = h5err(&self.path);
         let index = self.increments.len() + 1;
         let name = format!("{index:06}");
-        let g = self
-            .file
-            .group("increments")
-            .map_err(&err)?
-            .create_group(&name)
-            .map_err(&err)?;
-        for (attr, value) in [
-            ("step", row.step as f64),
-            ("increment", row.increment as f64),
-            ("load_factor", row.load_factor),
-            ("time", row.time),
-        ] {
-            g.new_attr::<f64>()
-                .create(attr)
-                .map_err(&err)?
-                .write_scalar(&value)
-                .map_err(&err)?;
+        let g = self.file.group("increments").map_err(&err)?.create_group(&name).map_err(&err)?;
+        for (attr, value) in [("step", row.step as f64), ("increment", row.increment as f64), ("load_factor", row.load_factor), ("time", row.time)] {
+            g.new_attr::<f64>().create(attr).map_err(&err)?.write_scalar(&value).map_err(&err)?;
         }
-        let step_name_v: VarLenUnicode = step_name.parse().map_err(|_| Error::Output {
-            path: self.path.clone(),
-            message: "step name".into(),
-        })?;
-        g.new_attr::<VarLenUnicode>()
-            .create("step_name")
-            .map_err(&err)?
-            .write_scalar(&step_name_v)
-            .map_err(&err)?;
+        let step_name_v: VarLenUnicode = step_name.parse().map_err(|_| Error::Output { path: self.path.clone(), message: "step name".into() })?;
+        g.new_attr::<VarLenUnicode>().create("step_name").map_err(&err)?.write_scalar(&step_name_v).map_err(&err)?;
         let u: Vec<f64> = owned_displacement.iter().flatten().copied().collect();
-        write_rows(
-            &g,
-            "displacement",
-            &[self.nodes, 2],
-            self.node_slab,
-            &u,
-            &self.path,
-        )?;
+        write_rows(&g, "displacement", &[self.nodes, 2], self.node_slab, &u, &self.path)?;
         let s: Vec<f64> = local_stress.iter().flatten().flatten().copied().collect();
-        write_rows(
-            &g,
-            "stress",
-            &[self.elements, QUADRATURE_POINTS, 4],
-            self.element_slab,
-            &s,
-            &self.path,
-        )?;
+        write_rows(&g, "stress", &[self.elements, QUADRATURE_POINTS, 4], self.element_slab, &s, &self.path)?;
         let vm: Vec<f64> = local_stress.iter().flatten().map(von_mises).collect();
-        write_rows(
-            &g,
-            "von_mises",
-            &[self.elements, QUADRATURE_POINTS],
-            self.element_slab,
-            &vm,
-            &self.path,
-        )?;
-        let mean: Vec<f64> = vm
-            .chunks(QUADRATURE_POINTS)
-            .map(|c| c.iter().sum::<f64>() / QUADRATURE_POINTS as f64)
-            .collect();
-        write_rows(
-            &g,
-            "von_mises_mean",
-            &[self.elements],
-            self.element_slab,
-            &mean,
-            &self.path,
-        )?;
+        write_rows(&g, "von_mises", &[self.elements, QUADRATURE_POINTS], self.element_slab, &vm, &self.path)?;
+        let mean: Vec<f64> = vm.chunks(QUADRATURE_POINTS).map(|c| c.iter().sum::<f64>() / QUADRATURE_POINTS as f64).collect();
+        write_rows(&g, "von_mises_mean", &[self.elements], self.element_slab, &mean, &self.path)?;
+        let ep: Vec<f64> = local_plastic_strain.iter().flatten().copied().collect();
+        write_rows(&g, "equivalent_plastic_strain", &[self.elements, QUADRATURE_POINTS], self.element_slab, &ep, &self.path)?;
+        let ep_max: Vec<f64> = local_plastic_strain.iter().map(|c| c.iter().fold(0.0f64, |m, &v| m.max(v))).collect();
+        write_rows(&g, "equivalent_plastic_strain_max", &[self.elements], self.element_slab, &ep_max, &self.path)?;
+        // Newton history of the increment: identical on all ranks, written by rank 0.
+        let norms = &row.residual_norms;
+        let (slab, data): ((usize, usize), &[f64]) = if self.rank == 0 { ((0, norms.len()), norms) } else { ((0, 0), &[]) };
+        write_rows(&g, "residual_norms", &[norms.len()], slab, data, &self.path)?;
         self.append_history(row)?;
         self.file.flush().map_err(&err)?;
-        self.increments.push(xdmf::IncrementEntry {
-            group: name,
-            time: row.time,
-        });
+        self.increments.push(xdmf::IncrementEntry { group: name, time: row.time });
         if self.rank == 0 {
             xdmf::write(&self.path, self.nodes, self.elements, &self.increments)?;
         }
@@ -274,6 +189,8 @@ impl ResultsFile {
             ("newton_iterations".into(), row.newton_iterations as f64),
             ("linear_iterations".into(), row.linear_iterations as f64),
             ("residual_norm".into(), row.residual_norm),
+            ("cutbacks".into(), row.cutbacks as f64),
+            ("max_equivalent_plastic_strain".into(), row.max_plastic_strain),
             ("wall_time".into(), row.wall_time),
         ];
         for (set, f) in &row.reactions {
@@ -290,12 +207,7 @@ impl ResultsFile {
                 history.dataset(&name).map_err(&err)?
             } else {
                 // A column that appears later (a set constrained from step 2 on) starts with NaN rows.
-                let ds = history
-                    .new_dataset::<f64>()
-                    .chunk(256)
-                    .shape(0..)
-                    .create(name.as_str())
-                    .map_err(&err)?;
+                let ds = history.new_dataset::<f64>().chunk(256).shape(0..).create(name.as_str()).map_err(&err)?;
                 ds.resize(n).map_err(&err)?;
                 if n > 0 && self.rank == 0 {
                     ds.write_slice(&vec![f64::NAN; n], 0..n).map_err(&err)?;
@@ -313,38 +225,18 @@ impl ResultsFile {
 
 /// Creates dataset `name` of `shape` in `group` (collective) and writes rows
 /// `slab.0..slab.1` (first dimension) from `data` (row-major) on this rank.
-fn write_rows<T: hdf5::H5Type + Copy>(
-    group: &hdf5::Group,
-    name: &str,
-    shape: &[usize],
-    slab: (usize, usize),
-    data: &[T],
-    path: &Path,
-) -> Result<()> {
+fn write_rows<T: hdf5::H5Type + Copy>(group: &hdf5::Group, name: &str, shape: &[usize], slab: (usize, usize), data: &[T], path: &Path) -> Result<()> {
     let err = h5err(path);
-    let ds = group
-        .new_dataset::<T>()
-        .shape(shape.to_vec())
-        .create(name)
-        .map_err(&err)?;
+    let ds = group.new_dataset::<T>().shape(shape.to_vec()).create(name).map_err(&err)?;
     let rows = slab.1 - slab.0;
     if rows == 0 {
         return Ok(());
     }
-    let shape_err = |e: ndarray::ShapeError| Error::Output {
-        path: path.to_path_buf(),
-        message: e.to_string(),
-    };
+    let shape_err = |e: ndarray::ShapeError| Error::Output { path: path.to_path_buf(), message: e.to_string() };
     match shape.len() {
         1 => ds.write_slice(ArrayView1::from(data), slab.0..slab.1),
-        2 => ds.write_slice(
-            ArrayView2::from_shape((rows, shape[1]), data).map_err(shape_err)?,
-            (slab.0..slab.1, ..),
-        ),
-        3 => ds.write_slice(
-            ArrayView3::from_shape((rows, shape[1], shape[2]), data).map_err(shape_err)?,
-            (slab.0..slab.1, .., ..),
-        ),
+        2 => ds.write_slice(ArrayView2::from_shape((rows, shape[1]), data).map_err(shape_err)?, (slab.0..slab.1, ..)),
+        3 => ds.write_slice(ArrayView3::from_shape((rows, shape[1], shape[2]), data).map_err(shape_err)?, (slab.0..slab.1, .., ..)),
         _ => unreachable!("datasets have at most 3 dimensions"),
     }
     .map_err(&err)

@@ -18,20 +18,10 @@ pub fn sidecar_path(h5: &Path) -> PathBuf {
 }
 
 /// Rewrites the whole sidecar (atomically: temporary file, then rename).
-pub fn write(
-    h5: &Path,
-    nodes: usize,
-    elements: usize,
-    increments: &[IncrementEntry],
-) -> Result<()> {
-    let file = h5
-        .file_name()
-        .map(|f| f.to_string_lossy().into_owned())
-        .unwrap_or_default();
+pub fn write(h5: &Path, nodes: usize, elements: usize, increments: &[IncrementEntry]) -> Result<()> {
+    let file = h5.file_name().map(|f| f.to_string_lossy().into_owned()).unwrap_or_default();
     let item = |path: &str, dims: &str, ty: &str, precision: u32| {
-        format!(
-            r#"<DataItem Dimensions="{dims}" NumberType="{ty}" Precision="{precision}" Format="HDF">{file}:{path}</DataItem>"#
-        )
+        format!(r#"<DataItem Dimensions="{dims}" NumberType="{ty}" Precision="{precision}" Format="HDF">{file}:{path}</DataItem>"#)
     };
     let column = |path: &str, c: usize| {
         format!(
@@ -41,27 +31,16 @@ pub fn write(
     };
     let mut x = String::new();
     let _ = writeln!(x, r#"<?xml version="1.0" ?>"#);
-    let _ = writeln!(
-        x,
-        r#"<Xdmf Version="2.0"><Domain><Grid Name="slideline" GridType="Collection" CollectionType="Temporal">"#
-    );
+    let _ = writeln!(x, r#"<Xdmf Version="2.0"><Domain><Grid Name="slideline" GridType="Collection" CollectionType="Temporal">"#);
     for inc in increments {
         let g = format!("/increments/{}", inc.group);
-        let _ = writeln!(
-            x,
-            r#"<Grid Name="increment {}" GridType="Uniform"><Time Value="{}"/>"#,
-            inc.group, inc.time
-        );
+        let _ = writeln!(x, r#"<Grid Name="increment {}" GridType="Uniform"><Time Value="{}"/>"#, inc.group, inc.time);
         let _ = writeln!(
             x,
             r#"<Topology TopologyType="Quadrilateral_8" NumberOfElements="{elements}">{}</Topology>"#,
             item("/mesh/connectivity", &format!("{elements} 8"), "Int", 8)
         );
-        let _ = writeln!(
-            x,
-            r#"<Geometry GeometryType="XY">{}</Geometry>"#,
-            item("/mesh/coordinates", &format!("{nodes} 2"), "Float", 8)
-        );
+        let _ = writeln!(x, r#"<Geometry GeometryType="XY">{}</Geometry>"#, item("/mesh/coordinates", &format!("{nodes} 2"), "Float", 8));
         let _ = writeln!(
             x,
             r#"<Attribute Name="displacement" AttributeType="Vector" Center="Node"><DataItem ItemType="Function" Function="JOIN($0, $1, 0.0 * $0)" Dimensions="{nodes} 3">{}{}</DataItem></Attribute>"#,
@@ -71,12 +50,7 @@ pub fn write(
         let _ = writeln!(
             x,
             r#"<Attribute Name="von_mises_mean" AttributeType="Scalar" Center="Cell">{}</Attribute>"#,
-            item(
-                &format!("{g}/von_mises_mean"),
-                &elements.to_string(),
-                "Float",
-                8
-            )
+            item(&format!("{g}/von_mises_mean"), &elements.to_string(), "Float", 8)
         );
         let _ = writeln!(
             x,
@@ -88,10 +62,7 @@ pub fn write(
     let _ = writeln!(x, "</Grid></Domain></Xdmf>");
     let target = sidecar_path(h5);
     let tmp = target.with_extension("xmf.tmp");
-    let io = |source| Error::Output {
-        path: target.clone(),
-        message: format!("{source}"),
-    };
+    let io = |source| Error::Output { path: target.clone(), message: format!("{source}") };
     std::fs::write(&tmp, x).map_err(io)?;
     std::fs::rename(&tmp, &target).map_err(io)
 }

@@ -1,3 +1,6 @@
 //! Constitutive kernels: stress and consistent tangent at a quadrature point.
 
-pub mod elastic;
+pub mod j2;
+pub mod log_exp;
+
+pub use j2::{Kinematics, PointState, Update, J2};

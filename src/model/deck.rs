@@ -2,6 +2,14 @@
 //!
 //! ```toml
 //! reference_temperature = 20.0      # degC, zero thermal strain; also the initial temperature
+//! nlgeom = true                     # finite strain + follower pressure (default); false: small
+//!
+//! [stepping]                        # optional; defaults shown
+//! cutback_factor = 0.5              # increment x this after a failed attempt
+//! growth_factor = 1.5               # increment x this after an easy one (never past the request)
+//! easy_iterations = 6               # "easy" = converged within this many Newton iterations
+//! min_increment = 1e-5              # fraction of the step; below it the run stops (exit 3)
+//! max_newton_iterations = 25
 //!
 //! [mesh]
 //! file = "cylinder.msh"             # Gmsh 4.1, relative to the deck; or instead:
@@ -9,10 +17,12 @@
 //!
 //! [[material]]
 //! name = "steel"
-//! model = "elastic"
+//! model = "j2"                      # or "elastic"
 //! youngs_modulus = 200000.0         # MPa
 //! poissons_ratio = 0.3
 //! thermal_expansion = 1.2e-5        # 1/degC
+//! yield_stress = 300.0              # MPa, j2 only
+//! hardening_modulus = 1000.0        # MPa, j2 only (default 0: perfectly plastic)
 //!
 //! [[section]]                       # optional when there is a single material
 //! elements = "all"
@@ -27,9 +37,7 @@
 //! ```
 
 use super::mesh::{rectangle, MeshSets};
-use super::{
-    gmsh, Component, Material, MaterialModel, Model, PrescribedDisplacement, Pressure, Step,
-};
+use super::{gmsh, Component, Kinematics, Material, Model, Plasticity, PrescribedDisplacement, Pressure, Step, SteppingControls};
 use crate::error::{Error, Result};
 use serde::Deserialize;
 use std::path::{Path, PathBuf};
@@ -39,7 +47,11 @@ use std::path::{Path, PathBuf};
 struct DeckFile {
     #[serde(default = "default_reference_temperature")]
     reference_temperature: f64,
+    #[serde(default = "yes")]
+    nlgeom: bool,
     mesh: MeshSpec,
+    #[serde(default)]
+    stepping: SteppingSpec,
     #[serde(default)]
     material: Vec<MaterialSpec>,
     #[serde(default)]
@@ -50,6 +62,33 @@ struct DeckFile {
 
 fn default_reference_temperature() -> f64 {
     20.0
+}
+
+fn yes() -> bool {
+    true
+}
+
+#[derive(Deserialize, Default)]
+#[serde(deny_unknown_fields)]
+struct SteppingSpec {
+    cutback_factor: Option<f64>,
+    growth_factor: Option<f64>,
+    easy_iterations: Option<usize>,
+    min_increment: Option<f64>,
+    max_newton_iterations: Option<usize>,
+}
+
+impl SteppingSpec {
+    fn controls(&self) -> SteppingControls {
+        let d = SteppingControls::default();
+        SteppingControls {
+            cutback_factor: self.cutback_factor.unwrap_or(d.cutback_factor),
+            growth_factor: self.growth_factor.unwrap_or(d.growth_factor),
+            easy_iterations: self.easy_iterations.unwrap_or(d.easy_iterations),
+            min_increment: self.min_increment.unwrap_or(d.min_increment),
+            max_newton_iterations: self.max_newton_iterations.unwrap_or(d.max_newton_iterations),
+        }
+    }
 }
 
 #[derive(Deserialize)]
@@ -71,6 +110,7 @@ struct RectangleSpec {
 #[serde(rename_all = "snake_case")]
 enum MaterialKind {
     Elastic,
+    J2,
 }
 
 #[derive(Deserialize)]
@@ -83,6 +123,8 @@ struct MaterialSpec {
     poissons_ratio: f64,
     #[serde(default)]
     thermal_expansion: f64,
+    yield_stress: Option<f64>,
+    hardening_modulus: Option<f64>,
 }
 
 fn default_kind() -> MaterialKind {
@@ -130,61 +172,44 @@ struct PressureSpec {
 
 /// Reads and validates a deck file.
 pub fn read(path: &Path) -> Result<Model> {
-    let text = std::fs::read_to_string(path).map_err(|source| Error::Read {
-        path: path.to_path_buf(),
-        source,
-    })?;
+    let text = std::fs::read_to_string(path).map_err(|source| Error::Read { path: path.to_path_buf(), source })?;
     parse(&text, path)
 }
 
 /// Parses deck `text`; `path` names it in messages and anchors relative mesh paths.
 pub fn parse(text: &str, path: &Path) -> Result<Model> {
-    let deck: DeckFile = toml::from_str(text)
-        .map_err(|e| Error::input(format!("{}: {}", path.display(), e.to_string().trim_end())))?;
+    let deck: DeckFile = toml::from_str(text).map_err(|e| Error::input(format!("{}: {}", path.display(), e.to_string().trim_end())))?;
     let (mesh, sets) = match (&deck.mesh.file, &deck.mesh.rectangle) {
         (Some(file), None) => {
             let full = path.parent().unwrap_or(Path::new(".")).join(file);
             gmsh::read(&full)?
         }
         (None, Some(r)) => rectangle(r.r, r.z, r.divisions)?,
-        _ => {
-            return Err(Error::input(format!(
-                "{}: [mesh] needs exactly one of `file` or `rectangle`",
-                path.display()
-            )))
-        }
+        _ => return Err(Error::input(format!("{}: [mesh] needs exactly one of `file` or `rectangle`", path.display()))),
     };
-    let MeshSets {
-        node_sets,
-        element_sets,
-        surfaces,
-    } = sets;
+    let MeshSets { node_sets, element_sets, surfaces } = sets;
 
     let mut materials = Vec::new();
     for m in &deck.material {
         if materials.iter().any(|x: &Material| x.name == m.name) {
-            return Err(Error::input(format!(
-                "material '{}' is defined twice",
-                m.name
-            )));
+            return Err(Error::input(format!("material '{}' is defined twice", m.name)));
         }
-        let model = match m.model {
-            MaterialKind::Elastic => MaterialModel::Elastic {
-                youngs_modulus: m.youngs_modulus,
-                poissons_ratio: m.poissons_ratio,
-                thermal_expansion: m.thermal_expansion,
-            },
+        let plasticity = match (m.model, m.yield_stress) {
+            (MaterialKind::Elastic, None) if m.hardening_modulus.is_none() => None,
+            (MaterialKind::Elastic, _) => return Err(Error::input(format!("material '{}': yield_stress and hardening_modulus need model = \"j2\"", m.name))),
+            (MaterialKind::J2, None) => return Err(Error::input(format!("material '{}': model = \"j2\" needs yield_stress (MPa)", m.name))),
+            (MaterialKind::J2, Some(yield_stress)) => Some(Plasticity { yield_stress, hardening_modulus: m.hardening_modulus.unwrap_or(0.0) }),
         };
         materials.push(Material {
             name: m.name.clone(),
-            model,
+            youngs_modulus: m.youngs_modulus,
+            poissons_ratio: m.poissons_ratio,
+            thermal_expansion: m.thermal_expansion,
+            plasticity,
         });
     }
     if materials.is_empty() {
-        return Err(Error::input(format!(
-            "{}: no [[material]] defined",
-            path.display()
-        )));
+        return Err(Error::input(format!("{}: no [[material]] defined", path.display())));
     }
 
     let mut element_material = vec![usize::MAX; mesh.elements.len()];
@@ -195,28 +220,16 @@ pub fn parse(text: &str, path: &Path) -> Result<Model> {
         let mat = materials
             .iter()
             .position(|m| m.name == s.material)
-            .ok_or_else(|| {
-                Error::input(format!(
-                    "section on '{}': unknown material '{}'",
-                    s.elements, s.material
-                ))
-            })?;
+            .ok_or_else(|| Error::input(format!("section on '{}': unknown material '{}'", s.elements, s.material)))?;
         let elems = element_sets.get(&s.elements).ok_or_else(|| {
-            Error::input(format!(
-                "section: unknown element set '{}' (known: {})",
-                s.elements,
-                element_sets.keys().cloned().collect::<Vec<_>>().join(", ")
-            ))
+            Error::input(format!("section: unknown element set '{}' (known: {})", s.elements, element_sets.keys().cloned().collect::<Vec<_>>().join(", ")))
         })?;
         for &e in elems {
             element_material[e] = mat;
         }
     }
     if let Some(e) = element_material.iter().position(|&m| m == usize::MAX) {
-        return Err(Error::input(format!(
-            "element {} has no material: add a [[section]] covering it",
-            mesh.element_ids[e]
-        )));
+        return Err(Error::input(format!("element {} has no material: add a [[section]] covering it", mesh.element_ids[e])));
     }
 
     let mut steps = Vec::new();
@@ -225,38 +238,19 @@ pub fn parse(text: &str, path: &Path) -> Result<Model> {
         let mut displacements = Vec::new();
         for b in &s.boundary {
             if b.ur.is_none() && b.uz.is_none() {
-                return Err(Error::input(format!(
-                    "step '{name}': boundary on '{}' sets neither ur nor uz",
-                    b.set
-                )));
+                return Err(Error::input(format!("step '{name}': boundary on '{}' sets neither ur nor uz", b.set)));
             }
             for (component, value) in [(Component::R, b.ur), (Component::Z, b.uz)] {
                 if let Some(value) = value {
-                    displacements.push(PrescribedDisplacement {
-                        node_set: b.set.clone(),
-                        component,
-                        value,
-                    });
+                    displacements.push(PrescribedDisplacement { node_set: b.set.clone(), component, value });
                 }
             }
         }
-        let pressures = s
-            .pressure
-            .iter()
-            .map(|p| Pressure {
-                surface: p.surface.clone(),
-                value: p.value,
-            })
-            .collect();
-        steps.push(Step {
-            name,
-            increments: s.increments,
-            displacements,
-            pressures,
-            temperature: s.temperature,
-        });
+        let pressures = s.pressure.iter().map(|p| Pressure { surface: p.surface.clone(), value: p.value }).collect();
+        steps.push(Step { name, increments: s.increments, displacements, pressures, temperature: s.temperature });
     }
 
+    let kinematics = if deck.nlgeom { Kinematics::Finite } else { Kinematics::Small };
     let model = Model {
         mesh,
         node_sets,
@@ -265,6 +259,8 @@ pub fn parse(text: &str, path: &Path) -> Result<Model> {
         materials,
         element_material,
         reference_temperature: deck.reference_temperature,
+        kinematics,
+        stepping: deck.stepping.controls(),
         steps,
         source_text: text.to_string(),
     };

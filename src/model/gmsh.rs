@@ -20,10 +20,7 @@ const LINE3: u32 = 8;
 const POINT: u32 = 15;
 
 pub fn read(path: &Path) -> Result<(Mesh, MeshSets)> {
-    let text = std::fs::read_to_string(path).map_err(|source| Error::Read {
-        path: path.to_path_buf(),
-        source,
-    })?;
+    let text = std::fs::read_to_string(path).map_err(|source| Error::Read { path: path.to_path_buf(), source })?;
     parse(&text, &path.display().to_string())
 }
 
@@ -51,12 +48,7 @@ impl<'a> Lines<'a> {
     /// Next line parsed as whitespace-separated numbers.
     fn numbers<T: std::str::FromStr>(&mut self, what: &str) -> Result<Vec<T>> {
         let l = self.next()?;
-        l.split_whitespace()
-            .map(|t| {
-                t.parse::<T>()
-                    .map_err(|_| self.error(format!("bad number {t:?} in {what}")))
-            })
-            .collect()
+        l.split_whitespace().map(|t| t.parse::<T>().map_err(|_| self.error(format!("bad number {t:?} in {what}")))).collect()
     }
 
     fn expect(&mut self, tag: &str) -> Result<()> {
@@ -70,20 +62,13 @@ impl<'a> Lines<'a> {
 
 fn need<T: Copy>(v: &[T], n: usize, lines: &Lines, what: &str) -> Result<()> {
     if v.len() < n {
-        return Err(lines.error(format!(
-            "{what}: expected at least {n} values, found {}",
-            v.len()
-        )));
+        return Err(lines.error(format!("{what}: expected at least {n} values, found {}", v.len())));
     }
     Ok(())
 }
 
 pub fn parse(text: &str, name: &str) -> Result<(Mesh, MeshSets)> {
-    let mut lines = Lines {
-        name,
-        lines: text.lines().enumerate(),
-        line: 0,
-    };
+    let mut lines = Lines { name, lines: text.lines().enumerate(), line: 0 };
     let mut physical_names: HashMap<(i32, i32), String> = HashMap::new();
     // (dim, entity tag) -> physical tags
     let mut entity_physicals: HashMap<(i32, i32), Vec<i32>> = HashMap::new();
@@ -98,12 +83,12 @@ pub fn parse(text: &str, name: &str) -> Result<(Mesh, MeshSets)> {
                 let l = lines.next()?;
                 let f: Vec<&str> = l.split_whitespace().collect();
                 if f.first() != Some(&"4.1") {
-                    return Err(lines.error(format!("unsupported .msh version {:?}: slideline reads format 4.1 (Gmsh: -format msh41)", f.first().unwrap_or(&""))));
+                    return Err(
+                        lines.error(format!("unsupported .msh version {:?}: slideline reads format 4.1 (Gmsh: -format msh41)", f.first().unwrap_or(&"")))
+                    );
                 }
                 if f.get(1) != Some(&"0") {
-                    return Err(lines.error(
-                        "binary .msh files are not supported: save as ASCII (Mesh.Binary = 0)",
-                    ));
+                    return Err(lines.error("binary .msh files are not supported: save as ASCII (Mesh.Binary = 0)"));
                 }
                 lines.expect("$EndMeshFormat")?;
                 seen_format = true;
@@ -185,9 +170,7 @@ pub fn parse(text: &str, name: &str) -> Result<(Mesh, MeshSets)> {
                 }
                 lines.expect("$EndElements")?;
             }
-            other if other.starts_with("$End") => {
-                return Err(lines.error(format!("unexpected {other}")))
-            }
+            other if other.starts_with("$End") => return Err(lines.error(format!("unexpected {other}"))),
             other if other.starts_with('$') => {
                 // A section slideline does not use ($Periodic, $NodeData, ...): skip it whole.
                 let end = format!("$End{}", &other[1..]);
@@ -197,9 +180,7 @@ pub fn parse(text: &str, name: &str) -> Result<(Mesh, MeshSets)> {
         }
     }
     if !seen_format {
-        return Err(Error::input(format!(
-            "{name}: not a Gmsh mesh (no $MeshFormat section)"
-        )));
+        return Err(Error::input(format!("{name}: not a Gmsh mesh (no $MeshFormat section)")));
     }
 
     // Q8 elements define the mesh; only their nodes are kept.
@@ -214,28 +195,18 @@ pub fn parse(text: &str, name: &str) -> Result<(Mesh, MeshSets)> {
             return Err(Error::input(format!("{name}:{line}: element {tag} is {}; slideline uses 8-node quadrilaterals (Gmsh type 16: Mesh.ElementOrder = 2, Mesh.SecondOrderIncomplete = 1, recombined)", type_name(*ty))));
         }
         if nodes.len() != 8 {
-            return Err(Error::input(format!(
-                "{name}:{line}: element {tag} lists {} nodes, an 8-node quadrilateral needs 8",
-                nodes.len()
-            )));
+            return Err(Error::input(format!("{name}:{line}: element {tag} lists {} nodes, an 8-node quadrilateral needs 8", nodes.len())));
         }
         let mut conn = [0usize; 8];
         for (k, t) in nodes.iter().enumerate() {
-            let c = *node_coords.get(t).ok_or_else(|| {
-                Error::input(format!(
-                    "{name}:{line}: element {tag} uses node {t}, which is not in $Nodes"
-                ))
-            })?;
+            let c = *node_coords.get(t).ok_or_else(|| Error::input(format!("{name}:{line}: element {tag} uses node {t}, which is not in $Nodes")))?;
             conn[k] = *node_index.entry(*t).or_insert_with(|| {
                 mesh.coords.push(c);
                 mesh.node_ids.push(*t);
                 mesh.coords.len() - 1
             });
         }
-        entity_elements
-            .entry(*entity)
-            .or_default()
-            .push(mesh.elements.len());
+        entity_elements.entry(*entity).or_default().push(mesh.elements.len());
         mesh.elements.push(conn);
         mesh.element_ids.push(*tag);
     }
@@ -244,28 +215,14 @@ pub fn parse(text: &str, name: &str) -> Result<(Mesh, MeshSets)> {
         return Err(Error::input(format!("{name}: the mesh has no elements (slideline needs 8-node quadrilaterals, Gmsh type 16)")));
     }
     let mut sets = MeshSets::default();
-    sets.element_sets
-        .insert("all".into(), (0..mesh.elements.len()).collect());
-    sets.node_sets
-        .insert("all".into(), (0..mesh.coords.len()).collect());
-    let group_name = |dim: i32, tag: i32| {
-        physical_names
-            .get(&(dim, tag))
-            .cloned()
-            .unwrap_or_else(|| format!("physical_{tag}"))
-    };
+    sets.element_sets.insert("all".into(), (0..mesh.elements.len()).collect());
+    sets.node_sets.insert("all".into(), (0..mesh.coords.len()).collect());
+    let group_name = |dim: i32, tag: i32| physical_names.get(&(dim, tag)).cloned().unwrap_or_else(|| format!("physical_{tag}"));
 
     // 2D groups: element sets.
     for (entity, elems) in &entity_elements {
-        for &p in entity_physicals
-            .get(&(2, *entity))
-            .map(|v| v.as_slice())
-            .unwrap_or(&[])
-        {
-            sets.element_sets
-                .entry(group_name(2, p))
-                .or_default()
-                .extend(elems);
+        for &p in entity_physicals.get(&(2, *entity)).map(|v| v.as_slice()).unwrap_or(&[]) {
+            sets.element_sets.entry(group_name(2, p)).or_default().extend(elems);
         }
     }
     // 1D groups: surfaces made of element sides; 0D groups: node sets.
@@ -278,25 +235,32 @@ pub fn parse(text: &str, name: &str) -> Result<(Mesh, MeshSets)> {
     }
     let mut surfaces: BTreeMap<String, Vec<Edge>> = BTreeMap::new();
     for (dim, entity, ty, tag, nodes, line) in &elements {
-        let phys = entity_physicals
-            .get(&(*dim, *entity))
-            .map(|v| v.as_slice())
-            .unwrap_or(&[]);
+        let phys = entity_physicals.get(&(*dim, *entity)).map(|v| v.as_slice()).unwrap_or(&[]);
         if phys.is_empty() || *dim > 1 {
             continue;
         }
         let index = |t: &u64| {
-            node_index.get(t).copied().ok_or_else(|| Error::input(format!("{name}:{line}: element {tag} uses node {t}, which belongs to no 8-node quadrilateral")))
+            node_index
+                .get(t)
+                .copied()
+                .ok_or_else(|| Error::input(format!("{name}:{line}: element {tag} uses node {t}, which belongs to no 8-node quadrilateral")))
         };
         match (*dim, *ty) {
             (1, LINE3) if nodes.len() == 3 => {
                 let (a, b) = (index(&nodes[0])?, index(&nodes[1])?);
-                let edge = *side_of.get(&(a.min(b), a.max(b))).ok_or_else(|| Error::input(format!("{name}:{line}: line element {tag} is not a side of any quadrilateral")))?;
+                let edge = *side_of
+                    .get(&(a.min(b), a.max(b)))
+                    .ok_or_else(|| Error::input(format!("{name}:{line}: line element {tag} is not a side of any quadrilateral")))?;
                 for &p in phys {
                     surfaces.entry(group_name(1, p)).or_default().push(edge);
                 }
             }
-            (1, _) => return Err(Error::input(format!("{name}:{line}: element {tag} in a physical curve is {}; surfaces need 3-node lines (type 8)", type_name(*ty)))),
+            (1, _) => {
+                return Err(Error::input(format!(
+                    "{name}:{line}: element {tag} in a physical curve is {}; surfaces need 3-node lines (type 8)",
+                    type_name(*ty)
+                )))
+            }
             (0, POINT) => {
                 let n = index(&nodes[0])?;
                 for &p in phys {

@@ -40,25 +40,11 @@ impl Mesh {
     /// Checks the mesh has elements, lies at r >= 0, and has no inverted or degenerate element.
     pub fn validate(&self) -> Result<()> {
         if self.elements.is_empty() {
-            return Err(Error::input(
-                "the mesh has no elements (slideline needs 8-node quadrilaterals)",
-            ));
+            return Err(Error::input("the mesh has no elements (slideline needs 8-node quadrilaterals)"));
         }
-        let size = self
-            .coords
-            .iter()
-            .fold(0.0f64, |m, c| m.max(c[0].abs()).max(c[1].abs()))
-            .max(1.0);
-        if let Some((i, c)) = self
-            .coords
-            .iter()
-            .enumerate()
-            .find(|(_, c)| c[0] < -1e-9 * size || !c[0].is_finite() || !c[1].is_finite())
-        {
-            return Err(Error::input(format!(
-                "node {} at (r, z) = ({}, {}): axisymmetric nodes need a finite r >= 0",
-                self.node_ids[i], c[0], c[1]
-            )));
+        let size = self.coords.iter().fold(0.0f64, |m, c| m.max(c[0].abs()).max(c[1].abs())).max(1.0);
+        if let Some((i, c)) = self.coords.iter().enumerate().find(|(_, c)| c[0] < -1e-9 * size || !c[0].is_finite() || !c[1].is_finite()) {
+            return Err(Error::input(format!("node {} at (r, z) = ({}, {}): axisymmetric nodes need a finite r >= 0", self.node_ids[i], c[0], c[1])));
         }
         for (e, conn) in self.elements.iter().enumerate() {
             let x = self.element_coords(e);
@@ -69,10 +55,7 @@ impl Mesh {
             for check in gauss.into_iter().chain(corners) {
                 if let Err(msg) = check {
                     let nodes: Vec<u64> = conn.iter().map(|&n| self.node_ids[n]).collect();
-                    return Err(Error::input(format!(
-                        "element {} (nodes {:?}): {msg}",
-                        self.element_ids[e], nodes
-                    )));
+                    return Err(Error::input(format!("element {} (nodes {:?}): {msg}", self.element_ids[e], nodes)));
                 }
             }
         }
@@ -105,14 +88,10 @@ impl MeshSets {
 pub fn rectangle(r: [f64; 2], z: [f64; 2], divisions: [usize; 2]) -> Result<(Mesh, MeshSets)> {
     let [nr, nz] = divisions;
     if nr == 0 || nz == 0 {
-        return Err(Error::input(format!(
-            "mesh.rectangle: divisions must be at least 1, got {divisions:?}"
-        )));
+        return Err(Error::input(format!("mesh.rectangle: divisions must be at least 1, got {divisions:?}")));
     }
     if !(r[1] > r[0] && z[1] > z[0] && r[0] >= 0.0) {
-        return Err(Error::input(format!(
-            "mesh.rectangle: need 0 <= r0 < r1 and z0 < z1, got r = {r:?}, z = {z:?}"
-        )));
+        return Err(Error::input(format!("mesh.rectangle: need 0 <= r0 < r1 and z0 < z1, got r = {r:?}, z = {z:?}")));
     }
     let (gi, gj) = (2 * nr + 1, 2 * nz + 1);
     let mut index = vec![usize::MAX; gi * gj];
@@ -123,10 +102,7 @@ pub fn rectangle(r: [f64; 2], z: [f64; 2], divisions: [usize; 2]) -> Result<(Mes
                 continue; // no centre node in the serendipity element
             }
             index[j * gi + i] = mesh.coords.len();
-            mesh.coords.push([
-                r[0] + (r[1] - r[0]) * i as f64 / (gi - 1) as f64,
-                z[0] + (z[1] - z[0]) * j as f64 / (gj - 1) as f64,
-            ]);
+            mesh.coords.push([r[0] + (r[1] - r[0]) * i as f64 / (gi - 1) as f64, z[0] + (z[1] - z[0]) * j as f64 / (gj - 1) as f64]);
             mesh.node_ids.push(mesh.coords.len() as u64);
         }
     }
@@ -136,54 +112,26 @@ pub fn rectangle(r: [f64; 2], z: [f64; 2], divisions: [usize; 2]) -> Result<(Mes
         for ei in 0..nr {
             let (i, j) = (2 * ei, 2 * ej);
             let e = mesh.elements.len();
-            mesh.elements.push([
-                at(i, j),
-                at(i + 2, j),
-                at(i + 2, j + 2),
-                at(i, j + 2),
-                at(i + 1, j),
-                at(i + 2, j + 1),
-                at(i + 1, j + 2),
-                at(i, j + 1),
-            ]);
+            mesh.elements.push([at(i, j), at(i + 2, j), at(i + 2, j + 2), at(i, j + 2), at(i + 1, j), at(i + 2, j + 1), at(i + 1, j + 2), at(i, j + 1)]);
             mesh.element_ids.push(e as u64 + 1);
             if ej == 0 {
-                bottom.push(Edge {
-                    element: e,
-                    side: 0,
-                });
+                bottom.push(Edge { element: e, side: 0 });
             }
             if ei == nr - 1 {
-                outer.push(Edge {
-                    element: e,
-                    side: 1,
-                });
+                outer.push(Edge { element: e, side: 1 });
             }
             if ej == nz - 1 {
-                top.push(Edge {
-                    element: e,
-                    side: 2,
-                });
+                top.push(Edge { element: e, side: 2 });
             }
             if ei == 0 {
-                inner.push(Edge {
-                    element: e,
-                    side: 3,
-                });
+                inner.push(Edge { element: e, side: 3 });
             }
         }
     }
     let mut sets = MeshSets::default();
-    sets.element_sets
-        .insert("all".into(), (0..mesh.elements.len()).collect());
-    sets.node_sets
-        .insert("all".into(), (0..mesh.coords.len()).collect());
-    for (name, edges) in [
-        ("inner", inner),
-        ("outer", outer),
-        ("bottom", bottom),
-        ("top", top),
-    ] {
+    sets.element_sets.insert("all".into(), (0..mesh.elements.len()).collect());
+    sets.node_sets.insert("all".into(), (0..mesh.coords.len()).collect());
+    for (name, edges) in [("inner", inner), ("outer", outer), ("bottom", bottom), ("top", top)] {
         sets.add_surface(&mesh, name, edges);
     }
     Ok((mesh, sets))

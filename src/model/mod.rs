@@ -11,6 +11,7 @@ pub mod mesh;
 pub use mesh::{Edge, Mesh, NODES_PER_ELEMENT};
 
 use crate::error::{Error, Result};
+pub use crate::material::Kinematics;
 use std::collections::BTreeMap;
 
 /// Displacement component in the (r, z) plane.
@@ -29,21 +30,43 @@ impl Component {
     }
 }
 
-/// Constitutive model of a material, with its parameters (MPa, 1/degC).
-#[derive(Clone, Debug, PartialEq)]
-pub enum MaterialModel {
-    /// Isotropic linear elasticity with isotropic thermal expansion.
-    Elastic {
-        youngs_modulus: f64,
-        poissons_ratio: f64,
-        thermal_expansion: f64,
-    },
-}
-
+/// Isotropic material (MPa, 1/degC): elastic (Hencky at finite strain), optionally with
+/// J2 plasticity and linear isotropic hardening.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Material {
     pub name: String,
-    pub model: MaterialModel,
+    pub youngs_modulus: f64,
+    pub poissons_ratio: f64,
+    pub thermal_expansion: f64,
+    pub plasticity: Option<Plasticity>,
+}
+
+/// sigma_y(ep) = yield_stress + hardening_modulus * ep.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Plasticity {
+    pub yield_stress: f64,
+    pub hardening_modulus: f64,
+}
+
+/// How the load steps are subdivided when Newton struggles.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SteppingControls {
+    /// Factor applied to the increment after a failed attempt (0 < f < 1).
+    pub cutback_factor: f64,
+    /// Factor applied after an easy increment (>= 1); never past the requested increment.
+    pub growth_factor: f64,
+    /// An increment converged in at most this many Newton iterations is easy.
+    pub easy_iterations: usize,
+    /// Smallest increment, as a fraction of the step, before the run gives up.
+    pub min_increment: f64,
+    /// Newton iterations allowed per attempt (PETSc's -snes_max_it overrides it).
+    pub max_newton_iterations: usize,
+}
+
+impl Default for SteppingControls {
+    fn default() -> Self {
+        SteppingControls { cutback_factor: 0.5, growth_factor: 1.5, easy_iterations: 6, min_increment: 1e-5, max_newton_iterations: 25 }
+    }
 }
 
 /// A displacement prescribed on every node of a node set; `value` is reached at the end of
@@ -86,6 +109,9 @@ pub struct Model {
     pub element_material: Vec<usize>,
     /// Temperature (degC) at which thermal strain is zero, and the initial temperature.
     pub reference_temperature: f64,
+    /// Finite strains and rotations with follower pressure (NLGEOM), or small strain.
+    pub kinematics: Kinematics,
+    pub stepping: SteppingControls,
     pub steps: Vec<Step>,
     /// The text the model was read from, kept for the output file.
     pub source_text: String,
@@ -96,58 +122,49 @@ impl Model {
     pub fn validate(&self) -> Result<()> {
         self.mesh.validate()?;
         for m in &self.materials {
-            match m.model {
-                MaterialModel::Elastic {
-                    youngs_modulus,
-                    poissons_ratio,
-                    thermal_expansion,
-                } => {
-                    if !(youngs_modulus > 0.0 && youngs_modulus.is_finite()) {
-                        return Err(Error::input(format!(
-                            "material '{}': Young's modulus must be > 0, got {youngs_modulus}",
-                            m.name
-                        )));
-                    }
-                    if !(poissons_ratio > -1.0 && poissons_ratio < 0.5) {
-                        return Err(Error::input(format!("material '{}': Poisson's ratio must lie in (-1, 0.5), got {poissons_ratio}", m.name)));
-                    }
-                    if !thermal_expansion.is_finite() {
-                        return Err(Error::input(format!(
-                            "material '{}': thermal expansion must be finite",
-                            m.name
-                        )));
-                    }
+            if !(m.youngs_modulus > 0.0 && m.youngs_modulus.is_finite()) {
+                return Err(Error::input(format!("material '{}': Young's modulus must be > 0, got {}", m.name, m.youngs_modulus)));
+            }
+            if !(m.poissons_ratio > -1.0 && m.poissons_ratio < 0.5) {
+                return Err(Error::input(format!("material '{}': Poisson's ratio must lie in (-1, 0.5), got {}", m.name, m.poissons_ratio)));
+            }
+            if !m.thermal_expansion.is_finite() {
+                return Err(Error::input(format!("material '{}': thermal expansion must be finite", m.name)));
+            }
+            if let Some(p) = m.plasticity {
+                if !(p.yield_stress > 0.0 && p.yield_stress.is_finite()) {
+                    return Err(Error::input(format!("material '{}': yield stress must be > 0, got {}", m.name, p.yield_stress)));
+                }
+                if !(p.hardening_modulus >= 0.0 && p.hardening_modulus.is_finite()) {
+                    return Err(Error::input(format!("material '{}': hardening modulus must be >= 0, got {}", m.name, p.hardening_modulus)));
                 }
             }
         }
+        let c = &self.stepping;
+        let sane = c.cutback_factor > 0.0 && c.cutback_factor < 1.0 && c.growth_factor >= 1.0 && c.min_increment > 0.0 && c.min_increment <= 1.0;
+        if !sane || c.max_newton_iterations == 0 {
+            return Err(Error::input(format!(
+                "[stepping]: need 0 < cutback_factor < 1, growth_factor >= 1, 0 < min_increment <= 1, max_newton_iterations >= 1; got {c:?}"
+            )));
+        }
         if self.element_material.len() != self.mesh.elements.len() {
-            return Err(Error::input(
-                "internal: element_material does not match the element count",
-            ));
+            return Err(Error::input("internal: element_material does not match the element count"));
         }
         if self.steps.is_empty() {
             return Err(Error::input("the model has no steps: add a [[step]]"));
         }
         for step in &self.steps {
             if step.increments == 0 {
-                return Err(Error::input(format!(
-                    "step '{}': increments must be at least 1",
-                    step.name
-                )));
+                return Err(Error::input(format!("step '{}': increments must be at least 1", step.name)));
             }
             for d in &step.displacements {
-                self.node_set(&d.node_set)
-                    .map_err(|e| Error::input(format!("step '{}': {e}", step.name)))?;
+                self.node_set(&d.node_set).map_err(|e| Error::input(format!("step '{}': {e}", step.name)))?;
                 if !d.value.is_finite() {
-                    return Err(Error::input(format!(
-                        "step '{}': displacement on '{}' is not finite",
-                        step.name, d.node_set
-                    )));
+                    return Err(Error::input(format!("step '{}': displacement on '{}' is not finite", step.name, d.node_set)));
                 }
             }
             for p in &step.pressures {
-                self.surface(&p.surface)
-                    .map_err(|e| Error::input(format!("step '{}': {e}", step.name)))?;
+                self.surface(&p.surface).map_err(|e| Error::input(format!("step '{}': {e}", step.name)))?;
             }
         }
         Ok(())
@@ -157,36 +174,18 @@ impl Model {
         self.node_sets
             .get(name)
             .map(|v| v.as_slice())
-            .ok_or_else(|| {
-                Error::input(format!(
-                    "unknown node set '{name}' (known: {})",
-                    known(self.node_sets.keys())
-                ))
-            })
+            .ok_or_else(|| Error::input(format!("unknown node set '{name}' (known: {})", known(self.node_sets.keys()))))
     }
 
     pub fn element_set(&self, name: &str) -> Result<&[usize]> {
         self.element_sets
             .get(name)
             .map(|v| v.as_slice())
-            .ok_or_else(|| {
-                Error::input(format!(
-                    "unknown element set '{name}' (known: {})",
-                    known(self.element_sets.keys())
-                ))
-            })
+            .ok_or_else(|| Error::input(format!("unknown element set '{name}' (known: {})", known(self.element_sets.keys()))))
     }
 
     pub fn surface(&self, name: &str) -> Result<&[Edge]> {
-        self.surfaces
-            .get(name)
-            .map(|v| v.as_slice())
-            .ok_or_else(|| {
-                Error::input(format!(
-                    "unknown surface '{name}' (known: {})",
-                    known(self.surfaces.keys())
-                ))
-            })
+        self.surfaces.get(name).map(|v| v.as_slice()).ok_or_else(|| Error::input(format!("unknown surface '{name}' (known: {})", known(self.surfaces.keys()))))
     }
 }
 

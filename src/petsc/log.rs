@@ -13,20 +13,14 @@ impl LogStage {
         let cname = CString::new(name).expect("stage names are static and NUL-free");
         let mut stage = 0;
         // SAFETY: PETSc copies the name.
-        check(
-            unsafe { sys::PetscLogStageRegister(cname.as_ptr(), &mut stage) },
-            "PetscLogStageRegister",
-        )?;
+        check(unsafe { sys::PetscLogStageRegister(cname.as_ptr(), &mut stage) }, "PetscLogStageRegister")?;
         Ok(LogStage(stage))
     }
 
     /// Runs `work` inside this stage.
     pub fn run<T>(self, work: impl FnOnce() -> T) -> Result<T> {
         // SAFETY: a registered stage id; push and pop are paired around `work`.
-        check(
-            unsafe { sys::PetscLogStagePush(self.0) },
-            "PetscLogStagePush",
-        )?;
+        check(unsafe { sys::PetscLogStagePush(self.0) }, "PetscLogStagePush")?;
         let out = work();
         check(unsafe { sys::PetscLogStagePop() }, "PetscLogStagePop")?;
         Ok(out)

@@ -15,17 +15,8 @@ pub trait MatOps {
 
     /// Adds a dense block `values` (row-major, rows x cols) at global `rows`, `cols`.
     /// Negative indices are skipped by PETSc (used for eliminated, prescribed DOFs).
-    fn add_block(
-        &mut self,
-        rows: &[sys::PetscInt],
-        cols: &[sys::PetscInt],
-        values: &[f64],
-    ) -> Result<()> {
-        assert_eq!(
-            rows.len() * cols.len(),
-            values.len(),
-            "add_block: values must be rows x cols"
-        );
+    fn add_block(&mut self, rows: &[sys::PetscInt], cols: &[sys::PetscInt], values: &[f64]) -> Result<()> {
+        assert_eq!(rows.len() * cols.len(), values.len(), "add_block: values must be rows x cols");
         // SAFETY: slices sized as declared; PETSc copies the values.
         check(
             unsafe {
@@ -46,14 +37,8 @@ pub trait MatOps {
     /// Collective: communicates stashed off-rank entries and finishes assembly.
     fn assemble(&mut self) -> Result<()> {
         // SAFETY: valid handle; Begin/End paired.
-        check(
-            unsafe { sys::MatAssemblyBegin(self.raw(), sys::MatAssemblyType_MAT_FINAL_ASSEMBLY) },
-            "MatAssemblyBegin",
-        )?;
-        check(
-            unsafe { sys::MatAssemblyEnd(self.raw(), sys::MatAssemblyType_MAT_FINAL_ASSEMBLY) },
-            "MatAssemblyEnd",
-        )
+        check(unsafe { sys::MatAssemblyBegin(self.raw(), sys::MatAssemblyType_MAT_FINAL_ASSEMBLY) }, "MatAssemblyBegin")?;
+        check(unsafe { sys::MatAssemblyEnd(self.raw(), sys::MatAssemblyType_MAT_FINAL_ASSEMBLY) }, "MatAssemblyEnd")
     }
 }
 
@@ -68,62 +53,22 @@ impl<'s> Matrix<'s> {
     /// `diag_nnz[i]` / `offdiag_nnz[i]` nonzeros of local row i in the diagonal / off-diagonal
     /// blocks. A new nonzero outside this pattern is an error (MAT_NEW_NONZERO_ALLOCATION_ERR),
     /// so a wrong pattern is found at once instead of slowing assembly silently.
-    pub fn aij(
-        _session: &'s PetscSession,
-        comm: Comm,
-        local_rows: usize,
-        diag_nnz: &[sys::PetscInt],
-        offdiag_nnz: &[sys::PetscInt],
-    ) -> Result<Self> {
-        assert_eq!(
-            diag_nnz.len(),
-            local_rows,
-            "one diagonal count per local row"
-        );
-        assert_eq!(
-            offdiag_nnz.len(),
-            local_rows,
-            "one off-diagonal count per local row"
-        );
+    pub fn aij(_session: &'s PetscSession, comm: Comm, local_rows: usize, diag_nnz: &[sys::PetscInt], offdiag_nnz: &[sys::PetscInt]) -> Result<Self> {
+        assert_eq!(diag_nnz.len(), local_rows, "one diagonal count per local row");
+        assert_eq!(offdiag_nnz.len(), local_rows, "one off-diagonal count per local row");
         let m = to_petsc_int(local_rows)?;
         let mut raw = std::ptr::null_mut();
         // SAFETY: count arrays have local_rows entries and are copied by PETSc.
-        check(
-            unsafe {
-                sys::MatCreateAIJ(
-                    comm,
-                    m,
-                    m,
-                    -1,
-                    -1,
-                    0,
-                    diag_nnz.as_ptr(),
-                    0,
-                    offdiag_nnz.as_ptr(),
-                    &mut raw,
-                )
-            },
-            "MatCreateAIJ",
-        )?;
-        let mut mat = Matrix {
-            raw,
-            _session: PhantomData,
-        };
+        check(unsafe { sys::MatCreateAIJ(comm, m, m, -1, -1, 0, diag_nnz.as_ptr(), 0, offdiag_nnz.as_ptr(), &mut raw) }, "MatCreateAIJ")?;
+        let mut mat = Matrix { raw, _session: PhantomData };
         mat.set_option(sys::MatOption_MAT_NEW_NONZERO_ALLOCATION_ERR, true)?;
         Ok(mat)
     }
 
     pub fn set_option(&mut self, option: sys::MatOption, value: bool) -> Result<()> {
-        let flag = if value {
-            sys::PetscBool_PETSC_TRUE
-        } else {
-            sys::PetscBool_PETSC_FALSE
-        };
+        let flag = if value { sys::PetscBool_PETSC_TRUE } else { sys::PetscBool_PETSC_FALSE };
         // SAFETY: valid handle.
-        check(
-            unsafe { sys::MatSetOption(self.raw, option, flag) },
-            "MatSetOption",
-        )
+        check(unsafe { sys::MatSetOption(self.raw, option, flag) }, "MatSetOption")
     }
 }
 
@@ -148,10 +93,7 @@ pub struct MatrixView<'a> {
 
 impl MatrixView<'_> {
     pub(crate) fn from_raw(raw: sys::Mat) -> Self {
-        MatrixView {
-            raw,
-            _life: PhantomData,
-        }
+        MatrixView { raw, _life: PhantomData }
     }
 }
 

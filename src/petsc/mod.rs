@@ -50,11 +50,7 @@ pub(crate) fn check(code: sys::PetscErrorCode, call: &'static str) -> Result<()>
             }
         }
     }
-    Err(Error::Petsc {
-        call,
-        code,
-        message,
-    })
+    Err(Error::Petsc { call, code, message })
 }
 
 /// PETSc initialised on the world of the `mpi` crate. Drop finalises PETSc, then MPI.
@@ -71,14 +67,10 @@ impl PetscSession {
     /// `-snes_monitor -pc_type gamg`) put in the options database as if given on the command line.
     /// The PETSC_OPTIONS environment variable is honoured as well, as PETSc always does.
     pub fn initialize(petsc_options: &[String]) -> Result<Self> {
-        let universe =
-            mpi::initialize().ok_or_else(|| Error::Mpi("MPI was already initialised".into()))?;
+        let universe = mpi::initialize().ok_or_else(|| Error::Mpi("MPI was already initialised".into()))?;
         let mut args = vec![CString::new("slideline").expect("static name")];
         for o in petsc_options {
-            args.push(
-                CString::new(o.as_str())
-                    .map_err(|_| Error::input(format!("PETSc option {o:?} contains a NUL byte")))?,
-            );
+            args.push(CString::new(o.as_str()).map_err(|_| Error::input(format!("PETSc option {o:?} contains a NUL byte")))?);
         }
         let mut argv: Vec<*mut c_char> = args.iter().map(|a| a.as_ptr() as *mut c_char).collect();
         argv.push(std::ptr::null_mut());
@@ -87,23 +79,11 @@ impl PetscSession {
         // SAFETY: argc/argv describe NUL-terminated strings kept alive in `self` for the whole
         // session (PETSc keeps pointers to them); MPI is already initialised, so PETSc uses
         // MPI_COMM_WORLD as PETSC_COMM_WORLD and leaves MPI_Finalize to the `mpi` crate.
-        let code = unsafe {
-            sys::PetscInitialize(&mut argc, &mut argv_ptr, std::ptr::null(), std::ptr::null())
-        };
+        let code = unsafe { sys::PetscInitialize(&mut argc, &mut argv_ptr, std::ptr::null(), std::ptr::null()) };
         check(code, "PetscInitialize")?;
         // SAFETY: installs PETSc's own handler that returns the error code without printing.
-        check(
-            unsafe {
-                sys::PetscPushErrorHandler(Some(sys::PetscReturnErrorHandler), std::ptr::null_mut())
-            },
-            "PetscPushErrorHandler",
-        )?;
-        Ok(PetscSession {
-            _args: args,
-            _argv: argv,
-            options: petsc_options.to_vec(),
-            universe,
-        })
+        check(unsafe { sys::PetscPushErrorHandler(Some(sys::PetscReturnErrorHandler), std::ptr::null_mut()) }, "PetscPushErrorHandler")?;
+        Ok(PetscSession { _args: args, _argv: argv, options: petsc_options.to_vec(), universe })
     }
 
     pub fn world(&self) -> mpi::topology::SimpleCommunicator {
@@ -127,14 +107,7 @@ impl PetscSession {
         };
         let mut set: sys::PetscBool = sys::PetscBool_PETSC_FALSE;
         // SAFETY: NULL options object means the global database; `set` is a valid out-pointer.
-        let code = unsafe {
-            sys::PetscOptionsHasName(
-                std::ptr::null_mut(),
-                std::ptr::null(),
-                cname.as_ptr(),
-                &mut set,
-            )
-        };
+        let code = unsafe { sys::PetscOptionsHasName(std::ptr::null_mut(), std::ptr::null(), cname.as_ptr(), &mut set) };
         code == 0 && set == sys::PetscBool_PETSC_TRUE
     }
 }
@@ -155,6 +128,5 @@ pub(crate) type SessionBorrow<'s> = PhantomData<&'s PetscSession>;
 
 /// Converts a Rust index to PetscInt, failing loudly on overflow of the 32-bit index type.
 pub(crate) fn to_petsc_int(i: usize) -> Result<sys::PetscInt> {
-    sys::PetscInt::try_from(i)
-        .map_err(|_| Error::input(format!("index {i} exceeds PETSc's 32-bit PetscInt")))
+    sys::PetscInt::try_from(i).map_err(|_| Error::input(format!("index {i} exceeds PETSc's 32-bit PetscInt")))
 }

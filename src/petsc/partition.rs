@@ -7,14 +7,7 @@ use crate::error::Result;
 /// Partitions a distributed graph into `parts` parts. This rank holds rows `first_row..` of the
 /// graph in CSR form (`offsets`, global `neighbours`, no self-loops). Returns the part of each
 /// local row.
-pub fn partition_graph(
-    session: &PetscSession,
-    comm: Comm,
-    total_rows: usize,
-    offsets: &[usize],
-    neighbours: &[usize],
-    parts: usize,
-) -> Result<Vec<usize>> {
+pub fn partition_graph(session: &PetscSession, comm: Comm, total_rows: usize, offsets: &[usize], neighbours: &[usize], parts: usize) -> Result<Vec<usize>> {
     let local_rows = offsets.len() - 1;
     // MatCreateMPIAdj takes ownership of i and j and frees them with PetscFree: they must come
     // from PetscMalloc.
@@ -23,17 +16,7 @@ pub fn partition_graph(
     let mut adj = std::ptr::null_mut();
     // SAFETY: i has local_rows + 1 entries, j has offsets[last]; ownership passes to the Mat.
     check(
-        unsafe {
-            sys::MatCreateMPIAdj(
-                comm,
-                to_petsc_int(local_rows)?,
-                to_petsc_int(total_rows)?,
-                i,
-                j,
-                std::ptr::null_mut(),
-                &mut adj,
-            )
-        },
+        unsafe { sys::MatCreateMPIAdj(comm, to_petsc_int(local_rows)?, to_petsc_int(total_rows)?, i, j, std::ptr::null_mut(), &mut adj) },
         "MatCreateMPIAdj",
     )?;
     let mut part = std::ptr::null_mut();
@@ -41,32 +24,14 @@ pub fn partition_graph(
     let result = (|| -> Result<Vec<usize>> {
         // SAFETY: adj and part are valid handles for the duration of this closure.
         unsafe {
-            check(
-                sys::MatPartitioningCreate(comm, &mut part),
-                "MatPartitioningCreate",
-            )?;
-            check(
-                sys::MatPartitioningSetAdjacency(part, adj),
-                "MatPartitioningSetAdjacency",
-            )?;
-            check(
-                sys::MatPartitioningSetNParts(part, to_petsc_int(parts)?),
-                "MatPartitioningSetNParts",
-            )?;
+            check(sys::MatPartitioningCreate(comm, &mut part), "MatPartitioningCreate")?;
+            check(sys::MatPartitioningSetAdjacency(part, adj), "MatPartitioningSetAdjacency")?;
+            check(sys::MatPartitioningSetNParts(part, to_petsc_int(parts)?), "MatPartitioningSetNParts")?;
             if parts > 1 {
-                check(
-                    sys::MatPartitioningSetType(part, c"ptscotch".as_ptr()),
-                    "MatPartitioningSetType",
-                )?;
+                check(sys::MatPartitioningSetType(part, c"ptscotch".as_ptr()), "MatPartitioningSetType")?;
             }
-            check(
-                sys::MatPartitioningSetFromOptions(part),
-                "MatPartitioningSetFromOptions",
-            )?;
-            check(
-                sys::MatPartitioningApply(part, &mut is_raw),
-                "MatPartitioningApply",
-            )?;
+            check(sys::MatPartitioningSetFromOptions(part), "MatPartitioningSetFromOptions")?;
+            check(sys::MatPartitioningApply(part, &mut is_raw), "MatPartitioningApply")?;
         }
         let is = IndexSet::from_raw(session, is_raw);
         Ok(is.to_vec()?.into_iter().map(|p| p as usize).collect())
@@ -79,9 +44,7 @@ pub fn partition_graph(
     result
 }
 
-fn petsc_malloc_ints(
-    values: impl ExactSizeIterator<Item = sys::PetscInt>,
-) -> Result<*mut sys::PetscInt> {
+fn petsc_malloc_ints(values: impl ExactSizeIterator<Item = sys::PetscInt>) -> Result<*mut sys::PetscInt> {
     let n = values.len().max(1);
     let mut ptr: *mut sys::PetscInt = std::ptr::null_mut();
     // SAFETY: PetscMallocA(1, clear, line, func, file, bytes, &ptr) is what PetscMalloc1 expands to.

@@ -6,10 +6,7 @@
 //! by [`Snes::solve`]. The outcome of every callback is agreed across ranks (MPI max) so a
 //! failure on one rank makes all ranks take the same path instead of deadlocking.
 
-use super::{
-    check, sys, Comm, MatOps, Matrix, MatrixView, PetscSession, SessionBorrow, VecOps, Vector,
-    VectorView,
-};
+use super::{check, sys, Comm, MatOps, Matrix, MatrixView, PetscSession, SessionBorrow, VecOps, Vector, VectorView};
 use crate::error::{Error, Result};
 use std::ffi::c_void;
 use std::marker::PhantomData;
@@ -81,13 +78,8 @@ impl<'s> Snes<'s> {
         let mut raw = std::ptr::null_mut();
         // SAFETY: comm is live; the handle is owned by the returned value.
         check(unsafe { sys::SNESCreate(comm, &mut raw) }, "SNESCreate")?;
-        let mut snes = Snes {
-            raw,
-            comm,
-            history: vec![0.0; HISTORY_LEN].into_boxed_slice(),
-            history_its: vec![0; HISTORY_LEN].into_boxed_slice(),
-            _session: PhantomData,
-        };
+        let mut snes =
+            Snes { raw, comm, history: vec![0.0; HISTORY_LEN].into_boxed_slice(), history_its: vec![0; HISTORY_LEN].into_boxed_slice(), _session: PhantomData };
         snes.configure_defaults(session)?;
         Ok(snes)
     }
@@ -103,20 +95,11 @@ impl<'s> Snes<'s> {
             check(sys::PCSetType(pc, c"lu".as_ptr()), "PCSetType")?;
             // MUMPS factorises MPIAIJ on any rank count; only name it when LU stays the PC.
             if !session.has_option("-pc_type") || session.has_option("-pc_factor_mat_solver_type") {
-                check(
-                    sys::PCFactorSetMatSolverType(pc, c"mumps".as_ptr()),
-                    "PCFactorSetMatSolverType",
-                )?;
+                check(sys::PCFactorSetMatSolverType(pc, c"mumps".as_ptr()), "PCFactorSetMatSolverType")?;
             }
             let mut ls = std::ptr::null_mut();
-            check(
-                sys::SNESGetLineSearch(self.raw, &mut ls),
-                "SNESGetLineSearch",
-            )?;
-            check(
-                sys::SNESLineSearchSetType(ls, c"bt".as_ptr()),
-                "SNESLineSearchSetType",
-            )?;
+            check(sys::SNESGetLineSearch(self.raw, &mut ls), "SNESGetLineSearch")?;
+            check(sys::SNESLineSearchSetType(ls, c"bt".as_ptr()), "SNESLineSearchSetType")?;
             check(
                 sys::SNESSetConvergenceHistory(
                     self.raw,
@@ -133,27 +116,12 @@ impl<'s> Snes<'s> {
 
     /// Overrides the default tolerances (before options are applied again).
     /// `None` keeps PETSc's current value.
-    pub fn set_tolerances(
-        &mut self,
-        atol: Option<f64>,
-        rtol: Option<f64>,
-        max_iterations: Option<usize>,
-    ) -> Result<()> {
+    pub fn set_tolerances(&mut self, atol: Option<f64>, rtol: Option<f64>, max_iterations: Option<usize>) -> Result<()> {
         const DEFAULT: f64 = -2.0; // PETSC_DEFAULT
         let maxit = max_iterations.map(|m| m as sys::PetscInt).unwrap_or(-2);
         // SAFETY: valid handle.
         unsafe {
-            check(
-                sys::SNESSetTolerances(
-                    self.raw,
-                    atol.unwrap_or(DEFAULT),
-                    rtol.unwrap_or(DEFAULT),
-                    DEFAULT,
-                    maxit,
-                    -2,
-                ),
-                "SNESSetTolerances",
-            )?;
+            check(sys::SNESSetTolerances(self.raw, atol.unwrap_or(DEFAULT), rtol.unwrap_or(DEFAULT), DEFAULT, maxit, -2), "SNESSetTolerances")?;
             check(sys::SNESSetFromOptions(self.raw), "SNESSetFromOptions")
         }
     }
@@ -167,52 +135,20 @@ impl<'s> Snes<'s> {
         residual: &mut Vector<'_>,
         jacobian: &mut Matrix<'_>,
     ) -> Result<SolveReport> {
-        let mut ctx = CallbackContext {
-            problem,
-            comm: self.comm,
-            failure: None,
-        };
+        let mut ctx = CallbackContext { problem, comm: self.comm, failure: None };
         let ctx_ptr = &mut ctx as *mut CallbackContext<'_, P> as *mut c_void;
         // SAFETY: ctx outlives SNESSolve; the callbacks are cleared again (context NULL) below
         // so PETSc never holds a dangling pointer after this function returns.
         let code = unsafe {
-            check(
-                sys::SNESSetFunction(
-                    self.raw,
-                    residual.raw(),
-                    Some(residual_trampoline::<P>),
-                    ctx_ptr,
-                ),
-                "SNESSetFunction",
-            )?;
-            check(
-                sys::SNESSetJacobian(
-                    self.raw,
-                    jacobian.raw(),
-                    jacobian.raw(),
-                    Some(jacobian_trampoline::<P>),
-                    ctx_ptr,
-                ),
-                "SNESSetJacobian",
-            )?;
+            check(sys::SNESSetFunction(self.raw, residual.raw(), Some(residual_trampoline::<P>), ctx_ptr), "SNESSetFunction")?;
+            check(sys::SNESSetJacobian(self.raw, jacobian.raw(), jacobian.raw(), Some(jacobian_trampoline::<P>), ctx_ptr), "SNESSetJacobian")?;
             sys::SNESSolve(self.raw, std::ptr::null_mut(), x.raw())
         };
         // SAFETY: resetting the contexts to NULL; the function pointers stay but are never
         // called without a new context from the next solve.
         unsafe {
-            sys::SNESSetFunction(
-                self.raw,
-                residual.raw(),
-                Some(residual_trampoline::<P>),
-                std::ptr::null_mut(),
-            );
-            sys::SNESSetJacobian(
-                self.raw,
-                jacobian.raw(),
-                jacobian.raw(),
-                Some(jacobian_trampoline::<P>),
-                std::ptr::null_mut(),
-            );
+            sys::SNESSetFunction(self.raw, residual.raw(), Some(residual_trampoline::<P>), std::ptr::null_mut());
+            sys::SNESSetJacobian(self.raw, jacobian.raw(), jacobian.raw(), Some(jacobian_trampoline::<P>), std::ptr::null_mut());
         }
         if let Some(err) = ctx.failure.take() {
             return Err(err);
@@ -229,30 +165,13 @@ impl<'s> Snes<'s> {
         let mut nhist = 0;
         // SAFETY: valid handle, out-pointers to locals; the history points into self.history.
         unsafe {
-            check(
-                sys::SNESGetConvergedReason(self.raw, &mut reason),
-                "SNESGetConvergedReason",
-            )?;
-            check(
-                sys::SNESGetIterationNumber(self.raw, &mut its),
-                "SNESGetIterationNumber",
-            )?;
-            check(
-                sys::SNESGetLinearSolveIterations(self.raw, &mut lits),
-                "SNESGetLinearSolveIterations",
-            )?;
-            check(
-                sys::SNESGetConvergenceHistory(self.raw, &mut hist, &mut hist_its, &mut nhist),
-                "SNESGetConvergenceHistory",
-            )?;
+            check(sys::SNESGetConvergedReason(self.raw, &mut reason), "SNESGetConvergedReason")?;
+            check(sys::SNESGetIterationNumber(self.raw, &mut its), "SNESGetIterationNumber")?;
+            check(sys::SNESGetLinearSolveIterations(self.raw, &mut lits), "SNESGetLinearSolveIterations")?;
+            check(sys::SNESGetConvergenceHistory(self.raw, &mut hist, &mut hist_its, &mut nhist), "SNESGetConvergenceHistory")?;
         }
         let n = (nhist.max(0) as usize).min(HISTORY_LEN);
-        Ok(SolveReport {
-            reason: reason as i32,
-            newton_iterations: its as usize,
-            linear_iterations: lits as usize,
-            residual_norms: self.history[..n].to_vec(),
-        })
+        Ok(SolveReport { reason: reason as i32, newton_iterations: its as usize, linear_iterations: lits as usize, residual_norms: self.history[..n].to_vec() })
     }
 }
 
@@ -278,11 +197,7 @@ const ERR_USER: sys::PetscErrorCode = 83;
 
 /// Runs a callback body under catch_unwind, agrees on the outcome across ranks and turns it
 /// into the code PETSc expects.
-fn guarded<P>(
-    snes: sys::SNES,
-    ctx: *mut c_void,
-    body: impl FnOnce(&mut P) -> Result<()>,
-) -> sys::PetscErrorCode {
+fn guarded<P>(snes: sys::SNES, ctx: *mut c_void, body: impl FnOnce(&mut P) -> Result<()>) -> sys::PetscErrorCode {
     if ctx.is_null() {
         return ERR_USER;
     }
@@ -342,15 +257,8 @@ fn guarded<P>(
     }
 }
 
-unsafe extern "C" fn residual_trampoline<P: NonlinearProblem>(
-    snes: sys::SNES,
-    x: sys::Vec,
-    f: sys::Vec,
-    ctx: *mut c_void,
-) -> sys::PetscErrorCode {
-    guarded::<P>(snes, ctx, |p| {
-        p.residual(&VectorView::from_raw(x), &mut VectorView::from_raw(f))
-    })
+unsafe extern "C" fn residual_trampoline<P: NonlinearProblem>(snes: sys::SNES, x: sys::Vec, f: sys::Vec, ctx: *mut c_void) -> sys::PetscErrorCode {
+    guarded::<P>(snes, ctx, |p| p.residual(&VectorView::from_raw(x), &mut VectorView::from_raw(f)))
 }
 
 unsafe extern "C" fn jacobian_trampoline<P: NonlinearProblem>(
@@ -360,7 +268,5 @@ unsafe extern "C" fn jacobian_trampoline<P: NonlinearProblem>(
     _p: sys::Mat,
     ctx: *mut c_void,
 ) -> sys::PetscErrorCode {
-    guarded::<P>(snes, ctx, |p| {
-        p.jacobian(&VectorView::from_raw(x), &mut MatrixView::from_raw(a))
-    })
+    guarded::<P>(snes, ctx, |p| p.jacobian(&VectorView::from_raw(x), &mut MatrixView::from_raw(a)))
 }

@@ -13,10 +13,7 @@ pub trait VecOps {
     fn ownership_range(&self) -> Result<(usize, usize)> {
         let (mut lo, mut hi) = (0, 0);
         // SAFETY: valid Vec handle, out-pointers to locals.
-        check(
-            unsafe { sys::VecGetOwnershipRange(self.raw(), &mut lo, &mut hi) },
-            "VecGetOwnershipRange",
-        )?;
+        check(unsafe { sys::VecGetOwnershipRange(self.raw(), &mut lo, &mut hi) }, "VecGetOwnershipRange")?;
         Ok((lo as usize, hi as usize))
     }
 
@@ -32,20 +29,9 @@ pub trait VecOps {
         let mut ptr: *const f64 = std::ptr::null();
         let mut n = 0;
         // SAFETY: valid Vec handle; the array stays valid until the matching Restore in Drop.
-        check(
-            unsafe { sys::VecGetLocalSize(self.raw(), &mut n) },
-            "VecGetLocalSize",
-        )?;
-        check(
-            unsafe { sys::VecGetArrayRead(self.raw(), &mut ptr) },
-            "VecGetArrayRead",
-        )?;
-        Ok(ReadArray {
-            vec: self.raw(),
-            ptr,
-            len: n as usize,
-            _borrow: PhantomData,
-        })
+        check(unsafe { sys::VecGetLocalSize(self.raw(), &mut n) }, "VecGetLocalSize")?;
+        check(unsafe { sys::VecGetArrayRead(self.raw(), &mut ptr) }, "VecGetArrayRead")?;
+        Ok(ReadArray { vec: self.raw(), ptr, len: n as usize, _borrow: PhantomData })
     }
 
     /// Writable view of the local part; restored with VecRestoreArray on drop.
@@ -53,20 +39,9 @@ pub trait VecOps {
         let mut ptr: *mut f64 = std::ptr::null_mut();
         let mut n = 0;
         // SAFETY: valid Vec handle, exclusively borrowed; restored in Drop.
-        check(
-            unsafe { sys::VecGetLocalSize(self.raw(), &mut n) },
-            "VecGetLocalSize",
-        )?;
-        check(
-            unsafe { sys::VecGetArray(self.raw(), &mut ptr) },
-            "VecGetArray",
-        )?;
-        Ok(WriteArray {
-            vec: self.raw(),
-            ptr,
-            len: n as usize,
-            _borrow: PhantomData,
-        })
+        check(unsafe { sys::VecGetLocalSize(self.raw(), &mut n) }, "VecGetLocalSize")?;
+        check(unsafe { sys::VecGetArray(self.raw(), &mut ptr) }, "VecGetArray")?;
+        Ok(WriteArray { vec: self.raw(), ptr, len: n as usize, _borrow: PhantomData })
     }
 
     fn set_all(&mut self, value: f64) -> Result<()> {
@@ -82,43 +57,22 @@ pub trait VecOps {
     fn norm2(&self) -> Result<f64> {
         let mut v = 0.0;
         // SAFETY: valid Vec handle, out-pointer to a local.
-        check(
-            unsafe { sys::VecNorm(self.raw(), sys::NormType_NORM_2, &mut v) },
-            "VecNorm",
-        )?;
+        check(unsafe { sys::VecNorm(self.raw(), sys::NormType_NORM_2, &mut v) }, "VecNorm")?;
         Ok(v)
     }
 
     /// Adds `values` at global `indices` (any rank's rows; off-rank ones go through the stash).
     fn add_values(&mut self, indices: &[sys::PetscInt], values: &[f64]) -> Result<()> {
-        assert_eq!(
-            indices.len(),
-            values.len(),
-            "add_values: one value per index"
-        );
+        assert_eq!(indices.len(), values.len(), "add_values: one value per index");
         let n = to_petsc_int(indices.len())?;
         // SAFETY: slices of equal length n; PETSc copies them.
-        check(
-            unsafe {
-                sys::VecSetValues(
-                    self.raw(),
-                    n,
-                    indices.as_ptr(),
-                    values.as_ptr(),
-                    sys::InsertMode_ADD_VALUES,
-                )
-            },
-            "VecSetValues",
-        )
+        check(unsafe { sys::VecSetValues(self.raw(), n, indices.as_ptr(), values.as_ptr(), sys::InsertMode_ADD_VALUES) }, "VecSetValues")
     }
 
     /// Collective: communicates stashed off-rank entries.
     fn assemble(&mut self) -> Result<()> {
         // SAFETY: valid Vec handle; Begin/End paired.
-        check(
-            unsafe { sys::VecAssemblyBegin(self.raw()) },
-            "VecAssemblyBegin",
-        )?;
+        check(unsafe { sys::VecAssemblyBegin(self.raw()) }, "VecAssemblyBegin")?;
         check(unsafe { sys::VecAssemblyEnd(self.raw()) }, "VecAssemblyEnd")
     }
 }
@@ -134,14 +88,8 @@ impl<'s> Vector<'s> {
     pub fn mpi(_session: &'s PetscSession, comm: Comm, local: usize) -> Result<Self> {
         let mut raw = std::ptr::null_mut();
         // SAFETY: comm is a live communicator; PETSC_DETERMINE (-1) sums the local sizes.
-        check(
-            unsafe { sys::VecCreateMPI(comm, to_petsc_int(local)?, -1, &mut raw) },
-            "VecCreateMPI",
-        )?;
-        Ok(Vector {
-            raw,
-            _session: PhantomData,
-        })
+        check(unsafe { sys::VecCreateMPI(comm, to_petsc_int(local)?, -1, &mut raw) }, "VecCreateMPI")?;
+        Ok(Vector { raw, _session: PhantomData })
     }
 
     /// Sequential vector on this rank alone.
@@ -149,28 +97,16 @@ impl<'s> Vector<'s> {
         let mut raw = std::ptr::null_mut();
         // SAFETY: PETSC_COMM_SELF equivalent is MPI_COMM_SELF from the mpi crate.
         let comm = unsafe { mpi::ffi::RSMPI_COMM_SELF };
-        check(
-            unsafe { sys::VecCreateSeq(comm, to_petsc_int(len)?, &mut raw) },
-            "VecCreateSeq",
-        )?;
-        Ok(Vector {
-            raw,
-            _session: PhantomData,
-        })
+        check(unsafe { sys::VecCreateSeq(comm, to_petsc_int(len)?, &mut raw) }, "VecCreateSeq")?;
+        Ok(Vector { raw, _session: PhantomData })
     }
 
     /// A new vector with the same layout (values not copied).
     pub fn duplicate(&self) -> Result<Vector<'s>> {
         let mut raw = std::ptr::null_mut();
         // SAFETY: valid source handle.
-        check(
-            unsafe { sys::VecDuplicate(self.raw, &mut raw) },
-            "VecDuplicate",
-        )?;
-        Ok(Vector {
-            raw,
-            _session: PhantomData,
-        })
+        check(unsafe { sys::VecDuplicate(self.raw, &mut raw) }, "VecDuplicate")?;
+        Ok(Vector { raw, _session: PhantomData })
     }
 }
 
@@ -195,10 +131,7 @@ pub struct VectorView<'a> {
 
 impl VectorView<'_> {
     pub(crate) fn from_raw(raw: sys::Vec) -> Self {
-        VectorView {
-            raw,
-            _life: PhantomData,
-        }
+        VectorView { raw, _life: PhantomData }
     }
 }
 
@@ -277,29 +210,14 @@ pub struct IndexSet<'s> {
 }
 
 impl<'s> IndexSet<'s> {
-    pub fn general(
-        _session: &'s PetscSession,
-        comm: Comm,
-        indices: &[sys::PetscInt],
-    ) -> Result<Self> {
+    pub fn general(_session: &'s PetscSession, comm: Comm, indices: &[sys::PetscInt]) -> Result<Self> {
         let mut raw = std::ptr::null_mut();
         // SAFETY: PETSC_COPY_VALUES (0): PETSc copies the slice.
         check(
-            unsafe {
-                sys::ISCreateGeneral(
-                    comm,
-                    to_petsc_int(indices.len())?,
-                    indices.as_ptr(),
-                    sys::PetscCopyMode_PETSC_COPY_VALUES,
-                    &mut raw,
-                )
-            },
+            unsafe { sys::ISCreateGeneral(comm, to_petsc_int(indices.len())?, indices.as_ptr(), sys::PetscCopyMode_PETSC_COPY_VALUES, &mut raw) },
             "ISCreateGeneral",
         )?;
-        Ok(IndexSet {
-            raw,
-            _session: PhantomData,
-        })
+        Ok(IndexSet { raw, _session: PhantomData })
     }
 
     /// The local indices, copied out.
@@ -307,31 +225,15 @@ impl<'s> IndexSet<'s> {
         let mut n = 0;
         let mut ptr: *const sys::PetscInt = std::ptr::null();
         // SAFETY: valid IS; Get/Restore paired around the copy.
-        check(
-            unsafe { sys::ISGetLocalSize(self.raw, &mut n) },
-            "ISGetLocalSize",
-        )?;
-        check(
-            unsafe { sys::ISGetIndices(self.raw, &mut ptr) },
-            "ISGetIndices",
-        )?;
-        let out = if n == 0 {
-            Vec::new()
-        } else {
-            unsafe { std::slice::from_raw_parts(ptr, n as usize) }.to_vec()
-        };
-        check(
-            unsafe { sys::ISRestoreIndices(self.raw, &mut ptr) },
-            "ISRestoreIndices",
-        )?;
+        check(unsafe { sys::ISGetLocalSize(self.raw, &mut n) }, "ISGetLocalSize")?;
+        check(unsafe { sys::ISGetIndices(self.raw, &mut ptr) }, "ISGetIndices")?;
+        let out = if n == 0 { Vec::new() } else { unsafe { std::slice::from_raw_parts(ptr, n as usize) }.to_vec() };
+        check(unsafe { sys::ISRestoreIndices(self.raw, &mut ptr) }, "ISRestoreIndices")?;
         Ok(out)
     }
 
     pub(crate) fn from_raw(_session: &'s PetscSession, raw: sys::IS) -> Self {
-        IndexSet {
-            raw,
-            _session: PhantomData,
-        }
+        IndexSet { raw, _session: PhantomData }
     }
 }
 
@@ -351,58 +253,21 @@ pub struct Scatter<'s> {
 
 impl<'s> Scatter<'s> {
     /// Scatter from entries `from_global` of `from` into entries 0..n of the sequential `to`.
-    pub fn gather(
-        session: &'s PetscSession,
-        from: &Vector<'s>,
-        to: &Vector<'s>,
-        from_global: &[sys::PetscInt],
-    ) -> Result<Self> {
+    pub fn gather(session: &'s PetscSession, from: &Vector<'s>, to: &Vector<'s>, from_global: &[sys::PetscInt]) -> Result<Self> {
         let self_comm = unsafe { mpi::ffi::RSMPI_COMM_SELF };
         let is_from = IndexSet::general(session, self_comm, from_global)?;
         let mut raw = std::ptr::null_mut();
         // SAFETY: NULL `to` index set means the whole of `to`, in order.
-        check(
-            unsafe {
-                sys::VecScatterCreate(
-                    from.raw(),
-                    is_from.raw,
-                    to.raw(),
-                    std::ptr::null_mut(),
-                    &mut raw,
-                )
-            },
-            "VecScatterCreate",
-        )?;
-        Ok(Scatter {
-            raw,
-            _session: PhantomData,
-        })
+        check(unsafe { sys::VecScatterCreate(from.raw(), is_from.raw, to.raw(), std::ptr::null_mut(), &mut raw) }, "VecScatterCreate")?;
+        Ok(Scatter { raw, _session: PhantomData })
     }
 
     /// Collective: copies the selected entries of `from` into `to`.
     pub fn forward(&self, from: &impl VecOps, to: &mut Vector<'_>) -> Result<()> {
         // SAFETY: handles valid and matching those the scatter was built for.
         unsafe {
-            check(
-                sys::VecScatterBegin(
-                    self.raw,
-                    from.raw(),
-                    to.raw(),
-                    sys::InsertMode_INSERT_VALUES,
-                    sys::ScatterMode_SCATTER_FORWARD,
-                ),
-                "VecScatterBegin",
-            )?;
-            check(
-                sys::VecScatterEnd(
-                    self.raw,
-                    from.raw(),
-                    to.raw(),
-                    sys::InsertMode_INSERT_VALUES,
-                    sys::ScatterMode_SCATTER_FORWARD,
-                ),
-                "VecScatterEnd",
-            )
+            check(sys::VecScatterBegin(self.raw, from.raw(), to.raw(), sys::InsertMode_INSERT_VALUES, sys::ScatterMode_SCATTER_FORWARD), "VecScatterBegin")?;
+            check(sys::VecScatterEnd(self.raw, from.raw(), to.raw(), sys::InsertMode_INSERT_VALUES, sys::ScatterMode_SCATTER_FORWARD), "VecScatterEnd")
         }
     }
 }

@@ -1,18 +1,20 @@
-//! The discrete nonlinear problem F(u) = f_int(u) - f_ext = 0 over the free DOFs, evaluated
+//! The discrete nonlinear problem F(u) = f_int(u) - f_ext(u) = 0 over the free DOFs, evaluated
 //! by looping over this rank's elements and adding into PETSc (off-rank rows go through the
 //! stash). Implements [`NonlinearProblem`] for SNES.
+//!
+//! History: a residual evaluation reads `committed` (the last converged increment) and writes
+//! `trial`; [`Problem::commit`] copies trial to committed after a converged increment. A failed
+//! attempt never touches `committed`, so a cutback has nothing to undo.
 
 use crate::dist::{DofMap, Partition};
-use crate::element::pressure::compute_pressure_load;
-use crate::element::solid::{compute_solid, ElementMatrix, DOFS, NODES, QUADRATURE_POINTS};
+use crate::element::pressure::{compute_pressure_load, pressure_load_stiffness};
+use crate::element::solid::{compute_solid, ElementGeometry, SolidInput, SolidResponse, DOFS, NODES, QUADRATURE_POINTS};
 use crate::error::{Error, Result};
 use crate::fe::shape::edge_nodes;
-use crate::material::elastic::Elastic;
-use crate::model::Model;
+use crate::material::{Kinematics, PointState, J2};
+use crate::model::{Material, Model};
 use crate::petsc::sys::PetscInt;
-use crate::petsc::{
-    MatOps, MatrixView, NonlinearProblem, PetscSession, Scatter, VecOps, Vector, VectorView,
-};
+use crate::petsc::{MatOps, MatrixView, NonlinearProblem, PetscSession, Scatter, VecOps, Vector, VectorView};
 
 /// Loads and prescribed values at the current load factor.
 #[derive(Clone, Debug, Default)]
@@ -25,9 +27,13 @@ pub struct LoadState {
     pub pressures: Vec<(String, f64)>,
 }
 
+/// History of every Gauss point of this rank's elements (in local element order).
+pub type History = Vec<[PointState; QUADRATURE_POINTS]>;
+
 /// One element this rank assembles, with everything the loops need precomputed.
 struct LocalElement {
     element: usize,
+    geometry: ElementGeometry,
     coords: [[f64; 2]; NODES],
     /// Global unknown of each element DOF, -1 where prescribed (PETSc skips negative indices).
     dofs: [PetscInt; DOFS],
@@ -38,8 +44,10 @@ struct LocalElement {
 
 /// What an evaluation at a converged state gives for output.
 pub struct ElementFields {
-    /// Stress at the quadrature points of each local element (partition order).
+    /// Cauchy stress at the Gauss points of each local element (partition order).
     pub stress: Vec<[[f64; 4]; QUADRATURE_POINTS]>,
+    /// Equivalent plastic strain at the Gauss points.
+    pub plastic_strain: Vec<[f64; QUADRATURE_POINTS]>,
     /// This rank's part of f_int - f_ext at every node of the mesh (summed over ranks, it is
     /// the reaction at prescribed DOFs), per radian.
     pub nodal_force: Vec<[f64; 2]>,
@@ -47,62 +55,60 @@ pub struct ElementFields {
 
 pub struct Problem<'s, 'm> {
     model: &'m Model,
-    materials: Vec<Elastic>,
+    materials: Vec<J2>,
     elements: Vec<LocalElement>,
     /// For each surface of the model: the (local element index, side) of its edges on this rank.
     surface_edges: Vec<(String, Vec<(usize, usize)>)>,
     gathered: Vector<'s>,
     scatter: Scatter<'s>,
+    committed: History,
+    trial: History,
     pub load: LoadState,
 }
 
+/// The material kernel of a model material.
+pub fn material_kernel(m: &Material) -> J2 {
+    match m.plasticity {
+        None => J2::elastic(m.youngs_modulus, m.poissons_ratio, m.thermal_expansion),
+        Some(p) => J2::plastic(m.youngs_modulus, m.poissons_ratio, m.thermal_expansion, p.yield_stress, p.hardening_modulus),
+    }
+}
+
+/// Initial history of this rank's elements.
+pub fn initial_history(model: &Model, partition: &Partition) -> History {
+    vec![[PointState::initial(model.kinematics); QUADRATURE_POINTS]; partition.local_elements().len()]
+}
+
 impl<'s, 'm> Problem<'s, 'm> {
-    /// `layout` is any global vector with the layout of the unknowns.
-    pub fn new(
-        session: &'s PetscSession,
-        model: &'m Model,
-        partition: &Partition,
-        dofs: &DofMap,
-        layout: &Vector<'s>,
-    ) -> Result<Self> {
+    /// `layout` is any global vector with the layout of the unknowns; `history` the committed
+    /// history of this rank's elements.
+    pub fn new(session: &'s PetscSession, model: &'m Model, partition: &Partition, dofs: &DofMap, layout: &Vector<'s>, history: History) -> Result<Self> {
         let local = partition.local_elements();
+        assert_eq!(history.len(), local.len(), "one history entry per local element");
         // Free DOFs this rank's elements touch, fetched by one scatter per evaluation.
-        let mut needed: Vec<PetscInt> = local
-            .iter()
-            .flat_map(|&e| model.mesh.elements[e])
-            .flat_map(|n| dofs.dof[n])
-            .filter(|&d| d >= 0)
-            .collect();
+        let mut needed: Vec<PetscInt> = local.iter().flat_map(|&e| model.mesh.elements[e]).flat_map(|n| dofs.dof[n]).filter(|&d| d >= 0).collect();
         needed.sort_unstable();
         needed.dedup();
         let gathered = Vector::seq(session, needed.len())?;
         let scatter = Scatter::gather(session, layout, &gathered, &needed)?;
-        let elements = local
-            .iter()
-            .map(|&e| {
-                let conn = model.mesh.elements[e];
-                let mut d = [-1; DOFS];
-                let mut slots = [usize::MAX; DOFS];
-                for a in 0..NODES {
-                    for c in 0..2 {
-                        let g = dofs.dof[conn[a]][c];
-                        d[2 * a + c] = g;
-                        if g >= 0 {
-                            slots[2 * a + c] = needed
-                                .binary_search(&g)
-                                .expect("needed holds every local free DOF");
-                        }
+        let mut elements = Vec::with_capacity(local.len());
+        for &e in local {
+            let conn = model.mesh.elements[e];
+            let mut d = [-1; DOFS];
+            let mut slots = [usize::MAX; DOFS];
+            for a in 0..NODES {
+                for c in 0..2 {
+                    let g = dofs.dof[conn[a]][c];
+                    d[2 * a + c] = g;
+                    if g >= 0 {
+                        slots[2 * a + c] = needed.binary_search(&g).expect("needed holds every local free DOF");
                     }
                 }
-                LocalElement {
-                    element: e,
-                    coords: model.mesh.element_coords(e),
-                    dofs: d,
-                    slots,
-                    material: model.element_material[e],
-                }
-            })
-            .collect::<Vec<_>>();
+            }
+            let coords = model.mesh.element_coords(e);
+            let geometry = ElementGeometry::new(&coords).map_err(|m| Error::input(format!("element {}: {m}", model.mesh.element_ids[e])))?;
+            elements.push(LocalElement { element: e, geometry, coords, dofs: d, slots, material: model.element_material[e] });
+        }
         let mut position = vec![usize::MAX; model.mesh.elements.len()];
         for (k, el) in elements.iter().enumerate() {
             position[el.element] = k;
@@ -110,125 +116,121 @@ impl<'s, 'm> Problem<'s, 'm> {
         let surface_edges = model
             .surfaces
             .iter()
-            .map(|(name, edges)| {
-                (
-                    name.clone(),
-                    edges
-                        .iter()
-                        .filter(|e| position[e.element] != usize::MAX)
-                        .map(|e| (position[e.element], e.side))
-                        .collect(),
-                )
-            })
+            .map(|(name, edges)| (name.clone(), edges.iter().filter(|e| position[e.element] != usize::MAX).map(|e| (position[e.element], e.side)).collect()))
             .collect();
-        let materials = model
-            .materials
-            .iter()
-            .map(|m| Elastic::from_model(&m.model))
-            .collect();
-        Ok(Problem {
-            model,
-            materials,
-            elements,
-            surface_edges,
-            gathered,
-            scatter,
-            load: LoadState::default(),
-        })
+        let materials = model.materials.iter().map(material_kernel).collect();
+        let trial = history.clone();
+        Ok(Problem { model, materials, elements, surface_edges, gathered, scatter, committed: history, trial, load: LoadState::default() })
+    }
+
+    /// Accepts the trial history of the last evaluation (call after a converged increment).
+    pub fn commit(&mut self) {
+        self.committed.copy_from_slice(&self.trial);
+    }
+
+    /// The committed history, to carry into the next step's problem.
+    pub fn into_history(self) -> History {
+        self.committed
     }
 
     /// Fetches the free DOFs of this rank's elements from the global vector `x`.
-    fn gather(&mut self, x: &impl VecOps) -> Result<()> {
-        self.scatter.forward(x, &mut self.gathered)
+    fn gather(&mut self, x: &impl VecOps) -> Result<Vec<f64>> {
+        self.scatter.forward(x, &mut self.gathered)?;
+        Ok(self.gathered.read()?.to_vec())
     }
 
     fn displacements(&self, el: &LocalElement, gathered: &[f64]) -> [[f64; 2]; NODES] {
         let conn = &self.model.mesh.elements[el.element];
-        std::array::from_fn(|a| {
-            std::array::from_fn(|c| {
-                if el.dofs[2 * a + c] >= 0 {
-                    gathered[el.slots[2 * a + c]]
-                } else {
-                    self.load.prescribed[conn[a]][c]
-                }
-            })
+        std::array::from_fn(|a| std::array::from_fn(|c| if el.dofs[2 * a + c] >= 0 { gathered[el.slots[2 * a + c]] } else { self.load.prescribed[conn[a]][c] }))
+    }
+
+    fn solid(&self, k: usize, u: &[[f64; 2]; NODES], with_tangent: bool) -> Result<SolidResponse> {
+        let el = &self.elements[k];
+        let input = SolidInput {
+            geometry: &el.geometry,
+            material: &self.materials[el.material],
+            kinematics: self.model.kinematics,
+            temperature_change: self.load.temperature_change,
+            committed: &self.committed[k],
+        };
+        compute_solid(&input, u, with_tangent).map_err(|m| Error::Domain(format!("element {}: {m}", self.model.mesh.element_ids[el.element])))
+    }
+
+    /// Pressure edges on this rank: (local element, local node numbers, pressure).
+    fn pressure_edges(&self) -> impl Iterator<Item = (usize, [usize; 3], f64)> + '_ {
+        self.load.pressures.iter().flat_map(move |(surface, p)| {
+            let edges = self.surface_edges.iter().find(|(n, _)| n == surface).map(|(_, e)| e.as_slice()).unwrap_or(&[]);
+            edges.iter().map(move |&(k, side)| (k, edge_nodes(side), *p))
         })
     }
 
-    fn domain_error(&self, el: &LocalElement, msg: String) -> Error {
-        Error::Domain(format!(
-            "element {}: {msg}",
-            self.model.mesh.element_ids[el.element]
-        ))
+    /// Edge node positions the pressure acts on: current (finite strain) or reference.
+    fn edge_positions(&self, k: usize, local: &[usize; 3], u: &[[f64; 2]; NODES]) -> [[f64; 2]; 3] {
+        let x = &self.elements[k].coords;
+        match self.model.kinematics {
+            Kinematics::Finite => local.map(|a| [x[a][0] + u[a][0], x[a][1] + u[a][1]]),
+            Kinematics::Small => local.map(|a| x[a]),
+        }
     }
 
-    /// Calls `sink(element, element DOF, node, component, value)` for every entry of
-    /// f_int - f_ext of this rank's elements and pressure edges.
+    /// Evaluates f_int - f_ext at the gathered state: calls `sink(local element, element DOF,
+    /// value)` for every entry, stores the trial history, and hands each element's response to
+    /// `on_element`.
     fn residual_entries(
-        &self,
+        &mut self,
         gathered: &[f64],
-        mut on_stress: impl FnMut(usize, &[[f64; 4]; QUADRATURE_POINTS]),
+        mut on_element: impl FnMut(usize, &SolidResponse),
         mut sink: impl FnMut(&LocalElement, usize, f64),
     ) -> Result<()> {
-        for (k, el) in self.elements.iter().enumerate() {
-            let u = self.displacements(el, gathered);
-            let out = compute_solid(
-                &el.coords,
-                &u,
-                self.load.temperature_change,
-                &self.materials[el.material],
-                false,
-            )
-            .map_err(|m| self.domain_error(el, m))?;
-            on_stress(k, &out.stress);
+        let mut us = Vec::with_capacity(self.elements.len());
+        for k in 0..self.elements.len() {
+            let u = self.displacements(&self.elements[k], gathered);
+            let out = self.solid(k, &u, false)?;
+            self.trial[k] = out.state;
+            on_element(k, &out);
             for i in 0..DOFS {
-                sink(el, i, out.internal_force[i]);
+                sink(&self.elements[k], i, out.internal_force[i]);
             }
+            us.push(u);
         }
-        for (surface, p) in &self.load.pressures {
-            let Some((_, edges)) = self.surface_edges.iter().find(|(n, _)| n == surface) else {
-                continue;
-            };
-            for &(k, side) in edges {
-                let el = &self.elements[k];
-                let local = edge_nodes(side);
-                let f = compute_pressure_load(&local.map(|a| el.coords[a]), *p);
-                for (j, &a) in local.iter().enumerate() {
-                    for c in 0..2 {
-                        sink(el, 2 * a + c, -f[j][c]);
-                    }
+        for (k, local, p) in self.pressure_edges() {
+            let f = compute_pressure_load(&self.edge_positions(k, &local, &us[k]), p);
+            for (j, &a) in local.iter().enumerate() {
+                for c in 0..2 {
+                    sink(&self.elements[k], 2 * a + c, -f[j][c]);
                 }
             }
         }
         Ok(())
     }
 
-    /// Stresses and nodal forces at the state `x` (after convergence, for output and reactions).
+    /// Stresses, plastic strains and nodal forces at the state `x` (after convergence, for
+    /// output and reactions); also leaves the trial history of `x` ready to commit.
     pub fn evaluate_fields(&mut self, x: &impl VecOps) -> Result<ElementFields> {
-        self.gather(x)?;
-        let gathered = self.gathered.read()?.to_vec();
-        let mut stress = vec![[[0.0; 4]; QUADRATURE_POINTS]; self.elements.len()];
+        let gathered = self.gather(x)?;
+        let n = self.elements.len();
+        let mut stress = vec![[[0.0; 4]; QUADRATURE_POINTS]; n];
+        let mut plastic_strain = vec![[0.0; QUADRATURE_POINTS]; n];
         let mut nodal_force = vec![[0.0; 2]; self.model.mesh.coords.len()];
-        let conn = |el: &LocalElement| self.model.mesh.elements[el.element];
+        let mesh = &self.model.mesh;
         self.residual_entries(
             &gathered,
-            |k, s| stress[k] = *s,
-            |el, i, v| nodal_force[conn(el)[i / 2]][i % 2] += v,
+            |k, out| {
+                stress[k] = out.stress;
+                plastic_strain[k] = out.state.map(|s| s.ep);
+            },
+            |el, i, v| nodal_force[mesh.elements[el.element][i / 2]][i % 2] += v,
         )?;
-        Ok(ElementFields {
-            stress,
-            nodal_force,
-        })
+        Ok(ElementFields { stress, plastic_strain, nodal_force })
     }
 }
 
 impl NonlinearProblem for Problem<'_, '_> {
     fn residual(&mut self, x: &VectorView<'_>, f: &mut VectorView<'_>) -> Result<()> {
-        self.gather(x)?;
-        let gathered = self.gathered.read()?.to_vec();
+        let gathered = self.gather(x)?;
         f.set_all(0.0)?;
-        let mut rows: Vec<PetscInt> = Vec::with_capacity(DOFS);
-        let mut values: Vec<f64> = Vec::with_capacity(DOFS);
+        let mut rows: Vec<PetscInt> = Vec::with_capacity(DOFS * self.elements.len());
+        let mut values: Vec<f64> = Vec::with_capacity(DOFS * self.elements.len());
         self.residual_entries(
             &gathered,
             |_, _| {},
@@ -244,22 +246,26 @@ impl NonlinearProblem for Problem<'_, '_> {
     }
 
     fn jacobian(&mut self, x: &VectorView<'_>, jacobian: &mut MatrixView<'_>) -> Result<()> {
-        self.gather(x)?;
-        let gathered = self.gathered.read()?.to_vec();
+        let gathered = self.gather(x)?;
         jacobian.zero_entries()?;
-        for el in &self.elements {
-            let u = self.displacements(el, &gathered);
-            let out = compute_solid(
-                &el.coords,
-                &u,
-                self.load.temperature_change,
-                &self.materials[el.material],
-                true,
-            )
-            .map_err(|m| self.domain_error(el, m))?;
-            let k: ElementMatrix = out.tangent.expect("tangent requested");
+        let mut us = Vec::with_capacity(self.elements.len());
+        for k in 0..self.elements.len() {
+            let u = self.displacements(&self.elements[k], &gathered);
+            let k_e = self.solid(k, &u, true)?.tangent.expect("tangent requested");
+            let el = &self.elements[k];
             // nalgebra is column-major; PETSc wants row-major: the transpose's storage is.
-            jacobian.add_block(&el.dofs, &el.dofs, k.transpose().as_slice())?;
+            jacobian.add_block(&el.dofs, &el.dofs, k_e.transpose().as_slice())?;
+            us.push(u);
+        }
+        if self.model.kinematics == Kinematics::Finite {
+            // follower pressure: d(-f_ext)/du
+            for (k, local, p) in self.pressure_edges() {
+                let kp = pressure_load_stiffness(&self.edge_positions(k, &local, &us[k]), p);
+                let el = &self.elements[k];
+                let dofs: [PetscInt; 6] = std::array::from_fn(|i| el.dofs[2 * local[i / 2] + i % 2]);
+                let values: Vec<f64> = kp.iter().flatten().map(|v| -v).collect();
+                jacobian.add_block(&dofs, &dofs, &values)?;
+            }
         }
         jacobian.assemble()
     }

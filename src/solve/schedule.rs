@@ -21,58 +21,29 @@ pub struct StepLoads {
 impl StepLoads {
     /// Loads of step `index`, given the previous step's loads (None for the first) and the
     /// current nodal displacements (a newly prescribed DOF ramps from where it is).
-    pub fn new(
-        model: &Model,
-        index: usize,
-        previous: Option<&StepLoads>,
-        displacement: &[[f64; 2]],
-    ) -> Self {
+    pub fn new(model: &Model, index: usize, previous: Option<&StepLoads>, displacement: &[[f64; 2]]) -> Self {
         let step = &model.steps[index];
-        let mut prescribed: BTreeMap<(usize, usize), (f64, f64)> = previous
-            .map(|p| {
-                p.prescribed
-                    .iter()
-                    .map(|(&k, &(_, end))| (k, (end, end)))
-                    .collect()
-            })
-            .unwrap_or_default();
-        let mut constrained_sets = previous
-            .map(|p| p.constrained_sets.clone())
-            .unwrap_or_default();
+        let mut prescribed: BTreeMap<(usize, usize), (f64, f64)> =
+            previous.map(|p| p.prescribed.iter().map(|(&k, &(_, end))| (k, (end, end))).collect()).unwrap_or_default();
+        let mut constrained_sets = previous.map(|p| p.constrained_sets.clone()).unwrap_or_default();
         for d in &step.displacements {
             for &n in &model.node_sets[&d.node_set] {
                 let c = d.component as usize;
-                let start = prescribed
-                    .get(&(n, c))
-                    .map(|v| v.0)
-                    .unwrap_or(displacement[n][c]);
+                let start = prescribed.get(&(n, c)).map(|v| v.0).unwrap_or(displacement[n][c]);
                 prescribed.insert((n, c), (start, d.value));
             }
             if !constrained_sets.contains(&d.node_set) {
                 constrained_sets.push(d.node_set.clone());
             }
         }
-        let mut pressures: BTreeMap<String, (f64, f64)> = previous
-            .map(|p| {
-                p.pressures
-                    .iter()
-                    .map(|(k, &(_, end))| (k.clone(), (end, end)))
-                    .collect()
-            })
-            .unwrap_or_default();
+        let mut pressures: BTreeMap<String, (f64, f64)> =
+            previous.map(|p| p.pressures.iter().map(|(k, &(_, end))| (k.clone(), (end, end))).collect()).unwrap_or_default();
         for p in &step.pressures {
             let start = pressures.get(&p.surface).map(|v| v.0).unwrap_or(0.0);
             pressures.insert(p.surface.clone(), (start, p.value));
         }
-        let t0 = previous
-            .map(|p| p.temperature.1)
-            .unwrap_or(model.reference_temperature);
-        StepLoads {
-            prescribed,
-            pressures,
-            temperature: (t0, step.temperature.unwrap_or(t0)),
-            constrained_sets,
-        }
+        let t0 = previous.map(|p| p.temperature.1).unwrap_or(model.reference_temperature);
+        StepLoads { prescribed, pressures, temperature: (t0, step.temperature.unwrap_or(t0)), constrained_sets }
     }
 
     /// Which DOFs are prescribed in this step.
@@ -94,11 +65,7 @@ impl StepLoads {
         LoadState {
             prescribed,
             temperature_change: lerp(self.temperature) - model.reference_temperature,
-            pressures: self
-                .pressures
-                .iter()
-                .map(|(s, &v)| (s.clone(), lerp(v)))
-                .collect(),
+            pressures: self.pressures.iter().map(|(s, &v)| (s.clone(), lerp(v))).collect(),
         }
     }
 }

@@ -1,7 +1,14 @@
-//! The analysis loop: steps, increments, one SNES solve per increment, output after each
-//! converged increment.
+//! The analysis loop: steps, adaptive increments, one SNES solve per attempt, output after
+//! each converged increment.
+//!
+//! Each step asks for `increments` equal increments of its load factor. An attempt that does
+//! not converge (any negative SNES reason: divergence, line-search failure, NaN, an inverted
+//! element or any other domain error) is cut back by `cutback_factor` and retried from the
+//! last converged state; after an easy increment the size grows by `growth_factor`, never past
+//! the requested size. Below `min_increment` the run stops with every converged increment in
+//! the results file.
 
-use super::problem::Problem;
+use super::problem::{initial_history, Problem};
 use super::schedule::StepLoads;
 use crate::dist::{DofMap, Partition};
 use crate::error::{Error, Result};
@@ -37,19 +44,15 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
     let comm = session.comm();
     let root = world.rank() == 0;
     let nodes = model.mesh.coords.len();
+    let controls = model.stepping;
     let partition = Partition::new(session, &model.mesh)?;
     let mut results = ResultsFile::create(&options.output, session, model, &partition)?;
     if root && options.progress {
-        println!(
-            "slideline: {} nodes, {} elements on {} rank(s); results -> {}",
-            nodes,
-            model.mesh.elements.len(),
-            partition.size,
-            options.output.display()
-        );
+        println!("slideline: {} nodes, {} elements on {} rank(s); results -> {}", nodes, model.mesh.elements.len(), partition.size, options.output.display());
     }
     let mut displacement = vec![[0.0; 2]; nodes];
-    let mut history = Vec::new();
+    let mut history = initial_history(model, &partition);
+    let mut rows = Vec::new();
     let mut previous: Option<StepLoads> = None;
     for (s, step) in model.steps.iter().enumerate() {
         let loads = StepLoads::new(model, s, previous.as_ref(), &displacement);
@@ -58,83 +61,105 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
         let mut residual = x.duplicate()?;
         let (diag, off) = dofs.preallocation(&model.mesh, &partition);
         let mut jacobian = Matrix::aij(session, comm, dofs.local_len(), &diag, &off)?;
-        let mut problem = Problem::new(session, model, &partition, &dofs, &x)?;
+        let mut problem = Problem::new(session, model, &partition, &dofs, &x, history)?;
         let mut snes = Snes::new(session, comm)?;
-        for k in 1..=step.increments {
-            let lambda = k as f64 / step.increments as f64;
-            problem.load = loads.at(model, lambda);
+        // rtol 1e-10: with quadratic convergence it costs at most one more iteration than
+        // PETSc's 1e-8 and leaves the answer free of solver error (-snes_rtol overrides).
+        snes.set_tolerances(None, Some(1e-10), Some(controls.max_newton_iterations))?;
+
+        let requested = 1.0 / step.increments as f64;
+        let (mut lambda, mut size, mut increment, mut cutbacks) = (0.0f64, requested, 0usize, 0usize);
+        while lambda < 1.0 {
+            // land exactly on 1 rather than leave a sliver
+            let target = if lambda + size > 1.0 - 1e-9 * requested { 1.0 } else { lambda + size };
+            problem.load = loads.at(model, target);
             set_free_values(&mut x, &dofs, &partition, &displacement)?;
             let report = snes.solve(&mut problem, &mut x, &mut residual, &mut jacobian)?;
             if !report.converged() {
-                return Err(Error::NotConverged {
-                    step: step.name.clone(),
-                    load_factor: lambda,
-                    reason: format!(
-                        "{} after {} Newton iterations; converged increments are kept in {}",
+                cutbacks += 1;
+                size = (target - lambda) * controls.cutback_factor;
+                if root && options.progress {
+                    println!(
+                        "step {}/{} {:<10} cutback at lambda {target:.6} ({} after {} Newton iterations); retrying with {size:.3e}",
+                        s + 1,
+                        model.steps.len(),
+                        step.name,
                         report.reason_name(),
-                        report.newton_iterations,
-                        options.output.display()
-                    ),
-                });
+                        report.newton_iterations
+                    );
+                }
+                if size < controls.min_increment {
+                    return Err(Error::NotConverged {
+                        step: step.name.clone(),
+                        load_factor: target,
+                        reason: format!(
+                            "{} after {} Newton iterations, and the increment would fall below min_increment = {:e}; the {} converged increments before are in {}",
+                            report.reason_name(),
+                            report.newton_iterations,
+                            controls.min_increment,
+                            results.increments_written(),
+                            options.output.display()
+                        ),
+                    });
+                }
+                continue;
             }
+            let done = target - lambda;
+            lambda = target;
+            increment += 1;
             let fields = problem.evaluate_fields(&x)?;
+            problem.commit();
             let owned = owned_displacement(&x, &dofs, &partition, &problem.load.prescribed)?;
             gather_displacement(&world, &partition, &owned, &mut displacement);
             let mut force = vec![0.0; 2 * nodes];
             let local: Vec<f64> = fields.nodal_force.iter().flatten().copied().collect();
             world.all_reduce_into(&local[..], &mut force[..], SystemOperation::sum());
+            let local_max_ep = fields.plastic_strain.iter().flatten().fold(0.0f64, |m, &v| m.max(v));
+            let mut max_ep = 0.0;
+            world.all_reduce_into(&local_max_ep, &mut max_ep, SystemOperation::max());
             let reactions = loads
                 .constrained_sets
                 .iter()
-                .map(|set| {
-                    let f = model.node_sets[set].iter().fold([0.0; 2], |acc, &n| {
-                        [acc[0] + force[2 * n], acc[1] + force[2 * n + 1]]
-                    });
-                    (set.clone(), f)
-                })
+                .map(|set| (set.clone(), model.node_sets[set].iter().fold([0.0; 2], |acc, &n| [acc[0] + force[2 * n], acc[1] + force[2 * n + 1]])))
                 .collect();
             let row = HistoryRow {
                 step: s + 1,
-                increment: k,
+                increment,
                 load_factor: lambda,
                 time: s as f64 + lambda,
                 newton_iterations: report.newton_iterations,
                 linear_iterations: report.linear_iterations,
                 residual_norm: report.residual_norms.last().copied().unwrap_or(f64::NAN),
+                residual_norms: report.residual_norms.clone(),
+                cutbacks,
+                max_plastic_strain: max_ep,
                 wall_time: start.elapsed().as_secs_f64(),
                 reactions,
             };
-            results.write_increment(&step.name, &row, &owned, &fields.stress)?;
+            results.write_increment(&step.name, &row, &owned, &fields.stress, &fields.plastic_strain)?;
             if root && options.progress {
-                println!(
-                    "{}",
-                    progress_line(&step.name, s, model.steps.len(), k, step.increments, &row)
-                );
+                println!("{}", progress_line(&step.name, s, model.steps.len(), &row));
             }
-            history.push(row);
+            rows.push(row);
+            cutbacks = 0;
+            if report.newton_iterations <= controls.easy_iterations {
+                size = (done * controls.growth_factor).min(requested);
+            } else {
+                size = done;
+            }
         }
+        history = problem.into_history();
         previous = Some(loads);
     }
-    Ok(RunSummary {
-        history,
-        wall_time: start.elapsed().as_secs_f64(),
-        ranks: partition.size,
-        displacement,
-    })
+    Ok(RunSummary { history: rows, wall_time: start.elapsed().as_secs_f64(), ranks: partition.size, displacement })
 }
 
 /// Puts the current displacement of this rank's free DOFs into `x` (the initial guess).
-fn set_free_values(
-    x: &mut Vector<'_>,
-    dofs: &DofMap,
-    partition: &Partition,
-    displacement: &[[f64; 2]],
-) -> Result<()> {
+fn set_free_values(x: &mut Vector<'_>, dofs: &DofMap, partition: &Partition, displacement: &[[f64; 2]]) -> Result<()> {
     let first = dofs.first() as i32;
     let mut a = x.write()?;
     for &n in partition.owned_nodes() {
-        for c in 0..2 {
-            let d = dofs.dof[n][c];
+        for (c, &d) in dofs.dof[n].iter().enumerate() {
             if d >= 0 {
                 a[(d - first) as usize] = displacement[n][c];
             }
@@ -144,73 +169,40 @@ fn set_free_values(
 }
 
 /// Displacement of this rank's owned nodes (partition order): solved values and prescribed ones.
-fn owned_displacement(
-    x: &Vector<'_>,
-    dofs: &DofMap,
-    partition: &Partition,
-    prescribed: &[[f64; 2]],
-) -> Result<Vec<[f64; 2]>> {
+fn owned_displacement(x: &Vector<'_>, dofs: &DofMap, partition: &Partition, prescribed: &[[f64; 2]]) -> Result<Vec<[f64; 2]>> {
     let first = dofs.first() as i32;
     let a = x.read()?;
     Ok(partition
         .owned_nodes()
         .iter()
-        .map(|&n| {
-            std::array::from_fn(|c| {
-                if dofs.dof[n][c] >= 0 {
-                    a[(dofs.dof[n][c] - first) as usize]
-                } else {
-                    prescribed[n][c]
-                }
-            })
-        })
+        .map(|&n| std::array::from_fn(|c| if dofs.dof[n][c] >= 0 { a[(dofs.dof[n][c] - first) as usize] } else { prescribed[n][c] }))
         .collect())
 }
 
 /// All ranks' owned displacements into the replicated array (model node order).
-fn gather_displacement(
-    world: &impl Communicator,
-    partition: &Partition,
-    owned: &[[f64; 2]],
-    displacement: &mut [[f64; 2]],
-) {
-    let counts: Vec<i32> = (0..partition.size)
-        .map(|r| 2 * (partition.node_offsets[r + 1] - partition.node_offsets[r]) as i32)
-        .collect();
-    let displs: Vec<i32> = partition.node_offsets[..partition.size]
-        .iter()
-        .map(|&o| 2 * o as i32)
-        .collect();
+fn gather_displacement(world: &impl Communicator, partition: &Partition, owned: &[[f64; 2]], displacement: &mut [[f64; 2]]) {
+    let counts: Vec<i32> = (0..partition.size).map(|r| 2 * (partition.node_offsets[r + 1] - partition.node_offsets[r]) as i32).collect();
+    let displs: Vec<i32> = partition.node_offsets[..partition.size].iter().map(|&o| 2 * o as i32).collect();
     let flat: Vec<f64> = owned.iter().flatten().copied().collect();
     let mut all = vec![0.0; 2 * displacement.len()];
-    world.all_gather_varcount_into(
-        &flat[..],
-        &mut PartitionMut::new(&mut all[..], counts, displs),
-    );
+    world.all_gather_varcount_into(&flat[..], &mut PartitionMut::new(&mut all[..], counts, displs));
     for (k, &n) in partition.node_order.iter().enumerate() {
         displacement[n] = [all[2 * k], all[2 * k + 1]];
     }
 }
 
-fn progress_line(
-    name: &str,
-    s: usize,
-    steps: usize,
-    k: usize,
-    increments: usize,
-    row: &HistoryRow,
-) -> String {
+fn progress_line(name: &str, s: usize, steps: usize, row: &HistoryRow) -> String {
     let mut line = format!(
-        "step {}/{} {:<10} inc {:>4}/{:<4} lambda {:.4}  newton {:>2}  ksp {:>3}  |F| {:.2e}  {:>7.2} s",
+        "step {}/{} {:<10} inc {:>4} lambda {:.4}  newton {:>2}  ksp {:>3}  |F| {:.2e}  ep_max {:.3e}  {:>7.2} s",
         s + 1,
         steps,
         name,
-        k,
-        increments,
+        row.increment,
         row.load_factor,
         row.newton_iterations,
         row.linear_iterations,
         row.residual_norm,
+        row.max_plastic_strain,
         row.wall_time
     );
     for (set, f) in &row.reactions {

@@ -23,21 +23,13 @@ impl Run {
     }
     /// Panics with the program's output unless it exited 0.
     pub fn assert_ok(&self) -> &Self {
-        assert!(
-            self.output.status.success(),
-            "slideline failed ({}):\n{}\n{}",
-            self.code(),
-            self.stdout(),
-            self.stderr()
-        );
+        assert!(self.output.status.success(), "slideline failed ({}):\n{}\n{}", self.code(), self.stdout(), self.stderr());
         self
     }
 }
 
 pub fn data(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("tests/data")
-        .join(name)
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data").join(name)
 }
 
 fn command(ranks: usize) -> Command {
@@ -49,9 +41,7 @@ fn command(ranks: usize) -> Command {
     } else {
         Command::new(exe)
     };
-    cmd.env("OMPI_ALLOW_RUN_AS_ROOT", "1")
-        .env("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1")
-        .env("OPENBLAS_NUM_THREADS", "1");
+    cmd.env("OMPI_ALLOW_RUN_AS_ROOT", "1").env("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1").env("OPENBLAS_NUM_THREADS", "1");
     cmd
 }
 
@@ -65,15 +55,7 @@ pub fn run_deck(deck: &str, files: &[(&str, &Path)], ranks: usize, extra: &[&str
     let deck_path = dir.path().join("deck.toml");
     std::fs::write(&deck_path, deck).expect("write deck");
     let h5 = dir.path().join("out.h5");
-    let output = command(ranks)
-        .arg("run")
-        .arg(&deck_path)
-        .arg("-o")
-        .arg(&h5)
-        .arg("--quiet")
-        .args(extra)
-        .output()
-        .expect("run slideline");
+    let output = command(ranks).arg("run").arg(&deck_path).arg("-o").arg(&h5).arg("--quiet").args(extra).output().expect("run slideline");
     Run { dir, output, h5 }
 }
 
@@ -84,50 +66,25 @@ pub struct Results {
 
 impl Results {
     pub fn open(path: &Path) -> Self {
-        Results {
-            file: hdf5::File::open(path).expect("open results"),
-        }
+        Results { file: hdf5::File::open(path).expect("open results") }
     }
     pub fn f64s(&self, name: &str) -> Vec<f64> {
-        self.file
-            .dataset(name)
-            .unwrap_or_else(|e| panic!("{name}: {e}"))
-            .read_raw::<f64>()
-            .unwrap()
+        self.file.dataset(name).unwrap_or_else(|e| panic!("{name}: {e}")).read_raw::<f64>().unwrap()
     }
     pub fn u64s(&self, name: &str) -> Vec<u64> {
-        self.file
-            .dataset(name)
-            .unwrap_or_else(|e| panic!("{name}: {e}"))
-            .read_raw::<u64>()
-            .unwrap()
+        self.file.dataset(name).unwrap_or_else(|e| panic!("{name}: {e}")).read_raw::<u64>().unwrap()
     }
     pub fn i64s(&self, name: &str) -> Vec<i64> {
-        self.file
-            .dataset(name)
-            .unwrap_or_else(|e| panic!("{name}: {e}"))
-            .read_raw::<i64>()
-            .unwrap()
+        self.file.dataset(name).unwrap_or_else(|e| panic!("{name}: {e}")).read_raw::<i64>().unwrap()
     }
     pub fn last_increment(&self) -> String {
-        let names = self
-            .file
-            .group("increments")
-            .unwrap()
-            .member_names()
-            .unwrap();
-        format!(
-            "increments/{}",
-            names.iter().max().expect("at least one increment")
-        )
+        let names = self.file.group("increments").unwrap().member_names().unwrap();
+        format!("increments/{}", names.iter().max().expect("at least one increment"))
     }
     /// (r, z) coordinates and (u_r, u_z) of every node at the last increment.
     pub fn nodes(&self) -> Vec<([f64; 2], [f64; 2])> {
         let x = self.f64s("mesh/coordinates");
         let u = self.f64s(&format!("{}/displacement", self.last_increment()));
-        x.chunks(2)
-            .zip(u.chunks(2))
-            .map(|(x, u)| ([x[0], x[1]], [u[0], u[1]]))
-            .collect()
+        x.chunks(2).zip(u.chunks(2)).map(|(x, u)| ([x[0], x[1]], [u[0], u[1]])).collect()
     }
 }

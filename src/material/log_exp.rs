@@ -1,0 +1,118 @@
+//! Logarithm and exponential of a symmetric 2x2 matrix [[a, b], [b, c]], written as smooth
+//! functions of its invariants so they stay exact and differentiable when the eigenvalues
+//! coincide (as at the undeformed state).
+//!
+//! With m = (a + c) / 2 and s = ((a - c) / 2)^2 + b^2 (so the eigenvalues are m +- sqrt(s)),
+//! any isotropic f satisfies f(A) = g0 I + g1 (A - m I), g0 = (f(m+d) + f(m-d)) / 2,
+//! g1 = (f(m+d) - f(m-d)) / (2d), d = sqrt(s). Both g0 and g1 are even in d, hence smooth in
+//! s; for small s they are summed as series in s, otherwise in closed form.
+
+use crate::ad::Scalar;
+
+/// Symmetric 2x2 matrix as (a, c, b) = (A11, A22, A12).
+pub type Sym2<T> = [T; 3];
+
+fn invariants<T: Scalar>(a: &Sym2<T>) -> (T, T) {
+    let m = (a[0] + a[1]) * 0.5;
+    let h = (a[0] - a[1]) * 0.5;
+    (m, h * h + a[2] * a[2])
+}
+
+fn combine<T: Scalar>(a: &Sym2<T>, m: T, g0: T, g1: T) -> Sym2<T> {
+    [g0 + g1 * (a[0] - m), g0 + g1 * (a[1] - m), g1 * a[2]]
+}
+
+/// Natural logarithm of a symmetric positive-definite 2x2 matrix.
+pub fn log_sym2<T: Scalar>(a: &Sym2<T>) -> Sym2<T> {
+    let (m, s) = invariants(a);
+    let g0 = (m * m - s).ln() * 0.5;
+    // g1 = atanh(d/m) / d = (1/m) * atanh(x)/x with x^2 = s / m^2
+    let x2 = s / (m * m);
+    let ratio = if x2.re() < 1e-2 {
+        // atanh(x)/x = sum x^(2k) / (2k+1); 10 terms: error < 1e-20 for x^2 < 0.01
+        let mut sum = T::from_f64(1.0 / 19.0);
+        for k in (0..9).rev() {
+            sum = sum * x2 + 1.0 / (2 * k + 1) as f64;
+        }
+        sum
+    } else {
+        let x = x2.sqrt();
+        ((x + 1.0) / (-x + 1.0)).ln() * 0.5 / x
+    };
+    combine(a, m, g0, ratio / m)
+}
+
+/// Exponential of a symmetric 2x2 matrix.
+pub fn exp_sym2<T: Scalar>(a: &Sym2<T>) -> Sym2<T> {
+    let (m, s) = invariants(a);
+    let em = m.exp();
+    let (cosh, sinhc) = if s.re() < 1.0 {
+        // cosh d = sum s^k / (2k)!, sinh(d)/d = sum s^k / (2k+1)!; 12 terms: error < 1e-24
+        let (mut c, mut sc) = (T::from_f64(0.0), T::from_f64(0.0));
+        for k in (0..12).rev() {
+            c = c * s + 1.0 / factorial(2 * k);
+            sc = sc * s + 1.0 / factorial(2 * k + 1);
+        }
+        (c, sc)
+    } else {
+        let d = s.sqrt();
+        let (ep, en) = (d.exp(), (-d).exp());
+        ((ep + en) * 0.5, (ep - en) * 0.5 / d)
+    };
+    combine(a, m, em * cosh, em * sinhc)
+}
+
+fn factorial(n: usize) -> f64 {
+    (1..=n).map(|k| k as f64).product()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::ad::Dual;
+
+    fn mul(a: &Sym2<f64>, b: &Sym2<f64>) -> [f64; 4] {
+        [a[0] * b[0] + a[2] * b[2], a[0] * b[2] + a[2] * b[1], a[2] * b[0] + a[1] * b[2], a[2] * b[2] + a[1] * b[1]]
+    }
+
+    #[test]
+    fn exp_inverts_log_on_both_branches() {
+        for a in [[1.3, 0.8, 0.2], [1.0, 1.0, 0.0], [1.0 + 1e-9, 1.0, 1e-10], [5.0, 0.3, 1.1]] {
+            let back = exp_sym2(&log_sym2(&a));
+            for k in 0..3 {
+                assert!((back[k] - a[k]).abs() < 1e-13 * a[0].abs().max(1.0), "{a:?} -> {back:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn log_of_a_product_of_commuting_matrices_adds() {
+        // A and A^2 commute: log(A^2) = 2 log(A)
+        let a = [1.7, 0.6, 0.4];
+        let sq = mul(&a, &a);
+        let l2 = log_sym2(&[sq[0], sq[3], sq[1]]);
+        let l = log_sym2(&a);
+        for k in 0..3 {
+            assert!((l2[k] - 2.0 * l[k]).abs() < 1e-13);
+        }
+    }
+
+    #[test]
+    fn derivative_is_smooth_through_coincident_eigenvalues() {
+        // d log(A) / d A at A = I is the identity map, on either side of the series switch.
+        for a in [[1.0, 1.0, 0.0], [1.0 + 0.2, 1.0, 0.0]] {
+            let h = 1e-6;
+            let d = log_sym2(&[Dual::<3>::variable(a[0], 0), Dual::variable(a[1], 1), Dual::variable(a[2], 2)]);
+            for j in 0..3 {
+                let (mut p, mut q) = (a, a);
+                p[j] += h;
+                q[j] -= h;
+                let (lp, lq) = (log_sym2(&p), log_sym2(&q));
+                for i in 0..3 {
+                    let fd = (lp[i] - lq[i]) / (2.0 * h);
+                    assert!((fd - d[i].eps[j]).abs() < 1e-8, "d log[{i}]/d a[{j}]: {fd} vs {}", d[i].eps[j]);
+                }
+            }
+        }
+    }
+}
