@@ -23,6 +23,9 @@
 use super::log_exp::{exp_sym2, log_sym2};
 use crate::ad::Scalar;
 
+/// Relative tolerance on the yield function below which a trial state counts as elastic.
+pub const YIELD_TOLERANCE: f64 = 1e-10;
+
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Kinematics {
     /// Geometrically linear: small strains and rotations, loads on the reference configuration.
@@ -104,8 +107,12 @@ impl J2 {
         let norm2 = dev[0] * dev[0] + dev[1] * dev[1] + dev[2] * dev[2] + dev[3] * dev[3] * 2.0;
         if norm2.re() > 0.0 {
             let q_trial = (norm2 * 6.0).sqrt() * g; // sqrt(3/2) |2 G dev|
-            let f = q_trial - (self.yield_stress + h * ep_n);
-            if f.re() > 0.0 {
+            let yield_now = self.yield_stress + h * ep_n;
+            let f = q_trial - yield_now;
+            // Elastic predictor: a point on the yield surface to round-off (as every plastic
+            // point is at the start of an increment) is elastic, so the first Newton direction
+            // of an increment is never softer than the response it predicts.
+            if f.re() > YIELD_TOLERANCE * yield_now {
                 let dgamma = f / (3.0 * g + h);
                 let factor = -(dgamma * (3.0 * g)) / q_trial + 1.0;
                 dev = dev.map(|d| d * factor);
