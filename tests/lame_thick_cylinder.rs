@@ -52,29 +52,8 @@ fn displacements_and_bore_hoop_stress_within_0_2_percent() {
             assert!(u[1].abs() < 1e-12);
         }
     }
-    // Hoop stress at the bore: extrapolate the three Gauss-point values along r of the first
-    // element (quadratic Lagrange through xi = -sqrt(3/5), 0, sqrt(3/5)) to xi = -1.
-    let stress = res.f64s(&format!("{}/stress", res.last_increment()));
-    let conn = res.i64s("mesh/connectivity");
-    let coords = res.f64s("mesh/coordinates");
-    let e = (0..conn.len() / 8).find(|&e| (coords[2 * conn[8 * e] as usize] - 100.0).abs() < 1e-9).expect("an element on the bore");
-    let hoop = |q: usize| stress[(e * 9 + q) * 4 + 2];
-    let g = (0.6f64).sqrt();
-    let lagrange = |x: f64| {
-        let pts = [-g, 0.0, g];
-        let mut w = [1.0; 3];
-        for i in 0..3 {
-            for j in 0..3 {
-                if i != j {
-                    w[i] *= (x - pts[j]) / (pts[i] - pts[j]);
-                }
-            }
-        }
-        w
-    };
-    let w = lagrange(-1.0);
-    // middle Gauss row (eta = 0): points 3, 4, 5
-    let at_bore = w[0] * hoop(3) + w[1] * hoop(4) + w[2] * hoop(5);
+    // Hoop stress at the bore, extrapolated from the Gauss points of the first element.
+    let at_bore = res.stress_at_inner_edge(&res.last_increment(), 100.0, 2);
     let exact = 50.0 * (130.0f64.powi(2) + 100.0f64.powi(2)) / (130.0f64.powi(2) - 100.0f64.powi(2));
     let rel = (at_bore - exact).abs() / exact;
     eprintln!("hoop stress at bore {at_bore:.4} MPa, exact {exact:.4} (rel {rel:.2e})");

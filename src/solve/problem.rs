@@ -51,6 +51,9 @@ pub struct ElementFields {
     /// This rank's part of f_int - f_ext at every node of the mesh (summed over ranks, it is
     /// the reaction at prescribed DOFs), per radian.
     pub nodal_force: Vec<[f64; 2]>,
+    /// Sum over this rank's elements of |f_int,e|^2: the size of the element forces before
+    /// they cancel in assembly, which sets the round-off floor of the residual.
+    pub element_force_squares: f64,
 }
 
 pub struct Problem<'s, 'm> {
@@ -212,16 +215,18 @@ impl<'s, 'm> Problem<'s, 'm> {
         let mut stress = vec![[[0.0; 4]; QUADRATURE_POINTS]; n];
         let mut plastic_strain = vec![[0.0; QUADRATURE_POINTS]; n];
         let mut nodal_force = vec![[0.0; 2]; self.model.mesh.coords.len()];
+        let mut element_force_squares = 0.0;
         let mesh = &self.model.mesh;
         self.residual_entries(
             &gathered,
             |k, out| {
                 stress[k] = out.stress;
                 plastic_strain[k] = out.state.map(|s| s.ep);
+                element_force_squares += out.internal_force.norm_squared();
             },
             |el, i, v| nodal_force[mesh.elements[el.element][i / 2]][i % 2] += v,
         )?;
-        Ok(ElementFields { stress, plastic_strain, nodal_force })
+        Ok(ElementFields { stress, plastic_strain, nodal_force, element_force_squares })
     }
 }
 

@@ -88,3 +88,41 @@ impl Results {
         x.chunks(2).zip(u.chunks(2)).map(|(x, u)| ([x[0], x[1]], [u[0], u[1]])).collect()
     }
 }
+
+impl Results {
+    /// History column `name` (one value per converged increment).
+    pub fn history(&self, name: &str) -> Vec<f64> {
+        self.f64s(&format!("history/{name}"))
+    }
+
+    /// Stress component `component` ([rr, zz, tt, rz]) at radius `r0` on a mesh of the
+    /// structured block generator, extrapolated from the Gauss points of the element whose
+    /// first corner lies at `r0`: quadratic Lagrange through the three points of its middle
+    /// Gauss row (xi = -sqrt(3/5), 0, sqrt(3/5)) evaluated at xi = -1.
+    pub fn stress_at_inner_edge(&self, increment: &str, r0: f64, component: usize) -> f64 {
+        let stress = self.f64s(&format!("{increment}/stress"));
+        let conn = self.i64s("mesh/connectivity");
+        let coords = self.f64s("mesh/coordinates");
+        let e = (0..conn.len() / 8).find(|&e| (coords[2 * conn[8 * e] as usize] - r0).abs() < 1e-9).expect("an element at r0");
+        let g = 0.6f64.sqrt();
+        let pts = [-g, 0.0, g];
+        let mut value = 0.0;
+        for i in 0..3 {
+            let mut w = 1.0;
+            for j in 0..3 {
+                if i != j {
+                    w *= (-1.0 - pts[j]) / (pts[i] - pts[j]);
+                }
+            }
+            value += w * stress[(e * 9 + 3 + i) * 4 + component];
+        }
+        value
+    }
+
+    /// Sorted increment group paths ("increments/000001", ...).
+    pub fn increments(&self) -> Vec<String> {
+        let mut names = self.file.group("increments").unwrap().member_names().unwrap();
+        names.sort();
+        names.into_iter().map(|n| format!("increments/{n}")).collect()
+    }
+}
