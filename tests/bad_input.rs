@@ -2,7 +2,7 @@
 //! no PETSc trace).
 
 mod common;
-use common::{data, run_deck, Run};
+use common::{command_in, data, run_deck, Run};
 
 const MATERIAL: &str = "[[material]]\nname = \"steel\"\nyoungs_modulus = 200000.0\npoissons_ratio = 0.3\n";
 const STEP: &str = "[[step]]\nboundary = [ { set = \"bottom\", uz = 0.0 } ]\n";
@@ -20,15 +20,9 @@ fn assert_rejected(run: &Run, needles: &[&str]) {
 
 #[test]
 fn missing_deck_file() {
-    let run = run_deck("", &[], 1, &[]);
-    // run_deck writes deck.toml; point at a file that does not exist instead
-    let out = std::process::Command::new(env!("CARGO_BIN_EXE_slideline"))
-        .args(["run", "/nonexistent/deck.toml", "-q"])
-        .env("OMPI_ALLOW_RUN_AS_ROOT", "1")
-        .env("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1")
-        .output()
-        .unwrap();
-    let missing = Run { dir: run.dir, output: out, h5: run.h5 };
+    let dir = tempfile::tempdir().unwrap();
+    let output = command_in(dir.path(), 1).args(["run", "/nonexistent/deck.toml", "-q"]).output().unwrap();
+    let missing = Run { h5: dir.path().join("none.h5"), dir, output };
     assert_rejected(&missing, &["/nonexistent/deck.toml", "No such file"]);
 }
 

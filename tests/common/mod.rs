@@ -32,6 +32,15 @@ pub fn data(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data").join(name)
 }
 
+/// The slideline binary under `mpirun -n ranks` (or alone for one rank), with OpenMPI's session
+/// directory under `dir`: concurrently starting OpenMPI 4.1 singletons race to create the
+/// shared one in /tmp and fail with "mkdir ... File exists".
+pub fn command_in(dir: &Path, ranks: usize) -> Command {
+    let mut cmd = command(ranks);
+    cmd.env("OMPI_MCA_orte_tmpdir_base", dir);
+    cmd
+}
+
 fn command(ranks: usize) -> Command {
     let exe = env!("CARGO_BIN_EXE_slideline");
     let mut cmd = if ranks > 1 {
@@ -55,7 +64,7 @@ pub fn run_deck(deck: &str, files: &[(&str, &Path)], ranks: usize, extra: &[&str
     let deck_path = dir.path().join("deck.toml");
     std::fs::write(&deck_path, deck).expect("write deck");
     let h5 = dir.path().join("out.h5");
-    let output = command(ranks).arg("run").arg(&deck_path).arg("-o").arg(&h5).arg("--quiet").args(extra).output().expect("run slideline");
+    let output = command_in(dir.path(), ranks).arg("run").arg(&deck_path).arg("-o").arg(&h5).arg("--quiet").args(extra).output().expect("run slideline");
     Run { dir, output, h5 }
 }
 
