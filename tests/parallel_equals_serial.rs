@@ -1,8 +1,9 @@
 //! The same analysis on 1 rank and on 2 ranks (mpirun -n 2) gives the same displacements to
 //! 1e-8 relative, and the 2-rank HDF5 file reads back (h5dump and the hdf5 crate) with its
 //! history rows and fields.
-//! Model: a 24 x 4 Q8 ring r in [100, 130], z in [0, 20], internal pressure 20 MPa, heated by
-//! 50 degC, bottom held axially, top pushed down 0.05 mm; two steps (heat+pressure, then push).
+//! Model: a 24 x 4 Q8 ring r in [100, 130], z in [0, 20], finite strain, J2 (sigma_y0 = 150,
+//! H = 1000), internal pressure 20 MPa, heated by 50 degC, bottom held axially, top pushed down
+//! 0.3 mm so the ring yields; two steps (heat+pressure, then push).
 
 mod common;
 use common::{run_deck, Results};
@@ -15,9 +16,12 @@ rectangle = { r = [100.0, 130.0], z = [0.0, 20.0], divisions = [24, 4] }
 
 [[material]]
 name = "steel"
+model = "j2"
 youngs_modulus = 200000.0
 poissons_ratio = 0.3
 thermal_expansion = 1.2e-5
+yield_stress = 150.0
+hardening_modulus = 1000.0
 
 [[step]]
 name = "heat"
@@ -29,7 +33,7 @@ pressure = [ { surface = "inner", value = 20.0 } ]
 [[step]]
 name = "push"
 increments = 3
-boundary = [ { set = "top", uz = -0.05 } ]
+boundary = [ { set = "top", uz = -0.3 } ]
 "#;
 
 fn by_node_id(res: &Results) -> HashMap<u64, [f64; 2]> {
@@ -54,6 +58,12 @@ fn two_ranks_match_one_rank_and_the_file_reads_back() {
         })
         .fold(0.0f64, f64::max);
     assert!(worst <= 1e-8 * scale, "1 vs 2 ranks differ by {worst:e} (scale {scale:e})");
+
+    // the case is plastic
+    let ep = r2.history("max_equivalent_plastic_strain");
+    assert!(*ep.last().unwrap() > 1e-4, "not plastic: {ep:?}");
+    let ep1 = r1.history("max_equivalent_plastic_strain");
+    assert!((ep1.last().unwrap() - ep.last().unwrap()).abs() <= 1e-8 * ep.last().unwrap());
 
     // both ranks really assembled elements
     let ranks = r2.file.dataset("mesh/element_rank").unwrap().read_raw::<u32>().unwrap();

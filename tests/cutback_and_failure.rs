@@ -1,0 +1,80 @@
+//! Adaptive increments: a deliberately too-large increment is cut back and then converges; an
+//! absurd load ends cleanly with exit code 3, a message naming the step and load factor, and a
+//! results file holding every converged increment.
+//! Model: the plastic thick cylinder (a = 100, b = 130, plane strain, sigma_y0 = 300,
+//! H = 1000, or H = 0 for the failure), 20 Q8 elements across the wall.
+
+mod common;
+use common::{run_deck, Results};
+
+fn deck(hardening: f64, stepping: &str, steps: &str) -> String {
+    format!(
+        r#"nlgeom = false
+[stepping]
+{stepping}
+[mesh]
+rectangle = {{ r = [100.0, 130.0], z = [0.0, 1.0], divisions = [20, 1] }}
+[[material]]
+name = "steel"
+model = "j2"
+youngs_modulus = 200000.0
+poissons_ratio = 0.3
+yield_stress = 300.0
+hardening_modulus = {hardening}
+{steps}"#
+    )
+}
+
+#[test]
+fn too_large_an_increment_is_cut_back_and_then_converges() {
+    // One increment from 0 to 86 MPa (deep into plasticity) with at most 3 Newton iterations
+    // per attempt cannot converge at once.
+    let steps = r#"[[step]]
+increments = 1
+boundary = [ { set = "bottom", uz = 0.0 }, { set = "top", uz = 0.0 } ]
+pressure = [ { surface = "inner", value = 86.0 } ]
+"#;
+    let run = run_deck(&deck(1000.0, "max_newton_iterations = 3", steps), &[], 1, &[]);
+    run.assert_ok();
+    let res = Results::open(&run.h5);
+    let cutbacks = res.history("cutbacks");
+    let lambda = res.history("load_factor");
+    assert!(cutbacks[0] >= 1.0, "the first increment should have needed a cutback: {cutbacks:?}");
+    assert_eq!(*lambda.last().unwrap(), 1.0);
+    assert!(lambda.windows(2).all(|w| w[1] > w[0]));
+    // increments never exceed the requested size (1.0 here) and the run reaches the end
+    assert!(res.history("max_equivalent_plastic_strain").last().unwrap() > &0.0);
+}
+
+#[test]
+fn an_absurd_load_stops_with_exit_3_and_keeps_the_converged_increments() {
+    // Perfect plasticity (H = 0): the limit pressure is 90.9 MPa. Step 1 is fine; step 2 asks
+    // for ten times the limit.
+    let steps = r#"[[step]]
+name = "service"
+increments = 2
+boundary = [ { set = "bottom", uz = 0.0 }, { set = "top", uz = 0.0 } ]
+pressure = [ { surface = "inner", value = 50.0 } ]
+[[step]]
+name = "burst"
+increments = 4
+pressure = [ { surface = "inner", value = 900.0 } ]
+"#;
+    let run = run_deck(&deck(0.0, "min_increment = 1e-3", steps), &[], 1, &[]);
+    assert_eq!(run.code(), 3, "stderr:\n{}", run.stderr());
+    let err = run.stderr();
+    assert!(err.contains("step burst") && err.contains("load factor"), "{err}");
+    assert!(!err.contains("panicked"), "{err}");
+    let res = Results::open(&run.h5);
+    let steps = res.history("step");
+    let lambda = res.history("load_factor");
+    assert_eq!(res.increments().len(), steps.len(), "one history row per stored increment");
+    assert_eq!(&steps[..2], &[1.0, 1.0]);
+    // every stored increment of step 2 is below the limit load 90.9 MPa: lambda < (90.9-50)/850
+    for (s, l) in steps.iter().zip(&lambda).skip(2) {
+        assert_eq!(*s, 2.0);
+        assert!(*l < (90.9 - 50.0) / 850.0, "converged past the limit load? lambda {l}");
+    }
+    // the last stored displacement field is readable
+    assert!(!res.nodes().is_empty());
+}
