@@ -17,3 +17,4 @@ pub mod io;
 pub mod material;
 pub mod model;
 pub mod solve;
+pub mod contact;

@@ -49,8 +49,10 @@ impl DofMap {
     }
 
     /// Exact nonzero counts of this rank's rows, split into the diagonal block (columns this
-    /// rank owns) and the off-diagonal block, from the mesh graph.
-    pub fn preallocation(&self, mesh: &Mesh, partition: &Partition) -> (Vec<PetscInt>, Vec<PetscInt>) {
+    /// rank owns) and the off-diagonal block, from the mesh graph; rows of the `coupled` nodes
+    /// (contact surfaces, sorted) get `extra` more in each block for couplings that appear
+    /// during the solve.
+    pub fn preallocation(&self, mesh: &Mesh, partition: &Partition, coupled: &[usize], extra: PetscInt) -> (Vec<PetscInt>, Vec<PetscInt>) {
         let mut node_elements: Vec<Vec<usize>> = vec![Vec::new(); mesh.coords.len()];
         for (e, conn) in mesh.elements.iter().enumerate() {
             for &n in conn {
@@ -78,6 +80,11 @@ impl DofMap {
                     }
                 }
             }
+            if coupled.binary_search(&n).is_ok() {
+                // never more than the block widths: PETSc rejects that
+                d = (d + extra).min(hi - lo);
+                o = (o + extra).min(self.total() as PetscInt - (hi - lo));
+            }
             for &row in &self.dof[n] {
                 if row >= 0 {
                     diag[(row - lo) as usize] = d;
@@ -104,7 +111,7 @@ mod tests {
         }
         let map = DofMap::new(&p, &prescribed).unwrap();
         assert_eq!(map.total(), 2 * mesh.coords.len() - sets.node_sets["bottom"].len());
-        let (d, o) = map.preallocation(&mesh, &p);
+        let (d, o) = map.preallocation(&mesh, &p, &[], 0);
         assert!(o.iter().all(|&v| v == 0));
         // a corner of the first element only sees that element's 8 nodes
         let corner = mesh.elements[0][3];

@@ -15,6 +15,8 @@
 //!     equivalent_plastic_strain      (elements, 9)
 //!     equivalent_plastic_strain_max  (elements)    element maximum (for cell plots)
 //!     residual_norms     (iterations + 1)  ||F|| at each Newton iterate
+//!     contact/PAIR/passK/{gap, pressure, active}   per slave node of the pass (mm, MPa, 0/1)
+//! /mesh/contact/PAIR/passK/{nodes, areas}         slave node rows and tributary areas
 //! /history/COLUMN        one row per converged increment (see HistoryRow)
 //! ```
 //! Metadata operations are collective (every rank calls them with the same arguments); bulk
@@ -23,6 +25,7 @@
 
 use super::xdmf;
 use crate::dist::Partition;
+use crate::solve::contact::PassOutput;
 use crate::element::solid::QUADRATURE_POINTS;
 use crate::error::{Error, Result};
 use crate::fe::axisymmetric::von_mises;
@@ -32,6 +35,18 @@ use hdf5::types::VarLenUnicode;
 use mpi::traits::AsRaw;
 use ndarray::{ArrayView1, ArrayView2, ArrayView3};
 use std::path::{Path, PathBuf};
+
+/// Contact state of one pair at an increment.
+#[derive(Clone, Debug)]
+pub struct ContactSummary {
+    pub name: String,
+    /// Slave nodes with a positive contact pressure.
+    pub active_nodes: usize,
+    /// Largest penetration, mm.
+    pub max_penetration: f64,
+    /// Total normal contact force, N per radian.
+    pub normal_force: f64,
+}
 
 /// One row of the history table.
 #[derive(Clone, Debug)]
@@ -49,6 +64,9 @@ pub struct HistoryRow {
     pub residual_norms: Vec<f64>,
     /// Failed attempts (cutbacks) before this increment converged.
     pub cutbacks: usize,
+    /// Augmented-Lagrangian multiplier updates in this increment.
+    pub augmentations: usize,
+    pub contacts: Vec<ContactSummary>,
     /// Largest equivalent plastic strain over the model.
     pub max_plastic_strain: f64,
     /// Wall time since the start of the analysis, s.
@@ -66,6 +84,7 @@ pub struct ResultsFile {
     node_slab: (usize, usize),
     element_slab: (usize, usize),
     increments: Vec<xdmf::IncrementEntry>,
+    contact_mesh_written: bool,
 }
 
 fn h5err(path: &Path) -> impl Fn(hdf5::Error) -> Error + '_ {
@@ -122,7 +141,7 @@ impl ResultsFile {
         file.create_group("increments").map_err(&err)?;
         file.create_group("history").map_err(&err)?;
         file.flush().map_err(&err)?;
-        Ok(ResultsFile { file, path: path.to_path_buf(), rank, nodes: nn, elements: ne, node_slab, element_slab, increments: Vec::new() })
+        Ok(ResultsFile { file, path: path.to_path_buf(), rank, nodes: nn, elements: ne, node_slab, element_slab, increments: Vec::new(), contact_mesh_written: false })
     }
 
     pub fn path(&self) -> &Path {
@@ -144,6 +163,8 @@ impl ResultsFile {
         owned_displacement: &[[f64; 2]],
         local_stress: &[[[f64; 4]; QUADRATURE_POINTS]],
         local_plastic_strain: &[[f64; QUADRATURE_POINTS]],
+        contact: &[PassOutput<'_>],
+        partition: &Partition,
     ) -> Result<()> {
         let err = h5err(&self.path);
         let index = self.increments.len() + 1;
@@ -170,11 +191,49 @@ impl ResultsFile {
         let norms = &row.residual_norms;
         let (slab, data): ((usize, usize), &[f64]) = if self.rank == 0 { ((0, norms.len()), norms) } else { ((0, 0), &[]) };
         write_rows(&g, "residual_norms", &[norms.len()], slab, data, &self.path)?;
+        drop(err);
+        if !contact.is_empty() {
+            self.write_contact(&g, row, contact, partition)?;
+        }
         self.append_history(row)?;
-        self.file.flush().map_err(&err)?;
+        self.file.flush().map_err(h5err(&self.path))?;
         self.increments.push(xdmf::IncrementEntry { group: name, time: row.time });
         if self.rank == 0 {
             xdmf::write(&self.path, self.nodes, self.elements, &self.increments)?;
+        }
+        Ok(())
+    }
+
+    /// Per pass of each pair: gap, pressure and active flag of every slave node (this rank's
+    /// slab); the slave nodes and their areas once, under /mesh/contact.
+    fn write_contact(&mut self, g: &hdf5::Group, row: &HistoryRow, passes: &[PassOutput<'_>], partition: &Partition) -> Result<()> {
+        let err = h5err(&self.path);
+        let group_of = |base: &hdf5::Group, p: &PassOutput<'_>| -> Result<hdf5::Group> {
+            let pair = &row.contacts[p.pair].name;
+            let pg = if base.link_exists(pair) { base.group(pair) } else { base.create_group(pair) }.map_err(&err)?;
+            pg.create_group(&format!("pass{}", p.pass)).map_err(&err)
+        };
+        if !self.contact_mesh_written {
+            let mg = self.file.group("mesh").map_err(&err)?.create_group("contact").map_err(&err)?;
+            for p in passes {
+                let pg = group_of(&mg, p)?;
+                let slab = (p.offset, p.offset + p.nodes.len());
+                let rows: Vec<u64> = p.nodes.iter().map(|&n| partition.node_position[n] as u64).collect();
+                write_rows(&pg, "nodes", &[p.total], slab, &rows, &self.path)?;
+                write_rows(&pg, "areas", &[p.total], slab, &p.areas, &self.path)?;
+            }
+            self.contact_mesh_written = true;
+        }
+        let cg = g.create_group("contact").map_err(&err)?;
+        for p in passes {
+            let pg = group_of(&cg, p)?;
+            let slab = (p.offset, p.offset + p.nodes.len());
+            let gap: Vec<f64> = p.states.iter().map(|s| s.gap).collect();
+            let pressure: Vec<f64> = p.states.iter().map(|s| s.pressure).collect();
+            let active: Vec<u8> = p.states.iter().map(|s| u8::from(s.pressure > 0.0)).collect();
+            write_rows(&pg, "gap", &[p.total], slab, &gap, &self.path)?;
+            write_rows(&pg, "pressure", &[p.total], slab, &pressure, &self.path)?;
+            write_rows(&pg, "active", &[p.total], slab, &active, &self.path)?;
         }
         Ok(())
     }
@@ -190,9 +249,16 @@ impl ResultsFile {
             ("linear_iterations".into(), row.linear_iterations as f64),
             ("residual_norm".into(), row.residual_norm),
             ("cutbacks".into(), row.cutbacks as f64),
+            ("augmentations".into(), row.augmentations as f64),
             ("max_equivalent_plastic_strain".into(), row.max_plastic_strain),
             ("wall_time".into(), row.wall_time),
         ];
+        for c in &row.contacts {
+            columns.push((format!("contact_{}_active_nodes", c.name), c.active_nodes as f64));
+            columns.push((format!("contact_{}_max_penetration", c.name), c.max_penetration));
+            columns.push((format!("contact_{}_force", c.name), c.normal_force));
+            columns.push((format!("contact_{}_force_ring", c.name), c.normal_force * ring));
+        }
         for (set, f) in &row.reactions {
             columns.push((format!("reaction_{set}_r"), f[0]));
             columns.push((format!("reaction_{set}_z"), f[1]));

@@ -14,6 +14,13 @@
 //! [mesh]
 //! file = "cylinder.msh"             # Gmsh 4.1, relative to the deck; or instead:
 //! # rectangle = { r = [100.0, 130.0], z = [0.0, 10.0], divisions = [12, 2] }
+//! # or separate bodies, sets prefixed by the block name (tube, tube_inner, tube_top, ...):
+//! # [[mesh.block]]
+//! # name = "tube"
+//! # r = [100.0, 110.0]
+//! # z = [0.0, 50.0]
+//! # divisions = [4, 25]
+//! # grading = [1.0, 0.2]          # last/first element size along r and z (optional)
 //!
 //! [[material]]
 //! name = "steel"
@@ -28,6 +35,16 @@
 //! elements = "all"
 //! material = "steel"
 //!
+//! [[contact]]                       # frictionless node-to-segment, optional
+//! slave = "inner_tube_outside"      # surfaces (physical curves); slave == master: self-contact
+//! master = "outer_tube_bore"
+//! two_pass = false                  # true: symmetric, each surface also slave of the other
+//! penalty = 1.0e5                   # N/mm^3 (MPa per mm of penetration); or instead
+//! # penalty_factor = 10.0           # kappa: eps = kappa E / h (master E and edge length h)
+//! capture_distance = 1.0            # mm (default: twice the longest master edge)
+//! augmented_lagrangian = { penetration_tolerance = 1e-4, max_augmentations = 10 }  # optional
+//! exclude_neighbours = 2            # self-contact: segments this close along the surface
+//!
 //! [[step]]
 //! name = "load"
 //! increments = 1
@@ -36,8 +53,8 @@
 //! pressure = [ { surface = "inner", value = 50.0 } ]
 //! ```
 
-use super::mesh::{rectangle, MeshSets};
-use super::{gmsh, Component, Kinematics, Material, Model, Plasticity, PrescribedDisplacement, Pressure, Step, SteppingControls};
+use super::mesh::{blocks, rectangle, Block, MeshSets};
+use super::{gmsh, AugmentedLagrangian, Component, ContactPair, Kinematics, Material, Model, Penalty, Plasticity, PrescribedDisplacement, Pressure, Step, SteppingControls};
 use crate::error::{Error, Result};
 use serde::Deserialize;
 use std::path::{Path, PathBuf};
@@ -57,7 +74,41 @@ struct DeckFile {
     #[serde(default)]
     section: Vec<SectionSpec>,
     #[serde(default)]
+    contact: Vec<ContactSpec>,
+    #[serde(default)]
     step: Vec<StepSpec>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ContactSpec {
+    name: Option<String>,
+    slave: String,
+    master: String,
+    #[serde(default)]
+    two_pass: bool,
+    penalty: Option<f64>,
+    penalty_factor: Option<f64>,
+    capture_distance: Option<f64>,
+    augmented_lagrangian: Option<AugmentedSpec>,
+    #[serde(default = "two")]
+    exclude_neighbours: usize,
+}
+
+fn two() -> usize {
+    2
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct AugmentedSpec {
+    penetration_tolerance: f64,
+    #[serde(default = "ten")]
+    max_augmentations: usize,
+}
+
+fn ten() -> usize {
+    10
 }
 
 fn default_reference_temperature() -> f64 {
@@ -96,6 +147,23 @@ impl SteppingSpec {
 struct MeshSpec {
     file: Option<PathBuf>,
     rectangle: Option<RectangleSpec>,
+    #[serde(default)]
+    block: Vec<BlockSpec>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct BlockSpec {
+    name: String,
+    r: [f64; 2],
+    z: [f64; 2],
+    divisions: [usize; 2],
+    #[serde(default = "no_grading")]
+    grading: [f64; 2],
+}
+
+fn no_grading() -> [f64; 2] {
+    [1.0, 1.0]
 }
 
 #[derive(Deserialize)]
@@ -170,6 +238,12 @@ struct PressureSpec {
     value: f64,
 }
 
+/// Chord length of a (quadratic) edge: start to middle to end.
+fn edge_length(mesh: &super::Mesh, edge: super::Edge) -> f64 {
+    let [a, b, m] = mesh.edge_nodes(edge).map(|n| mesh.coords[n]);
+    (m[0] - a[0]).hypot(m[1] - a[1]) + (b[0] - m[0]).hypot(b[1] - m[1])
+}
+
 /// Reads and validates a deck file.
 pub fn read(path: &Path) -> Result<Model> {
     let text = std::fs::read_to_string(path).map_err(|source| Error::Read { path: path.to_path_buf(), source })?;
@@ -179,13 +253,18 @@ pub fn read(path: &Path) -> Result<Model> {
 /// Parses deck `text`; `path` names it in messages and anchors relative mesh paths.
 pub fn parse(text: &str, path: &Path) -> Result<Model> {
     let deck: DeckFile = toml::from_str(text).map_err(|e| Error::input(format!("{}: {}", path.display(), e.to_string().trim_end())))?;
-    let (mesh, sets) = match (&deck.mesh.file, &deck.mesh.rectangle) {
-        (Some(file), None) => {
+    let (mesh, sets) = match (&deck.mesh.file, &deck.mesh.rectangle, deck.mesh.block.is_empty()) {
+        (Some(file), None, true) => {
             let full = path.parent().unwrap_or(Path::new(".")).join(file);
             gmsh::read(&full)?
         }
-        (None, Some(r)) => rectangle(r.r, r.z, r.divisions)?,
-        _ => return Err(Error::input(format!("{}: [mesh] needs exactly one of `file` or `rectangle`", path.display()))),
+        (None, Some(r), true) => rectangle(r.r, r.z, r.divisions)?,
+        (None, None, false) => {
+            let specs: Vec<Block> =
+                deck.mesh.block.iter().map(|b| Block { name: b.name.clone(), r: b.r, z: b.z, divisions: b.divisions, grading: b.grading }).collect();
+            blocks(&specs)?
+        }
+        _ => return Err(Error::input(format!("{}: [mesh] needs exactly one of `file`, `rectangle` or [[mesh.block]]", path.display()))),
     };
     let MeshSets { node_sets, element_sets, surfaces } = sets;
 
@@ -250,6 +329,34 @@ pub fn parse(text: &str, path: &Path) -> Result<Model> {
         steps.push(Step { name, increments: s.increments, displacements, pressures, temperature: s.temperature });
     }
 
+    let mut contacts = Vec::new();
+    for c in &deck.contact {
+        let name = c.name.clone().unwrap_or_else(|| if c.slave == c.master { c.slave.clone() } else { format!("{}-{}", c.slave, c.master) });
+        let penalty = match (c.penalty, c.penalty_factor) {
+            (Some(v), None) => Penalty::Stiffness(v),
+            (None, Some(v)) => Penalty::Factor(v),
+            _ => return Err(Error::input(format!("contact '{name}': give exactly one of penalty (N/mm^3) or penalty_factor (kappa in eps = kappa E / h)"))),
+        };
+        // default capture distance: twice the longest edge of the master surface
+        let capture_distance = match c.capture_distance {
+            Some(d) => d,
+            None => {
+                let edges = surfaces.get(&c.master).ok_or_else(|| Error::input(format!("contact '{name}': unknown surface '{}'", c.master)))?;
+                2.0 * edges.iter().map(|&e| edge_length(&mesh, e)).fold(0.0, f64::max)
+            }
+        };
+        let augmented_lagrangian = c.augmented_lagrangian.as_ref().map(|a| AugmentedLagrangian { penetration_tolerance: a.penetration_tolerance, max_augmentations: a.max_augmentations });
+        contacts.push(ContactPair {
+            name,
+            slave: c.slave.clone(),
+            master: c.master.clone(),
+            two_pass: c.two_pass,
+            penalty,
+            capture_distance,
+            augmented_lagrangian,
+            exclude_neighbours: c.exclude_neighbours,
+        });
+    }
     let kinematics = if deck.nlgeom { Kinematics::Finite } else { Kinematics::Small };
     let model = Model {
         mesh,
@@ -261,6 +368,7 @@ pub fn parse(text: &str, path: &Path) -> Result<Model> {
         reference_temperature: deck.reference_temperature,
         kinematics,
         stepping: deck.stepping.controls(),
+        contacts,
         steps,
         source_text: text.to_string(),
     };

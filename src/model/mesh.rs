@@ -86,6 +86,12 @@ impl MeshSets {
 /// node set `all`, and surfaces with node sets `inner` (r = r0), `outer` (r = r1),
 /// `bottom` (z = z0), `top` (z = z1).
 pub fn rectangle(r: [f64; 2], z: [f64; 2], divisions: [usize; 2]) -> Result<(Mesh, MeshSets)> {
+    graded_rectangle(r, z, divisions, [1.0, 1.0])
+}
+
+/// Like [`rectangle`], with element sizes in geometric progression: in each direction the last
+/// element is `ratio` times the first (ratio < 1 refines towards r1 or z1).
+pub fn graded_rectangle(r: [f64; 2], z: [f64; 2], divisions: [usize; 2], ratio: [f64; 2]) -> Result<(Mesh, MeshSets)> {
     let [nr, nz] = divisions;
     if nr == 0 || nz == 0 {
         return Err(Error::input(format!("mesh.rectangle: divisions must be at least 1, got {divisions:?}")));
@@ -93,7 +99,26 @@ pub fn rectangle(r: [f64; 2], z: [f64; 2], divisions: [usize; 2]) -> Result<(Mes
     if !(r[1] > r[0] && z[1] > z[0] && r[0] >= 0.0) {
         return Err(Error::input(format!("mesh.rectangle: need 0 <= r0 < r1 and z0 < z1, got r = {r:?}, z = {z:?}")));
     }
+    if !(ratio[0] > 0.0 && ratio[1] > 0.0) {
+        return Err(Error::input(format!("mesh block: grading ratios must be > 0, got {ratio:?}")));
+    }
     let (gi, gj) = (2 * nr + 1, 2 * nz + 1);
+    // element boundaries in geometric progression; mid-side nodes halfway
+    let stations = |lo: f64, hi: f64, n: usize, q: f64| -> Vec<f64> {
+        let growth = if n > 1 { q.powf(1.0 / (n - 1) as f64) } else { 1.0 };
+        let sizes: Vec<f64> = (0..n).map(|k| growth.powi(k as i32)).collect();
+        let total: f64 = sizes.iter().sum();
+        let mut out = vec![lo];
+        for s in sizes {
+            let last = *out.last().unwrap();
+            let next = last + (hi - lo) * s / total;
+            out.push(0.5 * (last + next));
+            out.push(next);
+        }
+        *out.last_mut().unwrap() = hi;
+        out
+    };
+    let (rs, zs) = (stations(r[0], r[1], nr, ratio[0]), stations(z[0], z[1], nz, ratio[1]));
     let mut index = vec![usize::MAX; gi * gj];
     let mut mesh = Mesh::default();
     for j in 0..gj {
@@ -102,7 +127,7 @@ pub fn rectangle(r: [f64; 2], z: [f64; 2], divisions: [usize; 2]) -> Result<(Mes
                 continue; // no centre node in the serendipity element
             }
             index[j * gi + i] = mesh.coords.len();
-            mesh.coords.push([r[0] + (r[1] - r[0]) * i as f64 / (gi - 1) as f64, z[0] + (z[1] - z[0]) * j as f64 / (gj - 1) as f64]);
+            mesh.coords.push([rs[i], zs[j]]);
             mesh.node_ids.push(mesh.coords.len() as u64);
         }
     }
@@ -137,9 +162,69 @@ pub fn rectangle(r: [f64; 2], z: [f64; 2], divisions: [usize; 2]) -> Result<(Mes
     Ok((mesh, sets))
 }
 
+/// One structured block of a multi-block mesh.
+#[derive(Clone, Debug)]
+pub struct Block {
+    pub name: String,
+    pub r: [f64; 2],
+    pub z: [f64; 2],
+    pub divisions: [usize; 2],
+    pub grading: [f64; 2],
+}
+
+/// Separate bodies, one per block (nodes are not shared). Each block's sets carry its name:
+/// element set `NAME`, node set `NAME`, surfaces and node sets `NAME_inner`, `NAME_outer`,
+/// `NAME_bottom`, `NAME_top`; `all` names everything.
+pub fn blocks(specs: &[Block]) -> Result<(Mesh, MeshSets)> {
+    let mut mesh = Mesh::default();
+    let mut sets = MeshSets::default();
+    for b in specs {
+        let (m, s) = graded_rectangle(b.r, b.z, b.divisions, b.grading).map_err(|e| Error::input(format!("mesh block '{}': {e}", b.name)))?;
+        let (n0, e0) = (mesh.coords.len(), mesh.elements.len());
+        mesh.coords.extend(&m.coords);
+        mesh.node_ids.extend((0..m.coords.len()).map(|k| (n0 + k + 1) as u64));
+        mesh.elements.extend(m.elements.iter().map(|c| c.map(|n| n + n0)));
+        mesh.element_ids.extend((0..m.elements.len()).map(|k| (e0 + k + 1) as u64));
+        if sets.element_sets.contains_key(&b.name) {
+            return Err(Error::input(format!("mesh block '{}' is defined twice", b.name)));
+        }
+        sets.element_sets.insert(b.name.clone(), (e0..e0 + m.elements.len()).collect());
+        sets.node_sets.insert(b.name.clone(), (n0..n0 + m.coords.len()).collect());
+        for side in ["inner", "outer", "bottom", "top"] {
+            let name = format!("{}_{side}", b.name);
+            sets.node_sets.insert(name.clone(), s.node_sets[side].iter().map(|n| n + n0).collect());
+            sets.surfaces.insert(name, s.surfaces[side].iter().map(|e| Edge { element: e.element + e0, side: e.side }).collect());
+        }
+    }
+    sets.element_sets.insert("all".into(), (0..mesh.elements.len()).collect());
+    sets.node_sets.insert("all".into(), (0..mesh.coords.len()).collect());
+    Ok((mesh, sets))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn grading_refines_towards_the_far_end_and_blocks_are_separate_bodies() {
+        let (mesh, _) = graded_rectangle([0.0, 10.0], [0.0, 1.0], [4, 1], [0.25, 1.0]).unwrap();
+        let mut r: Vec<f64> = mesh.coords.iter().map(|c| c[0]).collect();
+        r.sort_by(f64::total_cmp);
+        r.dedup();
+        let first = r[2] - r[0];
+        let last = r[r.len() - 1] - r[r.len() - 3];
+        assert!((last / first - 0.25).abs() < 1e-12, "{first} {last}");
+        mesh.validate().unwrap();
+        let specs = [
+            Block { name: "a".into(), r: [0.0, 1.0], z: [0.0, 1.0], divisions: [1, 1], grading: [1.0, 1.0] },
+            Block { name: "b".into(), r: [0.0, 1.0], z: [1.0, 2.0], divisions: [2, 1], grading: [1.0, 1.0] },
+        ];
+        let (mesh, sets) = blocks(&specs).unwrap();
+        assert_eq!(mesh.elements.len(), 3);
+        assert_eq!(mesh.coords.len(), 8 + 13);
+        assert_eq!(sets.surfaces["b_bottom"].len(), 2);
+        assert!(sets.node_sets["a_top"].iter().all(|n| !sets.node_sets["b_bottom"].contains(n)));
+    }
 
     #[test]
     fn rectangle_has_expected_counts_and_valid_elements() {

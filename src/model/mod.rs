@@ -48,6 +48,42 @@ pub struct Plasticity {
     pub hardening_modulus: f64,
 }
 
+/// Penalty stiffness eps_n of a contact pair.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Penalty {
+    /// Contact pressure per unit penetration, N/mm^3 (MPa/mm): mesh-independent.
+    Stiffness(f64),
+    /// Dimensionless kappa: eps_n = kappa E / h, E of the master element's material and h the
+    /// length of the master element edge.
+    Factor(f64),
+}
+
+/// Uzawa augmented-Lagrangian iterations on a pair's contact pressures.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AugmentedLagrangian {
+    /// Largest penetration (mm) accepted at the end of an increment.
+    pub penetration_tolerance: f64,
+    /// Multiplier updates allowed per increment.
+    pub max_augmentations: usize,
+}
+
+/// A frictionless node-to-segment contact pair: the nodes of `slave` against the segments of
+/// `master` (and, two-pass, also the reverse). `slave == master` is self-contact.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ContactPair {
+    pub name: String,
+    pub slave: String,
+    pub master: String,
+    pub two_pass: bool,
+    pub penalty: Penalty,
+    /// Largest distance (mm) at which a slave node is matched to a master segment.
+    pub capture_distance: f64,
+    pub augmented_lagrangian: Option<AugmentedLagrangian>,
+    /// Self-contact: segments within this many segments of a node along the surface are
+    /// never its master.
+    pub exclude_neighbours: usize,
+}
+
 /// How the load steps are subdivided when Newton struggles.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SteppingControls {
@@ -112,6 +148,7 @@ pub struct Model {
     /// Finite strains and rotations with follower pressure (NLGEOM), or small strain.
     pub kinematics: Kinematics,
     pub stepping: SteppingControls,
+    pub contacts: Vec<ContactPair>,
     pub steps: Vec<Step>,
     /// The text the model was read from, kept for the output file.
     pub source_text: String,
@@ -149,6 +186,25 @@ impl Model {
         }
         if self.element_material.len() != self.mesh.elements.len() {
             return Err(Error::input("internal: element_material does not match the element count"));
+        }
+        for c in &self.contacts {
+            for surface in [&c.slave, &c.master] {
+                self.surface(surface).map_err(|e| Error::input(format!("contact '{}': {e}", c.name)))?;
+            }
+            let eps = match c.penalty {
+                Penalty::Stiffness(v) | Penalty::Factor(v) => v,
+            };
+            if !(eps > 0.0 && eps.is_finite()) {
+                return Err(Error::input(format!("contact '{}': the penalty must be > 0, got {eps}", c.name)));
+            }
+            if !(c.capture_distance > 0.0 && c.capture_distance.is_finite()) {
+                return Err(Error::input(format!("contact '{}': capture_distance must be > 0, got {}", c.name, c.capture_distance)));
+            }
+            if let Some(al) = c.augmented_lagrangian {
+                if !(al.penetration_tolerance > 0.0) || al.max_augmentations == 0 {
+                    return Err(Error::input(format!("contact '{}': augmented_lagrangian needs penetration_tolerance > 0 and max_augmentations >= 1", c.name)));
+                }
+            }
         }
         if self.steps.is_empty() {
             return Err(Error::input("the model has no steps: add a [[step]]"));

@@ -6,6 +6,7 @@
 //! `trial`; [`Problem::commit`] copies trial to committed after a converged increment. A failed
 //! attempt never touches `committed`, so a cutback has nothing to undo.
 
+use super::contact::{ContactAssembly, Multipliers};
 use crate::dist::{DofMap, Partition};
 use crate::element::pressure::{compute_pressure_load, pressure_load_stiffness};
 use crate::element::solid::{compute_solid, ElementGeometry, SolidInput, SolidResponse, DOFS, NODES, QUADRATURE_POINTS};
@@ -64,8 +65,11 @@ pub struct Problem<'s, 'm> {
     surface_edges: Vec<(String, Vec<(usize, usize)>)>,
     gathered: Vector<'s>,
     scatter: Scatter<'s>,
+    /// Global unknown of every (node, component), -1 where prescribed.
+    dof: Vec<[PetscInt; 2]>,
     committed: History,
     trial: History,
+    pub contact: Option<ContactAssembly<'s>>,
     pub load: LoadState,
 }
 
@@ -85,7 +89,15 @@ pub fn initial_history(model: &Model, partition: &Partition) -> History {
 impl<'s, 'm> Problem<'s, 'm> {
     /// `layout` is any global vector with the layout of the unknowns; `history` the committed
     /// history of this rank's elements.
-    pub fn new(session: &'s PetscSession, model: &'m Model, partition: &Partition, dofs: &DofMap, layout: &Vector<'s>, history: History) -> Result<Self> {
+    pub fn new(
+        session: &'s PetscSession,
+        model: &'m Model,
+        partition: &Partition,
+        dofs: &DofMap,
+        layout: &Vector<'s>,
+        history: History,
+        multipliers: Option<Multipliers>,
+    ) -> Result<Self> {
         let local = partition.local_elements();
         assert_eq!(history.len(), local.len(), "one history entry per local element");
         // Free DOFs this rank's elements touch, fetched by one scatter per evaluation.
@@ -123,22 +135,51 @@ impl<'s, 'm> Problem<'s, 'm> {
             .collect();
         let materials = model.materials.iter().map(material_kernel).collect();
         let trial = history.clone();
-        Ok(Problem { model, materials, elements, surface_edges, gathered, scatter, committed: history, trial, load: LoadState::default() })
+        let contact = ContactAssembly::new(session, model, partition, dofs, layout, multipliers)?;
+        Ok(Problem {
+            model,
+            materials,
+            elements,
+            surface_edges,
+            gathered,
+            scatter,
+            dof: dofs.dof.clone(),
+            committed: history,
+            trial,
+            contact,
+            load: LoadState::default(),
+        })
     }
 
-    /// Accepts the trial history of the last evaluation (call after a converged increment).
+    /// Accepts the trial history and contact multipliers of the last evaluation (call after a
+    /// converged increment).
     pub fn commit(&mut self) {
         self.committed.copy_from_slice(&self.trial);
+        if let Some(c) = self.contact.as_mut() {
+            c.commit();
+        }
     }
 
-    /// The committed history, to carry into the next step's problem.
-    pub fn into_history(self) -> History {
-        self.committed
+    /// Forgets what a failed attempt changed (contact multipliers; the trial history is
+    /// overwritten by the next evaluation anyway).
+    pub fn reset(&mut self) {
+        if let Some(c) = self.contact.as_mut() {
+            c.reset();
+        }
     }
 
-    /// Fetches the free DOFs of this rank's elements from the global vector `x`.
+    /// The committed history and multipliers, to carry into the next step's problem.
+    pub fn into_history(self) -> (History, Option<Multipliers>) {
+        (self.committed, self.contact.map(|c| c.into_multipliers()))
+    }
+
+    /// Fetches the free DOFs of this rank's elements (and the positions of all contact nodes)
+    /// from the global vector `x`.
     fn gather(&mut self, x: &impl VecOps) -> Result<Vec<f64>> {
         self.scatter.forward(x, &mut self.gathered)?;
+        if let Some(c) = self.contact.as_mut() {
+            c.gather(self.model, x, &self.load.prescribed)?;
+        }
         Ok(self.gathered.read()?.to_vec())
     }
 
@@ -176,31 +217,35 @@ impl<'s, 'm> Problem<'s, 'm> {
         }
     }
 
-    /// Evaluates f_int - f_ext at the gathered state: calls `sink(local element, element DOF,
+    /// Evaluates f_int - f_ext (+ contact) at the gathered state: calls `sink(node, component,
     /// value)` for every entry, stores the trial history, and hands each element's response to
     /// `on_element`.
-    fn residual_entries(
-        &mut self,
-        gathered: &[f64],
-        mut on_element: impl FnMut(usize, &SolidResponse),
-        mut sink: impl FnMut(&LocalElement, usize, f64),
-    ) -> Result<()> {
+    fn residual_entries(&mut self, gathered: &[f64], mut on_element: impl FnMut(usize, &SolidResponse), mut sink: impl FnMut(usize, usize, f64)) -> Result<()> {
         let mut us = Vec::with_capacity(self.elements.len());
         for k in 0..self.elements.len() {
             let u = self.displacements(&self.elements[k], gathered);
             let out = self.solid(k, &u, false)?;
             self.trial[k] = out.state;
             on_element(k, &out);
+            let conn = &self.model.mesh.elements[self.elements[k].element];
             for i in 0..DOFS {
-                sink(&self.elements[k], i, out.internal_force[i]);
+                sink(conn[i / 2], i % 2, out.internal_force[i]);
             }
             us.push(u);
         }
         for (k, local, p) in self.pressure_edges() {
             let f = compute_pressure_load(&self.edge_positions(k, &local, &us[k]), p);
+            let conn = &self.model.mesh.elements[self.elements[k].element];
             for (j, &a) in local.iter().enumerate() {
                 for c in 0..2 {
-                    sink(&self.elements[k], 2 * a + c, -f[j][c]);
+                    sink(conn[a], c, -f[j][c]);
+                }
+            }
+        }
+        if let Some(contact) = self.contact.as_mut() {
+            for e in contact.evaluate(self.model) {
+                for i in 0..6 {
+                    sink(e.nodes[i / 2], i % 2, e.residual[i]);
                 }
             }
         }
@@ -216,7 +261,6 @@ impl<'s, 'm> Problem<'s, 'm> {
         let mut plastic_strain = vec![[0.0; QUADRATURE_POINTS]; n];
         let mut nodal_force = vec![[0.0; 2]; self.model.mesh.coords.len()];
         let mut element_force_squares = 0.0;
-        let mesh = &self.model.mesh;
         self.residual_entries(
             &gathered,
             |k, out| {
@@ -224,7 +268,7 @@ impl<'s, 'm> Problem<'s, 'm> {
                 plastic_strain[k] = out.state.map(|s| s.ep);
                 element_force_squares += out.internal_force.norm_squared();
             },
-            |el, i, v| nodal_force[mesh.elements[el.element][i / 2]][i % 2] += v,
+            |node, c, v| nodal_force[node][c] += v,
         )?;
         Ok(ElementFields { stress, plastic_strain, nodal_force, element_force_squares })
     }
@@ -236,16 +280,19 @@ impl NonlinearProblem for Problem<'_, '_> {
         f.set_all(0.0)?;
         let mut rows: Vec<PetscInt> = Vec::with_capacity(DOFS * self.elements.len());
         let mut values: Vec<f64> = Vec::with_capacity(DOFS * self.elements.len());
-        self.residual_entries(
+        let dof = std::mem::take(&mut self.dof);
+        let result = self.residual_entries(
             &gathered,
             |_, _| {},
-            |el, i, v| {
-                if el.dofs[i] >= 0 {
-                    rows.push(el.dofs[i]);
+            |node, c, v| {
+                if dof[node][c] >= 0 {
+                    rows.push(dof[node][c]);
                     values.push(v);
                 }
             },
-        )?;
+        );
+        self.dof = dof;
+        result?;
         f.add_values(&rows, &values)?;
         f.assemble()
     }
@@ -270,6 +317,12 @@ impl NonlinearProblem for Problem<'_, '_> {
                 let dofs: [PetscInt; 6] = std::array::from_fn(|i| el.dofs[2 * local[i / 2] + i % 2]);
                 let values: Vec<f64> = kp.iter().flatten().map(|v| -v).collect();
                 jacobian.add_block(&dofs, &dofs, &values)?;
+            }
+        }
+        if let Some(contact) = self.contact.as_mut() {
+            for e in contact.evaluate(self.model) {
+                let dofs = contact.engagement_dofs(&e);
+                jacobian.add_block(&dofs, &dofs, e.tangent.transpose().as_slice())?;
             }
         }
         jacobian.assemble()

@@ -8,13 +8,15 @@
 //! the requested size. Below `min_increment` the run stops with every converged increment in
 //! the results file.
 
+use super::contact::contact_nodes;
 use super::problem::{initial_history, Problem};
 use super::schedule::StepLoads;
 use crate::dist::{DofMap, Partition};
 use crate::error::{Error, Result};
-use crate::io::{HistoryRow, ResultsFile};
+use crate::io::{ContactSummary, HistoryRow, ResultsFile};
 use crate::model::Model;
-use crate::petsc::{Matrix, PetscSession, Snes, VecOps, Vector};
+use crate::petsc::sys::MatOption_MAT_NEW_NONZERO_ALLOCATION_ERR;
+use crate::petsc::{Matrix, PetscSession, Snes, SolveReport, VecOps, Vector};
 use mpi::collective::SystemOperation;
 use mpi::datatype::PartitionMut;
 use mpi::traits::*;
@@ -52,6 +54,8 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
     }
     let mut displacement = vec![[0.0; 2]; nodes];
     let mut history = initial_history(model, &partition);
+    let mut multipliers = None;
+    let coupled = contact_nodes(model);
     // size of the element forces at the last converged state (0 at the start: rtol rules)
     let mut force_scale = 0.0;
     let mut rows = Vec::new();
@@ -61,9 +65,14 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
         let dofs = DofMap::new(&partition, &loads.prescribed_mask(nodes))?;
         let mut x = Vector::mpi(session, comm, dofs.local_len())?;
         let mut residual = x.duplicate()?;
-        let (diag, off) = dofs.preallocation(&model.mesh, &partition);
+        // Contact rows get room for 2 slave-side and ~10 master-side couplings (24 columns);
+        // should a coupling still not fit, PETSc allocates rather than fails.
+        let (diag, off) = dofs.preallocation(&model.mesh, &partition, &coupled, 24);
         let mut jacobian = Matrix::aij(session, comm, dofs.local_len(), &diag, &off)?;
-        let mut problem = Problem::new(session, model, &partition, &dofs, &x, history)?;
+        if !coupled.is_empty() {
+            jacobian.set_option(MatOption_MAT_NEW_NONZERO_ALLOCATION_ERR, false)?;
+        }
+        let mut problem = Problem::new(session, model, &partition, &dofs, &x, history, multipliers)?;
         let mut snes = Snes::new(session, comm)?;
 
         let requested = 1.0 / step.increments as f64;
@@ -79,8 +88,9 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
             // Abaqus' time-averaged force, the element force size of the last converged state
             // sets it. -snes_rtol / -snes_atol override both.
             snes.set_tolerances(Some(1e-10 * force_scale), Some(1e-10), Some(controls.max_newton_iterations))?;
-            let report = snes.solve(&mut problem, &mut x, &mut residual, &mut jacobian)?;
+            let (report, augmentations) = solve_increment(&world, model, &mut snes, &mut problem, &mut x, &mut residual, &mut jacobian)?;
             if !report.converged() {
+                problem.reset();
                 cutbacks += 1;
                 size = (target - lambda) * controls.cutback_factor;
                 if root && options.progress {
@@ -125,6 +135,7 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
             let local_max_ep = fields.plastic_strain.iter().flatten().fold(0.0f64, |m, &v| m.max(v));
             let mut max_ep = 0.0;
             world.all_reduce_into(&local_max_ep, &mut max_ep, SystemOperation::max());
+            let contacts = contact_summaries(&world, model, &problem);
             let reactions = loads
                 .constrained_sets
                 .iter()
@@ -140,11 +151,14 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
                 residual_norm: report.residual_norms.last().copied().unwrap_or(f64::NAN),
                 residual_norms: report.residual_norms.clone(),
                 cutbacks,
+                augmentations,
                 max_plastic_strain: max_ep,
+                contacts,
                 wall_time: start.elapsed().as_secs_f64(),
                 reactions,
             };
-            results.write_increment(&step.name, &row, &owned, &fields.stress, &fields.plastic_strain)?;
+            let contact_output = problem.contact.as_ref().map(|c| c.pass_outputs()).unwrap_or_default();
+            results.write_increment(&step.name, &row, &owned, &fields.stress, &fields.plastic_strain, &contact_output, &partition)?;
             if root && options.progress {
                 println!("{}", progress_line(&step.name, s, model.steps.len(), &row));
             }
@@ -156,10 +170,65 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
                 size = done;
             }
         }
-        history = problem.into_history();
+        (history, multipliers) = problem.into_history();
         previous = Some(loads);
     }
     Ok(RunSummary { history: rows, wall_time: start.elapsed().as_secs_f64(), ranks: partition.size, displacement })
+}
+
+/// One attempt at an increment: a Newton solve and, for augmented-Lagrangian pairs, Uzawa
+/// updates of the contact pressures followed by further solves until the penetration is
+/// within tolerance (or the pair's update budget is spent). Returns the last solve's report
+/// with the Newton and linear iterations of all solves, and the number of updates.
+#[allow(clippy::too_many_arguments)]
+fn solve_increment(
+    world: &impl Communicator,
+    model: &Model,
+    snes: &mut Snes<'_>,
+    problem: &mut Problem<'_, '_>,
+    x: &mut Vector<'_>,
+    residual: &mut Vector<'_>,
+    jacobian: &mut Matrix<'_>,
+) -> Result<(SolveReport, usize)> {
+    let mut report = snes.solve(problem, x, residual, jacobian)?;
+    let budget = model.contacts.iter().filter_map(|c| c.augmented_lagrangian).map(|a| a.max_augmentations).max().unwrap_or(0);
+    let mut augmentations = 0;
+    while report.converged() && augmentations < budget {
+        problem.evaluate_fields(x)?; // contact states at the converged iterate
+        let contact = problem.contact.as_mut().expect("augmented pairs imply contact");
+        let local = contact.needs_augmentation(model) as i32;
+        let mut global = 0;
+        world.all_reduce_into(&local, &mut global, SystemOperation::max());
+        if global == 0 {
+            break;
+        }
+        contact.augment(model);
+        augmentations += 1;
+        let next = snes.solve(problem, x, residual, jacobian)?;
+        report = SolveReport {
+            newton_iterations: report.newton_iterations + next.newton_iterations,
+            linear_iterations: report.linear_iterations + next.linear_iterations,
+            ..next
+        };
+    }
+    Ok((report, augmentations))
+}
+
+/// Per pair, over all ranks: active slave nodes, largest penetration, total normal force.
+fn contact_summaries(world: &impl Communicator, model: &Model, problem: &Problem<'_, '_>) -> Vec<ContactSummary> {
+    let Some(contact) = problem.contact.as_ref() else { return Vec::new() };
+    contact
+        .pair_summaries(model)
+        .into_iter()
+        .zip(&model.contacts)
+        .map(|((active, penetration, force), pair)| {
+            let (mut a, mut p, mut f) = (0.0, 0.0, 0.0);
+            world.all_reduce_into(&active, &mut a, SystemOperation::sum());
+            world.all_reduce_into(&penetration, &mut p, SystemOperation::max());
+            world.all_reduce_into(&force, &mut f, SystemOperation::sum());
+            ContactSummary { name: pair.name.clone(), active_nodes: a as usize, max_penetration: p, normal_force: f }
+        })
+        .collect()
 }
 
 /// Puts the current displacement of this rank's free DOFs into `x` (the initial guess).
@@ -215,6 +284,12 @@ fn progress_line(name: &str, s: usize, steps: usize, row: &HistoryRow) -> String
     );
     for (set, f) in &row.reactions {
         line.push_str(&format!("  {set}: Fr {:.4e} Fz {:.4e} N/rad", f[0], f[1]));
+    }
+    for c in &row.contacts {
+        line.push_str(&format!("  {}: {} active, pen {:.2e} mm", c.name, c.active_nodes, c.max_penetration));
+    }
+    if row.augmentations > 0 {
+        line.push_str(&format!("  AL x{}", row.augmentations));
     }
     line
 }

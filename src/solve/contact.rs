@@ -1,0 +1,296 @@
+//! Contact in the parallel problem. Contact surfaces are small: every rank gathers the
+//! current coordinates of all their nodes at each evaluation (one scatter), rebuilds the
+//! search grid, and evaluates the slave nodes it owns; the contributions are assembled with
+//! the elements (off-rank rows through PETSc's stash).
+//!
+//! A pair is one pass (its slave nodes against its master segments) or, two-pass, also the
+//! reverse pass; each pass of a two-pass pair carries half of the penalty force, so the
+//! pressure at a slave node, p = max(0, lambda - eps g), is the contact pressure in both modes.
+
+use crate::contact::search::{closest_segment, SegmentGrid};
+use crate::contact::slideline::{residual_and_tangent, ContactMatrix, ContactVector};
+use crate::contact::surface::ContactSurface;
+use crate::dist::{DofMap, Partition};
+use crate::error::Result;
+use crate::model::{Model, Penalty};
+use crate::petsc::sys::PetscInt;
+use crate::petsc::{PetscSession, Scatter, VecOps, Vector};
+
+/// Mesh nodes of every contact surface of the model (sorted): the rows contact may couple.
+pub fn contact_nodes(model: &Model) -> Vec<usize> {
+    let mut nodes: Vec<usize> = model.contacts.iter().flat_map(|c| [&c.slave, &c.master]).flat_map(|s| model.surfaces[s].iter().flat_map(|&e| model.mesh.edge_nodes(e))).collect();
+    nodes.sort_unstable();
+    nodes.dedup();
+    nodes
+}
+
+/// One direction of a pair: slave nodes of one surface against the segments of another.
+struct Pass {
+    pair: usize,
+    slave: usize,
+    master: usize,
+    weight: f64,
+    /// Indices (into the slave surface's nodes) of the slave nodes this rank owns, in
+    /// partition order.
+    owned: Vec<usize>,
+    /// Position of this rank's first owned slave node among all the pass's slave nodes.
+    offset: usize,
+    /// Number of slave nodes of the pass over all ranks.
+    total: usize,
+}
+
+/// A slave node in contact with a master segment, as evaluated.
+pub struct Engagement {
+    /// Mesh nodes [slave, master 1, master 2].
+    pub nodes: [usize; 3],
+    pub residual: ContactVector,
+    pub tangent: ContactMatrix,
+}
+
+/// State of one owned slave node after an evaluation.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct SlaveState {
+    /// Normal gap (mm), NaN when no master segment is within the capture distance.
+    pub gap: f64,
+    /// Contact pressure (MPa).
+    pub pressure: f64,
+    /// Normal force per radian on the slave node (this pass's share).
+    pub force: f64,
+}
+
+/// Multipliers (augmented Lagrangian) of every owned slave node, per pass.
+pub type Multipliers = Vec<Vec<f64>>;
+
+pub struct ContactAssembly<'s> {
+    surfaces: Vec<ContactSurface>,
+    passes: Vec<Pass>,
+    /// Mesh node -> index into `nodes`, usize::MAX when not a contact node.
+    slot: Vec<usize>,
+    nodes: Vec<usize>,
+    dofs: Vec<[PetscInt; 2]>,
+    /// For each contact node DOF, its position in `gathered` (usize::MAX when prescribed).
+    gathered_slot: Vec<[usize; 2]>,
+    gathered: Vector<'s>,
+    scatter: Scatter<'s>,
+    /// Current positions of the contact nodes (refreshed by `gather`).
+    positions: Vec<[f64; 2]>,
+    /// Multipliers of the last converged increment and the ones in use.
+    committed: Multipliers,
+    current: Multipliers,
+    /// Slave states of the last evaluation, per pass.
+    pub states: Vec<Vec<SlaveState>>,
+}
+
+impl<'s> ContactAssembly<'s> {
+    /// None when the model has no contact pairs.
+    pub fn new(session: &'s PetscSession, model: &Model, partition: &Partition, dofs: &DofMap, layout: &Vector<'s>, multipliers: Option<Multipliers>) -> Result<Option<Self>> {
+        if model.contacts.is_empty() {
+            return Ok(None);
+        }
+        let mut names: Vec<&str> = Vec::new();
+        for c in &model.contacts {
+            for s in [c.slave.as_str(), c.master.as_str()] {
+                if !names.contains(&s) {
+                    names.push(s);
+                }
+            }
+        }
+        let surfaces: Vec<ContactSurface> = names.iter().map(|n| ContactSurface::new(&model.mesh, &model.surfaces[*n])).collect();
+        let index = |n: &str| names.iter().position(|m| *m == n).expect("surface listed");
+        let mut passes = Vec::new();
+        for (k, c) in model.contacts.iter().enumerate() {
+            let (s, m) = (index(&c.slave), index(&c.master));
+            let mut directions = vec![(s, m)];
+            if c.two_pass && s != m {
+                directions.push((m, s));
+            }
+            let weight = 1.0 / directions.len() as f64;
+            for (slave, master) in directions {
+                let mut order: Vec<usize> = (0..surfaces[slave].nodes.len()).collect();
+                order.sort_by_key(|&i| partition.node_position[surfaces[slave].nodes[i]]);
+                let owner = |i: &usize| partition.node_owner[surfaces[slave].nodes[*i]];
+                let offset = order.iter().filter(|i| owner(i) < partition.rank).count();
+                let owned: Vec<usize> = order.iter().copied().filter(|i| owner(i) == partition.rank).collect();
+                passes.push(Pass { pair: k, slave, master, weight, owned, offset, total: order.len() });
+            }
+        }
+        let mut nodes: Vec<usize> = surfaces.iter().flat_map(|s| s.nodes.iter().copied()).collect();
+        nodes.sort_unstable();
+        nodes.dedup();
+        let mut slot = vec![usize::MAX; model.mesh.coords.len()];
+        for (k, &n) in nodes.iter().enumerate() {
+            slot[n] = k;
+        }
+        let node_dofs: Vec<[PetscInt; 2]> = nodes.iter().map(|&n| dofs.dof[n]).collect();
+        let mut needed: Vec<PetscInt> = node_dofs.iter().flatten().copied().filter(|&d| d >= 0).collect();
+        needed.sort_unstable();
+        needed.dedup();
+        let gathered = Vector::seq(session, needed.len())?;
+        let scatter = Scatter::gather(session, layout, &gathered, &needed)?;
+        let gathered_slot = node_dofs.iter().map(|d| d.map(|g| if g >= 0 { needed.binary_search(&g).expect("listed") } else { usize::MAX })).collect();
+        let committed = multipliers.unwrap_or_else(|| passes.iter().map(|p| vec![0.0; p.owned.len()]).collect());
+        let states = passes.iter().map(|p| vec![SlaveState::default(); p.owned.len()]).collect();
+        Ok(Some(ContactAssembly {
+            surfaces,
+            current: committed.clone(),
+            committed,
+            passes,
+            positions: nodes.iter().map(|&n| model.mesh.coords[n]).collect(),
+            slot,
+            nodes,
+            dofs: node_dofs,
+            gathered_slot,
+            gathered,
+            scatter,
+            states,
+        }))
+    }
+
+    /// Mesh nodes that may couple through contact (for preallocation).
+    pub fn nodes(&self) -> &[usize] {
+        &self.nodes
+    }
+
+    /// Refreshes the current positions of all contact nodes from `x` and the prescribed values.
+    pub fn gather(&mut self, model: &Model, x: &impl VecOps, prescribed: &[[f64; 2]]) -> Result<()> {
+        self.scatter.forward(x, &mut self.gathered)?;
+        let g = self.gathered.read()?;
+        for (k, &n) in self.nodes.iter().enumerate() {
+            let x0 = model.mesh.coords[n];
+            self.positions[k] = std::array::from_fn(|c| x0[c] + if self.gathered_slot[k][c] != usize::MAX { g[self.gathered_slot[k][c]] } else { prescribed[n][c] });
+        }
+        Ok(())
+    }
+
+    /// Evaluates every owned slave node at the gathered positions; records the slave states.
+    pub fn evaluate(&mut self, model: &Model) -> Vec<Engagement> {
+        let mut out = Vec::new();
+        let slot = &self.slot;
+        let positions = &self.positions;
+        let x = |n: usize| positions[slot[n]];
+        for (p, pass) in self.passes.iter().enumerate() {
+            let pair = &model.contacts[pass.pair];
+            let (slave, master) = (&self.surfaces[pass.slave], &self.surfaces[pass.master]);
+            let capture = pair.capture_distance;
+            let grid = SegmentGrid::new(master, &x, capture);
+            for (k, &i) in pass.owned.iter().enumerate() {
+                let node = slave.nodes[i];
+                let xs = x(node);
+                let excluded = if pass.slave == pass.master { master.neighbourhood(node, pair.exclude_neighbours) } else { Vec::new() };
+                let found = closest_segment(master, &x, xs, grid.candidates(xs), &excluded, capture).filter(|(_, proj)| {
+                    // Surfaces in contact face each other: never the back of a thin master.
+                    let ns = slave.node_normal(node, x);
+                    ns[0] * proj.normal[0] + ns[1] * proj.normal[1] < 0.0 && proj.gap > -capture
+                });
+                let Some((seg, proj)) = found else {
+                    self.states[p][k] = SlaveState { gap: f64::NAN, pressure: 0.0, force: 0.0 };
+                    continue;
+                };
+                let eps = match pair.penalty {
+                    Penalty::Stiffness(v) => v,
+                    Penalty::Factor(kappa) => kappa * model.materials[model.element_material[master.element[seg]]].youngs_modulus / master.edge_length[seg],
+                };
+                let area = slave.areas[i] * pass.weight;
+                let (residual, tangent, pressure) = residual_and_tangent(&proj, area, eps, self.current[p][k]);
+                self.states[p][k] = SlaveState { gap: proj.gap, pressure, force: pressure * area };
+                if self.current[p][k] - eps * proj.gap >= 0.0 {
+                    let [m1, m2] = master.segments[seg];
+                    out.push(Engagement { nodes: [node, m1, m2], residual, tangent });
+                }
+            }
+        }
+        out
+    }
+
+    /// Global DOFs of an engagement's six entries (-1 where prescribed).
+    pub fn engagement_dofs(&self, e: &Engagement) -> [PetscInt; 6] {
+        std::array::from_fn(|i| self.dofs[self.slot[e.nodes[i / 2]]][i % 2])
+    }
+
+    /// Uzawa update of the augmented-Lagrangian pairs from the last evaluation:
+    /// lambda <- max(0, lambda - eps g), the current pressure.
+    pub fn augment(&mut self, model: &Model) {
+        for (p, pass) in self.passes.iter().enumerate() {
+            if model.contacts[pass.pair].augmented_lagrangian.is_some() {
+                for (k, s) in self.states[p].iter().enumerate() {
+                    self.current[p][k] = s.pressure;
+                }
+            }
+        }
+    }
+
+    /// Whether an augmented-Lagrangian pair still penetrates beyond its tolerance at one of
+    /// this rank's slave nodes (at the last evaluation).
+    pub fn needs_augmentation(&self, model: &Model) -> bool {
+        self.passes.iter().enumerate().any(|(p, pass)| match model.contacts[pass.pair].augmented_lagrangian {
+            Some(al) => self.states[p].iter().any(|s| s.pressure > 0.0 && -s.gap > al.penetration_tolerance),
+            None => false,
+        })
+    }
+
+    /// Accepts the multipliers in use (after a converged increment).
+    pub fn commit(&mut self) {
+        self.committed.clone_from(&self.current);
+    }
+
+    /// Drops multiplier updates of a failed attempt.
+    pub fn reset(&mut self) {
+        self.current.clone_from(&self.committed);
+    }
+
+    pub fn into_multipliers(self) -> Multipliers {
+        self.committed
+    }
+
+    /// Per pair: (active slave nodes, largest penetration, total normal force per radian)
+    /// over this rank's slave nodes.
+    pub fn pair_summaries(&self, model: &Model) -> Vec<(f64, f64, f64)> {
+        let mut out = vec![(0.0, 0.0, 0.0); model.contacts.len()];
+        for (p, pass) in self.passes.iter().enumerate() {
+            let o = &mut out[pass.pair];
+            for s in &self.states[p] {
+                if s.pressure > 0.0 {
+                    o.0 += 1.0;
+                    o.1 = f64::max(o.1, -s.gap);
+                    o.2 += s.force;
+                }
+            }
+        }
+        out
+    }
+
+    /// For output: per pass (pair index, pass number within the pair, slab offset, total,
+    /// owned slave mesh nodes, their areas, states).
+    pub fn pass_outputs(&self) -> Vec<PassOutput<'_>> {
+        let mut number = vec![0usize; self.passes.iter().map(|p| p.pair + 1).max().unwrap_or(0)];
+        self.passes
+            .iter()
+            .enumerate()
+            .map(|(p, pass)| {
+                let slave = &self.surfaces[pass.slave];
+                let n = number[pass.pair];
+                number[pass.pair] += 1;
+                PassOutput {
+                    pair: pass.pair,
+                    pass: n,
+                    offset: pass.offset,
+                    total: pass.total,
+                    nodes: pass.owned.iter().map(|&i| slave.nodes[i]).collect(),
+                    areas: pass.owned.iter().map(|&i| slave.areas[i] * pass.weight).collect(),
+                    states: &self.states[p],
+                }
+            })
+            .collect()
+    }
+}
+
+/// This rank's slab of one pass, for the results file.
+pub struct PassOutput<'a> {
+    pub pair: usize,
+    pub pass: usize,
+    pub offset: usize,
+    pub total: usize,
+    pub nodes: Vec<usize>,
+    pub areas: Vec<f64>,
+    pub states: &'a [SlaveState],
+}
