@@ -10,6 +10,7 @@ pub mod petsc;
 
 pub use error::{Error, Result};
 pub mod ad;
+pub mod contact;
 pub mod dist;
 pub mod element;
 pub mod fe;
@@ -17,4 +18,3 @@ pub mod io;
 pub mod material;
 pub mod model;
 pub mod solve;
-pub mod contact;

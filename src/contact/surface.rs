@@ -1,14 +1,12 @@
-//! Contact surfaces: a model surface (quadratic element edges) seen as a polyline of straight
-//! segments through all its nodes, each edge giving two segments (start -> middle -> end) in
-//! the owning element's counter-clockwise direction, so every segment's outward normal is its
-//! tangent turned clockwise.
+//! Contact surfaces: a model surface (3-node element edges), its nodes with their consistent
+//! axisymmetric tributary areas, its edges (oriented counter-clockwise around their element,
+//! so the outward normal is the tangent turned clockwise) and their neighbours.
 //!
-//! Each node carries its consistent axisymmetric tributary area per radian,
-//! A_a = sum over its edges of integral N_a r ds (quadratic edge shape functions, reference
+//! Tributary area per radian, A_a = sum over the node's edges of integral N_a r ds (reference
 //! configuration): the nodal force of a unit pressure. Near the axis this is what makes the
 //! contact force right: r_a times half the adjacent lengths would be zero at r = 0 and wrong
-//! next to it. (A corner node on the axis does get zero area: the integral of N_a r vanishes
-//! there, as it does for a pressure load.)
+//! next to it. (A corner node on the axis gets zero area: the integral of N_a r vanishes
+//! there, as it does for a pressure load; its pressure comes from the traction recovery.)
 
 use crate::fe::quadrature::GAUSS3;
 use crate::fe::shape::line3;
@@ -18,16 +16,22 @@ use crate::model::{Edge, Mesh};
 pub struct ContactSurface {
     /// Mesh nodes of the surface, sorted.
     pub nodes: Vec<usize>,
-    /// Tributary area per radian of each node (same order as `nodes`).
+    /// Tributary area per radian of each node (same order as `nodes`): integral N_a r ds.
     pub areas: Vec<f64>,
-    /// Segments as (start, end) mesh nodes, counter-clockwise around their element.
-    pub segments: Vec<[usize; 2]>,
-    /// Length of the element edge each segment belongs to (the master element size h).
+    /// Integral psi_a r ds of the piecewise-linear hat psi_a on the polyline through the
+    /// nodes: positive at every node, the axis included (the weights of segment integration).
+    pub hat_areas: Vec<f64>,
+    /// Edges as (start, end, middle) mesh nodes, counter-clockwise around their element.
+    pub edges: Vec<[usize; 3]>,
+    /// Reference length of each edge (the master element size h).
     pub edge_length: Vec<f64>,
-    /// Element each segment belongs to.
+    /// Element each edge belongs to.
     pub element: Vec<usize>,
-    /// For each segment, the segments sharing its start and its end node (None at a chain end).
+    /// For each edge, the edges continuing it at its start and its end (None at a chain end).
     pub neighbours: Vec<[Option<usize>; 2]>,
+    /// Consistent "mass" matrix M_ij = integral N_i N_j r ds as (i, j, value) triplets over
+    /// `nodes` indices, for the traction recovery.
+    mass: Vec<(usize, usize, f64)>,
 }
 
 impl ContactSurface {
@@ -35,39 +39,63 @@ impl ContactSurface {
         let mut nodes: Vec<usize> = edges.iter().flat_map(|&e| mesh.edge_nodes(e)).collect();
         nodes.sort_unstable();
         nodes.dedup();
+        let index = |n: usize| nodes.binary_search(&n).expect("edge node is a surface node");
         let mut areas = vec![0.0; nodes.len()];
-        let mut segments = Vec::with_capacity(2 * edges.len());
-        let mut edge_length = Vec::with_capacity(2 * edges.len());
-        let mut element = Vec::with_capacity(2 * edges.len());
+        let mut hat_areas = vec![0.0; nodes.len()];
+        let mut mass = Vec::new();
+        let mut list = Vec::with_capacity(edges.len());
+        let mut edge_length = Vec::with_capacity(edges.len());
+        let mut element = Vec::with_capacity(edges.len());
         for &edge in edges {
-            let [start, end, mid] = mesh.edge_nodes(edge);
-            let x = [start, end, mid].map(|n| mesh.coords[n]);
+            let en = mesh.edge_nodes(edge);
+            let x = en.map(|n| mesh.coords[n]);
+            let k = en.map(index);
             let mut length = 0.0;
+            let mut m = [[0.0; 3]; 3];
             for &(s, w) in &GAUSS3 {
                 let (n, dn) = line3(s);
                 let r: f64 = (0..3).map(|a| n[a] * x[a][0]).sum();
                 let t = [0, 1].map(|i| (0..3).map(|a| dn[a] * x[a][i]).sum::<f64>());
                 let jac = t[0].hypot(t[1]);
                 length += w * jac;
-                for (a, node) in [start, end, mid].iter().enumerate() {
-                    let k = nodes.binary_search(node).expect("edge node is a surface node");
-                    areas[k] += w * n[a] * r * jac;
+                for a in 0..3 {
+                    areas[k[a]] += w * n[a] * r * jac;
+                    for b in 0..3 {
+                        m[a][b] += w * n[a] * n[b] * r * jac;
+                    }
                 }
             }
-            for seg in [[start, mid], [mid, end]] {
-                segments.push(seg);
-                edge_length.push(length);
-                element.push(edge.element);
+            for a in 0..3 {
+                for b in 0..3 {
+                    mass.push((k[a], k[b], m[a][b]));
+                }
             }
+            // hats: integrate each half of the edge separately (they kink at the middle)
+            for (lo, hi) in [(-1.0, 0.0), (0.0, 1.0)] {
+                for &(s, w) in &GAUSS3 {
+                    let xi = 0.5 * (lo + hi) + 0.5 * (hi - lo) * s;
+                    let (n, dn) = line3(xi);
+                    let r: f64 = (0..3).map(|a| n[a] * x[a][0]).sum();
+                    let t = [0, 1].map(|i| (0..3).map(|a| dn[a] * x[a][i]).sum::<f64>());
+                    let ds = w * 0.5 * (hi - lo) * t[0].hypot(t[1]);
+                    let psi = hats(xi);
+                    for a in 0..3 {
+                        hat_areas[k[a]] += psi[a] * r * ds;
+                    }
+                }
+            }
+            list.push(en);
+            edge_length.push(length);
+            element.push(edge.element);
         }
-        let neighbours = (0..segments.len())
-            .map(|s| {
-                let [a, b] = segments[s];
-                let find = |node: usize, end: usize| (0..segments.len()).find(|&o| o != s && segments[o][end] == node);
-                [find(a, 1), find(b, 0)]
+        let neighbours = (0..list.len())
+            .map(|e| {
+                let [start, end, _] = list[e];
+                let find = |node: usize, at: usize| (0..list.len()).find(|&o| o != e && list[o][at] == node);
+                [find(start, 1), find(end, 0)]
             })
             .collect();
-        ContactSurface { nodes, areas, segments, edge_length, element, neighbours }
+        ContactSurface { nodes, areas, hat_areas, edges: list, edge_length, element, neighbours, mass }
     }
 
     /// Index of mesh node `node` in `nodes`.
@@ -75,12 +103,12 @@ impl ContactSurface {
         self.nodes.binary_search(&node).ok()
     }
 
-    /// Segments within `hops` segments of `node` along the surface (for self-contact: a node
-    /// never contacts its own neighbourhood).
+    /// Edges within `hops` edges of `node` along the surface (self-contact: a node never
+    /// bears on its own neighbourhood).
     pub fn neighbourhood(&self, node: usize, hops: usize) -> Vec<usize> {
-        let mut near: Vec<usize> = (0..self.segments.len()).filter(|&s| self.segments[s].contains(&node)).collect();
+        let mut near: Vec<usize> = (0..self.edges.len()).filter(|&e| self.edges[e].contains(&node)).collect();
         for _ in 1..hops {
-            let grown: Vec<usize> = near.iter().flat_map(|&s| self.neighbours[s].iter().flatten().copied()).collect();
+            let grown: Vec<usize> = near.iter().flat_map(|&e| self.neighbours[e].iter().flatten().copied()).collect();
             near.extend(grown);
             near.sort_unstable();
             near.dedup();
@@ -88,18 +116,76 @@ impl ContactSurface {
         near
     }
 
-    /// Outward normal at surface node `k` (average of its segments' normals) for positions `x`.
+    /// Outward unit normal at mesh node `node` (average over its edges) for positions `x`.
     pub fn node_normal(&self, node: usize, x: impl Fn(usize) -> [f64; 2]) -> [f64; 2] {
         let mut n = [0.0; 2];
-        for seg in self.segments.iter().filter(|s| s.contains(&node)) {
-            let (a, b) = (x(seg[0]), x(seg[1]));
-            let d = [b[0] - a[0], b[1] - a[1]];
-            let l = d[0].hypot(d[1]).max(f64::MIN_POSITIVE);
-            n[0] += d[1] / l;
-            n[1] -= d[0] / l;
+        for e in self.edges.iter().filter(|e| e.contains(&node)) {
+            let xi = [-1.0, 1.0, 0.0][e.iter().position(|&m| m == node).expect("contains")];
+            let (_, dn) = line3(xi);
+            let t = [0, 1].map(|i| (0..3).map(|a| dn[a] * x(e[a])[i]).sum::<f64>());
+            let l = t[0].hypot(t[1]).max(f64::MIN_POSITIVE);
+            n[0] += t[1] / l;
+            n[1] -= t[0] / l;
         }
         let l = n[0].hypot(n[1]).max(f64::MIN_POSITIVE);
         [n[0] / l, n[1] / l]
+    }
+
+    /// Consistent traction recovery: the nodal pressures p whose consistent nodal forces
+    /// (integral N_i p r ds) are `forces`, i.e. M p = f (Jacobi-preconditioned conjugate
+    /// gradients; M is symmetric positive definite). Exact for a uniform traction, and
+    /// defined at a corner node on the axis, whose tributary area is zero.
+    pub fn recover_pressure(&self, forces: &[f64]) -> Vec<f64> {
+        let n = self.nodes.len();
+        let apply = |v: &[f64]| {
+            let mut out = vec![0.0; n];
+            for &(i, j, m) in &self.mass {
+                out[i] += m * v[j];
+            }
+            out
+        };
+        let mut diag = vec![0.0; n];
+        for &(i, j, m) in &self.mass {
+            if i == j {
+                diag[i] += m;
+            }
+        }
+        let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>();
+        let mut p = vec![0.0; n];
+        let mut r = forces.to_vec();
+        let mut z: Vec<f64> = r.iter().zip(&diag).map(|(r, d)| r / d).collect();
+        let mut d = z.clone();
+        let mut rz = dot(&r, &z);
+        let target = 1e-28 * dot(forces, forces).max(f64::MIN_POSITIVE);
+        for _ in 0..10 * n.max(10) {
+            if dot(&r, &r) <= target {
+                break;
+            }
+            let md = apply(&d);
+            let alpha = rz / dot(&d, &md);
+            for i in 0..n {
+                p[i] += alpha * d[i];
+                r[i] -= alpha * md[i];
+                z[i] = r[i] / diag[i];
+            }
+            let rz_next = dot(&r, &z);
+            let beta = rz_next / rz;
+            rz = rz_next;
+            for i in 0..n {
+                d[i] = z[i] + beta * d[i];
+            }
+        }
+        p
+    }
+}
+
+/// Piecewise-linear hats of an edge's (start, end, middle) nodes at edge coordinate `xi`:
+/// positive, summing to one, kinked at the middle node.
+pub fn hats(xi: f64) -> [f64; 3] {
+    if xi <= 0.0 {
+        [-xi, 0.0, 1.0 + xi]
+    } else {
+        [0.0, xi, 1.0 - xi]
     }
 }
 
@@ -115,23 +201,32 @@ mod tests {
         let s = ContactSurface::new(&mesh, &sets.surfaces["top"]);
         let total: f64 = s.areas.iter().sum();
         assert!((total - 50.0).abs() < 1e-12, "{total}");
-        assert_eq!(s.segments.len(), 10);
+        assert_eq!(s.edges.len(), 5);
         // the axis node: integral of N r over [0, 2] for the corner node at r = 0 is 0
-        let axis = s.nodes.iter().position(|&n| mesh.coords[n][0] == 0.0).unwrap();
-        assert!(s.areas[axis].abs() < 1e-12);
+        let at = |r: f64| s.nodes.iter().position(|&n| mesh.coords[n][0] == r).unwrap();
+        assert!(s.areas[at(0.0)].abs() < 1e-12);
         // mid-side node of the first edge (r = 1): integral (1 - xi^2) r ds = h^2 / 3 = 4/3
-        let mid = s.nodes.iter().position(|&n| mesh.coords[n][0] == 1.0).unwrap();
-        assert!((s.areas[mid] - 4.0 / 3.0).abs() < 1e-12);
-        // a uniform pressure p on these areas gives p * area, like the pressure load
-        let far = s.nodes.iter().position(|&n| mesh.coords[n][0] == 6.0).unwrap();
-        assert!((s.areas[far] - (2.0 * 6.0 * 2.0 / 6.0)).abs() < 1e-12, "{}", s.areas[far]);
+        assert!((s.areas[at(1.0)] - 4.0 / 3.0).abs() < 1e-12);
+        // an interior corner (r = 6): h r / 3 = 4
+        assert!((s.areas[at(6.0)] - 4.0).abs() < 1e-12, "{}", s.areas[at(6.0)]);
+        // hats: the axis node gets (h/2)^2 / 6 > 0; the total is unchanged
+        assert!((s.hat_areas[at(0.0)] - 1.0 / 6.0).abs() < 1e-12, "{}", s.hat_areas[at(0.0)]);
+        assert!((s.hat_areas.iter().sum::<f64>() - 50.0).abs() < 1e-12);
     }
 
     #[test]
-    fn segments_are_chained_and_oriented_outward() {
+    fn traction_recovery_is_exact_for_uniform_pressure_including_the_axis_node() {
+        let (mesh, sets) = rectangle([0.0, 10.0], [0.0, 1.0], [5, 1]).unwrap();
+        let s = ContactSurface::new(&mesh, &sets.surfaces["top"]);
+        let forces: Vec<f64> = s.areas.iter().map(|a| 7.5 * a).collect();
+        let p = s.recover_pressure(&forces);
+        assert!(p.iter().all(|v| (v - 7.5).abs() < 1e-9), "{p:?}");
+    }
+
+    #[test]
+    fn edges_are_chained_and_oriented_outward() {
         let (mesh, sets) = rectangle([1.0, 3.0], [0.0, 1.0], [2, 1]).unwrap();
         let s = ContactSurface::new(&mesh, &sets.surfaces["top"]);
-        // top surface runs towards -r: outward normal +z
         let x = |n: usize| mesh.coords[n];
         for &node in &s.nodes {
             let n = s.node_normal(node, x);
@@ -139,6 +234,7 @@ mod tests {
         }
         let ends = s.neighbours.iter().filter(|nb| nb.iter().any(|o| o.is_none())).count();
         assert_eq!(ends, 2, "one chain has two ends");
-        assert_eq!(s.neighbourhood(s.segments[0][1], 1).len(), 2);
+        // the top face runs towards -r: edge 0 starts at the corner it shares with edge 1
+        assert_eq!(s.neighbourhood(s.edges[0][0], 1).len(), 2);
     }
 }

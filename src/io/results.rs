@@ -15,7 +15,9 @@
 //!     equivalent_plastic_strain      (elements, 9)
 //!     equivalent_plastic_strain_max  (elements)    element maximum (for cell plots)
 //!     residual_norms     (iterations + 1)  ||F|| at each Newton iterate
-//!     contact/PAIR/passK/{gap, pressure, active}   per slave node of the pass (mm, MPa, 0/1)
+//!     contact/PAIR/passK/{gap, pressure, traction, active}   per slave node of the pass:
+//!                        gap (mm), constitutive pressure max(0, lambda - eps g) (MPa), traction
+//!                        recovered from the total contact forces (MPa), active flag (0/1)
 //! /mesh/contact/PAIR/passK/{nodes, areas}         slave node rows and tributary areas
 //! /history/COLUMN        one row per converged increment (see HistoryRow)
 //! ```
@@ -25,12 +27,12 @@
 
 use super::xdmf;
 use crate::dist::Partition;
-use crate::solve::contact::PassOutput;
 use crate::element::solid::QUADRATURE_POINTS;
 use crate::error::{Error, Result};
 use crate::fe::axisymmetric::von_mises;
 use crate::model::Model;
 use crate::petsc::PetscSession;
+use crate::solve::contact::PassOutput;
 use hdf5::types::VarLenUnicode;
 use mpi::traits::AsRaw;
 use ndarray::{ArrayView1, ArrayView2, ArrayView3};
@@ -141,7 +143,17 @@ impl ResultsFile {
         file.create_group("increments").map_err(&err)?;
         file.create_group("history").map_err(&err)?;
         file.flush().map_err(&err)?;
-        Ok(ResultsFile { file, path: path.to_path_buf(), rank, nodes: nn, elements: ne, node_slab, element_slab, increments: Vec::new(), contact_mesh_written: false })
+        Ok(ResultsFile {
+            file,
+            path: path.to_path_buf(),
+            rank,
+            nodes: nn,
+            elements: ne,
+            node_slab,
+            element_slab,
+            increments: Vec::new(),
+            contact_mesh_written: false,
+        })
     }
 
     pub fn path(&self) -> &Path {
@@ -231,6 +243,8 @@ impl ResultsFile {
             let gap: Vec<f64> = p.states.iter().map(|s| s.gap).collect();
             let pressure: Vec<f64> = p.states.iter().map(|s| s.pressure).collect();
             let active: Vec<u8> = p.states.iter().map(|s| u8::from(s.pressure > 0.0)).collect();
+            let traction: Vec<f64> = p.states.iter().map(|s| s.traction).collect();
+            write_rows(&pg, "traction", &[p.total], slab, &traction, &self.path)?;
             write_rows(&pg, "gap", &[p.total], slab, &gap, &self.path)?;
             write_rows(&pg, "pressure", &[p.total], slab, &pressure, &self.path)?;
             write_rows(&pg, "active", &[p.total], slab, &active, &self.path)?;

@@ -39,6 +39,8 @@
 //! slave = "inner_tube_outside"      # surfaces (physical curves); slave == master: self-contact
 //! master = "outer_tube_bore"
 //! two_pass = false                  # true: symmetric, each surface also slave of the other
+//! integration = "segment"           # gap integrated along the slave surface (default), or
+//!                                   # "node-to-segment": the paper's nodal slide line
 //! penalty = 1.0e5                   # N/mm^3 (MPa per mm of penetration); or instead
 //! # penalty_factor = 10.0           # kappa: eps = kappa E / h (master E and edge length h)
 //! capture_distance = 1.0            # mm (default: twice the longest master edge)
@@ -54,7 +56,10 @@
 //! ```
 
 use super::mesh::{blocks, rectangle, Block, MeshSets};
-use super::{gmsh, AugmentedLagrangian, Component, ContactPair, Kinematics, Material, Model, Penalty, Plasticity, PrescribedDisplacement, Pressure, Step, SteppingControls};
+use super::{
+    gmsh, AugmentedLagrangian, Component, ContactIntegration, ContactPair, Kinematics, Material, Model, Penalty, Plasticity, PrescribedDisplacement, Pressure,
+    Step, SteppingControls,
+};
 use crate::error::{Error, Result};
 use serde::Deserialize;
 use std::path::{Path, PathBuf};
@@ -87,12 +92,22 @@ struct ContactSpec {
     master: String,
     #[serde(default)]
     two_pass: bool,
+    #[serde(default)]
+    integration: IntegrationSpec,
     penalty: Option<f64>,
     penalty_factor: Option<f64>,
     capture_distance: Option<f64>,
     augmented_lagrangian: Option<AugmentedSpec>,
     #[serde(default = "two")]
     exclude_neighbours: usize,
+}
+
+#[derive(Deserialize, Default, Clone, Copy)]
+#[serde(rename_all = "kebab-case")]
+enum IntegrationSpec {
+    #[default]
+    Segment,
+    NodeToSegment,
 }
 
 fn two() -> usize {
@@ -345,12 +360,19 @@ pub fn parse(text: &str, path: &Path) -> Result<Model> {
                 2.0 * edges.iter().map(|&e| edge_length(&mesh, e)).fold(0.0, f64::max)
             }
         };
-        let augmented_lagrangian = c.augmented_lagrangian.as_ref().map(|a| AugmentedLagrangian { penetration_tolerance: a.penetration_tolerance, max_augmentations: a.max_augmentations });
+        let augmented_lagrangian = c
+            .augmented_lagrangian
+            .as_ref()
+            .map(|a| AugmentedLagrangian { penetration_tolerance: a.penetration_tolerance, max_augmentations: a.max_augmentations });
         contacts.push(ContactPair {
             name,
             slave: c.slave.clone(),
             master: c.master.clone(),
             two_pass: c.two_pass,
+            integration: match c.integration {
+                IntegrationSpec::Segment => ContactIntegration::Segment,
+                IntegrationSpec::NodeToSegment => ContactIntegration::NodeToSegment,
+            },
             penalty,
             capture_distance,
             augmented_lagrangian,

@@ -58,6 +58,16 @@ pub enum Penalty {
     Factor(f64),
 }
 
+/// How a pair's constraint is collocated along the slave surface.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ContactIntegration {
+    /// The paper's slide line: the gap at each slave node (nodal collocation).
+    NodeToSegment,
+    /// The same pointwise gap integrated along the slave surface with each node's shape
+    /// function (passes the contact patch test between non-matching quadratic meshes).
+    Segment,
+}
+
 /// Uzawa augmented-Lagrangian iterations on a pair's contact pressures.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct AugmentedLagrangian {
@@ -75,6 +85,7 @@ pub struct ContactPair {
     pub slave: String,
     pub master: String,
     pub two_pass: bool,
+    pub integration: ContactIntegration,
     pub penalty: Penalty,
     /// Largest distance (mm) at which a slave node is matched to a master segment.
     pub capture_distance: f64,

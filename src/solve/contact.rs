@@ -7,18 +7,20 @@
 //! reverse pass; each pass of a two-pass pair carries half of the penalty force, so the
 //! pressure at a slave node, p = max(0, lambda - eps g), is the contact pressure in both modes.
 
-use crate::contact::search::{closest_segment, SegmentGrid};
-use crate::contact::slideline::{residual_and_tangent, ContactMatrix, ContactVector};
+use crate::contact::integrated::weighted_gaps;
+use crate::contact::node_to_edge::edge_residual_and_tangent;
+use crate::contact::search::{closest_edge, EdgeGrid};
 use crate::contact::surface::ContactSurface;
 use crate::dist::{DofMap, Partition};
 use crate::error::Result;
-use crate::model::{Model, Penalty};
+use crate::model::{ContactIntegration, ContactPair, Model, Penalty};
 use crate::petsc::sys::PetscInt;
 use crate::petsc::{PetscSession, Scatter, VecOps, Vector};
 
 /// Mesh nodes of every contact surface of the model (sorted): the rows contact may couple.
 pub fn contact_nodes(model: &Model) -> Vec<usize> {
-    let mut nodes: Vec<usize> = model.contacts.iter().flat_map(|c| [&c.slave, &c.master]).flat_map(|s| model.surfaces[s].iter().flat_map(|&e| model.mesh.edge_nodes(e))).collect();
+    let mut nodes: Vec<usize> =
+        model.contacts.iter().flat_map(|c| [&c.slave, &c.master]).flat_map(|s| model.surfaces[s].iter().flat_map(|&e| model.mesh.edge_nodes(e))).collect();
     nodes.sort_unstable();
     nodes.dedup();
     nodes
@@ -39,12 +41,14 @@ struct Pass {
     total: usize,
 }
 
-/// A slave node in contact with a master segment, as evaluated.
+/// The contribution of one active slave node: residual and tangent over `nodes`.
 pub struct Engagement {
-    /// Mesh nodes [slave, master 1, master 2].
-    pub nodes: [usize; 3],
-    pub residual: ContactVector,
-    pub tangent: ContactMatrix,
+    /// Mesh nodes the contribution couples (the slave node first).
+    pub nodes: Vec<usize>,
+    /// Two entries per node, (r, z).
+    pub residual: Vec<f64>,
+    /// Row-major, (2 nodes) x (2 nodes).
+    pub tangent: Vec<f64>,
 }
 
 /// State of one owned slave node after an evaluation.
@@ -56,6 +60,10 @@ pub struct SlaveState {
     pub pressure: f64,
     /// Normal force per radian on the slave node (this pass's share).
     pub force: f64,
+    /// Contact traction (MPa) recovered from the total contact forces on the slave surface
+    /// (both passes): the p with integral N_i p r ds = f_i.n_i at every node. Set after a
+    /// converged increment.
+    pub traction: f64,
 }
 
 /// Multipliers (augmented Lagrangian) of every owned slave node, per pass.
@@ -79,11 +87,20 @@ pub struct ContactAssembly<'s> {
     current: Multipliers,
     /// Slave states of the last evaluation, per pass.
     pub states: Vec<Vec<SlaveState>>,
+    /// Contact residual accumulated on every contact node by this rank's last evaluation.
+    nodal_forces: Vec<[f64; 2]>,
 }
 
 impl<'s> ContactAssembly<'s> {
     /// None when the model has no contact pairs.
-    pub fn new(session: &'s PetscSession, model: &Model, partition: &Partition, dofs: &DofMap, layout: &Vector<'s>, multipliers: Option<Multipliers>) -> Result<Option<Self>> {
+    pub fn new(
+        session: &'s PetscSession,
+        model: &Model,
+        partition: &Partition,
+        dofs: &DofMap,
+        layout: &Vector<'s>,
+        multipliers: Option<Multipliers>,
+    ) -> Result<Option<Self>> {
         if model.contacts.is_empty() {
             return Ok(None);
         }
@@ -143,6 +160,7 @@ impl<'s> ContactAssembly<'s> {
             gathered,
             scatter,
             states,
+            nodal_forces: Vec::new(),
         }))
     }
 
@@ -157,7 +175,8 @@ impl<'s> ContactAssembly<'s> {
         let g = self.gathered.read()?;
         for (k, &n) in self.nodes.iter().enumerate() {
             let x0 = model.mesh.coords[n];
-            self.positions[k] = std::array::from_fn(|c| x0[c] + if self.gathered_slot[k][c] != usize::MAX { g[self.gathered_slot[k][c]] } else { prescribed[n][c] });
+            self.positions[k] =
+                std::array::from_fn(|c| x0[c] + if self.gathered_slot[k][c] != usize::MAX { g[self.gathered_slot[k][c]] } else { prescribed[n][c] });
         }
         Ok(())
     }
@@ -165,46 +184,174 @@ impl<'s> ContactAssembly<'s> {
     /// Evaluates every owned slave node at the gathered positions; records the slave states.
     pub fn evaluate(&mut self, model: &Model) -> Vec<Engagement> {
         let mut out = Vec::new();
-        let slot = &self.slot;
-        let positions = &self.positions;
-        let x = |n: usize| positions[slot[n]];
-        for (p, pass) in self.passes.iter().enumerate() {
-            let pair = &model.contacts[pass.pair];
-            let (slave, master) = (&self.surfaces[pass.slave], &self.surfaces[pass.master]);
-            let capture = pair.capture_distance;
-            let grid = SegmentGrid::new(master, &x, capture);
-            for (k, &i) in pass.owned.iter().enumerate() {
-                let node = slave.nodes[i];
-                let xs = x(node);
-                let excluded = if pass.slave == pass.master { master.neighbourhood(node, pair.exclude_neighbours) } else { Vec::new() };
-                let found = closest_segment(master, &x, xs, grid.candidates(xs), &excluded, capture).filter(|(_, proj)| {
-                    // Surfaces in contact face each other: never the back of a thin master.
-                    let ns = slave.node_normal(node, x);
-                    ns[0] * proj.normal[0] + ns[1] * proj.normal[1] < 0.0 && proj.gap > -capture
-                });
-                let Some((seg, proj)) = found else {
-                    self.states[p][k] = SlaveState { gap: f64::NAN, pressure: 0.0, force: 0.0 };
-                    continue;
-                };
-                let eps = match pair.penalty {
-                    Penalty::Stiffness(v) => v,
-                    Penalty::Factor(kappa) => kappa * model.materials[model.element_material[master.element[seg]]].youngs_modulus / master.edge_length[seg],
-                };
-                let area = slave.areas[i] * pass.weight;
-                let (residual, tangent, pressure) = residual_and_tangent(&proj, area, eps, self.current[p][k]);
-                self.states[p][k] = SlaveState { gap: proj.gap, pressure, force: pressure * area };
-                if self.current[p][k] - eps * proj.gap >= 0.0 {
-                    let [m1, m2] = master.segments[seg];
-                    out.push(Engagement { nodes: [node, m1, m2], residual, tangent });
+        self.nodal_forces.clear();
+        self.nodal_forces.resize(self.nodes.len(), [0.0; 2]);
+        for p in 0..self.passes.len() {
+            let pair = &model.contacts[self.passes[p].pair];
+            match pair.integration {
+                ContactIntegration::NodeToSegment => self.evaluate_nodal(model, pair, p, &mut out),
+                ContactIntegration::Segment => self.evaluate_integrated(model, pair, p, &mut out),
+            }
+        }
+        for e in &out {
+            for (a, &n) in e.nodes.iter().enumerate() {
+                for c in 0..2 {
+                    self.nodal_forces[self.slot[n]][c] += e.residual[2 * a + c];
                 }
             }
         }
         out
     }
 
-    /// Global DOFs of an engagement's six entries (-1 where prescribed).
-    pub fn engagement_dofs(&self, e: &Engagement) -> [PetscInt; 6] {
-        std::array::from_fn(|i| self.dofs[self.slot[e.nodes[i / 2]]][i % 2])
+    fn penalty(model: &Model, pair: &ContactPair, master: &ContactSurface, edge: usize) -> f64 {
+        match pair.penalty {
+            Penalty::Stiffness(v) => v,
+            Penalty::Factor(kappa) => kappa * model.materials[model.element_material[master.element[edge]]].youngs_modulus / master.edge_length[edge],
+        }
+    }
+
+    /// Node-to-segment: the gap at each slave node, on the master edge it projects to.
+    fn evaluate_nodal(&mut self, model: &Model, pair: &ContactPair, p: usize, out: &mut Vec<Engagement>) {
+        let pass = &self.passes[p];
+        let (slot, positions) = (&self.slot, &self.positions);
+        let x = |n: usize| positions[slot[n]];
+        let (slave, master) = (&self.surfaces[pass.slave], &self.surfaces[pass.master]);
+        let capture = pair.capture_distance;
+        let grid = EdgeGrid::new(master, &x, capture);
+        for (k, &i) in pass.owned.iter().enumerate() {
+            let node = slave.nodes[i];
+            let xs = x(node);
+            let excluded = if pass.slave == pass.master { master.neighbourhood(node, pair.exclude_neighbours) } else { Vec::new() };
+            let found = closest_edge(master, &x, xs, grid.candidates(xs), &excluded, capture).filter(|(_, proj)| {
+                // surfaces in contact face each other: never the back of a thin master
+                let ns = slave.node_normal(node, x);
+                ns[0] * proj.normal[0] + ns[1] * proj.normal[1] < 0.0 && proj.gap > -capture
+            });
+            let Some((edge, proj)) = found else {
+                self.states[p][k] = SlaveState { gap: f64::NAN, ..SlaveState::default() };
+                continue;
+            };
+            let eps = Self::penalty(model, pair, master, edge);
+            let area = slave.areas[i] * pass.weight;
+            let en = master.edges[edge];
+            let (residual, tangent, pressure) = edge_residual_and_tangent(xs, &en.map(x), &proj, area, eps, self.current[p][k]);
+            self.states[p][k] = SlaveState { gap: proj.gap, pressure, force: pressure * area, traction: 0.0 };
+            if self.current[p][k] - eps * proj.gap >= 0.0 {
+                out.push(Engagement {
+                    nodes: vec![node, en[0], en[1], en[2]],
+                    residual: residual.as_slice().to_vec(),
+                    tangent: tangent.transpose().as_slice().to_vec(),
+                });
+            }
+        }
+    }
+
+    /// Segment integration: weighted gaps g_a = integral N_a g r ds and nodal pressures.
+    fn evaluate_integrated(&mut self, model: &Model, pair: &ContactPair, p: usize, out: &mut Vec<Engagement>) {
+        let pass = &self.passes[p];
+        let (slot, positions) = (&self.slot, &self.positions);
+        let x = |n: usize| positions[slot[n]];
+        let x0 = |n: usize| model.mesh.coords[n];
+        let (slave, master) = (&self.surfaces[pass.slave], &self.surfaces[pass.master]);
+        let self_contact = pass.slave == pass.master;
+        let excluded = |e: usize| {
+            if !self_contact {
+                return Vec::new();
+            }
+            let mut near: Vec<usize> = slave.edges[e].iter().flat_map(|&n| master.neighbourhood(n, pair.exclude_neighbours)).collect();
+            near.sort_unstable();
+            near.dedup();
+            near
+        };
+        let gaps = weighted_gaps(slave, master, &x, &x0, &pass.owned, &excluded, pair.capture_distance);
+        for s in self.states[p].iter_mut() {
+            *s = SlaveState { gap: f64::NAN, ..SlaveState::default() };
+        }
+        for g in gaps {
+            let k = pass.owned.iter().position(|&i| i == g.index).expect("requested node");
+            let area = slave.hat_areas[g.index];
+            let eps = Self::penalty(model, pair, master, g.master_edge);
+            let lambda = self.current[p][k];
+            let trial = lambda - eps * g.gap / area;
+            let pressure = trial.max(0.0);
+            self.states[p][k] = SlaveState { gap: g.gap / area, pressure, force: pressure * area * pass.weight, traction: 0.0 };
+            if trial < 0.0 {
+                continue;
+            }
+            // union of the nodes the terms couple, and dg over them
+            let mut nodes = vec![slave.nodes[g.index]];
+            for t in &g.terms {
+                for &n in &t.nodes {
+                    if !nodes.contains(&n) {
+                        nodes.push(n);
+                    }
+                }
+            }
+            let m = 2 * nodes.len();
+            let at = |n: usize| nodes.iter().position(|&q| q == n).expect("listed");
+            let mut grad = vec![0.0; m];
+            let mut tangent = vec![0.0; m * m];
+            for t in &g.terms {
+                let map: [usize; 6] = t.nodes.map(at);
+                for a in 0..6 {
+                    for c in 0..2 {
+                        grad[2 * map[a] + c] += t.grad[2 * a + c];
+                    }
+                }
+                // -p d2g
+                for a in 0..6 {
+                    for c in 0..2 {
+                        for b in 0..6 {
+                            for d in 0..2 {
+                                tangent[(2 * map[a] + c) * m + 2 * map[b] + d] -= pass.weight * pressure * t.hessian[(2 * a + c, 2 * b + d)];
+                            }
+                        }
+                    }
+                }
+            }
+            let stiffness = pass.weight * eps / area;
+            for i in 0..m {
+                for j in 0..m {
+                    tangent[i * m + j] += stiffness * grad[i] * grad[j];
+                }
+            }
+            let residual = grad.iter().map(|v| -pass.weight * pressure * v).collect();
+            out.push(Engagement { nodes, residual, tangent });
+        }
+    }
+
+    /// This rank's contact forces on every contact node (last evaluation), to be summed over
+    /// ranks before [`ContactAssembly::recover_tractions`].
+    pub fn nodal_forces(&self) -> Vec<f64> {
+        self.nodal_forces.iter().flatten().copied().collect()
+    }
+
+    /// Sets the recovered traction of every owned slave node from the contact forces on all
+    /// contact nodes summed over ranks (`forces`, as from [`ContactAssembly::nodal_forces`]).
+    pub fn recover_tractions(&mut self, forces: &[f64]) {
+        let slot = &self.slot;
+        let positions = &self.positions;
+        let x = |n: usize| positions[slot[n]];
+        for (p, pass) in self.passes.iter().enumerate() {
+            let slave = &self.surfaces[pass.slave];
+            let normal_force: Vec<f64> = slave
+                .nodes
+                .iter()
+                .map(|&n| {
+                    let nn = slave.node_normal(n, x);
+                    forces[2 * slot[n]] * nn[0] + forces[2 * slot[n] + 1] * nn[1]
+                })
+                .collect();
+            let traction = slave.recover_pressure(&normal_force);
+            for (k, &i) in pass.owned.iter().enumerate() {
+                self.states[p][k].traction = traction[i];
+            }
+        }
+    }
+
+    /// Global DOFs of an engagement's entries (-1 where prescribed).
+    pub fn engagement_dofs(&self, e: &Engagement) -> Vec<PetscInt> {
+        e.nodes.iter().flat_map(|&n| self.dofs[self.slot[n]]).collect()
     }
 
     /// Uzawa update of the augmented-Lagrangian pairs from the last evaluation:

@@ -244,8 +244,8 @@ impl<'s, 'm> Problem<'s, 'm> {
         }
         if let Some(contact) = self.contact.as_mut() {
             for e in contact.evaluate(self.model) {
-                for i in 0..6 {
-                    sink(e.nodes[i / 2], i % 2, e.residual[i]);
+                for (i, &v) in e.residual.iter().enumerate() {
+                    sink(e.nodes[i / 2], i % 2, v);
                 }
             }
         }
@@ -322,7 +322,7 @@ impl NonlinearProblem for Problem<'_, '_> {
         if let Some(contact) = self.contact.as_mut() {
             for e in contact.evaluate(self.model) {
                 let dofs = contact.engagement_dofs(&e);
-                jacobian.add_block(&dofs, &dofs, e.tangent.transpose().as_slice())?;
+                jacobian.add_block(&dofs, &dofs, &e.tangent)?;
             }
         }
         jacobian.assemble()

@@ -135,6 +135,12 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
             let local_max_ep = fields.plastic_strain.iter().flatten().fold(0.0f64, |m, &v| m.max(v));
             let mut max_ep = 0.0;
             world.all_reduce_into(&local_max_ep, &mut max_ep, SystemOperation::max());
+            if let Some(contact) = problem.contact.as_mut() {
+                let local = contact.nodal_forces();
+                let mut total = vec![0.0; local.len()];
+                world.all_reduce_into(&local[..], &mut total[..], SystemOperation::sum());
+                contact.recover_tractions(&total);
+            }
             let contacts = contact_summaries(&world, model, &problem);
             let reactions = loads
                 .constrained_sets

@@ -1,0 +1,199 @@
+//! Surface-integrated slide line ("segment" integration): the pointwise gap of the slide line
+//! is evaluated along the whole slave surface and averaged around each slave node with the
+//! piecewise-linear hat psi_a of the polyline through the nodes, g_a = integral psi_a g r ds
+//! (reference r ds), giving the nodal pressure p_a = max(0, lambda_a - eps g_a / A_a) with
+//! A_a = integral psi_a r ds. The forces act through the quadratic interpolation of the slave
+//! point, so for a uniform pressure every node receives p integral N_a r ds, its consistent
+//! share. Hats rather than the quadratic N_a as weights: they are positive and sum to one
+//! everywhere, and a corner node on the axis (where integral N_a r ds = 0) still has a
+//! positive weight and so a pressure of its own. The
+//! integral is split where the master's element boundaries project onto the slave edge and
+//! taken piecewise with 3-point Gauss rules, so a uniform gap gives exactly consistent forces
+//! on both sides: non-matching quadratic meshes pass the contact patch test, which nodal
+//! collocation (node-to-segment) cannot, its master reactions being a nodal quadrature of the
+//! master shape functions.
+//!
+//! Penalty energy per node A_a p_a^2 / (2 eps): residual f = -p_a dg_a, tangent
+//! K = (eps / A_a) dg_a dg_a^T - p_a d2g_a, where dg and d2g are the integrals of the pointwise
+//! gap's gradient and Hessian (from the node-to-edge kernel, with the slave point interpolated
+//! from its edge's nodes). The integration points' positions are taken as fixed on the slave
+//! edge: the integrand is continuous across the split points, so their motion adds nothing.
+
+use super::node_to_edge::{edge_residual_and_tangent, project_on_edge};
+use super::search::{closest_edge, EdgeGrid};
+use super::surface::{hats, ContactSurface};
+use crate::fe::quadrature::GAUSS3;
+use crate::fe::shape::line3;
+use nalgebra::{SMatrix, SVector};
+
+/// Gradient and Hessian of the pointwise gap at one integration point, over the slave edge's
+/// three nodes then the master edge's three nodes (12 DOFs), already multiplied by the weight.
+pub struct PointTerm {
+    pub nodes: [usize; 6],
+    pub grad: SVector<f64, 12>,
+    pub hessian: SMatrix<f64, 12, 12>,
+}
+
+/// The weighted gap of one slave node and what its derivatives are made of.
+pub struct WeightedGap {
+    /// Index of the node in the slave surface.
+    pub index: usize,
+    /// g_a = integral psi_a g r ds over the parts of the node's edges facing a master.
+    pub gap: f64,
+    /// Integration terms (weighted by psi_a w r ds) whose sum is dg_a and d2g_a.
+    pub terms: Vec<PointTerm>,
+    /// Master edge under the node's heaviest integration point (its size sets a penalty
+    /// factor).
+    pub master_edge: usize,
+}
+
+/// Weighted gaps of the slave nodes `indices` (into `slave.nodes`) against `master`, at
+/// positions `x` (current) and `x0` (reference, for the weights). `excluded(edge)` lists the
+/// master edges a slave edge may not bear on (self-contact); `facing` filters pairs of
+/// normals. Nodes none of whose integration points finds a master are left out.
+#[allow(clippy::too_many_arguments)]
+pub fn weighted_gaps(
+    slave: &ContactSurface,
+    master: &ContactSurface,
+    x: &impl Fn(usize) -> [f64; 2],
+    x0: &impl Fn(usize) -> [f64; 2],
+    indices: &[usize],
+    excluded: &impl Fn(usize) -> Vec<usize>,
+    capture: f64,
+) -> Vec<WeightedGap> {
+    let grid = EdgeGrid::new(master, x, capture);
+    let mut out: Vec<WeightedGap> = Vec::with_capacity(indices.len());
+    let mut best_weight: Vec<f64> = Vec::with_capacity(indices.len());
+    let position = |i: usize| indices.iter().position(|&k| k == i);
+    // the slave edges touching a requested node
+    let mut edges: Vec<usize> = (0..slave.edges.len()).filter(|&e| slave.edges[e].iter().any(|&n| slave.index_of(n).and_then(position).is_some())).collect();
+    edges.sort_unstable();
+    for &i in indices {
+        out.push(WeightedGap { index: i, gap: 0.0, terms: Vec::new(), master_edge: usize::MAX });
+        best_weight.push(0.0);
+    }
+    for e in edges {
+        let en = slave.edges[e];
+        let xs = en.map(x);
+        let xr = en.map(x0);
+        let skip = excluded(e);
+        // split points: the middle node (the hats kink there) and the master edge ends
+        // projected onto this slave edge
+        let mut cuts = vec![-1.0, 0.0, 1.0];
+        let mut masters: Vec<usize> = Vec::new();
+        for &xi in &[-1.0, -0.5, 0.0, 0.5, 1.0] {
+            let p = point(&xs, xi);
+            if let Some((m, _)) = closest_edge(master, x, p, grid.candidates(p), &skip, capture) {
+                if !masters.contains(&m) {
+                    masters.push(m);
+                }
+            }
+        }
+        for &m in &masters {
+            for corner in [master.edges[m][0], master.edges[m][1]] {
+                if let Some(p) = project_on_edge(x(corner), &xs) {
+                    if p.xi > -1.0 + 1e-9 && p.xi < 1.0 - 1e-9 && p.distance <= capture {
+                        cuts.push(p.xi);
+                    }
+                }
+            }
+        }
+        cuts.sort_by(f64::total_cmp);
+        cuts.dedup_by(|a, b| (*a - *b).abs() < 1e-9);
+        for piece in cuts.windows(2) {
+            let (lo, hi) = (piece[0], piece[1]);
+            for &(s, w) in &GAUSS3 {
+                let xi = 0.5 * (lo + hi) + 0.5 * (hi - lo) * s;
+                let (n, dn) = line3(xi);
+                let r0: f64 = (0..3).map(|a| n[a] * xr[a][0]).sum();
+                let t0 = [0, 1].map(|i| (0..3).map(|a| dn[a] * xr[a][i]).sum::<f64>());
+                let weight = w * 0.5 * (hi - lo) * r0 * t0[0].hypot(t0[1]);
+                let p = point(&xs, xi);
+                let Some((m, proj)) = closest_edge(master, x, p, grid.candidates(p), &skip, capture) else { continue };
+                // surfaces in contact face each other
+                let ts = [0, 1].map(|i| (0..3).map(|a| dn[a] * xs[a][i]).sum::<f64>());
+                if ts[1] * proj.normal[0] - ts[0] * proj.normal[1] >= 0.0 || proj.gap <= -capture {
+                    continue;
+                }
+                let mn = master.edges[m];
+                // gradient and Hessian of the gap: the kernel with p = 1, A = 1, eps = 0
+                let (minus_grad, minus_hessian, _) = edge_residual_and_tangent(p, &mn.map(x), &proj, 1.0, 0.0, 1.0);
+                // slave point x_s = sum N_a x_a: 8 -> 12 DOFs
+                let mut tie = SMatrix::<f64, 8, 12>::zeros();
+                for a in 0..3 {
+                    for c in 0..2 {
+                        tie[(c, 2 * a + c)] = n[a];
+                    }
+                }
+                for k in 0..6 {
+                    tie[(2 + k, 6 + k)] = 1.0;
+                }
+                let grad = -(tie.transpose() * minus_grad);
+                let hessian = -(tie.transpose() * minus_hessian * tie);
+                let nodes = [en[0], en[1], en[2], mn[0], mn[1], mn[2]];
+                let psi = hats(xi);
+                for a in 0..3 {
+                    let Some(k) = slave.index_of(en[a]).and_then(position) else { continue };
+                    let wa = weight * psi[a];
+                    if wa == 0.0 {
+                        continue;
+                    }
+                    let g = &mut out[k];
+                    g.gap += wa * proj.gap;
+                    g.terms.push(PointTerm { nodes, grad: grad * wa, hessian: hessian * wa });
+                    if wa.abs() > best_weight[k] {
+                        best_weight[k] = wa.abs();
+                        g.master_edge = m;
+                    }
+                }
+            }
+        }
+    }
+    out.retain(|g| !g.terms.is_empty());
+    out
+}
+
+fn point(x: &[[f64; 2]; 3], xi: f64) -> [f64; 2] {
+    let (n, _) = line3(xi);
+    [0, 1].map(|i| (0..3).map(|a| n[a] * x[a][i]).sum::<f64>())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::mesh::{blocks, Block};
+
+    #[test]
+    fn a_uniform_gap_between_non_matching_faces_gives_consistent_weighted_gaps() {
+        // upper block's bottom (7 elements) 0.01 below the lower block's top (5 elements)
+        let specs = [
+            Block { name: "lower".into(), r: [0.0, 10.0], z: [0.0, 5.0], divisions: [5, 1], grading: [1.0, 1.0] },
+            Block { name: "upper".into(), r: [0.0, 10.0], z: [4.99, 10.0], divisions: [7, 1], grading: [1.0, 1.0] },
+        ];
+        let (mesh, sets) = blocks(&specs).unwrap();
+        let slave = ContactSurface::new(&mesh, &sets.surfaces["upper_bottom"]);
+        let master = ContactSurface::new(&mesh, &sets.surfaces["lower_top"]);
+        let x = |n: usize| mesh.coords[n];
+        let all: Vec<usize> = (0..slave.nodes.len()).collect();
+        let gaps = weighted_gaps(&slave, &master, &x, &x, &all, &|_| Vec::new(), 0.5);
+        assert_eq!(gaps.len(), slave.nodes.len());
+        for g in &gaps {
+            let area = slave.hat_areas[g.index];
+            assert!((g.gap - (-0.01) * area).abs() < 1e-12, "node {}: {} vs {}", g.index, g.gap, -0.01 * area);
+        }
+        // the master side of the gradient, summed over slave nodes, gives every master node its
+        // consistent area (psi sums to one)
+        let mut master_force = vec![0.0; mesh.coords.len()];
+        for g in &gaps {
+            for t in &g.terms {
+                for k in 3..6 {
+                    master_force[t.nodes[k]] += t.grad[2 * k + 1];
+                }
+            }
+        }
+        for (k, &node) in master.nodes.iter().enumerate() {
+            // d g / d z_master = -n_z = -1 on a face whose outward normal is +z
+            assert!((master_force[node] + master.areas[k]).abs() < 1e-10, "master node {node}: {} vs {}", master_force[node], -master.areas[k]);
+        }
+    }
+}

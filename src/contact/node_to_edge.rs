@@ -1,0 +1,243 @@
+//! The slide line on quadratic element edges: a slave node s against a 3-node master edge
+//! (start 1, end 2, middle 3), the edge being the curve x(xi) = sum N_k(xi) x_k, xi in [-1, 1].
+//!
+//! This is eqs. (1)-(6) of the seed paper generalised from straight two-node segments to the
+//! edges of the quadratic elements: the projection xi is the closest point on the curve,
+//! t = x'(xi) / |x'(xi)|, n = (t_z, -t_r) the outward normal, g_n = (x_s - x(xi)) . n, and since
+//! x_s - x(xi) is parallel to n at the closest point,
+//!   delta g_n = n . (delta x_s - sum N_k(xi) delta x_k),
+//! so the penalty residual is f = -p A [n, -N_1 n, -N_2 n, -N_3 n] with p = max(0, lambda - eps g).
+//! On a straight edge whose middle node sits at the chord midpoint, t, a = (1 + xi) / 2 and g_n
+//! are exactly eqs. (1)-(3) on the chord; with the middle node tied to the midpoint the
+//! residual and tangent reduce exactly to eqs. (5)-(6) (tested below against
+//! `slideline::residual_and_tangent`). The difference is the reactions on the master: the
+//! quadratic edge receives them with its own shape functions (1:4:1-consistent), which is what
+//! lets two-pass contact between quadratic elements pass the patch test; straight segments
+//! through corner and middle nodes hand them out linearly, and then cannot.
+//!
+//! The tangent is the exact derivative of this residual, computed with dual numbers; the
+//! projection's dependence on the nodes enters through one Newton step of the projection
+//! equation taken in dual arithmetic at the converged xi (the implicit function theorem).
+//! DOF order: [s_r, s_z, 1_r, 1_z, 2_r, 2_z, 3_r, 3_z].
+
+use crate::ad::{Dual, Scalar};
+use crate::fe::shape::line3;
+use nalgebra::{SMatrix, SVector};
+
+pub type EdgeVector = SVector<f64, 8>;
+pub type EdgeMatrix = SMatrix<f64, 8, 8>;
+
+/// A slave node projected on a master edge.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct EdgeProjection {
+    /// Edge coordinate of the closest point (-1 start, 1 end); may lie outside [-1, 1].
+    pub xi: f64,
+    /// Normal gap, negative when penetrating.
+    pub gap: f64,
+    pub normal: [f64; 2],
+    /// Distance from the slave node to the nearest point of the edge (xi clamped to [-1, 1]).
+    pub distance: f64,
+}
+
+fn curve<T: Scalar>(x: &[[T; 2]; 3], xi: T) -> ([T; 2], [T; 2], [T; 2]) {
+    // line3 with a Scalar argument: N = [xi (xi - 1) / 2, xi (xi + 1) / 2, 1 - xi^2]
+    let n = [xi * (xi - 1.0) * 0.5, xi * (xi + 1.0) * 0.5, -(xi * xi) + 1.0];
+    let dn = [xi - 0.5, xi + 0.5, xi * -2.0];
+    let ddn = [1.0, 1.0, -2.0];
+    let pos = std::array::from_fn(|i| x[0][i] * n[0] + x[1][i] * n[1] + x[2][i] * n[2]);
+    let tan = std::array::from_fn(|i| x[0][i] * dn[0] + x[1][i] * dn[1] + x[2][i] * dn[2]);
+    let curv = std::array::from_fn(|i| x[0][i] * ddn[0] + x[1][i] * ddn[1] + x[2][i] * ddn[2]);
+    (pos, tan, curv)
+}
+
+/// Projection equation r(xi) = (x_s - x(xi)) . x'(xi) and its xi-derivative.
+fn projection_equation<T: Scalar>(xs: &[T; 2], x: &[[T; 2]; 3], xi: T) -> (T, T) {
+    let (p, t, c) = curve(x, xi);
+    let d = [xs[0] - p[0], xs[1] - p[1]];
+    (d[0] * t[0] + d[1] * t[1], d[0] * c[0] + d[1] * c[1] - (t[0] * t[0] + t[1] * t[1]))
+}
+
+/// Closest point of the edge curve to `xs` (Newton from the chord projection). None when the
+/// edge is degenerate or the projection does not converge.
+pub fn project_on_edge(xs: [f64; 2], x: &[[f64; 2]; 3]) -> Option<EdgeProjection> {
+    let chord = [x[1][0] - x[0][0], x[1][1] - x[0][1]];
+    let l2 = chord[0] * chord[0] + chord[1] * chord[1];
+    if !(l2 > 0.0) || !l2.is_finite() {
+        return None;
+    }
+    let mut xi = 2.0 * ((xs[0] - x[0][0]) * chord[0] + (xs[1] - x[0][1]) * chord[1]) / l2 - 1.0;
+    let mut converged = false;
+    for _ in 0..30 {
+        let (r, dr) = projection_equation(&xs, x, xi);
+        if dr >= 0.0 || !dr.is_finite() {
+            return None; // not a minimum of the distance: a badly curved edge
+        }
+        let step = r / dr;
+        xi -= step;
+        if step.abs() < 1e-14 * (1.0 + xi.abs()) {
+            converged = true;
+            break;
+        }
+    }
+    if !converged || xi.abs() > 10.0 {
+        return None;
+    }
+    let (p, t, _) = curve(x, xi);
+    let lt = t[0].hypot(t[1]);
+    let normal = [t[1] / lt, -t[0] / lt];
+    let gap = (xs[0] - p[0]) * normal[0] + (xs[1] - p[1]) * normal[1];
+    let (pc, _, _) = curve(x, xi.clamp(-1.0, 1.0));
+    let distance = (xs[0] - pc[0]).hypot(xs[1] - pc[1]);
+    Some(EdgeProjection { xi, gap, normal, distance })
+}
+
+/// Residual f = -p A [n, -N_k n] of the slave node at `xs` on the edge `x`, with `xi` the
+/// converged projection; generic so the dual version gives the tangent.
+fn residual<T: Scalar>(xs: &[T; 2], x: &[[T; 2]; 3], xi_converged: f64, area: f64, penalty: f64, multiplier: f64) -> [T; 8] {
+    // one Newton step of the projection at the converged xi: value unchanged, derivative
+    // -r_x / r_xi by the implicit function theorem
+    let xi0 = T::from_f64(xi_converged);
+    let (r, dr) = projection_equation(xs, x, xi0);
+    let xi = xi0 - r / T::from_f64(dr.re());
+    let (p, t, _) = curve(x, xi);
+    let lt = (t[0] * t[0] + t[1] * t[1]).sqrt();
+    let n = [t[1] / lt, -t[0] / lt];
+    let gap = (xs[0] - p[0]) * n[0] + (xs[1] - p[1]) * n[1];
+    let pressure = -(gap * penalty) + multiplier; // the caller ensures it is >= 0
+    let shape = [xi * (xi - 1.0) * 0.5, xi * (xi + 1.0) * 0.5, -(xi * xi) + 1.0];
+    let c = -(pressure * area);
+    [
+        n[0] * c,
+        n[1] * c,
+        -(shape[0] * n[0] * c),
+        -(shape[0] * n[1] * c),
+        -(shape[1] * n[0] * c),
+        -(shape[1] * n[1] * c),
+        -(shape[2] * n[0] * c),
+        -(shape[2] * n[1] * c),
+    ]
+}
+
+/// Residual, tangent and contact pressure of one slave node on one master edge, for
+/// tributary area `area`, penalty `penalty` (pressure per unit penetration) and multiplier
+/// `multiplier`. All zero when the contact is open (lambda - eps g < 0); closed at zero gap.
+pub fn edge_residual_and_tangent(
+    xs: [f64; 2],
+    x: &[[f64; 2]; 3],
+    proj: &EdgeProjection,
+    area: f64,
+    penalty: f64,
+    multiplier: f64,
+) -> (EdgeVector, EdgeMatrix, f64) {
+    if multiplier - penalty * proj.gap < 0.0 {
+        return (EdgeVector::zeros(), EdgeMatrix::zeros(), 0.0);
+    }
+    let pressure = multiplier - penalty * proj.gap;
+    let v = |k: usize, c: usize| Dual::<8>::variable(if k == 0 { xs[c] } else { x[k - 1][c] }, 2 * k + c);
+    let xs_d = [v(0, 0), v(0, 1)];
+    let x_d = [[v(1, 0), v(1, 1)], [v(2, 0), v(2, 1)], [v(3, 0), v(3, 1)]];
+    let f = residual(&xs_d, &x_d, proj.xi, area, penalty, multiplier);
+    let force = EdgeVector::from_fn(|i, _| f[i].re);
+    let tangent = EdgeMatrix::from_fn(|i, j| f[i].eps[j]);
+    (force, tangent, pressure)
+}
+
+/// Shape functions of the master edge at the projection (reaction weights).
+pub fn edge_weights(xi: f64) -> [f64; 3] {
+    line3(xi).0
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::contact::slideline;
+
+    fn flatten(xs: [f64; 2], x: &[[f64; 2]; 3]) -> [f64; 8] {
+        [xs[0], xs[1], x[0][0], x[0][1], x[1][0], x[1][1], x[2][0], x[2][1]]
+    }
+
+    fn eval(v: &[f64; 8], area: f64, eps: f64, lambda: f64) -> (EdgeVector, EdgeMatrix, f64) {
+        let xs = [v[0], v[1]];
+        let x = [[v[2], v[3]], [v[4], v[5]], [v[6], v[7]]];
+        let p = project_on_edge(xs, &x).unwrap();
+        edge_residual_and_tangent(xs, &x, &p, area, eps, lambda)
+    }
+
+    fn fd_error(v: [f64; 8], lambda: f64) -> f64 {
+        let (_, k, pressure) = eval(&v, 0.8, 3e4, lambda);
+        assert!(pressure > 0.0);
+        let scale = k.abs().max();
+        let h = 1e-7;
+        let mut worst = 0.0f64;
+        for j in 0..8 {
+            let (mut p, mut m) = (v, v);
+            p[j] += h;
+            m[j] -= h;
+            let col = (eval(&p, 0.8, 3e4, lambda).0 - eval(&m, 0.8, 3e4, lambda).0) / (2.0 * h);
+            worst = worst.max((col - k.column(j)).abs().max() / scale);
+        }
+        worst
+    }
+
+    #[test]
+    fn tangent_matches_central_differences_on_a_curved_rotated_edge_and_near_its_end() {
+        // curved edge: middle node off the chord
+        let x = [[20.0, 3.0], [22.0, 4.2], [21.05, 3.85]];
+        // points penetrating by 0.03 below the curve at xi = 0.2 and xi = 0.97
+        let inside = |xi: f64| {
+            let (pos, t, _) = curve(&x, xi);
+            let l = t[0].hypot(t[1]);
+            [pos[0] - 0.03 * t[1] / l, pos[1] + 0.03 * t[0] / l]
+        };
+        for (xs, what) in [(inside(0.2), "general position"), (inside(0.97), "near the end")] {
+            let p = project_on_edge(xs, &x).unwrap();
+            assert!(p.gap < 0.0, "{what}: {p:?}");
+            for lambda in [0.0, 40.0] {
+                let e = fd_error(flatten(xs, &x), lambda);
+                assert!(e <= 1e-6, "{what}, lambda {lambda}: {e:e}");
+            }
+        }
+    }
+
+    #[test]
+    fn projection_is_the_closest_point_of_the_curve() {
+        let x = [[0.0, 0.0], [2.0, 0.0], [1.0, 0.3]];
+        let xs = [0.7, 0.1];
+        let p = project_on_edge(xs, &x).unwrap();
+        let dist = |xi: f64| {
+            let (n, _) = line3(xi);
+            let q = [0, 1].map(|i| (0..3).map(|k| n[k] * x[k][i]).sum::<f64>());
+            (xs[0] - q[0]).hypot(xs[1] - q[1])
+        };
+        for d in [-1e-4, 1e-4] {
+            assert!(dist(p.xi + d) > dist(p.xi));
+        }
+        assert!((p.gap.abs() - dist(p.xi)).abs() < 1e-12);
+    }
+
+    #[test]
+    fn a_straight_edge_with_its_middle_node_tied_is_the_paper_slide_line() {
+        // x3 = (x1 + x2) / 2: chain rule P maps the 6 DOFs of eqs. (1)-(6) to our 8.
+        let (x1, x2, xs) = ([10.0, 4.0], [11.9, 5.1], [10.5, 4.6]);
+        let x = [x1, x2, [(x1[0] + x2[0]) / 2.0, (x1[1] + x2[1]) / 2.0]];
+        let p = project_on_edge(xs, &x).unwrap();
+        let q = slideline::project(xs, x1, x2).unwrap();
+        assert!((p.gap - q.gap).abs() < 1e-14 && ((1.0 + p.xi) / 2.0 - q.a).abs() < 1e-14);
+        let (area, eps) = (0.7, 2e4);
+        let (f8, k8, p8) = edge_residual_and_tangent(xs, &x, &p, area, eps, 0.0);
+        let (f6, k6, p6) = slideline::residual_and_tangent(&q, area, eps, 0.0);
+        assert!((p8 - p6).abs() < 1e-12 * p6);
+        let mut tie = SMatrix::<f64, 8, 6>::zeros();
+        for i in 0..6 {
+            tie[(i, i)] = 1.0;
+        }
+        for c in 0..2 {
+            tie[(6 + c, 2 + c)] = 0.5;
+            tie[(6 + c, 4 + c)] = 0.5;
+        }
+        let f = tie.transpose() * f8;
+        let k = tie.transpose() * k8 * tie;
+        assert!((f - f6).abs().max() < 1e-10 * f6.abs().max(), "{f} vs {f6}");
+        assert!((k - k6).abs().max() < 1e-10 * k6.abs().max(), "{k} vs {k6}");
+    }
+}
