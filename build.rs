@@ -83,6 +83,8 @@ const FUNCTIONS: &[&str] = &[
     "SNESGetLinearSolveIterations",
     "SNESSetFunctionDomainError",
     "SNESSetTolerances",
+    "SNESSetConvergenceTest",
+    "SNESConvergedDefault",
 ];
 
 fn main() {

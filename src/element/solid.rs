@@ -75,6 +75,12 @@ impl ElementGeometry {
         Ok(ElementGeometry { points, weights, projection })
     }
 
+    /// Mean radius of the element, volume per radian over area in the (r, z) plane.
+    pub fn mean_radius(&self) -> f64 {
+        let area: f64 = (0..QUADRATURE_POINTS).map(|q| self.weights[q] / self.points[q].r).sum();
+        self.weights.iter().sum::<f64>() / area
+    }
+
     /// dF/du at Gauss point q (rows: F components, columns: element DOFs).
     fn gradient_map(&self, q: usize) -> GradientMap {
         let g = &self.points[q];

@@ -19,6 +19,13 @@ pub trait NonlinearProblem {
     fn residual(&mut self, x: &VectorView<'_>, f: &mut VectorView<'_>) -> Result<()>;
     /// dF/dx at `x` into `jacobian` (assembled by the callee).
     fn jacobian(&mut self, x: &VectorView<'_>, jacobian: &mut MatrixView<'_>) -> Result<()>;
+    /// This rank's part of the squared round-off floor of the last residual: the sum over the
+    /// assembled contributions of (size of the numbers that cancelled in it x machine epsilon)^2.
+    /// When ||F|| is down to the floor (summed over ranks), the solve has converged whatever
+    /// the relative tolerance asks: it cannot go lower.
+    fn roundoff_squares(&self) -> f64 {
+        0.0
+    }
 }
 
 /// Summary of one SNESSolve.
@@ -150,6 +157,7 @@ impl<'s> Snes<'s> {
         let code = unsafe {
             check(sys::SNESSetFunction(self.raw, residual.raw(), Some(residual_trampoline::<P>), ctx_ptr), "SNESSetFunction")?;
             check(sys::SNESSetJacobian(self.raw, jacobian.raw(), jacobian.raw(), Some(jacobian_trampoline::<P>), ctx_ptr), "SNESSetJacobian")?;
+            check(sys::SNESSetConvergenceTest(self.raw, Some(convergence_trampoline::<P>), ctx_ptr, None), "SNESSetConvergenceTest")?;
             sys::SNESSolve(self.raw, std::ptr::null_mut(), x.raw())
         };
         // SAFETY: resetting the contexts to NULL; the function pointers stay but are never
@@ -157,6 +165,7 @@ impl<'s> Snes<'s> {
         unsafe {
             sys::SNESSetFunction(self.raw, residual.raw(), Some(residual_trampoline::<P>), std::ptr::null_mut());
             sys::SNESSetJacobian(self.raw, jacobian.raw(), jacobian.raw(), Some(jacobian_trampoline::<P>), std::ptr::null_mut());
+            sys::SNESSetConvergenceTest(self.raw, Some(sys::SNESConvergedDefault), std::ptr::null_mut(), None);
         }
         if let Some(err) = ctx.failure.take() {
             return Err(err);
@@ -267,6 +276,43 @@ fn guarded<P>(snes: sys::SNES, ctx: *mut c_void, body: impl FnOnce(&mut P) -> Re
 
 unsafe extern "C" fn residual_trampoline<P: NonlinearProblem>(snes: sys::SNES, x: sys::Vec, f: sys::Vec, ctx: *mut c_void) -> sys::PetscErrorCode {
     guarded::<P>(snes, ctx, |p| p.residual(&VectorView::from_raw(x), &mut VectorView::from_raw(f)))
+}
+
+/// PETSc's default test, plus: converged once ||F|| is at the round-off floor the problem
+/// reports (agreed across ranks; every rank runs the test).
+unsafe extern "C" fn convergence_trampoline<P: NonlinearProblem>(
+    snes: sys::SNES,
+    it: sys::PetscInt,
+    xnorm: f64,
+    snorm: f64,
+    fnorm: f64,
+    reason: *mut sys::SNESConvergedReason,
+    ctx: *mut c_void,
+) -> sys::PetscErrorCode {
+    // SAFETY: PETSc passes a valid reason pointer; the default test takes no context.
+    let code = unsafe { sys::SNESConvergedDefault(snes, it, xnorm, snorm, fnorm, reason, std::ptr::null_mut()) };
+    if code != 0 || ctx.is_null() {
+        return code;
+    }
+    // SAFETY: ctx is the CallbackContext set by Snes::solve (see `guarded`).
+    let ctx = unsafe { &mut *(ctx as *mut CallbackContext<'_, P>) };
+    let local = catch_unwind(AssertUnwindSafe(|| ctx.problem.roundoff_squares())).unwrap_or(0.0);
+    let mut global = 0.0f64;
+    // SAFETY: every rank runs the convergence test, so the reduction matches.
+    unsafe {
+        mpi::ffi::MPI_Allreduce(
+            &local as *const f64 as *const c_void,
+            &mut global as *mut f64 as *mut c_void,
+            1,
+            mpi::ffi::RSMPI_DOUBLE,
+            mpi::ffi::RSMPI_SUM,
+            ctx.comm,
+        );
+        if *reason == sys::SNESConvergedReason_SNES_CONVERGED_ITERATING && it > 0 && fnorm <= global.sqrt() {
+            *reason = sys::SNESConvergedReason_SNES_CONVERGED_FNORM_ABS;
+        }
+    }
+    0
 }
 
 unsafe extern "C" fn jacobian_trampoline<P: NonlinearProblem>(

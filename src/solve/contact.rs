@@ -7,6 +7,7 @@
 //! reverse pass; each pass of a two-pass pair carries half of the penalty force, so the
 //! pressure at a slave node, p = max(0, lambda - eps g), is the contact pressure in both modes.
 
+use super::problem::ROUNDOFF_ULPS;
 use crate::contact::integrated::weighted_gaps;
 use crate::contact::node_to_edge::edge_residual_and_tangent;
 use crate::contact::search::{closest_edge, EdgeGrid};
@@ -89,6 +90,9 @@ pub struct ContactAssembly<'s> {
     pub states: Vec<Vec<SlaveState>>,
     /// Contact residual accumulated on every contact node by this rank's last evaluation.
     nodal_forces: Vec<[f64; 2]>,
+    /// Round-off floor (squared) of the last evaluation: a gap is a difference of positions,
+    /// so each active slave node's force carries about eps * penalty * area * |x|.
+    roundoff: f64,
 }
 
 impl<'s> ContactAssembly<'s> {
@@ -161,6 +165,7 @@ impl<'s> ContactAssembly<'s> {
             scatter,
             states,
             nodal_forces: Vec::new(),
+            roundoff: 0.0,
         }))
     }
 
@@ -186,6 +191,7 @@ impl<'s> ContactAssembly<'s> {
         let mut out = Vec::new();
         self.nodal_forces.clear();
         self.nodal_forces.resize(self.nodes.len(), [0.0; 2]);
+        self.roundoff = 0.0;
         for p in 0..self.passes.len() {
             let pair = &model.contacts[self.passes[p].pair];
             match pair.integration {
@@ -237,6 +243,7 @@ impl<'s> ContactAssembly<'s> {
             let (residual, tangent, pressure) = edge_residual_and_tangent(xs, &en.map(x), &proj, area, eps, self.current[p][k]);
             self.states[p][k] = SlaveState { gap: proj.gap, pressure, force: pressure * area, traction: 0.0 };
             if self.current[p][k] - eps * proj.gap >= 0.0 {
+                self.roundoff += (ROUNDOFF_ULPS * f64::EPSILON * eps * area * xs[0].hypot(xs[1])).powi(2);
                 out.push(Engagement {
                     nodes: vec![node, en[0], en[1], en[2]],
                     residual: residual.as_slice().to_vec(),
@@ -310,6 +317,8 @@ impl<'s> ContactAssembly<'s> {
                 }
             }
             let stiffness = pass.weight * eps / area;
+            let xs = x(slave.nodes[g.index]);
+            self.roundoff += (ROUNDOFF_ULPS * f64::EPSILON * pass.weight * eps * area * xs[0].hypot(xs[1])).powi(2);
             for i in 0..m {
                 for j in 0..m {
                     tangent[i * m + j] += stiffness * grad[i] * grad[j];
@@ -318,6 +327,11 @@ impl<'s> ContactAssembly<'s> {
             let residual = grad.iter().map(|v| -pass.weight * pressure * v).collect();
             out.push(Engagement { nodes, residual, tangent });
         }
+    }
+
+    /// Round-off floor (squared) of this rank's last evaluation.
+    pub fn roundoff_squares(&self) -> f64 {
+        self.roundoff
     }
 
     /// This rank's contact forces on every contact node (last evaluation), to be summed over

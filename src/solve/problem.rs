@@ -17,6 +17,11 @@ use crate::model::{Material, Model};
 use crate::petsc::sys::PetscInt;
 use crate::petsc::{MatOps, MatrixView, NonlinearProblem, PetscSession, Scatter, VecOps, Vector, VectorView};
 
+/// Round-off allowance per assembled contribution, in units in the last place: the floor
+/// estimate ignores the linear solve's own error and the sums inside each kernel, so it is
+/// generous; the accuracy tests (1e-8 MPa stresses, 1e-6 contact pressures) sit far above it.
+pub const ROUNDOFF_ULPS: f64 = 100.0;
+
 /// Loads and prescribed values at the current load factor.
 #[derive(Clone, Debug, Default)]
 pub struct LoadState {
@@ -41,6 +46,9 @@ struct LocalElement {
     /// Position of each free element DOF in the gathered vector.
     slots: [usize; DOFS],
     material: usize,
+    /// E times the mean radius: an element force is computed from displacement differences,
+    /// so its round-off is about eps * E * r * |u| (per radian).
+    roundoff_scale: f64,
 }
 
 /// What an evaluation at a converged state gives for output.
@@ -52,9 +60,6 @@ pub struct ElementFields {
     /// This rank's part of f_int - f_ext at every node of the mesh (summed over ranks, it is
     /// the reaction at prescribed DOFs), per radian.
     pub nodal_force: Vec<[f64; 2]>,
-    /// Sum over this rank's elements of |f_int,e|^2: the size of the element forces before
-    /// they cancel in assembly, which sets the round-off floor of the residual.
-    pub element_force_squares: f64,
 }
 
 pub struct Problem<'s, 'm> {
@@ -69,6 +74,8 @@ pub struct Problem<'s, 'm> {
     dof: Vec<[PetscInt; 2]>,
     committed: History,
     trial: History,
+    /// Round-off floor (squared, this rank) of the last residual.
+    roundoff: f64,
     pub contact: Option<ContactAssembly<'s>>,
     pub load: LoadState,
 }
@@ -122,7 +129,9 @@ impl<'s, 'm> Problem<'s, 'm> {
             }
             let coords = model.mesh.element_coords(e);
             let geometry = ElementGeometry::new(&coords).map_err(|m| Error::input(format!("element {}: {m}", model.mesh.element_ids[e])))?;
-            elements.push(LocalElement { element: e, geometry, coords, dofs: d, slots, material: model.element_material[e] });
+            let mat = &model.materials[model.element_material[e]];
+            let roundoff_scale = mat.youngs_modulus * geometry.mean_radius();
+            elements.push(LocalElement { element: e, geometry, coords, dofs: d, slots, material: model.element_material[e], roundoff_scale });
         }
         let mut position = vec![usize::MAX; model.mesh.elements.len()];
         for (k, el) in elements.iter().enumerate() {
@@ -146,6 +155,7 @@ impl<'s, 'm> Problem<'s, 'm> {
             dof: dofs.dof.clone(),
             committed: history,
             trial,
+            roundoff: 0.0,
             contact,
             load: LoadState::default(),
         })
@@ -222,10 +232,13 @@ impl<'s, 'm> Problem<'s, 'm> {
     /// `on_element`.
     fn residual_entries(&mut self, gathered: &[f64], mut on_element: impl FnMut(usize, &SolidResponse), mut sink: impl FnMut(usize, usize, f64)) -> Result<()> {
         let mut us = Vec::with_capacity(self.elements.len());
+        let mut roundoff = 0.0;
         for k in 0..self.elements.len() {
             let u = self.displacements(&self.elements[k], gathered);
             let out = self.solid(k, &u, false)?;
             self.trial[k] = out.state;
+            let size = self.elements[k].roundoff_scale * u.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs())) + out.internal_force.abs().max();
+            roundoff += (ROUNDOFF_ULPS * f64::EPSILON * size).powi(2);
             on_element(k, &out);
             let conn = &self.model.mesh.elements[self.elements[k].element];
             for i in 0..DOFS {
@@ -248,7 +261,9 @@ impl<'s, 'm> Problem<'s, 'm> {
                     sink(e.nodes[i / 2], i % 2, v);
                 }
             }
+            roundoff += contact.roundoff_squares();
         }
+        self.roundoff = roundoff;
         Ok(())
     }
 
@@ -260,21 +275,23 @@ impl<'s, 'm> Problem<'s, 'm> {
         let mut stress = vec![[[0.0; 4]; QUADRATURE_POINTS]; n];
         let mut plastic_strain = vec![[0.0; QUADRATURE_POINTS]; n];
         let mut nodal_force = vec![[0.0; 2]; self.model.mesh.coords.len()];
-        let mut element_force_squares = 0.0;
         self.residual_entries(
             &gathered,
             |k, out| {
                 stress[k] = out.stress;
                 plastic_strain[k] = out.state.map(|s| s.ep);
-                element_force_squares += out.internal_force.norm_squared();
             },
             |node, c, v| nodal_force[node][c] += v,
         )?;
-        Ok(ElementFields { stress, plastic_strain, nodal_force, element_force_squares })
+        Ok(ElementFields { stress, plastic_strain, nodal_force })
     }
 }
 
 impl NonlinearProblem for Problem<'_, '_> {
+    fn roundoff_squares(&self) -> f64 {
+        self.roundoff
+    }
+
     fn residual(&mut self, x: &VectorView<'_>, f: &mut VectorView<'_>) -> Result<()> {
         let gathered = self.gather(x)?;
         f.set_all(0.0)?;

@@ -56,8 +56,6 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
     let mut history = initial_history(model, &partition);
     let mut multipliers = None;
     let coupled = contact_nodes(model);
-    // size of the element forces at the last converged state (0 at the start: rtol rules)
-    let mut force_scale = 0.0;
     let mut rows = Vec::new();
     let mut previous: Option<StepLoads> = None;
     for (s, step) in model.steps.iter().enumerate() {
@@ -83,11 +81,10 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
             problem.load = loads.at(model, target);
             set_free_values(&mut x, &dofs, &partition, &displacement)?;
             // rtol 1e-10: with quadratic convergence it costs at most one iteration more than
-            // PETSc's 1e-8. atol: the residual cannot fall below round-off of the element forces
-            // (~1e-16 of their size), which a small increment's rtol would ask for; like
-            // Abaqus' time-averaged force, the element force size of the last converged state
-            // sets it. -snes_rtol / -snes_atol override both.
-            snes.set_tolerances(Some(1e-10 * force_scale), Some(1e-10), Some(controls.max_newton_iterations))?;
+            // PETSc's 1e-8; where round-off stops the residual first (a small increment, large
+            // displacements, a stiff penalty), the problem's round-off floor ends the solve
+            // (see NonlinearProblem::roundoff_squares). -snes_rtol / -snes_atol override.
+            snes.set_tolerances(None, Some(1e-10), Some(controls.max_newton_iterations))?;
             let (report, augmentations) = solve_increment(&world, model, &mut snes, &mut problem, &mut x, &mut residual, &mut jacobian)?;
             if !report.converged() {
                 problem.reset();
@@ -129,9 +126,6 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
             let mut force = vec![0.0; 2 * nodes];
             let local: Vec<f64> = fields.nodal_force.iter().flatten().copied().collect();
             world.all_reduce_into(&local[..], &mut force[..], SystemOperation::sum());
-            let mut squares = 0.0;
-            world.all_reduce_into(&fields.element_force_squares, &mut squares, SystemOperation::sum());
-            force_scale = f64::sqrt(squares);
             let local_max_ep = fields.plastic_strain.iter().flatten().fold(0.0f64, |m, &v| m.max(v));
             let mut max_ep = 0.0;
             world.all_reduce_into(&local_max_ep, &mut max_ep, SystemOperation::max());

@@ -1,0 +1,97 @@
+//! Contact patch test: two stacked axisymmetric blocks with non-matching meshes, r in [0, 10],
+//! lower z in [0, 5] (5 x 2 Q8), upper z in [5, 10] (7 x 2 Q8), the upper one resting on the
+//! lower through contact only, 10 MPa on the upper face, lower face held axially, u_r = 0 on
+//! the axis. Exact answer: uniform sigma_zz = -10 MPa and a uniform 10 MPa contact pressure.
+//!
+//!   z=10 +--+--+--+--+--+--+--+  <- 10 MPa
+//!        |  |  |  |  |  |  |  |  upper (slave surface: its bottom)
+//!   z=5  +--+--+--+--+--+--+--+
+//!        +---+---+---+---+---+   lower (master surface: its top)
+//!        |   |   |   |   |   |
+//!   z=0  +---+---+---+---+---+   u_z = 0
+//!       r=0 (axis)           r=10
+//!
+//! Surface-integrated enforcement transmits it to round-off at every slave node, the node on
+//! the axis included, one-pass and two-pass. The paper's nodal collocation (node-to-segment)
+//! cannot between non-matching quadratic meshes: its master reactions are a nodal quadrature
+//! of the master's shape functions; the test states its deviation.
+
+mod common;
+use common::{run_deck, Results};
+
+fn deck(integration: &str, two_pass: bool) -> String {
+    format!(
+        r#"nlgeom = false
+[[mesh.block]]
+name = "lower"
+r = [0.0, 10.0]
+z = [0.0, 5.0]
+divisions = [5, 2]
+[[mesh.block]]
+name = "upper"
+r = [0.0, 10.0]
+z = [5.0, 10.0]
+divisions = [7, 2]
+[[material]]
+name = "steel"
+youngs_modulus = 200000.0
+poissons_ratio = 0.3
+[[contact]]
+name = "interface"
+slave = "upper_bottom"
+master = "lower_top"
+two_pass = {two_pass}
+integration = "{integration}"
+penalty = 1.0e6
+[[step]]
+boundary = [ {{ set = "lower_bottom", uz = 0.0 }}, {{ set = "lower_inner", ur = 0.0 }}, {{ set = "upper_inner", ur = 0.0 }} ]
+pressure = [ {{ surface = "upper_top", value = 10.0 }} ]
+"#
+    )
+}
+
+/// (r, pressure, traction) at every slave node of every pass, and the largest |sigma_zz + 10|.
+fn run(integration: &str, two_pass: bool) -> (Vec<(f64, f64, f64)>, f64) {
+    let run = run_deck(&deck(integration, two_pass), &[], 1, &[]);
+    run.assert_ok();
+    let res = Results::open(&run.h5);
+    let coords = res.f64s("mesh/coordinates");
+    let passes = if two_pass { 2 } else { 1 };
+    let mut out = Vec::new();
+    for k in 0..passes {
+        let nodes = res.u64s(&format!("mesh/contact/interface/pass{k}/nodes"));
+        let p = res.f64s(&format!("increments/000001/contact/interface/pass{k}/pressure"));
+        let t = res.f64s(&format!("increments/000001/contact/interface/pass{k}/traction"));
+        for i in 0..nodes.len() {
+            out.push((coords[2 * nodes[i] as usize], p[i], t[i]));
+        }
+    }
+    let szz = res.f64s("increments/000001/stress").chunks(4).map(|s| (s[1] + 10.0).abs()).fold(0.0, f64::max);
+    (out, szz)
+}
+
+#[test]
+fn surface_integrated_contact_transmits_the_uniform_pressure_at_every_node() {
+    for two_pass in [false, true] {
+        let (nodes, szz) = run("segment", two_pass);
+        assert!(nodes.iter().any(|n| n.0 == 0.0), "the axis node is a slave node");
+        for (r, p, t) in &nodes {
+            assert!((p - 10.0).abs() <= 1e-6 * 10.0, "two_pass {two_pass}: pressure {p} at r = {r}");
+            assert!((t - 10.0).abs() <= 1e-6 * 10.0, "two_pass {two_pass}: traction {t} at r = {r}");
+        }
+        assert!(szz <= 1e-6 * 10.0, "two_pass {two_pass}: sigma_zz off by {szz}");
+    }
+}
+
+#[test]
+fn node_to_segment_collocation_deviation_is_stated() {
+    for two_pass in [false, true] {
+        let (nodes, szz) = run("node-to-segment", two_pass);
+        let worst = nodes.iter().map(|n| (n.2 - 10.0).abs() / 10.0).fold(0.0, f64::max);
+        eprintln!("node-to-segment, two_pass = {two_pass}: traction off by up to {:.1} %, sigma_zz by up to {:.1} %", 100.0 * worst, 10.0 * szz);
+        // what the collocated slide line does on this patch (a statement, bounded so a change
+        // shows): about 13 % one-pass, about 50 % two-pass (nodes near the axis and ends)
+        assert!(worst > 0.01, "unexpectedly exact: update the documentation");
+        assert!(worst < if two_pass { 2.5 } else { 0.25 }, "worse than documented: {worst}");
+    }
+}
