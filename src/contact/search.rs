@@ -49,7 +49,8 @@ fn dist(a: [f64; 2], b: [f64; 2]) -> f64 {
 /// The master edge a slave node at `xs` bears on, among `candidates` (minus `excluded`): the
 /// edge whose nearest point is closest, within `capture`. A projection beyond an edge end is
 /// kept only where a neighbouring edge continues the surface (the blind spot of a convex
-/// corner); beyond a free end of the surface the node has slid off. At a concave corner the
+/// corner); beyond a free end of the surface (by more than FREE_END_EXTENSION) the node has
+/// slid off. At a concave corner the
 /// nearer edge wins, so a node is never counted twice. Ties go to the edge containing the
 /// projection, then to the lower index, so the choice is deterministic.
 pub fn closest_edge(
@@ -82,11 +83,18 @@ pub fn closest_edge(
         }
     }
     let (k, p) = best?;
-    if (p.xi < -1.0 && surface.neighbours[k][0].is_none()) || (p.xi > 1.0 && surface.neighbours[k][1].is_none()) {
+    let beyond = 1.0 + FREE_END_EXTENSION;
+    if (p.xi < -beyond && surface.neighbours[k][0].is_none()) || (p.xi > beyond && surface.neighbours[k][1].is_none()) {
         return None;
     }
     Some((k, p))
 }
+
+/// How far (in edge coordinate; 0.1 = 5 % of the edge) a master surface reaches past its free
+/// ends. Where slave and master end together (tubes of equal length), a slave end node sits
+/// exactly on the master's end, and without this it would be lost and found again on
+/// alternate Newton iterations as the bodies slide by round-off.
+pub const FREE_END_EXTENSION: f64 = 0.1;
 
 #[cfg(test)]
 mod tests {
@@ -107,7 +115,7 @@ mod tests {
         // on a shared corner (r = 3): exactly one edge
         let xs = [3.0, 0.99];
         assert!(closest_edge(&s, &x, xs, grid.candidates(xs), &[], 0.5).is_some());
-        // beyond the free end r = 5
+        // beyond the free end r = 5 (more than the 5 % extension of the 1 mm edge)
         let xs = [5.2, 0.99];
         assert!(closest_edge(&s, &x, xs, grid.candidates(xs), &[], 0.5).is_none());
     }

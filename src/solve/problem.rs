@@ -309,17 +309,32 @@ impl NonlinearProblem for Problem<'_, '_> {
             },
         );
         self.dof = dof;
-        result?;
-        f.add_values(&rows, &values)?;
-        f.assemble()
+        // Assembly is collective: a rank whose evaluation failed (an inverted element) still
+        // takes part, with nothing to add, and reports the failure afterwards; returning
+        // before it would leave the other ranks waiting in VecAssembly.
+        if result.is_ok() {
+            f.add_values(&rows, &values)?;
+        }
+        f.assemble()?;
+        result
     }
 
     fn jacobian(&mut self, x: &VectorView<'_>, jacobian: &mut MatrixView<'_>) -> Result<()> {
         let gathered = self.gather(x)?;
         jacobian.zero_entries()?;
+        let result = self.add_tangents(&gathered, jacobian);
+        // collective, whatever happened on this rank (see `residual`)
+        jacobian.assemble()?;
+        result
+    }
+}
+
+impl Problem<'_, '_> {
+    /// Adds this rank's element, follower-pressure and contact tangents (no assembly).
+    fn add_tangents(&mut self, gathered: &[f64], jacobian: &mut MatrixView<'_>) -> Result<()> {
         let mut us = Vec::with_capacity(self.elements.len());
         for k in 0..self.elements.len() {
-            let u = self.displacements(&self.elements[k], &gathered);
+            let u = self.displacements(&self.elements[k], gathered);
             let k_e = self.solid(k, &u, true)?.tangent.expect("tangent requested");
             let el = &self.elements[k];
             // nalgebra is column-major; PETSc wants row-major: the transpose's storage is.
@@ -342,6 +357,6 @@ impl NonlinearProblem for Problem<'_, '_> {
                 jacobian.add_block(&dofs, &dofs, &e.tangent)?;
             }
         }
-        jacobian.assemble()
+        Ok(())
     }
 }
