@@ -87,3 +87,15 @@ fn two_ranks_match_one_rank_and_the_file_reads_back() {
     let xmf = std::fs::read_to_string(parallel.h5.with_extension("xmf")).expect("xmf sidecar");
     assert_eq!(xmf.matches("<Grid Name=\"increment").count(), 5);
 }
+
+#[test]
+fn an_element_inverted_on_one_rank_cuts_the_increment_back_on_both() {
+    // Full Newton steps (no line search) overshoot in the plastic push and invert elements on
+    // one rank: every rank must still meet in the collective assembly, report the domain
+    // error together, and cut back; this used to hang.
+    let run = run_deck(DECK, &[], 2, &["--", "-snes_linesearch_type", "basic"]);
+    run.assert_ok();
+    let res = Results::open(&run.h5);
+    assert!(res.history("cutbacks").iter().sum::<f64>() >= 1.0, "expected the push to need cutbacks");
+    assert_eq!(*res.history("time").last().unwrap(), 2.0);
+}

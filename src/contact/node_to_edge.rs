@@ -62,7 +62,7 @@ fn projection_equation<T: Scalar>(xs: &[T; 2], x: &[[T; 2]; 3], xi: T) -> (T, T)
 pub fn project_on_edge(xs: [f64; 2], x: &[[f64; 2]; 3]) -> Option<EdgeProjection> {
     let chord = [x[1][0] - x[0][0], x[1][1] - x[0][1]];
     let l2 = chord[0] * chord[0] + chord[1] * chord[1];
-    if !(l2 > 0.0) || !l2.is_finite() {
+    if l2.is_nan() || l2 <= 0.0 || !l2.is_finite() {
         return None;
     }
     let mut xi = 2.0 * ((xs[0] - x[0][0]) * chord[0] + (xs[1] - x[0][1]) * chord[1]) / l2 - 1.0;

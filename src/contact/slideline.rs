@@ -37,7 +37,7 @@ pub struct Projection {
 pub fn project(xs: [f64; 2], x1: [f64; 2], x2: [f64; 2]) -> Option<Projection> {
     let d = [x2[0] - x1[0], x2[1] - x1[1]];
     let length = (d[0] * d[0] + d[1] * d[1]).sqrt();
-    if !(length > 0.0) || !length.is_finite() {
+    if length.is_nan() || length <= 0.0 || !length.is_finite() {
         return None;
     }
     let t = [d[0] / length, d[1] / length];

@@ -4,4 +4,4 @@
 pub mod results;
 pub mod xdmf;
 
-pub use results::{ContactSummary, HistoryRow, ResultsFile};
+pub use results::{ContactSummary, HistoryRow, IncrementFields, ResultsFile};

@@ -38,6 +38,18 @@ use mpi::traits::AsRaw;
 use ndarray::{ArrayView1, ArrayView2, ArrayView3};
 use std::path::{Path, PathBuf};
 
+/// This rank's slabs of the fields of one converged increment.
+#[derive(Clone, Copy)]
+pub struct IncrementFields<'a> {
+    /// Displacement of the owned nodes, partition order.
+    pub displacement: &'a [[f64; 2]],
+    /// Cauchy stress at the Gauss points of the local elements.
+    pub stress: &'a [[[f64; 4]; QUADRATURE_POINTS]],
+    pub plastic_strain: &'a [[f64; QUADRATURE_POINTS]],
+    /// Contact slave nodes of the passes this rank owns.
+    pub contact: &'a [PassOutput<'a>],
+}
+
 /// Contact state of one pair at an increment.
 #[derive(Clone, Debug)]
 pub struct ContactSummary {
@@ -168,16 +180,8 @@ impl ResultsFile {
     /// Writes one converged increment (collective): this rank's displacement slab (owned
     /// nodes, partition order) and stress slab (local elements), the history row, then
     /// flushes and rewrites the XDMF sidecar.
-    pub fn write_increment(
-        &mut self,
-        step_name: &str,
-        row: &HistoryRow,
-        owned_displacement: &[[f64; 2]],
-        local_stress: &[[[f64; 4]; QUADRATURE_POINTS]],
-        local_plastic_strain: &[[f64; QUADRATURE_POINTS]],
-        contact: &[PassOutput<'_>],
-        partition: &Partition,
-    ) -> Result<()> {
+    pub fn write_increment(&mut self, step_name: &str, row: &HistoryRow, fields: &IncrementFields<'_>, partition: &Partition) -> Result<()> {
+        let IncrementFields { displacement: owned_displacement, stress: local_stress, plastic_strain: local_plastic_strain, contact } = *fields;
         let err = h5err(&self.path);
         let index = self.increments.len() + 1;
         let name = format!("{index:06}");

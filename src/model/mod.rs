@@ -212,7 +212,7 @@ impl Model {
                 return Err(Error::input(format!("contact '{}': capture_distance must be > 0, got {}", c.name, c.capture_distance)));
             }
             if let Some(al) = c.augmented_lagrangian {
-                if !(al.penetration_tolerance > 0.0) || al.max_augmentations == 0 {
+                if al.penetration_tolerance.is_nan() || al.penetration_tolerance <= 0.0 || al.max_augmentations == 0 {
                     return Err(Error::input(format!("contact '{}': augmented_lagrangian needs penetration_tolerance > 0 and max_augmentations >= 1", c.name)));
                 }
             }

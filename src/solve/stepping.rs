@@ -13,7 +13,7 @@ use super::problem::{initial_history, Problem};
 use super::schedule::StepLoads;
 use crate::dist::{DofMap, Partition};
 use crate::error::{Error, Result};
-use crate::io::{ContactSummary, HistoryRow, ResultsFile};
+use crate::io::{ContactSummary, HistoryRow, IncrementFields, ResultsFile};
 use crate::model::Model;
 use crate::petsc::sys::MatOption_MAT_NEW_NONZERO_ALLOCATION_ERR;
 use crate::petsc::{Matrix, PetscSession, Snes, SolveReport, VecOps, Vector};
@@ -158,7 +158,9 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
                 reactions,
             };
             let contact_output = problem.contact.as_ref().map(|c| c.pass_outputs()).unwrap_or_default();
-            results.write_increment(&step.name, &row, &owned, &fields.stress, &fields.plastic_strain, &contact_output, &partition)?;
+            let increment_fields =
+                IncrementFields { displacement: &owned, stress: &fields.stress, plastic_strain: &fields.plastic_strain, contact: &contact_output };
+            results.write_increment(&step.name, &row, &increment_fields, &partition)?;
             if root && options.progress {
                 println!("{}", progress_line(&step.name, s, model.steps.len(), &row));
             }
