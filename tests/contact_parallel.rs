@@ -7,8 +7,7 @@
 //! same two-body-pair model on 2 ranks.
 
 mod common;
-use common::{run_deck, Results};
-use std::collections::HashMap;
+use common::{displacement_difference, jacobian_test_ratios, run_deck, Results};
 
 const DECK: &str = r#"
 [[mesh.block]]
@@ -49,10 +48,6 @@ boundary = [ { set = "a_bottom", uz = 0.0 }, { set = "b_bottom", uz = 0.0 }, { s
 pressure = [ { surface = "a_inner", value = 20.0 } ]
 "#;
 
-fn by_node_id(res: &Results) -> HashMap<u64, [f64; 2]> {
-    res.u64s("mesh/node_ids").into_iter().zip(res.nodes().into_iter().map(|(_, u)| u)).collect()
-}
-
 #[test]
 fn two_contact_pairs_across_the_partition_match_one_rank() {
     let serial = run_deck(DECK, &[], 1, &[]);
@@ -60,9 +55,7 @@ fn two_contact_pairs_across_the_partition_match_one_rank() {
     let parallel = run_deck(DECK, &[], 2, &[]);
     parallel.assert_ok();
     let (r1, r2) = (Results::open(&serial.h5), Results::open(&parallel.h5));
-    let (u1, u2) = (by_node_id(&r1), by_node_id(&r2));
-    let scale = u1.values().fold(0.0f64, |m, u| m.max(u[0].abs()).max(u[1].abs()));
-    let worst = u1.iter().map(|(id, a)| (a[0] - u2[id][0]).abs().max((a[1] - u2[id][1]).abs())).fold(0.0f64, f64::max);
+    let (worst, scale) = displacement_difference(&r1, &r2);
     assert!(worst <= 1e-8 * scale, "displacements differ by {worst:e} (scale {scale:e})");
     // both ranks own slave nodes of the pairs
     let ranks = r2.file.dataset("mesh/element_rank").unwrap().read_raw::<u32>().unwrap();
@@ -90,11 +83,7 @@ fn assembled_contact_jacobian_matches_finite_differences_on_two_ranks() {
     let run = run_deck(&deck, &[], 2, &["--", "-snes_test_jacobian"]);
     run.assert_ok();
     let out = run.stdout();
-    let ratios: Vec<f64> = out
-        .lines()
-        .filter_map(|l| l.trim().strip_prefix("||J - Jfd||_F/||J||_F = "))
-        .map(|rest| rest.split(',').next().unwrap().trim().parse().expect("ratio"))
-        .collect();
+    let ratios = jacobian_test_ratios(&out);
     assert!(ratios.len() >= 4, "PETSc printed too few Jacobian tests:\n{out}");
     for r in &ratios {
         assert!(*r < 1e-6, "||J - Jfd|| / ||J|| = {r:e}");

@@ -27,7 +27,7 @@
 mod common;
 use common::{run_deck, Results};
 use slideline::model::gmsh;
-use slideline::model::mesh::{graded_rectangle, Edge, Mesh, MeshSets};
+use slideline::model::mesh::{graded_rectangle, mapped_block, Edge, Mesh, MeshSets};
 
 const R: f64 = 50.0;
 const E: f64 = 200e3;
@@ -81,49 +81,22 @@ fn sphere(overlap: f64) -> (Mesh, MeshSets) {
     let (ni, nj) = (th.len(), zs.len());
     let arc = |t: f64| [R * t.sin(), R * (1.0 - t.cos())];
     let p1 = arc(theta_max);
-    let mut index = vec![usize::MAX; ni * nj];
-    let mut mesh = Mesh::default();
-    for j in 0..nj {
-        for i in 0..ni {
-            if i % 2 == 1 && j % 2 == 1 {
-                continue;
-            }
-            let (u, v) = (i as f64 / (ni - 1) as f64, zs[j] / HEIGHT);
-            let b = arc(th[i]);
-            let t = [TOP * u, HEIGHT];
-            let l = [0.0, zs[j]];
-            let r = [TOP, p1[1] + (HEIGHT - p1[1]) * v];
-            let corners = [[0.0, 0.0], p1, [TOP, HEIGHT], [0.0, HEIGHT]];
-            let x: [f64; 2] = std::array::from_fn(|c| {
-                (1.0 - v) * b[c] + v * t[c] + (1.0 - u) * l[c] + u * r[c]
-                    - ((1.0 - u) * (1.0 - v) * corners[0][c] + u * (1.0 - v) * corners[1][c] + u * v * corners[2][c] + (1.0 - u) * v * corners[3][c])
-            });
-            index[j * ni + i] = mesh.coords.len();
-            mesh.coords.push([x[0], x[1] - overlap]);
-            mesh.node_ids.push(mesh.coords.len() as u64);
-        }
-    }
-    let at = |i: usize, j: usize| index[j * ni + i];
+    let corners = [[0.0, 0.0], p1, [TOP, HEIGHT], [0.0, HEIGHT]];
+    // Coons patch: bottom the arc, top the flat face, left the axis, right the cut
+    let (mesh, block) = mapped_block([(ni - 1) / 2, (nj - 1) / 2], |i, j| {
+        let (u, v) = (i as f64 / (ni - 1) as f64, zs[j] / HEIGHT);
+        let (b, t, l, r) = (arc(th[i]), [TOP * u, HEIGHT], [0.0, zs[j]], [TOP, p1[1] + (HEIGHT - p1[1]) * v]);
+        let x: [f64; 2] = std::array::from_fn(|c| {
+            (1.0 - v) * b[c] + v * t[c] + (1.0 - u) * l[c] + u * r[c]
+                - ((1.0 - u) * (1.0 - v) * corners[0][c] + u * (1.0 - v) * corners[1][c] + u * v * corners[2][c] + (1.0 - u) * v * corners[3][c])
+        });
+        [x[0], x[1] - overlap]
+    });
     let mut sets = MeshSets::default();
-    let (mut bottom, mut top) = (Vec::new(), Vec::new());
-    for ej in 0..(nj - 1) / 2 {
-        for ei in 0..(ni - 1) / 2 {
-            let (i, j) = (2 * ei, 2 * ej);
-            let e = mesh.elements.len();
-            mesh.elements.push([at(i, j), at(i + 2, j), at(i + 2, j + 2), at(i, j + 2), at(i + 1, j), at(i + 2, j + 1), at(i + 1, j + 2), at(i, j + 1)]);
-            mesh.element_ids.push(e as u64 + 1);
-            if ej == 0 {
-                bottom.push(Edge { element: e, side: 0 });
-            }
-            if ej == (nj - 1) / 2 - 1 {
-                top.push(Edge { element: e, side: 2 });
-            }
-        }
-    }
     sets.element_sets.insert("sphere".into(), (0..mesh.elements.len()).collect());
-    sets.add_surface(&mesh, "sphere_bottom", bottom);
-    sets.add_surface(&mesh, "sphere_top", top);
-    sets.node_sets.insert("sphere_axis".into(), (0..mesh.coords.len()).filter(|&n| mesh.coords[n][0] == 0.0).collect());
+    sets.add_surface(&mesh, "sphere_bottom", block.surfaces["bottom"].clone());
+    sets.add_surface(&mesh, "sphere_top", block.surfaces["top"].clone());
+    sets.node_sets.insert("sphere_axis".into(), block.node_sets["inner"].clone());
     (mesh, sets)
 }
 

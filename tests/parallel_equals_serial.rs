@@ -6,8 +6,7 @@
 //! 0.3 mm so the ring yields; two steps (heat+pressure, then push).
 
 mod common;
-use common::{run_deck, Results};
-use std::collections::HashMap;
+use common::{displacement_difference, run_deck, Results};
 use std::process::Command;
 
 const DECK: &str = r#"
@@ -36,10 +35,6 @@ increments = 3
 boundary = [ { set = "top", uz = -0.3 } ]
 "#;
 
-fn by_node_id(res: &Results) -> HashMap<u64, [f64; 2]> {
-    res.u64s("mesh/node_ids").into_iter().zip(res.nodes().into_iter().map(|(_, u)| u)).collect()
-}
-
 #[test]
 fn two_ranks_match_one_rank_and_the_file_reads_back() {
     let serial = run_deck(DECK, &[], 1, &[]);
@@ -47,16 +42,7 @@ fn two_ranks_match_one_rank_and_the_file_reads_back() {
     let parallel = run_deck(DECK, &[], 2, &[]);
     parallel.assert_ok();
     let (r1, r2) = (Results::open(&serial.h5), Results::open(&parallel.h5));
-    let (u1, u2) = (by_node_id(&r1), by_node_id(&r2));
-    assert_eq!(u1.len(), u2.len());
-    let scale = u1.values().fold(0.0f64, |m, u| m.max(u[0].abs()).max(u[1].abs()));
-    let worst = u1
-        .iter()
-        .map(|(id, a)| {
-            let b = u2[id];
-            (a[0] - b[0]).abs().max((a[1] - b[1]).abs())
-        })
-        .fold(0.0f64, f64::max);
+    let (worst, scale) = displacement_difference(&r1, &r2);
     assert!(worst <= 1e-8 * scale, "1 vs 2 ranks differ by {worst:e} (scale {scale:e})");
 
     // the case is plastic

@@ -55,7 +55,7 @@ fn snes_trampolines_and_error_paths() {
     let mut x = Vector::mpi(&session, comm, n).unwrap();
     let mut r = x.duplicate().unwrap();
     let mut jac = Matrix::aij(&session, comm, n, &[1; 3], &[0; 3]).unwrap();
-    let mut snes = Snes::new(&session, comm).unwrap();
+    let mut snes = Snes::new(&session).unwrap();
     let mut problem = Cubic { c: vec![8.0, 27.0, 1.0], mode: Mode::Healthy };
 
     // healthy: converges to the cube roots, quadratically at the end

@@ -4,7 +4,7 @@
 //! ||J - J_fd||_F / ||J||_F printed by PETSc must be below 1e-6 at every Newton iterate.
 
 mod common;
-use common::run_deck;
+use common::{jacobian_test_ratios, run_deck};
 
 const DECK: &str = r#"
 [mesh]
@@ -27,11 +27,7 @@ fn assembled_jacobian_matches_finite_differences_on_two_ranks() {
     let run = run_deck(DECK, &[], 2, &["--", "-snes_test_jacobian"]);
     run.assert_ok();
     let out = run.stdout();
-    let ratios: Vec<f64> = out
-        .lines()
-        .filter_map(|l| l.trim().strip_prefix("||J - Jfd||_F/||J||_F = "))
-        .map(|rest| rest.split(',').next().unwrap().trim().parse().expect("ratio"))
-        .collect();
+    let ratios = jacobian_test_ratios(&out);
     assert!(!ratios.is_empty(), "PETSc printed no Jacobian test:\n{out}");
     for r in &ratios {
         assert!(*r < 1e-6, "||J - Jfd|| / ||J|| = {r:e}\n{out}");

@@ -102,7 +102,6 @@ pub fn graded_rectangle(r: [f64; 2], z: [f64; 2], divisions: [usize; 2], ratio: 
     if !(ratio[0] > 0.0 && ratio[1] > 0.0) {
         return Err(Error::input(format!("mesh block: grading ratios must be > 0, got {ratio:?}")));
     }
-    let (gi, gj) = (2 * nr + 1, 2 * nz + 1);
     // element boundaries in geometric progression; mid-side nodes halfway
     let stations = |lo: f64, hi: f64, n: usize, q: f64| -> Vec<f64> {
         let growth = if n > 1 { q.powf(1.0 / (n - 1) as f64) } else { 1.0 };
@@ -119,6 +118,17 @@ pub fn graded_rectangle(r: [f64; 2], z: [f64; 2], divisions: [usize; 2], ratio: 
         out
     };
     let (rs, zs) = (stations(r[0], r[1], nr, ratio[0]), stations(z[0], z[1], nz, ratio[1]));
+    Ok(mapped_block([nr, nz], |i, j| [rs[i], zs[j]]))
+}
+
+/// Structured block of `ni x nj` Q8 elements whose node (i, j) (i in 0..=2 ni along the first
+/// direction, j in 0..=2 nj along the second, odd i and j together skipped: serendipity) lies
+/// at `position(i, j)`. The map must keep (i, j) counter-clockwise in (r, z). Sets: element
+/// set and node set `all`, surfaces with node sets `inner` (i = 0), `outer` (i = 2 ni),
+/// `bottom` (j = 0), `top` (j = 2 nj).
+pub fn mapped_block(divisions: [usize; 2], position: impl Fn(usize, usize) -> [f64; 2]) -> (Mesh, MeshSets) {
+    let [nr, nz] = divisions;
+    let (gi, gj) = (2 * nr + 1, 2 * nz + 1);
     let mut index = vec![usize::MAX; gi * gj];
     let mut mesh = Mesh::default();
     for j in 0..gj {
@@ -127,7 +137,7 @@ pub fn graded_rectangle(r: [f64; 2], z: [f64; 2], divisions: [usize; 2], ratio: 
                 continue; // no centre node in the serendipity element
             }
             index[j * gi + i] = mesh.coords.len();
-            mesh.coords.push([rs[i], zs[j]]);
+            mesh.coords.push(position(i, j));
             mesh.node_ids.push(mesh.coords.len() as u64);
         }
     }
@@ -159,7 +169,7 @@ pub fn graded_rectangle(r: [f64; 2], z: [f64; 2], divisions: [usize; 2], ratio: 
     for (name, edges) in [("inner", inner), ("outer", outer), ("bottom", bottom), ("top", top)] {
         sets.add_surface(&mesh, name, edges);
     }
-    Ok((mesh, sets))
+    (mesh, sets)
 }
 
 /// One structured block of a multi-block mesh.

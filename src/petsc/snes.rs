@@ -8,6 +8,9 @@
 
 use super::{check, sys, Comm, MatOps, Matrix, MatrixView, PetscSession, SessionBorrow, VecOps, Vector, VectorView};
 use crate::error::{Error, Result};
+use mpi::collective::SystemOperation;
+use mpi::topology::SimpleCommunicator;
+use mpi::traits::*;
 use std::ffi::c_void;
 use std::marker::PhantomData;
 use std::panic::{catch_unwind, AssertUnwindSafe};
@@ -73,7 +76,8 @@ const HISTORY_LEN: usize = 1000;
 /// can be overridden from the options database (`-snes_*`, `-ksp_*`, `-pc_*`).
 pub struct Snes<'s> {
     raw: sys::SNES,
-    comm: Comm,
+    /// The communicator the SNES lives on (the session's world).
+    world: SimpleCommunicator,
     // PETSc writes the residual history into these; boxed so the addresses never move.
     history: Box<[f64]>,
     history_its: Box<[sys::PetscInt]>,
@@ -81,12 +85,20 @@ pub struct Snes<'s> {
 }
 
 impl<'s> Snes<'s> {
-    pub fn new(session: &'s PetscSession, comm: Comm) -> Result<Self> {
+    /// A SNES on the session's world communicator.
+    pub fn new(session: &'s PetscSession) -> Result<Self> {
+        let world = session.world();
+        let comm: Comm = world.as_raw();
         let mut raw = std::ptr::null_mut();
         // SAFETY: comm is live; the handle is owned by the returned value.
         check(unsafe { sys::SNESCreate(comm, &mut raw) }, "SNESCreate")?;
-        let mut snes =
-            Snes { raw, comm, history: vec![0.0; HISTORY_LEN].into_boxed_slice(), history_its: vec![0; HISTORY_LEN].into_boxed_slice(), _session: PhantomData };
+        let mut snes = Snes {
+            raw,
+            world,
+            history: vec![0.0; HISTORY_LEN].into_boxed_slice(),
+            history_its: vec![0; HISTORY_LEN].into_boxed_slice(),
+            _session: PhantomData,
+        };
         snes.configure_defaults(session)?;
         Ok(snes)
     }
@@ -152,7 +164,7 @@ impl<'s> Snes<'s> {
         residual: &mut Vector<'_>,
         jacobian: &mut Matrix<'_>,
     ) -> Result<SolveReport> {
-        let mut ctx = CallbackContext { problem, comm: self.comm, failure: None, first_norm: 0.0, previous_norm: 0.0 };
+        let mut ctx = CallbackContext { problem, world: &self.world, failure: None, first_norm: 0.0, previous_norm: 0.0 };
         let ctx_ptr = &mut ctx as *mut CallbackContext<'_, P> as *mut c_void;
         // SAFETY: ctx outlives SNESSolve; the callbacks are cleared again (context NULL) below
         // so PETSc never holds a dangling pointer after this function returns.
@@ -203,7 +215,7 @@ impl Drop for Snes<'_> {
 
 struct CallbackContext<'p, P> {
     problem: &'p mut P,
-    comm: Comm,
+    world: &'p SimpleCommunicator,
     failure: Option<Error>,
     /// ||F|| at the start and at the previous iterate (convergence test).
     first_norm: f64,
@@ -248,17 +260,8 @@ fn guarded<P>(snes: sys::SNES, ctx: *mut c_void, body: impl FnOnce(&mut P) -> Re
         }
     };
     let mut global = local;
-    // SAFETY: every rank of the SNES's communicator runs this callback, so the reduction matches.
-    unsafe {
-        mpi::ffi::MPI_Allreduce(
-            &local as *const i32 as *const c_void,
-            &mut global as *mut i32 as *mut c_void,
-            1,
-            mpi::ffi::RSMPI_INT32_T,
-            mpi::ffi::RSMPI_MAX,
-            ctx.comm,
-        );
-    }
+    // every rank of the SNES's communicator runs this callback, so the reduction matches
+    ctx.world.all_reduce_into(&local, &mut global, SystemOperation::max());
     match global {
         OK => 0,
         DOMAIN => {
@@ -311,16 +314,10 @@ unsafe extern "C" fn convergence_trampoline<P: NonlinearProblem>(
     let ctx = unsafe { &mut *(ctx as *mut CallbackContext<'_, P>) };
     let local = catch_unwind(AssertUnwindSafe(|| ctx.problem.roundoff_squares())).unwrap_or(0.0);
     let mut global = 0.0f64;
-    // SAFETY: every rank runs the convergence test, so the reduction matches.
+    // every rank runs the convergence test, so the reduction matches; fnorm is global
+    ctx.world.all_reduce_into(&local, &mut global, SystemOperation::sum());
+    // SAFETY: PETSc passes a valid reason pointer for the duration of the call.
     unsafe {
-        mpi::ffi::MPI_Allreduce(
-            &local as *const f64 as *const c_void,
-            &mut global as *mut f64 as *mut c_void,
-            1,
-            mpi::ffi::RSMPI_DOUBLE,
-            mpi::ffi::RSMPI_SUM,
-            ctx.comm,
-        );
         if it == 0 {
             ctx.first_norm = fnorm;
         } else if *reason == sys::SNESConvergedReason_SNES_CONVERGED_ITERATING {

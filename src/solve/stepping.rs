@@ -71,7 +71,7 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
             jacobian.set_option(MatOption_MAT_NEW_NONZERO_ALLOCATION_ERR, false)?;
         }
         let mut problem = Problem::new(session, model, &partition, &dofs, &x, history, multipliers)?;
-        let mut snes = Snes::new(session, comm)?;
+        let mut snes = Snes::new(session)?;
 
         let requested = 1.0 / step.increments as f64;
         let (mut lambda, mut size, mut increment, mut cutbacks) = (0.0f64, requested, 0usize, 0usize);

@@ -136,3 +136,29 @@ impl Results {
         names.into_iter().map(|n| format!("increments/{n}")).collect()
     }
 }
+
+impl Results {
+    /// Final displacement of every node by its external id.
+    pub fn displacement_by_node_id(&self) -> std::collections::HashMap<u64, [f64; 2]> {
+        self.u64s("mesh/node_ids").into_iter().zip(self.nodes().into_iter().map(|(_, u)| u)).collect()
+    }
+}
+
+/// Largest difference between two runs' final displacements (by node id), and the largest
+/// displacement of the first (the scale for a relative comparison).
+pub fn displacement_difference(a: &Results, b: &Results) -> (f64, f64) {
+    let (ua, ub) = (a.displacement_by_node_id(), b.displacement_by_node_id());
+    assert_eq!(ua.len(), ub.len(), "the runs have different meshes");
+    let scale = ua.values().fold(0.0f64, |m, u| m.max(u[0].abs()).max(u[1].abs()));
+    let worst = ua.iter().map(|(id, u)| (u[0] - ub[id][0]).abs().max((u[1] - ub[id][1]).abs())).fold(0.0f64, f64::max);
+    (worst, scale)
+}
+
+/// The ratios ||J - J_fd||_F / ||J||_F that PETSc's -snes_test_jacobian printed.
+pub fn jacobian_test_ratios(stdout: &str) -> Vec<f64> {
+    stdout
+        .lines()
+        .filter_map(|l| l.trim().strip_prefix("||J - Jfd||_F/||J||_F = "))
+        .map(|rest| rest.split(',').next().unwrap().trim().parse().expect("ratio"))
+        .collect()
+}
