@@ -7,7 +7,7 @@
 //! same two-body-pair model on 2 ranks.
 
 mod common;
-use common::{displacement_difference, jacobian_test_ratios, run_deck, Results};
+use common::{displacement_difference, jacobian_test_ratios, run_deck, run_serial_and_parallel};
 
 const DECK: &str = r#"
 [[mesh.block]]
@@ -50,11 +50,7 @@ pressure = [ { surface = "a_inner", value = 20.0 } ]
 
 #[test]
 fn two_contact_pairs_across_the_partition_match_one_rank() {
-    let serial = run_deck(DECK, &[], 1, &[]);
-    serial.assert_ok();
-    let parallel = run_deck(DECK, &[], 2, &[]);
-    parallel.assert_ok();
-    let (r1, r2) = (Results::open(&serial.h5), Results::open(&parallel.h5));
+    let (_serial, r1, _parallel, r2) = run_serial_and_parallel(DECK, &[]);
     let (worst, scale) = displacement_difference(&r1, &r2);
     assert!(worst <= 1e-8 * scale, "displacements differ by {worst:e} (scale {scale:e})");
     // both ranks own slave nodes of the pairs

@@ -6,7 +6,7 @@
 //! 0.3 mm so the ring yields; two steps (heat+pressure, then push).
 
 mod common;
-use common::{displacement_difference, run_deck, Results};
+use common::{displacement_difference, run_deck, run_serial_and_parallel, Results};
 use std::process::Command;
 
 const DECK: &str = r#"
@@ -37,11 +37,7 @@ boundary = [ { set = "top", uz = -0.3 } ]
 
 #[test]
 fn two_ranks_match_one_rank_and_the_file_reads_back() {
-    let serial = run_deck(DECK, &[], 1, &[]);
-    serial.assert_ok();
-    let parallel = run_deck(DECK, &[], 2, &[]);
-    parallel.assert_ok();
-    let (r1, r2) = (Results::open(&serial.h5), Results::open(&parallel.h5));
+    let (_serial, r1, parallel, r2) = run_serial_and_parallel(DECK, &[]);
     let (worst, scale) = displacement_difference(&r1, &r2);
     assert!(worst <= 1e-8 * scale, "1 vs 2 ranks differ by {worst:e} (scale {scale:e})");
 

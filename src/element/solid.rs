@@ -203,13 +203,7 @@ mod tests {
         [[10.0, 0.0], [12.5, 0.3], [12.0, 2.2], [9.7, 2.0], [11.2, 0.1], [12.3, 1.3], [10.9, 2.15], [9.9, 1.0]]
     }
 
-    const STEEL: J2 = J2 {
-        bulk_modulus: 166_666.666_666_666_66,
-        shear_modulus: 76_923.076_923_076_92,
-        thermal_expansion: 1.875e-5,
-        yield_stress: 300.0,
-        hardening_modulus: 1000.0,
-    };
+    use crate::material::j2::tests::STEEL;
 
     /// Max over columns of |K_fd - K| / max|K| with central differences of the internal force.
     fn tangent_error(input: &SolidInput<'_>, u: &[[f64; 2]; 8], h: f64) -> f64 {

@@ -196,11 +196,12 @@ impl J2 {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use crate::ad::Dual;
 
-    const STEEL: J2 = J2 {
+    /// AISI 304 of the seed paper, for kernel tests.
+    pub(crate) const STEEL: J2 = J2 {
         bulk_modulus: 166_666.666_666_666_66,
         shear_modulus: 76_923.076_923_076_92,
         thermal_expansion: 1.875e-5,

@@ -162,3 +162,13 @@ pub fn jacobian_test_ratios(stdout: &str) -> Vec<f64> {
         .map(|rest| rest.split(',').next().unwrap().trim().parse().expect("ratio"))
         .collect()
 }
+
+/// Runs `deck` on 1 rank and on 2 ranks (both must succeed) and opens both results.
+pub fn run_serial_and_parallel(deck: &str, extra: &[&str]) -> (Run, Results, Run, Results) {
+    let serial = run_deck(deck, &[], 1, extra);
+    serial.assert_ok();
+    let parallel = run_deck(deck, &[], 2, extra);
+    parallel.assert_ok();
+    let (r1, r2) = (Results::open(&serial.h5), Results::open(&parallel.h5));
+    (serial, r1, parallel, r2)
+}
