@@ -100,6 +100,7 @@ pub const FREE_END_EXTENSION: f64 = 0.1;
 mod tests {
     use super::*;
     use crate::model::mesh::rectangle;
+    use crate::model::Mesh;
 
     #[test]
     fn finds_the_edge_under_a_node_and_loses_it_past_the_free_end() {
@@ -118,6 +119,89 @@ mod tests {
         // beyond the free end r = 5 (more than the 5 % extension of the 1 mm edge)
         let xs = [5.2, 0.99];
         assert!(closest_edge(&s, &x, xs, grid.candidates(xs), &[], 0.5).is_none());
+    }
+
+    /// A surface made of straight 3-node edges through `points` (each pair of consecutive
+    /// points one edge), in a throw-away mesh of degenerate-free elements.
+    fn polyline(points: &[[f64; 2]]) -> (Mesh, ContactSurface) {
+        use crate::model::Edge;
+        let mut mesh = Mesh::default();
+        let mut edges = Vec::new();
+        for w in points.windows(2) {
+            let (a, b) = (w[0], w[1]);
+            // element whose side 0 is a -> b (counter-clockwise: the body lies to the left)
+            let n = [a[1] - b[1], b[0] - a[0]];
+            let c = [b[0] + n[0], b[1] + n[1]];
+            let d = [a[0] + n[0], a[1] + n[1]];
+            let mid = |p: [f64; 2], q: [f64; 2]| [(p[0] + q[0]) / 2.0, (p[1] + q[1]) / 2.0];
+            let base = mesh.coords.len();
+            mesh.coords.extend([a, b, c, d, mid(a, b), mid(b, c), mid(c, d), mid(d, a)]);
+            mesh.elements.push(std::array::from_fn(|k| base + k));
+            edges.push(Edge { element: mesh.elements.len() - 1, side: 0 });
+        }
+        // merge coincident corner nodes so consecutive edges share them
+        let n = mesh.coords.len();
+        let mut canonical: Vec<usize> = (0..n).collect();
+        for i in 0..n {
+            for j in 0..i {
+                if mesh.coords[i] == mesh.coords[j] {
+                    canonical[i] = canonical[j];
+                    break;
+                }
+            }
+        }
+        for e in mesh.elements.iter_mut() {
+            for k in e.iter_mut() {
+                *k = canonical[*k];
+            }
+        }
+        mesh.node_ids = (1..=n as u64).collect();
+        mesh.element_ids = (1..=mesh.elements.len() as u64).collect();
+        let s = ContactSurface::new(&mesh, &edges);
+        (mesh, s)
+    }
+
+    #[test]
+    fn convex_and_concave_corners_keep_a_node_once() {
+        // the surface runs along +r, then up: the body (on its left) is the quadrant r < 2,
+        // z > 0, whose corner at (2, 0) is convex; outward normals -z and +r
+        let (mesh, s) = polyline(&[[0.0, 0.0], [2.0, 0.0], [2.0, 2.0]]);
+        let x = |n: usize| mesh.coords[n];
+        let grid = EdgeGrid::new(&s, &x, 0.5);
+        // convex corner, outside: a point beyond both edge ends, in the blind spot, is found
+        // on exactly one edge (the nearer one, here a tie broken towards the lower index)
+        let xs = [2.1, -0.1];
+        let found = closest_edge(&s, &x, xs, grid.candidates(xs), &[], 0.5).expect("blind spot of a convex corner");
+        assert!(found.1.gap > 0.0, "outside the body");
+        // inside the body near the corner: it projects onto both edges; only the nearer counts
+        let xs = [1.95, 0.02];
+        let (k, p) = closest_edge(&s, &x, xs, grid.candidates(xs), &[], 0.5).unwrap();
+        assert_eq!(k, 0, "nearer to the first edge");
+        assert!((p.gap + 0.02).abs() < 1e-12);
+        let xs = [1.98, 0.5];
+        let (k, _) = closest_edge(&s, &x, xs, grid.candidates(xs), &[], 0.5).unwrap();
+        assert_eq!(k, 1, "nearer to the second edge");
+    }
+
+    #[test]
+    fn self_contact_skips_the_neighbourhood_and_finds_the_facing_side() {
+        // a U whose inside (the surface) faces itself across a 0.2 gap: bottom leg along -r at
+        // z = 0, turn, top leg along +r at z = 0.2 (the body is outside the U)
+        let (mesh, s) = polyline(&[[4.0, 0.0], [3.0, 0.0], [2.0, 0.0], [2.0, 0.2], [3.0, 0.2], [4.0, 0.2]]);
+        let x = |n: usize| mesh.coords[n];
+        let grid = EdgeGrid::new(&s, &x, 0.5);
+        let node = s.nodes.iter().copied().find(|&n| mesh.coords[n] == [3.0, 0.2]).unwrap();
+        let xs = [3.0, 0.19]; // the node, moved 0.01 off its own leg towards the bottom leg
+        let own = s.neighbourhood(node, 1);
+        assert!(!own.is_empty());
+        let (k, p) = closest_edge(&s, &x, xs, grid.candidates(xs), &own, 0.5).unwrap();
+        assert!(!own.contains(&k));
+        let e = s.edges[k];
+        assert!(mesh.coords[e[0]][1] == 0.0 && mesh.coords[e[1]][1] == 0.0, "found the bottom leg");
+        assert!((p.gap - 0.19).abs() < 1e-12, "open by 0.19: {p:?}");
+        // without the exclusion the node's own edge would be the nearest
+        let (k, _) = closest_edge(&s, &x, xs, grid.candidates(xs), &[], 0.5).unwrap();
+        assert!(own.contains(&k));
     }
 
     #[test]
