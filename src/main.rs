@@ -21,6 +21,12 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
+    /// Analyse an axial bellows expansion joint (the seed paper's DN300 case by default).
+    ///
+    /// Geometry, material and loads default to the paper's values; every one can be changed
+    /// by a flag. Step 1 heats to --temperature with --pressure inside, step 2 compresses the
+    /// joint by --displacement in --increments increments.
+    Bellows(BellowsArgs),
     /// Run the analysis described by a TOML deck and write results to HDF5 (+ XDMF for ParaView).
     ///
     /// PETSc options go after `--`, e.g.
@@ -41,9 +47,142 @@ enum Command {
     },
 }
 
+/// Flags of `slideline bellows` (mm, MPa, degC).
+#[derive(clap::Args)]
+#[command(allow_negative_numbers = true)]
+struct BellowsArgs {
+    /// Number of plies in the pack.
+    #[arg(long, default_value_t = 2)]
+    plies: usize,
+    /// Thickness of each ply, mm.
+    #[arg(long, default_value_t = 1.0)]
+    ply_thickness: f64,
+    /// Number of convolutions.
+    #[arg(long, default_value_t = 6)]
+    convolutions: usize,
+    /// Convolution pitch, mm (4 x torus radius for U shapes).
+    #[arg(long, default_value_t = 24.0)]
+    pitch: f64,
+    /// Convolution height w (mid-surface, root to crest), mm.
+    #[arg(long, default_value_t = 20.0)]
+    height: f64,
+    /// Mean radius of the root and crest tori, mm.
+    #[arg(long, default_value_t = 6.0)]
+    torus_radius: f64,
+    /// Axial compression of the joint, mm.
+    #[arg(long, default_value_t = 70.0)]
+    displacement: f64,
+    /// Increments of the compression step.
+    #[arg(long, default_value_t = 240)]
+    increments: usize,
+    /// Contact penalty, N/mm^3 (MPa per mm of penetration).
+    #[arg(long, default_value_t = 1.0e4)]
+    penalty: f64,
+    /// Operating temperature, degC (from 20).
+    #[arg(long, default_value_t = 200.0)]
+    temperature: f64,
+    /// Internal pressure, MPa (0.6 = 6 bar).
+    #[arg(long, default_value_t = 0.6)]
+    pressure: f64,
+    /// Initial yield stress, MPa.
+    #[arg(long, default_value_t = 300.0)]
+    yield_stress: f64,
+    /// Linear isotropic hardening modulus, MPa.
+    #[arg(long, default_value_t = 1000.0)]
+    hardening: f64,
+    /// Element length along the plies, mm.
+    #[arg(long, default_value_t = 1.0)]
+    ply_element_length: f64,
+    /// Elements through each ply.
+    #[arg(long, default_value_t = 2)]
+    ply_elements: usize,
+    /// A coarse, quick version of the same case (about a minute).
+    #[arg(long)]
+    quick: bool,
+    /// Write the mesh (Gmsh .msh next to --output) and stop.
+    #[arg(long)]
+    mesh_only: bool,
+    /// Results file (HDF5).
+    #[arg(short, long, default_value = "bellows.h5")]
+    output: PathBuf,
+    /// No progress lines.
+    #[arg(short, long)]
+    quiet: bool,
+    /// PETSc options (after `--`).
+    #[arg(last = true, allow_hyphen_values = true)]
+    petsc: Vec<String>,
+}
+
+impl BellowsArgs {
+    fn params(&self) -> model::bellows::BellowsParams {
+        let mut p = model::bellows::BellowsParams {
+            plies: self.plies,
+            ply_thickness: self.ply_thickness,
+            convolutions: self.convolutions,
+            pitch: self.pitch,
+            height: self.height,
+            torus_radius: self.torus_radius,
+            displacement: self.displacement,
+            increments: self.increments,
+            penalty: self.penalty,
+            temperature: self.temperature,
+            pressure: self.pressure,
+            yield_stress: self.yield_stress,
+            hardening_modulus: self.hardening,
+            ply_element_length: self.ply_element_length,
+            ply_elements: self.ply_elements,
+            ..Default::default()
+        };
+        if self.quick {
+            p.ply_elements = 1;
+            p.ply_element_length = 2.0;
+            p.wall_element_length = 8.0;
+            p.wall_elements = 2;
+            p.increments = p.increments.min(40);
+        }
+        p
+    }
+}
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
     match cli.command {
+        Command::Bellows(args) => {
+            let params = args.params();
+            // bad flags are reported before MPI and PETSc start
+            if let Err(e) = params.validate() {
+                return fail(&e, true);
+            }
+            if args.mesh_only {
+                let result = model::bellows::mesh(&params).and_then(|(mesh, sets)| model::gmsh::write(&mesh, &sets, &args.output.with_extension("msh")));
+                return match result {
+                    Ok(()) => {
+                        println!("mesh written to {}", args.output.with_extension("msh").display());
+                        ExitCode::SUCCESS
+                    }
+                    Err(e) => fail(&e, true),
+                };
+            }
+            let session = match PetscSession::initialize(&args.petsc) {
+                Ok(s) => s,
+                Err(e) => return fail(&e, true),
+            };
+            let root = session.world().rank() == 0;
+            if root && !args.quiet {
+                let ejma = model::bellows::ejma_axial_rate(&params, EJMA_CF);
+                println!("bellows: {} plies x {} mm, {} convolutions, pitch {}, height {}; EJMA axial rate {:.1} N/mm full ring, {:.2} N/mm per 2.5-degree sector (Cf = {EJMA_CF})", params.plies, params.ply_thickness, params.convolutions, params.pitch, params.height, ejma, ejma * 2.5 / 360.0);
+            }
+            let result = model::bellows::model(&params).and_then(|m| run(&session, &m, &RunOptions { output: args.output.clone(), progress: !args.quiet }));
+            match result {
+                Ok(summary) => {
+                    if root {
+                        print_summary(&summary);
+                    }
+                    ExitCode::SUCCESS
+                }
+                Err(e) => fail(&e, root),
+            }
+        }
         Command::Run { deck, output, quiet, petsc } => {
             let session = match PetscSession::initialize(&petsc) {
                 Ok(s) => s,
@@ -64,6 +203,9 @@ fn main() -> ExitCode {
         }
     }
 }
+
+/// EJMA's C_f for the default convolution proportions (from the EJMA chart; approximate).
+const EJMA_CF: f64 = 1.9;
 
 fn fail(e: &Error, print: bool) -> ExitCode {
     if print {

@@ -4,6 +4,7 @@
 //!
 //! Units: mm, N, MPa, degC. Coordinates are (r, z), r >= 0 the radius, z the axis.
 
+pub mod bellows;
 pub mod deck;
 pub mod gmsh;
 pub mod mesh;
