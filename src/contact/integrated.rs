@@ -117,7 +117,7 @@ pub fn weighted_gaps(
                 }
                 let mn = master.edges[m];
                 // gradient and Hessian of the gap: the kernel with p = 1, A = 1, eps = 0
-                let (minus_grad, minus_hessian, _) = edge_residual_and_tangent(p, &mn.map(x), &proj, 1.0, 0.0, 1.0);
+                let (minus_grad, minus_hessian, _) = edge_residual_and_tangent(p, &mn.map(x), &proj, 1.0, 0.0, 1.0, [false, false]);
                 // slave point x_s = sum N_a x_a: 8 -> 12 DOFs
                 let mut tie = SMatrix::<f64, 8, 12>::zeros();
                 for a in 0..3 {

@@ -20,6 +20,7 @@
 //! equation taken in dual arithmetic at the converged xi (the implicit function theorem).
 //! DOF order: [s_r, s_z, 1_r, 1_z, 2_r, 2_z, 3_r, 3_z].
 
+use super::search::FREE_END_EXTENSION;
 use crate::ad::{Dual, Scalar};
 use crate::fe::shape::line3;
 use nalgebra::{SMatrix, SVector};
@@ -93,7 +94,8 @@ pub fn project_on_edge(xs: [f64; 2], x: &[[f64; 2]; 3]) -> Option<EdgeProjection
 
 /// Residual f = -p A [n, -N_k n] of the slave node at `xs` on the edge `x`, with `xi` the
 /// converged projection; generic so the dual version gives the tangent.
-fn residual<T: Scalar>(xs: &[T; 2], x: &[[T; 2]; 3], xi_converged: f64, area: f64, penalty: f64, multiplier: f64) -> [T; 8] {
+#[allow(clippy::too_many_arguments)]
+fn residual<T: Scalar>(xs: &[T; 2], x: &[[T; 2]; 3], xi_converged: f64, area: f64, penalty: f64, multiplier: f64, free_ends: [bool; 2]) -> [T; 8] {
     // one Newton step of the projection at the converged xi: value unchanged, derivative
     // -r_x / r_xi by the implicit function theorem
     let xi0 = T::from_f64(xi_converged);
@@ -105,7 +107,7 @@ fn residual<T: Scalar>(xs: &[T; 2], x: &[[T; 2]; 3], xi_converged: f64, area: f6
     let gap = (xs[0] - p[0]) * n[0] + (xs[1] - p[1]) * n[1];
     let pressure = -(gap * penalty) + multiplier; // the caller ensures it is >= 0
     let shape = [xi * (xi - 1.0) * 0.5, xi * (xi + 1.0) * 0.5, -(xi * xi) + 1.0];
-    let c = -(pressure * area);
+    let c = -(pressure * area) * end_taper(xi, free_ends);
     [
         n[0] * c,
         n[1] * c,
@@ -118,6 +120,29 @@ fn residual<T: Scalar>(xs: &[T; 2], x: &[[T; 2]; 3], xi_converged: f64, area: f6
     ]
 }
 
+/// Weight of the contact force of a slave node projecting past a free end of the master
+/// surface (`free_ends` = [start free, end free]): 1 on the edge, falling smoothly to 0 at
+/// FREE_END_EXTENSION past the end, so a node sliding off the surface lets go gradually
+/// instead of dropping its force in one iteration (which makes Newton cycle). Generic: its
+/// derivative enters the tangent.
+fn end_taper<T: Scalar>(xi: T, free_ends: [bool; 2]) -> T {
+    let over = if free_ends[0] && xi.re() < -1.0 {
+        -xi - 1.0
+    } else if free_ends[1] && xi.re() > 1.0 {
+        xi - 1.0
+    } else {
+        return T::from_f64(1.0);
+    };
+    if over.re() >= FREE_END_EXTENSION {
+        T::from_f64(0.0)
+    } else {
+        // smoothstep 1 - 3 s^2 + 2 s^3: no kink where the taper starts (slave end nodes of
+        // equal-length bodies sit exactly there) or where it ends
+        let s = over / FREE_END_EXTENSION;
+        s * s * (s * 2.0 - 3.0) + 1.0
+    }
+}
+
 /// Residual, tangent and contact pressure of one slave node on one master edge, for
 /// tributary area `area`, penalty `penalty` (pressure per unit penetration) and multiplier
 /// `multiplier`. All zero when the contact is open (lambda - eps g < 0); closed at zero gap.
@@ -128,15 +153,16 @@ pub fn edge_residual_and_tangent(
     area: f64,
     penalty: f64,
     multiplier: f64,
+    free_ends: [bool; 2],
 ) -> (EdgeVector, EdgeMatrix, f64) {
     if multiplier - penalty * proj.gap < 0.0 {
         return (EdgeVector::zeros(), EdgeMatrix::zeros(), 0.0);
     }
-    let pressure = multiplier - penalty * proj.gap;
+    let pressure = (multiplier - penalty * proj.gap) * end_taper(proj.xi, free_ends);
     let v = |k: usize, c: usize| Dual::<8>::variable(if k == 0 { xs[c] } else { x[k - 1][c] }, 2 * k + c);
     let xs_d = [v(0, 0), v(0, 1)];
     let x_d = [[v(1, 0), v(1, 1)], [v(2, 0), v(2, 1)], [v(3, 0), v(3, 1)]];
-    let f = residual(&xs_d, &x_d, proj.xi, area, penalty, multiplier);
+    let f = residual(&xs_d, &x_d, proj.xi, area, penalty, multiplier, free_ends);
     let force = EdgeVector::from_fn(|i, _| f[i].re);
     let tangent = EdgeMatrix::from_fn(|i, j| f[i].eps[j]);
     (force, tangent, pressure)
@@ -160,8 +186,11 @@ mod tests {
         let xs = [v[0], v[1]];
         let x = [[v[2], v[3]], [v[4], v[5]], [v[6], v[7]]];
         let p = project_on_edge(xs, &x).unwrap();
-        edge_residual_and_tangent(xs, &x, &p, area, eps, lambda)
+        edge_residual_and_tangent(xs, &x, &p, area, eps, lambda, FREE)
     }
+
+    /// Both ends of the test edges are free (the taper acts past them).
+    const FREE: [bool; 2] = [true, true];
 
     fn fd_error(v: [f64; 8], lambda: f64) -> f64 {
         let (_, k, pressure) = eval(&v, 0.8, 3e4, lambda);
@@ -189,7 +218,7 @@ mod tests {
             let l = t[0].hypot(t[1]);
             [pos[0] - 0.03 * t[1] / l, pos[1] + 0.03 * t[0] / l]
         };
-        for (xs, what) in [(inside(0.2), "general position"), (inside(0.97), "near the end")] {
+        for (xs, what) in [(inside(0.2), "general position"), (inside(0.97), "near the end"), (inside(1.04), "past a free end, tapered")] {
             let p = project_on_edge(xs, &x).unwrap();
             assert!(p.gap < 0.0, "{what}: {p:?}");
             for lambda in [0.0, 40.0] {
@@ -224,7 +253,7 @@ mod tests {
         let q = slideline::project(xs, x1, x2).unwrap();
         assert!((p.gap - q.gap).abs() < 1e-14 && ((1.0 + p.xi) / 2.0 - q.a).abs() < 1e-14);
         let (area, eps) = (0.7, 2e4);
-        let (f8, k8, p8) = edge_residual_and_tangent(xs, &x, &p, area, eps, 0.0);
+        let (f8, k8, p8) = edge_residual_and_tangent(xs, &x, &p, area, eps, 0.0, [false, false]);
         let (f6, k6, p6) = slideline::residual_and_tangent(&q, area, eps, 0.0);
         assert!((p8 - p6).abs() < 1e-12 * p6);
         let mut tie = SMatrix::<f64, 8, 6>::zeros();

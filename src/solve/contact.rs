@@ -240,7 +240,8 @@ impl<'s> ContactAssembly<'s> {
             let eps = Self::penalty(model, pair, master, edge);
             let area = slave.areas[i] * pass.weight;
             let en = master.edges[edge];
-            let (residual, tangent, pressure) = edge_residual_and_tangent(xs, &en.map(x), &proj, area, eps, self.current[p][k]);
+            let free_ends = master.neighbours[edge].map(|n| n.is_none());
+            let (residual, tangent, pressure) = edge_residual_and_tangent(xs, &en.map(x), &proj, area, eps, self.current[p][k], free_ends);
             self.states[p][k] = SlaveState { gap: proj.gap, pressure, force: pressure * area, traction: 0.0 };
             if self.current[p][k] - eps * proj.gap >= 0.0 {
                 self.roundoff += (ROUNDOFF_ULPS * f64::EPSILON * eps * area * xs[0].hypot(xs[1])).powi(2);
