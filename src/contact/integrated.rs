@@ -64,10 +64,16 @@ pub fn weighted_gaps(
     let grid = EdgeGrid::new(master, x, capture);
     let mut out: Vec<WeightedGap> = Vec::with_capacity(indices.len());
     let mut best_weight: Vec<f64> = Vec::with_capacity(indices.len());
-    let position = |i: usize| indices.iter().position(|&k| k == i);
+    // requested node index (into slave.nodes) -> position in `indices`
+    let mut lookup = vec![usize::MAX; slave.nodes.len()];
+    for (k, &i) in indices.iter().enumerate() {
+        lookup[i] = k;
+    }
+    let position = |i: usize| Some(lookup[i]).filter(|&k| k != usize::MAX);
     // the slave edges touching a requested node
-    let mut edges: Vec<usize> = (0..slave.edges.len()).filter(|&e| slave.edges[e].iter().any(|&n| slave.index_of(n).and_then(position).is_some())).collect();
+    let mut edges: Vec<usize> = indices.iter().flat_map(|&i| slave.edges_of(slave.nodes[i]).iter().copied()).collect();
     edges.sort_unstable();
+    edges.dedup();
     for &i in indices {
         out.push(WeightedGap { index: i, gap: 0.0, terms: Vec::new(), master_edge: usize::MAX });
         best_weight.push(0.0);

@@ -32,6 +32,8 @@ pub struct ContactSurface {
     /// Consistent "mass" matrix M_ij = integral N_i N_j r ds as (i, j, value) triplets over
     /// `nodes` indices, for the traction recovery.
     mass: Vec<(usize, usize, f64)>,
+    /// Edges touching each node (same order as `nodes`): keeps per-node lookups local.
+    node_edges: Vec<Vec<usize>>,
 }
 
 impl ContactSurface {
@@ -88,14 +90,20 @@ impl ContactSurface {
             edge_length.push(length);
             element.push(edge.element);
         }
+        let mut node_edges = vec![Vec::new(); nodes.len()];
+        for (e, en) in list.iter().enumerate() {
+            for &n in en {
+                node_edges[index(n)].push(e);
+            }
+        }
         let neighbours = (0..list.len())
             .map(|e| {
                 let [start, end, _] = list[e];
-                let find = |node: usize, at: usize| (0..list.len()).find(|&o| o != e && list[o][at] == node);
+                let find = |node: usize, at: usize| node_edges[index(node)].iter().copied().find(|&o| o != e && list[o][at] == node);
                 [find(start, 1), find(end, 0)]
             })
             .collect();
-        ContactSurface { nodes, areas, hat_areas, edges: list, edge_length, element, neighbours, mass }
+        ContactSurface { nodes, areas, hat_areas, edges: list, edge_length, element, neighbours, mass, node_edges }
     }
 
     /// Index of mesh node `node` in `nodes`.
@@ -103,10 +111,15 @@ impl ContactSurface {
         self.nodes.binary_search(&node).ok()
     }
 
+    /// Edges touching mesh node `node` (empty if it is not on the surface).
+    pub fn edges_of(&self, node: usize) -> &[usize] {
+        self.index_of(node).map(|k| self.node_edges[k].as_slice()).unwrap_or(&[])
+    }
+
     /// Edges within `hops` edges of `node` along the surface (self-contact: a node never
     /// bears on its own neighbourhood).
     pub fn neighbourhood(&self, node: usize, hops: usize) -> Vec<usize> {
-        let mut near: Vec<usize> = (0..self.edges.len()).filter(|&e| self.edges[e].contains(&node)).collect();
+        let mut near: Vec<usize> = self.edges_of(node).to_vec();
         for _ in 1..hops {
             let grown: Vec<usize> = near.iter().flat_map(|&e| self.neighbours[e].iter().flatten().copied()).collect();
             near.extend(grown);
@@ -119,7 +132,7 @@ impl ContactSurface {
     /// Outward unit normal at mesh node `node` (average over its edges) for positions `x`.
     pub fn node_normal(&self, node: usize, x: impl Fn(usize) -> [f64; 2]) -> [f64; 2] {
         let mut n = [0.0; 2];
-        for e in self.edges.iter().filter(|e| e.contains(&node)) {
+        for e in self.edges_of(node).iter().map(|&k| &self.edges[k]) {
             let xi = [-1.0, 1.0, 0.0][e.iter().position(|&m| m == node).expect("contains")];
             let (_, dn) = line3(xi);
             let t = [0, 1].map(|i| (0..3).map(|a| dn[a] * x(e[a])[i]).sum::<f64>());

@@ -272,11 +272,15 @@ impl<'s> ContactAssembly<'s> {
             near
         };
         let gaps = weighted_gaps(slave, master, &x, &x0, &pass.owned, &excluded, pair.capture_distance);
+        let mut owned_position = vec![usize::MAX; slave.nodes.len()];
+        for (k, &i) in pass.owned.iter().enumerate() {
+            owned_position[i] = k;
+        }
         for s in self.states[p].iter_mut() {
             *s = SlaveState { gap: f64::NAN, ..SlaveState::default() };
         }
         for g in gaps {
-            let k = pass.owned.iter().position(|&i| i == g.index).expect("requested node");
+            let k = owned_position[g.index];
             let area = slave.hat_areas[g.index];
             let eps = Self::penalty(model, pair, master, g.master_edge);
             let lambda = self.current[p][k];
