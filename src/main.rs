@@ -4,7 +4,7 @@
 use clap::{Parser, Subcommand};
 use mpi::traits::Communicator;
 use slideline::petsc::PetscSession;
-use slideline::solve::{run, RunOptions};
+use slideline::solve::{run, RunOptions, RunSummary};
 use slideline::{model, Error};
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -173,15 +173,7 @@ fn main() -> ExitCode {
                 println!("bellows: {} plies x {} mm, {} convolutions, pitch {}, height {}; EJMA axial rate {:.1} N/mm full ring, {:.2} N/mm per 2.5-degree sector (Cf = {EJMA_CF})", params.plies, params.ply_thickness, params.convolutions, params.pitch, params.height, ejma, ejma * 2.5 / 360.0);
             }
             let result = model::bellows::model(&params).and_then(|m| run(&session, &m, &RunOptions { output: args.output.clone(), progress: !args.quiet }));
-            match result {
-                Ok(summary) => {
-                    if root {
-                        print_summary(&summary);
-                    }
-                    ExitCode::SUCCESS
-                }
-                Err(e) => fail(&e, root),
-            }
+            finish(result, root)
         }
         Command::Run { deck, output, quiet, petsc } => {
             let session = match PetscSession::initialize(&petsc) {
@@ -191,21 +183,26 @@ fn main() -> ExitCode {
             let root = session.world().rank() == 0;
             let output = output.unwrap_or_else(|| PathBuf::from(deck.file_stem().unwrap_or_default()).with_extension("h5"));
             let result = model::deck::read(&deck).and_then(|m| run(&session, &m, &RunOptions { output, progress: !quiet }));
-            match result {
-                Ok(summary) => {
-                    if root {
-                        print_summary(&summary);
-                    }
-                    ExitCode::SUCCESS
-                }
-                Err(e) => fail(&e, root),
-            }
+            finish(result, root)
         }
     }
 }
 
 /// EJMA's C_f for the default convolution proportions (from the EJMA chart; approximate).
 const EJMA_CF: f64 = 1.9;
+
+/// Rank 0 prints the summary or the error; every rank returns the exit code.
+fn finish(result: Result<RunSummary, Error>, root: bool) -> ExitCode {
+    match result {
+        Ok(summary) => {
+            if root {
+                print_summary(&summary);
+            }
+            ExitCode::SUCCESS
+        }
+        Err(e) => fail(&e, root),
+    }
+}
 
 fn fail(e: &Error, print: bool) -> ExitCode {
     if print {
@@ -214,7 +211,7 @@ fn fail(e: &Error, print: bool) -> ExitCode {
     ExitCode::from(e.exit_code() as u8)
 }
 
-fn print_summary(summary: &slideline::solve::RunSummary) {
+fn print_summary(summary: &RunSummary) {
     let Some(last) = summary.history.last() else {
         return;
     };
