@@ -67,6 +67,10 @@ pub fn project_on_edge(xs: [f64; 2], x: &[[f64; 2]; 3]) -> Option<EdgeProjection
         return None;
     }
     let mut xi = 2.0 * ((xs[0] - x[0][0]) * chord[0] + (xs[1] - x[0][1]) * chord[1]) / l2 - 1.0;
+    // r is a dot product of positions of size |x|: it cannot be resolved below about
+    // eps |x| |x'|, however well converged xi is (far from the origin that floor is 1e-13 and
+    // more, above any fixed tolerance on the step)
+    let size = xs[0].abs().max(xs[1].abs()) + x.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs()));
     let mut converged = false;
     for _ in 0..30 {
         let (r, dr) = projection_equation(&xs, x, xi);
@@ -75,7 +79,8 @@ pub fn project_on_edge(xs: [f64; 2], x: &[[f64; 2]; 3]) -> Option<EdgeProjection
         }
         let step = r / dr;
         xi -= step;
-        if step.abs() < 1e-14 * (1.0 + xi.abs()) {
+        let floor = 64.0 * f64::EPSILON * size * dr.abs().sqrt();
+        if step.abs() < 1e-14 * (1.0 + xi.abs()) || r.abs() <= floor {
             converged = true;
             break;
         }
@@ -242,6 +247,24 @@ mod tests {
             assert!(dist(p.xi + d) > dist(p.xi));
         }
         assert!((p.gap.abs() - dist(p.xi)).abs() < 1e-12);
+    }
+
+    #[test]
+    fn a_point_on_a_curved_edge_far_from_the_origin_projects_onto_it() {
+        // a bellows root torus (radius 6 about (167, 200)): every point of the curve, given
+        // as a slave point, must project onto its own edge with zero gap. With a fixed
+        // tolerance on the step, round-off in the projection equation (eps |x| ~ 4e-14 here)
+        // kept Newton from "converging", the edge was rejected and a neighbour's extrapolated
+        // curve taken instead, with a spurious gap of 0.07 mm.
+        let arc = |a: f64| [167.0 + 6.0 * a.cos(), 200.0 + 6.0 * a.sin()];
+        let x = [arc(3.3), arc(3.6), arc(3.45)];
+        for k in 0..=20 {
+            let xi = -1.0 + 0.1 * k as f64;
+            let (n, _) = line3(xi);
+            let xs = [0, 1].map(|i| (0..3).map(|a| n[a] * x[a][i]).sum::<f64>());
+            let p = project_on_edge(xs, &x).unwrap_or_else(|| panic!("xi {xi}: no projection"));
+            assert!((p.xi - xi).abs() < 1e-10 && p.gap.abs() < 1e-12, "xi {xi}: {p:?}");
+        }
     }
 
     #[test]
