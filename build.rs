@@ -26,6 +26,7 @@ const FUNCTIONS: &[&str] = &[
     "VecDestroy",
     "VecSet",
     "VecCopy",
+    "VecAXPY",
     "VecNorm",
     "VecGetOwnershipRange",
     "VecGetLocalSize",
@@ -65,6 +66,9 @@ const FUNCTIONS: &[&str] = &[
     // linear and nonlinear solvers
     "KSPSetType",
     "KSPGetPC",
+    "KSPSetOperators",
+    "KSPSolve",
+    "KSPGetConvergedReason",
     "PCSetType",
     "PCFactorSetMatSolverType",
     "SNESCreate",
@@ -113,7 +117,7 @@ fn main() {
     for f in FUNCTIONS {
         builder = builder.allowlist_function(f);
     }
-    for ty in ["PetscBool", "NormType", "InsertMode", "ScatterMode", "MatAssemblyType", "MatOption", "SNESConvergedReason", "PetscErrorType"] {
+    for ty in ["PetscBool", "NormType", "InsertMode", "ScatterMode", "MatAssemblyType", "MatOption", "SNESConvergedReason", "KSPConvergedReason", "PetscErrorType"] {
         builder = builder.allowlist_type(ty);
     }
     for path in petsc.include_paths.iter().chain(mpi.include_paths.iter()) {

@@ -155,6 +155,22 @@ impl<'s> Snes<'s> {
         }
     }
 
+    /// Solves J y = b with the SNES's own linear solver (the same KSP, PC and options as the
+    /// Newton steps). While J is unchanged since the last solve, the factorization is reused.
+    /// Returns false when the linear solver did not converge (a singular J, a failed pivot).
+    pub fn linear_solve(&mut self, jacobian: &Matrix<'_>, b: &Vector<'_>, y: &mut Vector<'_>) -> Result<bool> {
+        let mut reason: sys::KSPConvergedReason = 0;
+        // SAFETY: valid handles; the KSP is borrowed from the SNES, not owned.
+        unsafe {
+            let mut ksp = std::ptr::null_mut();
+            check(sys::SNESGetKSP(self.raw, &mut ksp), "SNESGetKSP")?;
+            check(sys::KSPSetOperators(ksp, jacobian.raw(), jacobian.raw()), "KSPSetOperators")?;
+            check(sys::KSPSolve(ksp, b.raw(), y.raw()), "KSPSolve")?;
+            check(sys::KSPGetConvergedReason(ksp, &mut reason), "KSPGetConvergedReason")?;
+        }
+        Ok(reason > 0)
+    }
+
     /// Solves F(x) = 0 from the initial guess in `x`, using `residual` and `jacobian` as work
     /// storage. A non-converged solve is not an error: read `SolveReport::reason`.
     pub fn solve<P: NonlinearProblem>(

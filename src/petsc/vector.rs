@@ -54,6 +54,12 @@ pub trait VecOps {
         check(unsafe { sys::VecCopy(other.raw(), self.raw()) }, "VecCopy")
     }
 
+    /// self += alpha * other.
+    fn axpy(&mut self, alpha: f64, other: &impl VecOps) -> Result<()> {
+        // SAFETY: both handles valid with the same layout (PETSc checks and reports otherwise).
+        check(unsafe { sys::VecAXPY(self.raw(), alpha, other.raw()) }, "VecAXPY")
+    }
+
     fn norm2(&self) -> Result<f64> {
         let mut v = 0.0;
         // SAFETY: valid Vec handle, out-pointer to a local.

@@ -320,6 +320,13 @@ impl NonlinearProblem for Problem<'_, '_> {
     }
 
     fn jacobian(&mut self, x: &VectorView<'_>, jacobian: &mut MatrixView<'_>) -> Result<()> {
+        self.assemble_jacobian(x, jacobian)
+    }
+}
+
+impl Problem<'_, '_> {
+    /// The tangent dF/du of the free DOFs at `x`, assembled.
+    pub fn assemble_jacobian(&mut self, x: &impl VecOps, jacobian: &mut impl MatOps) -> Result<()> {
         let gathered = self.gather(x)?;
         jacobian.zero_entries()?;
         let result = self.add_tangents(&gathered, jacobian);
@@ -327,11 +334,47 @@ impl NonlinearProblem for Problem<'_, '_> {
         jacobian.assemble()?;
         result
     }
-}
 
-impl Problem<'_, '_> {
+    /// K_fp delta: the force at the free DOFs when the prescribed DOFs move by `delta`
+    /// (per node, entries of free DOFs ignored) and the free ones stay at `x`, to first order,
+    /// from the element tangents at `x`. The load predictor of an increment solves
+    /// K_ff du = -K_fp delta, so a prescribed displacement spreads through the structure
+    /// before Newton starts, instead of squashing the elements next to the moved nodes.
+    /// Contact and load-stiffness couplings of prescribed nodes are left out (a predictor).
+    pub fn prescribed_coupling(&mut self, x: &impl VecOps, delta: &[[f64; 2]], f: &mut impl VecOps) -> Result<()> {
+        let gathered = self.gather(x)?;
+        f.set_all(0.0)?;
+        let (mut rows, mut values) = (Vec::new(), Vec::new());
+        let mut result = Ok(());
+        for k in 0..self.elements.len() {
+            let conn = self.model.mesh.elements[self.elements[k].element];
+            let moved: Vec<usize> = (0..DOFS).filter(|&j| self.elements[k].dofs[j] < 0 && delta[conn[j / 2]][j % 2] != 0.0).collect();
+            if moved.is_empty() {
+                continue;
+            }
+            let u = self.displacements(&self.elements[k], &gathered);
+            let tangent = match self.solid(k, &u, true) {
+                Ok(out) => out.tangent.expect("tangent requested"),
+                Err(e) => {
+                    result = Err(e);
+                    break;
+                }
+            };
+            for i in (0..DOFS).filter(|&i| self.elements[k].dofs[i] >= 0) {
+                rows.push(self.elements[k].dofs[i]);
+                values.push(moved.iter().map(|&j| tangent[(i, j)] * delta[conn[j / 2]][j % 2]).sum());
+            }
+        }
+        // collective, whatever happened on this rank (see `residual`)
+        if result.is_ok() {
+            f.add_values(&rows, &values)?;
+        }
+        f.assemble()?;
+        result
+    }
+
     /// Adds this rank's element, follower-pressure and contact tangents (no assembly).
-    fn add_tangents(&mut self, gathered: &[f64], jacobian: &mut MatrixView<'_>) -> Result<()> {
+    fn add_tangents(&mut self, gathered: &[f64], jacobian: &mut impl MatOps) -> Result<()> {
         let mut us = Vec::with_capacity(self.elements.len());
         for k in 0..self.elements.len() {
             let u = self.displacements(&self.elements[k], gathered);
