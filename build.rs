@@ -117,7 +117,9 @@ fn main() {
     for f in FUNCTIONS {
         builder = builder.allowlist_function(f);
     }
-    for ty in ["PetscBool", "NormType", "InsertMode", "ScatterMode", "MatAssemblyType", "MatOption", "SNESConvergedReason", "KSPConvergedReason", "PetscErrorType"] {
+    for ty in
+        ["PetscBool", "NormType", "InsertMode", "ScatterMode", "MatAssemblyType", "MatOption", "SNESConvergedReason", "KSPConvergedReason", "PetscErrorType"]
+    {
         builder = builder.allowlist_type(ty);
     }
     for path in petsc.include_paths.iter().chain(mpi.include_paths.iter()) {

@@ -17,4 +17,5 @@ pub mod fe;
 pub mod io;
 pub mod material;
 pub mod model;
+pub mod report;
 pub mod solve;

@@ -3,7 +3,9 @@
 
 use clap::{Parser, Subcommand};
 use mpi::traits::Communicator;
+use slideline::io::reader::ResultsReader;
 use slideline::petsc::PetscSession;
+use slideline::report::{BellowsReport, SECTOR_RADIANS};
 use slideline::solve::{run, RunOptions, RunSummary};
 use slideline::{model, Error};
 use std::path::PathBuf;
@@ -173,7 +175,7 @@ fn main() -> ExitCode {
                 println!("bellows: {} plies x {} mm, {} convolutions, pitch {}, height {}; EJMA axial rate {:.1} N/mm full ring, {:.2} N/mm per 2.5-degree sector (Cf = {EJMA_CF})", params.plies, params.ply_thickness, params.convolutions, params.pitch, params.height, ejma, ejma * 2.5 / 360.0);
             }
             let result = model::bellows::model(&params).and_then(|m| run(&session, &m, &RunOptions { output: args.output.clone(), progress: !args.quiet }));
-            finish(result, root)
+            finish(result, root, |summary| report(&params, summary, &args.output))
         }
         Command::Run { deck, output, quiet, petsc } => {
             let session = match PetscSession::initialize(&petsc) {
@@ -183,20 +185,37 @@ fn main() -> ExitCode {
             let root = session.world().rank() == 0;
             let output = output.unwrap_or_else(|| PathBuf::from(deck.file_stem().unwrap_or_default()).with_extension("h5"));
             let result = model::deck::read(&deck).and_then(|m| run(&session, &m, &RunOptions { output, progress: !quiet }));
-            finish(result, root)
+            finish(result, root, |_| Ok(()))
         }
     }
+}
+
+/// The bellows closing table (slideline beside the paper) and the pictures, from the results
+/// file (rank 0, after the run).
+fn report(params: &model::bellows::BellowsParams, summary: &RunSummary, output: &std::path::Path) -> Result<(), Error> {
+    let reader = ResultsReader::open(output)?;
+    let ejma = model::bellows::ejma_axial_rate(params, EJMA_CF) * SECTOR_RADIANS / (2.0 * std::f64::consts::PI);
+    let report = BellowsReport::new(params, ejma, EJMA_CF, &summary.history, summary.wall_time, summary.ranks, &reader)?;
+    println!("\n{}", report.table());
+    for path in report.pictures(output, &reader)? {
+        println!("picture: {}", path.display());
+    }
+    Ok(())
 }
 
 /// EJMA's C_f for the default convolution proportions (from the EJMA chart; approximate).
 const EJMA_CF: f64 = 1.9;
 
-/// Rank 0 prints the summary or the error; every rank returns the exit code.
-fn finish(result: Result<RunSummary, Error>, root: bool) -> ExitCode {
+/// Rank 0 prints the summary (then runs `then`, the subcommand's own report) or the error;
+/// every rank returns the exit code.
+fn finish(result: Result<RunSummary, Error>, root: bool, then: impl FnOnce(&RunSummary) -> Result<(), Error>) -> ExitCode {
     match result {
         Ok(summary) => {
             if root {
                 print_summary(&summary);
+                if let Err(e) = then(&summary) {
+                    return fail(&e, true);
+                }
             }
             ExitCode::SUCCESS
         }

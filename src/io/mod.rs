@@ -5,3 +5,5 @@ pub mod results;
 pub mod xdmf;
 
 pub use results::{ContactSummary, HistoryRow, IncrementFields, ResultsFile};
+pub mod plots;
+pub mod reader;

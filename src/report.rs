@@ -1,0 +1,232 @@
+//! The bellows run's closing report: the figures the seed paper quotes (end reaction per
+//! 2.5-degree sector, stiffness, largest von Mises stress) next to slideline's, with what the
+//! paper does not give (plastic strain, penetration, effort), and the pictures (force vs
+//! displacement, deformed joint coloured by von Mises at an intermediate and the last
+//! increment). Rank 0 only, after the run: fields are read back from the results file.
+
+use crate::error::Result;
+use crate::io::plots::{deformed_field, line_plot, Curve, FieldPicture, Marker};
+use crate::io::reader::ResultsReader;
+use crate::io::HistoryRow;
+use crate::model::bellows::BellowsParams;
+use std::f64::consts::PI;
+use std::path::{Path, PathBuf};
+
+/// The paper modelled a 2.5-degree sector; its forces are per sector.
+pub const SECTOR_RADIANS: f64 = 2.5 * PI / 180.0;
+
+/// The seed paper's results (MSC Nastran): end reaction at 70 mm (N per 2.5-degree sector),
+/// stiffness (N/mm per sector), largest von Mises stress (MPa).
+pub const PAPER_REACTION: f64 = 1131.0;
+pub const PAPER_STIFFNESS: f64 = 16.16;
+pub const PAPER_VON_MISES: f64 = 103.36;
+
+/// Where a field reaches its largest value.
+#[derive(Clone, Debug)]
+pub struct Extreme {
+    pub value: f64,
+    /// The element set (part) of the element, e.g. "ply2".
+    pub part: String,
+    /// Deformed position of the element's centre, (r, z) mm.
+    pub at: [f64; 2],
+}
+
+#[derive(Clone, Debug)]
+pub struct BellowsReport {
+    /// Applied axial compression at the last increment, mm.
+    pub displacement: f64,
+    /// Axial reaction at the moving end after step 1 (heat and pressure) and at the end, N per
+    /// sector (compression positive).
+    pub preload: f64,
+    pub reaction: f64,
+    /// Secant F/u and initial dF/du (first compression increment), N/mm per sector.
+    pub secant_stiffness: f64,
+    pub initial_stiffness: f64,
+    pub ejma_stiffness: f64,
+    pub ejma_cf: f64,
+    pub von_mises: Extreme,
+    pub plastic_strain: Extreme,
+    /// Largest ply-to-ply and sleeve penetration over the whole history, mm.
+    pub ply_penetration: f64,
+    pub sleeve_penetration: f64,
+    pub ply_thickness: f64,
+    pub increments: usize,
+    pub cutbacks: usize,
+    pub newton_iterations: usize,
+    pub wall_time: f64,
+    pub ranks: usize,
+    /// (applied displacement mm, reaction N per sector) at every converged increment.
+    pub curve: Vec<(f64, f64)>,
+}
+
+/// Axial reaction of the moving end, N per sector, compression positive.
+fn end_reaction(row: &HistoryRow) -> f64 {
+    row.reactions.iter().find(|(set, _)| set == "moving_end").map(|(_, f)| -f[1] * SECTOR_RADIANS).unwrap_or(f64::NAN)
+}
+
+/// Applied compression at a row: zero in step 1, the load factor's share in step 2.
+fn applied(row: &HistoryRow, p: &BellowsParams) -> f64 {
+    if row.step >= 2 {
+        row.load_factor * p.displacement
+    } else {
+        0.0
+    }
+}
+
+fn largest_penetration(history: &[HistoryRow], pair: impl Fn(&str) -> bool) -> f64 {
+    history.iter().flat_map(|r| &r.contacts).filter(|c| pair(&c.name)).map(|c| c.max_penetration).fold(0.0, f64::max)
+}
+
+/// Largest value of a per-Gauss-point field at an increment, with its element's part and
+/// deformed centre.
+fn extreme(reader: &ResultsReader, increment: &str, field: &str) -> Result<Extreme> {
+    let values = reader.field(increment, field)?;
+    let per_element = values.len() / reader.connectivity()?.len().max(1);
+    let (k, &value) = values.iter().enumerate().max_by(|a, b| a.1.total_cmp(b.1)).unwrap_or((0, &f64::NAN));
+    let element = k / per_element.max(1);
+    let conn = reader.connectivity()?;
+    let (x0, u) = (reader.coordinates()?, reader.displacement(increment)?);
+    let at = [0, 1].map(|c| conn[element][..4].iter().map(|&n| x0[n][c] + u[n][c]).sum::<f64>() / 4.0);
+    let mut part = String::from("?");
+    for name in reader.element_set_names()? {
+        if name != "all" && reader.element_set(&name)?.contains(&element) {
+            part = name;
+            break;
+        }
+    }
+    Ok(Extreme { value, part, at })
+}
+
+impl BellowsReport {
+    pub fn new(
+        p: &BellowsParams,
+        ejma_stiffness: f64,
+        ejma_cf: f64,
+        history: &[HistoryRow],
+        wall_time: f64,
+        ranks: usize,
+        reader: &ResultsReader,
+    ) -> Result<Self> {
+        let curve: Vec<(f64, f64)> = history.iter().map(|r| (applied(r, p), end_reaction(r))).collect();
+        let heated = history.iter().rposition(|r| r.step == 1);
+        let preload = heated.map(|k| curve[k].1).unwrap_or(0.0);
+        let initial_stiffness = match heated {
+            Some(k) if k + 1 < curve.len() => (curve[k + 1].1 - curve[k].1) / (curve[k + 1].0 - curve[k].0),
+            _ => f64::NAN,
+        };
+        let &(displacement, reaction) = curve.last().unwrap_or(&(0.0, f64::NAN));
+        let last = reader.increments()?.last().cloned().unwrap_or_default();
+        Ok(BellowsReport {
+            displacement,
+            preload,
+            reaction,
+            secant_stiffness: reaction / displacement,
+            initial_stiffness,
+            ejma_stiffness,
+            ejma_cf,
+            von_mises: extreme(reader, &last, "von_mises")?,
+            plastic_strain: extreme(reader, &last, "equivalent_plastic_strain")?,
+            ply_penetration: largest_penetration(history, |n| n.starts_with("ply")),
+            sleeve_penetration: largest_penetration(history, |n| n == "sleeve"),
+            ply_thickness: p.ply_thickness,
+            increments: history.len(),
+            cutbacks: history.iter().map(|r| r.cutbacks).sum(),
+            newton_iterations: history.iter().map(|r| r.newton_iterations).sum(),
+            wall_time,
+            ranks,
+            curve,
+        })
+    }
+
+    /// The closing table, slideline beside the paper.
+    pub fn table(&self) -> String {
+        let ring = 2.0 * PI / SECTOR_RADIANS;
+        let mut t = String::new();
+        let mut line = |what: &str, ours: String, paper: &str| t.push_str(&format!("  {what:<44} {ours:>26}   {paper:>12}\n"));
+        line("", "slideline".into(), "paper");
+        line(&format!("end reaction at {:.1} mm, N per 2.5-deg sector", self.displacement), format!("{:.1}", self.reaction), &format!("{PAPER_REACTION}"));
+        line("end reaction, N full ring", format!("{:.0}", self.reaction * ring), &format!("{:.0}", PAPER_REACTION * ring));
+        line("  of which after step 1 (heat, pressure), N", format!("{:.1}", self.preload), "-");
+        line("secant stiffness F/u, N/mm per sector", format!("{:.2}", self.secant_stiffness), &format!("{PAPER_STIFFNESS}"));
+        line("initial stiffness, N/mm per sector", format!("{:.2}", self.initial_stiffness), "-");
+        line(&format!("EJMA axial rate (Cf = {}), N/mm per sector", self.ejma_cf), format!("{:.2}", self.ejma_stiffness), "-");
+        line("max von Mises at the end, MPa", format!("{:.2}", self.von_mises.value), &format!("{PAPER_VON_MISES}"));
+        line("  where (part, deformed r, z mm)", format!("{} ({:.1}, {:.1})", self.von_mises.part, self.von_mises.at[0], self.von_mises.at[1]), "-");
+        line("max equivalent plastic strain", format!("{:.4}", self.plastic_strain.value), "-");
+        line(
+            "  where (part, deformed r, z mm)",
+            format!("{} ({:.1}, {:.1})", self.plastic_strain.part, self.plastic_strain.at[0], self.plastic_strain.at[1]),
+            "-",
+        );
+        line(
+            "max ply-to-ply penetration, mm (% of ply)",
+            format!("{:.2e} ({:.2} %)", self.ply_penetration, 100.0 * self.ply_penetration / self.ply_thickness),
+            "-",
+        );
+        line("max sleeve penetration, mm", format!("{:.2e}", self.sleeve_penetration), "-");
+        line("increments / cutbacks", format!("{} / {}", self.increments, self.cutbacks), "240");
+        line("Newton iterations", format!("{}", self.newton_iterations), "-");
+        line(&format!("wall time on {} rank(s), s", self.ranks), format!("{:.1}", self.wall_time), "-");
+        t.push_str(
+            "  why they differ: slideline follows the plies past yield (sigma_y 300 MPa, H 1000 MPa) from a few mm of\n  \
+             compression on, so the force levels off near the collapse load; the paper's 103 MPa and its linear\n  \
+             1131 N = 16.16 N/mm x 70 mm are an elastic response, and its convolution shape (Figure 1) is not given.\n",
+        );
+        t
+    }
+
+    /// Writes the pictures next to `output` (the HDF5 file); returns their paths.
+    pub fn pictures(&self, output: &Path, reader: &ResultsReader) -> Result<Vec<PathBuf>> {
+        let stem = output.with_extension("");
+        let name = |suffix: &str| PathBuf::from(format!("{}_{suffix}.png", stem.display()));
+        let mut written = Vec::new();
+        let force = name("force_displacement");
+        let ejma: Vec<(f64, f64)> = [0.0, self.displacement.max(1.0) * 0.35].iter().map(|&u| (u, self.preload + self.ejma_stiffness * u)).collect();
+        line_plot(
+            &force,
+            "Bellows end reaction (2.5-degree sector) vs axial compression",
+            "axial compression u (mm)",
+            "end reaction F (N per 2.5-degree sector)",
+            &[
+                Curve { label: "slideline".into(), points: self.curve.clone() },
+                Curve { label: format!("EJMA elastic rate {:.2} N/mm (from the step-1 preload)", self.ejma_stiffness), points: ejma },
+            ],
+            &[Marker { label: format!("paper (MSC Nastran): {PAPER_REACTION} N at 70 mm"), at: (70.0, PAPER_REACTION) }],
+        )?;
+        written.push(force);
+        let increments = reader.increments()?;
+        let (x0, conn) = (reader.coordinates()?, reader.connectivity()?);
+        let plies: Vec<usize> =
+            reader.element_set_names()?.iter().filter(|n| n.starts_with("ply")).flat_map(|n| reader.element_set(n).unwrap_or_default()).collect();
+        let half = increments
+            .iter()
+            .position(|inc| reader.increment_attr(inc, "step").ok() == Some(2.0) && reader.increment_attr(inc, "load_factor").unwrap_or(0.0) >= 0.5);
+        let picks: Vec<&String> = half.map(|k| &increments[k]).into_iter().chain(increments.last()).collect();
+        for inc in picks {
+            let u = reader.displacement(inc)?;
+            let vm = reader.field(inc, "von_mises_mean")?;
+            // zoom on the convolutions: the plies' deformed extent
+            let mut zoom = ((f64::INFINITY, f64::NEG_INFINITY), (f64::INFINITY, f64::NEG_INFINITY));
+            for &e in &plies {
+                for &n in &conn[e] {
+                    let (r, z) = (x0[n][0] + u[n][0], x0[n][1] + u[n][1]);
+                    zoom = ((zoom.0 .0.min(z), zoom.0 .1.max(z)), (zoom.1 .0.min(r), zoom.1 .1.max(r)));
+                }
+            }
+            let window = Some(((zoom.0 .0 - 3.0, zoom.0 .1 + 3.0), (zoom.1 .0 - 12.0, zoom.1 .1 + 2.0)));
+            let compression = reader.increment_attr(inc, "load_factor")? * if reader.increment_attr(inc, "step")? >= 2.0 { self.displacement } else { 0.0 };
+            let path = name(&format!("von_mises_{inc}"));
+            let picture = FieldPicture {
+                coordinates: &x0,
+                connectivity: &conn,
+                displacement: &u,
+                values: &vm,
+                title: format!("von Mises stress (element mean, MPa), deformed, at {compression:.1} mm compression (increment {inc}); below: the convolutions"),
+                value_label: "MPa".into(),
+            };
+            deformed_field(&path, &picture, &[None, window])?;
+            written.push(path);
+        }
+        Ok(written)
+    }
+}
