@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # slideline: set-up and entry point.
-#   ./run.sh                 install what is missing, build (release), run the main job on 2 ranks
+#   ./run.sh [FLAGS]         install what is missing, build (release), run the main job on 2 ranks:
+#                            the seed paper's bellows joint (FLAGS as for `slideline bellows`, e.g. --quick)
 #   ./run.sh test            install what is missing, build, run every test (MPI ones included)
 #   ./run.sh bench           run the criterion benchmarks
 set -euo pipefail
@@ -32,11 +33,14 @@ install_missing() {
 }
 
 install_missing
+# ./run.sh --quick (or any other bellows flag) is the main job with that flag
+if [ "${1:-main}" != "main" ] && [ "${1#-}" != "${1:-}" ]; then set -- main "$@"; fi
 case "${1:-main}" in
     main)
+        # the seed paper's bellows joint on 2 ranks: results, table and pictures in out/
         cargo build --release
         mkdir -p out
-        exec mpirun -n 2 target/release/slideline run examples/lame.toml --output out/lame.h5 "${@:2}"
+        exec mpirun -n 2 target/release/slideline bellows --output out/bellows.h5 "${@:2}"
         ;;
     test)
         cargo build --release --all-targets
@@ -46,7 +50,7 @@ case "${1:-main}" in
         exec cargo bench "${@:2}"
         ;;
     *)
-        echo "usage: ./run.sh [test|bench]" >&2
+        echo "usage: ./run.sh [bellows flags] | test | bench" >&2
         exit 2
         ;;
 esac
