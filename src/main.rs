@@ -3,7 +3,9 @@
 
 use clap::{Parser, Subcommand};
 use mpi::traits::Communicator;
+use slideline::dist::Partition;
 use slideline::io::reader::ResultsReader;
+use slideline::io::ResultsFile;
 use slideline::petsc::PetscSession;
 use slideline::report::{BellowsReport, SECTOR_RADIANS};
 use slideline::solve::{run, RunOptions, RunSummary};
@@ -155,20 +157,16 @@ fn main() -> ExitCode {
             if let Err(e) = params.validate() {
                 return fail(&e, true);
             }
-            if args.mesh_only {
-                let result = model::bellows::mesh(&params).and_then(|(mesh, sets)| model::gmsh::write(&mesh, &sets, &args.output.with_extension("msh")));
-                return match result {
-                    Ok(()) => {
-                        println!("mesh written to {}", args.output.with_extension("msh").display());
-                        ExitCode::SUCCESS
-                    }
-                    Err(e) => fail(&e, true),
-                };
-            }
             let session = match PetscSession::initialize(&args.petsc) {
                 Ok(s) => s,
                 Err(e) => return fail(&e, true),
             };
+            if args.mesh_only {
+                return match write_mesh(&session, &params, &args.output) {
+                    Ok(()) => ExitCode::SUCCESS,
+                    Err(e) => fail(&e, session.world().rank() == 0),
+                };
+            }
             let root = session.world().rank() == 0;
             if root && !args.quiet {
                 let ejma = model::bellows::ejma_axial_rate(&params, EJMA_CF);
@@ -188,6 +186,24 @@ fn main() -> ExitCode {
             finish(result, root, |_| Ok(()))
         }
     }
+}
+
+/// `--mesh-only`: the joint's mesh and sets as Gmsh 4.1 (OUTPUT with .msh) and as a results
+/// file without increments (OUTPUT: /mesh with its sets, the layout of every results file).
+fn write_mesh(session: &PetscSession, params: &model::bellows::BellowsParams, output: &std::path::Path) -> Result<(), Error> {
+    let msh = output.with_extension("msh");
+    let (mesh, sets) = model::bellows::mesh(params)?;
+    let root = session.world().rank() == 0;
+    if root {
+        model::gmsh::write(&mesh, &sets, &msh)?;
+    }
+    let m = model::bellows::model(params)?;
+    let partition = Partition::new(session, &m.mesh)?;
+    drop(ResultsFile::create(output, session, &m, &partition)?);
+    if root {
+        println!("mesh written to {} and {}", msh.display(), output.display());
+    }
+    Ok(())
 }
 
 /// The bellows closing table (slideline beside the paper) and the pictures, from the results

@@ -1,5 +1,6 @@
 //! `slideline bellows`: bad flags are refused before any solve (exit 2, the value named), and
-//! `--mesh-only` writes a Gmsh mesh of the seed joint that `slideline run` reads back.
+//! `--mesh-only` writes a Gmsh mesh of the seed joint that `slideline run` reads back, and the
+//! same mesh as the /mesh group of an HDF5 results file.
 
 mod common;
 use common::command_in;
@@ -41,4 +42,11 @@ fn mesh_only_writes_the_seed_joint_as_gmsh() {
     for name in ["wetted", "ply1_outer", "ply2_inner", "sleeve_outer", "tube_b_inner"] {
         assert!(!sets.surfaces[name].is_empty(), "{name}");
     }
+    // and as HDF5: the /mesh group of a results file, same nodes, no increments
+    let file = hdf5::File::open(dir.path().join("b.h5")).unwrap();
+    let shape = file.dataset("mesh/coordinates").unwrap().shape();
+    assert_eq!(shape, vec![mesh.coords.len(), 2]);
+    assert_eq!(file.dataset("mesh/connectivity").unwrap().shape(), vec![mesh.elements.len(), 8]);
+    assert!(file.group("mesh/node_sets").unwrap().member_names().unwrap().contains(&"moving_end".to_string()));
+    assert!(file.group("increments").unwrap().member_names().unwrap().is_empty());
 }
