@@ -17,5 +17,6 @@ pub mod fe;
 pub mod io;
 pub mod material;
 pub mod model;
+pub mod post;
 pub mod report;
 pub mod solve;

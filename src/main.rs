@@ -49,6 +49,73 @@ enum Command {
         #[arg(last = true, allow_hyphen_values = true)]
         petsc: Vec<String>,
     },
+    /// Read a results file: the run's summary and history, a field at an increment, a node's
+    /// or set's time series, two runs side by side, the force-displacement picture. No MPI.
+    Post(PostArgs),
+}
+
+#[derive(clap::Args)]
+struct PostArgs {
+    /// The results file (HDF5) of a run.
+    file: PathBuf,
+    /// Write the history table as CSV to this file (all columns, full precision).
+    #[arg(long)]
+    csv: Option<PathBuf>,
+    /// Field to report (displacement, stress, von_mises, von_mises_mean,
+    /// equivalent_plastic_strain, equivalent_plastic_strain_max): min/max and where.
+    #[arg(long, requires = "increment")]
+    field: Option<String>,
+    /// Increment (1-based, as in the history) for --field.
+    #[arg(long)]
+    increment: Option<usize>,
+    /// Time series of the node with this external number.
+    #[arg(long)]
+    node: Option<u64>,
+    /// Time series of this node set (its reaction if constrained, else its mean displacement).
+    #[arg(long)]
+    set: Option<String>,
+    /// Another results file: the two histories side by side.
+    #[arg(long)]
+    compare: Option<PathBuf>,
+    /// Write FILE_force.png (axial reactions against time).
+    #[arg(long)]
+    plot: bool,
+    /// Print the deck text stored in the file.
+    #[arg(long)]
+    deck: bool,
+}
+
+/// `slideline post`: without options the summary and the history; each option adds its report.
+fn post(args: &PostArgs) -> Result<(), Error> {
+    use slideline::post;
+    let r = ResultsReader::open(&args.file)?;
+    let detail = args.field.is_some() || args.node.is_some() || args.set.is_some() || args.compare.is_some() || args.csv.is_some() || args.plot || args.deck;
+    if !detail {
+        print!("{}\n{}", post::summary(&r)?, post::history_table(&r)?);
+    }
+    if args.deck {
+        println!("{}", r.text_attr("deck")?);
+    }
+    if let Some(path) = &args.csv {
+        std::fs::write(path, post::history_csv(&r)?).map_err(|e| Error::Output { path: path.clone(), message: e.to_string() })?;
+        println!("history written to {}", path.display());
+    }
+    if let Some(name) = &args.field {
+        print!("{}", post::field(&r, name, args.increment.unwrap_or(0))?);
+    }
+    if let Some(id) = args.node {
+        print!("{}", post::node_series(&r, id)?);
+    }
+    if let Some(set) = &args.set {
+        print!("{}", post::set_series(&r, set)?);
+    }
+    if let Some(other) = &args.compare {
+        print!("{}", post::compare(&r, &ResultsReader::open(other)?)?);
+    }
+    if args.plot {
+        println!("picture: {}", post::plot(&r)?.display());
+    }
+    Ok(())
 }
 
 /// Flags of `slideline bellows` (mm, MPa, degC).
@@ -175,6 +242,10 @@ fn main() -> ExitCode {
             let result = model::bellows::model(&params).and_then(|m| run(&session, &m, &RunOptions { output: args.output.clone(), progress: !args.quiet }));
             finish(result, root, |summary| report(&params, summary, &args.output))
         }
+        Command::Post(args) => match post(&args) {
+            Ok(()) => ExitCode::SUCCESS,
+            Err(e) => fail(&e, true),
+        },
         Command::Run { deck, output, quiet, petsc } => {
             let session = match PetscSession::initialize(&petsc) {
                 Ok(s) => s,

@@ -2,7 +2,9 @@
 //! and the history columns, for pictures, summaries and post-processing. Every failure names
 //! the file and the group or dataset that is missing, so a wrong file gives a clear message.
 
+use super::{ContactSummary, HistoryRow};
 use crate::error::{Error, Result};
+use hdf5::types::VarLenUnicode;
 use std::path::{Path, PathBuf};
 
 pub struct ResultsReader {
@@ -54,6 +56,28 @@ impl ResultsReader {
         Ok(self.read_i64("mesh/connectivity")?.chunks_exact(8).map(|c| std::array::from_fn(|k| c[k] as usize)).collect())
     }
 
+    /// External node numbers (Gmsh tags), in file order.
+    pub fn node_ids(&self) -> Result<Vec<u64>> {
+        let ds = self.file.dataset("mesh/node_ids").map_err(|e| missing(&self.path, "mesh/node_ids", e))?;
+        ds.read_raw::<u64>().map_err(|e| missing(&self.path, "mesh/node_ids", e))
+    }
+
+    /// External element numbers, in file order.
+    pub fn element_ids(&self) -> Result<Vec<u64>> {
+        let ds = self.file.dataset("mesh/element_ids").map_err(|e| missing(&self.path, "mesh/element_ids", e))?;
+        ds.read_raw::<u64>().map_err(|e| missing(&self.path, "mesh/element_ids", e))
+    }
+
+    /// Rows of `coordinates` of a node set's members.
+    pub fn node_set(&self, name: &str) -> Result<Vec<usize>> {
+        let path = format!("mesh/node_sets/{name}");
+        let ds = self.file.dataset(&path).map_err(|_| {
+            let known = self.file.group("mesh/node_sets").and_then(|g| g.member_names()).unwrap_or_default();
+            Error::input(format!("{}: no node set {name:?} (the sets are {})", self.path.display(), known.join(", ")))
+        })?;
+        Ok(ds.read_raw::<u64>().map_err(|e| missing(&self.path, &path, e))?.into_iter().map(|k| k as usize).collect())
+    }
+
     /// Names of the element sets.
     pub fn element_set_names(&self) -> Result<Vec<String>> {
         let g = self.file.group("mesh/element_sets").map_err(|e| missing(&self.path, "mesh/element_sets", e))?;
@@ -62,7 +86,9 @@ impl ResultsReader {
 
     /// Positions (rows of the element datasets) of an element set's members.
     pub fn element_set(&self, name: &str) -> Result<Vec<usize>> {
-        Ok(self.read_i64(&format!("mesh/element_sets/{name}"))?.into_iter().map(|k| k as usize).collect())
+        let path = format!("mesh/element_sets/{name}");
+        let ds = self.file.dataset(&path).map_err(|e| missing(&self.path, &path, e))?;
+        Ok(ds.read_raw::<u64>().map_err(|e| missing(&self.path, &path, e))?.into_iter().map(|k| k as usize).collect())
     }
 
     /// Names of the increments written (zero-padded, so sorted in order).
@@ -90,10 +116,90 @@ impl ResultsReader {
         g.attr(name).and_then(|a| a.read_scalar::<f64>()).map_err(|e| missing(&self.path, &what, e))
     }
 
-    /// Names of the history columns.
+    /// Names of the history columns, in the order the run printed them.
     pub fn history_columns(&self) -> Result<Vec<String>> {
         let g = self.file.group("history").map_err(|e| missing(&self.path, "history", e))?;
-        g.member_names().map_err(|e| missing(&self.path, "history", e))
+        let mut names = g.member_names().map_err(|e| missing(&self.path, "history", e))?;
+        if let Ok(order) = g.attr("columns").and_then(|a| a.read_scalar::<VarLenUnicode>()) {
+            let order: Vec<String> = order.as_str().split(',').map(str::to_string).collect();
+            names.sort_by_key(|n| order.iter().position(|o| o == n).unwrap_or(usize::MAX));
+        }
+        Ok(names)
+    }
+
+    /// A text attribute of the file (deck, units, petsc_options, slideline_version).
+    pub fn text_attr(&self, name: &str) -> Result<String> {
+        let a = self.file.attr(name).map_err(|e| missing(&self.path, &format!("attribute {name}"), e))?;
+        Ok(a.read_scalar::<VarLenUnicode>().map_err(|e| missing(&self.path, &format!("attribute {name}"), e))?.to_string())
+    }
+
+    /// An integer attribute of the file (ranks, steps).
+    pub fn count_attr(&self, name: &str) -> Result<usize> {
+        let a = self.file.attr(name).map_err(|e| missing(&self.path, &format!("attribute {name}"), e))?;
+        Ok(a.read_scalar::<u32>().map_err(|e| missing(&self.path, &format!("attribute {name}"), e))? as usize)
+    }
+
+    /// The history as the run recorded it: (step name, row) per converged increment.
+    pub fn history_rows(&self) -> Result<Vec<(String, HistoryRow)>> {
+        let columns = self.history_columns()?;
+        let data: Vec<Vec<f64>> = columns.iter().map(|c| self.history(c)).collect::<Result<_>>()?;
+        let column = |name: &str| columns.iter().position(|c| c == name).map(|k| &data[k]);
+        let need = |name: &str| column(name).ok_or_else(|| Error::input(format!("{}: no history column {name}", self.path.display())));
+        let (step, increment, lambda, time) = (need("step")?, need("increment")?, need("load_factor")?, need("time")?);
+        let (newton, linear, norm, cutbacks) = (need("newton_iterations")?, need("linear_iterations")?, need("residual_norm")?, need("cutbacks")?);
+        let (augmentations, ep, wall) = (need("augmentations")?, need("max_equivalent_plastic_strain")?, need("wall_time")?);
+        let sets: Vec<&str> = columns.iter().filter_map(|c| c.strip_prefix("reaction_")?.strip_suffix("_r")).collect();
+        let pairs: Vec<&str> = columns.iter().filter_map(|c| c.strip_prefix("contact_")?.strip_suffix("_active_nodes")).collect();
+        let increments = self.increments()?;
+        let mut rows = Vec::with_capacity(step.len());
+        for k in 0..step.len() {
+            let name = increments.get(k).map(|inc| self.increment_text_attr(inc, "step_name")).transpose()?.unwrap_or_default();
+            let reactions = sets
+                .iter()
+                .filter_map(|set| {
+                    let f = [need(&format!("reaction_{set}_r")).ok()?[k], need(&format!("reaction_{set}_z")).ok()?[k]];
+                    // NaN: the set is not constrained in this row's step
+                    f[0].is_finite().then(|| (set.to_string(), f))
+                })
+                .collect();
+            let contacts = pairs
+                .iter()
+                .map(|pair| {
+                    let value = |what: &str| column(&format!("contact_{pair}_{what}")).map(|c| c[k]).unwrap_or(f64::NAN);
+                    ContactSummary {
+                        name: pair.to_string(),
+                        active_nodes: value("active_nodes") as usize,
+                        max_penetration: value("max_penetration"),
+                        normal_force: value("force"),
+                    }
+                })
+                .collect();
+            let row = HistoryRow {
+                step: step[k] as usize,
+                increment: increment[k] as usize,
+                load_factor: lambda[k],
+                time: time[k],
+                newton_iterations: newton[k] as usize,
+                linear_iterations: linear[k] as usize,
+                residual_norm: norm[k],
+                residual_norms: Vec::new(),
+                cutbacks: cutbacks[k] as usize,
+                augmentations: augmentations[k] as usize,
+                contacts,
+                max_plastic_strain: ep[k],
+                wall_time: wall[k],
+                reactions,
+            };
+            rows.push((name, row));
+        }
+        Ok(rows)
+    }
+
+    /// A text attribute of an increment (step_name).
+    pub fn increment_text_attr(&self, increment: &str, name: &str) -> Result<String> {
+        let what = format!("increments/{increment} attribute {name}");
+        let g = self.file.group(&format!("increments/{increment}")).map_err(|e| missing(&self.path, &what, e))?;
+        Ok(g.attr(name).and_then(|a| a.read_scalar::<VarLenUnicode>()).map_err(|e| missing(&self.path, &what, e))?.to_string())
     }
 
     /// One history column (a row per converged increment).

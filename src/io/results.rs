@@ -89,6 +89,35 @@ pub struct HistoryRow {
     pub reactions: Vec<(String, [f64; 2])>,
 }
 
+impl HistoryRow {
+    /// The progress line the run prints for this row (and `slideline post` prints again).
+    pub fn progress_line(&self, step_name: &str, steps: usize) -> String {
+        let mut line = format!(
+            "step {}/{} {:<10} inc {:>4} lambda {:.4}  newton {:>2}  ksp {:>3}  |F| {:.2e}  ep_max {:.3e}  {:>7.2} s",
+            self.step,
+            steps,
+            step_name,
+            self.increment,
+            self.load_factor,
+            self.newton_iterations,
+            self.linear_iterations,
+            self.residual_norm,
+            self.max_plastic_strain,
+            self.wall_time
+        );
+        for (set, f) in &self.reactions {
+            line.push_str(&format!("  {set}: Fr {:.4e} Fz {:.4e} N/rad", f[0], f[1]));
+        }
+        for c in &self.contacts {
+            line.push_str(&format!("  {}: {} active, pen {:.2e} mm", c.name, c.active_nodes, c.max_penetration));
+        }
+        if self.augmentations > 0 {
+            line.push_str(&format!("  AL x{}", self.augmentations));
+        }
+        line
+    }
+}
+
 pub struct ResultsFile {
     file: hdf5::File,
     path: PathBuf,
@@ -122,6 +151,7 @@ impl ResultsFile {
             file.new_attr::<VarLenUnicode>().create(name).map_err(&err)?.write_scalar(&text(value)?).map_err(&err)?;
         }
         file.new_attr::<u32>().create("ranks").map_err(&err)?.write_scalar(&(partition.size as u32)).map_err(&err)?;
+        file.new_attr::<u32>().create("steps").map_err(&err)?.write_scalar(&(model.steps.len() as u32)).map_err(&err)?;
 
         let mesh = &model.mesh;
         let (nn, ne) = (mesh.coords.len(), mesh.elements.len());
@@ -286,6 +316,15 @@ impl ResultsFile {
         let err = h5err(&self.path);
         let history = self.file.group("history").map_err(&err)?;
         let n = self.increments.len(); // rows already written
+                                       // the columns in the order the run prints them (HDF5 lists members alphabetically)
+        let order: Vec<&str> = columns.iter().map(|(name, _)| name.as_str()).collect();
+        if !order.iter().all(|c| history.link_exists(c)) {
+            if history.attr_names().map_err(&err)?.iter().any(|a| a == "columns") {
+                history.delete_attr("columns").map_err(&err)?;
+            }
+            let text: VarLenUnicode = order.join(",").parse().map_err(|_| Error::Output { path: self.path.clone(), message: "column names".into() })?;
+            history.new_attr::<VarLenUnicode>().create("columns").map_err(&err)?.write_scalar(&text).map_err(&err)?;
+        }
         for (name, value) in columns {
             let ds = if history.link_exists(&name) {
                 history.dataset(&name).map_err(&err)?

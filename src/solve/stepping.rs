@@ -164,7 +164,7 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
                 IncrementFields { displacement: &owned, stress: &fields.stress, plastic_strain: &fields.plastic_strain, contact: &contact_output };
             results.write_increment(&step.name, &row, &increment_fields, &partition)?;
             if root && options.progress {
-                println!("{}", progress_line(&step.name, s, model.steps.len(), &row));
+                println!("{}", row.progress_line(&step.name, model.steps.len()));
             }
             rows.push(row);
             cutbacks = 0;
@@ -306,30 +306,4 @@ fn gather_displacement(world: &impl Communicator, partition: &Partition, owned: 
     for (k, &n) in partition.node_order.iter().enumerate() {
         displacement[n] = [all[2 * k], all[2 * k + 1]];
     }
-}
-
-fn progress_line(name: &str, s: usize, steps: usize, row: &HistoryRow) -> String {
-    let mut line = format!(
-        "step {}/{} {:<10} inc {:>4} lambda {:.4}  newton {:>2}  ksp {:>3}  |F| {:.2e}  ep_max {:.3e}  {:>7.2} s",
-        s + 1,
-        steps,
-        name,
-        row.increment,
-        row.load_factor,
-        row.newton_iterations,
-        row.linear_iterations,
-        row.residual_norm,
-        row.max_plastic_strain,
-        row.wall_time
-    );
-    for (set, f) in &row.reactions {
-        line.push_str(&format!("  {set}: Fr {:.4e} Fz {:.4e} N/rad", f[0], f[1]));
-    }
-    for c in &row.contacts {
-        line.push_str(&format!("  {}: {} active, pen {:.2e} mm", c.name, c.active_nodes, c.max_penetration));
-    }
-    if row.augmentations > 0 {
-        line.push_str(&format!("  AL x{}", row.augmentations));
-    }
-    line
 }

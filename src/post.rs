@@ -1,0 +1,219 @@
+//! `slideline post FILE.h5`: what a results file holds, as text (and one picture). Every
+//! function returns what it would print, so the CLI prints it and the tests read it.
+
+use crate::error::{Error, Result};
+use crate::io::plots::{line_plot, Curve};
+use crate::io::reader::ResultsReader;
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+/// Run summary: provenance, size, effort.
+pub fn summary(r: &ResultsReader) -> Result<String> {
+    let rows = r.history_rows()?;
+    let mut s = String::new();
+    let deck = r.text_attr("deck")?;
+    let _ = writeln!(s, "file:        {}", r.path().display());
+    let _ = writeln!(s, "written by:  slideline {} on {} rank(s)", r.text_attr("slideline_version")?, r.count_attr("ranks")?);
+    let _ = writeln!(s, "model:       {} ({} lines of deck text, `--deck` prints it)", deck.lines().next().unwrap_or(""), deck.lines().count());
+    let _ = writeln!(s, "mesh:        {} nodes, {} elements", r.coordinates()?.len(), r.connectivity()?.len());
+    let _ = writeln!(s, "units:       {}", r.text_attr("units")?);
+    let options = r.text_attr("petsc_options")?;
+    let _ = writeln!(s, "PETSc:       {}", if options.is_empty() { "(defaults)" } else { &options });
+    let steps = r.count_attr("steps").unwrap_or(0);
+    let last_step = rows.last().map(|(_, row)| (row.step, row.load_factor));
+    let _ = writeln!(
+        s,
+        "increments:  {} converged, {} cutbacks, {} Newton and {} linear iterations; reached step {} of {} at load factor {:.4}",
+        rows.len(),
+        rows.iter().map(|(_, r)| r.cutbacks).sum::<usize>(),
+        rows.iter().map(|(_, r)| r.newton_iterations).sum::<usize>(),
+        rows.iter().map(|(_, r)| r.linear_iterations).sum::<usize>(),
+        last_step.map_or(0, |l| l.0),
+        steps,
+        last_step.map_or(0.0, |l| l.1)
+    );
+    let _ = writeln!(s, "wall time:   {:.2} s", rows.last().map_or(0.0, |(_, r)| r.wall_time));
+    Ok(s)
+}
+
+/// The history as the run printed it, one line per converged increment.
+pub fn history_table(r: &ResultsReader) -> Result<String> {
+    let steps = r.count_attr("steps")?;
+    Ok(r.history_rows()?.iter().map(|(name, row)| row.progress_line(name, steps) + "\n").collect())
+}
+
+/// The history columns as CSV (header line, one row per increment, full precision).
+pub fn history_csv(r: &ResultsReader) -> Result<String> {
+    let columns = r.history_columns()?;
+    let data: Vec<Vec<f64>> = columns.iter().map(|c| r.history(c)).collect::<Result<_>>()?;
+    let mut s = columns.join(",") + "\n";
+    for k in 0..data.first().map_or(0, Vec::len) {
+        let row: Vec<String> = data.iter().map(|c| format!("{:e}", c[k])).collect();
+        s.push_str(&row.join(","));
+        s.push('\n');
+    }
+    Ok(s)
+}
+
+/// Name of increment `number` (1-based, as the history counts them) or a clear error.
+fn increment_name(r: &ResultsReader, number: usize) -> Result<String> {
+    let names = r.increments()?;
+    if number == 0 || number > names.len() {
+        return Err(Error::input(format!("{}: increment {number} out of range: the file has increments 1..{}", r.path().display(), names.len())));
+    }
+    Ok(names[number - 1].clone())
+}
+
+/// Min and max of a field at an increment, per component, with where they are: nodal fields
+/// (displacement) by node, element fields (stress, von_mises, ...) by element and Gauss point.
+pub fn field(r: &ResultsReader, name: &str, number: usize) -> Result<String> {
+    let inc = increment_name(r, number)?;
+    let fields = ["displacement", "stress", "von_mises", "von_mises_mean", "equivalent_plastic_strain", "equivalent_plastic_strain_max"];
+    if !fields.contains(&name) {
+        return Err(Error::input(format!("unknown field {name:?}: the fields are {}", fields.join(", "))));
+    }
+    let values = r.field(&inc, name)?;
+    let (x0, conn) = (r.coordinates()?, r.connectivity()?);
+    let u = r.displacement(&inc)?;
+    let nodal = name == "displacement";
+    let count = if nodal { x0.len() } else { conn.len() };
+    let per = values.len() / count.max(1);
+    let components: Vec<String> = match name {
+        "displacement" => vec!["u_r".into(), "u_z".into()],
+        "stress" => ["s_rr", "s_zz", "s_tt", "s_rz"].iter().map(|s| s.to_string()).collect(),
+        _ => vec![name.to_string()],
+    };
+    let points = per / components.len();
+    let mut s = format!(
+        "{name} at increment {number} (step {}, load factor {:.4}), {} per {}{}\n",
+        r.increment_attr(&inc, "step")? as usize,
+        r.increment_attr(&inc, "load_factor")?,
+        if name == "displacement" {
+            "mm"
+        } else if name.contains("strain") {
+            "-"
+        } else {
+            "MPa"
+        },
+        if nodal { "node" } else { "element" },
+        if points > 1 { format!(" ({points} Gauss points each)") } else { String::new() }
+    );
+    let ids = if nodal { r.node_ids()? } else { r.element_ids()? };
+    let place = |entity: usize| -> [f64; 2] {
+        if nodal {
+            [x0[entity][0] + u[entity][0], x0[entity][1] + u[entity][1]]
+        } else {
+            [0, 1].map(|c| conn[entity][..4].iter().map(|&n| x0[n][c] + u[n][c]).sum::<f64>() / 4.0)
+        }
+    };
+    for (c, label) in components.iter().enumerate() {
+        let entries = (0..count).flat_map(|e| (0..points).map(move |p| (e, p)));
+        let value = |(e, p): (usize, usize)| values[e * per + p * components.len() + c];
+        let min = entries.clone().min_by(|a, b| value(*a).total_cmp(&value(*b))).unwrap_or((0, 0));
+        let max = entries.max_by(|a, b| value(*a).total_cmp(&value(*b))).unwrap_or((0, 0));
+        for (what, at) in [("min", min), ("max", max)] {
+            let p = place(at.0);
+            let gp = if points > 1 { format!(" point {}", at.1 + 1) } else { String::new() };
+            let _ = writeln!(
+                s,
+                "  {label:<10} {what} {:>14.6e}  at {} {}{gp}, deformed (r, z) = ({:.3}, {:.3}) mm",
+                value(at),
+                if nodal { "node" } else { "element" },
+                ids[at.0],
+                p[0],
+                p[1]
+            );
+        }
+    }
+    Ok(s)
+}
+
+/// Time series of a node (by its external number): displacement at every increment.
+pub fn node_series(r: &ResultsReader, id: u64) -> Result<String> {
+    let ids = r.node_ids()?;
+    let node = ids.iter().position(|&n| n == id).ok_or_else(|| Error::input(format!("{}: no node {id}", r.path().display())))?;
+    let x = r.coordinates()?[node];
+    let mut s = format!("node {id} at (r, z) = ({:.4}, {:.4}) mm\n{:>10} {:>10} {:>16} {:>16}\n", x[0], x[1], "increment", "time", "u_r (mm)", "u_z (mm)");
+    for (k, inc) in r.increments()?.iter().enumerate() {
+        let u = r.displacement(inc)?[node];
+        let _ = writeln!(s, "{:>10} {:>10.4} {:>16.8e} {:>16.8e}", k + 1, r.increment_attr(inc, "time")?, u[0], u[1]);
+    }
+    Ok(s)
+}
+
+/// Time series of a node set: its reaction where it is constrained (the history columns),
+/// else the mean displacement of its nodes.
+pub fn set_series(r: &ResultsReader, set: &str) -> Result<String> {
+    let columns = r.history_columns()?;
+    let time = r.history("time")?;
+    let reaction = format!("reaction_{set}_z");
+    if columns.contains(&reaction) {
+        let (fr, fz) = (r.history(&format!("reaction_{set}_r"))?, r.history(&reaction)?);
+        let mut s =
+            format!("reaction of node set {set}\n{:>10} {:>10} {:>16} {:>16} {:>16}\n", "increment", "time", "F_r (N/rad)", "F_z (N/rad)", "F_z ring (N)");
+        for k in 0..time.len() {
+            let _ = writeln!(s, "{:>10} {:>10.4} {:>16.8e} {:>16.8e} {:>16.8e}", k + 1, time[k], fr[k], fz[k], fz[k] * 2.0 * std::f64::consts::PI);
+        }
+        return Ok(s);
+    }
+    let members = r.node_set(set)?;
+    let mut s =
+        format!("mean displacement of node set {set} ({} nodes)\n{:>10} {:>10} {:>16} {:>16}\n", members.len(), "increment", "time", "u_r (mm)", "u_z (mm)");
+    for (k, inc) in r.increments()?.iter().enumerate() {
+        let u = r.displacement(inc)?;
+        let mean = [0, 1].map(|c| members.iter().map(|&n| u[n][c]).sum::<f64>() / members.len().max(1) as f64);
+        let _ = writeln!(s, "{:>10} {:>10.4} {:>16.8e} {:>16.8e}", k + 1, time[k], mean[0], mean[1]);
+    }
+    Ok(s)
+}
+
+/// Two runs' histories side by side, matched by time: every reaction column both have, and
+/// the Newton iterations.
+pub fn compare(a: &ResultsReader, b: &ResultsReader) -> Result<String> {
+    let (ca, cb) = (a.history_columns()?, b.history_columns()?);
+    let shared: Vec<&String> = ca.iter().filter(|c| c.starts_with("reaction_") && !c.ends_with("_ring") && cb.contains(c)).collect();
+    let (ta, tb) = (a.history("time")?, b.history("time")?);
+    let (na, nb) = (a.history("newton_iterations")?, b.history("newton_iterations")?);
+    let va: Vec<Vec<f64>> = shared.iter().map(|c| a.history(c)).collect::<Result<_>>()?;
+    let vb: Vec<Vec<f64>> = shared.iter().map(|c| b.history(c)).collect::<Result<_>>()?;
+    let mut s = format!("A = {}\nB = {}\n{:>10} {:>6} {:>6}", a.path().display(), b.path().display(), "time", "its A", "its B");
+    for c in &shared {
+        let _ = write!(s, " {:>28} {:>14} {:>10}", format!("{c} A"), "B", "B-A rel");
+    }
+    s.push('\n');
+    let mut matched = 0;
+    for (i, &t) in ta.iter().enumerate() {
+        let Some(j) = tb.iter().position(|&u| (u - t).abs() <= 1e-9 * t.abs().max(1.0)) else { continue };
+        matched += 1;
+        let _ = write!(s, "{t:>10.4} {:>6} {:>6}", na[i], nb[j]);
+        for k in 0..shared.len() {
+            let (x, y) = (va[k][i], vb[k][j]);
+            let rel = if x != 0.0 { (y - x) / x.abs() } else { 0.0 };
+            let _ = write!(s, " {x:>28.8e} {y:>14.8e} {rel:>10.2e}");
+        }
+        s.push('\n');
+    }
+    let _ = writeln!(s, "{matched} increments at common times ({} in A, {} in B)", ta.len(), tb.len());
+    Ok(s)
+}
+
+/// Force-displacement picture next to the file: every constrained set's axial reaction (full
+/// ring) against the total time (step - 1 + load factor). Returns its path.
+pub fn plot(r: &ResultsReader) -> Result<PathBuf> {
+    let time = r.history("time")?;
+    let curves: Vec<Curve> = r
+        .history_columns()?
+        .iter()
+        .filter_map(|c| Some((c, c.strip_prefix("reaction_")?.strip_suffix("_z_ring")?)))
+        .map(|(c, set)| {
+            let f = r.history(c)?;
+            Ok(Curve {
+                label: format!("{set}: F_z (full ring)"),
+                points: time.iter().zip(&f).filter(|(_, v)| v.is_finite()).map(|(&t, &v)| (t, v.abs())).collect(),
+            })
+        })
+        .collect::<Result<_>>()?;
+    let path = Path::new(&format!("{}_force.png", r.path().with_extension("").display())).to_path_buf();
+    line_plot(&path, "Axial reactions", "time (step - 1 + load factor)", "|F_z| (N, full ring)", &curves, &[])?;
+    Ok(path)
+}

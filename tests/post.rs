@@ -1,0 +1,106 @@
+//! `slideline post`: on a 2-rank results file (a shrink fit with a contact pair, pushed in a
+//! second step) it prints the history exactly as the run printed it, the CSV export reads back
+//! to the same numbers, fields and series name their places, and bad input (not an HDF5 file,
+//! a file without the results groups, an increment out of range, an unknown field or set)
+//! gives one clear message and exit code 2.
+
+mod common;
+use common::command_in;
+use std::path::Path;
+
+const DECK: &str = r#"nlgeom = true
+[[mesh.block]]
+name = "inner"
+r = [100.0, 110.0]
+z = [0.0, 4.0]
+divisions = [6, 2]
+[[mesh.block]]
+name = "outer"
+r = [109.95, 125.0]
+z = [0.0, 4.0]
+divisions = [9, 3]
+[[material]]
+name = "steel"
+youngs_modulus = 200000.0
+poissons_ratio = 0.3
+[[contact]]
+name = "fit"
+slave = "outer_inner"
+master = "inner_outer"
+penalty = 1e5
+[[step]]
+name = "fit"
+increments = 2
+boundary = [ { set = "inner_bottom", uz = 0.0 }, { set = "inner_top", uz = 0.0 }, { set = "outer_bottom", uz = 0.0 }, { set = "outer_top", uz = 0.0 } ]
+[[step]]
+name = "push"
+increments = 3
+boundary = [ { set = "inner_bottom", uz = 0.0 }, { set = "inner_top", uz = 0.0 }, { set = "outer_bottom", uz = 0.0 }, { set = "outer_top", uz = -0.01 } ]
+"#;
+
+fn post(dir: &Path, args: &[&str]) -> std::process::Output {
+    command_in(dir, 1).arg("post").args(args).output().expect("run slideline post")
+}
+
+#[test]
+fn post_reproduces_the_run_and_reports_fields() {
+    let dir = tempfile::tempdir().unwrap();
+    let deck = dir.path().join("fit.toml");
+    std::fs::write(&deck, DECK).unwrap();
+    let h5 = dir.path().join("fit.h5");
+    let run = command_in(dir.path(), 2).arg("run").arg(&deck).arg("-o").arg(&h5).output().unwrap();
+    let printed = String::from_utf8_lossy(&run.stdout).into_owned();
+    assert!(run.status.success(), "{printed}{}", String::from_utf8_lossy(&run.stderr));
+    let h5s = h5.to_str().unwrap();
+
+    // the history as printed during the run, line for line
+    let out = post(dir.path(), &[h5s]);
+    let text = String::from_utf8_lossy(&out.stdout).into_owned();
+    assert!(out.status.success(), "{text}");
+    let run_lines: Vec<&str> = printed.lines().filter(|l| l.starts_with("step ") && l.contains(" inc ")).collect();
+    let post_lines: Vec<&str> = text.lines().filter(|l| l.starts_with("step ") && l.contains(" inc ")).collect();
+    assert_eq!(run_lines.len(), 5);
+    assert_eq!(run_lines, post_lines);
+    assert!(text.contains("on 2 rank(s)") && text.contains("5 converged"), "{text}");
+
+    // CSV round trip: every column and value
+    let csv = dir.path().join("fit.csv");
+    assert!(post(dir.path(), &[h5s, "--csv", csv.to_str().unwrap()]).status.success());
+    let table = std::fs::read_to_string(&csv).unwrap();
+    let header: Vec<&str> = table.lines().next().unwrap().split(',').collect();
+    let file = hdf5::File::open(&h5).unwrap();
+    for (k, name) in header.iter().enumerate() {
+        let stored = file.dataset(&format!("history/{name}")).unwrap().read_raw::<f64>().unwrap();
+        let read: Vec<f64> = table.lines().skip(1).map(|l| l.split(',').nth(k).unwrap().parse().unwrap()).collect();
+        assert_eq!(stored.len(), read.len(), "{name}");
+        for (a, b) in stored.iter().zip(&read) {
+            assert!(a == b || (a.is_nan() && b.is_nan()), "{name}: {a} vs {b}");
+        }
+    }
+    assert!(header.contains(&"contact_fit_max_penetration") && header.contains(&"reaction_outer_top_z_ring"));
+
+    // a field at an increment: min and max with a place; a set's reaction series
+    let out = post(dir.path(), &[h5s, "--field", "von_mises", "--increment", "5"]);
+    let text = String::from_utf8_lossy(&out.stdout).into_owned();
+    assert!(out.status.success() && text.contains("max") && text.contains("at element"), "{text}");
+    let out = post(dir.path(), &[h5s, "--set", "outer_top"]);
+    let text = String::from_utf8_lossy(&out.stdout).into_owned();
+    assert!(text.contains("reaction of node set outer_top") && text.lines().count() == 2 + 5, "{text}");
+
+    // bad input: one message each, exit 2
+    let not_h5 = dir.path().join("fit.toml");
+    let empty = dir.path().join("empty.h5");
+    hdf5::File::create(&empty).unwrap();
+    for (args, needle) in [
+        (vec![not_h5.to_str().unwrap()], "not an HDF5 file"),
+        (vec![empty.to_str().unwrap()], "no /mesh group"),
+        (vec![h5s, "--field", "von_mises", "--increment", "6"], "increment 6 out of range"),
+        (vec![h5s, "--field", "strain", "--increment", "1"], "unknown field"),
+        (vec![h5s, "--set", "nowhere"], "no node set \"nowhere\""),
+    ] {
+        let out = post(dir.path(), &args);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+        assert!(err.contains(needle) && err.lines().count() == 1, "{args:?}: {err}");
+    }
+}
