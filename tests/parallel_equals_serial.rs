@@ -72,12 +72,22 @@ fn two_ranks_match_one_rank_and_the_file_reads_back() {
 
 #[test]
 fn an_element_inverted_on_one_rank_cuts_the_increment_back_on_both() {
-    // Full Newton steps (no line search) overshoot in the plastic push and invert elements on
-    // one rank: every rank must still meet in the collective assembly, report the domain
-    // error together, and cut back; this used to hang.
-    let run = run_deck(DECK, &[], 2, &["--", "-snes_linesearch_type", "basic"]);
+    // Full Newton steps (no line search) from the pushed end nodes alone (no predictor)
+    // overshoot in the plastic push and invert elements on one rank: every rank must still
+    // meet in the collective assembly, report the domain error together, and cut back; this
+    // used to hang.
+    let deck = format!("[stepping]\npredictor = false\n{DECK}");
+    let run = run_deck(&deck, &[], 2, &["--", "-snes_linesearch_type", "basic"]);
     run.assert_ok();
     let res = Results::open(&run.h5);
     assert!(res.history("cutbacks").iter().sum::<f64>() >= 1.0, "expected the push to need cutbacks");
     assert_eq!(*res.history("time").last().unwrap(), 2.0);
+    // with the predictor (the default) the same full Newton steps need no cutback and fewer
+    // iterations in the push
+    let predicted = run_deck(DECK, &[], 2, &["--", "-snes_linesearch_type", "basic"]);
+    predicted.assert_ok();
+    let with = Results::open(&predicted.h5);
+    assert_eq!(with.history("cutbacks").iter().sum::<f64>(), 0.0);
+    let push_iterations = |r: &Results| r.history("newton_iterations")[2..].iter().sum::<f64>();
+    assert!(push_iterations(&with) < push_iterations(&res), "{} vs {}", push_iterations(&with), push_iterations(&res));
 }

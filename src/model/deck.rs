@@ -10,6 +10,7 @@
 //! easy_iterations = 6               # "easy" = converged within this many Newton iterations
 //! min_increment = 1e-5              # fraction of the step; below it the run stops (exit 3)
 //! max_newton_iterations = 25
+//! predictor = true                  # start from the linear response to moved prescribed DOFs
 //!
 //! [mesh]
 //! file = "cylinder.msh"             # Gmsh 4.1, relative to the deck; or instead:
@@ -142,6 +143,7 @@ struct SteppingSpec {
     easy_iterations: Option<usize>,
     min_increment: Option<f64>,
     max_newton_iterations: Option<usize>,
+    predictor: Option<bool>,
 }
 
 impl SteppingSpec {
@@ -153,6 +155,7 @@ impl SteppingSpec {
             easy_iterations: self.easy_iterations.unwrap_or(d.easy_iterations),
             min_increment: self.min_increment.unwrap_or(d.min_increment),
             max_newton_iterations: self.max_newton_iterations.unwrap_or(d.max_newton_iterations),
+            predictor: self.predictor.unwrap_or(d.predictor),
         }
     }
 }

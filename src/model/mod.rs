@@ -109,11 +109,15 @@ pub struct SteppingControls {
     pub min_increment: f64,
     /// Newton iterations allowed per attempt (PETSc's -snes_max_it overrides it).
     pub max_newton_iterations: usize,
+    /// Start an increment that moves prescribed DOFs from the linear response to that motion
+    /// (Abaqus' extrapolation; false: from the last converged state with only the prescribed
+    /// nodes moved).
+    pub predictor: bool,
 }
 
 impl Default for SteppingControls {
     fn default() -> Self {
-        SteppingControls { cutback_factor: 0.5, growth_factor: 1.5, easy_iterations: 6, min_increment: 1e-5, max_newton_iterations: 25 }
+        SteppingControls { cutback_factor: 0.5, growth_factor: 1.5, easy_iterations: 6, min_increment: 1e-5, max_newton_iterations: 25, predictor: true }
     }
 }
 

@@ -81,7 +81,9 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
             let target = if lambda + size > 1.0 - 1e-9 * requested { 1.0 } else { lambda + size };
             problem.load = loads.at(model, target);
             set_free_values(&mut x, &dofs, &partition, &displacement)?;
-            predict(&world, &mut snes, &mut problem, loads.at(model, lambda), &mut x, &mut residual, &mut jacobian, &mut correction)?;
+            if controls.predictor {
+                predict(&world, &mut snes, &mut problem, loads.at(model, lambda), &mut x, &mut residual, &mut jacobian, &mut correction)?;
+            }
             // rtol 1e-10: with quadratic convergence it costs at most one iteration more than
             // PETSc's 1e-8; where round-off stops the residual first (a small increment, large
             // displacements, a stiff penalty), the problem's round-off floor ends the solve
