@@ -20,3 +20,4 @@ pub mod model;
 pub mod post;
 pub mod report;
 pub mod solve;
+pub mod study;

@@ -52,6 +52,112 @@ enum Command {
     /// Read a results file: the run's summary and history, a field at an increment, a node's
     /// or set's time series, two runs side by side, the force-displacement picture. No MPI.
     Post(PostArgs),
+    /// Run one model for a range of penalty values (and with the augmented Lagrangian) and
+    /// compare iterations, penetration and reaction: the bellows (default) or a deck.
+    PenaltyStudy(StudyArgs),
+}
+
+#[derive(clap::Args)]
+struct StudyArgs {
+    /// A TOML deck to study instead of the bellows (every contact pair gets each penalty).
+    #[arg(long)]
+    deck: Option<PathBuf>,
+    /// Penalty values: a range "1e2..1e6" (log-spaced) or a list "1e3,1e4,1e5".
+    #[arg(long, default_value = "1e2..1e6")]
+    penalties: String,
+    /// Values per decade of a range.
+    #[arg(long, default_value_t = 2)]
+    per_decade: usize,
+    /// The values are the dimensionless kappa (eps = kappa E / h), not N/mm^3.
+    #[arg(long)]
+    dimensionless: bool,
+    /// Also run the middle penalty with augmented-Lagrangian updates (the reference).
+    #[arg(long)]
+    augmented: bool,
+    /// Reaction tolerance of the recommendation, relative to the reference.
+    #[arg(long, default_value_t = 0.01)]
+    tolerance: f64,
+    /// Node set whose axial reaction is compared (bellows: moving_end).
+    #[arg(long)]
+    reaction: Option<String>,
+    /// Bellows: the coarse mesh of --quick.
+    #[arg(long)]
+    quick: bool,
+    /// Bellows: increments of the compression step.
+    #[arg(long)]
+    increments: Option<usize>,
+    /// Bellows: axial compression, mm.
+    #[arg(long)]
+    displacement: Option<f64>,
+    /// The study file (HDF5); each run's results go to a directory beside it.
+    #[arg(short, long, default_value = "penalty_study.h5")]
+    output: PathBuf,
+    #[arg(short, long)]
+    quiet: bool,
+    /// PETSc options (after `--`).
+    #[arg(last = true, allow_hyphen_values = true)]
+    petsc: Vec<String>,
+}
+
+/// `slideline penalty-study`: the study spec for the bellows or a deck, then the runs.
+fn penalty_study(session: &PetscSession, args: &StudyArgs) -> Result<(), Error> {
+    use slideline::model::{Model, Penalty};
+    use slideline::study::{parse_penalties, StudySpec};
+    let penalties = parse_penalties(&args.penalties, args.per_decade)?;
+    let mut bellows = model::bellows::BellowsParams::default();
+    if args.quick {
+        bellows = bellows.quick();
+    }
+    bellows.increments = args.increments.unwrap_or(bellows.increments);
+    bellows.displacement = args.displacement.unwrap_or(bellows.displacement);
+    bellows.validate()?;
+    let deck = args.deck.as_ref().map(|d| model::deck::read(d)).transpose()?;
+    let with_penalty = |penalty: Penalty| -> Result<Model, Error> {
+        let mut m = match &deck {
+            Some(m) => m.clone(),
+            None => model::bellows::model(&bellows)?,
+        };
+        for c in &mut m.contacts {
+            c.penalty = penalty;
+        }
+        Ok(m)
+    };
+    let (reaction_set, scale, unit, length, length_name) = match &deck {
+        None => (args.reaction.clone().unwrap_or_else(|| "moving_end".into()), -SECTOR_RADIANS, "N/sector", bellows.ply_thickness, "ply"),
+        Some(m) => {
+            let set =
+                args.reaction.clone().ok_or_else(|| Error::input("penalty-study --deck: name the node set whose reaction to compare with --reaction SET"))?;
+            if !m.node_sets.contains_key(&set) {
+                return Err(Error::input(format!("--reaction: no node set {set:?} in the deck")));
+            }
+            if m.contacts.is_empty() {
+                return Err(Error::input("penalty-study --deck: the deck has no contact pair"));
+            }
+            let h = m
+                .contacts
+                .iter()
+                .map(|c| {
+                    slideline::contact::surface::ContactSurface::new(&m.mesh, &m.surfaces[&c.master]).edge_length.iter().fold(f64::INFINITY, |a, &b| a.min(b))
+                })
+                .fold(f64::INFINITY, f64::min);
+            (set, 2.0 * std::f64::consts::PI, "N ring", h, "master edge")
+        }
+    };
+    let spec = StudySpec {
+        model: &with_penalty,
+        penalties,
+        dimensionless: args.dimensionless,
+        augmented: args.augmented,
+        reaction_column: format!("reaction_{reaction_set}_z"),
+        reaction_scale: scale,
+        reaction_unit: unit.into(),
+        length,
+        length_name: length_name.into(),
+        tolerance: args.tolerance,
+        output: args.output.clone(),
+        progress: !args.quiet,
+    };
+    slideline::study::penalty_study(session, &spec).map(|_| ())
 }
 
 #[derive(clap::Args)]
@@ -205,11 +311,7 @@ impl BellowsArgs {
             ..Default::default()
         };
         if self.quick {
-            p.ply_elements = 1;
-            p.ply_element_length = 2.0;
-            p.wall_element_length = 8.0;
-            p.wall_elements = 2;
-            p.increments = p.increments.min(40);
+            p = p.quick();
         }
         p
     }
@@ -241,6 +343,17 @@ fn main() -> ExitCode {
             }
             let result = model::bellows::model(&params).and_then(|m| run(&session, &m, &RunOptions { output: args.output.clone(), progress: !args.quiet }));
             finish(result, root, |summary| report(&params, summary, &args.output))
+        }
+        Command::PenaltyStudy(args) => {
+            let session = match PetscSession::initialize(&args.petsc) {
+                Ok(s) => s,
+                Err(e) => return fail(&e, true),
+            };
+            let root = session.world().rank() == 0;
+            match penalty_study(&session, &args) {
+                Ok(()) => ExitCode::SUCCESS,
+                Err(e) => fail(&e, root),
+            }
         }
         Command::Post(args) => match post(&args) {
             Ok(()) => ExitCode::SUCCESS,

@@ -111,6 +111,17 @@ impl BellowsParams {
         self.plies as f64 * self.ply_thickness
     }
 
+    /// The coarse version of the same case (`--quick`): one element through each ply, 2 mm
+    /// along the meridian, 8 mm along the walls, at most 40 requested increments.
+    pub fn quick(mut self) -> Self {
+        self.ply_elements = 1;
+        self.ply_element_length = 2.0;
+        self.wall_element_length = 8.0;
+        self.wall_elements = 2;
+        self.increments = self.increments.min(40);
+        self
+    }
+
     /// Checks the parameters describe a joint that can be built; names the offending value.
     pub fn validate(&self) -> Result<()> {
         let positive = [

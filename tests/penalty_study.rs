@@ -1,0 +1,114 @@
+//! `slideline penalty-study` on 2 ranks:
+//! - the shrink fit (a deck): the largest penetration falls as the penalty rises, by about the
+//!   penalty ratio (p / eps at the same interface pressure), and the summary holds a row per run;
+//! - a coarse, short bellows (2 penalties): the HDF5 summary holds one row per penalty with
+//!   every field, each run's history is in its group, and the plots and recommendation exist.
+
+mod common;
+use common::command_in;
+
+const FIT: &str = r#"nlgeom = true
+[[mesh.block]]
+name = "inner"
+r = [100.0, 110.0]
+z = [0.0, 4.0]
+divisions = [6, 2]
+[[mesh.block]]
+name = "outer"
+r = [109.95, 125.0]
+z = [0.0, 4.0]
+divisions = [9, 3]
+[[material]]
+name = "steel"
+youngs_modulus = 200000.0
+poissons_ratio = 0.3
+[[contact]]
+name = "fit"
+slave = "outer_inner"
+master = "inner_outer"
+penalty = 1.0 # replaced by each of the study's values
+[[step]]
+name = "fit"
+increments = 2
+boundary = [ { set = "inner_bottom", uz = 0.0 }, { set = "inner_top", uz = 0.0 }, { set = "outer_bottom", uz = 0.0 }, { set = "outer_top", uz = 0.0 } ]
+"#;
+
+const COLUMNS: [&str; 15] = [
+    "penalty",
+    "augmented",
+    "converged",
+    "reached_step",
+    "reached_load_factor",
+    "increments",
+    "newton_iterations",
+    "newton_per_increment",
+    "linear_iterations",
+    "cutbacks",
+    "wall_time",
+    "max_penetration",
+    "relative_penetration",
+    "reaction",
+    "reaction_difference",
+];
+
+fn summary(path: &std::path::Path, column: &str) -> Vec<f64> {
+    let f = hdf5::File::open(path).unwrap();
+    f.dataset(&format!("summary/{column}")).unwrap_or_else(|e| panic!("summary/{column}: {e}")).read_raw::<f64>().unwrap()
+}
+
+#[test]
+fn shrink_fit_penetration_falls_as_the_penalty_rises() {
+    let dir = tempfile::tempdir().unwrap();
+    let deck = dir.path().join("fit.toml");
+    std::fs::write(&deck, FIT).unwrap();
+    let study = dir.path().join("study.h5");
+    let out = command_in(dir.path(), 2)
+        .args(["penalty-study", "--deck"])
+        .arg(&deck)
+        .args(["--reaction", "outer_top", "--penalties", "1e3,1e4,1e5", "-o"])
+        .arg(&study)
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{stdout}{}", String::from_utf8_lossy(&out.stderr));
+    let penetration = summary(&study, "max_penetration");
+    assert_eq!(penetration.len(), 3);
+    for w in penetration.windows(2) {
+        // 10 x the penalty: about a tenth of the penetration
+        assert!(w[1] < 0.2 * w[0] && w[1] > 0.05 * w[0], "{penetration:?}");
+    }
+    assert!(summary(&study, "converged").iter().all(|&c| c == 1.0));
+    assert!(stdout.contains("recommendation: penalty"), "{stdout}");
+}
+
+#[test]
+fn coarse_bellows_study_has_a_row_per_penalty() {
+    let dir = tempfile::tempdir().unwrap();
+    let study = dir.path().join("bellows_study.h5");
+    let out = command_in(dir.path(), 2)
+        .args(["penalty-study", "--quick", "--displacement", "5", "--increments", "5", "--penalties", "1e3,1e4", "-q", "-o"])
+        .arg(&study)
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{stdout}{}", String::from_utf8_lossy(&out.stderr));
+    for column in COLUMNS {
+        let values = summary(&study, column);
+        assert_eq!(values.len(), 2, "{column}");
+        assert!(values.iter().all(|v| v.is_finite()), "{column}: {values:?}");
+    }
+    assert_eq!(summary(&study, "penalty"), vec![1e3, 1e4]);
+    let pen = summary(&study, "max_penetration");
+    assert!(pen[1] < pen[0], "{pen:?}");
+    let f = hdf5::File::open(&study).unwrap();
+    let runs = f.group("runs").unwrap().member_names().unwrap();
+    assert_eq!(runs.len(), 2);
+    for run in &runs {
+        let steps = f.dataset(&format!("runs/{run}/history/step")).unwrap().read_raw::<f64>().unwrap();
+        assert_eq!(*steps.last().unwrap(), 2.0, "{run} reached the compression step's end");
+    }
+    for png in ["iterations", "penetration", "reaction"] {
+        assert!(dir.path().join(format!("bellows_study_{png}.png")).exists(), "{png}");
+    }
+    assert!(stdout.contains("recommendation:"), "{stdout}");
+}
