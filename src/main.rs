@@ -1,7 +1,7 @@
 //! slideline command line: parse, call the library, map errors to exit codes
 //! (2 bad input, 3 not converged, 1 other).
 
-use clap::{Parser, Subcommand};
+use clap::{CommandFactory, FromArgMatches, Parser, Subcommand};
 use mpi::traits::Communicator;
 use slideline::dist::Partition;
 use slideline::io::reader::ResultsReader;
@@ -228,6 +228,10 @@ fn post(args: &PostArgs) -> Result<(), Error> {
 #[derive(clap::Args)]
 #[command(allow_negative_numbers = true)]
 struct BellowsArgs {
+    /// A TOML file of joint parameters (any field of BellowsParams, e.g. examples/bellows.toml);
+    /// flags given on the command line override it.
+    #[arg(long)]
+    params: Option<PathBuf>,
     /// Number of plies in the pack.
     #[arg(long, default_value_t = 2)]
     plies: usize,
@@ -291,41 +295,53 @@ struct BellowsArgs {
 }
 
 impl BellowsArgs {
-    fn params(&self) -> model::bellows::BellowsParams {
-        let mut p = model::bellows::BellowsParams {
-            plies: self.plies,
-            ply_thickness: self.ply_thickness,
-            convolutions: self.convolutions,
-            pitch: self.pitch,
-            height: self.height,
-            torus_radius: self.torus_radius,
-            displacement: self.displacement,
-            increments: self.increments,
-            penalty: self.penalty,
-            temperature: self.temperature,
-            pressure: self.pressure,
-            yield_stress: self.yield_stress,
-            hardening_modulus: self.hardening,
-            ply_element_length: self.ply_element_length,
-            ply_elements: self.ply_elements,
-            ..Default::default()
+    /// The joint's parameters: the defaults (the seed case) or the `--params` file, then every
+    /// flag given on the command line (`given(id)`), then `--quick`.
+    fn params(&self, given: impl Fn(&str) -> bool) -> Result<model::bellows::BellowsParams, Error> {
+        let mut p = match &self.params {
+            Some(path) => model::bellows::BellowsParams::from_toml_file(path)?,
+            None => model::bellows::BellowsParams::default(),
         };
-        if self.quick {
-            p = p.quick();
-        }
-        p
+        let from_file = self.params.is_some();
+        let mut take = |id: &str, set: &mut dyn FnMut(&mut model::bellows::BellowsParams)| {
+            if !from_file || given(id) {
+                set(&mut p);
+            }
+        };
+        take("plies", &mut |p| p.plies = self.plies);
+        take("ply_thickness", &mut |p| p.ply_thickness = self.ply_thickness);
+        take("convolutions", &mut |p| p.convolutions = self.convolutions);
+        take("pitch", &mut |p| p.pitch = self.pitch);
+        take("height", &mut |p| p.height = self.height);
+        take("torus_radius", &mut |p| p.torus_radius = self.torus_radius);
+        take("displacement", &mut |p| p.displacement = self.displacement);
+        take("increments", &mut |p| p.increments = self.increments);
+        take("penalty", &mut |p| p.penalty = self.penalty);
+        take("temperature", &mut |p| p.temperature = self.temperature);
+        take("pressure", &mut |p| p.pressure = self.pressure);
+        take("yield_stress", &mut |p| p.yield_stress = self.yield_stress);
+        take("hardening", &mut |p| p.hardening_modulus = self.hardening);
+        take("ply_element_length", &mut |p| p.ply_element_length = self.ply_element_length);
+        take("ply_elements", &mut |p| p.ply_elements = self.ply_elements);
+        Ok(if self.quick { p.quick() } else { p })
     }
 }
 
 fn main() -> ExitCode {
-    let cli = Cli::parse();
+    let matches = Cli::command().get_matches();
+    let cli = match Cli::from_arg_matches(&matches) {
+        Ok(cli) => cli,
+        Err(e) => e.exit(),
+    };
     match cli.command {
         Command::Bellows(args) => {
-            let params = args.params();
-            // bad flags are reported before MPI and PETSc start
-            if let Err(e) = params.validate() {
-                return fail(&e, true);
-            }
+            let sub = matches.subcommand_matches("bellows");
+            let given = |id: &str| sub.and_then(|m| m.value_source(id)) == Some(clap::parser::ValueSource::CommandLine);
+            // bad flags and parameter files are reported before MPI and PETSc start
+            let params = match args.params(given).and_then(|p| p.validate().map(|()| p)) {
+                Ok(p) => p,
+                Err(e) => return fail(&e, true),
+            };
             let session = match PetscSession::initialize(&args.petsc) {
                 Ok(s) => s,
                 Err(e) => return fail(&e, true),

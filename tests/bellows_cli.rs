@@ -50,3 +50,32 @@ fn mesh_only_writes_the_seed_joint_as_gmsh() {
     assert!(file.group("mesh/node_sets").unwrap().member_names().unwrap().contains(&"moving_end".to_string()));
     assert!(file.group("increments").unwrap().member_names().unwrap().is_empty());
 }
+
+#[test]
+fn a_parameter_file_sets_the_joint_and_flags_override_it() {
+    let dir = tempfile::tempdir().unwrap();
+    // the example file is the seed case
+    let example = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/bellows.toml");
+    assert_eq!(slideline::model::bellows::BellowsParams::from_toml_file(&example).unwrap(), Default::default());
+    let write = |name: &str, text: &str| {
+        let path = dir.path().join(name);
+        std::fs::write(&path, text).unwrap();
+        path.to_str().unwrap().to_string()
+    };
+    let typo = write("typo.toml", "plies = 2\npliess = 3\n");
+    let zero = write("zero.toml", "plies = 0\nconvolutions = 5\nlength = 376.0\n");
+    for (args, needle) in [(vec!["--params", typo.as_str()], "unknown field `pliess`"), (vec!["--params", zero.as_str()], "plies")] {
+        let out = bellows(dir.path(), &args);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+        assert!(err.contains(needle), "{args:?}: {err}");
+    }
+    // the file's 5 convolutions with the command line's 3 plies
+    let out = bellows(dir.path(), &["--params", zero.as_str(), "--plies", "3", "--quick", "--mesh-only"]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let (mesh, sets) = slideline::model::gmsh::read(&dir.path().join("b.msh")).unwrap();
+    assert!(sets.element_sets.contains_key("ply3") && !sets.element_sets.contains_key("ply4"));
+    let zmax_ply = sets.element_sets["ply1"].iter().flat_map(|&e| mesh.elements[e]).map(|n| mesh.coords[n][1]).fold(0.0, f64::max);
+    // tangent B ends 20 past the convolutions: 128 + 5 x 24 + 20 = 268
+    assert!((zmax_ply - 268.0).abs() < 1e-9, "{zmax_ply}");
+}

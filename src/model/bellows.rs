@@ -22,8 +22,10 @@ use crate::error::{Error, Result};
 use std::collections::HashMap;
 use std::f64::consts::PI;
 
-/// Parameters of the joint and of the analysis. Lengths in mm, stresses in MPa.
-#[derive(Clone, Debug, PartialEq)]
+/// Parameters of the joint and of the analysis. Lengths in mm, stresses in MPa. Read from
+/// TOML by field name (`BellowsParams::from_toml_file`), missing fields at their defaults.
+#[derive(Clone, Debug, PartialEq, serde::Deserialize)]
+#[serde(default, deny_unknown_fields)]
 pub struct BellowsParams {
     pub tube_inner_radius: f64,
     pub tube_thickness: f64,
@@ -109,6 +111,12 @@ impl BellowsParams {
     /// Total thickness of the ply pack.
     pub fn pack_thickness(&self) -> f64 {
         self.plies as f64 * self.ply_thickness
+    }
+
+    /// Parameters from a TOML file of `field = value` lines (unknown fields are an error).
+    pub fn from_toml_file(path: &std::path::Path) -> Result<Self> {
+        let text = std::fs::read_to_string(path).map_err(|source| Error::Read { path: path.to_path_buf(), source })?;
+        toml::from_str(&text).map_err(|e| Error::input(format!("{}: {}", path.display(), e.message())))
     }
 
     /// The coarse version of the same case (`--quick`): one element through each ply, 2 mm
