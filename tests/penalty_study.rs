@@ -5,33 +5,7 @@
 //!   every field, each run's history is in its group, and the plots and recommendation exist.
 
 mod common;
-use common::command_in;
-
-const FIT: &str = r#"nlgeom = true
-[[mesh.block]]
-name = "inner"
-r = [100.0, 110.0]
-z = [0.0, 4.0]
-divisions = [6, 2]
-[[mesh.block]]
-name = "outer"
-r = [109.95, 125.0]
-z = [0.0, 4.0]
-divisions = [9, 3]
-[[material]]
-name = "steel"
-youngs_modulus = 200000.0
-poissons_ratio = 0.3
-[[contact]]
-name = "fit"
-slave = "outer_inner"
-master = "inner_outer"
-penalty = 1.0 # replaced by each of the study's values
-[[step]]
-name = "fit"
-increments = 2
-boundary = [ { set = "inner_bottom", uz = 0.0 }, { set = "inner_top", uz = 0.0 }, { set = "outer_bottom", uz = 0.0 }, { set = "outer_top", uz = 0.0 } ]
-"#;
+use common::{command_in, shrink_fit_deck};
 
 const COLUMNS: [&str; 15] = [
     "penalty",
@@ -60,7 +34,8 @@ fn summary(path: &std::path::Path, column: &str) -> Vec<f64> {
 fn shrink_fit_penetration_falls_as_the_penalty_rises() {
     let dir = tempfile::tempdir().unwrap();
     let deck = dir.path().join("fit.toml");
-    std::fs::write(&deck, FIT).unwrap();
+    // the penalty is replaced by each of the study's values
+    std::fs::write(&deck, shrink_fit_deck(true, "penalty = 1.0", "")).unwrap();
     let study = dir.path().join("study.h5");
     let out = command_in(dir.path(), 2)
         .args(["penalty-study", "--deck"])

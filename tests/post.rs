@@ -5,38 +5,18 @@
 //! gives one clear message and exit code 2.
 
 mod common;
-use common::command_in;
+use common::{command_in, shrink_fit_deck};
 use std::path::Path;
 
-const DECK: &str = r#"nlgeom = true
-[[mesh.block]]
-name = "inner"
-r = [100.0, 110.0]
-z = [0.0, 4.0]
-divisions = [6, 2]
-[[mesh.block]]
-name = "outer"
-r = [109.95, 125.0]
-z = [0.0, 4.0]
-divisions = [9, 3]
-[[material]]
-name = "steel"
-youngs_modulus = 200000.0
-poissons_ratio = 0.3
-[[contact]]
-name = "fit"
-slave = "outer_inner"
-master = "inner_outer"
-penalty = 1e5
-[[step]]
-name = "fit"
-increments = 2
-boundary = [ { set = "inner_bottom", uz = 0.0 }, { set = "inner_top", uz = 0.0 }, { set = "outer_bottom", uz = 0.0 }, { set = "outer_top", uz = 0.0 } ]
-[[step]]
+/// The shrink fit (penalty 1e5), then the outer tube's top face pushed down 0.01 mm.
+fn deck() -> String {
+    let push = r#"[[step]]
 name = "push"
 increments = 3
 boundary = [ { set = "inner_bottom", uz = 0.0 }, { set = "inner_top", uz = 0.0 }, { set = "outer_bottom", uz = 0.0 }, { set = "outer_top", uz = -0.01 } ]
 "#;
+    shrink_fit_deck(true, "penalty = 1e5", push)
+}
 
 fn post(dir: &Path, args: &[&str]) -> std::process::Output {
     command_in(dir, 1).arg("post").args(args).output().expect("run slideline post")
@@ -46,7 +26,7 @@ fn post(dir: &Path, args: &[&str]) -> std::process::Output {
 fn post_reproduces_the_run_and_reports_fields() {
     let dir = tempfile::tempdir().unwrap();
     let deck = dir.path().join("fit.toml");
-    std::fs::write(&deck, DECK).unwrap();
+    std::fs::write(&deck, self::deck()).unwrap();
     let h5 = dir.path().join("fit.h5");
     let run = command_in(dir.path(), 2).arg("run").arg(&deck).arg("-o").arg(&h5).output().unwrap();
     let printed = String::from_utf8_lossy(&run.stdout).into_owned();

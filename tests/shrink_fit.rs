@@ -11,7 +11,7 @@
 //! leave 5.4e-3 mm, 11 % of delta, as penetration) with augmented-Lagrangian updates to 1e-6 mm.
 
 mod common;
-use common::{run_deck, Results};
+use common::{run_deck, shrink_fit_deck, Results};
 
 fn lame_u(r: f64, a: f64, b: f64, pi: f64, po: f64) -> f64 {
     let (e, nu) = (200e3, 0.3);
@@ -29,32 +29,7 @@ fn interface_pressure() -> f64 {
 }
 
 fn deck(contact: &str) -> String {
-    format!(
-        r#"nlgeom = false
-[[mesh.block]]
-name = "inner"
-r = [100.0, 110.0]
-z = [0.0, 4.0]
-divisions = [6, 2]
-[[mesh.block]]
-name = "outer"
-r = [109.95, 125.0]
-z = [0.0, 4.0]
-divisions = [9, 3]
-[[material]]
-name = "steel"
-youngs_modulus = 200000.0
-poissons_ratio = 0.3
-[[contact]]
-name = "fit"
-slave = "outer_inner"
-master = "inner_outer"
-{contact}
-[[step]]
-increments = 2
-boundary = [ {{ set = "inner_bottom", uz = 0.0 }}, {{ set = "inner_top", uz = 0.0 }}, {{ set = "outer_bottom", uz = 0.0 }}, {{ set = "outer_top", uz = 0.0 }} ]
-"#
-    )
+    shrink_fit_deck(false, contact, "")
 }
 
 fn pressures(contact: &str) -> (Vec<f64>, f64, f64) {

@@ -172,3 +172,37 @@ pub fn run_serial_and_parallel(deck: &str, extra: &[&str]) -> (Run, Results, Run
     let (r1, r2) = (Results::open(&serial.h5), Results::open(&parallel.h5));
     (serial, r1, parallel, r2)
 }
+
+/// The shrink-fit compound cylinder (inner tube r 100..110, outer r 109.95..125, 6 x 2 and
+/// 9 x 3 Q8, steel, both faces of both tubes held axially) with contact pair "fit" (outer's bore
+/// on inner's outside, plus the `contact` lines) fitted in one step of 2 increments, then
+/// `more_steps` (TOML `[[step]]` tables).
+pub fn shrink_fit_deck(nlgeom: bool, contact: &str, more_steps: &str) -> String {
+    format!(
+        r#"nlgeom = {nlgeom}
+[[mesh.block]]
+name = "inner"
+r = [100.0, 110.0]
+z = [0.0, 4.0]
+divisions = [6, 2]
+[[mesh.block]]
+name = "outer"
+r = [109.95, 125.0]
+z = [0.0, 4.0]
+divisions = [9, 3]
+[[material]]
+name = "steel"
+youngs_modulus = 200000.0
+poissons_ratio = 0.3
+[[contact]]
+name = "fit"
+slave = "outer_inner"
+master = "inner_outer"
+{contact}
+[[step]]
+name = "fit"
+increments = 2
+boundary = [ {{ set = "inner_bottom", uz = 0.0 }}, {{ set = "inner_top", uz = 0.0 }}, {{ set = "outer_bottom", uz = 0.0 }}, {{ set = "outer_top", uz = 0.0 }} ]
+{more_steps}"#
+    )
+}
