@@ -17,6 +17,7 @@ const FUNCTIONS: &[&str] = &[
     "PetscMallocA",
     "PetscOptionsHasName",
     "PetscLogStageRegister",
+    "PetscLogStageGetId",
     "PetscLogStagePush",
     "PetscLogStagePop",
     // vectors, index sets, scatters

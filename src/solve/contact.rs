@@ -43,6 +43,7 @@ struct Pass {
 }
 
 /// The contribution of one active slave node: residual and tangent over `nodes`.
+#[derive(Clone)]
 pub struct Engagement {
     /// Mesh nodes the contribution couples (the slave node first).
     pub nodes: Vec<usize>,
@@ -93,6 +94,10 @@ pub struct ContactAssembly<'s> {
     /// Round-off floor (squared) of the last evaluation: a gap is a difference of positions,
     /// so each active slave node's force carries about eps * penalty * area * |x|.
     roundoff: f64,
+    /// The last evaluation, with the positions and multipliers it was made at: SNES asks for
+    /// the Jacobian at the iterate whose residual it has just evaluated, and the search and
+    /// kernels (which give residual and tangent together) need not run twice.
+    last: Option<(Vec<[f64; 2]>, Multipliers, Vec<Engagement>)>,
 }
 
 impl<'s> ContactAssembly<'s> {
@@ -166,6 +171,7 @@ impl<'s> ContactAssembly<'s> {
             states,
             nodal_forces: Vec::new(),
             roundoff: 0.0,
+            last: None,
         }))
     }
 
@@ -187,7 +193,19 @@ impl<'s> ContactAssembly<'s> {
     }
 
     /// Evaluates every owned slave node at the gathered positions; records the slave states.
+    /// At the positions and multipliers of the previous evaluation, returns its result again.
     pub fn evaluate(&mut self, model: &Model) -> Vec<Engagement> {
+        if let Some((positions, multipliers, engagements)) = &self.last {
+            if *positions == self.positions && *multipliers == self.current {
+                return engagements.clone();
+            }
+        }
+        let out = self.evaluate_afresh(model);
+        self.last = Some((self.positions.clone(), self.current.clone(), out.clone()));
+        out
+    }
+
+    fn evaluate_afresh(&mut self, model: &Model) -> Vec<Engagement> {
         let mut out = Vec::new();
         self.nodal_forces.clear();
         self.nodal_forces.resize(self.nodes.len(), [0.0; 2]);

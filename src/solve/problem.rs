@@ -15,7 +15,7 @@ use crate::fe::shape::edge_nodes;
 use crate::material::{Kinematics, PointState, J2};
 use crate::model::{Material, Model};
 use crate::petsc::sys::PetscInt;
-use crate::petsc::{MatOps, MatrixView, NonlinearProblem, PetscSession, Scatter, VecOps, Vector, VectorView};
+use crate::petsc::{LogStage, MatOps, MatrixView, NonlinearProblem, PetscSession, Scatter, VecOps, Vector, VectorView};
 
 /// Round-off allowance per assembled contribution, in units in the last place: the floor
 /// estimate ignores the linear solve's own error and the sums inside each kernel, so it is
@@ -31,6 +31,27 @@ pub struct LoadState {
     pub temperature_change: f64,
     /// (surface name, pressure in MPa).
     pub pressures: Vec<(String, f64)>,
+}
+
+/// PETSc log stages of the assembly, so `-log_view` splits a Newton iteration into residual,
+/// Jacobian and contact (search and kernels) time; the linear solve stays in the main stage.
+#[derive(Clone, Copy, Debug)]
+pub struct Stages {
+    pub residual: LogStage,
+    pub jacobian: LogStage,
+    pub contact: LogStage,
+    pub output: LogStage,
+}
+
+impl Stages {
+    pub fn new() -> Result<Self> {
+        Ok(Stages {
+            residual: LogStage::named("Residual")?,
+            jacobian: LogStage::named("Jacobian")?,
+            contact: LogStage::named("Contact")?,
+            output: LogStage::named("Output")?,
+        })
+    }
 }
 
 /// History of every Gauss point of this rank's elements (in local element order).
@@ -78,6 +99,7 @@ pub struct Problem<'s, 'm> {
     roundoff: f64,
     pub contact: Option<ContactAssembly<'s>>,
     pub load: LoadState,
+    pub stages: Stages,
 }
 
 /// The material kernel of a model material.
@@ -158,6 +180,7 @@ impl<'s, 'm> Problem<'s, 'm> {
             roundoff: 0.0,
             contact,
             load: LoadState::default(),
+            stages: Stages::new()?,
         })
     }
 
@@ -255,8 +278,9 @@ impl<'s, 'm> Problem<'s, 'm> {
                 }
             }
         }
+        let stage = self.stages.contact;
         if let Some(contact) = self.contact.as_mut() {
-            for e in contact.evaluate(self.model) {
+            for e in stage.run(|| contact.evaluate(self.model))? {
                 for (i, &v) in e.residual.iter().enumerate() {
                     sink(e.nodes[i / 2], i % 2, v);
                 }
@@ -293,6 +317,18 @@ impl NonlinearProblem for Problem<'_, '_> {
     }
 
     fn residual(&mut self, x: &VectorView<'_>, f: &mut VectorView<'_>) -> Result<()> {
+        let stage = self.stages.residual;
+        stage.run(|| self.assemble_residual(x, f))?
+    }
+
+    fn jacobian(&mut self, x: &VectorView<'_>, jacobian: &mut MatrixView<'_>) -> Result<()> {
+        self.assemble_jacobian(x, jacobian)
+    }
+}
+
+impl Problem<'_, '_> {
+    /// F(x) at the free DOFs, assembled.
+    fn assemble_residual(&mut self, x: &impl VecOps, f: &mut impl VecOps) -> Result<()> {
         let gathered = self.gather(x)?;
         f.set_all(0.0)?;
         let mut rows: Vec<PetscInt> = Vec::with_capacity(DOFS * self.elements.len());
@@ -319,20 +355,17 @@ impl NonlinearProblem for Problem<'_, '_> {
         result
     }
 
-    fn jacobian(&mut self, x: &VectorView<'_>, jacobian: &mut MatrixView<'_>) -> Result<()> {
-        self.assemble_jacobian(x, jacobian)
-    }
-}
-
-impl Problem<'_, '_> {
     /// The tangent dF/du of the free DOFs at `x`, assembled.
     pub fn assemble_jacobian(&mut self, x: &impl VecOps, jacobian: &mut impl MatOps) -> Result<()> {
-        let gathered = self.gather(x)?;
-        jacobian.zero_entries()?;
-        let result = self.add_tangents(&gathered, jacobian);
-        // collective, whatever happened on this rank (see `residual`)
-        jacobian.assemble()?;
-        result
+        let stage = self.stages.jacobian;
+        stage.run(|| {
+            let gathered = self.gather(x)?;
+            jacobian.zero_entries()?;
+            let result = self.add_tangents(&gathered, jacobian);
+            // collective, whatever happened on this rank (see `residual`)
+            jacobian.assemble()?;
+            result
+        })?
     }
 
     /// K_fp delta: the force at the free DOFs when the prescribed DOFs move by `delta`
@@ -394,8 +427,9 @@ impl Problem<'_, '_> {
                 jacobian.add_block(&dofs, &dofs, &values)?;
             }
         }
+        let stage = self.stages.contact;
         if let Some(contact) = self.contact.as_mut() {
-            for e in contact.evaluate(self.model) {
+            for e in stage.run(|| contact.evaluate(self.model))? {
                 let dofs = contact.engagement_dofs(&e);
                 jacobian.add_block(&dofs, &dofs, &e.tangent)?;
             }

@@ -123,7 +123,8 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
             let done = target - lambda;
             lambda = target;
             increment += 1;
-            let fields = problem.evaluate_fields(&x)?;
+            let output = problem.stages.output;
+            let fields = output.run(|| problem.evaluate_fields(&x))??;
             problem.commit();
             let owned = owned_displacement(&x, &dofs, &partition, &problem.load.prescribed)?;
             gather_displacement(&world, &partition, &owned, &mut displacement);
@@ -164,7 +165,7 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
             let contact_output = problem.contact.as_ref().map(|c| c.pass_outputs()).unwrap_or_default();
             let increment_fields =
                 IncrementFields { displacement: &owned, stress: &fields.stress, plastic_strain: &fields.plastic_strain, contact: &contact_output };
-            results.write_increment(&step.name, &row, &increment_fields, &partition)?;
+            output.run(|| results.write_increment(&step.name, &row, &increment_fields, &partition))??;
             if root && options.progress {
                 println!("{}", row.progress_line(&step.name, model.steps.len()));
             }
