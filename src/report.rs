@@ -81,10 +81,10 @@ fn largest_penetration(history: &[HistoryRow], pair: impl Fn(&str) -> bool) -> f
 /// deformed centre.
 fn extreme(reader: &ResultsReader, increment: &str, field: &str) -> Result<Extreme> {
     let values = reader.field(increment, field)?;
-    let per_element = values.len() / reader.connectivity()?.len().max(1);
+    let conn = reader.connectivity()?;
+    let per_element = values.len() / conn.len().max(1);
     let (k, &value) = values.iter().enumerate().max_by(|a, b| a.1.total_cmp(b.1)).unwrap_or((0, &f64::NAN));
     let element = k / per_element.max(1);
-    let conn = reader.connectivity()?;
     let (x0, u) = (reader.coordinates()?, reader.displacement(increment)?);
     let at = [0, 1].map(|c| conn[element][..4].iter().map(|&n| x0[n][c] + u[n][c]).sum::<f64>() / 4.0);
     let mut part = String::from("?");
