@@ -1,5 +1,6 @@
 //! Throughput of the pure kernels (no PETSc, no MPI): material update, element residual and
-//! tangent, pressure edge.
+//! tangent, pressure edge, contact kernel per slave node, and the contact search and segment
+//! integration per surface size (the bellows ply interface at three meshes).
 use criterion::{black_box, criterion_group, criterion_main, Criterion, Throughput};
 use slideline::ad::Dual;
 use slideline::element::pressure::{compute_pressure_load, pressure_load_stiffness};
@@ -36,5 +37,51 @@ fn kernels(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, kernels);
+fn contact(c: &mut Criterion) {
+    use slideline::contact::integrated::weighted_gaps;
+    use slideline::contact::node_to_edge::{edge_residual_and_tangent, project_on_edge};
+    use slideline::contact::search::{closest_edge, EdgeGrid};
+    use slideline::contact::surface::ContactSurface;
+    use slideline::model::bellows::{mesh, BellowsParams};
+
+    let mut g = c.benchmark_group("contact kernel");
+    g.throughput(Throughput::Elements(1));
+    let edge = [
+        [167.0 + 6.0 * 3.3f64.cos(), 200.0 + 6.0 * 3.3f64.sin()],
+        [167.0 + 6.0 * 3.6f64.cos(), 200.0 + 6.0 * 3.6f64.sin()],
+        [167.0 + 6.0 * 3.45f64.cos(), 200.0 + 6.0 * 3.45f64.sin()],
+    ];
+    let xs = [edge[2][0] + 0.001, edge[2][1]];
+    g.bench_function("projection on a quadratic edge", |b| b.iter(|| project_on_edge(black_box(xs), &edge).unwrap()));
+    let proj = project_on_edge(xs, &edge).unwrap();
+    g.bench_function("slave node residual + tangent (dual)", |b| {
+        b.iter(|| edge_residual_and_tangent(black_box(xs), &edge, &proj, 2.0, 1e4, 0.0, [false, false]))
+    });
+    g.finish();
+
+    // per slave node of the bellows' ply interface, at the quick, default and fine ply meshes
+    let mut g = c.benchmark_group("contact surface");
+    for (name, through, length) in [("quick", 1, 2.0), ("default", 2, 1.0), ("fine", 3, 0.5)] {
+        let p = BellowsParams { ply_elements: through, ply_element_length: length, ..Default::default() };
+        let (m, sets) = mesh(&p).unwrap();
+        let slave = ContactSurface::new(&m, &sets.surfaces["ply2_inner"]);
+        let master = ContactSurface::new(&m, &sets.surfaces["ply1_outer"]);
+        let x = |n: usize| m.coords[n];
+        let nodes = slave.nodes.len();
+        g.throughput(Throughput::Elements(nodes as u64));
+        g.bench_function(format!("grid + closest edge, {name} ({nodes} slave nodes)"), |b| {
+            b.iter(|| {
+                let grid = EdgeGrid::new(&master, &x, 2.0);
+                slave.nodes.iter().filter(|&&n| closest_edge(&master, &x, x(n), grid.candidates(x(n)), &[], 2.0).is_some()).count()
+            })
+        });
+        let all: Vec<usize> = (0..nodes).collect();
+        g.bench_function(format!("segment-integrated gaps + derivatives, {name} ({nodes} slave nodes)"), |b| {
+            b.iter(|| weighted_gaps(&slave, &master, &x, &x, black_box(&all), &|_| Vec::new(), 2.0).len())
+        });
+    }
+    g.finish();
+}
+
+criterion_group!(benches, kernels, contact);
 criterion_main!(benches);
