@@ -43,7 +43,6 @@ struct Pass {
 }
 
 /// The contribution of one active slave node: residual and tangent over `nodes`.
-#[derive(Clone)]
 pub struct Engagement {
     /// Mesh nodes the contribution couples (the slave node first).
     pub nodes: Vec<usize>,
@@ -94,10 +93,11 @@ pub struct ContactAssembly<'s> {
     /// Round-off floor (squared) of the last evaluation: a gap is a difference of positions,
     /// so each active slave node's force carries about eps * penalty * area * |x|.
     roundoff: f64,
-    /// The last evaluation, with the positions and multipliers it was made at: SNES asks for
-    /// the Jacobian at the iterate whose residual it has just evaluated, and the search and
-    /// kernels (which give residual and tangent together) need not run twice.
-    last: Option<(Vec<[f64; 2]>, Multipliers, Vec<Engagement>)>,
+    /// The engagements of the last evaluation, and the positions and multipliers it was made
+    /// at: SNES asks for the Jacobian at the iterate whose residual it has just evaluated, and
+    /// the search and kernels (which give residual and tangent together) need not run twice.
+    engagements: Vec<Engagement>,
+    evaluated_at: Option<(Vec<[f64; 2]>, Multipliers)>,
 }
 
 impl<'s> ContactAssembly<'s> {
@@ -171,7 +171,8 @@ impl<'s> ContactAssembly<'s> {
             states,
             nodal_forces: Vec::new(),
             roundoff: 0.0,
-            last: None,
+            engagements: Vec::new(),
+            evaluated_at: None,
         }))
     }
 
@@ -192,21 +193,15 @@ impl<'s> ContactAssembly<'s> {
         Ok(())
     }
 
-    /// Evaluates every owned slave node at the gathered positions; records the slave states.
-    /// At the positions and multipliers of the previous evaluation, returns its result again.
-    pub fn evaluate(&mut self, model: &Model) -> Vec<Engagement> {
-        if let Some((positions, multipliers, engagements)) = &self.last {
-            if *positions == self.positions && *multipliers == self.current {
-                return engagements.clone();
-            }
+    /// Evaluates every owned slave node at the gathered positions and records the slave
+    /// states; the engagements are then in `engagements()`. Nothing is recomputed at the
+    /// positions and multipliers of the previous evaluation.
+    pub fn evaluate(&mut self, model: &Model) {
+        if self.evaluated_at.as_ref().is_some_and(|(x, m)| *x == self.positions && *m == self.current) {
+            return;
         }
-        let out = self.evaluate_afresh(model);
-        self.last = Some((self.positions.clone(), self.current.clone(), out.clone()));
-        out
-    }
-
-    fn evaluate_afresh(&mut self, model: &Model) -> Vec<Engagement> {
-        let mut out = Vec::new();
+        let mut out = std::mem::take(&mut self.engagements);
+        out.clear();
         self.nodal_forces.clear();
         self.nodal_forces.resize(self.nodes.len(), [0.0; 2]);
         self.roundoff = 0.0;
@@ -224,7 +219,13 @@ impl<'s> ContactAssembly<'s> {
                 }
             }
         }
-        out
+        self.engagements = out;
+        self.evaluated_at = Some((self.positions.clone(), self.current.clone()));
+    }
+
+    /// The active slave nodes' contributions from the last `evaluate`.
+    pub fn engagements(&self) -> &[Engagement] {
+        &self.engagements
     }
 
     fn penalty(model: &Model, pair: &ContactPair, master: &ContactSurface, edge: usize) -> f64 {

@@ -280,7 +280,8 @@ impl<'s, 'm> Problem<'s, 'm> {
         }
         let stage = self.stages.contact;
         if let Some(contact) = self.contact.as_mut() {
-            for e in stage.run(|| contact.evaluate(self.model))? {
+            stage.run(|| contact.evaluate(self.model))?;
+            for e in contact.engagements() {
                 for (i, &v) in e.residual.iter().enumerate() {
                     sink(e.nodes[i / 2], i % 2, v);
                 }
@@ -429,8 +430,9 @@ impl Problem<'_, '_> {
         }
         let stage = self.stages.contact;
         if let Some(contact) = self.contact.as_mut() {
-            for e in stage.run(|| contact.evaluate(self.model))? {
-                let dofs = contact.engagement_dofs(&e);
+            stage.run(|| contact.evaluate(self.model))?;
+            for e in contact.engagements() {
+                let dofs = contact.engagement_dofs(e);
                 jacobian.add_block(&dofs, &dofs, &e.tangent)?;
             }
         }
