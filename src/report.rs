@@ -196,8 +196,10 @@ impl BellowsReport {
         written.push(force);
         let increments = reader.increments()?;
         let (x0, conn) = (reader.coordinates()?, reader.connectivity()?);
-        let plies: Vec<usize> =
-            reader.element_set_names()?.iter().filter(|n| n.starts_with("ply")).flat_map(|n| reader.element_set(n).unwrap_or_default()).collect();
+        let mut plies: Vec<usize> = Vec::new();
+        for name in reader.element_set_names()?.iter().filter(|n| n.starts_with("ply")) {
+            plies.extend(reader.element_set(name)?);
+        }
         let half = increments
             .iter()
             .position(|inc| reader.increment_attr(inc, "step").ok() == Some(2.0) && reader.increment_attr(inc, "load_factor").unwrap_or(0.0) >= 0.5);
