@@ -20,6 +20,7 @@
 //! `phi = J sigma(F_bar) F^-T` (finite; de Souza Neto's F-bar) or the small-strain stress in the
 //! same slots `[s_rr, s_rz, s_rz, s_zz, s_tt]`.
 
+use super::hardening::Hardening;
 use super::log_exp::{exp_sym2, log_sym2};
 use crate::ad::Scalar;
 
@@ -70,10 +71,8 @@ pub struct J2 {
     pub shear_modulus: f64,
     /// 1/degC.
     pub thermal_expansion: f64,
-    /// Initial yield stress; infinity for an elastic material.
-    pub yield_stress: f64,
-    /// Linear isotropic hardening modulus H.
-    pub hardening_modulus: f64,
+    /// Isotropic hardening sigma_y(ep); infinite yield stress for an elastic material.
+    pub hardening: Hardening,
 }
 
 impl J2 {
@@ -82,8 +81,12 @@ impl J2 {
     }
 
     pub fn plastic(youngs_modulus: f64, poissons_ratio: f64, thermal_expansion: f64, yield_stress: f64, hardening_modulus: f64) -> Self {
+        Self::with_hardening(youngs_modulus, poissons_ratio, thermal_expansion, Hardening::linear(yield_stress, hardening_modulus))
+    }
+
+    pub fn with_hardening(youngs_modulus: f64, poissons_ratio: f64, thermal_expansion: f64, hardening: Hardening) -> Self {
         let (e, nu) = (youngs_modulus, poissons_ratio);
-        J2 { bulk_modulus: e / (3.0 * (1.0 - 2.0 * nu)), shear_modulus: e / (2.0 * (1.0 + nu)), thermal_expansion, yield_stress, hardening_modulus }
+        J2 { bulk_modulus: e / (3.0 * (1.0 - 2.0 * nu)), shear_modulus: e / (2.0 * (1.0 + nu)), thermal_expansion, hardening }
     }
 
     /// Stress and trial history at deformation `f`, projected volume measure `theta`,
@@ -99,7 +102,7 @@ impl J2 {
     /// Radial return on the elastic trial strain `e` ([11, 22, 33, 12], tensor shear).
     /// Returns the stress, the elastic strain after return, and ep.
     fn return_map<T: Scalar>(&self, e: [T; 4], ep_n: f64) -> ([T; 4], [T; 4], f64) {
-        let (k, g, h) = (self.bulk_modulus, self.shear_modulus, self.hardening_modulus);
+        let (k, g) = (self.bulk_modulus, self.shear_modulus);
         let tr = e[0] + e[1] + e[2];
         let mean = tr / 3.0;
         let mut dev = [e[0] - mean, e[1] - mean, e[2] - mean, e[3]];
@@ -107,13 +110,16 @@ impl J2 {
         let norm2 = dev[0] * dev[0] + dev[1] * dev[1] + dev[2] * dev[2] + dev[3] * dev[3] * 2.0;
         if norm2.re() > 0.0 {
             let q_trial = (norm2 * 6.0).sqrt() * g; // sqrt(3/2) |2 G dev|
-            let yield_now = self.yield_stress + h * ep_n;
+            let yield_now = self.hardening.yield_stress(ep_n);
             let f = q_trial - yield_now;
             // Elastic predictor: a point on the yield surface to round-off (as every plastic
             // point is at the start of an increment) is elastic, so the first Newton direction
             // of an increment is never softer than the response it predicts.
             if f.re() > YIELD_TOLERANCE * yield_now {
-                let dgamma = f / (3.0 * g + h);
+                // the segment of sigma_y(ep) the return ends on (real parts), then dgamma
+                // as an exact function of q_trial on it
+                let (before, _, yield_k, h) = self.hardening.return_segment(q_trial.re(), g, ep_n);
+                let dgamma = (q_trial - (3.0 * g * before + yield_k)) / (3.0 * g + h) + before;
                 let factor = -(dgamma * (3.0 * g)) / q_trial + 1.0;
                 dev = dev.map(|d| d * factor);
                 ep = ep_n + dgamma.re();
@@ -205,14 +211,13 @@ pub(crate) mod tests {
         bulk_modulus: 166_666.666_666_666_66,
         shear_modulus: 76_923.076_923_076_92,
         thermal_expansion: 1.875e-5,
-        yield_stress: 300.0,
-        hardening_modulus: 1000.0,
+        hardening: Hardening::Linear { yield_stress: 300.0, modulus: 1000.0 },
     };
 
     /// Central-difference check of d phi / d (f, theta) against the Dual derivative.
-    fn check_tangent(kin: Kinematics, f: [f64; 5], theta: f64, dt: f64, state: &PointState) -> f64 {
+    fn check_tangent(mat: &J2, kin: Kinematics, f: [f64; 5], theta: f64, dt: f64, state: &PointState) -> f64 {
         let vars: [Dual<6>; 6] = std::array::from_fn(|i| Dual::variable(if i < 5 { f[i] } else { theta }, i));
-        let ad = STEEL.update(kin, &[vars[0], vars[1], vars[2], vars[3], vars[4]], vars[5], dt, state).unwrap();
+        let ad = mat.update(kin, &[vars[0], vars[1], vars[2], vars[3], vars[4]], vars[5], dt, state).unwrap();
         let scale = ad.phi.iter().flat_map(|p| p.eps).fold(0.0f64, |m, v| m.max(v.abs()));
         let mut worst = 0.0f64;
         for j in 0..6 {
@@ -220,7 +225,7 @@ pub(crate) mod tests {
             let eval = |delta: f64| {
                 let mut x = [f[0], f[1], f[2], f[3], f[4], theta];
                 x[j] += delta;
-                STEEL.update(kin, &[x[0], x[1], x[2], x[3], x[4]], x[5], dt, state).unwrap().phi
+                mat.update(kin, &[x[0], x[1], x[2], x[3], x[4]], x[5], dt, state).unwrap().phi
             };
             let (p, m) = (eval(h), eval(-h));
             for i in 0..5 {
@@ -240,7 +245,7 @@ pub(crate) mod tests {
         let state = PointState::initial(Kinematics::Finite);
         // elastic: small stretch and shear
         let f = [1.0005, 2e-4, -1e-4, 0.9998, 1.0003];
-        let e = check_tangent(Kinematics::Finite, f, det(&f), 10.0, &state);
+        let e = check_tangent(&STEEL, Kinematics::Finite, f, det(&f), 10.0, &state);
         assert!(e < 1e-6, "elastic: {e:e}");
         // just past yield: q_trial ~ 1.01 sigma_y in uniaxial stretch
         let s = 1.0 + 1.01 * 300.0 / 200e3;
@@ -248,17 +253,35 @@ pub(crate) mod tests {
         let f = [l, 0.0, 0.0, s, l];
         let up = STEEL.update(Kinematics::Finite, &f, det(&f), 0.0, &state).unwrap();
         assert!(up.state.ep > 0.0 && up.state.ep < 1e-4, "should be just past yield: ep = {}", up.state.ep);
-        let e = check_tangent(Kinematics::Finite, f, det(&f), 0.0, &state);
+        let e = check_tangent(&STEEL, Kinematics::Finite, f, det(&f), 0.0, &state);
         assert!(e < 1e-6, "just yielded: {e:e}");
         // large rotation + plastic state with prior plastic history and heating
         let (c, sn) = (0.6f64.cos(), 0.6f64.sin());
         let u = [1.3, 0.2, 0.2, 0.8]; // stretch
         let f = [c * u[0] - sn * u[2], c * u[1] - sn * u[3], sn * u[0] + c * u[2], sn * u[1] + c * u[3], 1.1];
         let prior = PointState { plastic: [0.95, 1.04, 1.01, 0.02], ep: 0.05 };
-        let e = check_tangent(Kinematics::Finite, f, det(&f) * 1.01, 150.0, &prior);
+        let e = check_tangent(&STEEL, Kinematics::Finite, f, det(&f) * 1.01, 150.0, &prior);
         assert!(e < 1e-6, "large plastic: {e:e}");
-        let e = check_tangent(Kinematics::Small, [1.004, 0.002, 0.001, 0.997, 1.002], 0.003, 50.0, &PointState { plastic: [1e-3, -5e-4, 0.0, 1e-4], ep: 1e-3 });
+        let e = check_tangent(&STEEL, Kinematics::Small, [1.004, 0.002, 0.001, 0.997, 1.002], 0.003, 50.0, &PointState { plastic: [1e-3, -5e-4, 0.0, 1e-4], ep: 1e-3 });
         assert!(e < 1e-6, "small-strain plastic: {e:e}");
+    }
+
+    #[test]
+    fn tangent_with_a_hardening_table_matches_central_differences_across_segments() {
+        let table = Hardening::table(&[(0.0, 300.0), (0.002, 330.0), (0.02, 360.0), (0.1, 380.0)]).unwrap();
+        let mat = J2::with_hardening(200e3, 0.3, 1.875e-5, table);
+        // from virgin state into the second segment, and from a plastic state onto the flat tail
+        let f = [1.0 - 0.3 * 0.006, 0.0, 0.0, 1.006, 1.0 - 0.3 * 0.006];
+        let up = mat.update(Kinematics::Finite, &f, det(&f), 0.0, &PointState::initial(Kinematics::Finite)).unwrap();
+        assert!(up.state.ep > 0.002 && up.state.ep < 0.02, "second segment expected: ep = {}", up.state.ep);
+        let e = check_tangent(&mat, Kinematics::Finite, f, det(&f), 0.0, &PointState::initial(Kinematics::Finite));
+        assert!(e < 1e-6, "table, second segment: {e:e}");
+        let prior = PointState { plastic: [0.95, 1.04, 1.01, 0.02], ep: 0.09 };
+        let f = [1.2, 0.1, 0.05, 0.85, 1.05];
+        let up = mat.update(Kinematics::Finite, &f, det(&f), 0.0, &prior).unwrap();
+        assert!(up.state.ep > 0.1, "flat tail expected: ep = {}", up.state.ep);
+        let e = check_tangent(&mat, Kinematics::Finite, f, det(&f), 0.0, &prior);
+        assert!(e < 1e-6, "table, flat tail: {e:e}");
     }
 
     #[test]

@@ -1,6 +1,8 @@
 //! Constitutive kernels: stress and consistent tangent at a quadrature point.
 
+pub mod hardening;
 pub mod j2;
 pub mod log_exp;
 
+pub use hardening::Hardening;
 pub use j2::{Kinematics, PointState, Update, J2};

@@ -505,7 +505,7 @@ pub fn model(p: &BellowsParams) -> Result<Model> {
         youngs_modulus: p.youngs_modulus,
         poissons_ratio: p.poissons_ratio,
         thermal_expansion: p.thermal_expansion,
-        plasticity: Some(Plasticity { yield_stress: p.yield_stress, hardening_modulus: p.hardening_modulus }),
+        plasticity: Some(Plasticity::linear(p.yield_stress, p.hardening_modulus)),
     };
     let pair = |name: &str, slave: &str, master: &str, two_pass: bool| ContactPair {
         name: name.to_string(),

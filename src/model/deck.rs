@@ -295,7 +295,7 @@ pub fn parse(text: &str, path: &Path) -> Result<Model> {
             (MaterialKind::Elastic, None) if m.hardening_modulus.is_none() => None,
             (MaterialKind::Elastic, _) => return Err(Error::input(format!("material '{}': yield_stress and hardening_modulus need model = \"j2\"", m.name))),
             (MaterialKind::J2, None) => return Err(Error::input(format!("material '{}': model = \"j2\" needs yield_stress (MPa)", m.name))),
-            (MaterialKind::J2, Some(yield_stress)) => Some(Plasticity { yield_stress, hardening_modulus: m.hardening_modulus.unwrap_or(0.0) }),
+            (MaterialKind::J2, Some(yield_stress)) => Some(Plasticity::linear(yield_stress, m.hardening_modulus.unwrap_or(0.0))),
         };
         materials.push(Material {
             name: m.name.clone(),

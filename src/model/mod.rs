@@ -32,7 +32,7 @@ impl Component {
 }
 
 /// Isotropic material (MPa, 1/degC): elastic (Hencky at finite strain), optionally with
-/// J2 plasticity and linear isotropic hardening.
+/// J2 plasticity and isotropic hardening (linear or tabulated).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Material {
     pub name: String,
@@ -42,12 +42,8 @@ pub struct Material {
     pub plasticity: Option<Plasticity>,
 }
 
-/// sigma_y(ep) = yield_stress + hardening_modulus * ep.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Plasticity {
-    pub yield_stress: f64,
-    pub hardening_modulus: f64,
-}
+/// Isotropic hardening of a J2 material: linear, or a piecewise-linear table.
+pub use crate::material::Hardening as Plasticity;
 
 /// Penalty stiffness eps_n of a contact pair.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -184,12 +180,12 @@ impl Model {
             if !m.thermal_expansion.is_finite() {
                 return Err(Error::input(format!("material '{}': thermal expansion must be finite", m.name)));
             }
-            if let Some(p) = m.plasticity {
-                if !(p.yield_stress > 0.0 && p.yield_stress.is_finite()) {
-                    return Err(Error::input(format!("material '{}': yield stress must be > 0, got {}", m.name, p.yield_stress)));
+            if let Some(Plasticity::Linear { yield_stress, modulus }) = m.plasticity {
+                if !(yield_stress > 0.0 && yield_stress.is_finite()) {
+                    return Err(Error::input(format!("material '{}': yield stress must be > 0, got {yield_stress}", m.name)));
                 }
-                if !(p.hardening_modulus >= 0.0 && p.hardening_modulus.is_finite()) {
-                    return Err(Error::input(format!("material '{}': hardening modulus must be >= 0, got {}", m.name, p.hardening_modulus)));
+                if !(modulus >= 0.0 && modulus.is_finite()) {
+                    return Err(Error::input(format!("material '{}': hardening modulus must be >= 0, got {modulus}", m.name)));
                 }
             }
         }

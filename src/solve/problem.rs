@@ -106,7 +106,7 @@ pub struct Problem<'s, 'm> {
 pub fn material_kernel(m: &Material) -> J2 {
     match m.plasticity {
         None => J2::elastic(m.youngs_modulus, m.poissons_ratio, m.thermal_expansion),
-        Some(p) => J2::plastic(m.youngs_modulus, m.poissons_ratio, m.thermal_expansion, p.yield_stress, p.hardening_modulus),
+        Some(h) => J2::with_hardening(m.youngs_modulus, m.poissons_ratio, m.thermal_expansion, h),
     }
 }
 
