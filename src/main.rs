@@ -37,7 +37,8 @@ enum Command {
     /// `slideline run cylinder.toml -- -snes_monitor -ksp_type gmres -pc_type gamg -log_view`.
     /// The PETSC_OPTIONS environment variable is honoured too.
     Run {
-        /// The input deck (TOML; see README for the format).
+        /// The input deck: TOML (see README), or an Abaqus/CalculiX deck (.inp; the subset in the
+        /// README's "Abaqus/CalculiX input" section).
         deck: PathBuf,
         /// Results file (HDF5). Default: the deck's name with extension .h5, in the current directory.
         #[arg(short, long)]
@@ -382,10 +383,25 @@ fn main() -> ExitCode {
             };
             let root = session.world().rank() == 0;
             let output = output.unwrap_or_else(|| PathBuf::from(deck.file_stem().unwrap_or_default()).with_extension("h5"));
-            let result = model::deck::read(&deck).and_then(|m| run(&session, &m, &RunOptions { output, progress: !quiet }));
+            let result = read_model(&deck, root && !quiet).and_then(|m| run(&session, &m, &RunOptions { output, progress: !quiet }));
             finish(result, root, |_| Ok(()))
         }
     }
+}
+
+/// The model of `slideline run`: a TOML deck, or an Abaqus/CalculiX deck (.inp), whose reading
+/// notes (formulations, conventions) are printed on rank 0.
+fn read_model(deck: &std::path::Path, print_notes: bool) -> Result<model::Model, Error> {
+    if !deck.extension().is_some_and(|e| e.eq_ignore_ascii_case("inp")) {
+        return model::deck::read(deck);
+    }
+    let read = model::inp::read(deck)?;
+    if print_notes {
+        for note in &read.notes {
+            println!("note: {note}");
+        }
+    }
+    Ok(read.model)
 }
 
 /// `--mesh-only`: the joint's mesh and sets as Gmsh 4.1 (OUTPUT with .msh) and as a results

@@ -128,6 +128,8 @@ pub struct ResultsFile {
     element_slab: (usize, usize),
     increments: Vec<xdmf::IncrementEntry>,
     contact_mesh_written: bool,
+    /// Reactions also per segment of this angle (degrees), CalculiX's convention for .inp runs.
+    reaction_segment_degrees: Option<f64>,
 }
 
 fn h5err(path: &Path) -> impl Fn(hdf5::Error) -> Error + '_ {
@@ -195,6 +197,7 @@ impl ResultsFile {
             element_slab,
             increments: Vec::new(),
             contact_mesh_written: false,
+            reaction_segment_degrees: model.reaction_segment_degrees,
         })
     }
 
@@ -312,6 +315,11 @@ impl ResultsFile {
             columns.push((format!("reaction_{set}_z"), f[1]));
             columns.push((format!("reaction_{set}_r_ring"), f[0] * ring));
             columns.push((format!("reaction_{set}_z_ring"), f[1] * ring));
+            if let Some(deg) = self.reaction_segment_degrees {
+                let seg = deg.to_radians();
+                columns.push((format!("reaction_{set}_r_{deg}deg"), f[0] * seg));
+                columns.push((format!("reaction_{set}_z_{deg}deg"), f[1] * seg));
+            }
         }
         let err = h5err(&self.path);
         let history = self.file.group("history").map_err(&err)?;

@@ -536,6 +536,7 @@ pub fn model(p: &BellowsParams) -> Result<Model> {
             displacements: vec![hold("fixed_end", Component::Z, 0.0), hold("moving_end", Component::Z, 0.0)],
             pressures: vec![Pressure { surface: "wetted".into(), value: p.pressure }],
             temperature: Some(p.temperature),
+            time_span: None,
         },
         Step {
             name: "compress".into(),
@@ -543,6 +544,7 @@ pub fn model(p: &BellowsParams) -> Result<Model> {
             displacements: vec![hold("moving_end", Component::Z, -p.displacement)],
             pressures: vec![],
             temperature: None,
+            time_span: None,
         },
     ];
     let source_text = format!("built-in bellows model: {p:#?}");
@@ -561,6 +563,7 @@ pub fn model(p: &BellowsParams) -> Result<Model> {
         contacts,
         steps,
         source_text,
+        reaction_segment_degrees: None,
     };
     model.validate()?;
     Ok(model)

@@ -256,12 +256,6 @@ struct PressureSpec {
     value: f64,
 }
 
-/// Chord length of a (quadratic) edge: start to middle to end.
-fn edge_length(mesh: &super::Mesh, edge: super::Edge) -> f64 {
-    let [a, b, m] = mesh.edge_nodes(edge).map(|n| mesh.coords[n]);
-    (m[0] - a[0]).hypot(m[1] - a[1]) + (b[0] - m[0]).hypot(b[1] - m[1])
-}
-
 /// Reads and validates a deck file.
 pub fn read(path: &Path) -> Result<Model> {
     let text = std::fs::read_to_string(path).map_err(|source| Error::Read { path: path.to_path_buf(), source })?;
@@ -344,7 +338,7 @@ pub fn parse(text: &str, path: &Path) -> Result<Model> {
             }
         }
         let pressures = s.pressure.iter().map(|p| Pressure { surface: p.surface.clone(), value: p.value }).collect();
-        steps.push(Step { name, increments: s.increments, displacements, pressures, temperature: s.temperature });
+        steps.push(Step { name, increments: s.increments, displacements, pressures, temperature: s.temperature, time_span: None });
     }
 
     let mut contacts = Vec::new();
@@ -360,7 +354,7 @@ pub fn parse(text: &str, path: &Path) -> Result<Model> {
             Some(d) => d,
             None => {
                 let edges = surfaces.get(&c.master).ok_or_else(|| Error::input(format!("contact '{name}': unknown surface '{}'", c.master)))?;
-                2.0 * edges.iter().map(|&e| edge_length(&mesh, e)).fold(0.0, f64::max)
+                2.0 * edges.iter().map(|&e| mesh.edge_length(e)).fold(0.0, f64::max)
             }
         };
         let augmented_lagrangian = c
@@ -396,6 +390,7 @@ pub fn parse(text: &str, path: &Path) -> Result<Model> {
         contacts,
         steps,
         source_text: text.to_string(),
+        reaction_segment_degrees: None,
     };
     model.validate()?;
     Ok(model)

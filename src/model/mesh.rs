@@ -37,6 +37,12 @@ impl Mesh {
         edge_nodes(edge.side).map(|a| self.elements[edge.element][a])
     }
 
+    /// Chord length of a (quadratic) edge: start to middle to end.
+    pub fn edge_length(&self, edge: Edge) -> f64 {
+        let [a, b, m] = self.edge_nodes(edge).map(|n| self.coords[n]);
+        (m[0] - a[0]).hypot(m[1] - a[1]) + (b[0] - m[0]).hypot(b[1] - m[1])
+    }
+
     /// Checks the mesh has elements, lies at r >= 0, and has no inverted or degenerate element.
     pub fn validate(&self) -> Result<()> {
         if self.elements.is_empty() {

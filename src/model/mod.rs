@@ -7,6 +7,7 @@
 pub mod bellows;
 pub mod deck;
 pub mod gmsh;
+pub mod inp;
 pub mod mesh;
 
 pub use mesh::{Edge, Mesh, NODES_PER_ELEMENT};
@@ -144,6 +145,9 @@ pub struct Step {
     pub pressures: Vec<Pressure>,
     /// Uniform temperature (degC) at the end of the step; `None` keeps the previous value.
     pub temperature: Option<f64>,
+    /// The input deck's total time at the start and end of the step (CalculiX/Abaqus *STATIC
+    /// periods), for the history's `time`; `None`: step k spans the time k - 1 to k.
+    pub time_span: Option<[f64; 2]>,
 }
 
 #[derive(Clone, Debug)]
@@ -164,6 +168,9 @@ pub struct Model {
     pub steps: Vec<Step>,
     /// The text the model was read from, kept for the output file.
     pub source_text: String,
+    /// Also write reactions per segment of this angle (degrees): 2 for CalculiX/Abaqus decks,
+    /// whose axisymmetric reactions are per 2-degree segment.
+    pub reaction_segment_degrees: Option<f64>,
 }
 
 impl Model {

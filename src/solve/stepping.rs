@@ -150,7 +150,10 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
                 step: s + 1,
                 increment,
                 load_factor: lambda,
-                time: s as f64 + lambda,
+                time: match step.time_span {
+                    Some([start, end]) => start + lambda * (end - start),
+                    None => s as f64 + lambda,
+                },
                 newton_iterations: report.newton_iterations,
                 linear_iterations: report.linear_iterations,
                 residual_norm: report.residual_norms.last().copied().unwrap_or(f64::NAN),

@@ -12,7 +12,7 @@ shrink_fit.inp    tube r 50..60.05 shrunk into a ring r 60..80 (0.05 mm radial i
                   *AMPLITUDE (full at half the step, then held). Elastic, small strain.
 hertz.inp         the tip of a sphere R = 50 pushed 0.05 mm into a block, both elastic steel,
                   face-to-face penalty contact, small strain.
-small_bellows.inp one smooth convolution of two 0.5 mm plies (r 50..58), J2 plasticity with a
+small_bellows.inp one smooth convolution of two 0.5 mm plies (r 50..58, 2 x 80 elements each), J2 plasticity with a
                   three-point hardening table, heated to 200 degC with 1 MPa inside (step 1),
                   then compressed 4 mm axially (step 2), NLGEOM, contact between the plies.
 
@@ -270,26 +270,27 @@ def small_bellows():
         norm = math.hypot(dr, 1.0)
         return p, (1.0 / norm, -dr / norm)
 
-    n_along = 80
+    n_along, n_thick = 80, 2
     m = Mesh()
     plies = []
     for k in range(2):
         def position(I, J, k=k):
             (r, z), (nr, nz) = at(J / (2 * n_along))
-            d = (k + I / 2.0) * t  # ply k spans offsets k t .. (k + 1) t
+            d = (k + I / (2.0 * n_thick)) * t  # ply k spans offsets k t .. (k + 1) t
             return (r + d * nr, z + d * nz)
-        plies.append(m.block(1, n_along, position))
+        plies.append(m.block(n_thick, n_along, position))
     deck = ["*HEADING", "Small bellows: one convolution, two 0.5 mm plies, J2 with a hardening table,",
             "200 degC and 1 MPa inside, then 4 mm axial compression (NLGEOM)"]
     deck += m.node_lines()
     for k, (g, rows) in enumerate(plies):
-        deck += m.element_lines([r[0] for r in rows], f"PLY{k + 1}")
+        deck += m.element_lines([e for r in rows for e in r], f"PLY{k + 1}")
+    deck += listing("*ELSET, ELSET=PLY1_INNER", [r[0] for r in plies[0][1]])
     deck += ["*ELSET, ELSET=PLIES", "PLY1, PLY2", "*NSET, NSET=ALLN, GENERATE", f"1, {len(m.nodes)}"]
-    deck += listing("*NSET, NSET=BOTTOM", side(plies[0][0], 1, n_along, "bottom") + side(plies[1][0], 1, n_along, "bottom"))
-    deck += listing("*NSET, NSET=TOP", side(plies[0][0], 1, n_along, "top") + side(plies[1][0], 1, n_along, "top"))
-    crown = plies[1][0][2, n_along]
+    deck += listing("*NSET, NSET=BOTTOM", side(plies[0][0], n_thick, n_along, "bottom") + side(plies[1][0], n_thick, n_along, "bottom"))
+    deck += listing("*NSET, NSET=TOP", side(plies[0][0], n_thick, n_along, "top") + side(plies[1][0], n_thick, n_along, "top"))
+    crown = plies[1][0][2 * n_thick, n_along]
     deck += ["*NSET, NSET=PROBE", f"{crown}"]
-    deck += surface("PLY1_OUT", [(r[0], 2) for r in plies[0][1]])
+    deck += surface("PLY1_OUT", [(r[-1], 2) for r in plies[0][1]])
     deck += surface("PLY2_IN", [(r[0], 4) for r in plies[1][1]])
     deck += ["*MATERIAL, NAME=AISI304", "*ELASTIC", "200000., 0.3",
              "*EXPANSION, ZERO=20.", "1.875e-5",
@@ -303,7 +304,7 @@ def small_bellows():
              "*STEP, NLGEOM, INC=1000", "*STATIC, DIRECT", "0.25, 1.",
              "*BOUNDARY", "TOP, 2, 2, 0.",
              "*TEMPERATURE", "ALLN, 200.",
-             "*DLOAD", "PLY1, P4, 1.",
+             "*DLOAD", "PLY1_INNER, P4, 1.",
              "*NODE PRINT, NSET=TOP, TOTALS=ONLY", "RF",
              "*NODE PRINT, NSET=PROBE", "U",
              "*NODE FILE", "U", "*EL FILE", "S, PEEQ",
