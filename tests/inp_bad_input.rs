@@ -1,0 +1,125 @@
+//! Abaqus/CalculiX decks outside slideline's subset, or wrong, are refused with one message
+//! naming the file, the line and the keyword (exit code 2), before anything runs.
+
+mod common;
+use common::{command_in, Run};
+
+/// A small valid deck; `{MODEL}` and `{STEP}` are replaced by extra model and step lines.
+const DECK: &str = "*HEADING
+one CAX8 ring
+*NODE
+1, 10., 0.
+2, 12., 0.
+3, 12., 2.
+4, 10., 2.
+5, 11., 0.
+6, 12., 1.
+7, 11., 2.
+8, 10., 1.
+*ELEMENT, TYPE=CAX8, ELSET=RING
+1, 1, 2, 3, 4, 5, 6, 7, 8
+*NSET, NSET=BOTTOM
+1, 5, 2
+*NSET, NSET=TOP
+4, 7, 3
+{MODEL}*MATERIAL, NAME=STEEL
+*ELASTIC
+200000., 0.3
+*SOLID SECTION, ELSET=RING, MATERIAL=STEEL
+*BOUNDARY
+BOTTOM, 2, 2
+*STEP
+*STATIC
+1., 1.
+*BOUNDARY
+TOP, 2, 2, 0.01
+{STEP}*END STEP
+";
+
+fn run_inp(model: &str, step: &str, files: &[(&str, &str)]) -> Run {
+    let dir = tempfile::tempdir().unwrap();
+    let deck = DECK.replace("{MODEL}", model).replace("{STEP}", step);
+    std::fs::write(dir.path().join("model.inp"), deck).unwrap();
+    for (name, text) in files {
+        std::fs::write(dir.path().join(name), text).unwrap();
+    }
+    let h5 = dir.path().join("out.h5");
+    let output = command_in(dir.path(), 1).current_dir(dir.path()).args(["run", "model.inp", "-o"]).arg(&h5).output().unwrap();
+    Run { dir, output, h5 }
+}
+
+fn assert_rejected(run: &Run, needles: &[&str]) {
+    let err = run.stderr();
+    assert_eq!(run.code(), 2, "exit code for bad input; stderr:\n{err}");
+    for n in needles {
+        assert!(err.contains(n), "message should name {n:?}:\n{err}");
+    }
+    assert_eq!(err.lines().filter(|l| l.starts_with("error:")).count(), 1, "one message:\n{err}");
+    assert!(!err.contains("panicked") && !err.contains("PETSC ERROR"), "{err}");
+}
+
+#[test]
+fn the_valid_deck_runs_and_says_how_it_was_read() {
+    let run = run_inp("", "", &[]);
+    run.assert_ok();
+    let out = run.stdout();
+    assert!(out.contains("1 CAX8 elements run as slideline's 8-node"), "{out}");
+    assert!(out.contains("2-degree segment"), "{out}");
+}
+
+#[test]
+fn an_unsupported_keyword_is_named_with_its_line() {
+    let run = run_inp("*ORIENTATION, NAME=ORI\n1., 0., 0., 0., 1., 0.\n", "", &[]);
+    assert_rejected(&run, &["model.inp:18", "*ORIENTATION", "outside the subset"]);
+}
+
+#[test]
+fn an_unsupported_keyword_inside_a_step_is_named_with_its_line() {
+    let run = run_inp("", "*CLOAD\nTOP, 2, 100.\n", &[]);
+    assert_rejected(&run, &["model.inp:29", "*CLOAD"]);
+}
+
+#[test]
+fn a_missing_include_is_named_with_its_line() {
+    let run = run_inp("*INCLUDE, INPUT=materials.inc\n", "", &[]);
+    assert_rejected(&run, &["model.inp:18", "materials.inc"]);
+}
+
+#[test]
+fn an_error_inside_an_include_names_the_included_file_and_its_line() {
+    let run = run_inp("*INCLUDE, INPUT=extra.inc\n", "", &[("extra.inc", "** extra sets\n*NSET, NSET=OUTER\n2, 6, 99\n")]);
+    assert_rejected(&run, &["extra.inc:3", "node 99"]);
+}
+
+#[test]
+fn an_element_type_outside_the_subset_is_named_with_its_line() {
+    let run = run_inp("*ELEMENT, TYPE=CPE8, ELSET=PLANE\n2, 1, 2, 3, 4, 5, 6, 7, 8\n", "", &[]);
+    assert_rejected(&run, &["model.inp:18", "CPE8", "CAX8"]);
+}
+
+#[test]
+fn a_set_used_before_it_is_defined_is_named_with_its_line() {
+    let run = run_inp("*NSET, NSET=BOTH\nBOTTOM, LATER\n*NSET, NSET=LATER\n3\n", "", &[]);
+    assert_rejected(&run, &["model.inp:19", "LATER", "not defined"]);
+}
+
+#[test]
+fn a_surface_used_in_a_contact_pair_before_it_is_defined_is_named() {
+    let model = "*SURFACE INTERACTION, NAME=I\n*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR\n1.e5\n*CONTACT PAIR, INTERACTION=I, TYPE=SURFACE TO SURFACE\nINNER, OUTER\n";
+    let run = run_inp(model, "", &[]);
+    assert_rejected(&run, &["model.inp:22", "INNER", "not defined"]);
+}
+
+#[test]
+fn friction_and_other_pressure_overclosure_laws_are_refused() {
+    let model = "*SURFACE INTERACTION, NAME=I\n*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=HARD\n";
+    assert_rejected(&run_inp(model, "", &[]), &["model.inp:19", "HARD"]);
+    let model = "*SURFACE INTERACTION, NAME=I\n*FRICTION\n0.2\n";
+    assert_rejected(&run_inp(model, "", &[]), &["model.inp:19", "frictionless"]);
+}
+
+#[test]
+fn an_unknown_parameter_is_refused_rather_than_ignored() {
+    let run = run_inp("*NSET, NSET=X, UNSORTED\n1\n", "", &[]);
+    assert_rejected(&run, &["model.inp:18", "UNSORTED"]);
+}
