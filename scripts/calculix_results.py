@@ -26,7 +26,8 @@ def dat_forces(path, set_name):
 
 
 def frd_last(path):
-    """(max von Mises, max |u|) of the last DISP and STRESS blocks of an ASCII .frd file."""
+    """(max von Mises, max |u_r|, max |u_z|) of the last DISP and STRESS blocks of an ASCII
+    .frd file (x is r, y is z)."""
     blocks, current, name = {}, None, None
     for line in open(path):
         if line.startswith(" -4"):
@@ -39,12 +40,13 @@ def frd_last(path):
             current.append([float(body[k:k + 12]) for k in range(0, len(body) - 11, 12)])
         elif line.startswith(" -3"):
             current = None
-    u = max(math.sqrt(sum(c * c for c in v[:3])) for v in blocks["DISP"])
+    ur = max(abs(v[0]) for v in blocks["DISP"])
+    uz = max(abs(v[1]) for v in blocks["DISP"])
     mises = 0.0
     for s in blocks["STRESS"]:
         sxx, syy, szz, sxy, syz, szx = s[:6]
         mises = max(mises, math.sqrt(0.5 * ((sxx - syy) ** 2 + (syy - szz) ** 2 + (szz - sxx) ** 2) + 3 * (sxy ** 2 + syz ** 2 + szx ** 2)))
-    return mises, u
+    return mises, ur, uz
 
 
 def sta(path):
@@ -62,8 +64,8 @@ def history(path, set_name):
 
 
 def post_max(path):
-    """(max von Mises, max |u|) from `slideline post --field` listings."""
-    mises, u = float("nan"), 0.0
+    """(max von Mises, max |u_r|, max |u_z|) from `slideline post --field` listings."""
+    mises = float("nan")
     comps = {}
     for line in open(path):
         f = line.split()
@@ -72,15 +74,14 @@ def post_max(path):
                 mises = float(f[2])
             if f[0] in ("u_r", "u_z"):
                 comps.setdefault(f[0], []).append(abs(float(f[2])))
-    u = math.hypot(max(comps.get("u_r", [0])), max(comps.get("u_z", [0])))
-    return mises, u
+    return mises, max(comps.get("u_r", [0])), max(comps.get("u_z", [0]))
 
 
 def main():
     job, set_name, ccx_seconds = sys.argv[1], sys.argv[2], float(sys.argv[3])
     runs = [(sys.argv[4 + 3 * k], float(sys.argv[5 + 3 * k]), sys.argv[6 + 3 * k]) for k in range(2)]
     theirs = dat_forces(job + ".dat", set_name)
-    ccx_mises, ccx_u = frd_last(job + ".frd")
+    ccx = frd_last(job + ".frd")
     ccx_inc, ccx_its = sta(job + ".sta")
     ours = [history(r[0], set_name) for r in runs]
     print(f"reaction at {set_name}, N per 2-degree segment (CalculiX's convention)")
@@ -94,13 +95,13 @@ def main():
         print(f"{t:8.4f} {f:13.6e} {vals[0]:13.6e} {vals[1]:13.6e} {diff:8.3f}")
     print(f"largest difference: {worst:.3f} % of the largest CalculiX reaction")
     print()
-    m1, u1 = post_max(runs[0][2])
-    m2, u2 = post_max(runs[1][2])
+    r1, r2 = post_max(runs[0][2]), post_max(runs[1][2])
     its = [sum(int(float(r["newton_iterations"])) for r in h[0]) for h in ours]
     incs = [len(h[0]) for h in ours]
     print(f"{'at the end':<28} {'CalculiX 2.20':>14} {'slideline 1 rank':>17} {'slideline 2 ranks':>18}")
-    print(f"{'max von Mises, MPa':<28} {ccx_mises:14.4g} {m1:17.4g} {m2:18.4g}   (CalculiX: extrapolated to nodes; slideline: Gauss points)")
-    print(f"{'max |u|, mm':<28} {ccx_u:14.5g} {u1:17.5g} {u2:18.5g}")
+    print(f"{'max von Mises, MPa':<28} {ccx[0]:14.4g} {r1[0]:17.4g} {r2[0]:18.4g}   (CalculiX: extrapolated to nodes; slideline: Gauss points)")
+    print(f"{'max |u_r|, mm':<28} {ccx[1]:14.5g} {r1[1]:17.5g} {r2[1]:18.5g}")
+    print(f"{'max |u_z|, mm':<28} {ccx[2]:14.5g} {r1[2]:17.5g} {r2[2]:18.5g}")
     print(f"{'increments':<28} {ccx_inc:14d} {incs[0]:17d} {incs[1]:18d}")
     print(f"{'Newton iterations':<28} {ccx_its:14d} {its[0]:17d} {its[1]:18d}")
     print(f"{'wall time, s':<28} {ccx_seconds:14.2f} {runs[0][1]:17.2f} {runs[1][1]:18.2f}")

@@ -393,7 +393,7 @@ impl Builder {
                 for d in &card.data {
                     nodes.extend(self.node_items(d, "SURFACE", 0)?);
                 }
-                // the free faces whose three nodes all belong to the set
+                // the free faces whose two corners belong to the set (CAX4 faces have no mid-side node in it)
                 let mut count: HashMap<(usize, usize), usize> = HashMap::new();
                 for conn in &self.mesh.elements {
                     for s in 0..4 {
@@ -404,15 +404,15 @@ impl Builder {
                 for (element, conn) in self.mesh.elements.iter().enumerate() {
                     for side in 0..4 {
                         let (a, b) = (conn[side], conn[(side + 1) % 4]);
-                        if count[&(a.min(b), a.max(b))] == 1 && [a, b, conn[4 + side]].iter().all(|n| nodes.contains(n)) {
+                        if count[&(a.min(b), a.max(b))] == 1 && nodes.contains(&a) && nodes.contains(&b) {
                             edges.push(Edge { element, side });
                         }
                     }
                 }
                 if edges.is_empty() {
-                    return Err(card.error(format!("node-based surface {name}: no free element face has all its nodes in the set")));
+                    return Err(card.error(format!("node-based surface {name}: no free element face has both corners in the set")));
                 }
-                self.notes.push(format!("surface {name} ({}) is node-based: slideline uses the {} free element faces whose nodes all belong to it", card.at, edges.len()));
+                self.notes.push(format!("surface {name} ({}) is node-based: slideline uses the {} free element faces whose corners belong to it", card.at, edges.len()));
             }
             Some(other) => return Err(card.error(format!("TYPE={other} is not supported (ELEMENT or NODE)"))),
         }
@@ -576,12 +576,10 @@ impl Builder {
             covered.extend(self.node_items(d, &card.keyword, 0)?);
         }
         let t = value.ok_or_else(|| card.error("needs a data line: node set, temperature"))?;
-        if covered.len() != self.mesh.coords.len() {
-            return Err(card.error(format!(
-                "slideline applies one uniform temperature: the sets given cover {} of the {} nodes",
-                covered.len(),
-                self.mesh.coords.len()
-            )));
+        // the deck's own nodes (mid-side nodes added to CAX4 elements cannot be named)
+        let named = self.mesh.coords.len() - self.added_midside.len();
+        if covered.len() != named {
+            return Err(card.error(format!("slideline applies one uniform temperature: the sets given cover {} of the {named} nodes", covered.len())));
         }
         Ok(t)
     }
@@ -936,4 +934,96 @@ fn interpolate(points: &[(f64, f64)], t: f64) -> f64 {
 
 fn normalise(s: &str) -> String {
     s.split_whitespace().collect::<Vec<_>>().join(" ").to_uppercase()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const MESH: &str = "*NODE
+1, 10., 0.
+2, 12., 0.
+3, 12., 2.
+4, 10., 2.
+5, 14., 0.
+6, 14., 2.
+*ELEMENT, TYPE=CAX4, ELSET=A
+1, 1, 2, 3, 4
+2, 2, 5, 6, 3
+*NSET, NSET=BOTTOM, GENERATE
+1, 2
+*NSET, NSET=BOTTOM
+5
+*NSET, NSET=TOP
+4, 3, 6
+*MATERIAL, NAME=Steel
+*Elastic
+200000., 0.3
+*Plastic
+300., 0.
+400., 0.1
+*Solid Section, Elset=a, Material=STEEL
+";
+
+    fn read(rest: &str) -> InpModel {
+        parse(&format!("{MESH}{rest}"), Path::new("t.inp")).unwrap_or_else(|e| panic!("{e}"))
+    }
+
+    #[test]
+    fn cax4_elements_share_their_added_mid_side_nodes() {
+        let m = read("*STEP\n*STATIC\n*BOUNDARY\nBOTTOM, 2, 2\n*END STEP\n").model;
+        // 6 corners + 7 distinct edges
+        assert_eq!(m.mesh.coords.len(), 13);
+        let shared = m.mesh.elements[0][5]; // side 2-3 of element 1 ...
+        assert_eq!(m.mesh.elements[1][7], shared); // ... is side 3-2 of element 2
+        assert_eq!(m.mesh.coords[shared], [12.0, 1.0]);
+        // GENERATE plus a second card extend one set; set names are case-insensitive
+        assert_eq!(m.node_sets["BOTTOM"].len(), 3);
+        assert_eq!(m.element_material, vec![0, 0]);
+        // a two-point *PLASTIC table is linear hardening up to its last point
+        let h = m.materials[0].plasticity.unwrap();
+        assert!((h.yield_stress(0.05) - 350.0).abs() < 1e-9 && h.yield_stress(1.0) == 400.0);
+    }
+
+    #[test]
+    fn an_amplitude_splits_its_step_at_its_points_and_time_follows_the_deck() {
+        let deck = "*AMPLITUDE, NAME=UP\n0., 0., 1., 1., 2., 1.\n*STEP\n*STATIC\n0.5, 4.\n*BOUNDARY\nBOTTOM, 2, 2\n*BOUNDARY, AMPLITUDE=UP\nTOP, 2, 2, -0.1\n*DLOAD\nA, P1, 5.\n*END STEP\n";
+        let read = read(deck);
+        let steps = &read.model.steps;
+        // amplitude points at step times 1 and 2 (of 4): sub-steps ending at 1, 2, 4
+        assert_eq!(steps.len(), 3);
+        assert_eq!(steps.iter().map(|s| s.increments).collect::<Vec<_>>(), vec![2, 2, 4]);
+        assert_eq!(steps.iter().map(|s| s.time_span.unwrap()).collect::<Vec<_>>(), vec![[0.0, 1.0], [1.0, 2.0], [2.0, 4.0]]);
+        let top = |s: &Step| s.displacements.iter().find(|d| d.node_set == "TOP").unwrap().value;
+        assert_eq!(steps.iter().map(top).collect::<Vec<_>>(), vec![-0.1, -0.1, -0.1]);
+        // the pressure without an amplitude ramps over the whole step
+        let p = |s: &Step| s.pressures[0].value;
+        assert_eq!(steps.iter().map(p).collect::<Vec<_>>(), vec![1.25, 2.5, 5.0]);
+        assert!(read.notes.iter().any(|n| n.contains("3 sub-steps")), "{:?}", read.notes);
+    }
+
+    #[test]
+    fn an_amplitude_ramp_is_followed_through_its_interior_point() {
+        let deck = "*AMPLITUDE, NAME=TRI\n0., 0., 0.5, 1., 1., 0.\n*BOUNDARY\nBOTTOM, 2, 2\n*STEP\n*STATIC\n0.1, 1.\n*BOUNDARY, AMPLITUDE=TRI\nTOP, 2, 2, -0.1\n*END STEP\n";
+        let m = read(deck).model;
+        let top: Vec<f64> = m.steps.iter().map(|s| s.displacements.iter().find(|d| d.node_set == "TOP").unwrap().value).collect();
+        assert_eq!(top, vec![-0.1, 0.0]);
+        // the model-data constraint joins the first step
+        assert!(m.steps[0].displacements.iter().any(|d| d.node_set == "BOTTOM" && d.value == 0.0));
+    }
+
+    #[test]
+    fn a_node_based_surface_is_the_free_faces_on_its_nodes() {
+        let deck = "*SURFACE, NAME=UPPER, TYPE=NODE\nTOP\n*STEP\n*STATIC\n*BOUNDARY\nBOTTOM, 2, 2\n*END STEP\n";
+        let m = read(deck).model;
+        // faces 3-4 of element 1 and 6-3 of element 2 (S3 of both); the shared face 2-3 is not free
+        assert_eq!(m.surfaces["UPPER"], vec![Edge { element: 0, side: 2 }, Edge { element: 1, side: 2 }]);
+    }
+
+    #[test]
+    fn a_uniform_temperature_must_cover_every_node() {
+        let deck = "*INITIAL CONDITIONS, TYPE=TEMPERATURE\nTOP, 20.\n*STEP\n*STATIC\n*END STEP\n";
+        let err = parse(&format!("{MESH}{deck}"), Path::new("t.inp")).err().unwrap().to_string();
+        assert!(err.contains("t.inp:24") && err.contains("cover 3 of the 6 nodes"), "{err}");
+    }
 }
