@@ -383,8 +383,19 @@ fn main() -> ExitCode {
             };
             let root = session.world().rank() == 0;
             let output = output.unwrap_or_else(|| PathBuf::from(deck.file_stem().unwrap_or_default()).with_extension("h5"));
-            let result = read_model(&deck, root && !quiet).and_then(|m| run(&session, &m, &RunOptions { output, progress: !quiet }));
-            finish(result, root, |_| Ok(()))
+            let model = read_model(&deck, root && !quiet);
+            let segment = model.as_ref().ok().and_then(|m| m.reaction_segment_degrees);
+            let result = model.and_then(|m| run(&session, &m, &RunOptions { output, progress: !quiet }));
+            finish(result, root, |summary| {
+                if let (Some(degrees), Some(last)) = (segment, summary.history.last()) {
+                    // CalculiX's convention, for reading beside its .dat file
+                    println!("final reactions per {degrees}-degree segment (N, as CalculiX prints them):");
+                    for (set, f) in &last.reactions {
+                        println!("  {:<20} {:>14.6e} {:>14.6e}", set, f[0] * degrees.to_radians(), f[1] * degrees.to_radians());
+                    }
+                }
+                Ok(())
+            })
         }
     }
 }
