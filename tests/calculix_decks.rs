@@ -51,7 +51,8 @@ fn run_inp(deck: &str, ranks: usize) -> Run {
         }
     }
     let h5 = dir.path().join("out.h5");
-    let output = command_in(dir.path(), ranks).current_dir(dir.path()).arg("run").arg(format!("{deck}.inp")).arg("-o").arg(&h5).output().expect("run slideline");
+    let output =
+        command_in(dir.path(), ranks).current_dir(dir.path()).arg("run").arg(format!("{deck}.inp")).arg("-o").arg(&h5).output().expect("run slideline");
     Run { dir, output, h5 }
 }
 

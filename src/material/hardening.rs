@@ -7,6 +7,8 @@
 /// quadrature-point update).
 pub const MAX_TABLE_POINTS: usize = 32;
 
+// the table variant is large on purpose: a Copy law with no heap in the hot path
+#[allow(clippy::large_enum_variant)]
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Hardening {
     /// sigma_y(ep) = yield_stress + modulus * ep (MPa); elastic when yield_stress is infinite.

@@ -262,7 +262,14 @@ pub(crate) mod tests {
         let prior = PointState { plastic: [0.95, 1.04, 1.01, 0.02], ep: 0.05 };
         let e = check_tangent(&STEEL, Kinematics::Finite, f, det(&f) * 1.01, 150.0, &prior);
         assert!(e < 1e-6, "large plastic: {e:e}");
-        let e = check_tangent(&STEEL, Kinematics::Small, [1.004, 0.002, 0.001, 0.997, 1.002], 0.003, 50.0, &PointState { plastic: [1e-3, -5e-4, 0.0, 1e-4], ep: 1e-3 });
+        let e = check_tangent(
+            &STEEL,
+            Kinematics::Small,
+            [1.004, 0.002, 0.001, 0.997, 1.002],
+            0.003,
+            50.0,
+            &PointState { plastic: [1e-3, -5e-4, 0.0, 1e-4], ep: 1e-3 },
+        );
         assert!(e < 1e-6, "small-strain plastic: {e:e}");
     }
 

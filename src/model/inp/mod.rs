@@ -19,7 +19,10 @@
 pub mod cards;
 
 use super::mesh::{Edge, Mesh};
-use super::{AugmentedLagrangian, Component, ContactIntegration, ContactPair, Kinematics, Material, Model, Penalty, Plasticity, PrescribedDisplacement, Pressure, Step, SteppingControls};
+use super::{
+    AugmentedLagrangian, Component, ContactIntegration, ContactPair, Kinematics, Material, Model, Penalty, Plasticity, PrescribedDisplacement, Pressure, Step,
+    SteppingControls,
+};
 use crate::error::{Error, Result};
 use cards::{error_at, Card, DataLine, Location};
 use std::collections::{BTreeMap, BTreeSet, HashMap};
@@ -48,8 +51,19 @@ pub fn parse(text: &str, path: &Path) -> Result<InpModel> {
     build(&cards, text.to_string())
 }
 
-const OUTPUT_REQUESTS: &[&str] =
-    &["NODE PRINT", "EL PRINT", "NODE FILE", "EL FILE", "NODE OUTPUT", "ELEMENT OUTPUT", "OUTPUT", "CONTACT PRINT", "CONTACT FILE", "CONTACT OUTPUT", "RESTART"];
+const OUTPUT_REQUESTS: &[&str] = &[
+    "NODE PRINT",
+    "EL PRINT",
+    "NODE FILE",
+    "EL FILE",
+    "NODE OUTPUT",
+    "ELEMENT OUTPUT",
+    "OUTPUT",
+    "CONTACT PRINT",
+    "CONTACT FILE",
+    "CONTACT OUTPUT",
+    "RESTART",
+];
 
 struct MaterialDef {
     name: String,
@@ -255,9 +269,8 @@ impl Builder {
             "CAX8" | "CAX8R" => false,
             "CAX4" | "CAX4R" => true,
             other => {
-                return Err(card.error(format!(
-                    "element type {other} is outside the subset (slideline reads the axisymmetric quadrilaterals CAX8, CAX8R, CAX4, CAX4R)"
-                )))
+                return Err(card
+                    .error(format!("element type {other} is outside the subset (slideline reads the axisymmetric quadrilaterals CAX8, CAX8R, CAX4, CAX4R)")))
             }
         };
         let per_element = if corners_only { 4 } else { 8 };
@@ -325,7 +338,10 @@ impl Builder {
         if f.chars().all(|c| c.is_ascii_digit()) && !f.is_empty() {
             return Ok(vec![self.node(d, keyword, k)?]);
         }
-        self.node_sets.get(&f.to_uppercase()).cloned().ok_or_else(|| error_at(&d.at, keyword, format!("node set '{f}' is not defined (define it before its use)")))
+        self.node_sets
+            .get(&f.to_uppercase())
+            .cloned()
+            .ok_or_else(|| error_at(&d.at, keyword, format!("node set '{f}' is not defined (define it before its use)")))
     }
 
     /// The elements of data field `k`: an element number or an element set name.
@@ -335,7 +351,10 @@ impl Builder {
             let id = d.id(keyword, k, "element number")?;
             return self.element_index.get(&id).map(|&e| vec![e]).ok_or_else(|| error_at(&d.at, keyword, format!("element {id} is not defined")));
         }
-        self.element_sets.get(&f.to_uppercase()).cloned().ok_or_else(|| error_at(&d.at, keyword, format!("element set '{f}' is not defined (define it before its use)")))
+        self.element_sets
+            .get(&f.to_uppercase())
+            .cloned()
+            .ok_or_else(|| error_at(&d.at, keyword, format!("element set '{f}' is not defined (define it before its use)")))
     }
 
     fn set(&mut self, card: &Card) -> Result<()> {
@@ -412,7 +431,11 @@ impl Builder {
                 if edges.is_empty() {
                     return Err(card.error(format!("node-based surface {name}: no free element face has both corners in the set")));
                 }
-                self.notes.push(format!("surface {name} ({}) is node-based: slideline uses the {} free element faces whose corners belong to it", card.at, edges.len()));
+                self.notes.push(format!(
+                    "surface {name} ({}) is node-based: slideline uses the {} free element faces whose corners belong to it",
+                    card.at,
+                    edges.len()
+                ));
             }
             Some(other) => return Err(card.error(format!("TYPE={other} is not supported (ELEMENT or NODE)"))),
         }
@@ -535,7 +558,7 @@ impl Builder {
         let mut values = Vec::new();
         for d in &card.data {
             let fields: Vec<usize> = (0..d.fields.len()).filter(|&k| !d.fields[k].is_empty()).collect();
-            if fields.len() % 2 != 0 {
+            if !fields.len().is_multiple_of(2) {
                 return Err(error_at(&d.at, "AMPLITUDE", "values come in (time, amplitude) pairs"));
             }
             for pair in fields.chunks(2) {
@@ -757,7 +780,10 @@ impl Builder {
         }
         let mut element_material = vec![usize::MAX; self.mesh.elements.len()];
         for (elset, material, at) in &self.sections {
-            let k = materials.iter().position(|m| &m.name == material).ok_or_else(|| error_at(at, "SOLID SECTION", format!("material {material} is not defined")))?;
+            let k = materials
+                .iter()
+                .position(|m| &m.name == material)
+                .ok_or_else(|| error_at(at, "SOLID SECTION", format!("material {material} is not defined")))?;
             for &e in &self.element_sets[elset] {
                 element_material[e] = k;
             }
@@ -783,7 +809,9 @@ impl Builder {
 
         let mut contacts = Vec::new();
         for (slave, master, interaction, integration, at) in &self.contacts {
-            let slope = self.interactions[interaction].slope.ok_or_else(|| error_at(at, "CONTACT PAIR", format!("interaction {interaction} has no *SURFACE BEHAVIOR")))?;
+            let slope = self.interactions[interaction]
+                .slope
+                .ok_or_else(|| error_at(at, "CONTACT PAIR", format!("interaction {interaction} has no *SURFACE BEHAVIOR")))?;
             let longest = self.surfaces[master].iter().map(|&e| self.mesh.edge_length(e)).fold(0.0, f64::max);
             let name = if slave == master { slave.clone() } else { format!("{slave}-{master}") };
             self.notes.push(format!(
@@ -862,7 +890,8 @@ impl Builder {
             used.extend(s.boundaries.iter().filter_map(|b| b.amplitude.as_ref()));
             used.extend(s.pressures.iter().filter_map(|b| b.amplitude.as_ref()));
             used.extend(s.temperature.iter().filter_map(|b| b.amplitude.as_ref()));
-            let mut times: Vec<f64> = used.iter().flat_map(|a| self.amplitudes[*a].iter().map(|p| p.0)).filter(|&t| t > 1e-12 * s.period && t < s.period * (1.0 - 1e-12)).collect();
+            let mut times: Vec<f64> =
+                used.iter().flat_map(|a| self.amplitudes[*a].iter().map(|p| p.0)).filter(|&t| t > 1e-12 * s.period && t < s.period * (1.0 - 1e-12)).collect();
             times.push(s.period);
             times.sort_by(f64::total_cmp);
             times.dedup_by(|a, b| (*a - *b).abs() <= 1e-12 * s.period);
