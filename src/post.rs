@@ -2,7 +2,7 @@
 //! function returns what it would print, so the CLI prints it and the tests read it.
 
 use crate::error::{Error, Result};
-use crate::io::plots::{line_plot, Curve};
+use crate::io::plots::{line_plot, Axes, Curve};
 use crate::io::reader::ResultsReader;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -214,6 +214,6 @@ pub fn plot(r: &ResultsReader) -> Result<PathBuf> {
         })
         .collect::<Result<_>>()?;
     let path = Path::new(&format!("{}_force.png", r.path().with_extension("").display())).to_path_buf();
-    line_plot(&path, "Axial reactions", "time (step - 1 + load factor)", "|F_z| (N, full ring)", &curves, &[])?;
+    line_plot(&path, "Axial reactions", "time (step - 1 + load factor)", "|F_z| (N, full ring)", &curves, &[], Axes::FromOrigin)?;
     Ok(path)
 }

@@ -5,7 +5,7 @@
 //! increment). Rank 0 only, after the run: fields are read back from the results file.
 
 use crate::error::Result;
-use crate::io::plots::{deformed_field, line_plot, Curve, FieldPicture, Marker};
+use crate::io::plots::{deformed_field, line_plot, Axes, Curve, FieldPicture, Marker};
 use crate::io::reader::ResultsReader;
 use crate::io::HistoryRow;
 use crate::model::bellows::BellowsParams;
@@ -192,6 +192,7 @@ impl BellowsReport {
                 Curve { label: format!("EJMA elastic rate {:.2} N/mm (from the step-1 preload)", self.ejma_stiffness), points: ejma },
             ],
             &[Marker { label: format!("paper (MSC Nastran): {PAPER_REACTION} N at 70 mm"), at: (70.0, PAPER_REACTION) }],
+            Axes::FromOrigin,
         )?;
         written.push(force);
         let increments = reader.increments()?;

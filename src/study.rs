@@ -7,7 +7,7 @@
 //! stiffest converged run).
 
 use crate::error::{Error, Result};
-use crate::io::plots::{line_plot, Curve};
+use crate::io::plots::{line_plot, Axes, Curve};
 use crate::io::reader::ResultsReader;
 use crate::model::{AugmentedLagrangian, Model, Penalty};
 use crate::petsc::PetscSession;
@@ -323,6 +323,7 @@ fn write_study(spec: &StudySpec<'_>, rows: &[StudyRow]) -> Result<()> {
         "Newton iterations per increment",
         &[Curve { label: "mean per increment".into(), points: plain.iter().map(|r| (x(r), r.newton_iterations as f64 / r.increments as f64)).collect() }],
         &[],
+        Axes::DataRange,
     )?;
     line_plot(
         &name("penetration"),
@@ -334,6 +335,7 @@ fn write_study(spec: &StudySpec<'_>, rows: &[StudyRow]) -> Result<()> {
             points: plain.iter().filter(|r| r.penetration > 0.0).map(|r| (x(r), r.penetration.log10())).collect(),
         }],
         &[],
+        Axes::DataRange,
     )?;
     line_plot(
         &name("reaction"),
@@ -342,6 +344,7 @@ fn write_study(spec: &StudySpec<'_>, rows: &[StudyRow]) -> Result<()> {
         &format!("reaction ({})", spec.reaction_unit),
         &[Curve { label: "reaction at the last increment".into(), points: plain.iter().map(|r| (x(r), r.reaction)).collect() }],
         &[],
+        Axes::DataRange,
     )?;
     Ok(())
 }

@@ -37,13 +37,31 @@ pub struct Marker {
 
 /// Line plot of `curves` with `markers`, axes from 0 (or below, if data are) to the data's
 /// maximum plus a margin.
-pub fn line_plot(path: &Path, title: &str, x_label: &str, y_label: &str, curves: &[Curve], markers: &[Marker]) -> Result<()> {
+/// How a line plot's axes are ranged.
+#[derive(Clone, Copy, PartialEq, Eq)]
+pub enum Axes {
+    /// From the origin to the data (force against displacement); legend lower right.
+    FromOrigin,
+    /// Around the data alone (log10 values of a study); legend upper right.
+    DataRange,
+}
+
+pub fn line_plot(path: &Path, title: &str, x_label: &str, y_label: &str, curves: &[Curve], markers: &[Marker], axes: Axes) -> Result<()> {
     use_bundled_font();
     let err = draw_err(path);
-    let points = curves.iter().flat_map(|c| c.points.iter().copied()).chain(markers.iter().map(|m| m.at));
-    let (mut x0, mut x1, mut y0, mut y1) = (0.0f64, f64::MIN_POSITIVE, 0.0f64, f64::MIN_POSITIVE);
-    for (x, y) in points.filter(|p| p.0.is_finite() && p.1.is_finite()) {
+    let points: Vec<(f64, f64)> =
+        curves.iter().flat_map(|c| c.points.iter().copied()).chain(markers.iter().map(|m| m.at)).filter(|p| p.0.is_finite() && p.1.is_finite()).collect();
+    let (mut x0, mut x1, mut y0, mut y1) = match (axes, points.first()) {
+        (Axes::DataRange, Some(&(x, y))) => (x, x, y, y),
+        _ => (0.0f64, f64::MIN_POSITIVE, 0.0f64, f64::MIN_POSITIVE),
+    };
+    for &(x, y) in &points {
         (x0, x1, y0, y1) = (x0.min(x), x1.max(x), y0.min(y), y1.max(y));
+    }
+    if axes == Axes::DataRange {
+        // room on both sides, and a visible range for a flat curve
+        let (wx, wy) = ((x1 - x0).max(1e-9 * x0.abs().max(1.0)), (y1 - y0).max(1e-3 * y0.abs().max(1e-12)));
+        (x0, x1, y0, y1) = (x0 - 0.05 * wx, x1 + 0.0 * wx, y0 - 0.25 * wy, y1 + 0.25 * wy);
     }
     let (dx, dy) = (0.05 * (x1 - x0), 0.08 * (y1 - y0));
     let root = BitMapBackend::new(path, (1200, 800)).into_drawing_area();
@@ -74,7 +92,7 @@ pub fn line_plot(path: &Path, title: &str, x_label: &str, y_label: &str, curves:
     }
     chart
         .configure_series_labels()
-        .position(SeriesLabelPosition::LowerRight)
+        .position(if axes == Axes::FromOrigin { SeriesLabelPosition::LowerRight } else { SeriesLabelPosition::UpperRight })
         .label_font(("sans-serif", 18))
         .background_style(WHITE.mix(0.9))
         .border_style(BLACK)
