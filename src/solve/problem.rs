@@ -329,7 +329,7 @@ impl NonlinearProblem for Problem<'_, '_> {
 
 impl Problem<'_, '_> {
     /// F(x) at the free DOFs, assembled.
-    fn assemble_residual(&mut self, x: &impl VecOps, f: &mut impl VecOps) -> Result<()> {
+    pub fn assemble_residual(&mut self, x: &impl VecOps, f: &mut impl VecOps) -> Result<()> {
         let gathered = self.gather(x)?;
         f.set_all(0.0)?;
         let mut rows: Vec<PetscInt> = Vec::with_capacity(DOFS * self.elements.len());

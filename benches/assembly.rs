@@ -1,0 +1,55 @@
+//! One Newton iteration's assembly on the default bellows mesh, 1 rank: the residual (elements,
+//! pressure, contact search and kernels) and the Jacobian (the same with tangents, into the
+//! preallocated AIJ matrix), at the end of the heating step (200 degC, 0.6 MPa, plies and
+//! sleeve in contact). Reported per call and as elements per second; compare with the linear
+//! solve of the same iteration in scripts/profile-bellows.sh.
+use criterion::{criterion_group, criterion_main, Criterion, Throughput};
+use slideline::dist::{DofMap, Partition};
+use slideline::model::bellows::{model, BellowsParams};
+use slideline::petsc::sys::MatOption_MAT_NEW_NONZERO_ALLOCATION_ERR;
+use slideline::petsc::{Matrix, PetscSession, VecOps, Vector};
+use slideline::solve::contact::contact_nodes;
+use slideline::solve::problem::{initial_history, Problem};
+use slideline::solve::schedule::StepLoads;
+
+fn assembly(c: &mut Criterion) {
+    let session = PetscSession::initialize(&[]).expect("PETSc");
+    let m = model(&BellowsParams::default()).expect("bellows model");
+    let partition = Partition::new(&session, &m.mesh).expect("partition");
+    let nodes = m.mesh.coords.len();
+    let loads = StepLoads::new(&m, 0, None, &vec![[0.0; 2]; nodes]);
+    let dofs = DofMap::new(&partition, &loads.prescribed_mask(nodes)).expect("dofs");
+    // two nearby states, alternated, so that no evaluation is served from the contact cache
+    let xa = Vector::mpi(&session, session.comm(), dofs.local_len()).expect("vector");
+    let mut xb = Vector::mpi(&session, session.comm(), dofs.local_len()).expect("vector");
+    xb.set_all(1e-9).expect("set");
+    let mut f = Vector::mpi(&session, session.comm(), dofs.local_len()).expect("vector");
+    let coupled = contact_nodes(&m);
+    let (diag, off) = dofs.preallocation(&m.mesh, &partition, &coupled, 24);
+    let mut jacobian = Matrix::aij(&session, session.comm(), dofs.local_len(), &diag, &off).expect("matrix");
+    jacobian.set_option(MatOption_MAT_NEW_NONZERO_ALLOCATION_ERR, false).expect("option");
+    let mut problem = Problem::new(&session, &m, &partition, &dofs, &xa, initial_history(&m, &partition), None).expect("problem");
+    problem.load = loads.at(&m, 1.0);
+
+    let mut g = c.benchmark_group("bellows assembly (1 rank)");
+    g.throughput(Throughput::Elements(m.mesh.elements.len() as u64));
+    g.sample_size(20);
+    let mut flip = false;
+    g.bench_function("residual", |b| {
+        b.iter(|| {
+            flip = !flip;
+            problem.assemble_residual(if flip { &xa } else { &xb }, &mut f).expect("residual")
+        })
+    });
+    g.bench_function("jacobian", |b| {
+        b.iter(|| {
+            flip = !flip;
+            problem.assemble_jacobian(if flip { &xa } else { &xb }, &mut jacobian).expect("jacobian")
+        })
+    });
+    g.finish();
+    println!("bellows mesh: {} elements, {} nodes, {} unknowns, {} contact nodes", m.mesh.elements.len(), nodes, dofs.local_len(), coupled.len());
+}
+
+criterion_group!(benches, assembly);
+criterion_main!(benches);
