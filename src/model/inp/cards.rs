@@ -99,7 +99,7 @@ fn parse_number(s: &str) -> Option<f64> {
 }
 
 /// Upper case with runs of blanks folded to one and blanks around the text removed.
-fn normalise(s: &str) -> String {
+pub fn normalise(s: &str) -> String {
     s.split_whitespace().collect::<Vec<_>>().join(" ").to_uppercase()
 }
 

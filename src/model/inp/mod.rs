@@ -24,7 +24,7 @@ use super::{
     SteppingControls,
 };
 use crate::error::{Error, Result};
-use cards::{error_at, Card, DataLine, Location};
+use cards::{error_at, normalise, Card, DataLine, Location};
 use std::collections::{BTreeMap, BTreeSet, HashMap};
 use std::path::Path;
 
@@ -959,10 +959,6 @@ fn interpolate(points: &[(f64, f64)], t: f64) -> f64 {
         Some(_) => points[0].1,
         None => points[points.len() - 1].1,
     }
-}
-
-fn normalise(s: &str) -> String {
-    s.split_whitespace().collect::<Vec<_>>().join(" ").to_uppercase()
 }
 
 #[cfg(test)]
