@@ -2,21 +2,11 @@
 //! no PETSc trace).
 
 mod common;
-use common::{command_in, data, run_deck, Run};
+use common::{assert_rejected, command_in, data, run_deck, Run};
 
 const MATERIAL: &str = "[[material]]\nname = \"steel\"\nyoungs_modulus = 200000.0\npoissons_ratio = 0.3\n";
 const STEP: &str = "[[step]]\nboundary = [ { set = \"bottom\", uz = 0.0 } ]\n";
 const RECT: &str = "[mesh]\nrectangle = { r = [1.0, 2.0], z = [0.0, 1.0], divisions = [2, 1] }\n";
-
-fn assert_rejected(run: &Run, needles: &[&str]) {
-    let err = run.stderr();
-    assert_eq!(run.code(), 2, "exit code for bad input; stderr:\n{err}");
-    for n in needles {
-        assert!(err.contains(n), "message should name {n:?}:\n{err}");
-    }
-    assert_eq!(err.lines().filter(|l| l.starts_with("error:")).count(), 1, "one message:\n{err}");
-    assert!(!err.contains("panicked") && !err.contains("PETSC ERROR"), "{err}");
-}
 
 #[test]
 fn missing_deck_file() {

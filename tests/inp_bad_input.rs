@@ -2,7 +2,7 @@
 //! naming the file, the line and the keyword (exit code 2), before anything runs.
 
 mod common;
-use common::{command_in, Run};
+use common::{assert_rejected, command_in, Run};
 
 /// A small valid deck; `{MODEL}` and `{STEP}` are replaced by extra model and step lines.
 const DECK: &str = "*HEADING
@@ -46,16 +46,6 @@ fn run_inp(model: &str, step: &str, files: &[(&str, &str)]) -> Run {
     let h5 = dir.path().join("out.h5");
     let output = command_in(dir.path(), 1).current_dir(dir.path()).args(["run", "model.inp", "-o"]).arg(&h5).output().unwrap();
     Run { dir, output, h5 }
-}
-
-fn assert_rejected(run: &Run, needles: &[&str]) {
-    let err = run.stderr();
-    assert_eq!(run.code(), 2, "exit code for bad input; stderr:\n{err}");
-    for n in needles {
-        assert!(err.contains(n), "message should name {n:?}:\n{err}");
-    }
-    assert_eq!(err.lines().filter(|l| l.starts_with("error:")).count(), 1, "one message:\n{err}");
-    assert!(!err.contains("panicked") && !err.contains("PETSC ERROR"), "{err}");
 }
 
 #[test]

@@ -206,3 +206,14 @@ boundary = [ {{ set = "inner_bottom", uz = 0.0 }}, {{ set = "inner_top", uz = 0.
 {more_steps}"#
     )
 }
+
+/// Bad input: exit code 2 and one `error:` line naming every needle, no panic or PETSc trace.
+pub fn assert_rejected(run: &Run, needles: &[&str]) {
+    let err = run.stderr();
+    assert_eq!(run.code(), 2, "exit code for bad input; stderr:\n{err}");
+    for n in needles {
+        assert!(err.contains(n), "message should name {n:?}:\n{err}");
+    }
+    assert_eq!(err.lines().filter(|l| l.starts_with("error:")).count(), 1, "one message:\n{err}");
+    assert!(!err.contains("panicked") && !err.contains("PETSC ERROR"), "{err}");
+}
