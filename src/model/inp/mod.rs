@@ -20,8 +20,7 @@ pub mod cards;
 
 use super::mesh::{Edge, Mesh};
 use super::{
-    AugmentedLagrangian, Component, ContactIntegration, ContactPair, Kinematics, Material, Model, Penalty, Plasticity, PrescribedDisplacement, Pressure, Step,
-    SteppingControls,
+    Component, ContactIntegration, ContactPair, Kinematics, Material, Model, Penalty, Plasticity, PrescribedDisplacement, Pressure, Step, SteppingControls,
 };
 use crate::error::{Error, Result};
 use cards::{error_at, normalise, Card, DataLine, Location};
@@ -397,13 +396,8 @@ impl Builder {
             None | Some("ELEMENT") => {
                 for d in &card.data {
                     let face = d.fields.get(1).map(|s| s.to_uppercase()).unwrap_or_default();
-                    let side = match face.as_str() {
-                        "S1" => 0,
-                        "S2" => 1,
-                        "S3" => 2,
-                        "S4" => 3,
-                        other => return Err(error_at(&d.at, "SURFACE", format!("face '{other}': axisymmetric quadrilaterals have faces S1 to S4"))),
-                    };
+                    let side = face_side(&face, 'S')
+                        .ok_or_else(|| error_at(&d.at, "SURFACE", format!("face '{face}': axisymmetric quadrilaterals have faces S1 to S4")))?;
                     edges.extend(self.element_items(d, "SURFACE", 0)?.into_iter().map(|element| Edge { element, side }));
                 }
             }
@@ -723,13 +717,8 @@ impl Builder {
         let mut loads = Vec::new();
         for d in &card.data {
             let label = d.fields.get(1).map(|s| s.to_uppercase()).unwrap_or_default();
-            let side = match label.as_str() {
-                "P1" => 0,
-                "P2" => 1,
-                "P3" => 2,
-                "P4" => 3,
-                other => return Err(error_at(&d.at, "DLOAD", format!("load type '{other}': slideline reads face pressures P1 to P4"))),
-            };
+            let side =
+                face_side(&label, 'P').ok_or_else(|| error_at(&d.at, "DLOAD", format!("load type '{label}': slideline reads face pressures P1 to P4")))?;
             let elements = self.element_items(d, "DLOAD", 0)?;
             let value = d.number("DLOAD", 2, "magnitude", None)?;
             // the loaded faces as a surface named after the element set and face
@@ -829,7 +818,7 @@ impl Builder {
                 integration: *integration,
                 penalty: Penalty::Stiffness(slope),
                 capture_distance: 2.0 * longest,
-                augmented_lagrangian: None::<AugmentedLagrangian>,
+                augmented_lagrangian: None,
                 exclude_neighbours: 2,
             });
         }
@@ -943,6 +932,13 @@ impl Builder {
     }
 }
 
+/// Side index 0..3 of a face label `S1`..`S4` (surfaces) or `P1`..`P4` (pressures): face k
+/// runs from corner k to corner k + 1.
+fn face_side(label: &str, prefix: char) -> Option<usize> {
+    let k: usize = label.strip_prefix(prefix)?.parse().ok()?;
+    (1..=4).contains(&k).then(|| k - 1)
+}
+
 /// The one data line of a material property card.
 fn single(card: &Card) -> Result<&DataLine> {
     match card.data.as_slice() {
@@ -1043,6 +1039,16 @@ mod tests {
         let m = read(deck).model;
         // faces 3-4 of element 1 and 6-3 of element 2 (S3 of both); the shared face 2-3 is not free
         assert_eq!(m.surfaces["UPPER"], vec![Edge { element: 0, side: 2 }, Edge { element: 1, side: 2 }]);
+    }
+
+    #[test]
+    fn face_labels_map_to_sides_and_others_are_refused() {
+        assert_eq!([face_side("S1", 'S'), face_side("S4", 'S'), face_side("P2", 'P')], [Some(0), Some(3), Some(1)]);
+        for bad in ["S0", "S5", "S12", "P", "P1", "BX"] {
+            assert_eq!(face_side(bad, 'S'), None, "{bad}");
+        }
+        let err = parse(&format!("{MESH}*SURFACE, NAME=X\nA, S5\n"), Path::new("t.inp")).err().unwrap().to_string();
+        assert!(err.contains("t.inp:25") && err.contains("'S5'"), "{err}");
     }
 
     #[test]
