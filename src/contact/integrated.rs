@@ -18,30 +18,79 @@
 //! gap's gradient and Hessian (from the node-to-edge kernel, with the slave point interpolated
 //! from its edge's nodes). The integration points' positions are taken as fixed on the slave
 //! edge: the integrand is continuous across the split points, so their motion adds nothing.
+//!
+//! The search and the gaps come first ([`weighted_gaps`], with each integration point kept as
+//! a [`GapSample`]); the gradient of a sample is closed-form and cheap, its Hessian (dual
+//! numbers) is asked for only where a tangent is wanted, so residual-only evaluations (the
+//! line search's) skip it.
 
-use super::node_to_edge::{edge_residual_and_tangent, project_on_edge};
+use super::node_to_edge::{edge_residual_and_tangent, project_on_edge, EdgeProjection};
 use super::search::{closest_edge, EdgeGrid};
 use super::surface::{hats, ContactSurface};
 use crate::fe::quadrature::GAUSS3;
 use crate::fe::shape::line3;
 use nalgebra::{SMatrix, SVector};
 
-/// Gradient and Hessian of the pointwise gap at one integration point, over the slave edge's
-/// three nodes then the master edge's three nodes (12 DOFs), already multiplied by the weight.
-pub struct PointTerm {
+pub type SampleVector = SVector<f64, 12>;
+pub type SampleMatrix = SMatrix<f64, 12, 12>;
+
+/// One integration point of a slave edge bearing on a master edge, as seen by one slave node.
+#[derive(Clone, Copy, Debug)]
+pub struct GapSample {
+    /// The slave edge's three nodes, then the master edge's three (the 12 DOFs of the sample).
     pub nodes: [usize; 6],
-    pub grad: SVector<f64, 12>,
-    pub hessian: SMatrix<f64, 12, 12>,
+    /// Quadratic shape functions of the slave edge at the point (the slave point is
+    /// sum N_a x_a).
+    pub shape: [f64; 3],
+    /// The slave point's projection on the master edge.
+    pub projection: EdgeProjection,
+    /// psi_a w r ds: the sample's weight in the node's weighted gap.
+    pub weight: f64,
 }
 
-/// The weighted gap of one slave node and what its derivatives are made of.
+impl GapSample {
+    /// Weighted gradient of the pointwise gap over the sample's 12 DOFs:
+    /// dg = n . (sum N_a dx_a - sum M_k(xi) dx_k), closed form at the closest point.
+    pub fn gradient(&self) -> SampleVector {
+        let n = self.projection.normal;
+        let m = line3(self.projection.xi).0;
+        let mut g = SampleVector::zeros();
+        for a in 0..3 {
+            for c in 0..2 {
+                g[2 * a + c] = self.weight * self.shape[a] * n[c];
+                g[6 + 2 * a + c] = -self.weight * m[a] * n[c];
+            }
+        }
+        g
+    }
+
+    /// Weighted Hessian of the pointwise gap over the sample's 12 DOFs at positions `x`: the
+    /// node-to-edge kernel's (8 DOFs: slave point and master edge) carried to the slave edge's
+    /// nodes through x_s = sum N_a x_a.
+    pub fn hessian(&self, x: &impl Fn(usize) -> [f64; 2]) -> SampleMatrix {
+        let slave = [0, 1, 2].map(|a| x(self.nodes[a]));
+        let master = [3, 4, 5].map(|a| x(self.nodes[a]));
+        let p = [0, 1].map(|i| (0..3).map(|a| self.shape[a] * slave[a][i]).sum::<f64>());
+        // the kernel with p = 1, A = 1, eps = 0 gives -dg and -d2g
+        let (_, minus, _) = edge_residual_and_tangent(p, &master, &self.projection, 1.0, 0.0, 1.0, [false, false]);
+        // x_s = sum N_a x_a: slave DOF (a, c) is kernel DOF c scaled by N_a; master DOFs map
+        // one to one (kernel DOFs 2..8)
+        let of = |i: usize| if i < 6 { (i % 2, self.shape[i / 2]) } else { (i - 4, 1.0) };
+        SampleMatrix::from_fn(|i, j| {
+            let ((ri, fi), (rj, fj)) = (of(i), of(j));
+            -self.weight * fi * fj * minus[(ri, rj)]
+        })
+    }
+}
+
+/// The weighted gap of one slave node and the integration points it is made of.
 pub struct WeightedGap {
     /// Index of the node in the slave surface.
     pub index: usize,
     /// g_a = integral psi_a g r ds over the parts of the node's edges facing a master.
     pub gap: f64,
-    /// Integration terms (weighted by psi_a w r ds) whose sum is dg_a and d2g_a.
-    pub terms: Vec<PointTerm>,
+    /// The integration points (weighted by psi_a w r ds) whose sums are g_a, dg_a and d2g_a.
+    pub samples: Vec<GapSample>,
     /// Master edge under the node's heaviest integration point (its size sets a penalty
     /// factor).
     pub master_edge: usize,
@@ -75,7 +124,7 @@ pub fn weighted_gaps(
     edges.sort_unstable();
     edges.dedup();
     for &i in indices {
-        out.push(WeightedGap { index: i, gap: 0.0, terms: Vec::new(), master_edge: usize::MAX });
+        out.push(WeightedGap { index: i, gap: 0.0, samples: Vec::new(), master_edge: usize::MAX });
         best_weight.push(0.0);
     }
     for e in edges {
@@ -121,22 +170,7 @@ pub fn weighted_gaps(
                 if ts[1] * proj.normal[0] - ts[0] * proj.normal[1] >= 0.0 || proj.gap <= -capture {
                     continue;
                 }
-                let mn = master.edges[m];
-                // gradient and Hessian of the gap: the kernel with p = 1, A = 1, eps = 0
-                let (minus_grad, minus_hessian, _) = edge_residual_and_tangent(p, &mn.map(x), &proj, 1.0, 0.0, 1.0, [false, false]);
-                // slave point x_s = sum N_a x_a: 8 -> 12 DOFs
-                let mut tie = SMatrix::<f64, 8, 12>::zeros();
-                for a in 0..3 {
-                    for c in 0..2 {
-                        tie[(c, 2 * a + c)] = n[a];
-                    }
-                }
-                for k in 0..6 {
-                    tie[(2 + k, 6 + k)] = 1.0;
-                }
-                let grad = -(tie.transpose() * minus_grad);
-                let hessian = -(tie.transpose() * minus_hessian * tie);
-                let nodes = [en[0], en[1], en[2], mn[0], mn[1], mn[2]];
+                let nodes = [en[0], en[1], en[2], master.edges[m][0], master.edges[m][1], master.edges[m][2]];
                 let psi = hats(xi);
                 for a in 0..3 {
                     let Some(k) = slave.index_of(en[a]).and_then(position) else { continue };
@@ -146,7 +180,7 @@ pub fn weighted_gaps(
                     }
                     let g = &mut out[k];
                     g.gap += wa * proj.gap;
-                    g.terms.push(PointTerm { nodes, grad: grad * wa, hessian: hessian * wa });
+                    g.samples.push(GapSample { nodes, shape: n, projection: proj, weight: wa });
                     if wa.abs() > best_weight[k] {
                         best_weight[k] = wa.abs();
                         g.master_edge = m;
@@ -155,7 +189,7 @@ pub fn weighted_gaps(
             }
         }
     }
-    out.retain(|g| !g.terms.is_empty());
+    out.retain(|g| !g.samples.is_empty());
     out
 }
 
@@ -191,9 +225,10 @@ mod tests {
         // consistent area (psi sums to one)
         let mut master_force = vec![0.0; mesh.coords.len()];
         for g in &gaps {
-            for t in &g.terms {
+            for s in &g.samples {
+                let grad = s.gradient();
                 for k in 3..6 {
-                    master_force[t.nodes[k]] += t.grad[2 * k + 1];
+                    master_force[s.nodes[k]] += grad[2 * k + 1];
                 }
             }
         }

@@ -93,7 +93,8 @@ pub fn project_on_edge(xs: [f64; 2], x: &[[f64; 2]; 3]) -> Option<EdgeProjection
     let normal = [t[1] / lt, -t[0] / lt];
     let gap = (xs[0] - p[0]) * normal[0] + (xs[1] - p[1]) * normal[1];
     let (pc, _, _) = curve(x, xi.clamp(-1.0, 1.0));
-    let distance = (xs[0] - pc[0]).hypot(xs[1] - pc[1]);
+    let d = [xs[0] - pc[0], xs[1] - pc[1]];
+    let distance = (d[0] * d[0] + d[1] * d[1]).sqrt(); // not hypot: see search::box_distance
     Some(EdgeProjection { xi, gap, normal, distance })
 }
 
@@ -173,6 +174,24 @@ pub fn edge_residual_and_tangent(
     (force, tangent, pressure)
 }
 
+/// The residual and contact pressure of [`edge_residual_and_tangent`] without the tangent
+/// (residual-only evaluations: the line search's).
+pub fn edge_residual(
+    xs: [f64; 2],
+    x: &[[f64; 2]; 3],
+    proj: &EdgeProjection,
+    area: f64,
+    penalty: f64,
+    multiplier: f64,
+    free_ends: [bool; 2],
+) -> (EdgeVector, f64) {
+    if multiplier - penalty * proj.gap < 0.0 {
+        return (EdgeVector::zeros(), 0.0);
+    }
+    let pressure = (multiplier - penalty * proj.gap) * end_taper(proj.xi, free_ends);
+    (EdgeVector::from(residual(&xs, x, proj.xi, area, penalty, multiplier, free_ends)), pressure)
+}
+
 /// Shape functions of the master edge at the projection (reaction weights).
 pub fn edge_weights(xi: f64) -> [f64; 3] {
     line3(xi).0
@@ -229,6 +248,21 @@ mod tests {
             for lambda in [0.0, 40.0] {
                 let e = fd_error(flatten(xs, &x), lambda);
                 assert!(e <= 1e-6, "{what}, lambda {lambda}: {e:e}");
+            }
+        }
+    }
+
+    #[test]
+    fn the_residual_only_path_is_the_kernels_residual() {
+        let x = [[20.0, 3.0], [22.0, 4.2], [21.05, 3.85]];
+        // penetrating (above the curve), past the free end (tapered) and open (below)
+        for xs in [[20.9, 3.8], [22.05, 4.35], [20.9, 3.4]] {
+            let p = project_on_edge(xs, &x).unwrap();
+            for lambda in [0.0, 40.0] {
+                let (f, _, pressure) = edge_residual_and_tangent(xs, &x, &p, 0.8, 3e4, lambda, FREE);
+                let (g, q) = edge_residual(xs, &x, &p, 0.8, 3e4, lambda, FREE);
+                assert_eq!(pressure, q);
+                assert!((f - g).abs().max() <= 1e-14 * f.abs().max().max(1.0), "{xs:?}: {f} vs {g}");
             }
         }
     }

@@ -8,8 +8,8 @@
 //! pressure at a slave node, p = max(0, lambda - eps g), is the contact pressure in both modes.
 
 use super::problem::ROUNDOFF_ULPS;
-use crate::contact::integrated::weighted_gaps;
-use crate::contact::node_to_edge::edge_residual_and_tangent;
+use crate::contact::integrated::{weighted_gaps, GapSample};
+use crate::contact::node_to_edge::{edge_residual, edge_residual_and_tangent, EdgeProjection};
 use crate::contact::search::{closest_edge, EdgeGrid};
 use crate::contact::surface::ContactSurface;
 use crate::dist::{DofMap, Partition};
@@ -48,8 +48,26 @@ pub struct Engagement {
     pub nodes: Vec<usize>,
     /// Two entries per node, (r, z).
     pub residual: Vec<f64>,
-    /// Row-major, (2 nodes) x (2 nodes).
+    /// Row-major, (2 nodes) x (2 nodes); empty until an evaluation asks for tangents.
     pub tangent: Vec<f64>,
+    /// What the tangent is computed from, kept so a residual-only evaluation (the line
+    /// search's) can be completed by the Jacobian at the same iterate without a new search.
+    recipe: TangentRecipe,
+}
+
+enum TangentRecipe {
+    /// Node-to-segment: the kernel's arguments.
+    Nodal { xs: [f64; 2], master: [[f64; 2]; 3], projection: EdgeProjection, area: f64, penalty: f64, multiplier: f64, free_ends: [bool; 2] },
+    /// Segment integration: K = stiffness dg dg^T - weighted_pressure d2g, with dg (`gradient`,
+    /// over the engagement's nodes) and d2g the sums over the node's integration points.
+    Integrated { samples: Vec<GapSample>, gradient: Vec<f64>, stiffness: f64, weighted_pressure: f64 },
+}
+
+/// What an evaluation must provide.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Need {
+    Residual,
+    Tangent,
 }
 
 /// State of one owned slave node after an evaluation.
@@ -95,9 +113,11 @@ pub struct ContactAssembly<'s> {
     roundoff: f64,
     /// The engagements of the last evaluation, and the positions and multipliers it was made
     /// at: SNES asks for the Jacobian at the iterate whose residual it has just evaluated, and
-    /// the search and kernels (which give residual and tangent together) need not run twice.
+    /// the search need not run twice; only the tangents are added.
     engagements: Vec<Engagement>,
     evaluated_at: Option<(Vec<[f64; 2]>, Multipliers)>,
+    /// Whether the engagements carry their tangents.
+    with_tangents: bool,
 }
 
 impl<'s> ContactAssembly<'s> {
@@ -173,6 +193,7 @@ impl<'s> ContactAssembly<'s> {
             roundoff: 0.0,
             engagements: Vec::new(),
             evaluated_at: None,
+            with_tangents: false,
         }))
     }
 
@@ -194,12 +215,25 @@ impl<'s> ContactAssembly<'s> {
     }
 
     /// Evaluates every owned slave node at the gathered positions and records the slave
-    /// states; the engagements are then in `engagements()`. Nothing is recomputed at the
-    /// positions and multipliers of the previous evaluation.
-    pub fn evaluate(&mut self, model: &Model) {
-        if self.evaluated_at.as_ref().is_some_and(|(x, m)| *x == self.positions && *m == self.current) {
-            return;
+    /// states; the engagements are then in `engagements()`, with their tangents if `need`
+    /// says so. At the positions and multipliers of the previous evaluation only what that
+    /// one lacked is computed.
+    pub fn evaluate(&mut self, model: &Model, need: Need) {
+        let same = self.evaluated_at.as_ref().is_some_and(|(x, m)| *x == self.positions && *m == self.current);
+        if !same {
+            self.evaluate_residuals(model);
         }
+        if need == Need::Tangent && !self.with_tangents {
+            let (slot, positions) = (&self.slot, &self.positions);
+            let x = |n: usize| positions[slot[n]];
+            for e in &mut self.engagements {
+                e.tangent = tangent(&e.recipe, &e.nodes, &x);
+            }
+            self.with_tangents = true;
+        }
+    }
+
+    fn evaluate_residuals(&mut self, model: &Model) {
         let mut out = std::mem::take(&mut self.engagements);
         out.clear();
         self.nodal_forces.clear();
@@ -220,6 +254,7 @@ impl<'s> ContactAssembly<'s> {
             }
         }
         self.engagements = out;
+        self.with_tangents = false;
         self.evaluated_at = Some((self.positions.clone(), self.current.clone()));
     }
 
@@ -260,14 +295,16 @@ impl<'s> ContactAssembly<'s> {
             let area = slave.areas[i] * pass.weight;
             let en = master.edges[edge];
             let free_ends = master.neighbours[edge].map(|n| n.is_none());
-            let (residual, tangent, pressure) = edge_residual_and_tangent(xs, &en.map(x), &proj, area, eps, self.current[p][k], free_ends);
+            let multiplier = self.current[p][k];
+            let (residual, pressure) = edge_residual(xs, &en.map(x), &proj, area, eps, multiplier, free_ends);
             self.states[p][k] = SlaveState { gap: proj.gap, pressure, force: pressure * area, traction: 0.0 };
-            if self.current[p][k] - eps * proj.gap >= 0.0 {
+            if multiplier - eps * proj.gap >= 0.0 {
                 self.roundoff += (ROUNDOFF_ULPS * f64::EPSILON * eps * area * xs[0].hypot(xs[1])).powi(2);
                 out.push(Engagement {
                     nodes: vec![node, en[0], en[1], en[2]],
                     residual: residual.as_slice().to_vec(),
-                    tangent: tangent.transpose().as_slice().to_vec(),
+                    tangent: Vec::new(),
+                    recipe: TangentRecipe::Nodal { xs, master: en.map(x), projection: proj, area, penalty: eps, multiplier, free_ends },
                 });
             }
         }
@@ -309,47 +346,29 @@ impl<'s> ContactAssembly<'s> {
             if trial < 0.0 {
                 continue;
             }
-            // union of the nodes the terms couple, and dg over them
+            // union of the nodes the samples couple, and dg over them
             let mut nodes = vec![slave.nodes[g.index]];
-            for t in &g.terms {
-                for &n in &t.nodes {
+            for s in &g.samples {
+                for &n in &s.nodes {
                     if !nodes.contains(&n) {
                         nodes.push(n);
                     }
                 }
             }
-            let m = 2 * nodes.len();
-            let at = |n: usize| nodes.iter().position(|&q| q == n).expect("listed");
-            let mut grad = vec![0.0; m];
-            let mut tangent = vec![0.0; m * m];
-            for t in &g.terms {
-                let map: [usize; 6] = t.nodes.map(at);
-                for a in 0..6 {
-                    for c in 0..2 {
-                        grad[2 * map[a] + c] += t.grad[2 * a + c];
-                    }
-                }
-                // -p d2g
-                for a in 0..6 {
-                    for c in 0..2 {
-                        for b in 0..6 {
-                            for d in 0..2 {
-                                tangent[(2 * map[a] + c) * m + 2 * map[b] + d] -= pass.weight * pressure * t.hessian[(2 * a + c, 2 * b + d)];
-                            }
-                        }
-                    }
+            let mut gradient = vec![0.0; 2 * nodes.len()];
+            for s in &g.samples {
+                let sg = s.gradient();
+                for (a, &n) in s.nodes.iter().enumerate() {
+                    let at = position_in(&nodes, n);
+                    gradient[2 * at] += sg[2 * a];
+                    gradient[2 * at + 1] += sg[2 * a + 1];
                 }
             }
-            let stiffness = pass.weight * eps / area;
             let xs = x(slave.nodes[g.index]);
             self.roundoff += (ROUNDOFF_ULPS * f64::EPSILON * pass.weight * eps * area * xs[0].hypot(xs[1])).powi(2);
-            for i in 0..m {
-                for j in 0..m {
-                    tangent[i * m + j] += stiffness * grad[i] * grad[j];
-                }
-            }
-            let residual = grad.iter().map(|v| -pass.weight * pressure * v).collect();
-            out.push(Engagement { nodes, residual, tangent });
+            let residual = gradient.iter().map(|v| -pass.weight * pressure * v).collect();
+            let recipe = TangentRecipe::Integrated { samples: g.samples, gradient, stiffness: pass.weight * eps / area, weighted_pressure: pass.weight * pressure };
+            out.push(Engagement { nodes, residual, tangent: Vec::new(), recipe });
         }
     }
 
@@ -466,6 +485,41 @@ impl<'s> ContactAssembly<'s> {
                 }
             })
             .collect()
+    }
+}
+
+fn position_in(nodes: &[usize], n: usize) -> usize {
+    nodes.iter().position(|&q| q == n).expect("listed")
+}
+
+/// The tangent (row-major over `nodes`) an engagement's recipe gives at positions `x`.
+fn tangent(recipe: &TangentRecipe, nodes: &[usize], x: &impl Fn(usize) -> [f64; 2]) -> Vec<f64> {
+    match recipe {
+        TangentRecipe::Nodal { xs, master, projection, area, penalty, multiplier, free_ends } => {
+            let (_, k, _) = edge_residual_and_tangent(*xs, master, projection, *area, *penalty, *multiplier, *free_ends);
+            k.transpose().as_slice().to_vec()
+        }
+        TangentRecipe::Integrated { samples, gradient, stiffness, weighted_pressure } => {
+            let m = gradient.len();
+            let mut k = vec![0.0; m * m];
+            for i in 0..m {
+                for j in 0..m {
+                    k[i * m + j] = stiffness * gradient[i] * gradient[j];
+                }
+            }
+            // -p d2g
+            for s in samples {
+                let h = s.hessian(x);
+                let map = s.nodes.map(|n| 2 * position_in(nodes, n));
+                for a in 0..12 {
+                    let row = map[a / 2] + a % 2;
+                    for b in 0..12 {
+                        k[row * m + map[b / 2] + b % 2] -= weighted_pressure * h[(a, b)];
+                    }
+                }
+            }
+            k
+        }
     }
 }
 

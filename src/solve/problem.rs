@@ -6,7 +6,7 @@
 //! `trial`; [`Problem::commit`] copies trial to committed after a converged increment. A failed
 //! attempt never touches `committed`, so a cutback has nothing to undo.
 
-use super::contact::{ContactAssembly, Multipliers};
+use super::contact::{ContactAssembly, Multipliers, Need};
 use crate::dist::{DofMap, Partition};
 use crate::element::pressure::{compute_pressure_load, pressure_load_stiffness};
 use crate::element::solid::{compute_solid, ElementGeometry, SolidInput, SolidResponse, DOFS, NODES, QUADRATURE_POINTS};
@@ -280,7 +280,7 @@ impl<'s, 'm> Problem<'s, 'm> {
         }
         let stage = self.stages.contact;
         if let Some(contact) = self.contact.as_mut() {
-            stage.run(|| contact.evaluate(self.model))?;
+            stage.run(|| contact.evaluate(self.model, Need::Residual))?;
             for e in contact.engagements() {
                 for (i, &v) in e.residual.iter().enumerate() {
                     sink(e.nodes[i / 2], i % 2, v);
@@ -430,7 +430,7 @@ impl Problem<'_, '_> {
         }
         let stage = self.stages.contact;
         if let Some(contact) = self.contact.as_mut() {
-            stage.run(|| contact.evaluate(self.model))?;
+            stage.run(|| contact.evaluate(self.model, Need::Tangent))?;
             for e in contact.engagements() {
                 let dofs = contact.engagement_dofs(e);
                 jacobian.add_block(&dofs, &dofs, &e.tangent)?;
