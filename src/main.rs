@@ -478,6 +478,12 @@ fn print_summary(summary: &RunSummary) {
         return;
     };
     println!("done: {} increments in {:.2} s on {} rank(s)", summary.history.len(), summary.wall_time, summary.ranks);
+    if summary.reserved_couplings > 0 {
+        println!(
+            "Jacobian pattern: built {} time(s), {} contact couplings reserved (each build is one symbolic factorisation)",
+            summary.pattern_builds, summary.reserved_couplings
+        );
+    }
     if !last.reactions.is_empty() {
         println!("final reactions (N):            per radian                      full 360-degree ring");
         println!("  {:<20} {:>14} {:>14}   {:>14} {:>14}", "set", "F_r", "F_z", "F_r", "F_z");

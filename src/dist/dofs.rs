@@ -49,27 +49,28 @@ impl DofMap {
     }
 
     /// Exact nonzero counts of this rank's rows, split into the diagonal block (columns this
-    /// rank owns) and the off-diagonal block, from the mesh graph; rows of the `coupled` nodes
-    /// (contact surfaces, sorted) get `extra` more in each block for couplings that appear
-    /// during the solve.
-    pub fn preallocation(&self, mesh: &Mesh, partition: &Partition, coupled: &[usize], extra: PetscInt) -> (Vec<PetscInt>, Vec<PetscInt>) {
-        let mut node_elements: Vec<Vec<usize>> = vec![Vec::new(); mesh.coords.len()];
-        for (e, conn) in mesh.elements.iter().enumerate() {
+    /// rank owns) and the off-diagonal block, from the mesh graph and the node couplings
+    /// `extra` (contact; each pair (a, b) couples both ways).
+    pub fn preallocation(&self, mesh: &Mesh, partition: &Partition, extra: impl IntoIterator<Item = (usize, usize)>) -> (Vec<PetscInt>, Vec<PetscInt>) {
+        let mut node_neighbours: Vec<Vec<usize>> = vec![Vec::new(); mesh.coords.len()];
+        for conn in &mesh.elements {
             for &n in conn {
-                node_elements[n].push(e);
+                node_neighbours[n].extend(conn);
             }
+        }
+        for (a, b) in extra {
+            node_neighbours[a].push(b);
+            node_neighbours[b].push(a);
         }
         let (lo, hi) = (self.offsets[self.rank] as PetscInt, self.offsets[self.rank + 1] as PetscInt);
         let mut diag = vec![0; self.local_len()];
         let mut off = vec![0; self.local_len()];
-        let mut neighbours = Vec::new();
         for &n in partition.owned_nodes() {
-            neighbours.clear();
-            neighbours.extend(node_elements[n].iter().flat_map(|&e| mesh.elements[e]));
+            let neighbours = &mut node_neighbours[n];
             neighbours.sort_unstable();
             neighbours.dedup();
             let (mut d, mut o) = (0, 0);
-            for &m in &neighbours {
+            for &m in neighbours.iter() {
                 for &col in &self.dof[m] {
                     if col >= 0 {
                         if (lo..hi).contains(&col) {
@@ -79,11 +80,6 @@ impl DofMap {
                         }
                     }
                 }
-            }
-            if coupled.binary_search(&n).is_ok() {
-                // never more than the block widths: PETSc rejects that
-                d = (d + extra).min(hi - lo);
-                o = (o + extra).min(self.total() as PetscInt - (hi - lo));
             }
             for &row in &self.dof[n] {
                 if row >= 0 {
@@ -111,7 +107,7 @@ mod tests {
         }
         let map = DofMap::new(&p, &prescribed).unwrap();
         assert_eq!(map.total(), 2 * mesh.coords.len() - sets.node_sets["bottom"].len());
-        let (d, o) = map.preallocation(&mesh, &p, &[], 0);
+        let (d, o) = map.preallocation(&mesh, &p, []);
         assert!(o.iter().all(|&v| v == 0));
         // a corner of the first element only sees that element's 8 nodes
         let corner = mesh.elements[0][3];

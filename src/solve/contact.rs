@@ -7,6 +7,7 @@
 //! reverse pass; each pass of a two-pass pair carries half of the penalty force, so the
 //! pressure at a slave node, p = max(0, lambda - eps g), is the contact pressure in both modes.
 
+use super::pattern::ContactPattern;
 use super::problem::ROUNDOFF_ULPS;
 use crate::contact::integrated::{weighted_gaps, GapSample};
 use crate::contact::node_to_edge::{edge_residual, edge_residual_and_tangent, EdgeProjection};
@@ -88,6 +89,13 @@ pub struct SlaveState {
 /// Multipliers (augmented Lagrangian) of every owned slave node, per pass.
 pub type Multipliers = Vec<Vec<f64>>;
 
+/// What contact carries from one step's problem into the next: the committed multipliers and
+/// the reserved sparsity pattern.
+pub struct ContactCarry {
+    pub multipliers: Multipliers,
+    pub pattern: ContactPattern,
+}
+
 pub struct ContactAssembly<'s> {
     surfaces: Vec<ContactSurface>,
     passes: Vec<Pass>,
@@ -118,6 +126,8 @@ pub struct ContactAssembly<'s> {
     evaluated_at: Option<(Vec<[f64; 2]>, Multipliers)>,
     /// Whether the engagements carry their tangents.
     with_tangents: bool,
+    /// The contact couplings the Jacobian's pattern holds (and those it must take).
+    pattern: ContactPattern,
 }
 
 impl<'s> ContactAssembly<'s> {
@@ -128,7 +138,7 @@ impl<'s> ContactAssembly<'s> {
         partition: &Partition,
         dofs: &DofMap,
         layout: &Vector<'s>,
-        multipliers: Option<Multipliers>,
+        carry: Option<ContactCarry>,
     ) -> Result<Option<Self>> {
         if model.contacts.is_empty() {
             return Ok(None);
@@ -174,7 +184,10 @@ impl<'s> ContactAssembly<'s> {
         let gathered = Vector::seq(session, needed.len())?;
         let scatter = Scatter::gather(session, layout, &gathered, &needed)?;
         let gathered_slot = node_dofs.iter().map(|d| d.map(|g| if g >= 0 { needed.binary_search(&g).expect("listed") } else { usize::MAX })).collect();
-        let committed = multipliers.unwrap_or_else(|| passes.iter().map(|p| vec![0.0; p.owned.len()]).collect());
+        let (committed, pattern) = match carry {
+            Some(c) => (c.multipliers, c.pattern),
+            None => (passes.iter().map(|p| vec![0.0; p.owned.len()]).collect(), ContactPattern::default()),
+        };
         let states = passes.iter().map(|p| vec![SlaveState::default(); p.owned.len()]).collect();
         Ok(Some(ContactAssembly {
             surfaces,
@@ -194,6 +207,7 @@ impl<'s> ContactAssembly<'s> {
             engagements: Vec::new(),
             evaluated_at: None,
             with_tangents: false,
+            pattern,
         }))
     }
 
@@ -228,6 +242,7 @@ impl<'s> ContactAssembly<'s> {
             let x = |n: usize| positions[slot[n]];
             for e in &mut self.engagements {
                 e.tangent = tangent(&e.recipe, &e.nodes, &x);
+                self.pattern.require(&e.nodes);
             }
             self.with_tangents = true;
         }
@@ -346,15 +361,8 @@ impl<'s> ContactAssembly<'s> {
             if trial < 0.0 {
                 continue;
             }
-            // union of the nodes the samples couple, and dg over them
-            let mut nodes = vec![slave.nodes[g.index]];
-            for s in &g.samples {
-                for &n in &s.nodes {
-                    if !nodes.contains(&n) {
-                        nodes.push(n);
-                    }
-                }
-            }
+            // dg over the nodes the samples couple
+            let nodes = sample_nodes(slave.nodes[g.index], &g.samples);
             let mut gradient = vec![0.0; 2 * nodes.len()];
             for s in &g.samples {
                 let sg = s.gradient();
@@ -442,8 +450,16 @@ impl<'s> ContactAssembly<'s> {
         self.current.clone_from(&self.committed);
     }
 
-    pub fn into_multipliers(self) -> Multipliers {
-        self.committed
+    pub fn into_carry(self) -> ContactCarry {
+        ContactCarry { multipliers: self.committed, pattern: self.pattern }
+    }
+
+    pub fn pattern(&self) -> &ContactPattern {
+        &self.pattern
+    }
+
+    pub fn pattern_mut(&mut self) -> &mut ContactPattern {
+        &mut self.pattern
     }
 
     /// Per pair: (active slave nodes, largest penetration, total normal force per radian)
@@ -486,6 +502,19 @@ impl<'s> ContactAssembly<'s> {
             })
             .collect()
     }
+}
+
+/// The nodes the samples of a slave node couple, the node first.
+fn sample_nodes(node: usize, samples: &[GapSample]) -> Vec<usize> {
+    let mut nodes = vec![node];
+    for s in samples {
+        for &n in &s.nodes {
+            if !nodes.contains(&n) {
+                nodes.push(n);
+            }
+        }
+    }
+    nodes
 }
 
 fn position_in(nodes: &[usize], n: usize) -> usize {

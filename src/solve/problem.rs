@@ -6,7 +6,7 @@
 //! `trial`; [`Problem::commit`] copies trial to committed after a converged increment. A failed
 //! attempt never touches `committed`, so a cutback has nothing to undo.
 
-use super::contact::{ContactAssembly, Multipliers, Need};
+use super::contact::{ContactAssembly, ContactCarry, Need};
 use crate::dist::{DofMap, Partition};
 use crate::element::pressure::{compute_pressure_load, pressure_load_stiffness};
 use crate::element::solid::{compute_solid, ElementGeometry, SolidInput, SolidResponse, DOFS, NODES, QUADRATURE_POINTS};
@@ -125,7 +125,7 @@ impl<'s, 'm> Problem<'s, 'm> {
         dofs: &DofMap,
         layout: &Vector<'s>,
         history: History,
-        multipliers: Option<Multipliers>,
+        contact: Option<ContactCarry>,
     ) -> Result<Self> {
         let local = partition.local_elements();
         assert_eq!(history.len(), local.len(), "one history entry per local element");
@@ -166,7 +166,7 @@ impl<'s, 'm> Problem<'s, 'm> {
             .collect();
         let materials = model.materials.iter().map(material_kernel).collect();
         let trial = history.clone();
-        let contact = ContactAssembly::new(session, model, partition, dofs, layout, multipliers)?;
+        let contact = ContactAssembly::new(session, model, partition, dofs, layout, contact)?;
         Ok(Problem {
             model,
             materials,
@@ -201,9 +201,29 @@ impl<'s, 'm> Problem<'s, 'm> {
         }
     }
 
-    /// The committed history and multipliers, to carry into the next step's problem.
-    pub fn into_history(self) -> (History, Option<Multipliers>) {
-        (self.committed, self.contact.map(|c| c.into_multipliers()))
+    /// The committed history and what contact carries, for the next step's problem.
+    pub fn into_history(self) -> (History, Option<ContactCarry>) {
+        (self.committed, self.contact.map(|c| c.into_carry()))
+    }
+
+    /// Stores a zero at every entry the Jacobian will hold: this rank's element blocks and the
+    /// reserved contact couplings of the nodes it owns (the pattern is replicated). Called on a
+    /// new matrix before its first assembly, so that assembly fixes the whole pattern.
+    pub fn insert_pattern(&self, partition: &Partition, jacobian: &mut impl MatOps) -> Result<()> {
+        let zeros = [0.0; DOFS * DOFS];
+        for el in &self.elements {
+            jacobian.add_block(&el.dofs, &el.dofs, &zeros)?;
+        }
+        if let Some(contact) = self.contact.as_ref() {
+            for (a, b) in contact.pattern().pairs() {
+                for (row, col) in [(a, b), (b, a)] {
+                    if partition.node_owner[row] == partition.rank {
+                        jacobian.add_block(&self.dof[row], &self.dof[col], &[0.0; 4])?;
+                    }
+                }
+            }
+        }
+        Ok(())
     }
 
     /// Fetches the free DOFs of this rank's elements (and the positions of all contact nodes)

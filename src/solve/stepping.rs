@@ -8,7 +8,6 @@
 //! the requested size. Below `min_increment` the run stops with every converged increment in
 //! the results file.
 
-use super::contact::contact_nodes;
 use super::problem::{initial_history, LoadState, Problem};
 use super::schedule::StepLoads;
 use crate::dist::{DofMap, Partition};
@@ -16,7 +15,7 @@ use crate::error::{Error, Result};
 use crate::io::{ContactSummary, HistoryRow, IncrementFields, ResultsFile};
 use crate::model::Model;
 use crate::petsc::sys::MatOption_MAT_NEW_NONZERO_ALLOCATION_ERR;
-use crate::petsc::{Matrix, PetscSession, Snes, SolveReport, VecOps, Vector};
+use crate::petsc::{MatOps, Matrix, PetscSession, Snes, SolveReport, VecOps, Vector};
 use mpi::collective::SystemOperation;
 use mpi::datatype::PartitionMut;
 use mpi::traits::*;
@@ -37,6 +36,11 @@ pub struct RunSummary {
     pub ranks: usize,
     /// Final nodal displacements (u_r, u_z) of every node, in model order.
     pub displacement: Vec<[f64; 2]>,
+    /// How many times the Jacobian's pattern was built (once per step, and again whenever
+    /// contact needed couplings outside it): each build costs MUMPS one symbolic analysis.
+    pub pattern_builds: usize,
+    /// Contact couplings (node pairs) the final pattern reserves.
+    pub reserved_couplings: usize,
 }
 
 /// Runs every step of `model` on the session's ranks, writing `options.output` as it goes.
@@ -54,8 +58,8 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
     }
     let mut displacement = vec![[0.0; 2]; nodes];
     let mut history = initial_history(model, &partition);
-    let mut multipliers = None;
-    let coupled = contact_nodes(model);
+    let mut carry = None;
+    let (mut pattern_builds, mut reserved_couplings) = (0usize, 0usize);
     let mut rows = Vec::new();
     let mut previous: Option<StepLoads> = None;
     for (s, step) in model.steps.iter().enumerate() {
@@ -64,14 +68,9 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
         let mut x = Vector::mpi(session, comm, dofs.local_len())?;
         let mut residual = x.duplicate()?;
         let mut correction = x.duplicate()?;
-        // Contact rows get room for 2 slave-side and ~10 master-side couplings (24 columns);
-        // should a coupling still not fit, PETSc allocates rather than fails.
-        let (diag, off) = dofs.preallocation(&model.mesh, &partition, &coupled, 24);
-        let mut jacobian = Matrix::aij(session, comm, dofs.local_len(), &diag, &off)?;
-        if !coupled.is_empty() {
-            jacobian.set_option(MatOption_MAT_NEW_NONZERO_ALLOCATION_ERR, false)?;
-        }
-        let mut problem = Problem::new(session, model, &partition, &dofs, &x, history, multipliers)?;
+        let mut problem = Problem::new(session, model, &partition, &dofs, &x, history, carry)?;
+        let mut jacobian = jacobian_matrix(session, model, &partition, &dofs, &problem)?;
+        pattern_builds += 1;
         let mut snes = Snes::new(session)?;
 
         let requested = 1.0 / step.increments as f64;
@@ -83,6 +82,13 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
             set_free_values(&mut x, &dofs, &partition, &displacement)?;
             if controls.predictor {
                 predict(&world, &mut snes, &mut problem, loads.at(model, lambda), &mut x, &mut residual, &mut jacobian, &mut correction)?;
+            }
+            // contact couplings found outside the pattern (by the predictor or the last
+            // attempt) were fitted in as they came; now the matrix is rebuilt with room for
+            // them and their halo, so the next factorisations reuse one symbolic analysis
+            if problem.contact.as_mut().is_some_and(|c| c.pattern_mut().synchronise(&world)) {
+                jacobian = jacobian_matrix(session, model, &partition, &dofs, &problem)?;
+                pattern_builds += 1;
             }
             // rtol 1e-10: with quadratic convergence it costs at most one iteration more than
             // PETSc's 1e-8; where round-off stops the residual first (a small increment, large
@@ -180,10 +186,27 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
                 size = done;
             }
         }
-        (history, multipliers) = problem.into_history();
+        (history, carry) = problem.into_history();
+        reserved_couplings = carry.as_ref().map_or(0, |c| c.pattern.len());
         previous = Some(loads);
     }
-    Ok(RunSummary { history: rows, wall_time: start.elapsed().as_secs_f64(), ranks: partition.size, displacement })
+    Ok(RunSummary { history: rows, wall_time: start.elapsed().as_secs_f64(), ranks: partition.size, displacement, pattern_builds, reserved_couplings })
+}
+
+/// The Jacobian's matrix for a step: exact preallocation for the elements and the reserved
+/// contact couplings, every entry stored (as a zero) in a first assembly so the pattern is
+/// complete before the first factorisation. A coupling outside it still fits (PETSc
+/// reallocates) and is reserved at the next rebuild.
+pub fn jacobian_matrix<'s>(session: &'s PetscSession, model: &Model, partition: &Partition, dofs: &DofMap, problem: &Problem<'_, '_>) -> Result<Matrix<'s>> {
+    let pairs: Vec<(usize, usize)> = problem.contact.as_ref().map(|c| c.pattern().pairs().collect()).unwrap_or_default();
+    let (diag, off) = dofs.preallocation(&model.mesh, partition, pairs.iter().copied());
+    let mut jacobian = Matrix::aij(session, session.comm(), dofs.local_len(), &diag, &off)?;
+    problem.insert_pattern(partition, &mut jacobian)?;
+    jacobian.assemble()?;
+    if problem.contact.is_some() {
+        jacobian.set_option(MatOption_MAT_NEW_NONZERO_ALLOCATION_ERR, false)?;
+    }
+    Ok(jacobian)
 }
 
 /// One attempt at an increment: a Newton solve and, for augmented-Lagrangian pairs, Uzawa
