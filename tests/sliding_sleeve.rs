@@ -84,3 +84,31 @@ fn frictionless_sliding_needs_no_axial_force_and_keeps_every_node_in_contact() {
         assert!((u[2 * top + 1] - 20.0).abs() < 0.01, "{}", u[2 * top + 1]);
     }
 }
+
+/// Count of a -log_view event's calls (the second column of its line).
+fn event_count(log: &str, event: &str) -> usize {
+    log.lines().find_map(|l| l.strip_prefix(event).filter(|r| r.starts_with(' ')).and_then(|r| r.split_whitespace().next()).and_then(|c| c.parse().ok())).unwrap_or_else(|| panic!("no {event} in -log_view:\n{log}"))
+}
+
+#[test]
+fn the_jacobian_pattern_grows_between_attempts_and_mumps_reuses_its_analysis_within_them() {
+    // 2 ranks, the slide finding new master edges every increment. Every symbolic analysis
+    // must be explained: a build of the matrix (its pattern grew) or an assembly that had to
+    // fit a coupling in (PETSc -info reports its mallocs); all other factorisations reuse it.
+    let run = run_deck(&deck("segment"), &[], 2, &["--", "-log_view", "-info", ":mat"]);
+    run.assert_ok();
+    let out = run.stdout();
+    let builds: usize = out
+        .lines()
+        .find_map(|l| l.strip_prefix("Jacobian pattern: built "))
+        .and_then(|r| r.split_whitespace().next())
+        .and_then(|n| n.parse().ok())
+        .unwrap_or_else(|| panic!("no pattern summary:\n{out}"));
+    let refits = out.lines().filter(|l| l.contains("Number of mallocs during MatSetValues() is") && !l.ends_with(" is 0")).count();
+    let symbolic = event_count(&out, "MatLUFactorSym");
+    let numeric = event_count(&out, "MatLUFactorNum");
+    eprintln!("{builds} builds, {refits} assemblies with mallocs, {symbolic} symbolic and {numeric} numeric factorisations");
+    assert!(symbolic <= builds + refits, "{symbolic} symbolic analyses for {builds} builds and {refits} refits");
+    assert!(refits <= 2, "couplings found mid-attempt should be rare: {refits}");
+    assert!(numeric >= 2 * symbolic, "too little reuse: {numeric} numeric for {symbolic} symbolic factorisations");
+}

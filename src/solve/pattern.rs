@@ -6,7 +6,8 @@
 //! MUMPS must redo its symbolic analysis because the pattern changed. So the pattern is kept
 //! as a set of node couplings: an engagement that needs one it lacks is recorded here (and
 //! fitted in by PETSc for the rest of that attempt), and before the next attempt the stepping
-//! loop asks [`ContactPattern::synchronise`] and, only when the pattern grew, rebuilds the
+//! loop asks [`ContactPattern::synchronise`] and, only when the pattern grew by a coupling of
+//! two nodes with free DOFs (one with every DOF prescribed adds no entry), rebuilds the
 //! matrix exactly preallocated with every reserved entry stored as a zero. Within an
 //! increment the pattern then holds and every factorisation after the first reuses MUMPS's
 //! symbolic analysis.
@@ -53,16 +54,17 @@ impl ContactPattern {
         self.covered.insert(nodes[0], fingerprint);
     }
 
-    /// Collective: every rank's pending couplings join the reserved ones on all ranks. True
-    /// when the pattern grew (then the matrix must be rebuilt).
-    pub fn synchronise(&mut self, world: &impl Communicator) -> bool {
+    /// Collective: every rank's pending couplings join the reserved ones on all ranks. Returns
+    /// the new ones (the same on every rank; the matrix needs rebuilding if any couples two
+    /// nodes with free DOFs).
+    pub fn synchronise(&mut self, world: &impl Communicator) -> Vec<(usize, usize)> {
         let local = self.take_pending();
         let count = local.len() as i32;
         let mut counts = vec![0i32; world.size() as usize];
         world.all_gather_into(&count, &mut counts[..]);
         let total: i32 = counts.iter().sum();
         if total == 0 {
-            return false;
+            return Vec::new();
         }
         let displs: Vec<i32> = counts.iter().scan(0, |s, &c| Some(std::mem::replace(s, *s + c))).collect();
         let mut all = vec![0u64; total as usize];
@@ -75,11 +77,9 @@ impl ContactPattern {
         std::mem::take(&mut self.pending).into_iter().flat_map(|(a, b)| [a as u64, b as u64]).collect()
     }
 
-    /// Reserves the flattened couplings `all`; true when any was new.
-    fn merge(&mut self, all: &[u64]) -> bool {
-        let before = self.reserved.len();
-        self.reserved.extend(all.chunks(2).map(|p| (p[0] as usize, p[1] as usize)));
-        self.reserved.len() > before
+    /// Reserves the flattened couplings `all`; returns those that were new.
+    fn merge(&mut self, all: &[u64]) -> Vec<(usize, usize)> {
+        all.chunks(2).map(|p| (p[0] as usize, p[1] as usize)).filter(|&pair| self.reserved.insert(pair)).collect()
     }
 
     /// The reserved couplings (a < b).
@@ -106,7 +106,7 @@ mod tests {
     use super::*;
 
     /// `synchronise` on one rank (the MPI exchange itself runs in the 2-rank contact tests).
-    fn synchronise_alone(p: &mut ContactPattern) -> bool {
+    fn synchronise_alone(p: &mut ContactPattern) -> Vec<(usize, usize)> {
         let local = p.take_pending();
         p.merge(&local)
     }
@@ -121,12 +121,12 @@ mod tests {
         // the same engagement again: nothing new, and no pair-by-pair check
         p.require(&[1, 110, 112, 111]);
         assert_eq!(p.pending.len(), 6);
-        assert!(synchronise_alone(&mut p));
+        assert_eq!(synchronise_alone(&mut p).len(), 6);
         assert_eq!((p.len(), p.pending.len()), (6, 0));
         // sliding onto the next edge needs only the couplings with its far nodes
         p.require(&[1, 112, 114, 113]);
         assert_eq!(p.pending.len(), 5, "(1, 113), (1, 114), (112, 113), (112, 114), (113, 114)");
-        assert!(synchronise_alone(&mut p));
-        assert!(!synchronise_alone(&mut p), "nothing new");
+        assert_eq!(synchronise_alone(&mut p).len(), 5);
+        assert!(synchronise_alone(&mut p).is_empty(), "nothing new");
     }
 }

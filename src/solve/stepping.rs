@@ -69,6 +69,10 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
         let mut residual = x.duplicate()?;
         let mut correction = x.duplicate()?;
         let mut problem = Problem::new(session, model, &partition, &dofs, &x, history, carry)?;
+        // the couplings the last step found in its last attempt are reserved now
+        if let Some(c) = problem.contact.as_mut() {
+            c.pattern_mut().synchronise(&world);
+        }
         let mut jacobian = jacobian_matrix(session, model, &partition, &dofs, &problem)?;
         pattern_builds += 1;
         let mut snes = Snes::new(session)?;
@@ -86,7 +90,9 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
             // contact couplings found outside the pattern (by the predictor or the last
             // attempt) were fitted in as they came; now the matrix is rebuilt with room for
             // them and their halo, so the next factorisations reuse one symbolic analysis
-            if problem.contact.as_mut().is_some_and(|c| c.pattern_mut().synchronise(&world)) {
+            let grown = problem.contact.as_mut().map(|c| c.pattern_mut().synchronise(&world)).unwrap_or_default();
+            let free = |n: usize| dofs.dof[n].iter().any(|&d| d >= 0);
+            if grown.iter().any(|&(a, b)| free(a) && free(b)) {
                 jacobian = jacobian_matrix(session, model, &partition, &dofs, &problem)?;
                 pattern_builds += 1;
             }
