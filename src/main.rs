@@ -479,10 +479,7 @@ fn print_summary(summary: &RunSummary) {
     };
     println!("done: {} increments in {:.2} s on {} rank(s)", summary.history.len(), summary.wall_time, summary.ranks);
     if summary.reserved_couplings > 0 {
-        println!(
-            "Jacobian pattern: built {} time(s), {} contact couplings reserved (each build is one symbolic factorisation)",
-            summary.pattern_builds, summary.reserved_couplings
-        );
+        println!("Jacobian pattern: {} contact couplings (node pairs) reserved by the end", summary.reserved_couplings);
     }
     if !last.reactions.is_empty() {
         println!("final reactions (N):            per radian                      full 360-degree ring");

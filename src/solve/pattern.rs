@@ -1,21 +1,19 @@
 //! The contact part of the Jacobian's sparsity pattern.
 //!
 //! Contact couples nodes no element couples, and which ones changes as contacts close and the
-//! bodies slide. A coupling outside the matrix's pattern costs twice: PETSc reallocates the
-//! whole matrix to fit it (AIJ storage is squeezed to the pattern at every assembly), and
-//! MUMPS must redo its symbolic analysis because the pattern changed. So the pattern is kept
-//! as a set of node couplings: an engagement that needs one it lacks is recorded here (and
-//! fitted in by PETSc for the rest of that attempt), and before the next attempt the stepping
-//! loop asks [`ContactPattern::synchronise`] and, only when the pattern grew by a coupling of
-//! two nodes with free DOFs (one with every DOF prescribed adds no entry), rebuilds the
-//! matrix exactly preallocated with every reserved entry stored as a zero. Within an
-//! increment the pattern then holds and every factorisation after the first reuses MUMPS's
-//! symbolic analysis.
+//! bodies slide. Each step's matrix is built exactly preallocated for the elements and every
+//! contact coupling found so far (on any rank: [`ContactPattern::synchronise`]), all stored as
+//! zeros before the first assembly, so the pattern is whole before MUMPS first analyses it. A
+//! coupling the pattern lacks is recorded here when an engagement needs it and fitted in by
+//! PETSc (a reallocation); it then stays in the matrix, and MUMPS redoes its symbolic analysis
+//! only on such a change: every other factorisation reuses it.
 //!
-//! Couplings are reserved as they are needed, with no halo of guessed ones: measured on the
-//! quick bellows, a halo of one master edge either way cut the rebuilds by a quarter but made
-//! each numeric factorisation half as dear again (every stored entry is fill for MUMPS,
-//! zero or not), a bad trade when a symbolic analysis costs less than one numeric one.
+//! Two ways of doing better were measured and dropped. Reserving a halo of master nodes around
+//! each new coupling (the sliding ahead) stored so many zeros that each numeric factorisation
+//! of the quick bellows cost half as much again, fill being fill for MUMPS. Rebuilding the
+//! matrix exactly before each attempt whose predecessor grew the pattern doubled the symbolic
+//! analyses (155 against 88 for 1413 factorisations on the default bellows): the attempt that
+//! finds a coupling has already paid one analysis for it.
 
 use mpi::datatype::PartitionMut;
 use mpi::traits::*;
@@ -55,8 +53,7 @@ impl ContactPattern {
     }
 
     /// Collective: every rank's pending couplings join the reserved ones on all ranks. Returns
-    /// the new ones (the same on every rank; the matrix needs rebuilding if any couples two
-    /// nodes with free DOFs).
+    /// the new ones (the same on every rank).
     pub fn synchronise(&mut self, world: &impl Communicator) -> Vec<(usize, usize)> {
         let local = self.take_pending();
         let count = local.len() as i32;

@@ -36,10 +36,7 @@ pub struct RunSummary {
     pub ranks: usize,
     /// Final nodal displacements (u_r, u_z) of every node, in model order.
     pub displacement: Vec<[f64; 2]>,
-    /// How many times the Jacobian's pattern was built (once per step, and again whenever
-    /// contact needed couplings outside it): each build costs MUMPS one symbolic analysis.
-    pub pattern_builds: usize,
-    /// Contact couplings (node pairs) the final pattern reserves.
+    /// Contact couplings (node pairs) the Jacobian's pattern held by the end.
     pub reserved_couplings: usize,
 }
 
@@ -59,7 +56,7 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
     let mut displacement = vec![[0.0; 2]; nodes];
     let mut history = initial_history(model, &partition);
     let mut carry = None;
-    let (mut pattern_builds, mut reserved_couplings) = (0usize, 0usize);
+    let mut reserved_couplings = 0usize;
     let mut rows = Vec::new();
     let mut previous: Option<StepLoads> = None;
     for (s, step) in model.steps.iter().enumerate() {
@@ -69,12 +66,11 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
         let mut residual = x.duplicate()?;
         let mut correction = x.duplicate()?;
         let mut problem = Problem::new(session, model, &partition, &dofs, &x, history, carry)?;
-        // the couplings the last step found in its last attempt are reserved now
+        // every contact coupling found so far, on any rank, is in the new step's pattern
         if let Some(c) = problem.contact.as_mut() {
             c.pattern_mut().synchronise(&world);
         }
         let mut jacobian = jacobian_matrix(session, model, &partition, &dofs, &problem)?;
-        pattern_builds += 1;
         let mut snes = Snes::new(session)?;
 
         let requested = 1.0 / step.increments as f64;
@@ -86,15 +82,6 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
             set_free_values(&mut x, &dofs, &partition, &displacement)?;
             if controls.predictor {
                 predict(&world, &mut snes, &mut problem, loads.at(model, lambda), &mut x, &mut residual, &mut jacobian, &mut correction)?;
-            }
-            // contact couplings found outside the pattern (by the predictor or the last
-            // attempt) were fitted in as they came; now the matrix is rebuilt with room for
-            // them and their halo, so the next factorisations reuse one symbolic analysis
-            let grown = problem.contact.as_mut().map(|c| c.pattern_mut().synchronise(&world)).unwrap_or_default();
-            let free = |n: usize| dofs.dof[n].iter().any(|&d| d >= 0);
-            if grown.iter().any(|&(a, b)| free(a) && free(b)) {
-                jacobian = jacobian_matrix(session, model, &partition, &dofs, &problem)?;
-                pattern_builds += 1;
             }
             // rtol 1e-10: with quadratic convergence it costs at most one iteration more than
             // PETSc's 1e-8; where round-off stops the residual first (a small increment, large
@@ -196,13 +183,13 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
         reserved_couplings = carry.as_ref().map_or(0, |c| c.pattern.len());
         previous = Some(loads);
     }
-    Ok(RunSummary { history: rows, wall_time: start.elapsed().as_secs_f64(), ranks: partition.size, displacement, pattern_builds, reserved_couplings })
+    Ok(RunSummary { history: rows, wall_time: start.elapsed().as_secs_f64(), ranks: partition.size, displacement, reserved_couplings })
 }
 
 /// The Jacobian's matrix for a step: exact preallocation for the elements and the reserved
 /// contact couplings, every entry stored (as a zero) in a first assembly so the pattern is
 /// complete before the first factorisation. A coupling outside it still fits (PETSc
-/// reallocates) and is reserved at the next rebuild.
+/// reallocates), stays in the matrix for the rest of the step and is reserved for the next.
 pub fn jacobian_matrix<'s>(session: &'s PetscSession, model: &Model, partition: &Partition, dofs: &DofMap, problem: &Problem<'_, '_>) -> Result<Matrix<'s>> {
     let pairs: Vec<(usize, usize)> = problem.contact.as_ref().map(|c| c.pattern().pairs().collect()).unwrap_or_default();
     let (diag, off) = dofs.preallocation(&model.mesh, partition, pairs.iter().copied());
