@@ -29,6 +29,8 @@ const FUNCTIONS: &[&str] = &[
     "VecCopy",
     "VecAXPY",
     "VecNorm",
+    "VecDot",
+    "VecWAXPY",
     "VecGetOwnershipRange",
     "VecGetLocalSize",
     "VecGetSize",
@@ -79,6 +81,20 @@ const FUNCTIONS: &[&str] = &[
     "SNESGetKSP",
     "SNESGetLineSearch",
     "SNESLineSearchSetType",
+    "SNESLineSearchShellSetUserFunc",
+    "SNESLineSearchGetVecs",
+    "SNESLineSearchGetSNES",
+    "SNESLineSearchGetLambda",
+    "SNESLineSearchSetLambda",
+    "SNESLineSearchGetTolerances",
+    "SNESLineSearchSetReason",
+    "SNESLineSearchPreCheck",
+    "SNESLineSearchPostCheck",
+    "SNESLineSearchComputeNorms",
+    "SNESLineSearchGetNorms",
+    "SNESSetConvergedReason",
+    "SNESComputeFunction",
+    "SNESGetFunctionDomainError",
     "SNESSetFromOptions",
     "SNESSetConvergenceHistory",
     "SNESGetConvergenceHistory",
@@ -118,9 +134,18 @@ fn main() {
     for f in FUNCTIONS {
         builder = builder.allowlist_function(f);
     }
-    for ty in
-        ["PetscBool", "NormType", "InsertMode", "ScatterMode", "MatAssemblyType", "MatOption", "SNESConvergedReason", "KSPConvergedReason", "PetscErrorType"]
-    {
+    for ty in [
+        "PetscBool",
+        "NormType",
+        "InsertMode",
+        "ScatterMode",
+        "MatAssemblyType",
+        "MatOption",
+        "SNESConvergedReason",
+        "KSPConvergedReason",
+        "PetscErrorType",
+        "SNESLineSearchReason",
+    ] {
         builder = builder.allowlist_type(ty);
     }
     for path in petsc.include_paths.iter().chain(mpi.include_paths.iter()) {

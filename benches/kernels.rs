@@ -77,7 +77,13 @@ fn contact(c: &mut Criterion) {
         });
         let all: Vec<usize> = (0..nodes).collect();
         g.bench_function(format!("segment-integrated gaps + gradients, {name} ({nodes} slave nodes)"), |b| {
-            b.iter(|| weighted_gaps(&slave, &master, &x, &x, black_box(&all), &|_| Vec::new(), 2.0).iter().flat_map(|w| &w.samples).map(|s| s.gradient()[0]).sum::<f64>())
+            b.iter(|| {
+                weighted_gaps(&slave, &master, &x, &x, black_box(&all), &|_| Vec::new(), 2.0)
+                    .iter()
+                    .flat_map(|w| &w.samples)
+                    .map(|s| s.gradient()[0])
+                    .sum::<f64>()
+            })
         });
         let gaps = weighted_gaps(&slave, &master, &x, &x, &all, &|_| Vec::new(), 2.0);
         g.bench_function(format!("segment-integrated Hessians, {name} ({nodes} slave nodes)"), |b| {

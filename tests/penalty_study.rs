@@ -52,7 +52,7 @@ fn shrink_fit_penetration_falls_as_the_penalty_rises() {
         // 10 x the penalty: about a tenth of the penetration
         assert!(w[1] < 0.2 * w[0] && w[1] > 0.05 * w[0], "{penetration:?}");
     }
-    assert!(summary(&study, "converged").iter().all(|&c| c == 1.0));
+    assert!(summary(&study, "converged").iter().all(|&c| c == 1.0), "{stdout}");
     assert!(stdout.contains("recommendation: penalty"), "{stdout}");
 }
 

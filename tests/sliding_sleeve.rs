@@ -87,7 +87,9 @@ fn frictionless_sliding_needs_no_axial_force_and_keeps_every_node_in_contact() {
 
 /// Count of a -log_view event's calls (the second column of its line).
 fn event_count(log: &str, event: &str) -> usize {
-    log.lines().find_map(|l| l.strip_prefix(event).filter(|r| r.starts_with(' ')).and_then(|r| r.split_whitespace().next()).and_then(|c| c.parse().ok())).unwrap_or_else(|| panic!("no {event} in -log_view:\n{log}"))
+    log.lines()
+        .find_map(|l| l.strip_prefix(event).filter(|r| r.starts_with(' ')).and_then(|r| r.split_whitespace().next()).and_then(|c| c.parse().ok()))
+        .unwrap_or_else(|| panic!("no {event} in -log_view:\n{log}"))
 }
 
 #[test]

@@ -11,6 +11,7 @@
 
 pub mod sys;
 
+mod linesearch;
 mod log;
 mod matrix;
 mod partition;

@@ -6,7 +6,7 @@
 //! by [`Snes::solve`]. The outcome of every callback is agreed across ranks (MPI max) so a
 //! failure on one rank makes all ranks take the same path instead of deadlocking.
 
-use super::{check, sys, Comm, MatOps, Matrix, MatrixView, PetscSession, SessionBorrow, VecOps, Vector, VectorView};
+use super::{check, linesearch, sys, Comm, MatOps, Matrix, MatrixView, PetscSession, SessionBorrow, VecOps, Vector, VectorView};
 use crate::error::{Error, Result};
 use mpi::collective::SystemOperation;
 use mpi::topology::SimpleCommunicator;
@@ -124,8 +124,9 @@ impl<'s> Snes<'s> {
             // l2 41, bt fails (the plastic tangent is E/H = 200 times softer than the elastic
             // one, so ||F||_2 is a poor merit function for Armijo); heated, pushed plastic ring
             // cp 25, l2 27, bt 45, basic 186 / 4; Hertz contact cp 30, basic 30, l2 44,
-            // bt 143 / 4. -snes_linesearch_type overrides.
-            check(sys::SNESLineSearchSetType(ls, c"cp".as_ptr()), "SNESLineSearchSetType")?;
+            // bt 143 / 4. slideline's shell is cp without its second residual when the secant
+            // keeps the full step (see linesearch.rs). -snes_linesearch_type overrides.
+            check(linesearch::install(ls), "SNESLineSearchSetType (shell)")?;
             check(
                 sys::SNESSetConvergenceHistory(
                     self.raw,
@@ -336,6 +337,12 @@ unsafe extern "C" fn convergence_trampoline<P: NonlinearProblem>(
     unsafe {
         if it == 0 {
             ctx.first_norm = fnorm;
+            // an increment that adds nothing above round-off (a load held, a step repeated)
+            // starts converged; Newton from there only wanders in the round-off (the relative
+            // guard below could never be met with F_0 itself at the floor)
+            if *reason == sys::SNESConvergedReason_SNES_CONVERGED_ITERATING && fnorm <= global.sqrt() {
+                *reason = sys::SNESConvergedReason_SNES_CONVERGED_FNORM_ABS;
+            }
         } else if *reason == sys::SNESConvergedReason_SNES_CONVERGED_ITERATING {
             // the floor grows with the displacements: a runaway iterate must not pass for one
             // at round-off, hence the relative guard

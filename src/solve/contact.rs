@@ -375,7 +375,8 @@ impl<'s> ContactAssembly<'s> {
             let xs = x(slave.nodes[g.index]);
             self.roundoff += (ROUNDOFF_ULPS * f64::EPSILON * pass.weight * eps * area * xs[0].hypot(xs[1])).powi(2);
             let residual = gradient.iter().map(|v| -pass.weight * pressure * v).collect();
-            let recipe = TangentRecipe::Integrated { samples: g.samples, gradient, stiffness: pass.weight * eps / area, weighted_pressure: pass.weight * pressure };
+            let recipe =
+                TangentRecipe::Integrated { samples: g.samples, gradient, stiffness: pass.weight * eps / area, weighted_pressure: pass.weight * pressure };
             out.push(Engagement { nodes, residual, tangent: Vec::new(), recipe });
         }
     }
