@@ -39,7 +39,7 @@ fn kernels(c: &mut Criterion) {
 
 fn contact(c: &mut Criterion) {
     use slideline::contact::integrated::weighted_gaps;
-    use slideline::contact::node_to_edge::{edge_residual_and_tangent, project_on_edge};
+    use slideline::contact::node_to_edge::{edge_residual_and_tangent, project_on_edge, ContactLaw};
     use slideline::contact::search::{closest_edge, EdgeGrid};
     use slideline::contact::surface::ContactSurface;
     use slideline::model::bellows::{mesh, BellowsParams};
@@ -55,7 +55,8 @@ fn contact(c: &mut Criterion) {
     g.bench_function("projection on a quadratic edge", |b| b.iter(|| project_on_edge(black_box(xs), &edge).unwrap()));
     let proj = project_on_edge(xs, &edge).unwrap();
     g.bench_function("slave node residual + tangent (dual)", |b| {
-        b.iter(|| edge_residual_and_tangent(black_box(xs), &edge, &proj, 2.0, 1e4, 0.0, [false, false]))
+        let law = ContactLaw { area: 2.0, penalty: 1e4, multiplier: 0.0, free_ends: [false, false] };
+        b.iter(|| edge_residual_and_tangent(black_box(xs), &edge, &proj, &law))
     });
     g.finish();
 

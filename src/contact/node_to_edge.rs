@@ -100,8 +100,8 @@ pub fn project_on_edge(xs: [f64; 2], x: &[[f64; 2]; 3]) -> Option<EdgeProjection
 
 /// Residual f = -p A [n, -N_k n] of the slave node at `xs` on the edge `x`, with `xi` the
 /// converged projection; generic so the dual version gives the tangent.
-#[allow(clippy::too_many_arguments)]
-fn residual<T: Scalar>(xs: &[T; 2], x: &[[T; 2]; 3], xi_converged: f64, area: f64, penalty: f64, multiplier: f64, free_ends: [bool; 2]) -> [T; 8] {
+fn residual<T: Scalar>(xs: &[T; 2], x: &[[T; 2]; 3], xi_converged: f64, law: &ContactLaw) -> [T; 8] {
+    let ContactLaw { area, penalty, multiplier, free_ends } = *law;
     // one Newton step of the projection at the converged xi: value unchanged, derivative
     // -r_x / r_xi by the implicit function theorem
     let xi0 = T::from_f64(xi_converged);
@@ -149,26 +149,36 @@ fn end_taper<T: Scalar>(xi: T, free_ends: [bool; 2]) -> T {
     }
 }
 
-/// Residual, tangent and contact pressure of one slave node on one master edge, for
-/// tributary area `area`, penalty `penalty` (pressure per unit penetration) and multiplier
-/// `multiplier`. All zero when the contact is open (lambda - eps g < 0); closed at zero gap.
-pub fn edge_residual_and_tangent(
-    xs: [f64; 2],
-    x: &[[f64; 2]; 3],
-    proj: &EdgeProjection,
-    area: f64,
-    penalty: f64,
-    multiplier: f64,
-    free_ends: [bool; 2],
-) -> (EdgeVector, EdgeMatrix, f64) {
-    if multiplier - penalty * proj.gap < 0.0 {
-        return (EdgeVector::zeros(), EdgeMatrix::zeros(), 0.0);
+/// The contact law of one slave node: its tributary area, the penalty (pressure per unit
+/// penetration), the augmented-Lagrangian multiplier, and which ends of the master surface are
+/// free (the force tapers off past them).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ContactLaw {
+    pub area: f64,
+    pub penalty: f64,
+    pub multiplier: f64,
+    pub free_ends: [bool; 2],
+}
+
+impl ContactLaw {
+    /// The contact pressure at `proj`, None when the contact is open (lambda - eps g < 0;
+    /// closed at zero gap).
+    fn pressure(&self, proj: &EdgeProjection) -> Option<f64> {
+        let trial = self.multiplier - self.penalty * proj.gap;
+        (trial >= 0.0).then(|| trial * end_taper(proj.xi, self.free_ends))
     }
-    let pressure = (multiplier - penalty * proj.gap) * end_taper(proj.xi, free_ends);
+}
+
+/// Residual, tangent and contact pressure of one slave node on one master edge; all zero
+/// when the contact is open.
+pub fn edge_residual_and_tangent(xs: [f64; 2], x: &[[f64; 2]; 3], proj: &EdgeProjection, law: &ContactLaw) -> (EdgeVector, EdgeMatrix, f64) {
+    let Some(pressure) = law.pressure(proj) else {
+        return (EdgeVector::zeros(), EdgeMatrix::zeros(), 0.0);
+    };
     let v = |k: usize, c: usize| Dual::<8>::variable(if k == 0 { xs[c] } else { x[k - 1][c] }, 2 * k + c);
     let xs_d = [v(0, 0), v(0, 1)];
     let x_d = [[v(1, 0), v(1, 1)], [v(2, 0), v(2, 1)], [v(3, 0), v(3, 1)]];
-    let f = residual(&xs_d, &x_d, proj.xi, area, penalty, multiplier, free_ends);
+    let f = residual(&xs_d, &x_d, proj.xi, law);
     let force = EdgeVector::from_fn(|i, _| f[i].re);
     let tangent = EdgeMatrix::from_fn(|i, j| f[i].eps[j]);
     (force, tangent, pressure)
@@ -176,20 +186,11 @@ pub fn edge_residual_and_tangent(
 
 /// The residual and contact pressure of [`edge_residual_and_tangent`] without the tangent
 /// (residual-only evaluations: the line search's).
-pub fn edge_residual(
-    xs: [f64; 2],
-    x: &[[f64; 2]; 3],
-    proj: &EdgeProjection,
-    area: f64,
-    penalty: f64,
-    multiplier: f64,
-    free_ends: [bool; 2],
-) -> (EdgeVector, f64) {
-    if multiplier - penalty * proj.gap < 0.0 {
-        return (EdgeVector::zeros(), 0.0);
+pub fn edge_residual(xs: [f64; 2], x: &[[f64; 2]; 3], proj: &EdgeProjection, law: &ContactLaw) -> (EdgeVector, f64) {
+    match law.pressure(proj) {
+        Some(pressure) => (EdgeVector::from(residual(&xs, x, proj.xi, law)), pressure),
+        None => (EdgeVector::zeros(), 0.0),
     }
-    let pressure = (multiplier - penalty * proj.gap) * end_taper(proj.xi, free_ends);
-    (EdgeVector::from(residual(&xs, x, proj.xi, area, penalty, multiplier, free_ends)), pressure)
 }
 
 /// Shape functions of the master edge at the projection (reaction weights).
@@ -210,7 +211,7 @@ mod tests {
         let xs = [v[0], v[1]];
         let x = [[v[2], v[3]], [v[4], v[5]], [v[6], v[7]]];
         let p = project_on_edge(xs, &x).unwrap();
-        edge_residual_and_tangent(xs, &x, &p, area, eps, lambda, FREE)
+        edge_residual_and_tangent(xs, &x, &p, &ContactLaw { area, penalty: eps, multiplier: lambda, free_ends: FREE })
     }
 
     /// Both ends of the test edges are free (the taper acts past them).
@@ -259,8 +260,9 @@ mod tests {
         for xs in [[20.9, 3.8], [22.05, 4.35], [20.9, 3.4]] {
             let p = project_on_edge(xs, &x).unwrap();
             for lambda in [0.0, 40.0] {
-                let (f, _, pressure) = edge_residual_and_tangent(xs, &x, &p, 0.8, 3e4, lambda, FREE);
-                let (g, q) = edge_residual(xs, &x, &p, 0.8, 3e4, lambda, FREE);
+                let law = ContactLaw { area: 0.8, penalty: 3e4, multiplier: lambda, free_ends: FREE };
+                let (f, _, pressure) = edge_residual_and_tangent(xs, &x, &p, &law);
+                let (g, q) = edge_residual(xs, &x, &p, &law);
                 assert_eq!(pressure, q);
                 assert!((f - g).abs().max() <= 1e-14 * f.abs().max().max(1.0), "{xs:?}: {f} vs {g}");
             }
@@ -310,7 +312,7 @@ mod tests {
         let q = slideline::project(xs, x1, x2).unwrap();
         assert!((p.gap - q.gap).abs() < 1e-14 && ((1.0 + p.xi) / 2.0 - q.a).abs() < 1e-14);
         let (area, eps) = (0.7, 2e4);
-        let (f8, k8, p8) = edge_residual_and_tangent(xs, &x, &p, area, eps, 0.0, [false, false]);
+        let (f8, k8, p8) = edge_residual_and_tangent(xs, &x, &p, &ContactLaw { area, penalty: eps, multiplier: 0.0, free_ends: [false, false] });
         let (f6, k6, p6) = slideline::residual_and_tangent(&q, area, eps, 0.0);
         assert!((p8 - p6).abs() < 1e-12 * p6);
         let mut tie = SMatrix::<f64, 8, 6>::zeros();

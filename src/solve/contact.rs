@@ -10,7 +10,7 @@
 use super::pattern::ContactPattern;
 use super::problem::ROUNDOFF_ULPS;
 use crate::contact::integrated::{weighted_gaps, GapSample};
-use crate::contact::node_to_edge::{edge_residual, edge_residual_and_tangent, EdgeProjection};
+use crate::contact::node_to_edge::{edge_residual, edge_residual_and_tangent, ContactLaw, EdgeProjection};
 use crate::contact::search::{closest_edge, EdgeGrid};
 use crate::contact::surface::ContactSurface;
 use crate::dist::{DofMap, Partition};
@@ -58,7 +58,7 @@ pub struct Engagement {
 
 enum TangentRecipe {
     /// Node-to-segment: the kernel's arguments.
-    Nodal { xs: [f64; 2], master: [[f64; 2]; 3], projection: EdgeProjection, area: f64, penalty: f64, multiplier: f64, free_ends: [bool; 2] },
+    Nodal { xs: [f64; 2], master: [[f64; 2]; 3], projection: EdgeProjection, law: ContactLaw },
     /// Segment integration: K = stiffness dg dg^T - weighted_pressure d2g, with dg (`gradient`,
     /// over the engagement's nodes) and d2g the sums over the node's integration points.
     Integrated { samples: Vec<GapSample>, gradient: Vec<f64>, stiffness: f64, weighted_pressure: f64 },
@@ -311,7 +311,8 @@ impl<'s> ContactAssembly<'s> {
             let en = master.edges[edge];
             let free_ends = master.neighbours[edge].map(|n| n.is_none());
             let multiplier = self.current[p][k];
-            let (residual, pressure) = edge_residual(xs, &en.map(x), &proj, area, eps, multiplier, free_ends);
+            let law = ContactLaw { area, penalty: eps, multiplier, free_ends };
+            let (residual, pressure) = edge_residual(xs, &en.map(x), &proj, &law);
             self.states[p][k] = SlaveState { gap: proj.gap, pressure, force: pressure * area, traction: 0.0 };
             if multiplier - eps * proj.gap >= 0.0 {
                 self.roundoff += (ROUNDOFF_ULPS * f64::EPSILON * eps * area * xs[0].hypot(xs[1])).powi(2);
@@ -319,7 +320,7 @@ impl<'s> ContactAssembly<'s> {
                     nodes: vec![node, en[0], en[1], en[2]],
                     residual: residual.as_slice().to_vec(),
                     tangent: Vec::new(),
-                    recipe: TangentRecipe::Nodal { xs, master: en.map(x), projection: proj, area, penalty: eps, multiplier, free_ends },
+                    recipe: TangentRecipe::Nodal { xs, master: en.map(x), projection: proj, law },
                 });
             }
         }
@@ -525,8 +526,8 @@ fn position_in(nodes: &[usize], n: usize) -> usize {
 /// The tangent (row-major over `nodes`) an engagement's recipe gives at positions `x`.
 fn tangent(recipe: &TangentRecipe, nodes: &[usize], x: &impl Fn(usize) -> [f64; 2]) -> Vec<f64> {
     match recipe {
-        TangentRecipe::Nodal { xs, master, projection, area, penalty, multiplier, free_ends } => {
-            let (_, k, _) = edge_residual_and_tangent(*xs, master, projection, *area, *penalty, *multiplier, *free_ends);
+        TangentRecipe::Nodal { xs, master, projection, law } => {
+            let (_, k, _) = edge_residual_and_tangent(*xs, master, projection, law);
             k.transpose().as_slice().to_vec()
         }
         TangentRecipe::Integrated { samples, gradient, stiffness, weighted_pressure } => {
