@@ -19,7 +19,7 @@ use crate::model::{ContactIntegration, ContactPair, Model, Penalty};
 use crate::petsc::sys::PetscInt;
 use crate::petsc::{PetscSession, Scatter, VecOps, Vector};
 
-/// Mesh nodes of every contact surface of the model (sorted): the rows contact may couple.
+/// Mesh nodes of every contact surface of the model (sorted).
 pub fn contact_nodes(model: &Model) -> Vec<usize> {
     let mut nodes: Vec<usize> =
         model.contacts.iter().flat_map(|c| [&c.slave, &c.master]).flat_map(|s| model.surfaces[s].iter().flat_map(|&e| model.mesh.edge_nodes(e))).collect();
@@ -209,11 +209,6 @@ impl<'s> ContactAssembly<'s> {
             with_tangents: false,
             pattern,
         }))
-    }
-
-    /// Mesh nodes that may couple through contact (for preallocation).
-    pub fn nodes(&self) -> &[usize] {
-        &self.nodes
     }
 
     /// Refreshes the current positions of all contact nodes from `x` and the prescribed values.
