@@ -52,6 +52,7 @@ const FUNCTIONS: &[&str] = &[
     "VecScatterDestroy",
     // matrices and partitioning
     "MatCreateAIJ",
+    "MatXAIJSetPreallocation",
     "MatDestroy",
     "MatSetOption",
     "MatSetValues",

@@ -10,7 +10,6 @@ use slideline::petsc::{PetscSession, VecOps, Vector};
 use slideline::solve::contact::contact_nodes;
 use slideline::solve::problem::{initial_history, Problem};
 use slideline::solve::schedule::StepLoads;
-use slideline::solve::stepping::jacobian_matrix;
 
 fn assembly(c: &mut Criterion) {
     let session = PetscSession::initialize(&[]).expect("PETSc");
@@ -28,10 +27,8 @@ fn assembly(c: &mut Criterion) {
     let mut problem = Problem::new(&session, &m, &partition, &dofs, &xa, initial_history(&m, &partition), None).expect("problem");
     problem.load = loads.at(&m, 1.0);
     // the matrix as the stepping loop makes it, with the contact couplings of this state reserved
-    let mut jacobian = jacobian_matrix(&session, &m, &partition, &dofs, &problem).expect("matrix");
+    let mut jacobian = problem.jacobian_matrix().expect("matrix");
     problem.assemble_jacobian(&xa, &mut jacobian).expect("jacobian");
-    problem.contact.as_mut().expect("contact").pattern_mut().synchronise(&session.world());
-    let mut jacobian = jacobian_matrix(&session, &m, &partition, &dofs, &problem).expect("matrix");
 
     let mut g = c.benchmark_group("bellows assembly (1 rank)");
     g.throughput(Throughput::Elements(m.mesh.elements.len() as u64));

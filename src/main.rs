@@ -479,7 +479,10 @@ fn print_summary(summary: &RunSummary) {
     };
     println!("done: {} increments in {:.2} s on {} rank(s)", summary.history.len(), summary.wall_time, summary.ranks);
     if summary.reserved_couplings > 0 {
-        println!("Jacobian pattern: {} contact couplings (node pairs) reserved by the end", summary.reserved_couplings);
+        println!(
+            "Jacobian pattern: {} contact couplings (node pairs) reserved by the end; matrix refitted in place {} time(s)",
+            summary.reserved_couplings, summary.pattern_refits
+        );
     }
     if !last.reactions.is_empty() {
         println!("final reactions (N):            per radian                      full 360-degree ring");

@@ -34,6 +34,26 @@ pub trait MatOps {
         )
     }
 
+    /// Collective: replaces the nonzero structure by room for exactly `diag_nnz[i]` /
+    /// `offdiag_nnz[i]` entries in local row i (diagonal / off-diagonal block); the values are
+    /// lost, and the next assembly fixes the new pattern (PETSc then sees a new nonzero state,
+    /// so a factorisation redoes its symbolic analysis).
+    fn preallocate(&mut self, diag_nnz: &[sys::PetscInt], offdiag_nnz: &[sys::PetscInt]) -> Result<()> {
+        assert_eq!(diag_nnz.len(), offdiag_nnz.len(), "one count of each kind per local row");
+        // SAFETY: count arrays of the local row count, copied by PETSc; no upper-triangular
+        // counts (NULL) for AIJ.
+        check(
+            unsafe { sys::MatXAIJSetPreallocation(self.raw(), 1, diag_nnz.as_ptr(), offdiag_nnz.as_ptr(), std::ptr::null(), std::ptr::null()) },
+            "MatXAIJSetPreallocation",
+        )
+    }
+
+    fn set_option(&mut self, option: sys::MatOption, value: bool) -> Result<()> {
+        let flag = if value { sys::PetscBool_PETSC_TRUE } else { sys::PetscBool_PETSC_FALSE };
+        // SAFETY: valid handle.
+        check(unsafe { sys::MatSetOption(self.raw(), option, flag) }, "MatSetOption")
+    }
+
     /// Collective: communicates stashed off-rank entries and finishes assembly.
     fn assemble(&mut self) -> Result<()> {
         // SAFETY: valid handle; Begin/End paired.
@@ -63,12 +83,6 @@ impl<'s> Matrix<'s> {
         let mut mat = Matrix { raw, _session: PhantomData };
         mat.set_option(sys::MatOption_MAT_NEW_NONZERO_ALLOCATION_ERR, true)?;
         Ok(mat)
-    }
-
-    pub fn set_option(&mut self, option: sys::MatOption, value: bool) -> Result<()> {
-        let flag = if value { sys::PetscBool_PETSC_TRUE } else { sys::PetscBool_PETSC_FALSE };
-        // SAFETY: valid handle.
-        check(unsafe { sys::MatSetOption(self.raw, option, flag) }, "MatSetOption")
     }
 }
 

@@ -1,19 +1,21 @@
 //! The contact part of the Jacobian's sparsity pattern.
 //!
 //! Contact couples nodes no element couples, and which ones changes as contacts close and the
-//! bodies slide. Each step's matrix is built exactly preallocated for the elements and every
-//! contact coupling found so far (on any rank: [`ContactPattern::synchronise`]), all stored as
-//! zeros before the first assembly, so the pattern is whole before MUMPS first analyses it. A
-//! coupling the pattern lacks is recorded here when an engagement needs it and fitted in by
-//! PETSc (a reallocation); it then stays in the matrix, and MUMPS redoes its symbolic analysis
-//! only on such a change: every other factorisation reuses it.
+//! bodies slide. A coupling outside an AIJ matrix's pattern is expensive: PETSc squeezes the
+//! storage to the pattern at every assembly, so each row that takes a new entry reallocates the
+//! whole matrix (8 % of a quick bellows run went to those copies). So the couplings are kept
+//! here, replicated on every rank: each step's matrix is built exactly preallocated for the
+//! elements and every coupling found so far, all stored as zeros before the first assembly; and
+//! when a Jacobian's contact engagements need couplings the pattern lacks, the matrix is refitted
+//! in place before any value is added (`Problem::fit_pattern`: [`ContactPattern::synchronise`],
+//! then exact re-preallocation). MUMPS redoes its symbolic analysis after a build or a refit
+//! only; every other factorisation reuses it.
 //!
 //! Two ways of doing better were measured and dropped. Reserving a halo of master nodes around
 //! each new coupling (the sliding ahead) stored so many zeros that each numeric factorisation
-//! of the quick bellows cost half as much again, fill being fill for MUMPS. Rebuilding the
-//! matrix exactly before each attempt whose predecessor grew the pattern doubled the symbolic
-//! analyses (155 against 88 for 1413 factorisations on the default bellows): the attempt that
-//! finds a coupling has already paid one analysis for it.
+//! of the quick bellows cost half as much again, fill being fill for MUMPS. Building a new matrix
+//! before each attempt whose predecessor grew the pattern doubled the symbolic analyses (155
+//! against 84 for 1413 factorisations on the default bellows).
 
 use mpi::datatype::PartitionMut;
 use mpi::traits::*;
@@ -29,6 +31,8 @@ pub struct ContactPattern {
     /// Slave node -> fingerprint of the node list last found covered: an engagement that
     /// couples the same nodes as last time needs no pair-by-pair check.
     covered: HashMap<usize, u64>,
+    /// How many times a matrix was refitted in place for new couplings.
+    pub refits: usize,
 }
 
 impl ContactPattern {

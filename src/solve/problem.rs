@@ -14,8 +14,9 @@ use crate::error::{Error, Result};
 use crate::fe::shape::edge_nodes;
 use crate::material::{Kinematics, PointState, J2};
 use crate::model::{Material, Model};
+use crate::petsc::sys::MatOption_MAT_NEW_NONZERO_ALLOCATION_ERR;
 use crate::petsc::sys::PetscInt;
-use crate::petsc::{LogStage, MatOps, MatrixView, NonlinearProblem, PetscSession, Scatter, VecOps, Vector, VectorView};
+use crate::petsc::{LogStage, MatOps, Matrix, MatrixView, NonlinearProblem, PetscSession, Scatter, VecOps, Vector, VectorView};
 
 /// Round-off allowance per assembled contribution, in units in the last place: the floor
 /// estimate ignores the linear solve's own error and the sums inside each kernel, so it is
@@ -91,8 +92,10 @@ pub struct Problem<'s, 'm> {
     surface_edges: Vec<(String, Vec<(usize, usize)>)>,
     gathered: Vector<'s>,
     scatter: Scatter<'s>,
-    /// Global unknown of every (node, component), -1 where prescribed.
-    dof: Vec<[PetscInt; 2]>,
+    session: &'s PetscSession,
+    partition: Partition,
+    /// The step's numbering: global unknown of every (node, component), -1 where prescribed.
+    dofs: DofMap,
     committed: History,
     trial: History,
     /// Round-off floor (squared, this rank) of the last residual.
@@ -174,7 +177,9 @@ impl<'s, 'm> Problem<'s, 'm> {
             surface_edges,
             gathered,
             scatter,
-            dof: dofs.dof.clone(),
+            session,
+            partition: partition.clone(),
+            dofs: dofs.clone(),
             committed: history,
             trial,
             roundoff: 0.0,
@@ -206,10 +211,25 @@ impl<'s, 'm> Problem<'s, 'm> {
         (self.committed, self.contact.map(|c| c.into_carry()))
     }
 
-    /// Stores a zero at every entry the Jacobian will hold: this rank's element blocks and the
-    /// reserved contact couplings of the nodes it owns (the pattern is replicated). Called on a
-    /// new matrix before its first assembly, so that assembly fixes the whole pattern.
-    pub fn insert_pattern(&self, partition: &Partition, jacobian: &mut impl MatOps) -> Result<()> {
+    /// A new matrix for this step's Jacobian, its pattern complete (see [`Problem::fit_pattern`]).
+    pub fn jacobian_matrix(&self) -> Result<Matrix<'s>> {
+        let (diag, off) = self.preallocation();
+        let mut jacobian = Matrix::aij(self.session, self.session.comm(), self.dofs.local_len(), &diag, &off)?;
+        self.store_pattern(&mut jacobian)?;
+        Ok(jacobian)
+    }
+
+    /// Exact nonzero counts of this rank's rows: the elements and the reserved contact couplings.
+    fn preallocation(&self) -> (Vec<PetscInt>, Vec<PetscInt>) {
+        let pairs: Vec<(usize, usize)> = self.contact.as_ref().map(|c| c.pattern().pairs().collect()).unwrap_or_default();
+        self.dofs.preallocation(&self.model.mesh, &self.partition, pairs)
+    }
+
+    /// Stores a zero at every entry the Jacobian will hold (this rank's element blocks and the
+    /// reserved contact couplings of the nodes it owns; the pattern is replicated) and
+    /// assembles, so the pattern is whole before the first factorisation. A coupling outside
+    /// it would still fit (PETSc reallocates) rather than fail.
+    fn store_pattern(&self, jacobian: &mut impl MatOps) -> Result<()> {
         let zeros = [0.0; DOFS * DOFS];
         for el in &self.elements {
             jacobian.add_block(&el.dofs, &el.dofs, &zeros)?;
@@ -217,11 +237,36 @@ impl<'s, 'm> Problem<'s, 'm> {
         if let Some(contact) = self.contact.as_ref() {
             for (a, b) in contact.pattern().pairs() {
                 for (row, col) in [(a, b), (b, a)] {
-                    if partition.node_owner[row] == partition.rank {
-                        jacobian.add_block(&self.dof[row], &self.dof[col], &[0.0; 4])?;
+                    if self.partition.node_owner[row] == self.partition.rank {
+                        jacobian.add_block(&self.dofs.dof[row], &self.dofs.dof[col], &[0.0; 4])?;
                     }
                 }
             }
+        }
+        jacobian.assemble()?;
+        if self.contact.is_some() {
+            jacobian.set_option(MatOption_MAT_NEW_NONZERO_ALLOCATION_ERR, false)?;
+        }
+        Ok(())
+    }
+
+    /// Collective, before any value of a Jacobian is added: evaluates contact with tangents,
+    /// and when an engagement on any rank couples two nodes with free DOFs that the pattern
+    /// lacks, gives `jacobian` room for them in place (exact preallocation, the whole pattern
+    /// stored), instead of letting PETSc reallocate the whole matrix once per row that
+    /// overflows. The matrix keeps its identity, so SNES and the KSP keep theirs; its nonzero
+    /// state changes, so MUMPS redoes its symbolic analysis once.
+    fn fit_pattern(&mut self, jacobian: &mut impl MatOps) -> Result<()> {
+        let Some(contact) = self.contact.as_mut() else { return Ok(()) };
+        let stage = self.stages.contact;
+        stage.run(|| contact.evaluate(self.model, Need::Tangent))?;
+        let grown = contact.pattern_mut().synchronise(&self.session.world());
+        let free = |n: usize| self.dofs.dof[n].iter().any(|&d| d >= 0);
+        if grown.iter().any(|&(a, b)| free(a) && free(b)) {
+            contact.pattern_mut().refits += 1;
+            let (diag, off) = self.preallocation();
+            jacobian.preallocate(&diag, &off)?;
+            self.store_pattern(jacobian)?;
         }
         Ok(())
     }
@@ -354,7 +399,7 @@ impl Problem<'_, '_> {
         f.set_all(0.0)?;
         let mut rows: Vec<PetscInt> = Vec::with_capacity(DOFS * self.elements.len());
         let mut values: Vec<f64> = Vec::with_capacity(DOFS * self.elements.len());
-        let dof = std::mem::take(&mut self.dof);
+        let dof = std::mem::take(&mut self.dofs.dof);
         let result = self.residual_entries(
             &gathered,
             |_, _| {},
@@ -365,7 +410,7 @@ impl Problem<'_, '_> {
                 }
             },
         );
-        self.dof = dof;
+        self.dofs.dof = dof;
         // Assembly is collective: a rank whose evaluation failed (an inverted element) still
         // takes part, with nothing to add, and reports the failure afterwards; returning
         // before it would leave the other ranks waiting in VecAssembly.
@@ -381,6 +426,7 @@ impl Problem<'_, '_> {
         let stage = self.stages.jacobian;
         stage.run(|| {
             let gathered = self.gather(x)?;
+            self.fit_pattern(jacobian)?;
             jacobian.zero_entries()?;
             let result = self.add_tangents(&gathered, jacobian);
             // collective, whatever happened on this rank (see `residual`)

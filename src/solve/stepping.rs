@@ -14,8 +14,7 @@ use crate::dist::{DofMap, Partition};
 use crate::error::{Error, Result};
 use crate::io::{ContactSummary, HistoryRow, IncrementFields, ResultsFile};
 use crate::model::Model;
-use crate::petsc::sys::MatOption_MAT_NEW_NONZERO_ALLOCATION_ERR;
-use crate::petsc::{MatOps, Matrix, PetscSession, Snes, SolveReport, VecOps, Vector};
+use crate::petsc::{Matrix, PetscSession, Snes, SolveReport, VecOps, Vector};
 use mpi::collective::SystemOperation;
 use mpi::datatype::PartitionMut;
 use mpi::traits::*;
@@ -38,6 +37,8 @@ pub struct RunSummary {
     pub displacement: Vec<[f64; 2]>,
     /// Contact couplings (node pairs) the Jacobian's pattern held by the end.
     pub reserved_couplings: usize,
+    /// How many times a step's matrix was given room for new contact couplings in place.
+    pub pattern_refits: usize,
 }
 
 /// Runs every step of `model` on the session's ranks, writing `options.output` as it goes.
@@ -56,7 +57,7 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
     let mut displacement = vec![[0.0; 2]; nodes];
     let mut history = initial_history(model, &partition);
     let mut carry = None;
-    let mut reserved_couplings = 0usize;
+    let (mut reserved_couplings, mut pattern_refits) = (0usize, 0usize);
     let mut rows = Vec::new();
     let mut previous: Option<StepLoads> = None;
     for (s, step) in model.steps.iter().enumerate() {
@@ -70,7 +71,7 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
         if let Some(c) = problem.contact.as_mut() {
             c.pattern_mut().synchronise(&world);
         }
-        let mut jacobian = jacobian_matrix(session, model, &partition, &dofs, &problem)?;
+        let mut jacobian = problem.jacobian_matrix()?;
         let mut snes = Snes::new(session)?;
 
         let requested = 1.0 / step.increments as f64;
@@ -180,26 +181,10 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
             }
         }
         (history, carry) = problem.into_history();
-        reserved_couplings = carry.as_ref().map_or(0, |c| c.pattern.len());
+        (reserved_couplings, pattern_refits) = carry.as_ref().map_or((0, 0), |c| (c.pattern.len(), c.pattern.refits));
         previous = Some(loads);
     }
-    Ok(RunSummary { history: rows, wall_time: start.elapsed().as_secs_f64(), ranks: partition.size, displacement, reserved_couplings })
-}
-
-/// The Jacobian's matrix for a step: exact preallocation for the elements and the reserved
-/// contact couplings, every entry stored (as a zero) in a first assembly so the pattern is
-/// complete before the first factorisation. A coupling outside it still fits (PETSc
-/// reallocates), stays in the matrix for the rest of the step and is reserved for the next.
-pub fn jacobian_matrix<'s>(session: &'s PetscSession, model: &Model, partition: &Partition, dofs: &DofMap, problem: &Problem<'_, '_>) -> Result<Matrix<'s>> {
-    let pairs: Vec<(usize, usize)> = problem.contact.as_ref().map(|c| c.pattern().pairs().collect()).unwrap_or_default();
-    let (diag, off) = dofs.preallocation(&model.mesh, partition, pairs.iter().copied());
-    let mut jacobian = Matrix::aij(session, session.comm(), dofs.local_len(), &diag, &off)?;
-    problem.insert_pattern(partition, &mut jacobian)?;
-    jacobian.assemble()?;
-    if problem.contact.is_some() {
-        jacobian.set_option(MatOption_MAT_NEW_NONZERO_ALLOCATION_ERR, false)?;
-    }
-    Ok(jacobian)
+    Ok(RunSummary { history: rows, wall_time: start.elapsed().as_secs_f64(), ranks: partition.size, displacement, reserved_couplings, pattern_refits })
 }
 
 /// One attempt at an increment: a Newton solve and, for augmented-Lagrangian pairs, Uzawa
