@@ -473,7 +473,8 @@ impl Problem<'_, '_> {
         result
     }
 
-    /// Adds this rank's element, follower-pressure and contact tangents (no assembly).
+    /// Adds this rank's element, follower-pressure and contact tangents (no assembly; contact
+    /// evaluated by `fit_pattern` first).
     fn add_tangents(&mut self, gathered: &[f64], jacobian: &mut impl MatOps) -> Result<()> {
         let mut us = Vec::with_capacity(self.elements.len());
         for k in 0..self.elements.len() {
@@ -494,9 +495,8 @@ impl Problem<'_, '_> {
                 jacobian.add_block(&dofs, &dofs, &values)?;
             }
         }
-        let stage = self.stages.contact;
-        if let Some(contact) = self.contact.as_mut() {
-            stage.run(|| contact.evaluate(self.model, Need::Tangent))?;
+        // the engagements and their tangents at this iterate: `fit_pattern` evaluated them
+        if let Some(contact) = self.contact.as_ref() {
             for e in contact.engagements() {
                 let dofs = contact.engagement_dofs(e);
                 jacobian.add_block(&dofs, &dofs, &e.tangent)?;

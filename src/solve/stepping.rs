@@ -66,11 +66,9 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
         let mut x = Vector::mpi(session, comm, dofs.local_len())?;
         let mut residual = x.duplicate()?;
         let mut correction = x.duplicate()?;
+        // every contact coupling found so far is in the new step's pattern (each Jacobian
+        // synchronises the pattern across ranks, so the carried one is complete)
         let mut problem = Problem::new(session, model, &partition, &dofs, &x, history, carry)?;
-        // every contact coupling found so far, on any rank, is in the new step's pattern
-        if let Some(c) = problem.contact.as_mut() {
-            c.pattern_mut().synchronise(&world);
-        }
         let mut jacobian = problem.jacobian_matrix()?;
         let mut snes = Snes::new(session)?;
 
