@@ -4,7 +4,7 @@
 use criterion::{black_box, criterion_group, criterion_main, Criterion, Throughput};
 use slideline::ad::Dual;
 use slideline::element::pressure::{compute_pressure_load, pressure_load_stiffness};
-use slideline::element::solid::{compute_solid, ElementGeometry, SolidInput};
+use slideline::element::solid::{compute_solid, solid_tangent, ElementGeometry, SolidInput};
 use slideline::material::{Kinematics, PointState, J2};
 
 fn kernels(c: &mut Criterion) {
@@ -30,7 +30,9 @@ fn kernels(c: &mut Criterion) {
     let mut g = c.benchmark_group("element");
     g.throughput(Throughput::Elements(1));
     g.bench_function("q8 finite J2 residual", |b| b.iter(|| compute_solid(&input, black_box(&u), false).unwrap()));
-    g.bench_function("q8 finite J2 residual + tangent", |b| b.iter(|| compute_solid(&input, black_box(&u), true).unwrap()));
+    g.bench_function("q8 finite J2 residual + material tangents (dual)", |b| b.iter(|| compute_solid(&input, black_box(&u), true).unwrap()));
+    let material = compute_solid(&input, &u, true).unwrap().material.unwrap();
+    g.bench_function("q8 element tangent from the material tangents", |b| b.iter(|| solid_tangent(&geometry, black_box(&material))));
     let edge = [[100.0, 10.0], [100.5, 0.0], [100.1, 5.0]];
     g.bench_function("pressure edge load", |b| b.iter(|| compute_pressure_load(black_box(&edge), 50.0)));
     g.bench_function("pressure edge stiffness", |b| b.iter(|| pressure_load_stiffness(black_box(&edge), 50.0)));

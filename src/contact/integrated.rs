@@ -163,7 +163,7 @@ pub fn weighted_gaps(
                 let (n, dn) = line3(xi);
                 let r0: f64 = (0..3).map(|a| n[a] * xr[a][0]).sum();
                 let t0 = [0, 1].map(|i| (0..3).map(|a| dn[a] * xr[a][i]).sum::<f64>());
-                let weight = w * 0.5 * (hi - lo) * r0 * t0[0].hypot(t0[1]);
+                let weight = w * 0.5 * (hi - lo) * r0 * (t0[0] * t0[0] + t0[1] * t0[1]).sqrt();
                 let p = point(&xs, xi);
                 let Some((m, proj)) = closest_edge(master, x, p, grid.candidates(p), &skip, capture) else { continue };
                 // surfaces in contact face each other

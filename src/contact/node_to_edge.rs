@@ -89,7 +89,7 @@ pub fn project_on_edge(xs: [f64; 2], x: &[[f64; 2]; 3]) -> Option<EdgeProjection
         return None;
     }
     let (p, t, _) = curve(x, xi);
-    let lt = t[0].hypot(t[1]);
+    let lt = (t[0] * t[0] + t[1] * t[1]).sqrt(); // not hypot: see search::box_distance
     let normal = [t[1] / lt, -t[0] / lt];
     let gap = (xs[0] - p[0]) * normal[0] + (xs[1] - p[1]) * normal[1];
     let (pc, _, _) = curve(x, xi.clamp(-1.0, 1.0));

@@ -155,7 +155,7 @@ impl J2 {
             return Err(format!("thermal stretch 1 + alpha dT = {stretch} is not positive"));
         }
         // F_bar = (theta / J)^(1/3) F
-        let scale = (theta / j).powf(1.0 / 3.0);
+        let scale = (theta / j).cbrt();
         let fb = f.map(|v| v * scale);
         // b_e trial = F_bar C_p^-1 F_bar^T / stretch^2, in-plane block and hoop
         let c = committed.plastic;
