@@ -52,10 +52,11 @@ const FUNCTIONS: &[&str] = &[
     "VecScatterDestroy",
     // matrices and partitioning
     "MatCreateAIJ",
-    "MatXAIJSetPreallocation",
     "MatDestroy",
     "MatSetOption",
     "MatSetValues",
+    "MatSetPreallocationCOO",
+    "MatSetValuesCOO",
     "MatZeroEntries",
     "MatAssemblyBegin",
     "MatAssemblyEnd",
@@ -70,6 +71,7 @@ const FUNCTIONS: &[&str] = &[
     // linear and nonlinear solvers
     "KSPSetType",
     "KSPGetPC",
+    "PCReset",
     "KSPSetOperators",
     "KSPSolve",
     "KSPGetConvergedReason",

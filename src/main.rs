@@ -480,7 +480,7 @@ fn print_summary(summary: &RunSummary) {
     println!("done: {} increments in {:.2} s on {} rank(s)", summary.history.len(), summary.wall_time, summary.ranks);
     if summary.reserved_couplings > 0 {
         println!(
-            "Jacobian pattern: {} contact couplings (node pairs) reserved by the end; matrix refitted in place {} time(s)",
+            "Jacobian pattern: {} contact couplings (node pairs, counted on each rank that needs them) reserved by the end; matrix refitted in place {} time(s)",
             summary.reserved_couplings, summary.pattern_refits
         );
     }

@@ -4,7 +4,6 @@
 
 use super::Partition;
 use crate::error::Result;
-use crate::model::Mesh;
 use crate::petsc::sys::PetscInt;
 
 #[derive(Clone, Debug)]
@@ -47,49 +46,6 @@ impl DofMap {
     pub fn first(&self) -> usize {
         self.offsets[self.rank]
     }
-
-    /// Exact nonzero counts of this rank's rows, split into the diagonal block (columns this
-    /// rank owns) and the off-diagonal block, from the mesh graph and the node couplings
-    /// `extra` (contact; each pair (a, b) couples both ways).
-    pub fn preallocation(&self, mesh: &Mesh, partition: &Partition, extra: impl IntoIterator<Item = (usize, usize)>) -> (Vec<PetscInt>, Vec<PetscInt>) {
-        let mut node_neighbours: Vec<Vec<usize>> = vec![Vec::new(); mesh.coords.len()];
-        for conn in &mesh.elements {
-            for &n in conn {
-                node_neighbours[n].extend(conn);
-            }
-        }
-        for (a, b) in extra {
-            node_neighbours[a].push(b);
-            node_neighbours[b].push(a);
-        }
-        let (lo, hi) = (self.offsets[self.rank] as PetscInt, self.offsets[self.rank + 1] as PetscInt);
-        let mut diag = vec![0; self.local_len()];
-        let mut off = vec![0; self.local_len()];
-        for &n in partition.owned_nodes() {
-            let neighbours = &mut node_neighbours[n];
-            neighbours.sort_unstable();
-            neighbours.dedup();
-            let (mut d, mut o) = (0, 0);
-            for &m in neighbours.iter() {
-                for &col in &self.dof[m] {
-                    if col >= 0 {
-                        if (lo..hi).contains(&col) {
-                            d += 1;
-                        } else {
-                            o += 1;
-                        }
-                    }
-                }
-            }
-            for &row in &self.dof[n] {
-                if row >= 0 {
-                    diag[(row - lo) as usize] = d;
-                    off[(row - lo) as usize] = o;
-                }
-            }
-        }
-        (diag, off)
-    }
 }
 
 #[cfg(test)]
@@ -98,7 +54,7 @@ mod tests {
     use crate::model::mesh::rectangle;
 
     #[test]
-    fn prescribed_dofs_are_skipped_and_counts_cover_the_stencil() {
+    fn prescribed_dofs_are_skipped() {
         let (mesh, sets) = rectangle([1.0, 3.0], [0.0, 1.0], [2, 1]).unwrap();
         let p = Partition::from_element_ranks(&mesh, vec![0, 0], 0, 1);
         let mut prescribed = vec![[false; 2]; mesh.coords.len()];
@@ -107,10 +63,8 @@ mod tests {
         }
         let map = DofMap::new(&p, &prescribed).unwrap();
         assert_eq!(map.total(), 2 * mesh.coords.len() - sets.node_sets["bottom"].len());
-        let (d, o) = map.preallocation(&mesh, &p, []);
-        assert!(o.iter().all(|&v| v == 0));
-        // a corner of the first element only sees that element's 8 nodes
-        let corner = mesh.elements[0][3];
-        assert_eq!(d[map.dof[corner][0] as usize], 16 - 3); // three bottom nodes have uz fixed
+        for &n in &sets.node_sets["bottom"] {
+            assert!(map.dof[n][0] >= 0 && map.dof[n][1] == -1, "u_z of a bottom node is prescribed, u_r free");
+        }
     }
 }

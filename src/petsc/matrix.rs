@@ -34,18 +34,31 @@ pub trait MatOps {
         )
     }
 
-    /// Collective: replaces the nonzero structure by room for exactly `diag_nnz[i]` /
-    /// `offdiag_nnz[i]` entries in local row i (diagonal / off-diagonal block); the values are
-    /// lost, and the next assembly fixes the new pattern (PETSc then sees a new nonzero state,
-    /// so a factorisation redoes its symbolic analysis).
-    fn preallocate(&mut self, diag_nnz: &[sys::PetscInt], offdiag_nnz: &[sys::PetscInt]) -> Result<()> {
-        assert_eq!(diag_nnz.len(), offdiag_nnz.len(), "one count of each kind per local row");
-        // SAFETY: count arrays of the local row count, copied by PETSc; no upper-triangular
-        // counts (NULL) for AIJ.
-        check(
-            unsafe { sys::MatXAIJSetPreallocation(self.raw(), 1, diag_nnz.as_ptr(), offdiag_nnz.as_ptr(), std::ptr::null(), std::ptr::null()) },
-            "MatXAIJSetPreallocation",
-        )
+    /// Collective: makes the matrix's nonzero structure the entries (`rows[k]`, `cols[k]`),
+    /// global indices, repeats allowed (summed), negative indices ignored, rows of other ranks
+    /// allowed (sent to their owners); [`MatOps::set_values_coo`] then takes one value per entry in
+    /// this order. Replaces any earlier structure. PETSc 3.18 does not raise the matrix's
+    /// nonzero state for it, so a factorisation of the old structure must be reset by the
+    /// caller (see `NonlinearProblem::take_structure_change`).
+    fn preallocate_coo(&mut self, rows: &[sys::PetscInt], cols: &[sys::PetscInt]) -> Result<()> {
+        assert_eq!(rows.len(), cols.len(), "one column per row index");
+        // PETSc may permute the index arrays it is given: hand it copies.
+        let (mut i, mut j) = (rows.to_vec(), cols.to_vec());
+        let n = sys::PetscCount::try_from(i.len()).map_err(|_| crate::error::Error::input("too many matrix entries for PetscCount"))?;
+        // SAFETY: two arrays of n indices, owned here for the call; PETSc copies what it keeps.
+        check(unsafe { sys::MatSetPreallocationCOO(self.raw(), n, i.as_mut_ptr(), j.as_mut_ptr()) }, "MatSetPreallocationCOO")?;
+        coo_entries().insert(self.raw() as usize, rows.len());
+        Ok(())
+    }
+
+    /// Collective: sets every entry from `values`, one per entry given to
+    /// [`MatOps::preallocate_coo`] in its order (repeats summed; INSERT_VALUES: what was there is
+    /// replaced) and assembles.
+    fn set_values_coo(&mut self, values: &[f64]) -> Result<()> {
+        let entries = coo_entries().get(&(self.raw() as usize)).copied();
+        assert_eq!(entries, Some(values.len()), "set_values_coo: one value per entry of the matrix's COO preallocation");
+        // SAFETY: PETSc reads as many values as entries were preallocated, checked just above.
+        check(unsafe { sys::MatSetValuesCOO(self.raw(), values.as_ptr(), sys::InsertMode_INSERT_VALUES) }, "MatSetValuesCOO")
     }
 
     fn set_option(&mut self, option: sys::MatOption, value: bool) -> Result<()> {
@@ -60,6 +73,14 @@ pub trait MatOps {
         check(unsafe { sys::MatAssemblyBegin(self.raw(), sys::MatAssemblyType_MAT_FINAL_ASSEMBLY) }, "MatAssemblyBegin")?;
         check(unsafe { sys::MatAssemblyEnd(self.raw(), sys::MatAssemblyType_MAT_FINAL_ASSEMBLY) }, "MatAssemblyEnd")
     }
+}
+
+/// The entry count of each matrix's last COO preallocation (keyed by handle), so that
+/// `set_values_coo` can refuse a value array PETSc would read past; a matrix leaves it when
+/// destroyed.
+fn coo_entries() -> std::sync::MutexGuard<'static, std::collections::BTreeMap<usize, usize>> {
+    static ENTRIES: std::sync::Mutex<std::collections::BTreeMap<usize, usize>> = std::sync::Mutex::new(std::collections::BTreeMap::new());
+    ENTRIES.lock().unwrap_or_else(|e| e.into_inner())
 }
 
 /// An owned AIJ matrix.
@@ -86,6 +107,20 @@ impl<'s> Matrix<'s> {
     }
 }
 
+impl<'s> Matrix<'s> {
+    /// Square AIJ matrix with `local_rows` rows on this rank whose nonzero structure is the
+    /// COO entries (`rows[k]`, `cols[k]`) of all ranks (see [`MatOps::preallocate_coo`]).
+    pub fn aij_coo(_session: &'s PetscSession, comm: Comm, local_rows: usize, rows: &[sys::PetscInt], cols: &[sys::PetscInt]) -> Result<Self> {
+        let m = to_petsc_int(local_rows)?;
+        let mut raw = std::ptr::null_mut();
+        // SAFETY: no count arrays (NULL): the COO preallocation below sets the structure.
+        check(unsafe { sys::MatCreateAIJ(comm, m, m, -1, -1, 0, std::ptr::null(), 0, std::ptr::null(), &mut raw) }, "MatCreateAIJ")?;
+        let mut mat = Matrix { raw, _session: PhantomData };
+        mat.preallocate_coo(rows, cols)?;
+        Ok(mat)
+    }
+}
+
 impl MatOps for Matrix<'_> {
     fn raw(&self) -> sys::Mat {
         self.raw
@@ -94,6 +129,7 @@ impl MatOps for Matrix<'_> {
 
 impl Drop for Matrix<'_> {
     fn drop(&mut self) {
+        coo_entries().remove(&(self.raw as usize));
         // SAFETY: owned handle.
         unsafe { sys::MatDestroy(&mut self.raw) };
     }

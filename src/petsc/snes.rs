@@ -29,6 +29,12 @@ pub trait NonlinearProblem {
     fn roundoff_squares(&self) -> f64 {
         0.0
     }
+    /// True (once) after a Jacobian evaluation replaced the matrix's nonzero structure in
+    /// place: the factorisation of the old structure is then dropped, since PETSc 3.18 does not
+    /// see the change (its nonzero state stays) and would reuse the symbolic analysis.
+    fn take_structure_change(&mut self) -> bool {
+        false
+    }
 }
 
 /// Summary of one SNESSolve.
@@ -170,6 +176,13 @@ impl<'s> Snes<'s> {
             check(sys::KSPGetConvergedReason(ksp, &mut reason), "KSPGetConvergedReason")?;
         }
         Ok(reason > 0)
+    }
+
+    /// Collective: drops the linear solver's factorisation, so the next solve analyses the
+    /// matrix's structure afresh (after it was replaced in place).
+    pub fn reset_factorisation(&mut self) -> Result<()> {
+        // SAFETY: valid SNES handle.
+        unsafe { reset_factorisation(self.raw) }
     }
 
     /// Solves F(x) = 0 from the initial guess in `x`, using `residual` and `jacobian` as work
@@ -364,5 +377,28 @@ unsafe extern "C" fn jacobian_trampoline<P: NonlinearProblem>(
     _p: sys::Mat,
     ctx: *mut c_void,
 ) -> sys::PetscErrorCode {
-    guarded::<P>(snes, ctx, |p| p.jacobian(&VectorView::from_raw(x), &mut MatrixView::from_raw(a)))
+    guarded::<P>(snes, ctx, |p| {
+        p.jacobian(&VectorView::from_raw(x), &mut MatrixView::from_raw(a))?;
+        if p.take_structure_change() {
+            // SAFETY: the SNES PETSc is calling back from; every rank refits together.
+            unsafe { reset_factorisation(snes) }?;
+        }
+        Ok(())
+    })
+}
+
+/// Collective: PCReset on the SNES's preconditioner (the factorisation and its symbolic
+/// analysis go; type and options stay), so the next PCSetUp starts from the matrix as it is.
+///
+/// # Safety
+/// `snes` must be a valid SNES handle.
+unsafe fn reset_factorisation(snes: sys::SNES) -> Result<()> {
+    let mut ksp = std::ptr::null_mut();
+    let mut pc = std::ptr::null_mut();
+    // SAFETY: valid SNES (caller); the KSP and PC are borrowed from it, not owned.
+    unsafe {
+        check(sys::SNESGetKSP(snes, &mut ksp), "SNESGetKSP")?;
+        check(sys::KSPGetPC(ksp, &mut pc), "KSPGetPC")?;
+        check(sys::PCReset(pc), "PCReset")
+    }
 }

@@ -102,7 +102,6 @@ pub struct ContactAssembly<'s> {
     /// Mesh node -> index into `nodes`, usize::MAX when not a contact node.
     slot: Vec<usize>,
     nodes: Vec<usize>,
-    dofs: Vec<[PetscInt; 2]>,
     /// For each contact node DOF, its position in `gathered` (usize::MAX when prescribed).
     gathered_slot: Vec<[usize; 2]>,
     gathered: Vector<'s>,
@@ -197,7 +196,6 @@ impl<'s> ContactAssembly<'s> {
             positions: nodes.iter().map(|&n| model.mesh.coords[n]).collect(),
             slot,
             nodes,
-            dofs: node_dofs,
             gathered_slot,
             gathered,
             scatter,
@@ -409,11 +407,6 @@ impl<'s> ContactAssembly<'s> {
                 self.states[p][k].traction = traction[i];
             }
         }
-    }
-
-    /// Global DOFs of an engagement's entries (-1 where prescribed).
-    pub fn engagement_dofs(&self, e: &Engagement) -> Vec<PetscInt> {
-        e.nodes.iter().flat_map(|&n| self.dofs[self.slot[n]]).collect()
     }
 
     /// Uzawa update of the augmented-Lagrangian pairs from the last evaluation:

@@ -1,6 +1,7 @@
 //! Parallel drivers: the discrete problem for SNES and the load-stepping loop.
 
 pub mod contact;
+pub mod layout;
 pub mod pattern;
 pub mod problem;
 pub mod schedule;

@@ -7,6 +7,7 @@
 //! attempt never touches `committed`, so a cutback has nothing to undo.
 
 use super::contact::{ContactAssembly, ContactCarry, Need};
+use super::layout::JacobianLayout;
 use crate::dist::{DofMap, Partition};
 use crate::element::pressure::{compute_pressure_load, pressure_load_stiffness};
 use crate::element::solid::ElementMatrix;
@@ -15,7 +16,6 @@ use crate::error::{Error, Result};
 use crate::fe::shape::edge_nodes;
 use crate::material::{Kinematics, PointState, J2};
 use crate::model::{Material, Model};
-use crate::petsc::sys::MatOption_MAT_NEW_NONZERO_ALLOCATION_ERR;
 use crate::petsc::sys::PetscInt;
 use crate::petsc::{LogStage, MatOps, Matrix, MatrixView, NonlinearProblem, PetscSession, Scatter, VecOps, Vector, VectorView};
 
@@ -115,18 +115,28 @@ pub struct Problem<'s, 'm> {
     gathered: Vector<'s>,
     scatter: Scatter<'s>,
     session: &'s PetscSession,
-    partition: Partition,
     /// The step's numbering: global unknown of every (node, component), -1 where prescribed.
     dofs: DofMap,
     committed: History,
     trial: History,
     /// Material tangents of the last residual evaluation (see [`KeptTangents`]).
     kept: KeptTangents,
+    /// Where each Jacobian entry goes (elements and this rank's contact couplings).
+    layout: JacobianLayout,
+    /// Whether a Jacobian has replaced the matrix's structure since the solver last asked.
+    structure_changed: bool,
     /// Round-off floor (squared, this rank) of the last residual.
     roundoff: f64,
     pub contact: Option<ContactAssembly<'s>>,
     pub load: LoadState,
     pub stages: Stages,
+}
+
+/// The Jacobian's layout: the local elements' blocks, then this rank's contact couplings.
+fn jacobian_layout(elements: &[LocalElement], contact: Option<&ContactAssembly<'_>>, dofs: &DofMap) -> JacobianLayout {
+    let element_dofs: Vec<[PetscInt; DOFS]> = elements.iter().map(|el| el.dofs).collect();
+    let pairs: Vec<(usize, usize)> = contact.map(|c| c.pattern().pairs().collect()).unwrap_or_default();
+    JacobianLayout::new(&element_dofs, pairs, &dofs.dof)
 }
 
 /// The material kernel of a model material.
@@ -194,6 +204,7 @@ impl<'s, 'm> Problem<'s, 'm> {
         let materials = model.materials.iter().map(material_kernel).collect();
         let trial = history.clone();
         let contact = ContactAssembly::new(session, model, partition, dofs, layout, contact)?;
+        let layout = jacobian_layout(&elements, contact.as_ref(), dofs);
         Ok(Problem {
             model,
             materials,
@@ -202,11 +213,12 @@ impl<'s, 'm> Problem<'s, 'm> {
             gathered,
             scatter,
             session,
-            partition: partition.clone(),
             dofs: dofs.clone(),
             committed: history,
             trial,
             kept: KeptTangents { elements: vec![None; local.len()] },
+            layout,
+            structure_changed: false,
             roundoff: 0.0,
             contact,
             load: LoadState::default(),
@@ -237,62 +249,31 @@ impl<'s, 'm> Problem<'s, 'm> {
         (self.committed, self.contact.map(|c| c.into_carry()))
     }
 
-    /// A new matrix for this step's Jacobian, its pattern complete (see [`Problem::fit_pattern`]).
+    /// A new matrix for this step's Jacobian, its structure the layout's: the elements and
+    /// every contact coupling found so far (see [`Problem::fit_pattern`]).
     pub fn jacobian_matrix(&self) -> Result<Matrix<'s>> {
-        let (diag, off) = self.preallocation();
-        let mut jacobian = Matrix::aij(self.session, self.session.comm(), self.dofs.local_len(), &diag, &off)?;
-        self.store_pattern(&mut jacobian)?;
-        Ok(jacobian)
-    }
-
-    /// Exact nonzero counts of this rank's rows: the elements and the reserved contact couplings.
-    fn preallocation(&self) -> (Vec<PetscInt>, Vec<PetscInt>) {
-        let pairs: Vec<(usize, usize)> = self.contact.as_ref().map(|c| c.pattern().pairs().collect()).unwrap_or_default();
-        self.dofs.preallocation(&self.model.mesh, &self.partition, pairs)
-    }
-
-    /// Stores a zero at every entry the Jacobian will hold (this rank's element blocks and the
-    /// reserved contact couplings of the nodes it owns; the pattern is replicated) and
-    /// assembles, so the pattern is whole before the first factorisation. A coupling outside
-    /// it would still fit (PETSc reallocates) rather than fail.
-    fn store_pattern(&self, jacobian: &mut impl MatOps) -> Result<()> {
-        let zeros = [0.0; DOFS * DOFS];
-        for el in &self.elements {
-            jacobian.add_block(&el.dofs, &el.dofs, &zeros)?;
-        }
-        if let Some(contact) = self.contact.as_ref() {
-            for (a, b) in contact.pattern().pairs() {
-                for (row, col) in [(a, b), (b, a)] {
-                    if self.partition.node_owner[row] == self.partition.rank {
-                        jacobian.add_block(&self.dofs.dof[row], &self.dofs.dof[col], &[0.0; 4])?;
-                    }
-                }
-            }
-        }
-        jacobian.assemble()?;
-        if self.contact.is_some() {
-            jacobian.set_option(MatOption_MAT_NEW_NONZERO_ALLOCATION_ERR, false)?;
-        }
-        Ok(())
+        let (rows, cols) = self.layout.indices();
+        Matrix::aij_coo(self.session, self.session.comm(), self.dofs.local_len(), rows, cols)
     }
 
     /// Collective, before any value of a Jacobian is added: evaluates contact with tangents,
-    /// and when an engagement on any rank couples two nodes with free DOFs that the pattern
-    /// lacks, gives `jacobian` room for them in place (exact preallocation, the whole pattern
-    /// stored), instead of letting PETSc reallocate the whole matrix once per row that
-    /// overflows. The matrix keeps its identity, so SNES and the KSP keep theirs; its nonzero
-    /// state changes, so MUMPS redoes its symbolic analysis once.
+    /// and when an engagement on any rank couples two free DOFs that the pattern lacks, gives
+    /// `jacobian` room for them in place (a new layout and COO preallocation on every rank)
+    /// instead of letting PETSc reallocate the whole matrix once per row that overflows. The
+    /// matrix keeps its identity, so SNES and the KSP keep theirs; its nonzero state changes,
+    /// so MUMPS redoes its symbolic analysis once.
     fn fit_pattern(&mut self, jacobian: &mut impl MatOps) -> Result<()> {
         let Some(contact) = self.contact.as_mut() else { return Ok(()) };
         let stage = self.stages.contact;
         stage.run(|| contact.evaluate(self.model, Need::Tangent))?;
-        let grown = contact.pattern_mut().synchronise(&self.session.world());
-        let free = |n: usize| self.dofs.dof[n].iter().any(|&d| d >= 0);
-        if grown.iter().any(|&(a, b)| free(a) && free(b)) {
+        let dof = &self.dofs.dof;
+        let free = |n: usize| dof[n].iter().any(|&d| d >= 0);
+        if contact.pattern_mut().synchronise(&self.session.world(), |a, b| free(a) && free(b)) {
             contact.pattern_mut().refits += 1;
-            let (diag, off) = self.preallocation();
-            jacobian.preallocate(&diag, &off)?;
-            self.store_pattern(jacobian)?;
+            self.layout = jacobian_layout(&self.elements, self.contact.as_ref(), &self.dofs);
+            let (rows, cols) = self.layout.indices();
+            jacobian.preallocate_coo(rows, cols)?;
+            self.structure_changed = true;
         }
         Ok(())
     }
@@ -437,6 +418,10 @@ impl NonlinearProblem for Problem<'_, '_> {
     fn jacobian(&mut self, x: &VectorView<'_>, jacobian: &mut MatrixView<'_>) -> Result<()> {
         self.assemble_jacobian(x, jacobian)
     }
+
+    fn take_structure_change(&mut self) -> bool {
+        std::mem::take(&mut self.structure_changed)
+    }
 }
 
 impl Problem<'_, '_> {
@@ -475,10 +460,10 @@ impl Problem<'_, '_> {
         stage.run(|| {
             let gathered = self.gather(x)?;
             self.fit_pattern(jacobian)?;
-            jacobian.zero_entries()?;
-            let result = self.add_tangents(&gathered, jacobian);
+            self.layout.clear();
+            let result = self.add_tangents(&gathered);
             // collective, whatever happened on this rank (see `residual`)
-            jacobian.assemble()?;
+            jacobian.set_values_coo(self.layout.values())?;
             result
         })?
     }
@@ -521,33 +506,39 @@ impl Problem<'_, '_> {
         result
     }
 
-    /// Adds this rank's element, follower-pressure and contact tangents (no assembly; contact
-    /// evaluated by `fit_pattern` first).
-    fn add_tangents(&mut self, gathered: &[f64], jacobian: &mut impl MatOps) -> Result<()> {
+    /// Writes this rank's element, follower-pressure and contact tangents into the layout
+    /// (contact evaluated by `fit_pattern` first).
+    fn add_tangents(&mut self, gathered: &[f64]) -> Result<()> {
         let mut us = Vec::with_capacity(self.elements.len());
         for k in 0..self.elements.len() {
             let u = self.displacements(&self.elements[k], gathered);
             let k_e = self.element_tangent(k, &u)?;
-            let el = &self.elements[k];
-            // nalgebra is column-major; PETSc wants row-major: the transpose's storage is.
-            jacobian.add_block(&el.dofs, &el.dofs, k_e.transpose().as_slice())?;
+            let block = self.layout.element_block(k);
+            for i in 0..DOFS {
+                for j in 0..DOFS {
+                    block[i * DOFS + j] = k_e[(i, j)];
+                }
+            }
             us.push(u);
         }
         if self.model.kinematics == Kinematics::Finite {
-            // follower pressure: d(-f_ext)/du
-            for (k, local, p) in self.pressure_edges() {
+            // follower pressure, d(-f_ext)/du, into the block of the element the edge bounds
+            let edges: Vec<(usize, [usize; 3], f64)> = self.pressure_edges().collect();
+            for (k, local, p) in edges {
                 let kp = pressure_load_stiffness(&self.edge_positions(k, &local, &us[k]), p);
-                let el = &self.elements[k];
-                let dofs: [PetscInt; 6] = std::array::from_fn(|i| el.dofs[2 * local[i / 2] + i % 2]);
-                let values: Vec<f64> = kp.iter().flatten().map(|v| -v).collect();
-                jacobian.add_block(&dofs, &dofs, &values)?;
+                let block = self.layout.element_block(k);
+                let at = |i: usize| 2 * local[i / 2] + i % 2;
+                for (i, row) in kp.iter().enumerate() {
+                    for (j, v) in row.iter().enumerate() {
+                        block[at(i) * DOFS + at(j)] -= v;
+                    }
+                }
             }
         }
         // the engagements and their tangents at this iterate: `fit_pattern` evaluated them
         if let Some(contact) = self.contact.as_ref() {
             for e in contact.engagements() {
-                let dofs = contact.engagement_dofs(e);
-                jacobian.add_block(&dofs, &dofs, &e.tangent)?;
+                self.layout.add_engagement(&e.nodes, &e.tangent);
             }
         }
         Ok(())

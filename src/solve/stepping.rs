@@ -14,7 +14,7 @@ use crate::dist::{DofMap, Partition};
 use crate::error::{Error, Result};
 use crate::io::{ContactSummary, HistoryRow, IncrementFields, ResultsFile};
 use crate::model::Model;
-use crate::petsc::{Matrix, PetscSession, Snes, SolveReport, VecOps, Vector};
+use crate::petsc::{Matrix, NonlinearProblem, PetscSession, Snes, SolveReport, VecOps, Vector};
 use mpi::collective::SystemOperation;
 use mpi::datatype::PartitionMut;
 use mpi::traits::*;
@@ -35,7 +35,8 @@ pub struct RunSummary {
     pub ranks: usize,
     /// Final nodal displacements (u_r, u_z) of every node, in model order.
     pub displacement: Vec<[f64; 2]>,
-    /// Contact couplings (node pairs) the Jacobian's pattern held by the end.
+    /// Contact couplings (node pairs) the Jacobian's pattern held by the end, summed over the
+    /// ranks that reserve them (each for its own engagements).
     pub reserved_couplings: usize,
     /// How many times a step's matrix was given room for new contact couplings in place.
     pub pattern_refits: usize,
@@ -179,7 +180,11 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
             }
         }
         (history, carry) = problem.into_history();
-        (reserved_couplings, pattern_refits) = carry.as_ref().map_or((0, 0), |c| (c.pattern.len(), c.pattern.refits));
+        // couplings are reserved per rank (each for its own engagements): report the sum
+        let (local, refits) = carry.as_ref().map_or((0, 0), |c| (c.pattern.len() as u64, c.pattern.refits));
+        let mut total = 0u64;
+        world.all_reduce_into(&local, &mut total, SystemOperation::sum());
+        (reserved_couplings, pattern_refits) = (total as usize, refits);
         previous = Some(loads);
     }
     Ok(RunSummary { history: rows, wall_time: start.elapsed().as_secs_f64(), ranks: partition.size, displacement, reserved_couplings, pattern_refits })
@@ -250,6 +255,10 @@ fn predict(
     let coupling = problem.prescribed_coupling(x, &delta, work);
     let tangent = problem.assemble_jacobian(x, jacobian);
     problem.load = end;
+    // the refit is collective, so every rank resets
+    if problem.take_structure_change() {
+        snes.reset_factorisation()?;
+    }
     let local = i32::from(coupling.is_ok() && tangent.is_ok());
     let mut everywhere = 0;
     world.all_reduce_into(&local, &mut everywhere, SystemOperation::min());
