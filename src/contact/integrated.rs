@@ -98,9 +98,9 @@ pub struct WeightedGap {
 }
 
 /// Weighted gaps of the slave nodes `indices` (into `slave.nodes`) against `master`, at
-/// positions `x` (current) and `x0` (reference, for the weights). `excluded(edge)` lists the
-/// master edges a slave edge may not bear on (self-contact); `facing` filters pairs of
-/// normals. Nodes none of whose integration points finds a master are left out.
+/// positions `x` (current) and `x0` (reference, for the weights). `excluded[edge]` lists the
+/// master edges a slave edge may not bear on (self-contact; empty, or no entry, for none).
+/// Nodes none of whose integration points finds a master are left out.
 #[allow(clippy::too_many_arguments)]
 pub fn weighted_gaps(
     slave: &ContactSurface,
@@ -108,7 +108,7 @@ pub fn weighted_gaps(
     x: &impl Fn(usize) -> [f64; 2],
     x0: &impl Fn(usize) -> [f64; 2],
     indices: &[usize],
-    excluded: &impl Fn(usize) -> Vec<usize>,
+    excluded: &[Vec<usize>],
     capture: f64,
 ) -> Vec<WeightedGap> {
     let grid = EdgeGrid::new(master, x, capture);
@@ -132,14 +132,14 @@ pub fn weighted_gaps(
         let en = slave.edges[e];
         let xs = en.map(x);
         let xr = en.map(x0);
-        let skip = excluded(e);
+        let skip = excluded.get(e).map_or(&[][..], |v| v.as_slice());
         // split points: the middle node (the hats kink there) and the master edge ends
         // projected onto this slave edge
         let mut cuts = vec![-1.0, 0.0, 1.0];
         let mut masters: Vec<usize> = Vec::new();
         for &xi in &[-1.0, -0.5, 0.0, 0.5, 1.0] {
             let p = point(&xs, xi);
-            if let Some((m, _)) = closest_edge(master, x, p, grid.candidates(p), &skip, capture) {
+            if let Some((m, _)) = closest_edge(master, x, p, grid.candidates(p), skip, capture) {
                 if !masters.contains(&m) {
                     masters.push(m);
                 }
@@ -165,7 +165,7 @@ pub fn weighted_gaps(
                 let t0 = [0, 1].map(|i| (0..3).map(|a| dn[a] * xr[a][i]).sum::<f64>());
                 let weight = w * 0.5 * (hi - lo) * r0 * (t0[0] * t0[0] + t0[1] * t0[1]).sqrt();
                 let p = point(&xs, xi);
-                let Some((m, proj)) = closest_edge(master, x, p, grid.candidates(p), &skip, capture) else { continue };
+                let Some((m, proj)) = closest_edge(master, x, p, grid.candidates(p), skip, capture) else { continue };
                 // surfaces in contact face each other
                 let ts = [0, 1].map(|i| (0..3).map(|a| dn[a] * xs[a][i]).sum::<f64>());
                 if ts[1] * proj.normal[0] - ts[0] * proj.normal[1] >= 0.0 || proj.gap <= -capture {
@@ -216,7 +216,7 @@ mod tests {
         let master = ContactSurface::new(&mesh, &sets.surfaces["lower_top"]);
         let x = |n: usize| mesh.coords[n];
         let all: Vec<usize> = (0..slave.nodes.len()).collect();
-        let gaps = weighted_gaps(&slave, &master, &x, &x, &all, &|_| Vec::new(), 0.5);
+        let gaps = weighted_gaps(&slave, &master, &x, &x, &all, &[], 0.5);
         assert_eq!(gaps.len(), slave.nodes.len());
         for g in &gaps {
             let area = slave.hat_areas[g.index];

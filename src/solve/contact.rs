@@ -41,6 +41,10 @@ struct Pass {
     offset: usize,
     /// Number of slave nodes of the pass over all ranks.
     total: usize,
+    /// Self-contact: the master edges each slave edge (segment integration) or each owned
+    /// slave node (node-to-segment, in `owned` order) may not bear on, its own neighbourhood;
+    /// fixed by the topology, so listed once. Empty for two surfaces.
+    excluded: Vec<Vec<usize>>,
 }
 
 /// The contribution of one active slave node: residual and tangent over `nodes`.
@@ -166,7 +170,20 @@ impl<'s> ContactAssembly<'s> {
                 let owner = |i: &usize| partition.node_owner[surfaces[slave].nodes[*i]];
                 let offset = order.iter().filter(|i| owner(i) < partition.rank).count();
                 let owned: Vec<usize> = order.iter().copied().filter(|i| owner(i) == partition.rank).collect();
-                passes.push(Pass { pair: k, slave, master, weight, owned, offset, total: order.len() });
+                let surface = &surfaces[slave];
+                let excluded = match (slave == master, c.integration) {
+                    (false, _) => Vec::new(),
+                    (true, ContactIntegration::NodeToSegment) => owned.iter().map(|&i| surface.neighbourhood(surface.nodes[i], c.exclude_neighbours)).collect(),
+                    (true, ContactIntegration::Segment) => (0..surface.edges.len())
+                        .map(|e| {
+                            let mut near: Vec<usize> = surface.edges[e].iter().flat_map(|&n| surface.neighbourhood(n, c.exclude_neighbours)).collect();
+                            near.sort_unstable();
+                            near.dedup();
+                            near
+                        })
+                        .collect(),
+                };
+                passes.push(Pass { pair: k, slave, master, weight, owned, offset, total: order.len(), excluded });
             }
         }
         let mut nodes: Vec<usize> = surfaces.iter().flat_map(|s| s.nodes.iter().copied()).collect();
@@ -289,8 +306,8 @@ impl<'s> ContactAssembly<'s> {
         for (k, &i) in pass.owned.iter().enumerate() {
             let node = slave.nodes[i];
             let xs = x(node);
-            let excluded = if pass.slave == pass.master { master.neighbourhood(node, pair.exclude_neighbours) } else { Vec::new() };
-            let found = closest_edge(master, &x, xs, grid.candidates(xs), &excluded, capture).filter(|(_, proj)| {
+            let excluded = pass.excluded.get(k).map_or(&[][..], |v| v.as_slice());
+            let found = closest_edge(master, &x, xs, grid.candidates(xs), excluded, capture).filter(|(_, proj)| {
                 // surfaces in contact face each other: never the back of a thin master
                 let ns = slave.node_normal(node, x);
                 ns[0] * proj.normal[0] + ns[1] * proj.normal[1] < 0.0 && proj.gap > -capture
@@ -326,17 +343,7 @@ impl<'s> ContactAssembly<'s> {
         let x = |n: usize| positions[slot[n]];
         let x0 = |n: usize| model.mesh.coords[n];
         let (slave, master) = (&self.surfaces[pass.slave], &self.surfaces[pass.master]);
-        let self_contact = pass.slave == pass.master;
-        let excluded = |e: usize| {
-            if !self_contact {
-                return Vec::new();
-            }
-            let mut near: Vec<usize> = slave.edges[e].iter().flat_map(|&n| master.neighbourhood(n, pair.exclude_neighbours)).collect();
-            near.sort_unstable();
-            near.dedup();
-            near
-        };
-        let gaps = weighted_gaps(slave, master, &x, &x0, &pass.owned, &excluded, pair.capture_distance);
+        let gaps = weighted_gaps(slave, master, &x, &x0, &pass.owned, &pass.excluded, pair.capture_distance);
         let mut owned_position = vec![usize::MAX; slave.nodes.len()];
         for (k, &i) in pass.owned.iter().enumerate() {
             owned_position[i] = k;

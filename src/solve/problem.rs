@@ -80,18 +80,29 @@ struct LocalElement {
 /// element matrices: the material update, the costly part, runs once per iterate (on dual
 /// numbers, about 1.4 times a plain update) instead of twice. A commit changes the history
 /// they were computed from and drops them.
+#[derive(Default)]
 struct KeptTangents {
-    /// Per local element: displacements, temperature change, material tangents there.
-    elements: Vec<Option<([[f64; 2]; NODES], f64, MaterialTangents)>>,
+    /// Per local element.
+    elements: Vec<KeptTangent>,
+}
+
+#[derive(Clone, Default)]
+struct KeptTangent {
+    /// Whether `material` belongs to `u` and `temperature_change` (and today's history).
+    valid: bool,
+    u: [[f64; 2]; NODES],
+    temperature_change: f64,
+    material: MaterialTangents,
 }
 
 impl KeptTangents {
     fn get(&self, k: usize, u: &[[f64; 2]; NODES], temperature_change: f64) -> Option<&MaterialTangents> {
-        self.elements.get(k)?.as_ref().filter(|(at, dt, _)| at == u && *dt == temperature_change).map(|(_, _, t)| t)
+        let e = self.elements.get(k)?;
+        (e.valid && e.u == *u && e.temperature_change == temperature_change).then_some(&e.material)
     }
 
     fn forget(&mut self) {
-        self.elements.iter_mut().for_each(|e| *e = None);
+        self.elements.iter_mut().for_each(|e| e.valid = false);
     }
 }
 
@@ -216,7 +227,7 @@ impl<'s, 'm> Problem<'s, 'm> {
             dofs: dofs.clone(),
             committed: history,
             trial,
-            kept: KeptTangents { elements: vec![None; local.len()] },
+            kept: KeptTangents { elements: vec![KeptTangent::default(); local.len()] },
             layout,
             structure_changed: false,
             roundoff: 0.0,
@@ -293,7 +304,7 @@ impl<'s, 'm> Problem<'s, 'm> {
         std::array::from_fn(|a| std::array::from_fn(|c| if el.dofs[2 * a + c] >= 0 { gathered[el.slots[2 * a + c]] } else { self.load.prescribed[conn[a]][c] }))
     }
 
-    fn solid(&self, k: usize, u: &[[f64; 2]; NODES], with_tangent: bool) -> Result<SolidResponse> {
+    fn solid(&self, k: usize, u: &[[f64; 2]; NODES], tangents: Option<&mut MaterialTangents>) -> Result<SolidResponse> {
         let el = &self.elements[k];
         let input = SolidInput {
             geometry: &el.geometry,
@@ -302,7 +313,7 @@ impl<'s, 'm> Problem<'s, 'm> {
             temperature_change: self.load.temperature_change,
             committed: &self.committed[k],
         };
-        compute_solid(&input, u, with_tangent).map_err(|m| Error::Domain(format!("element {}: {m}", self.model.mesh.element_ids[el.element])))
+        compute_solid(&input, u, tangents).map_err(|m| Error::Domain(format!("element {}: {m}", self.model.mesh.element_ids[el.element])))
     }
 
     /// The tangent of local element `k` at displacements `u`, from the material tangents its
@@ -312,8 +323,9 @@ impl<'s, 'm> Problem<'s, 'm> {
         if let Some(material) = self.kept.get(k, u, self.load.temperature_change) {
             return Ok(solid_tangent(geometry, material));
         }
-        let out = self.solid(k, u, true)?;
-        Ok(solid_tangent(geometry, out.material.as_ref().expect("material tangents requested")))
+        let mut material = MaterialTangents::default();
+        self.solid(k, u, Some(&mut material))?;
+        Ok(solid_tangent(geometry, &material))
     }
 
     /// Pressure edges on this rank: (local element, local node numbers, pressure).
@@ -345,13 +357,23 @@ impl<'s, 'm> Problem<'s, 'm> {
     ) -> Result<()> {
         let mut us = Vec::with_capacity(self.elements.len());
         let mut roundoff = 0.0;
+        let mut kept = std::mem::take(&mut self.kept);
         for k in 0..self.elements.len() {
             let u = self.displacements(&self.elements[k], gathered);
-            let out = self.solid(k, &u, keep_tangents)?;
-            self.trial[k] = out.state;
-            if let Some(material) = out.material {
-                self.kept.elements[k] = Some((u, self.load.temperature_change, material));
+            let entry = &mut kept.elements[k];
+            // written in place: invalid until the evaluation has succeeded
+            entry.valid &= !keep_tangents;
+            let out = match self.solid(k, &u, keep_tangents.then_some(&mut entry.material)) {
+                Ok(out) => out,
+                Err(e) => {
+                    self.kept = kept;
+                    return Err(e);
+                }
+            };
+            if keep_tangents {
+                (entry.valid, entry.u, entry.temperature_change) = (true, u, self.load.temperature_change);
             }
+            self.trial[k] = out.state;
             let size = self.elements[k].roundoff_scale * u.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs())) + out.internal_force.abs().max();
             roundoff += (ROUNDOFF_ULPS * f64::EPSILON * size).powi(2);
             on_element(k, &out);
@@ -361,6 +383,7 @@ impl<'s, 'm> Problem<'s, 'm> {
             }
             us.push(u);
         }
+        self.kept = kept;
         for (k, local, p) in self.pressure_edges() {
             let f = compute_pressure_load(&self.edge_positions(k, &local, &us[k]), p);
             let conn = &self.model.mesh.elements[self.elements[k].element];
@@ -542,5 +565,25 @@ impl Problem<'_, '_> {
             }
         }
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn kept_tangents_serve_only_the_state_they_were_computed_at() {
+        let mut kept = KeptTangents { elements: vec![KeptTangent::default(); 2] };
+        let u = [[0.1, -0.2]; NODES];
+        kept.elements[1] = KeptTangent { valid: true, u, temperature_change: 180.0, material: MaterialTangents::default() };
+        assert!(kept.get(1, &u, 180.0).is_some());
+        assert!(kept.get(0, &u, 180.0).is_none(), "never computed");
+        let mut moved = u;
+        moved[3][1] += 1e-12;
+        assert!(kept.get(1, &moved, 180.0).is_none(), "another iterate");
+        assert!(kept.get(1, &u, 180.5).is_none(), "another temperature");
+        kept.forget();
+        assert!(kept.get(1, &u, 180.0).is_none(), "a commit changed the history");
     }
 }
