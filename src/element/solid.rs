@@ -85,10 +85,8 @@ pub struct ElementGeometry {
     gradients: [GradientMap; QUADRATURE_POINTS],
     /// Reference volume per radian of each Gauss point: w R det J.
     weights: [f64; QUADRATURE_POINTS],
-    /// theta_q = sum_p projection[q][p] v_p.
-    projection: [[f64; QUADRATURE_POINTS]; QUADRATURE_POINTS],
-    /// The projection factored through its rank-3 basis: projection[q][p] = basis[q] . coef[p],
-    /// so the 9 rows Theta_q are combinations of 3 rows (sum_p coef[p][k] (dv/dF)_p G_p).
+    /// The projection through its rank-3 basis: theta_q = basis[q] . sum_p coef[p] v_p, so the
+    /// 9 rows Theta_q are combinations of 3 rows (sum_p coef[p][k] (dv/dF)_p G_p).
     basis: [[f64; 3]; QUADRATURE_POINTS],
     coef: [[f64; 3]; QUADRATURE_POINTS],
 }
@@ -115,9 +113,19 @@ impl ElementGeometry {
         let m_inv = m.try_inverse().ok_or_else(|| "degenerate element: singular volume projection".to_string())?;
         let basis: [[f64; 3]; QUADRATURE_POINTS] = std::array::from_fn(|q| basis_vector(q).into());
         let coef: [[f64; 3]; QUADRATURE_POINTS] = std::array::from_fn(|p| (m_inv * basis_vector(p) * weights[p]).into());
-        let projection = std::array::from_fn(|q| std::array::from_fn(|p| (0..3).map(|k| basis[q][k] * coef[p][k]).sum()));
         let gradients = points.map(|g| GradientMap::new(&g));
-        Ok(ElementGeometry { points, gradients, weights, projection, basis, coef })
+        Ok(ElementGeometry { points, gradients, weights, basis, coef })
+    }
+
+    /// The projected volume measure theta at every Gauss point, from its values `v` there.
+    fn project(&self, v: &[f64; QUADRATURE_POINTS]) -> [f64; QUADRATURE_POINTS] {
+        let mut c = [0.0; 3];
+        for p in 0..QUADRATURE_POINTS {
+            for k in 0..3 {
+                c[k] += self.coef[p][k] * v[p];
+            }
+        }
+        self.basis.map(|b| b[0] * c[0] + b[1] * c[1] + b[2] * c[2])
     }
 
     /// Mean radius of the element, volume per radian over area in the (r, z) plane.
@@ -187,7 +195,7 @@ pub fn compute_solid(input: &SolidInput<'_>, u: &[[f64; 2]; NODES], mut tangents
         f[q] = geo.deformation_gradient(q, u);
         (v[q], dv[q]) = volume_measure(kin, &f[q]);
     }
-    let theta: [f64; QUADRATURE_POINTS] = std::array::from_fn(|q| (0..QUADRATURE_POINTS).map(|p| geo.projection[q][p] * v[p]).sum());
+    let theta = geo.project(&v);
 
     let mut force = [0.0; DOFS];
     let mut stress = [[0.0; 4]; QUADRATURE_POINTS];
@@ -324,10 +332,10 @@ mod tests {
     fn projection_reproduces_linear_fields() {
         let geometry = ElementGeometry::new(&element()).unwrap();
         let pos: Vec<[f64; 2]> = (0..9).map(|q| [geometry.points[q].r, 0.0]).collect();
-        let v: Vec<f64> = pos.iter().map(|p| 2.0 + 0.3 * p[0]).collect();
+        let v: [f64; 9] = std::array::from_fn(|q| 2.0 + 0.3 * pos[q][0]);
+        let theta = geometry.project(&v);
         for q in 0..9 {
-            let t: f64 = (0..9).map(|p| geometry.projection[q][p] * v[p]).sum();
-            assert!((t - v[q]).abs() < 1e-12);
+            assert!((theta[q] - v[q]).abs() < 1e-12);
         }
     }
 }
