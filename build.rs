@@ -64,6 +64,7 @@ const FUNCTIONS: &[&str] = &[
     "MatPartitioningCreate",
     "MatPartitioningSetAdjacency",
     "MatPartitioningSetNParts",
+    "MatPartitioningSetVertexWeights",
     "MatPartitioningSetType",
     "MatPartitioningSetFromOptions",
     "MatPartitioningApply",

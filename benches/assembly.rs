@@ -8,14 +8,14 @@ use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use slideline::dist::{DofMap, Partition};
 use slideline::model::bellows::{model, BellowsParams};
 use slideline::petsc::{PetscSession, VecOps, Vector};
-use slideline::solve::contact::contact_nodes;
+use slideline::solve::contact::{contact_nodes, partition_affinity};
 use slideline::solve::problem::{initial_history, Problem};
 use slideline::solve::schedule::StepLoads;
 
 fn assembly(c: &mut Criterion) {
     let session = PetscSession::initialize(&[]).expect("PETSc");
     let m = model(&BellowsParams::default()).expect("bellows model");
-    let partition = Partition::new(&session, &m.mesh).expect("partition");
+    let partition = Partition::new(&session, &m.mesh, &partition_affinity(&m)).expect("partition");
     let nodes = m.mesh.coords.len();
     let loads = StepLoads::new(&m, 0, None, &vec![[0.0; 2]; nodes]);
     let dofs = DofMap::new(&partition, &loads.prescribed_mask(nodes)).expect("dofs");

@@ -75,7 +75,7 @@ fn contact(c: &mut Criterion) {
         g.bench_function(format!("grid + closest edge, {name} ({nodes} slave nodes)"), |b| {
             b.iter(|| {
                 let grid = EdgeGrid::new(&master, &x, 2.0);
-                slave.nodes.iter().filter(|&&n| closest_edge(&master, &x, x(n), grid.candidates(x(n)), &[], 2.0).is_some()).count()
+                slave.nodes.iter().filter(|&&n| closest_edge(&master, &x, x(n), grid.candidates(x(n)), &[], 2.0, None).is_some()).count()
             })
         });
         let all: Vec<usize> = (0..nodes).collect();

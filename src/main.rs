@@ -8,6 +8,7 @@ use slideline::io::reader::ResultsReader;
 use slideline::io::ResultsFile;
 use slideline::petsc::PetscSession;
 use slideline::report::{BellowsReport, SECTOR_RADIANS};
+use slideline::solve::contact::partition_affinity;
 use slideline::solve::{run, RunOptions, RunSummary};
 use slideline::{model, Error};
 use std::path::PathBuf;
@@ -425,7 +426,7 @@ fn write_mesh(session: &PetscSession, params: &model::bellows::BellowsParams, ou
         model::gmsh::write(&mesh, &sets, &msh)?;
     }
     let m = model::bellows::model(params)?;
-    let partition = Partition::new(session, &m.mesh)?;
+    let partition = Partition::new(session, &m.mesh, &partition_affinity(&m))?;
     drop(ResultsFile::create(output, session, &m, &partition)?);
     if root {
         println!("mesh written to {} and {}", msh.display(), output.display());

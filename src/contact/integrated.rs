@@ -128,6 +128,8 @@ pub fn weighted_gaps(
         out.push(WeightedGap { index: i, gap: 0.0, samples: Vec::new(), master_edge: usize::MAX });
         best_weight.push(0.0);
     }
+    // the master edge of the last point found: consecutive points mostly share it
+    let mut hint = None;
     for e in edges {
         let en = slave.edges[e];
         let xs = en.map(x);
@@ -139,7 +141,8 @@ pub fn weighted_gaps(
         let mut masters: Vec<usize> = Vec::new();
         for &xi in &[-1.0, -0.5, 0.0, 0.5, 1.0] {
             let p = point(&xs, xi);
-            if let Some((m, _)) = closest_edge(master, x, p, grid.candidates(p), skip, capture) {
+            if let Some((m, _)) = closest_edge(master, x, p, grid.candidates(p), skip, capture, hint) {
+                hint = Some(m);
                 if !masters.contains(&m) {
                     masters.push(m);
                 }
@@ -165,7 +168,8 @@ pub fn weighted_gaps(
                 let t0 = [0, 1].map(|i| (0..3).map(|a| dn[a] * xr[a][i]).sum::<f64>());
                 let weight = w * 0.5 * (hi - lo) * r0 * (t0[0] * t0[0] + t0[1] * t0[1]).sqrt();
                 let p = point(&xs, xi);
-                let Some((m, proj)) = closest_edge(master, x, p, grid.candidates(p), skip, capture) else { continue };
+                let Some((m, proj)) = closest_edge(master, x, p, grid.candidates(p), skip, capture, hint) else { continue };
+                hint = Some(m);
                 // surfaces in contact face each other
                 let ts = [0, 1].map(|i| (0..3).map(|a| dn[a] * xs[a][i]).sum::<f64>());
                 if ts[1] * proj.normal[0] - ts[0] * proj.normal[1] >= 0.0 || proj.gap <= -capture {

@@ -6,10 +6,37 @@
 use super::node_to_edge::{project_on_edge, EdgeProjection};
 use super::surface::ContactSurface;
 use std::collections::HashMap;
+use std::hash::{BuildHasherDefault, Hasher};
 
 pub struct EdgeGrid {
     cell: f64,
-    cells: HashMap<(i64, i64), Vec<usize>>,
+    cells: HashMap<(i64, i64), Vec<usize>, BuildHasherDefault<CellHasher>>,
+}
+
+/// A multiplicative hash for cell coordinates: the grid is rebuilt and queried at every
+/// contact evaluation, and the default SipHash (built against adversarial keys, which cell
+/// indices are not) cost as much as the lookups' other work.
+#[derive(Default)]
+struct CellHasher(u64);
+
+impl Hasher for CellHasher {
+    fn write(&mut self, bytes: &[u8]) {
+        for &b in bytes {
+            self.write_u64(b as u64);
+        }
+    }
+
+    fn write_i64(&mut self, v: i64) {
+        self.write_u64(v as u64);
+    }
+
+    fn write_u64(&mut self, v: u64) {
+        self.0 = (self.0.rotate_left(5) ^ v).wrapping_mul(0x517c_c1b7_2722_0a95);
+    }
+
+    fn finish(&self) -> u64 {
+        self.0
+    }
 }
 
 impl EdgeGrid {
@@ -18,7 +45,7 @@ impl EdgeGrid {
         let n = surface.edges.len().max(1);
         let mean: f64 = surface.edges.iter().map(|e| dist(x(e[0]), x(e[1]))).sum::<f64>() / n as f64;
         let cell = (mean + 2.0 * capture).max(f64::MIN_POSITIVE);
-        let mut cells: HashMap<(i64, i64), Vec<usize>> = HashMap::with_capacity(2 * n);
+        let mut cells: HashMap<(i64, i64), Vec<usize>, BuildHasherDefault<CellHasher>> = HashMap::with_capacity_and_hasher(2 * n, Default::default());
         for (k, e) in surface.edges.iter().enumerate() {
             let p = e.map(&x);
             let lo = [0, 1].map(|i| p.iter().map(|q| q[i]).fold(f64::INFINITY, f64::min) - capture);
@@ -52,7 +79,10 @@ fn dist(a: [f64; 2], b: [f64; 2]) -> f64 {
 /// corner); beyond a free end of the surface (by more than FREE_END_EXTENSION) the node has
 /// slid off. At a concave corner the
 /// nearer edge wins, so a node is never counted twice. Ties go to the edge containing the
-/// projection, then to the lower index, so the choice is deterministic.
+/// projection, then to the lower index, so the choice is deterministic and does not depend on
+/// the order the candidates are tried in. `hint` (an edge likely to win, such as the previous
+/// query's on the same slave edge) is tried first: once it is the best so far, the others are
+/// mostly ruled out by their bounding boxes without a projection.
 pub fn closest_edge(
     surface: &ContactSurface,
     x: &impl Fn(usize) -> [f64; 2],
@@ -60,11 +90,14 @@ pub fn closest_edge(
     candidates: &[usize],
     excluded: &[usize],
     capture: f64,
+    hint: Option<usize>,
 ) -> Option<(usize, EdgeProjection)> {
     let inside = |p: &EdgeProjection| (-1.0..=1.0).contains(&p.xi);
     let mut best: Option<(usize, EdgeProjection)> = None;
     let tol = 1e-12 * capture;
-    for &k in candidates {
+    // the hint needs no membership test: an edge whose inflated box misses xs is farther than
+    // the capture distance and falls to the bound below
+    for k in hint.into_iter().chain(candidates.iter().copied().filter(|&k| Some(k) != hint)) {
         if excluded.contains(&k) {
             continue;
         }
@@ -132,16 +165,16 @@ mod tests {
         let x = |n: usize| mesh.coords[n];
         let grid = EdgeGrid::new(&s, &x, 0.5);
         let xs = [2.3, 0.99];
-        let (k, p) = closest_edge(&s, &x, xs, grid.candidates(xs), &[], 0.5).unwrap();
+        let (k, p) = closest_edge(&s, &x, xs, grid.candidates(xs), &[], 0.5, None).unwrap();
         let e = s.edges[k];
         assert!(x(e[0])[0].min(x(e[1])[0]) <= 2.3 && 2.3 <= x(e[0])[0].max(x(e[1])[0]));
         assert!((p.gap + 0.01).abs() < 1e-12, "{p:?}");
         // on a shared corner (r = 3): exactly one edge
         let xs = [3.0, 0.99];
-        assert!(closest_edge(&s, &x, xs, grid.candidates(xs), &[], 0.5).is_some());
+        assert!(closest_edge(&s, &x, xs, grid.candidates(xs), &[], 0.5, None).is_some());
         // beyond the free end r = 5 (more than the 5 % extension of the 1 mm edge)
         let xs = [5.2, 0.99];
-        assert!(closest_edge(&s, &x, xs, grid.candidates(xs), &[], 0.5).is_none());
+        assert!(closest_edge(&s, &x, xs, grid.candidates(xs), &[], 0.5, None).is_none());
     }
 
     /// A surface made of straight 3-node edges through `points` (each pair of consecutive
@@ -194,15 +227,15 @@ mod tests {
         // convex corner, outside: a point beyond both edge ends, in the blind spot, is found
         // on exactly one edge (the nearer one, here a tie broken towards the lower index)
         let xs = [2.1, -0.1];
-        let found = closest_edge(&s, &x, xs, grid.candidates(xs), &[], 0.5).expect("blind spot of a convex corner");
+        let found = closest_edge(&s, &x, xs, grid.candidates(xs), &[], 0.5, None).expect("blind spot of a convex corner");
         assert!(found.1.gap > 0.0, "outside the body");
         // inside the body near the corner: it projects onto both edges; only the nearer counts
         let xs = [1.95, 0.02];
-        let (k, p) = closest_edge(&s, &x, xs, grid.candidates(xs), &[], 0.5).unwrap();
+        let (k, p) = closest_edge(&s, &x, xs, grid.candidates(xs), &[], 0.5, None).unwrap();
         assert_eq!(k, 0, "nearer to the first edge");
         assert!((p.gap + 0.02).abs() < 1e-12);
         let xs = [1.98, 0.5];
-        let (k, _) = closest_edge(&s, &x, xs, grid.candidates(xs), &[], 0.5).unwrap();
+        let (k, _) = closest_edge(&s, &x, xs, grid.candidates(xs), &[], 0.5, None).unwrap();
         assert_eq!(k, 1, "nearer to the second edge");
     }
 
@@ -217,13 +250,13 @@ mod tests {
         let xs = [3.0, 0.19]; // the node, moved 0.01 off its own leg towards the bottom leg
         let own = s.neighbourhood(node, 1);
         assert!(!own.is_empty());
-        let (k, p) = closest_edge(&s, &x, xs, grid.candidates(xs), &own, 0.5).unwrap();
+        let (k, p) = closest_edge(&s, &x, xs, grid.candidates(xs), &own, 0.5, None).unwrap();
         assert!(!own.contains(&k));
         let e = s.edges[k];
         assert!(mesh.coords[e[0]][1] == 0.0 && mesh.coords[e[1]][1] == 0.0, "found the bottom leg");
         assert!((p.gap - 0.19).abs() < 1e-12, "open by 0.19: {p:?}");
         // without the exclusion the node's own edge would be the nearest
-        let (k, _) = closest_edge(&s, &x, xs, grid.candidates(xs), &[], 0.5).unwrap();
+        let (k, _) = closest_edge(&s, &x, xs, grid.candidates(xs), &[], 0.5, None).unwrap();
         assert!(own.contains(&k));
     }
 

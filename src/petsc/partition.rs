@@ -5,9 +5,17 @@ use super::{check, sys, to_petsc_int, Comm, IndexSet, PetscSession};
 use crate::error::Result;
 
 /// Partitions a distributed graph into `parts` parts. This rank holds rows `first_row..` of the
-/// graph in CSR form (`offsets`, global `neighbours`, no self-loops). Returns the part of each
-/// local row.
-pub fn partition_graph(session: &PetscSession, comm: Comm, total_rows: usize, offsets: &[usize], neighbours: &[usize], parts: usize) -> Result<Vec<usize>> {
+/// graph in CSR form (`offsets`, global `neighbours`, no self-loops) and, optionally, the
+/// weight of each local row (balanced across the parts). Returns the part of each local row.
+pub fn partition_graph(
+    session: &PetscSession,
+    comm: Comm,
+    total_rows: usize,
+    offsets: &[usize],
+    neighbours: &[usize],
+    weights: Option<&[u32]>,
+    parts: usize,
+) -> Result<Vec<usize>> {
     let local_rows = offsets.len() - 1;
     // MatCreateMPIAdj takes ownership of i and j and frees them with PetscFree: they must come
     // from PetscMalloc.
@@ -27,6 +35,11 @@ pub fn partition_graph(session: &PetscSession, comm: Comm, total_rows: usize, of
             check(sys::MatPartitioningCreate(comm, &mut part), "MatPartitioningCreate")?;
             check(sys::MatPartitioningSetAdjacency(part, adj), "MatPartitioningSetAdjacency")?;
             check(sys::MatPartitioningSetNParts(part, to_petsc_int(parts)?), "MatPartitioningSetNParts")?;
+            if let Some(w) = weights {
+                // the array passes to PETSc, which frees it with the partitioning
+                let w = petsc_malloc_ints(w.iter().map(|&v| v as sys::PetscInt))?;
+                check(sys::MatPartitioningSetVertexWeights(part, w), "MatPartitioningSetVertexWeights")?;
+            }
             if parts > 1 {
                 check(sys::MatPartitioningSetType(part, c"ptscotch".as_ptr()), "MatPartitioningSetType")?;
             }
