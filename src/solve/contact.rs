@@ -626,3 +626,65 @@ pub struct PassOutput<'a> {
     pub areas: Vec<f64>,
     pub states: &'a [SlaveState],
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::deck;
+    use std::path::Path;
+
+    /// Two stacked blocks, the upper one's bottom (4 elements) resting on the lower one's top
+    /// (2 elements), a third block far away.
+    const DECK: &str = r#"
+[[mesh.block]]
+name = "lower"
+r = [0.0, 4.0]
+z = [0.0, 1.0]
+divisions = [2, 1]
+[[mesh.block]]
+name = "upper"
+r = [0.0, 4.0]
+z = [1.0, 2.0]
+divisions = [4, 1]
+[[mesh.block]]
+name = "far"
+r = [0.0, 4.0]
+z = [50.0, 51.0]
+divisions = [2, 1]
+[[material]]
+name = "steel"
+youngs_modulus = 200000.0
+poissons_ratio = 0.3
+[[contact]]
+name = "stack"
+slave = "upper_bottom"
+master = "lower_top"
+penalty = 1.0e4
+capture_distance = 0.5
+[[step]]
+boundary = [ { set = "lower_bottom", uz = 0.0 } ]
+"#;
+
+    #[test]
+    fn the_partition_sees_facing_elements_linked_and_slave_elements_heavier() {
+        let model = deck::parse(DECK, Path::new("stack.toml")).unwrap();
+        let block = |name: &str| -> Vec<usize> {
+            let mut e: Vec<usize> = model.element_sets[name].clone();
+            e.sort_by(|&a, &b| model.mesh.coords[model.mesh.elements[a][0]][0].total_cmp(&model.mesh.coords[model.mesh.elements[b][0]][0]));
+            e
+        };
+        let (lower, upper, far) = (block("lower"), block("upper"), block("far"));
+        let affinity = partition_affinity(&model);
+        // each upper element (r in [i, i + 1]) is linked to the lower element under it, and
+        // to lower elements only (a node over the lower elements' shared corner links to both)
+        for (i, &u) in upper.iter().enumerate() {
+            let linked: Vec<usize> = affinity.links.iter().filter(|l| l[0] == u).map(|l| l[1]).collect();
+            assert!(linked.contains(&lower[i / 2]), "upper element {i} not linked to the lower element under it: {linked:?}");
+            assert!(linked.iter().all(|l| lower.contains(l)));
+        }
+        assert!(affinity.links.iter().all(|l| !far.contains(&l[0]) && !far.contains(&l[1])), "nothing faces the far block");
+        // work: slave-edge elements carry the contact integration on top of their own
+        assert!(upper.iter().all(|&u| affinity.work[u] == ELEMENT_WORK + SEGMENT_EDGE_WORK));
+        assert!(lower.iter().chain(&far).all(|&e| affinity.work[e] == ELEMENT_WORK));
+    }
+}
