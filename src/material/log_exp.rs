@@ -30,9 +30,9 @@ pub fn log_sym2<T: Scalar>(a: &Sym2<T>) -> Sym2<T> {
     let x2 = s / (m * m);
     let ratio = if x2.re() < 1e-2 {
         // atanh(x)/x = sum x^(2k) / (2k+1); 10 terms: error < 1e-20 for x^2 < 0.01
-        let mut sum = T::from_f64(1.0 / 19.0);
+        let mut sum = T::from_f64(ATANH_SERIES[9]);
         for k in (0..9).rev() {
-            sum = sum * x2 + 1.0 / (2 * k + 1) as f64;
+            sum = sum * x2 + ATANH_SERIES[k];
         }
         sum
     } else {
@@ -50,8 +50,8 @@ pub fn exp_sym2<T: Scalar>(a: &Sym2<T>) -> Sym2<T> {
         // cosh d = sum s^k / (2k)!, sinh(d)/d = sum s^k / (2k+1)!; 12 terms: error < 1e-24
         let (mut c, mut sc) = (T::from_f64(0.0), T::from_f64(0.0));
         for k in (0..12).rev() {
-            c = c * s + 1.0 / factorial(2 * k);
-            sc = sc * s + 1.0 / factorial(2 * k + 1);
+            c = c * s + INVERSE_FACTORIALS[2 * k];
+            sc = sc * s + INVERSE_FACTORIALS[2 * k + 1];
         }
         (c, sc)
     } else {
@@ -62,9 +62,28 @@ pub fn exp_sym2<T: Scalar>(a: &Sym2<T>) -> Sym2<T> {
     combine(a, m, em * cosh, em * sinhc)
 }
 
-fn factorial(n: usize) -> f64 {
-    (1..=n).map(|k| k as f64).product()
-}
+/// 1 / (2k + 1), k = 0..9: the series of atanh(x)/x in x^2.
+const ATANH_SERIES: [f64; 10] = {
+    let mut t = [0.0; 10];
+    let mut k = 0;
+    while k < 10 {
+        t[k] = 1.0 / (2 * k + 1) as f64;
+        k += 1;
+    }
+    t
+};
+
+/// 1 / n!, n = 0..23: the series of cosh and sinh(d)/d in d^2 (constants, so the series cost
+/// 24 multiply-adds and no factorials; they run at every Gauss point of every evaluation).
+const INVERSE_FACTORIALS: [f64; 24] = {
+    let mut t = [1.0; 24];
+    let mut n = 1;
+    while n < 24 {
+        t[n] = t[n - 1] / n as f64;
+        n += 1;
+    }
+    t
+};
 
 #[cfg(test)]
 mod tests {
