@@ -278,6 +278,20 @@ impl<'s> Scatter<'s> {
     }
 }
 
+impl Scatter<'_> {
+    /// Collective: adds the entries of the sequential `local` (the `to` of the scatter) into
+    /// the global entries they were gathered from (the reverse scatter, ADD_VALUES), each
+    /// rank's contributions to any rank's entries. The communication pattern is the forward
+    /// one's, known in advance, unlike VecSetValues' stash.
+    pub fn add_back(&self, local: &Vector<'_>, to: &mut impl VecOps) -> Result<()> {
+        // SAFETY: handles valid and matching those the scatter was built for (reversed).
+        unsafe {
+            check(sys::VecScatterBegin(self.raw, local.raw(), to.raw(), sys::InsertMode_ADD_VALUES, sys::ScatterMode_SCATTER_REVERSE), "VecScatterBegin")?;
+            check(sys::VecScatterEnd(self.raw, local.raw(), to.raw(), sys::InsertMode_ADD_VALUES, sys::ScatterMode_SCATTER_REVERSE), "VecScatterEnd")
+        }
+    }
+}
+
 impl Drop for Scatter<'_> {
     fn drop(&mut self) {
         // SAFETY: owned handle.

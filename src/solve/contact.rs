@@ -1,7 +1,7 @@
 //! Contact in the parallel problem. Contact surfaces are small: every rank gathers the
-//! current coordinates of all their nodes at each evaluation (one scatter), rebuilds the
-//! search grid, and evaluates the slave nodes it owns; the contributions are assembled with
-//! the elements (off-rank rows through PETSc's stash).
+//! current coordinates of all their nodes at each evaluation (with its elements' DOFs, in the
+//! problem's one scatter), rebuilds the search grid, and evaluates the slave nodes it owns;
+//! the contributions are assembled with the elements.
 //!
 //! A pair is one pass (its slave nodes against its master segments) or, two-pass, also the
 //! reverse pass; each pass of a two-pass pair carries half of the penalty force, so the
@@ -14,10 +14,8 @@ use crate::contact::node_to_edge::{edge_residual, edge_residual_and_tangent, Con
 use crate::contact::search::{closest_edge, EdgeGrid};
 use crate::contact::surface::ContactSurface;
 use crate::dist::{Affinity, DofMap, Partition};
-use crate::error::Result;
 use crate::model::{ContactIntegration, ContactPair, Model, Penalty};
 use crate::petsc::sys::PetscInt;
-use crate::petsc::{PetscSession, Scatter, VecOps, Vector};
 
 /// Mesh nodes of every contact surface of the model (sorted).
 pub fn contact_nodes(model: &Model) -> Vec<usize> {
@@ -185,16 +183,15 @@ pub struct ContactCarry {
     pub pattern: ContactPattern,
 }
 
-pub struct ContactAssembly<'s> {
+pub struct ContactAssembly {
     surfaces: Vec<ContactSurface>,
     passes: Vec<Pass>,
     /// Mesh node -> index into `nodes`, usize::MAX when not a contact node.
     slot: Vec<usize>,
     nodes: Vec<usize>,
-    /// For each contact node DOF, its position in `gathered` (usize::MAX when prescribed).
+    /// For each contact node DOF, its position in the problem's gathered values (usize::MAX
+    /// when prescribed).
     gathered_slot: Vec<[usize; 2]>,
-    gathered: Vector<'s>,
-    scatter: Scatter<'s>,
     /// Current positions of the contact nodes (refreshed by `gather`).
     positions: Vec<[f64; 2]>,
     /// Multipliers of the last converged increment and the ones in use.
@@ -218,18 +215,13 @@ pub struct ContactAssembly<'s> {
     pattern: ContactPattern,
 }
 
-impl<'s> ContactAssembly<'s> {
+impl ContactAssembly {
     /// None when the model has no contact pairs.
-    pub fn new(
-        session: &'s PetscSession,
-        model: &Model,
-        partition: &Partition,
-        dofs: &DofMap,
-        layout: &Vector<'s>,
-        carry: Option<ContactCarry>,
-    ) -> Result<Option<Self>> {
+    /// `slot_of` gives the position of a free DOF in the values the problem gathers at each
+    /// evaluation (it gathers every contact node's).
+    pub fn new(model: &Model, partition: &Partition, dofs: &DofMap, slot_of: impl Fn(PetscInt) -> usize, carry: Option<ContactCarry>) -> Option<Self> {
         if model.contacts.is_empty() {
-            return Ok(None);
+            return None;
         }
         let (surfaces, directions) = surfaces_and_directions(model);
         let mut passes = Vec::new();
@@ -255,19 +247,13 @@ impl<'s> ContactAssembly<'s> {
         for (k, &n) in nodes.iter().enumerate() {
             slot[n] = k;
         }
-        let node_dofs: Vec<[PetscInt; 2]> = nodes.iter().map(|&n| dofs.dof[n]).collect();
-        let mut needed: Vec<PetscInt> = node_dofs.iter().flatten().copied().filter(|&d| d >= 0).collect();
-        needed.sort_unstable();
-        needed.dedup();
-        let gathered = Vector::seq(session, needed.len())?;
-        let scatter = Scatter::gather(session, layout, &gathered, &needed)?;
-        let gathered_slot = node_dofs.iter().map(|d| d.map(|g| if g >= 0 { needed.binary_search(&g).expect("listed") } else { usize::MAX })).collect();
+        let gathered_slot = nodes.iter().map(|&n| dofs.dof[n].map(|g| if g >= 0 { slot_of(g) } else { usize::MAX })).collect();
         let (committed, pattern) = match carry {
             Some(c) => (c.multipliers, c.pattern),
             None => (passes.iter().map(|p| vec![0.0; p.owned.len()]).collect(), ContactPattern::default()),
         };
         let states = passes.iter().map(|p| vec![SlaveState::default(); p.owned.len()]).collect();
-        Ok(Some(ContactAssembly {
+        Some(ContactAssembly {
             surfaces,
             current: committed.clone(),
             committed,
@@ -276,8 +262,6 @@ impl<'s> ContactAssembly<'s> {
             slot,
             nodes,
             gathered_slot,
-            gathered,
-            scatter,
             states,
             nodal_forces: Vec::new(),
             roundoff: 0.0,
@@ -285,19 +269,17 @@ impl<'s> ContactAssembly<'s> {
             evaluated_at: None,
             with_tangents: false,
             pattern,
-        }))
+        })
     }
 
-    /// Refreshes the current positions of all contact nodes from `x` and the prescribed values.
-    pub fn gather(&mut self, model: &Model, x: &impl VecOps, prescribed: &[[f64; 2]]) -> Result<()> {
-        self.scatter.forward(x, &mut self.gathered)?;
-        let g = self.gathered.read()?;
+    /// Refreshes the current positions of all contact nodes from the problem's gathered
+    /// values `g` and the prescribed values.
+    pub fn gather(&mut self, model: &Model, g: &[f64], prescribed: &[[f64; 2]]) {
         for (k, &n) in self.nodes.iter().enumerate() {
             let x0 = model.mesh.coords[n];
             self.positions[k] =
                 std::array::from_fn(|c| x0[c] + if self.gathered_slot[k][c] != usize::MAX { g[self.gathered_slot[k][c]] } else { prescribed[n][c] });
         }
-        Ok(())
     }
 
     /// Evaluates every owned slave node at the gathered positions and records the slave
@@ -505,6 +487,11 @@ impl<'s> ContactAssembly<'s> {
     }
 
     /// Accepts the multipliers in use (after a converged increment).
+    /// The multipliers in use (augmented Lagrangian; zeros for a pure penalty).
+    pub fn multipliers(&self) -> &Multipliers {
+        &self.current
+    }
+
     pub fn commit(&mut self) {
         self.committed.clone_from(&self.current);
     }

@@ -6,7 +6,7 @@
 //! `trial`; [`Problem::commit`] copies trial to committed after a converged increment. A failed
 //! attempt never touches `committed`, so a cutback has nothing to undo.
 
-use super::contact::{ContactAssembly, ContactCarry, Need};
+use super::contact::{contact_nodes, ContactAssembly, ContactCarry, Multipliers, Need};
 use super::layout::JacobianLayout;
 use crate::dist::{DofMap, Partition};
 use crate::element::pressure::{compute_pressure_load, pressure_load_stiffness};
@@ -25,7 +25,7 @@ use crate::petsc::{LogStage, MatOps, Matrix, MatrixView, NonlinearProblem, Petsc
 pub const ROUNDOFF_ULPS: f64 = 100.0;
 
 /// Loads and prescribed values at the current load factor.
-#[derive(Clone, Debug, Default)]
+#[derive(Clone, Debug, Default, PartialEq)]
 pub struct LoadState {
     /// Value of every prescribed DOF (node, component); entries of free DOFs are unused.
     pub prescribed: Vec<[f64; 2]>,
@@ -107,6 +107,7 @@ impl KeptTangents {
 }
 
 /// What an evaluation at a converged state gives for output.
+#[derive(Clone, Debug)]
 pub struct ElementFields {
     /// Cauchy stress at the Gauss points of each local element (partition order).
     pub stress: Vec<[[f64; 4]; QUADRATURE_POINTS]>,
@@ -117,14 +118,30 @@ pub struct ElementFields {
     pub nodal_force: Vec<[f64; 2]>,
 }
 
+/// The output fields of the last residual evaluation and the state it was made at: after
+/// convergence the output asks for the fields at the iterate whose residual SNES has just
+/// evaluated, so they are kept rather than computed a second time.
+struct LastEvaluation {
+    gathered: Vec<f64>,
+    load: LoadState,
+    multipliers: Option<Multipliers>,
+    fields: ElementFields,
+}
+
 pub struct Problem<'s, 'm> {
     model: &'m Model,
     materials: Vec<J2>,
     elements: Vec<LocalElement>,
     /// For each surface of the model: the (local element index, side) of its edges on this rank.
     surface_edges: Vec<(String, Vec<(usize, usize)>)>,
+    /// The free DOFs this rank reads and writes (its elements' and every contact node's):
+    /// gathered from the unknowns by `scatter`, and the residual added back through it.
     gathered: Vector<'s>,
     scatter: Scatter<'s>,
+    /// Position in `gathered` of every (node, component) it holds, usize::MAX elsewhere.
+    node_slots: Vec<[usize; 2]>,
+    /// This rank's residual contributions, in `gathered`'s order.
+    local_residual: Vector<'s>,
     session: &'s PetscSession,
     /// The step's numbering: global unknown of every (node, component), -1 where prescribed.
     dofs: DofMap,
@@ -132,19 +149,21 @@ pub struct Problem<'s, 'm> {
     trial: History,
     /// Material tangents of the last residual evaluation (see [`KeptTangents`]).
     kept: KeptTangents,
+    /// Its output fields (dropped at every commit, which changes the history).
+    last: Option<LastEvaluation>,
     /// Where each Jacobian entry goes (elements and this rank's contact couplings).
     layout: JacobianLayout,
     /// Whether a Jacobian has replaced the matrix's structure since the solver last asked.
     structure_changed: bool,
     /// Round-off floor (squared, this rank) of the last residual.
     roundoff: f64,
-    pub contact: Option<ContactAssembly<'s>>,
+    pub contact: Option<ContactAssembly>,
     pub load: LoadState,
     pub stages: Stages,
 }
 
 /// The Jacobian's layout: the local elements' blocks, then this rank's contact couplings.
-fn jacobian_layout(elements: &[LocalElement], contact: Option<&ContactAssembly<'_>>, dofs: &DofMap) -> JacobianLayout {
+fn jacobian_layout(elements: &[LocalElement], contact: Option<&ContactAssembly>, dofs: &DofMap) -> JacobianLayout {
     let element_dofs: Vec<[PetscInt; DOFS]> = elements.iter().map(|el| el.dofs).collect();
     let pairs: Vec<(usize, usize)> = contact.map(|c| c.pattern().pairs().collect()).unwrap_or_default();
     JacobianLayout::new(&element_dofs, pairs, &dofs.dof)
@@ -177,12 +196,24 @@ impl<'s, 'm> Problem<'s, 'm> {
     ) -> Result<Self> {
         let local = partition.local_elements();
         assert_eq!(history.len(), local.len(), "one history entry per local element");
-        // Free DOFs this rank's elements touch, fetched by one scatter per evaluation.
-        let mut needed: Vec<PetscInt> = local.iter().flat_map(|&e| model.mesh.elements[e]).flat_map(|n| dofs.dof[n]).filter(|&d| d >= 0).collect();
+        // Free DOFs this rank's elements touch and those of every contact node: fetched by one
+        // scatter per evaluation, and the residual added back through the same scatter
+        let contact_nodes = contact_nodes(model);
+        let mut needed: Vec<PetscInt> =
+            local.iter().flat_map(|&e| model.mesh.elements[e]).chain(contact_nodes.iter().copied()).flat_map(|n| dofs.dof[n]).filter(|&d| d >= 0).collect();
         needed.sort_unstable();
         needed.dedup();
         let gathered = Vector::seq(session, needed.len())?;
         let scatter = Scatter::gather(session, layout, &gathered, &needed)?;
+        let slot_of = |g: PetscInt| needed.binary_search(&g).expect("needed holds every local free DOF");
+        let mut node_slots = vec![[usize::MAX; 2]; model.mesh.coords.len()];
+        for (n, d) in dofs.dof.iter().enumerate() {
+            for c in 0..2 {
+                if d[c] >= 0 {
+                    node_slots[n][c] = needed.binary_search(&d[c]).unwrap_or(usize::MAX);
+                }
+            }
+        }
         let mut elements = Vec::with_capacity(local.len());
         for &e in local {
             let conn = model.mesh.elements[e];
@@ -193,7 +224,7 @@ impl<'s, 'm> Problem<'s, 'm> {
                     let g = dofs.dof[conn[a]][c];
                     d[2 * a + c] = g;
                     if g >= 0 {
-                        slots[2 * a + c] = needed.binary_search(&g).expect("needed holds every local free DOF");
+                        slots[2 * a + c] = slot_of(g);
                     }
                 }
             }
@@ -214,7 +245,8 @@ impl<'s, 'm> Problem<'s, 'm> {
             .collect();
         let materials = model.materials.iter().map(material_kernel).collect();
         let trial = history.clone();
-        let contact = ContactAssembly::new(session, model, partition, dofs, layout, contact)?;
+        let contact = ContactAssembly::new(model, partition, dofs, slot_of, contact);
+        let local_residual = gathered.duplicate()?;
         let layout = jacobian_layout(&elements, contact.as_ref(), dofs);
         Ok(Problem {
             model,
@@ -223,11 +255,14 @@ impl<'s, 'm> Problem<'s, 'm> {
             surface_edges,
             gathered,
             scatter,
+            node_slots,
+            local_residual,
             session,
             dofs: dofs.clone(),
             committed: history,
             trial,
             kept: KeptTangents { elements: vec![KeptTangent::default(); local.len()] },
+            last: None,
             layout,
             structure_changed: false,
             roundoff: 0.0,
@@ -242,6 +277,7 @@ impl<'s, 'm> Problem<'s, 'm> {
     pub fn commit(&mut self) {
         self.committed.copy_from_slice(&self.trial);
         self.kept.forget();
+        self.last = None;
         if let Some(c) = self.contact.as_mut() {
             c.commit();
         }
@@ -293,10 +329,11 @@ impl<'s, 'm> Problem<'s, 'm> {
     /// from the global vector `x`.
     fn gather(&mut self, x: &impl VecOps) -> Result<Vec<f64>> {
         self.scatter.forward(x, &mut self.gathered)?;
+        let gathered = self.gathered.read()?.to_vec();
         if let Some(c) = self.contact.as_mut() {
-            c.gather(self.model, x, &self.load.prescribed)?;
+            c.gather(self.model, &gathered, &self.load.prescribed);
         }
-        Ok(self.gathered.read()?.to_vec())
+        Ok(gathered)
     }
 
     fn displacements(&self, el: &LocalElement, gathered: &[f64]) -> [[f64; 2]; NODES] {
@@ -411,6 +448,16 @@ impl<'s, 'm> Problem<'s, 'm> {
     /// output and reactions); also leaves the trial history of `x` ready to commit.
     pub fn evaluate_fields(&mut self, x: &impl VecOps) -> Result<ElementFields> {
         let gathered = self.gather(x)?;
+        let multipliers = self.contact.as_ref().map(|c| c.multipliers());
+        if let Some(last) = self.last.as_ref().filter(|l| l.gathered == gathered && l.load == self.load && l.multipliers.as_ref() == multipliers) {
+            // the last residual was evaluated here: its trial history, fields and (cached)
+            // contact states are those of x
+            let fields = last.fields.clone();
+            if let Some(c) = self.contact.as_mut() {
+                c.evaluate(self.model, Need::Residual);
+            }
+            return Ok(fields);
+        }
         let n = self.elements.len();
         let mut stress = vec![[[0.0; 4]; QUADRATURE_POINTS]; n];
         let mut plastic_strain = vec![[0.0; QUADRATURE_POINTS]; n];
@@ -452,28 +499,45 @@ impl Problem<'_, '_> {
     pub fn assemble_residual(&mut self, x: &impl VecOps, f: &mut impl VecOps) -> Result<()> {
         let gathered = self.gather(x)?;
         f.set_all(0.0)?;
-        let mut rows: Vec<PetscInt> = Vec::with_capacity(DOFS * self.elements.len());
-        let mut values: Vec<f64> = Vec::with_capacity(DOFS * self.elements.len());
-        let dof = std::mem::take(&mut self.dofs.dof);
+        let mut local = vec![0.0; gathered.len()];
+        let slots = std::mem::take(&mut self.node_slots);
+        let n = self.elements.len();
+        let mut fields = match self.last.take() {
+            Some(last) => last.fields,
+            None => ElementFields {
+                stress: vec![[[0.0; 4]; QUADRATURE_POINTS]; n],
+                plastic_strain: vec![[0.0; QUADRATURE_POINTS]; n],
+                nodal_force: vec![[0.0; 2]; self.model.mesh.coords.len()],
+            },
+        };
+        fields.nodal_force.fill([0.0; 2]);
         let result = self.residual_entries(
             &gathered,
             true,
-            |_, _| {},
+            |k, out| {
+                fields.stress[k] = out.stress;
+                fields.plastic_strain[k] = out.state.map(|s| s.ep);
+            },
             |node, c, v| {
-                if dof[node][c] >= 0 {
-                    rows.push(dof[node][c]);
-                    values.push(v);
+                fields.nodal_force[node][c] += v;
+                // prescribed DOFs (the only ones without a slot) take no residual
+                if let Some(r) = local.get_mut(slots[node][c]) {
+                    *r += v;
                 }
             },
         );
-        self.dofs.dof = dof;
-        // Assembly is collective: a rank whose evaluation failed (an inverted element) still
-        // takes part, with nothing to add, and reports the failure afterwards; returning
-        // before it would leave the other ranks waiting in VecAssembly.
+        self.node_slots = slots;
         if result.is_ok() {
-            f.add_values(&rows, &values)?;
+            let multipliers = self.contact.as_ref().map(|c| c.multipliers().clone());
+            self.last = Some(LastEvaluation { gathered, load: self.load.clone(), multipliers, fields });
+        } else {
+            // Assembly is collective: a rank whose evaluation failed (an inverted element)
+            // still takes part, with nothing to add, and reports the failure afterwards;
+            // returning before it would leave the other ranks waiting in the scatter.
+            local.fill(0.0);
         }
-        f.assemble()?;
+        self.local_residual.write()?.copy_from_slice(&local);
+        self.scatter.add_back(&self.local_residual, f)?;
         result
     }
 
