@@ -42,7 +42,7 @@ fn kernels(c: &mut Criterion) {
 fn contact(c: &mut Criterion) {
     use slideline::contact::integrated::weighted_gaps;
     use slideline::contact::node_to_edge::{edge_residual_and_tangent, project_on_edge, ContactLaw};
-    use slideline::contact::search::{closest_edge, EdgeGrid};
+    use slideline::contact::search::EdgeGrid;
     use slideline::contact::surface::ContactSurface;
     use slideline::model::bellows::{mesh, BellowsParams};
 
@@ -75,7 +75,7 @@ fn contact(c: &mut Criterion) {
         g.bench_function(format!("grid + closest edge, {name} ({nodes} slave nodes)"), |b| {
             b.iter(|| {
                 let grid = EdgeGrid::new(&master, &x, 2.0);
-                slave.nodes.iter().filter(|&&n| closest_edge(&master, &x, x(n), grid.candidates(x(n)), &[], 2.0, None).is_some()).count()
+                slave.nodes.iter().filter(|&&n| grid.closest_edge(&master, &x, x(n), &[], 2.0, None).is_some()).count()
             })
         });
         let all: Vec<usize> = (0..nodes).collect();

@@ -25,7 +25,7 @@
 //! line search's) skip it.
 
 use super::node_to_edge::{edge_residual_and_tangent, project_on_edge, ContactLaw, EdgeProjection};
-use super::search::{closest_edge, EdgeGrid};
+use super::search::EdgeGrid;
 use super::surface::{hats, ContactSurface};
 use crate::fe::quadrature::GAUSS3;
 use crate::fe::shape::line3;
@@ -141,7 +141,7 @@ pub fn weighted_gaps(
         let mut masters: Vec<usize> = Vec::new();
         for &xi in &[-1.0, -0.5, 0.0, 0.5, 1.0] {
             let p = point(&xs, xi);
-            if let Some((m, _)) = closest_edge(master, x, p, grid.candidates(p), skip, capture, hint) {
+            if let Some((m, _)) = grid.closest_edge(master, x, p, skip, capture, hint) {
                 hint = Some(m);
                 if !masters.contains(&m) {
                     masters.push(m);
@@ -168,7 +168,7 @@ pub fn weighted_gaps(
                 let t0 = [0, 1].map(|i| (0..3).map(|a| dn[a] * xr[a][i]).sum::<f64>());
                 let weight = w * 0.5 * (hi - lo) * r0 * (t0[0] * t0[0] + t0[1] * t0[1]).sqrt();
                 let p = point(&xs, xi);
-                let Some((m, proj)) = closest_edge(master, x, p, grid.candidates(p), skip, capture, hint) else { continue };
+                let Some((m, proj)) = grid.closest_edge(master, x, p, skip, capture, hint) else { continue };
                 hint = Some(m);
                 // surfaces in contact face each other
                 let ts = [0, 1].map(|i| (0..3).map(|a| dn[a] * xs[a][i]).sum::<f64>());

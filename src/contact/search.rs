@@ -1,7 +1,9 @@
 //! Closest-edge search: a uniform grid of master-edge bounding boxes (inflated by the capture
 //! distance), rebuilt on the current configuration at every evaluation. Building is linear in
 //! the number of edges and each query looks at one cell, so the search is linear, not
-//! quadratic, in the surface sizes.
+//! quadratic, in the surface sizes. The grid also keeps each edge's hull box, so the
+//! candidates of a query that cannot win are ruled out from one contiguous array, without
+//! fetching their nodes.
 
 use super::node_to_edge::{project_on_edge, EdgeProjection};
 use super::surface::ContactSurface;
@@ -11,6 +13,9 @@ use std::hash::{BuildHasherDefault, Hasher};
 pub struct EdgeGrid {
     cell: f64,
     cells: HashMap<(i64, i64), Vec<usize>, BuildHasherDefault<CellHasher>>,
+    /// Per edge, the box (low, high corners) of its Bezier control points, which holds the
+    /// curve: the distance to it is a lower bound on the distance to the edge.
+    hulls: Vec<[[f64; 2]; 2]>,
 }
 
 /// A multiplicative hash for cell coordinates: the grid is rebuilt and queried at every
@@ -46,8 +51,10 @@ impl EdgeGrid {
         let mean: f64 = surface.edges.iter().map(|e| dist(x(e[0]), x(e[1]))).sum::<f64>() / n as f64;
         let cell = (mean + 2.0 * capture).max(f64::MIN_POSITIVE);
         let mut cells: HashMap<(i64, i64), Vec<usize>, BuildHasherDefault<CellHasher>> = HashMap::with_capacity_and_hasher(2 * n, Default::default());
+        let mut hulls = Vec::with_capacity(surface.edges.len());
         for (k, e) in surface.edges.iter().enumerate() {
             let p = e.map(&x);
+            hulls.push(hull(&p));
             let lo = [0, 1].map(|i| p.iter().map(|q| q[i]).fold(f64::INFINITY, f64::min) - capture);
             let hi = [0, 1].map(|i| p.iter().map(|q| q[i]).fold(f64::NEG_INFINITY, f64::max) + capture);
             for i in cell_of(lo[0], cell)..=cell_of(hi[0], cell) {
@@ -56,12 +63,71 @@ impl EdgeGrid {
                 }
             }
         }
-        EdgeGrid { cell, cells }
+        EdgeGrid { cell, cells, hulls }
     }
 
     /// Edges whose inflated box may contain `p`.
     pub fn candidates(&self, p: [f64; 2]) -> &[usize] {
         self.cells.get(&(cell_of(p[0], self.cell), cell_of(p[1], self.cell))).map(|v| v.as_slice()).unwrap_or(&[])
+    }
+
+    /// The master edge a slave node at `xs` bears on, among the candidates of its cell (minus
+    /// `excluded`): the edge whose nearest point is closest, within `capture`. A projection
+    /// beyond an edge end is kept only where a neighbouring edge continues the surface (the
+    /// blind spot of a convex corner); beyond a free end of the surface (by more than
+    /// FREE_END_EXTENSION) the node has slid off. At a concave corner the nearer edge wins, so
+    /// a node is never counted twice. Ties go to the edge containing the projection, then to
+    /// the lower index, so the choice is deterministic and does not depend on the order the
+    /// candidates are tried in. `hint` (an edge likely to win, such as the previous
+    /// query's on the same slave edge) is tried first: once it is the best so far, the others are
+    /// mostly ruled out by their bounding boxes without a projection.
+    pub fn closest_edge(
+        &self,
+        surface: &ContactSurface,
+        x: &impl Fn(usize) -> [f64; 2],
+        xs: [f64; 2],
+        excluded: &[usize],
+        capture: f64,
+        hint: Option<usize>,
+    ) -> Option<(usize, EdgeProjection)> {
+        let candidates = self.candidates(xs);
+        let inside = |p: &EdgeProjection| (-1.0..=1.0).contains(&p.xi);
+        let mut best: Option<(usize, EdgeProjection)> = None;
+        let tol = 1e-12 * capture;
+        // the hint needs no membership test: an edge whose inflated box misses xs is farther than
+        // the capture distance and falls to the bound below
+        for k in hint.into_iter().chain(candidates.iter().copied().filter(|&k| Some(k) != hint)) {
+            // a lower bound on the distance first: the curve lies in the hull of its Bezier
+            // control points, so an edge whose hull's box is farther than the capture distance
+            // or the best edge so far is skipped without the projection (same result, several
+            // times fewer projections)
+            let bound = box_distance(xs, &self.hulls[k]);
+            if bound > capture || best.as_ref().is_some_and(|(_, bp)| bound > bp.distance + tol) {
+                continue;
+            }
+            if excluded.contains(&k) {
+                continue;
+            }
+            let Some(p) = project_on_edge(xs, &surface.edges[k].map(x)) else { continue };
+            if p.distance > capture {
+                continue;
+            }
+            let better = match &best {
+                None => true,
+                Some((bk, bp)) => {
+                    p.distance < bp.distance - tol || (p.distance <= bp.distance + tol && (inside(&p) && !inside(bp) || (inside(&p) == inside(bp) && k < *bk)))
+                }
+            };
+            if better {
+                best = Some((k, p));
+            }
+        }
+        let (k, p) = best?;
+        let beyond = 1.0 + FREE_END_EXTENSION;
+        if (p.xi < -beyond && surface.neighbours[k][0].is_none()) || (p.xi > beyond && surface.neighbours[k][1].is_none()) {
+            return None;
+        }
+        Some((k, p))
     }
 }
 
@@ -73,74 +139,17 @@ fn dist(a: [f64; 2], b: [f64; 2]) -> f64 {
     (a[0] - b[0]).hypot(a[1] - b[1])
 }
 
-/// The master edge a slave node at `xs` bears on, among `candidates` (minus `excluded`): the
-/// edge whose nearest point is closest, within `capture`. A projection beyond an edge end is
-/// kept only where a neighbouring edge continues the surface (the blind spot of a convex
-/// corner); beyond a free end of the surface (by more than FREE_END_EXTENSION) the node has
-/// slid off. At a concave corner the
-/// nearer edge wins, so a node is never counted twice. Ties go to the edge containing the
-/// projection, then to the lower index, so the choice is deterministic and does not depend on
-/// the order the candidates are tried in. `hint` (an edge likely to win, such as the previous
-/// query's on the same slave edge) is tried first: once it is the best so far, the others are
-/// mostly ruled out by their bounding boxes without a projection.
-pub fn closest_edge(
-    surface: &ContactSurface,
-    x: &impl Fn(usize) -> [f64; 2],
-    xs: [f64; 2],
-    candidates: &[usize],
-    excluded: &[usize],
-    capture: f64,
-    hint: Option<usize>,
-) -> Option<(usize, EdgeProjection)> {
-    let inside = |p: &EdgeProjection| (-1.0..=1.0).contains(&p.xi);
-    let mut best: Option<(usize, EdgeProjection)> = None;
-    let tol = 1e-12 * capture;
-    // the hint needs no membership test: an edge whose inflated box misses xs is farther than
-    // the capture distance and falls to the bound below
-    for k in hint.into_iter().chain(candidates.iter().copied().filter(|&k| Some(k) != hint)) {
-        if excluded.contains(&k) {
-            continue;
-        }
-        let edge = surface.edges[k].map(x);
-        // a lower bound on the distance first: the curve lies in the hull of its Bezier
-        // control points (the end nodes and 2 x_mid - (x_start + x_end) / 2), so an edge whose
-        // hull's box is farther than the capture distance or the best edge so far is skipped
-        // without the projection (same result, several times fewer projections)
-        let bound = box_distance(xs, &edge);
-        if bound > capture || best.as_ref().is_some_and(|(_, bp)| bound > bp.distance + tol) {
-            continue;
-        }
-        let Some(p) = project_on_edge(xs, &edge) else { continue };
-        if p.distance > capture {
-            continue;
-        }
-        let better = match &best {
-            None => true,
-            Some((bk, bp)) => {
-                p.distance < bp.distance - tol || (p.distance <= bp.distance + tol && (inside(&p) && !inside(bp) || (inside(&p) == inside(bp) && k < *bk)))
-            }
-        };
-        if better {
-            best = Some((k, p));
-        }
-    }
-    let (k, p) = best?;
-    let beyond = 1.0 + FREE_END_EXTENSION;
-    if (p.xi < -beyond && surface.neighbours[k][0].is_none()) || (p.xi > beyond && surface.neighbours[k][1].is_none()) {
-        return None;
-    }
-    Some((k, p))
+/// The box of the Bezier control points of the quadratic edge `x` (start, end, middle): the
+/// end nodes and 2 x_mid - (x_start + x_end) / 2.
+fn hull(x: &[[f64; 2]; 3]) -> [[f64; 2]; 2] {
+    let control = [0, 1].map(|i| 2.0 * x[2][i] - 0.5 * (x[0][i] + x[1][i]));
+    [[0, 1].map(|i| x[0][i].min(x[1][i]).min(control[i])), [0, 1].map(|i| x[0][i].max(x[1][i]).max(control[i]))]
 }
 
-/// Distance from `p` to the bounding box of the Bezier control points of the quadratic edge
-/// `x` (start, end, middle): a lower bound on the distance to any point of the edge.
-fn box_distance(p: [f64; 2], x: &[[f64; 2]; 3]) -> f64 {
-    let control = [0, 1].map(|i| 2.0 * x[2][i] - 0.5 * (x[0][i] + x[1][i]));
-    let gap = |i: usize| {
-        let lo = x[0][i].min(x[1][i]).min(control[i]);
-        let hi = x[0][i].max(x[1][i]).max(control[i]);
-        (lo - p[i]).max(p[i] - hi).max(0.0)
-    };
+/// Distance from `p` to the box `hull`: a lower bound on the distance to any point of the
+/// edge inside it.
+fn box_distance(p: [f64; 2], hull: &[[f64; 2]; 2]) -> f64 {
+    let gap = |i: usize| (hull[0][i] - p[i]).max(p[i] - hull[1][i]).max(0.0);
     // sqrt of the squares, not hypot: this runs for every candidate edge of every query, and
     // libm's overflow-safe hypot is several times slower (lengths here are far from overflow)
     (gap(0) * gap(0) + gap(1) * gap(1)).sqrt()
@@ -165,16 +174,16 @@ mod tests {
         let x = |n: usize| mesh.coords[n];
         let grid = EdgeGrid::new(&s, &x, 0.5);
         let xs = [2.3, 0.99];
-        let (k, p) = closest_edge(&s, &x, xs, grid.candidates(xs), &[], 0.5, None).unwrap();
+        let (k, p) = grid.closest_edge(&s, &x, xs, &[], 0.5, None).unwrap();
         let e = s.edges[k];
         assert!(x(e[0])[0].min(x(e[1])[0]) <= 2.3 && 2.3 <= x(e[0])[0].max(x(e[1])[0]));
         assert!((p.gap + 0.01).abs() < 1e-12, "{p:?}");
         // on a shared corner (r = 3): exactly one edge
         let xs = [3.0, 0.99];
-        assert!(closest_edge(&s, &x, xs, grid.candidates(xs), &[], 0.5, None).is_some());
+        assert!(grid.closest_edge(&s, &x, xs, &[], 0.5, None).is_some());
         // beyond the free end r = 5 (more than the 5 % extension of the 1 mm edge)
         let xs = [5.2, 0.99];
-        assert!(closest_edge(&s, &x, xs, grid.candidates(xs), &[], 0.5, None).is_none());
+        assert!(grid.closest_edge(&s, &x, xs, &[], 0.5, None).is_none());
     }
 
     /// A surface made of straight 3-node edges through `points` (each pair of consecutive
@@ -227,15 +236,15 @@ mod tests {
         // convex corner, outside: a point beyond both edge ends, in the blind spot, is found
         // on exactly one edge (the nearer one, here a tie broken towards the lower index)
         let xs = [2.1, -0.1];
-        let found = closest_edge(&s, &x, xs, grid.candidates(xs), &[], 0.5, None).expect("blind spot of a convex corner");
+        let found = grid.closest_edge(&s, &x, xs, &[], 0.5, None).expect("blind spot of a convex corner");
         assert!(found.1.gap > 0.0, "outside the body");
         // inside the body near the corner: it projects onto both edges; only the nearer counts
         let xs = [1.95, 0.02];
-        let (k, p) = closest_edge(&s, &x, xs, grid.candidates(xs), &[], 0.5, None).unwrap();
+        let (k, p) = grid.closest_edge(&s, &x, xs, &[], 0.5, None).unwrap();
         assert_eq!(k, 0, "nearer to the first edge");
         assert!((p.gap + 0.02).abs() < 1e-12);
         let xs = [1.98, 0.5];
-        let (k, _) = closest_edge(&s, &x, xs, grid.candidates(xs), &[], 0.5, None).unwrap();
+        let (k, _) = grid.closest_edge(&s, &x, xs, &[], 0.5, None).unwrap();
         assert_eq!(k, 1, "nearer to the second edge");
     }
 
@@ -250,13 +259,13 @@ mod tests {
         let xs = [3.0, 0.19]; // the node, moved 0.01 off its own leg towards the bottom leg
         let own = s.neighbourhood(node, 1);
         assert!(!own.is_empty());
-        let (k, p) = closest_edge(&s, &x, xs, grid.candidates(xs), &own, 0.5, None).unwrap();
+        let (k, p) = grid.closest_edge(&s, &x, xs, &own, 0.5, None).unwrap();
         assert!(!own.contains(&k));
         let e = s.edges[k];
         assert!(mesh.coords[e[0]][1] == 0.0 && mesh.coords[e[1]][1] == 0.0, "found the bottom leg");
         assert!((p.gap - 0.19).abs() < 1e-12, "open by 0.19: {p:?}");
         // without the exclusion the node's own edge would be the nearest
-        let (k, _) = closest_edge(&s, &x, xs, grid.candidates(xs), &[], 0.5, None).unwrap();
+        let (k, _) = grid.closest_edge(&s, &x, xs, &[], 0.5, None).unwrap();
         assert!(own.contains(&k));
     }
 

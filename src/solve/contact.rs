@@ -11,7 +11,7 @@ use super::pattern::ContactPattern;
 use super::problem::ROUNDOFF_ULPS;
 use crate::contact::integrated::{weighted_gaps, GapSample};
 use crate::contact::node_to_edge::{edge_residual, edge_residual_and_tangent, ContactLaw, EdgeProjection};
-use crate::contact::search::{closest_edge, EdgeGrid};
+use crate::contact::search::EdgeGrid;
 use crate::contact::surface::ContactSurface;
 use crate::dist::{Affinity, DofMap, Partition};
 use crate::model::{ContactIntegration, ContactPair, Model, Penalty};
@@ -95,7 +95,7 @@ pub fn partition_affinity(model: &Model) -> Affinity {
             let excluded = if d.slave == d.master { edge_neighbourhood(slave, e, c.exclude_neighbours) } else { Vec::new() };
             let before = links.len();
             for p in nodes.map(x) {
-                if let Some((m, _)) = closest_edge(master, &x, p, grid.candidates(p), &excluded, c.capture_distance, None) {
+                if let Some((m, _)) = grid.closest_edge(master, &x, p, &excluded, c.capture_distance, None) {
                     links.push([slave.element[e], master.element[m]]);
                 }
             }
@@ -354,7 +354,7 @@ impl ContactAssembly {
             let node = slave.nodes[i];
             let xs = x(node);
             let excluded = pass.excluded.get(k).map_or(&[][..], |v| v.as_slice());
-            let found = closest_edge(master, &x, xs, grid.candidates(xs), excluded, capture, hint);
+            let found = grid.closest_edge(master, &x, xs, excluded, capture, hint);
             hint = found.as_ref().map(|(e, _)| *e).or(hint);
             let found = found.filter(|(_, proj)| {
                 // surfaces in contact face each other: never the back of a thin master
