@@ -317,7 +317,7 @@ impl<'s, 'm> Problem<'s, 'm> {
         let free = |n: usize| dof[n].iter().any(|&d| d >= 0);
         if contact.pattern_mut().synchronise(&self.session.world(), |a, b| free(a) && free(b)) {
             contact.pattern_mut().refits += 1;
-            self.layout = jacobian_layout(&self.elements, self.contact.as_ref(), &self.dofs);
+            self.layout.set_pairs(contact.pattern().pairs(), &self.dofs.dof);
             let (rows, cols) = self.layout.indices();
             jacobian.preallocate_coo(rows, cols)?;
             self.structure_changed = true;
@@ -600,24 +600,18 @@ impl Problem<'_, '_> {
         for k in 0..self.elements.len() {
             let u = self.displacements(&self.elements[k], gathered);
             let k_e = self.element_tangent(k, &u)?;
-            let block = self.layout.element_block(k);
-            for i in 0..DOFS {
-                for j in 0..DOFS {
-                    block[i * DOFS + j] = k_e[(i, j)];
-                }
-            }
+            self.layout.add_element(k, k_e.as_slice());
             us.push(u);
         }
         if self.model.kinematics == Kinematics::Finite {
-            // follower pressure, d(-f_ext)/du, into the block of the element the edge bounds
+            // follower pressure, d(-f_ext)/du, at the entries of the element the edge bounds
             let edges: Vec<(usize, [usize; 3], f64)> = self.pressure_edges().collect();
             for (k, local, p) in edges {
                 let kp = pressure_load_stiffness(&self.edge_positions(k, &local, &us[k]), p);
-                let block = self.layout.element_block(k);
                 let at = |i: usize| 2 * local[i / 2] + i % 2;
                 for (i, row) in kp.iter().enumerate() {
                     for (j, v) in row.iter().enumerate() {
-                        block[at(i) * DOFS + at(j)] -= v;
+                        self.layout.add_element_entry(k, at(i), at(j), -v);
                     }
                 }
             }
