@@ -8,7 +8,8 @@ use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use slideline::dist::{DofMap, Partition};
 use slideline::model::bellows::{model, BellowsParams};
 use slideline::petsc::{PetscSession, VecOps, Vector};
-use slideline::solve::contact::{contact_nodes, partition_affinity};
+use slideline::solve::affinity::partition_affinity;
+use slideline::solve::contact::contact_nodes;
 use slideline::solve::problem::{initial_history, Problem};
 use slideline::solve::schedule::StepLoads;
 

@@ -8,7 +8,7 @@ use slideline::io::reader::ResultsReader;
 use slideline::io::ResultsFile;
 use slideline::petsc::PetscSession;
 use slideline::report::{BellowsReport, SECTOR_RADIANS};
-use slideline::solve::contact::partition_affinity;
+use slideline::solve::affinity::partition_affinity;
 use slideline::solve::{run, RunOptions, RunSummary};
 use slideline::{model, Error};
 use std::path::PathBuf;

@@ -7,7 +7,7 @@
 use slideline::dist::{DofMap, Partition};
 use slideline::model::deck;
 use slideline::petsc::{PetscSession, VecOps, Vector};
-use slideline::solve::contact::partition_affinity;
+use slideline::solve::affinity::partition_affinity;
 use slideline::solve::problem::{initial_history, ElementFields, Problem};
 use slideline::solve::schedule::StepLoads;
 use std::path::Path;

@@ -1,5 +1,6 @@
 //! Parallel drivers: the discrete problem for SNES and the load-stepping loop.
 
+pub mod affinity;
 pub mod contact;
 pub mod layout;
 pub mod pattern;

@@ -50,7 +50,7 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
     let root = world.rank() == 0;
     let nodes = model.mesh.coords.len();
     let controls = model.stepping;
-    let partition = Partition::new(session, &model.mesh, &super::contact::partition_affinity(model))?;
+    let partition = Partition::new(session, &model.mesh, &super::affinity::partition_affinity(model))?;
     let mut results = ResultsFile::create(&options.output, session, model, &partition)?;
     if root && options.progress {
         println!("slideline: {} nodes, {} elements on {} rank(s); results -> {}", nodes, model.mesh.elements.len(), partition.size, options.output.display());
