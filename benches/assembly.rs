@@ -27,7 +27,7 @@ fn assembly(c: &mut Criterion) {
     let mut f = Vector::mpi(&session, session.comm(), dofs.local_len()).expect("vector");
     let coupled = contact_nodes(&m);
     let mut problem = Problem::new(&session, &m, &partition, &dofs, &xa, initial_history(&m, &partition), None).expect("problem");
-    problem.load = loads.at(&m, 1.0);
+    problem.set_load(loads.at(&m, 1.0));
     // the matrix as the stepping loop makes it, with the contact couplings of this state reserved
     let mut jacobian = problem.jacobian_matrix().expect("matrix");
     problem.assemble_jacobian(&xa, &mut jacobian).expect("jacobian");

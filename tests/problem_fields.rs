@@ -75,7 +75,7 @@ fn kept_output_fields_equal_a_fresh_evaluation() {
     other.axpy(1e-3, &x).expect("axpy");
     let mut f = Vector::mpi(&session, session.comm(), dofs.local_len()).expect("vector");
     let mut problem = Problem::new(&session, &model, &partition, &dofs, &x, initial_history(&model, &partition), None).expect("problem");
-    problem.load = loads.at(&model, 1.0);
+    problem.set_load(loads.at(&model, 1.0));
 
     problem.assemble_residual(&x, &mut f).expect("residual");
     let kept = problem.evaluate_fields(&x).expect("fields at the residual's iterate");
@@ -93,7 +93,7 @@ fn kept_output_fields_equal_a_fresh_evaluation() {
     problem.assemble_residual(&x, &mut f).expect("residual");
     let mut hotter = loads.at(&model, 1.0);
     hotter.temperature_change += 10.0;
-    problem.load = hotter;
+    problem.set_load(hotter);
     let heated = problem.evaluate_fields(&x).expect("fields under another load");
     let differs = kept.stress.iter().flatten().flatten().zip(heated.stress.iter().flatten().flatten()).any(|(a, b)| (a - b).abs() > 1e-6);
     assert!(differs, "the kept fields served a different load");

@@ -25,7 +25,7 @@ use crate::petsc::{LogStage, MatOps, Matrix, MatrixView, NonlinearProblem, Petsc
 pub const ROUNDOFF_ULPS: f64 = 100.0;
 
 /// Loads and prescribed values at the current load factor.
-#[derive(Clone, Debug, Default, PartialEq)]
+#[derive(Clone, Debug, Default)]
 pub struct LoadState {
     /// Value of every prescribed DOF (node, component); entries of free DOFs are unused.
     pub prescribed: Vec<[f64; 2]>,
@@ -123,7 +123,8 @@ pub struct ElementFields {
 /// evaluated, so they are kept rather than computed a second time.
 struct LastEvaluation {
     gathered: Vec<f64>,
-    load: LoadState,
+    /// The `load_generation` it was made under.
+    load: u64,
     multipliers: Option<Multipliers>,
     fields: ElementFields,
 }
@@ -158,11 +159,13 @@ pub struct Problem<'s, 'm> {
     /// Round-off floor (squared, this rank) of the last residual.
     roundoff: f64,
     pub contact: Option<ContactAssembly>,
-    pub load: LoadState,
+    load: LoadState,
+    /// Counts the loads set, so what was evaluated under a load can tell it is still in force.
+    load_generation: u64,
     pub stages: Stages,
 }
 
-/// The Jacobian's layout: the local elements' blocks, then this rank's contact couplings.
+/// The Jacobian's layout: the local elements' entries and this rank's contact couplings.
 fn jacobian_layout(elements: &[LocalElement], contact: Option<&ContactAssembly>, dofs: &DofMap) -> JacobianLayout {
     let element_dofs: Vec<[PetscInt; DOFS]> = elements.iter().map(|el| el.dofs).collect();
     let pairs: Vec<(usize, usize)> = contact.map(|c| c.pattern().pairs().collect()).unwrap_or_default();
@@ -268,6 +271,7 @@ impl<'s, 'm> Problem<'s, 'm> {
             roundoff: 0.0,
             contact,
             load: LoadState::default(),
+            load_generation: 0,
             stages: Stages::new()?,
         })
     }
@@ -289,6 +293,17 @@ impl<'s, 'm> Problem<'s, 'm> {
         if let Some(c) = self.contact.as_mut() {
             c.reset();
         }
+    }
+
+    /// The loads and prescribed values in force.
+    pub fn load(&self) -> &LoadState {
+        &self.load
+    }
+
+    /// Puts `load` in force and returns the one it replaces.
+    pub fn set_load(&mut self, load: LoadState) -> LoadState {
+        self.load_generation += 1;
+        std::mem::replace(&mut self.load, load)
     }
 
     /// The committed history and what contact carries, for the next step's problem.
@@ -449,7 +464,7 @@ impl<'s, 'm> Problem<'s, 'm> {
     pub fn evaluate_fields(&mut self, x: &impl VecOps) -> Result<ElementFields> {
         let gathered = self.gather(x)?;
         let multipliers = self.contact.as_ref().map(|c| c.multipliers());
-        if let Some(last) = self.last.as_ref().filter(|l| l.gathered == gathered && l.load == self.load && l.multipliers.as_ref() == multipliers) {
+        if let Some(last) = self.last.as_ref().filter(|l| l.gathered == gathered && l.load == self.load_generation && l.multipliers.as_ref() == multipliers) {
             // the last residual was evaluated here: its trial history, fields and (cached)
             // contact states are those of x
             let fields = last.fields.clone();
@@ -529,7 +544,7 @@ impl Problem<'_, '_> {
         self.node_slots = slots;
         if result.is_ok() {
             let multipliers = self.contact.as_ref().map(|c| c.multipliers().clone());
-            self.last = Some(LastEvaluation { gathered, load: self.load.clone(), multipliers, fields });
+            self.last = Some(LastEvaluation { gathered, load: self.load_generation, multipliers, fields });
         } else {
             // Assembly is collective: a rank whose evaluation failed (an inverted element)
             // still takes part, with nothing to add, and reports the failure afterwards;

@@ -78,7 +78,7 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
         while lambda < 1.0 {
             // land exactly on 1 rather than leave a sliver
             let target = if lambda + size > 1.0 - 1e-9 * requested { 1.0 } else { lambda + size };
-            problem.load = loads.at(model, target);
+            problem.set_load(loads.at(model, target));
             set_free_values(&mut x, &dofs, &partition, &displacement)?;
             if controls.predictor {
                 predict(&world, &mut snes, &mut problem, loads.at(model, lambda), &mut x, &mut residual, &mut jacobian, &mut correction)?;
@@ -125,7 +125,7 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
             let output = problem.stages.output;
             let fields = output.run(|| problem.evaluate_fields(&x))??;
             problem.commit();
-            let owned = owned_displacement(&x, &dofs, &partition, &problem.load.prescribed)?;
+            let owned = owned_displacement(&x, &dofs, &partition, &problem.load().prescribed)?;
             gather_displacement(&world, &partition, &owned, &mut displacement);
             let mut force = vec![0.0; 2 * nodes];
             let local: Vec<f64> = fields.nodal_force.iter().flatten().copied().collect();
@@ -246,15 +246,15 @@ fn predict(
     jacobian: &mut Matrix<'_>,
     correction: &mut Vector<'_>,
 ) -> Result<()> {
-    let delta: Vec<[f64; 2]> = problem.load.prescribed.iter().zip(&start.prescribed).map(|(e, s)| [e[0] - s[0], e[1] - s[1]]).collect();
+    let delta: Vec<[f64; 2]> = problem.load().prescribed.iter().zip(&start.prescribed).map(|(e, s)| [e[0] - s[0], e[1] - s[1]]).collect();
     // prescribed values are replicated: every rank takes the same branch
     if delta.iter().flatten().all(|&d| d == 0.0) {
         return Ok(());
     }
-    let end = std::mem::replace(&mut problem.load, start);
+    let end = problem.set_load(start);
     let coupling = problem.prescribed_coupling(x, &delta, work);
     let tangent = problem.assemble_jacobian(x, jacobian);
-    problem.load = end;
+    problem.set_load(end);
     // the refit is collective, so every rank resets
     if problem.take_structure_change() {
         snes.reset_factorisation()?;
