@@ -46,6 +46,10 @@ pub struct GapSample {
     pub projection: EdgeProjection,
     /// psi_a w r ds: the sample's weight in the node's weighted gap.
     pub weight: f64,
+    /// Index of the integration point among those of its `weighted_gaps` call: the samples
+    /// of one point (one per slave node whose hat covers it) share it, and their Hessians
+    /// differ only by the weight.
+    pub point: usize,
 }
 
 impl GapSample {
@@ -64,10 +68,15 @@ impl GapSample {
         g
     }
 
-    /// Weighted Hessian of the pointwise gap over the sample's 12 DOFs at positions `x`: the
-    /// node-to-edge kernel's (8 DOFs: slave point and master edge) carried to the slave edge's
-    /// nodes through x_s = sum N_a x_a.
+    /// Weighted Hessian of the pointwise gap over the sample's 12 DOFs at positions `x`.
     pub fn hessian(&self, x: &impl Fn(usize) -> [f64; 2]) -> SampleMatrix {
+        self.point_hessian(x) * self.weight
+    }
+
+    /// Hessian of the pointwise gap at the sample's point over its 12 DOFs at positions `x`
+    /// (unweighted, the same for every sample of the point): the node-to-edge kernel's (8 DOFs:
+    /// slave point and master edge) carried to the slave edge's nodes through x_s = sum N_a x_a.
+    pub fn point_hessian(&self, x: &impl Fn(usize) -> [f64; 2]) -> SampleMatrix {
         let slave = [0, 1, 2].map(|a| x(self.nodes[a]));
         let master = [3, 4, 5].map(|a| x(self.nodes[a]));
         let p = [0, 1].map(|i| (0..3).map(|a| self.shape[a] * slave[a][i]).sum::<f64>());
@@ -79,7 +88,7 @@ impl GapSample {
         let of = |i: usize| if i < 6 { (i % 2, self.shape[i / 2]) } else { (i - 4, 1.0) };
         SampleMatrix::from_fn(|i, j| {
             let ((ri, fi), (rj, fj)) = (of(i), of(j));
-            -self.weight * fi * fj * minus[(ri, rj)]
+            -fi * fj * minus[(ri, rj)]
         })
     }
 }
@@ -130,6 +139,7 @@ pub fn weighted_gaps(
     }
     // the master edge of the last point found: consecutive points mostly share it
     let mut hint = None;
+    let mut points = 0;
     for e in edges {
         let en = slave.edges[e];
         let xs = en.map(x);
@@ -177,6 +187,8 @@ pub fn weighted_gaps(
                 }
                 let nodes = [en[0], en[1], en[2], master.edges[m][0], master.edges[m][1], master.edges[m][2]];
                 let psi = hats(xi);
+                let point = points;
+                points += 1;
                 for a in 0..3 {
                     let Some(k) = slave.index_of(en[a]).and_then(position) else { continue };
                     let wa = weight * psi[a];
@@ -185,7 +197,7 @@ pub fn weighted_gaps(
                     }
                     let g = &mut out[k];
                     g.gap += wa * proj.gap;
-                    g.samples.push(GapSample { nodes, shape: n, projection: proj, weight: wa });
+                    g.samples.push(GapSample { nodes, shape: n, projection: proj, weight: wa, point });
                     if wa.abs() > best_weight[k] {
                         best_weight[k] = wa.abs();
                         g.master_edge = m;

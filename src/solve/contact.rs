@@ -9,7 +9,7 @@
 
 use super::pattern::ContactPattern;
 use super::problem::ROUNDOFF_ULPS;
-use crate::contact::integrated::{weighted_gaps, GapSample};
+use crate::contact::integrated::{weighted_gaps, GapSample, SampleMatrix};
 use crate::contact::node_to_edge::{edge_residual, edge_residual_and_tangent, ContactLaw, EdgeProjection};
 use crate::contact::search::EdgeGrid;
 use crate::contact::surface::ContactSurface;
@@ -169,6 +169,10 @@ pub struct ContactAssembly {
     evaluated_at: Option<(Vec<[f64; 2]>, Multipliers)>,
     /// Whether the engagements carry their tangents.
     with_tangents: bool,
+    /// Integration points of the last evaluation's segment-integrated passes (their samples'
+    /// `point`s, numbered across passes), and the Hessians computed at them for its tangents.
+    points: usize,
+    point_hessians: PointHessians,
     /// The contact couplings the Jacobian's pattern holds (and those it must take).
     pattern: ContactPattern,
 }
@@ -226,6 +230,8 @@ impl ContactAssembly {
             engagements: Vec::new(),
             evaluated_at: None,
             with_tangents: false,
+            points: 0,
+            point_hessians: PointHessians::default(),
             pattern,
         })
     }
@@ -252,8 +258,9 @@ impl ContactAssembly {
         if need == Need::Tangent && !self.with_tangents {
             let (slot, positions) = (&self.slot, &self.positions);
             let x = |n: usize| positions[slot[n]];
+            self.point_hessians.reset(self.points);
             for e in &mut self.engagements {
-                e.tangent = tangent(&e.recipe, &e.nodes, &x);
+                e.tangent = tangent(&e.recipe, &e.nodes, &x, &mut self.point_hessians);
                 self.pattern.require(&e.nodes);
             }
             self.with_tangents = true;
@@ -266,6 +273,7 @@ impl ContactAssembly {
         self.nodal_forces.clear();
         self.nodal_forces.resize(self.nodes.len(), [0.0; 2]);
         self.roundoff = 0.0;
+        self.points = 0;
         for p in 0..self.passes.len() {
             let pair = &model.contacts[self.passes[p].pair];
             match pair.integration {
@@ -350,7 +358,13 @@ impl ContactAssembly {
         let x = |n: usize| positions[slot[n]];
         let x0 = |n: usize| model.mesh.coords[n];
         let (slave, master) = (&self.surfaces[pass.slave], &self.surfaces[pass.master]);
-        let gaps = weighted_gaps(slave, master, &x, &x0, &pass.owned, &pass.excluded, pair.capture_distance);
+        let mut gaps = weighted_gaps(slave, master, &x, &x0, &pass.owned, &pass.excluded, pair.capture_distance);
+        // number the points across passes
+        let first = self.points;
+        for s in gaps.iter_mut().flat_map(|g| g.samples.iter_mut()) {
+            s.point += first;
+            self.points = self.points.max(s.point + 1);
+        }
         let mut owned_position = vec![usize::MAX; slave.nodes.len()];
         for (k, &i) in pass.owned.iter().enumerate() {
             owned_position[i] = k;
@@ -531,7 +545,7 @@ fn position_in(nodes: &[usize], n: usize) -> usize {
 }
 
 /// The tangent (row-major over `nodes`) an engagement's recipe gives at positions `x`.
-fn tangent(recipe: &TangentRecipe, nodes: &[usize], x: &impl Fn(usize) -> [f64; 2]) -> Vec<f64> {
+fn tangent(recipe: &TangentRecipe, nodes: &[usize], x: &impl Fn(usize) -> [f64; 2], hessians: &mut PointHessians) -> Vec<f64> {
     match recipe {
         TangentRecipe::Nodal { xs, master, projection, law } => {
             let (_, k, _) = edge_residual_and_tangent(*xs, master, projection, law);
@@ -547,17 +561,45 @@ fn tangent(recipe: &TangentRecipe, nodes: &[usize], x: &impl Fn(usize) -> [f64; 
             }
             // -p d2g
             for s in samples {
-                let h = s.hessian(x);
+                let h = hessians.at(s, x);
+                let f = weighted_pressure * s.weight;
                 let map = s.nodes.map(|n| 2 * position_in(nodes, n));
                 for a in 0..12 {
                     let row = map[a / 2] + a % 2;
                     for b in 0..12 {
-                        k[row * m + map[b / 2] + b % 2] -= weighted_pressure * h[(a, b)];
+                        k[row * m + map[b / 2] + b % 2] -= f * h[(a, b)];
                     }
                 }
             }
             k
         }
+    }
+}
+
+/// The Hessians of the pointwise gap at the integration points of one evaluation, computed
+/// when a tangent first asks (each point serves the two slave nodes whose hats cover it).
+#[derive(Default)]
+struct PointHessians {
+    /// Per point, its index in `matrices` (u32::MAX until computed).
+    slot: Vec<u32>,
+    matrices: Vec<SampleMatrix>,
+}
+
+impl PointHessians {
+    /// Forgets every Hessian; `points` points to come.
+    fn reset(&mut self, points: usize) {
+        self.slot.clear();
+        self.slot.resize(points, u32::MAX);
+        self.matrices.clear();
+    }
+
+    /// The (unweighted) Hessian at `sample`'s point.
+    fn at(&mut self, sample: &GapSample, x: &impl Fn(usize) -> [f64; 2]) -> &SampleMatrix {
+        if self.slot[sample.point] == u32::MAX {
+            self.slot[sample.point] = self.matrices.len() as u32;
+            self.matrices.push(sample.point_hessian(x));
+        }
+        &self.matrices[self.slot[sample.point] as usize]
     }
 }
 
