@@ -8,8 +8,8 @@ use crate::contact::search::EdgeGrid;
 use crate::dist::Affinity;
 use crate::model::{ContactIntegration, Model};
 
-/// Relative work per Newton iteration of one element (residual with the dual-number material
-/// update about 1.3 times, one tangent: about 6 us, `cargo bench --bench kernels`) and of one
+/// Relative work per Newton iteration of one element (1.3 residuals with the dual-number
+/// material update and one tangent: about 6 us, `cargo bench --bench kernels`) and of one
 /// slave edge of a pass: segment-integrated and facing a master (two slave nodes' search,
 /// gaps, gradients and Hessians), node-to-segment, or with no master within reach (it only
 /// searches). With these the default bellows' ranks spend the same time in each stage to

@@ -2,6 +2,7 @@
 
 pub mod affinity;
 pub mod contact;
+mod kept;
 pub mod layout;
 pub mod pattern;
 pub mod problem;

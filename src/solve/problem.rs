@@ -6,7 +6,9 @@
 //! `trial`; [`Problem::commit`] copies trial to committed after a converged increment. A failed
 //! attempt never touches `committed`, so a cutback has nothing to undo.
 
-use super::contact::{contact_nodes, ContactAssembly, ContactCarry, Multipliers, Need};
+use super::contact::{contact_nodes, ContactAssembly, ContactCarry, Need};
+pub use super::kept::ElementFields;
+use super::kept::{KeptTangent, KeptTangents, LastEvaluation};
 use super::layout::JacobianLayout;
 use crate::dist::{DofMap, Partition};
 use crate::element::pressure::{compute_pressure_load, pressure_load_stiffness};
@@ -72,61 +74,6 @@ struct LocalElement {
     /// E times the mean radius: an element force is computed from displacement differences,
     /// so its round-off is about eps * E * r * |u| (per radian).
     roundoff_scale: f64,
-}
-
-/// The material tangents each local element's last residual evaluation computed, with the
-/// displacements and temperature they belong to. SNES asks for the Jacobian at the iterate
-/// whose residual it has just evaluated, so the Jacobian finds them here and only forms the
-/// element matrices: the material update, the costly part, runs once per iterate (on dual
-/// numbers, about 1.4 times a plain update) instead of twice. A commit changes the history
-/// they were computed from and drops them.
-#[derive(Default)]
-struct KeptTangents {
-    /// Per local element.
-    elements: Vec<KeptTangent>,
-}
-
-#[derive(Clone, Default)]
-struct KeptTangent {
-    /// Whether `material` belongs to `u` and `temperature_change` (and today's history).
-    valid: bool,
-    u: [[f64; 2]; NODES],
-    temperature_change: f64,
-    material: MaterialTangents,
-}
-
-impl KeptTangents {
-    fn get(&self, k: usize, u: &[[f64; 2]; NODES], temperature_change: f64) -> Option<&MaterialTangents> {
-        let e = self.elements.get(k)?;
-        (e.valid && e.u == *u && e.temperature_change == temperature_change).then_some(&e.material)
-    }
-
-    fn forget(&mut self) {
-        self.elements.iter_mut().for_each(|e| e.valid = false);
-    }
-}
-
-/// What an evaluation at a converged state gives for output.
-#[derive(Clone, Debug)]
-pub struct ElementFields {
-    /// Cauchy stress at the Gauss points of each local element (partition order).
-    pub stress: Vec<[[f64; 4]; QUADRATURE_POINTS]>,
-    /// Equivalent plastic strain at the Gauss points.
-    pub plastic_strain: Vec<[f64; QUADRATURE_POINTS]>,
-    /// This rank's part of f_int - f_ext at every node of the mesh (summed over ranks, it is
-    /// the reaction at prescribed DOFs), per radian.
-    pub nodal_force: Vec<[f64; 2]>,
-}
-
-/// The output fields of the last residual evaluation and the state it was made at: after
-/// convergence the output asks for the fields at the iterate whose residual SNES has just
-/// evaluated, so they are kept rather than computed a second time.
-struct LastEvaluation {
-    gathered: Vec<f64>,
-    /// The `load_generation` it was made under.
-    load: u64,
-    multipliers: Option<Multipliers>,
-    fields: ElementFields,
 }
 
 pub struct Problem<'s, 'm> {
@@ -638,25 +585,5 @@ impl Problem<'_, '_> {
             }
         }
         Ok(())
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn kept_tangents_serve_only_the_state_they_were_computed_at() {
-        let mut kept = KeptTangents { elements: vec![KeptTangent::default(); 2] };
-        let u = [[0.1, -0.2]; NODES];
-        kept.elements[1] = KeptTangent { valid: true, u, temperature_change: 180.0, material: MaterialTangents::default() };
-        assert!(kept.get(1, &u, 180.0).is_some());
-        assert!(kept.get(0, &u, 180.0).is_none(), "never computed");
-        let mut moved = u;
-        moved[3][1] += 1e-12;
-        assert!(kept.get(1, &moved, 180.0).is_none(), "another iterate");
-        assert!(kept.get(1, &u, 180.5).is_none(), "another temperature");
-        kept.forget();
-        assert!(kept.get(1, &u, 180.0).is_none(), "a commit changed the history");
     }
 }
