@@ -68,11 +68,6 @@ impl GapSample {
         g
     }
 
-    /// Weighted Hessian of the pointwise gap over the sample's 12 DOFs at positions `x`.
-    pub fn hessian(&self, x: &impl Fn(usize) -> [f64; 2]) -> SampleMatrix {
-        self.point_hessian(x) * self.weight
-    }
-
     /// Hessian of the pointwise gap at the sample's point over its 12 DOFs at positions `x`
     /// (unweighted, the same for every sample of the point): the node-to-edge kernel's (8 DOFs:
     /// slave point and master edge) carried to the slave edge's nodes through x_s = sum N_a x_a.

@@ -49,6 +49,17 @@ pub struct ElementFields {
     pub nodal_force: Vec<[f64; 2]>,
 }
 
+impl ElementFields {
+    /// Zero fields for `elements` local elements and `nodes` mesh nodes.
+    pub fn zeros(elements: usize, nodes: usize) -> Self {
+        ElementFields {
+            stress: vec![[[0.0; 4]; QUADRATURE_POINTS]; elements],
+            plastic_strain: vec![[0.0; QUADRATURE_POINTS]; elements],
+            nodal_force: vec![[0.0; 2]; nodes],
+        }
+    }
+}
+
 /// The output fields of the last residual evaluation and the state it was made at: after
 /// convergence the output asks for the fields at the iterate whose residual SNES has just
 /// evaluated, so they are kept rather than computed a second time.

@@ -346,14 +346,14 @@ impl<'s, 'm> Problem<'s, 'm> {
 
     /// Evaluates f_int - f_ext (+ contact) at the gathered state: calls `sink(node, component,
     /// value)` for every entry, stores the trial history (and, with `keep_tangents`, the
-    /// material tangents for the Jacobian), and hands each element's response to `on_element`.
-    fn residual_entries(
-        &mut self,
-        gathered: &[f64],
-        keep_tangents: bool,
-        mut on_element: impl FnMut(usize, &SolidResponse),
-        mut sink: impl FnMut(usize, usize, f64),
-    ) -> Result<()> {
+    /// material tangents for the Jacobian), and writes the output fields into `fields` (the
+    /// nodal forces summed afresh).
+    fn residual_entries(&mut self, gathered: &[f64], keep_tangents: bool, fields: &mut ElementFields, mut sink: impl FnMut(usize, usize, f64)) -> Result<()> {
+        fields.nodal_force.fill([0.0; 2]);
+        let mut sink = |node: usize, c: usize, v: f64| {
+            fields.nodal_force[node][c] += v;
+            sink(node, c, v);
+        };
         let mut us = Vec::with_capacity(self.elements.len());
         let mut roundoff = 0.0;
         let mut kept = std::mem::take(&mut self.kept);
@@ -375,7 +375,8 @@ impl<'s, 'm> Problem<'s, 'm> {
             self.trial[k] = out.state;
             let size = self.elements[k].roundoff_scale * u.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs())) + out.internal_force.abs().max();
             roundoff += (ROUNDOFF_ULPS * f64::EPSILON * size).powi(2);
-            on_element(k, &out);
+            fields.stress[k] = out.stress;
+            fields.plastic_strain[k] = out.state.map(|s| s.ep);
             let conn = &self.model.mesh.elements[self.elements[k].element];
             for i in 0..DOFS {
                 sink(conn[i / 2], i % 2, out.internal_force[i]);
@@ -420,20 +421,9 @@ impl<'s, 'm> Problem<'s, 'm> {
             }
             return Ok(fields);
         }
-        let n = self.elements.len();
-        let mut stress = vec![[[0.0; 4]; QUADRATURE_POINTS]; n];
-        let mut plastic_strain = vec![[0.0; QUADRATURE_POINTS]; n];
-        let mut nodal_force = vec![[0.0; 2]; self.model.mesh.coords.len()];
-        self.residual_entries(
-            &gathered,
-            false,
-            |k, out| {
-                stress[k] = out.stress;
-                plastic_strain[k] = out.state.map(|s| s.ep);
-            },
-            |node, c, v| nodal_force[node][c] += v,
-        )?;
-        Ok(ElementFields { stress, plastic_strain, nodal_force })
+        let mut fields = ElementFields::zeros(self.elements.len(), self.model.mesh.coords.len());
+        self.residual_entries(&gathered, false, &mut fields, |_, _, _| {})?;
+        Ok(fields)
     }
 }
 
@@ -463,31 +453,14 @@ impl Problem<'_, '_> {
         f.set_all(0.0)?;
         let mut local = vec![0.0; gathered.len()];
         let slots = std::mem::take(&mut self.node_slots);
-        let n = self.elements.len();
-        let mut fields = match self.last.take() {
-            Some(last) => last.fields,
-            None => ElementFields {
-                stress: vec![[[0.0; 4]; QUADRATURE_POINTS]; n],
-                plastic_strain: vec![[0.0; QUADRATURE_POINTS]; n],
-                nodal_force: vec![[0.0; 2]; self.model.mesh.coords.len()],
-            },
-        };
-        fields.nodal_force.fill([0.0; 2]);
-        let result = self.residual_entries(
-            &gathered,
-            true,
-            |k, out| {
-                fields.stress[k] = out.stress;
-                fields.plastic_strain[k] = out.state.map(|s| s.ep);
-            },
-            |node, c, v| {
-                fields.nodal_force[node][c] += v;
-                // prescribed DOFs (the only ones without a slot) take no residual
-                if let Some(r) = local.get_mut(slots[node][c]) {
-                    *r += v;
-                }
-            },
-        );
+        // the last evaluation's buffers, refilled
+        let mut fields = self.last.take().map_or_else(|| ElementFields::zeros(self.elements.len(), self.model.mesh.coords.len()), |l| l.fields);
+        let result = self.residual_entries(&gathered, true, &mut fields, |node, c, v| {
+            // prescribed DOFs (the only ones without a slot) take no residual
+            if let Some(r) = local.get_mut(slots[node][c]) {
+                *r += v;
+            }
+        });
         self.node_slots = slots;
         if result.is_ok() {
             let multipliers = self.contact.as_ref().map(|c| c.multipliers().clone());
