@@ -58,6 +58,7 @@ const FUNCTIONS: &[&str] = &[
     "MatSetPreallocationCOO",
     "MatSetValuesCOO",
     "MatZeroEntries",
+    "MatMult",
     "MatAssemblyBegin",
     "MatAssemblyEnd",
     "MatCreateMPIAdj",

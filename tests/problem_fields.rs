@@ -1,12 +1,13 @@
 //! The output fields after convergence are those the last residual evaluation kept when it was
 //! made at the same iterate, and a fresh evaluation otherwise: both must give the same stresses,
-//! plastic strains and nodal forces. A two-block stack in contact, finite-strain J2 yielding
+//! plastic strains and nodal forces. Likewise the material tangents a commit keeps: the
+//! Jacobian after it equals one made from the committed history. A two-block stack in contact, finite-strain J2 yielding
 //! under a rough displacement field, heated, on one rank.
 //! One test function: MPI can be initialised once per process.
 
 use slideline::dist::{DofMap, Partition};
 use slideline::model::deck;
-use slideline::petsc::{PetscSession, VecOps, Vector};
+use slideline::petsc::{MatOps, PetscSession, VecOps, Vector};
 use slideline::solve::affinity::partition_affinity;
 use slideline::solve::problem::{initial_history, ElementFields, Problem};
 use slideline::solve::schedule::StepLoads;
@@ -97,4 +98,27 @@ fn kept_output_fields_equal_a_fresh_evaluation() {
     let heated = problem.evaluate_fields(&x).expect("fields under another load");
     let differs = kept.stress.iter().flatten().flatten().zip(heated.stress.iter().flatten().flatten()).any(|(a, b)| (a - b).abs() > 1e-6);
     assert!(differs, "the kept fields served a different load");
+
+    // A commit keeps the material tangents of the elements whose history it leaves unchanged
+    // (for the next increment's predictor) and drops the others: the Jacobian at x after the
+    // commit equals one from a new problem started from the committed history.
+    problem.set_load(loads.at(&model, 1.0));
+    problem.assemble_residual(&x, &mut f).expect("residual");
+    problem.commit();
+    let mut after_commit = problem.jacobian_matrix().expect("matrix");
+    problem.assemble_jacobian(&x, &mut after_commit).expect("jacobian after the commit");
+    let (history, carry) = problem.into_history();
+    let mut restarted = Problem::new(&session, &model, &partition, &dofs, &x, history, carry).expect("problem");
+    restarted.set_load(loads.at(&model, 1.0));
+    let mut fresh = restarted.jacobian_matrix().expect("matrix");
+    restarted.assemble_jacobian(&x, &mut fresh).expect("jacobian from the committed history");
+    let (mut y1, mut y2) = (Vector::mpi(&session, session.comm(), dofs.local_len()).unwrap(), Vector::mpi(&session, session.comm(), dofs.local_len()).unwrap());
+    after_commit.multiply(&other, &mut y1).expect("product");
+    fresh.multiply(&other, &mut y2).expect("product");
+    let (a, b) = (y1.read().unwrap().to_vec(), y2.read().unwrap().to_vec());
+    let scale = b.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    assert!(scale > 0.0);
+    for (i, (p, q)) in a.iter().zip(&b).enumerate() {
+        assert!((p - q).abs() <= 1e-12 * scale, "row {i}: {p} after the commit vs {q} from the committed history");
+    }
 }

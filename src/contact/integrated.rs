@@ -140,6 +140,11 @@ pub fn weighted_gaps(
         let xs = en.map(x);
         let xr = en.map(x0);
         let skip = excluded.get(e).map_or(&[][..], |v| v.as_slice());
+        // most edges of a self-contact surface, and of a pair's ends, face nothing: ruled out
+        // for the whole edge at once instead of at each of its points
+        if !grid.may_reach(&xs, skip, capture) {
+            continue;
+        }
         // split points: the middle node (the hats kink there) and the master edge ends
         // projected onto this slave edge
         let mut cuts = vec![-1.0, 0.0, 1.0];

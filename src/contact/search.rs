@@ -71,6 +71,24 @@ impl EdgeGrid {
         self.cells.get(&(cell_of(p[0], self.cell), cell_of(p[1], self.cell))).map(|v| v.as_slice()).unwrap_or(&[])
     }
 
+    /// Whether any edge (outside `excluded`) lies within `capture` of some point of the
+    /// quadratic edge at `x`: if not, no point of that edge finds a master edge, and a caller
+    /// can skip its points. Conservative with respect to [`Self::closest_edge`]: every point
+    /// of the edge lies in its hull box, so its cell is one the box overlaps, and an edge found
+    /// from it is within `capture` of the box.
+    pub fn may_reach(&self, x: &[[f64; 2]; 3], excluded: &[usize], capture: f64) -> bool {
+        let b = hull(x);
+        for i in cell_of(b[0][0], self.cell)..=cell_of(b[1][0], self.cell) {
+            for j in cell_of(b[0][1], self.cell)..=cell_of(b[1][1], self.cell) {
+                let Some(edges) = self.cells.get(&(i, j)) else { continue };
+                if edges.iter().any(|&k| box_gap(&b, &self.hulls[k]) <= capture && !excluded.contains(&k)) {
+                    return true;
+                }
+            }
+        }
+        false
+    }
+
     /// The master edge a slave node at `xs` bears on, among the candidates of its cell (minus
     /// `excluded`): the edge whose nearest point is closest, within `capture`. A projection
     /// beyond an edge end is kept only where a neighbouring edge continues the surface (the
@@ -155,6 +173,12 @@ fn box_distance(p: [f64; 2], hull: &[[f64; 2]; 2]) -> f64 {
     (gap(0) * gap(0) + gap(1) * gap(1)).sqrt()
 }
 
+/// Distance between the boxes `a` and `b` (zero where they overlap).
+fn box_gap(a: &[[f64; 2]; 2], b: &[[f64; 2]; 2]) -> f64 {
+    let gap = |i: usize| (b[0][i] - a[1][i]).max(a[0][i] - b[1][i]).max(0.0);
+    (gap(0) * gap(0) + gap(1) * gap(1)).sqrt()
+}
+
 /// How far (in edge coordinate; 0.1 = 5 % of the edge) a master surface reaches past its free
 /// ends. Where slave and master end together (tubes of equal length), a slave end node sits
 /// exactly on the master's end, and without this it would be lost and found again on
@@ -164,6 +188,7 @@ pub const FREE_END_EXTENSION: f64 = 0.1;
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::fe::shape::line3;
     use crate::model::mesh::rectangle;
     use crate::model::Mesh;
 
@@ -267,6 +292,36 @@ mod tests {
         // without the exclusion the node's own edge would be the nearest
         let (k, _) = grid.closest_edge(&s, &x, xs, &[], 0.5, None).unwrap();
         assert!(own.contains(&k));
+    }
+
+    #[test]
+    fn an_edge_ruled_out_whole_has_no_point_that_finds_a_master() {
+        // a U whose top leg bends away from the bottom one: the facing parts reach each other
+        // across 0.2, the far end of the top leg reaches nothing but its own neighbourhood
+        let (mesh, s) = polyline(&[[6.0, 0.0], [5.0, 0.0], [4.0, 0.0], [3.0, 0.0], [2.0, 0.0], [2.0, 0.2], [3.0, 0.2], [4.0, 1.5], [5.0, 3.0], [6.0, 4.5]]);
+        let x = |n: usize| mesh.coords[n];
+        let capture = 0.5;
+        let grid = EdgeGrid::new(&s, &x, capture);
+        let (mut reached, mut ruled_out) = (0, 0);
+        for (e, nodes) in s.edges.iter().enumerate() {
+            let mut own: Vec<usize> = [nodes[0], nodes[1]].iter().flat_map(|&n| s.neighbourhood(n, 1)).collect();
+            own.sort_unstable();
+            own.dedup();
+            let xs = nodes.map(x);
+            let found = (0..=40).any(|i| {
+                let xi = -1.0 + i as f64 / 20.0;
+                let (n, _) = line3(xi);
+                let p = [0, 1].map(|c| (0..3).map(|a| n[a] * xs[a][c]).sum::<f64>());
+                grid.closest_edge(&s, &x, p, &own, capture, None).is_some()
+            });
+            if grid.may_reach(&xs, &own, capture) {
+                reached += 1;
+            } else {
+                assert!(!found, "edge {e} ruled out, but one of its points finds a master");
+                ruled_out += 1;
+            }
+        }
+        assert!(reached >= 4 && ruled_out >= 2, "reached {reached}, ruled out {ruled_out}");
     }
 
     #[test]

@@ -140,7 +140,9 @@ impl J2 {
         let bar = [e[0] + shift, e[1] + shift, e[2] + shift, e[3]];
         let trial = [bar[0] - ep_n[0] - th, bar[1] - ep_n[1] - th, bar[2] - ep_n[2] - th, bar[3] - ep_n[3]];
         let (s, elastic, ep) = self.return_map(trial, committed.ep);
-        let plastic = std::array::from_fn(|i| trial[i].re() - elastic[i].re() + ep_n[i]);
+        // unchanged where nothing flowed (bit for bit, so an elastic point's history stays as
+        // committed instead of drifting by round-off)
+        let plastic = if ep == committed.ep { ep_n } else { std::array::from_fn(|i| trial[i].re() - elastic[i].re() + ep_n[i]) };
         Update { phi: [s[0], s[3], s[3], s[1], s[2]], cauchy: s.map(|v| v.re()), state: PointState { plastic, ep } }
     }
 
@@ -170,6 +172,23 @@ impl J2 {
         let trial = [log_b[0] * 0.5, log_b[1] * 0.5, b33.ln() * 0.5, log_b[2] * 0.5];
         let (tau, elastic, ep) = self.return_map(trial, committed.ep);
 
+        let cauchy = [tau[0], tau[1], tau[2], tau[3]].map(|t| t.re() / theta.re());
+        // phi = (J / theta) tau F^-T
+        let w = j / theta / det2;
+        let (t11, t22, t33, t12) = (tau[0], tau[1], tau[2], tau[3]);
+        let phi = [
+            (t11 * f[3] - t12 * f[1]) * w,
+            (t12 * f[0] - t11 * f[2]) * w,
+            (t12 * f[3] - t22 * f[1]) * w,
+            (t22 * f[0] - t12 * f[2]) * w,
+            t33 * (j / theta) / f[4],
+        ];
+        if ep == committed.ep {
+            // nothing flowed: C_p^-1 is the committed one (bit for bit, rather than recomputed
+            // through exp and F_bar^-1 with round-off, so an elastic point's history is unchanged
+            // and what was computed from it stays valid)
+            return Ok(Update { phi, cauchy, state: *committed });
+        }
         // history: C_p^-1 = stretch^2 F_bar^-1 b_e F_bar^-T, b_e = exp(2 eps_e)
         let re = |v: T| v.re();
         let be = exp_sym2(&[elastic[0].re() * 2.0, elastic[1].re() * 2.0, elastic[3].re() * 2.0]);
@@ -185,18 +204,6 @@ impl J2 {
             }
         }
         let plastic = [cp[0][0], cp[1][1], stretch * stretch * be33 / (f33 * f33), cp[0][1]];
-
-        // phi = (J / theta) tau F^-T
-        let w = j / theta / det2;
-        let (t11, t22, t33, t12) = (tau[0], tau[1], tau[2], tau[3]);
-        let phi = [
-            (t11 * f[3] - t12 * f[1]) * w,
-            (t12 * f[0] - t11 * f[2]) * w,
-            (t12 * f[3] - t22 * f[1]) * w,
-            (t22 * f[0] - t12 * f[2]) * w,
-            t33 * (j / theta) / f[4],
-        ];
-        let cauchy = [t11, t22, t33, t12].map(|t| t.re() / theta.re());
         Ok(Update { phi, cauchy, state: PointState { plastic, ep } })
     }
 }
@@ -271,6 +278,23 @@ pub(crate) mod tests {
             &PointState { plastic: [1e-3, -5e-4, 0.0, 1e-4], ep: 1e-3 },
         );
         assert!(e < 1e-6, "small-strain plastic: {e:e}");
+    }
+
+    #[test]
+    fn an_elastic_update_leaves_the_history_as_committed_bit_for_bit() {
+        // What was computed from a history stays valid across a commit that did not change it
+        // (the kept element tangents): an elastic step must not recompute C_p^-1 or eps_p with
+        // round-off. A plastic step does change it.
+        let relaxed = PointState { plastic: [1.0, 1.0, 1.0, 0.0], ep: 0.05 };
+        let up = STEEL.update(Kinematics::Finite, &[1.0002, 0.0, 0.0, 0.9999, 1.0001], 1.0002, 0.0, &relaxed).unwrap();
+        assert_eq!(up.state, relaxed, "finite strain, elastic");
+        let small = PointState { plastic: [1e-3, -5e-4, -5e-4, 1e-4], ep: 1e-3 };
+        let up = STEEL.update(Kinematics::Small, &[1.0012, 0.0001, 0.0001, 0.9996, 0.9996], 0.0004, 0.0, &small).unwrap();
+        assert_eq!(up.state, small, "small strain, elastic");
+        // the same machinery does move a history that flows
+        let pulled = [1.02, 0.0, 0.0, 0.99, 0.99];
+        let up = STEEL.update(Kinematics::Finite, &pulled, det(&pulled), 0.0, &relaxed).unwrap();
+        assert!(up.state.ep > relaxed.ep && up.state.plastic != relaxed.plastic, "finite strain, plastic");
     }
 
     #[test]

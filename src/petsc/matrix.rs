@@ -1,6 +1,6 @@
 //! PETSc Mat: parallel AIJ with exact preallocation.
 
-use super::{check, sys, to_petsc_int, Comm, PetscSession, SessionBorrow};
+use super::{check, sys, to_petsc_int, Comm, PetscSession, SessionBorrow, VecOps};
 use crate::error::Result;
 use std::marker::PhantomData;
 
@@ -59,6 +59,14 @@ pub trait MatOps {
         assert_eq!(entries, Some(values.len()), "set_values_coo: one value per entry of the matrix's COO preallocation");
         // SAFETY: PETSc reads as many values as entries were preallocated, checked just above.
         check(unsafe { sys::MatSetValuesCOO(self.raw(), values.as_ptr(), sys::InsertMode_INSERT_VALUES) }, "MatSetValuesCOO")
+    }
+
+    /// Collective: y = A x (x and y distinct vectors laid out as the matrix's columns and
+    /// rows).
+    fn multiply(&self, x: &impl VecOps, y: &mut impl VecOps) -> Result<()> {
+        // SAFETY: valid handles; x and y are distinct objects (one borrowed shared, one
+        // exclusively), as MatMult requires.
+        check(unsafe { sys::MatMult(self.raw(), x.raw(), y.raw()) }, "MatMult")
     }
 
     fn set_option(&mut self, option: sys::MatOption, value: bool) -> Result<()> {

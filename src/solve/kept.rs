@@ -9,8 +9,9 @@ use crate::element::solid::{MaterialTangents, NODES, QUADRATURE_POINTS};
 /// displacements and temperature they belong to. SNES asks for the Jacobian at the iterate
 /// whose residual it has just evaluated, so the Jacobian finds them here and only forms the
 /// element matrices: the material update, the costly part, runs once per iterate (on dual
-/// numbers, about 1.7 times a plain update) instead of twice. A commit changes the history
-/// they were computed from and drops them.
+/// numbers, about 1.7 times a plain update) instead of twice. A commit drops those of the
+/// elements whose history it changes; the others serve the next increment's predictor, which
+/// asks for the Jacobian at the converged state.
 #[derive(Default)]
 pub(super) struct KeptTangents {
     /// Per local element.
@@ -32,8 +33,11 @@ impl KeptTangents {
         (e.valid && e.u == *u && e.temperature_change == temperature_change).then_some(&e.material)
     }
 
-    pub fn forget(&mut self) {
-        self.elements.iter_mut().for_each(|e| e.valid = false);
+    /// Drops element `k`'s tangents (its history has changed).
+    pub fn forget_element(&mut self, k: usize) {
+        if let Some(e) = self.elements.get_mut(k) {
+            e.valid = false;
+        }
     }
 }
 
@@ -86,7 +90,9 @@ mod tests {
         moved[3][1] += 1e-12;
         assert!(kept.get(1, &moved, 180.0).is_none(), "another iterate");
         assert!(kept.get(1, &u, 180.5).is_none(), "another temperature");
-        kept.forget();
+        kept.forget_element(0);
+        assert!(kept.get(1, &u, 180.0).is_some(), "another element's history changed");
+        kept.forget_element(1);
         assert!(kept.get(1, &u, 180.0).is_none(), "a commit changed the history");
     }
 }

@@ -226,8 +226,14 @@ impl<'s, 'm> Problem<'s, 'm> {
     /// Accepts the trial history and contact multipliers of the last evaluation (call after a
     /// converged increment).
     pub fn commit(&mut self) {
-        self.committed.copy_from_slice(&self.trial);
-        self.kept.forget();
+        // an element whose history did not change (no point flowed) keeps its tangents: the
+        // next increment's predictor asks for the Jacobian at this very state
+        for (k, (committed, trial)) in self.committed.iter_mut().zip(&self.trial).enumerate() {
+            if committed != trial {
+                self.kept.forget_element(k);
+                *committed = *trial;
+            }
+        }
         self.last = None;
         if let Some(c) = self.contact.as_mut() {
             c.commit();
