@@ -228,32 +228,41 @@ pub fn compute_solid(input: &SolidInput<'_>, u: &[[f64; 2]; NODES], mut tangents
 }
 
 /// The element tangent d f_int / d u from the material tangents of an evaluation:
-/// K = sum_q G_q^T (A_q G_q + b_q (x) Theta_q), products written over G's nonzeros.
+/// K = sum_q G_q^T A_q G_q + sum_q G_q^T b_q (x) Theta_q, products written over G's nonzeros.
+/// The F-bar part is of rank 3: with Theta_q = sum_k basis[q][k] psi_k it is
+/// sum_k c_k (x) psi_k, c_k = sum_q basis[q][k] G_q^T b_q, three outer products for the whole
+/// element instead of a term in every point's product.
 pub fn solid_tangent(geo: &ElementGeometry, material: &MaterialTangents) -> ElementMatrix {
-    // Theta_q = sum_k basis[q][k] psi_k, psi_k = sum_p coef[p][k] (dv/dF)_p G_p
+    // psi_k = sum_p coef[p][k] (dv/dF)_p G_p and c_k
     let mut psi = [[0.0; DOFS]; 3];
+    let mut c = [[0.0; DOFS]; 3];
     for p in 0..QUADRATURE_POINTS {
-        let row = geo.gradients[p].contract(&material[p].volume_f);
+        let g = &geo.gradients[p];
+        let (volume, stress) = (g.contract(&material[p].volume_f), g.contract(&material[p].stress_theta));
         for k in 0..3 {
-            let c = geo.coef[p][k];
+            let (a, b) = (geo.coef[p][k], geo.basis[p][k]);
             for j in 0..DOFS {
-                psi[k][j] += c * row[j];
+                psi[k][j] += a * volume[j];
+                c[k][j] += b * stress[j];
             }
         }
     }
     // rows of K, row-major
     let mut k = [[0.0; DOFS]; DOFS];
+    for i in 0..DOFS {
+        for j in 0..DOFS {
+            k[i][j] = c[0][i] * psi[0][j] + c[1][i] * psi[1][j] + c[2][i] * psi[2][j];
+        }
+    }
     for q in 0..QUADRATURE_POINTS {
         let (g, t) = (&geo.gradients[q], &material[q]);
-        let b = geo.basis[q];
-        let theta_row: [f64; DOFS] = std::array::from_fn(|j| b[0] * psi[0][j] + b[1] * psi[1][j] + b[2] * psi[2][j]);
-        // M = A G + b (x) Theta, row i over the element DOFs
+        // M = A G, row i over the element DOFs
         let mut m = [[0.0; DOFS]; 5];
         for (i, row) in m.iter_mut().enumerate() {
             let a = &t.stress_f[i];
             for n in 0..NODES {
-                row[2 * n] = a[0] * g.dr[n] + a[1] * g.dz[n] + a[4] * g.hoop[n] + t.stress_theta[i] * theta_row[2 * n];
-                row[2 * n + 1] = a[2] * g.dr[n] + a[3] * g.dz[n] + t.stress_theta[i] * theta_row[2 * n + 1];
+                row[2 * n] = a[0] * g.dr[n] + a[1] * g.dz[n] + a[4] * g.hoop[n];
+                row[2 * n + 1] = a[2] * g.dr[n] + a[3] * g.dz[n];
             }
         }
         // K += G^T M: the radial row of node n combines M's rows 0, 1, 4; the axial row 2, 3
