@@ -156,32 +156,34 @@ impl J2 {
         if stretch.is_nan() || stretch <= 0.0 {
             return Err(format!("thermal stretch 1 + alpha dT = {stretch} is not positive"));
         }
-        // F_bar = (theta / J)^(1/3) F
-        let scale = (theta / j).cbrt();
-        let fb = f.map(|v| v * scale);
-        // b_e trial = F_bar C_p^-1 F_bar^T / stretch^2, in-plane block and hoop
+        // b_e trial = F_bar C_p^-1 F_bar^T / stretch^2 with F_bar = (theta / J)^(1/3) F, in-plane
+        // block and hoop. The F-bar scaling multiplies b by (theta / J)^(2/3), which shifts
+        // its logarithm by (2/3) ln(theta / J) I: it enters the log strain as one logarithm
+        // on the diagonal instead of a cube root and a scaled copy of F.
         let c = committed.plastic;
         let s2 = 1.0 / (stretch * stretch);
         let (c11, c22, c33, c12) = (c[0], c[1], c[2], c[3]);
         let row = |a: T, b: T| (a * c11 + b * c12, a * c12 + b * c22); // [a b] C
-        let (r1a, r1b) = row(fb[0], fb[1]);
-        let (r2a, r2b) = row(fb[2], fb[3]);
-        let b = [(r1a * fb[0] + r1b * fb[1]) * s2, (r2a * fb[2] + r2b * fb[3]) * s2, (r1a * fb[2] + r1b * fb[3]) * s2];
-        let b33 = fb[4] * fb[4] * (c33 * s2);
+        let (r1a, r1b) = row(f[0], f[1]);
+        let (r2a, r2b) = row(f[2], f[3]);
+        let b = [(r1a * f[0] + r1b * f[1]) * s2, (r2a * f[2] + r2b * f[3]) * s2, (r1a * f[2] + r1b * f[3]) * s2];
+        let b33 = f[4] * f[4] * (c33 * s2);
         let log_b = log_sym2(&b);
-        let trial = [log_b[0] * 0.5, log_b[1] * 0.5, b33.ln() * 0.5, log_b[2] * 0.5];
+        let shift = (theta / j).ln() * (1.0 / 3.0);
+        let trial = [log_b[0] * 0.5 + shift, log_b[1] * 0.5 + shift, b33.ln() * 0.5 + shift, log_b[2] * 0.5];
         let (tau, elastic, ep) = self.return_map(trial, committed.ep);
 
         let cauchy = [tau[0], tau[1], tau[2], tau[3]].map(|t| t.re() / theta.re());
-        // phi = (J / theta) tau F^-T
-        let w = j / theta / det2;
+        // phi = (J / theta) tau F^-T; in-plane J / det2 = F_tT, in the hoop J / F_tT = det2
+        let inverse_theta = T::from_f64(1.0) / theta;
+        let w = f[4] * inverse_theta;
         let (t11, t22, t33, t12) = (tau[0], tau[1], tau[2], tau[3]);
         let phi = [
             (t11 * f[3] - t12 * f[1]) * w,
             (t12 * f[0] - t11 * f[2]) * w,
             (t12 * f[3] - t22 * f[1]) * w,
             (t22 * f[0] - t12 * f[2]) * w,
-            t33 * (j / theta) / f[4],
+            t33 * det2 * inverse_theta,
         ];
         if ep == committed.ep {
             // nothing flowed: C_p^-1 is the committed one (bit for bit, rather than recomputed
@@ -193,7 +195,8 @@ impl J2 {
         let re = |v: T| v.re();
         let be = exp_sym2(&[elastic[0].re() * 2.0, elastic[1].re() * 2.0, elastic[3].re() * 2.0]);
         let be33 = (elastic[2].re() * 2.0).exp();
-        let (f11, f12, f21, f22, f33) = (re(fb[0]), re(fb[1]), re(fb[2]), re(fb[3]), re(fb[4]));
+        let scale = (theta.re() / j.re()).cbrt();
+        let (f11, f12, f21, f22, f33) = (re(f[0]) * scale, re(f[1]) * scale, re(f[2]) * scale, re(f[3]) * scale, re(f[4]) * scale);
         let d = f11 * f22 - f12 * f21;
         let inv = [[f22 / d, -f12 / d], [-f21 / d, f11 / d]];
         let bm = [[be[0], be[2]], [be[2], be[1]]];
