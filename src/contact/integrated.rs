@@ -135,6 +135,8 @@ pub fn weighted_gaps(
     // the master edge of the last point found: consecutive points mostly share it
     let mut hint = None;
     let mut points = 0;
+    // per-edge scratch, reused
+    let (mut cuts, mut masters): (Vec<f64>, Vec<usize>) = (Vec::new(), Vec::new());
     for e in edges {
         let en = slave.edges[e];
         let xs = en.map(x);
@@ -147,8 +149,9 @@ pub fn weighted_gaps(
         }
         // split points: the middle node (the hats kink there) and the master edge ends
         // projected onto this slave edge
-        let mut cuts = vec![-1.0, 0.0, 1.0];
-        let mut masters: Vec<usize> = Vec::new();
+        cuts.clear();
+        cuts.extend([-1.0, 0.0, 1.0]);
+        masters.clear();
         for &xi in &[-1.0, -0.5, 0.0, 0.5, 1.0] {
             let p = point(&xs, xi);
             if let Some((m, _)) = grid.closest_edge(master, x, p, skip, capture, hint) {
@@ -169,6 +172,8 @@ pub fn weighted_gaps(
         }
         cuts.sort_by(f64::total_cmp);
         cuts.dedup_by(|a, b| (*a - *b).abs() < 1e-9);
+        // the edge's nodes among the requested ones (looked up once, not per point)
+        let requested = en.map(|n| slave.index_of(n).and_then(position));
         for piece in cuts.windows(2) {
             let (lo, hi) = (piece[0], piece[1]);
             for &(s, w) in &GAUSS3 {
@@ -190,12 +195,17 @@ pub fn weighted_gaps(
                 let point = points;
                 points += 1;
                 for a in 0..3 {
-                    let Some(k) = slave.index_of(en[a]).and_then(position) else { continue };
+                    let Some(k) = requested[a] else { continue };
                     let wa = weight * psi[a];
                     if wa == 0.0 {
                         continue;
                     }
                     let g = &mut out[k];
+                    if g.samples.is_empty() {
+                        // a node's hat covers two slave edges, each of two or more pieces of
+                        // three points: room for the usual count at once
+                        g.samples.reserve(12);
+                    }
                     g.gap += wa * proj.gap;
                     g.samples.push(GapSample { nodes, shape: n, projection: proj, weight: wa, point });
                     if wa.abs() > best_weight[k] {
