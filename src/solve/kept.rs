@@ -9,7 +9,7 @@ use crate::element::solid::{MaterialTangents, NODES, QUADRATURE_POINTS};
 /// displacements and temperature they belong to. SNES asks for the Jacobian at the iterate
 /// whose residual it has just evaluated, so the Jacobian finds them here and only forms the
 /// element matrices: the material update, the costly part, runs once per iterate (on dual
-/// numbers, about 1.7 times a plain update) instead of twice. A commit drops those of the
+/// numbers, about 1.5 times a plain update) instead of twice. A commit drops those of the
 /// elements whose history it changes; the others serve the next increment's predictor, which
 /// asks for the Jacobian at the converged state.
 #[derive(Default)]
