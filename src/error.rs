@@ -30,6 +30,10 @@ pub enum Error {
     #[error("MPI: {0}")]
     Mpi(String),
 
+    /// A broken assumption inside slideline (a bug), reported rather than panicking.
+    #[error("internal error: {0}")]
+    Internal(String),
+
     /// A Rust panic caught at the FFI boundary (a bug, reported rather than unwound through C).
     #[error("internal error (panic inside a PETSc callback): {0}")]
     Panic(String),

@@ -1,7 +1,8 @@
 //! The output fields after convergence are those the last residual evaluation kept when it was
 //! made at the same iterate, and a fresh evaluation otherwise: both must give the same stresses,
 //! plastic strains and nodal forces. Likewise the material tangents a commit keeps: the
-//! Jacobian after it equals one made from the committed history. A two-block stack in contact, finite-strain J2 yielding
+//! Jacobian after it equals one made from the committed history, and written straight into
+//! PETSc's storage it equals the one MatSetValuesCOO makes. A two-block stack in contact, finite-strain J2 yielding
 //! under a rough displacement field, heated, on one rank.
 //! One test function: MPI can be initialised once per process.
 
@@ -107,6 +108,11 @@ fn kept_output_fields_equal_a_fresh_evaluation() {
     problem.commit();
     let mut after_commit = problem.jacobian_matrix().expect("matrix");
     problem.assemble_jacobian(&x, &mut after_commit).expect("jacobian after the commit");
+    // the same Jacobian again, now written straight into PETSc's storage of the matrix
+    let mut rewritten = problem.jacobian_matrix().expect("matrix");
+    problem.assemble_jacobian(&other, &mut rewritten).expect("jacobian elsewhere");
+    assert!(problem.writes_jacobian_storage(), "bound to the storage after the first assembly");
+    problem.assemble_jacobian(&x, &mut rewritten).expect("jacobian written into the storage");
     let (history, carry) = problem.into_history();
     let mut restarted = Problem::new(&session, &model, &partition, &dofs, &x, history, carry).expect("problem");
     restarted.set_load(loads.at(&model, 1.0));
@@ -115,10 +121,13 @@ fn kept_output_fields_equal_a_fresh_evaluation() {
     let (mut y1, mut y2) = (Vector::mpi(&session, session.comm(), dofs.local_len()).unwrap(), Vector::mpi(&session, session.comm(), dofs.local_len()).unwrap());
     after_commit.multiply(&other, &mut y1).expect("product");
     fresh.multiply(&other, &mut y2).expect("product");
-    let (a, b) = (y1.read().unwrap().to_vec(), y2.read().unwrap().to_vec());
+    let mut y3 = Vector::mpi(&session, session.comm(), dofs.local_len()).unwrap();
+    rewritten.multiply(&other, &mut y3).expect("product");
+    let (a, b, c) = (y1.read().unwrap().to_vec(), y2.read().unwrap().to_vec(), y3.read().unwrap().to_vec());
     let scale = b.iter().fold(0.0f64, |m, v| m.max(v.abs()));
     assert!(scale > 0.0);
     for (i, (p, q)) in a.iter().zip(&b).enumerate() {
         assert!((p - q).abs() <= 1e-12 * scale, "row {i}: {p} after the commit vs {q} from the committed history");
     }
+    assert_eq!(a, c, "the values written into the storage are those MatSetValuesCOO sets");
 }

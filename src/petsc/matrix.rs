@@ -69,6 +69,44 @@ pub trait MatOps {
         check(unsafe { sys::MatMult(self.raw(), x.raw(), y.raw()) }, "MatMult")
     }
 
+    /// The nonzero structure of this rank's rows as PETSc stores their values: the diagonal
+    /// block (columns this rank owns) and the off-diagonal block, each row by row, columns
+    /// ascending, as global indices. Valid until the structure changes (a COO preallocation).
+    fn owned_structure(&self) -> Result<OwnedStructure> {
+        let mut first = 0;
+        let mut end = 0;
+        // SAFETY: valid handle; two output integers.
+        check(unsafe { sys::MatGetOwnershipRange(self.raw(), &mut first, &mut end) }, "MatGetOwnershipRange")?;
+        let LocalBlocks { diagonal, off_diagonal } = local_blocks(self.raw())?;
+        let (diagonal_ptr, mut diagonal_cols) = block_structure(diagonal)?;
+        diagonal_cols.iter_mut().for_each(|c| *c += first);
+        let (off_diagonal_ptr, off_diagonal_cols) = match off_diagonal {
+            Some((block, colmap)) => {
+                let (ptr, cols) = block_structure(block)?;
+                (ptr, cols.iter().map(|&c| colmap[c as usize]).collect())
+            }
+            None => (vec![0; diagonal_ptr.len()], Vec::new()),
+        };
+        Ok(OwnedStructure { first, end, diagonal_ptr, diagonal_cols, off_diagonal_ptr, off_diagonal_cols })
+    }
+
+    /// Lends `fill` the value arrays of this rank's rows, in the order of
+    /// [`MatOps::owned_structure`] (diagonal block, off-diagonal block: empty on one rank), to
+    /// overwrite. Entries of other ranks' rows go through [`MatOps::add_block`] after it, and
+    /// [`MatOps::assemble`] finishes (it also tells the solver the values changed). Only for a
+    /// matrix assembled at least once since its structure was set.
+    fn write_owned(&mut self, fill: impl FnOnce(&mut [f64], &mut [f64])) -> Result<()> {
+        let blocks = local_blocks(self.raw())?;
+        let mut diagonal = BlockValues::lend(blocks.diagonal)?;
+        let mut off_diagonal = match blocks.off_diagonal {
+            Some((block, _)) => Some(BlockValues::lend(block)?),
+            None => None,
+        };
+        fill(diagonal.values(), off_diagonal.as_mut().map_or(&mut [][..], |b| b.values()));
+        diagonal.give_back()?;
+        off_diagonal.map_or(Ok(()), |b| b.give_back())
+    }
+
     fn set_option(&mut self, option: sys::MatOption, value: bool) -> Result<()> {
         let flag = if value { sys::PetscBool_PETSC_TRUE } else { sys::PetscBool_PETSC_FALSE };
         // SAFETY: valid handle.
@@ -80,6 +118,118 @@ pub trait MatOps {
         // SAFETY: valid handle; Begin/End paired.
         check(unsafe { sys::MatAssemblyBegin(self.raw(), sys::MatAssemblyType_MAT_FINAL_ASSEMBLY) }, "MatAssemblyBegin")?;
         check(unsafe { sys::MatAssemblyEnd(self.raw(), sys::MatAssemblyType_MAT_FINAL_ASSEMBLY) }, "MatAssemblyEnd")
+    }
+}
+
+/// This rank's rows of a matrix as PETSc stores them (see [`MatOps::owned_structure`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct OwnedStructure {
+    /// The rows [first, end) are this rank's (and so are those columns).
+    pub first: sys::PetscInt,
+    pub end: sys::PetscInt,
+    /// Row pointers (end - first + 1) and global columns of the diagonal block.
+    pub diagonal_ptr: Vec<usize>,
+    pub diagonal_cols: Vec<sys::PetscInt>,
+    /// The same for the off-diagonal block (empty on one rank).
+    pub off_diagonal_ptr: Vec<usize>,
+    pub off_diagonal_cols: Vec<sys::PetscInt>,
+}
+
+/// The sequential blocks holding this rank's rows: the matrix itself on one rank (seqaij); the
+/// diagonal and off-diagonal blocks on several (mpiaij), with the global column of each of the
+/// latter's local ones.
+struct LocalBlocks {
+    diagonal: sys::Mat,
+    off_diagonal: Option<(sys::Mat, Vec<sys::PetscInt>)>,
+}
+
+fn local_blocks(mat: sys::Mat) -> Result<LocalBlocks> {
+    let mut ty: sys::MatType = std::ptr::null();
+    // SAFETY: valid handle; PETSc returns a pointer to its own type name (or null).
+    check(unsafe { sys::MatGetType(mat, &mut ty) }, "MatGetType")?;
+    // SAFETY: a non-null type name is a NUL-terminated string owned by PETSc.
+    let name = if ty.is_null() { "" } else { unsafe { std::ffi::CStr::from_ptr(ty) }.to_str().unwrap_or("") };
+    match name {
+        "seqaij" => Ok(LocalBlocks { diagonal: mat, off_diagonal: None }),
+        "mpiaij" => {
+            let (mut d, mut o, mut colmap) = (std::ptr::null_mut(), std::ptr::null_mut(), std::ptr::null());
+            // SAFETY: valid mpiaij handle; PETSc returns its blocks and the off-diagonal block's
+            // column map, read (copied) at once below.
+            check(unsafe { sys::MatMPIAIJGetSeqAIJ(mat, &mut d, &mut o, &mut colmap) }, "MatMPIAIJGetSeqAIJ")?;
+            let (mut rows, mut cols) = (0, 0);
+            // SAFETY: valid handle; two output integers.
+            check(unsafe { sys::MatGetSize(o, &mut rows, &mut cols) }, "MatGetSize")?;
+            let columns = if cols == 0 || colmap.is_null() {
+                Vec::new()
+            } else {
+                // SAFETY: the map has one entry per column of the off-diagonal block.
+                unsafe { std::slice::from_raw_parts(colmap, cols as usize) }.to_vec()
+            };
+            Ok(LocalBlocks { diagonal: d, off_diagonal: Some((o, columns)) })
+        }
+        other => Err(crate::error::Error::Internal(format!("matrix type '{other}': only seqaij and mpiaij expose their storage"))),
+    }
+}
+
+/// Row pointers and (local) columns of a sequential AIJ block, copied.
+fn block_structure(block: sys::Mat) -> Result<(Vec<usize>, Vec<sys::PetscInt>)> {
+    let (mut n, mut ia, mut ja, mut done) = (0, std::ptr::null(), std::ptr::null(), sys::PetscBool_PETSC_FALSE);
+    // SAFETY: valid handle; 0-based, not symmetrised, not inode-compressed: PETSc returns its
+    // own CSR arrays, which are read here and handed back below.
+    check(unsafe { sys::MatGetRowIJ(block, 0, sys::PetscBool_PETSC_FALSE, sys::PetscBool_PETSC_FALSE, &mut n, &mut ia, &mut ja, &mut done) }, "MatGetRowIJ")?;
+    if done != sys::PetscBool_PETSC_TRUE || ia.is_null() {
+        return Err(crate::error::Error::Internal("MatGetRowIJ: no row structure for this matrix".into()));
+    }
+    // SAFETY: ia has n + 1 entries, ja has ia[n].
+    let ptr: Vec<usize> = unsafe { std::slice::from_raw_parts(ia, n as usize + 1) }.iter().map(|&v| v as usize).collect();
+    let cols = if ptr[n as usize] == 0 { Vec::new() } else { unsafe { std::slice::from_raw_parts(ja, ptr[n as usize]) }.to_vec() };
+    // SAFETY: the arrays obtained above, handed back.
+    check(
+        unsafe { sys::MatRestoreRowIJ(block, 0, sys::PetscBool_PETSC_FALSE, sys::PetscBool_PETSC_FALSE, &mut n, &mut ia, &mut ja, &mut done) },
+        "MatRestoreRowIJ",
+    )?;
+    Ok((ptr, cols))
+}
+
+/// The value array of a sequential AIJ block, lent by PETSc until `give_back`.
+struct BlockValues {
+    block: sys::Mat,
+    array: *mut f64,
+    len: usize,
+}
+
+impl BlockValues {
+    fn lend(block: sys::Mat) -> Result<Self> {
+        let (mut n, mut ia, mut ja, mut done) = (0, std::ptr::null(), std::ptr::null(), sys::PetscBool_PETSC_FALSE);
+        // SAFETY: valid handle; PETSc returns its own row pointers (O(1) for seqaij), of which
+        // only the last, the nonzero count, is read before they are handed back.
+        check(
+            unsafe { sys::MatGetRowIJ(block, 0, sys::PetscBool_PETSC_FALSE, sys::PetscBool_PETSC_FALSE, &mut n, &mut ia, &mut ja, &mut done) },
+            "MatGetRowIJ",
+        )?;
+        let len = if done == sys::PetscBool_PETSC_TRUE && !ia.is_null() { (unsafe { *ia.add(n as usize) }) as usize } else { 0 };
+        check(
+            unsafe { sys::MatRestoreRowIJ(block, 0, sys::PetscBool_PETSC_FALSE, sys::PetscBool_PETSC_FALSE, &mut n, &mut ia, &mut ja, &mut done) },
+            "MatRestoreRowIJ",
+        )?;
+        let mut array: *mut f64 = std::ptr::null_mut();
+        // SAFETY: valid seqaij handle; PETSc lends its value array (len entries) until restored.
+        check(unsafe { sys::MatSeqAIJGetArray(block, &mut array) }, "MatSeqAIJGetArray")?;
+        Ok(BlockValues { block, array, len })
+    }
+
+    fn values(&mut self) -> &mut [f64] {
+        if self.len == 0 || self.array.is_null() {
+            return &mut [];
+        }
+        // SAFETY: PETSc's value array of `len` entries, lent to this object alone until
+        // `give_back`; the borrow of self keeps it unique.
+        unsafe { std::slice::from_raw_parts_mut(self.array, self.len) }
+    }
+
+    fn give_back(mut self) -> Result<()> {
+        // SAFETY: the array lent in `lend`, handed back once (this marks the block changed).
+        check(unsafe { sys::MatSeqAIJRestoreArray(self.block, &mut self.array) }, "MatSeqAIJRestoreArray")
     }
 }
 

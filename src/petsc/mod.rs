@@ -19,7 +19,7 @@ mod snes;
 mod vector;
 
 pub use log::LogStage;
-pub use matrix::{MatOps, Matrix, MatrixView};
+pub use matrix::{MatOps, Matrix, MatrixView, OwnedStructure};
 pub use partition::partition_graph;
 pub use snes::{NonlinearProblem, Snes, SolveReport};
 pub use vector::{IndexSet, Scatter, VecOps, Vector, VectorView};

@@ -20,6 +20,7 @@ use crate::material::{Kinematics, PointState, J2};
 use crate::model::{Material, Model};
 use crate::petsc::sys::PetscInt;
 use crate::petsc::{LogStage, MatOps, Matrix, MatrixView, NonlinearProblem, PetscSession, Scatter, VecOps, Vector, VectorView};
+use mpi::collective::{CommunicatorCollectives, SystemOperation};
 
 /// Round-off allowance per assembled contribution, in units in the last place: the floor
 /// estimate ignores the linear solve's own error and the sums inside each kernel, so it is
@@ -266,9 +267,16 @@ impl<'s, 'm> Problem<'s, 'm> {
 
     /// A new matrix for this step's Jacobian, its structure the layout's: the elements and
     /// every contact coupling found so far (see [`Problem::fit_pattern`]).
-    pub fn jacobian_matrix(&self) -> Result<Matrix<'s>> {
+    pub fn jacobian_matrix(&mut self) -> Result<Matrix<'s>> {
+        self.layout.forget_storage();
         let (rows, cols) = self.layout.indices();
         Matrix::aij_coo(self.session, self.session.comm(), self.dofs.local_len(), rows, cols)
+    }
+
+    /// Whether Jacobians go straight into PETSc's storage of the matrix (from its second
+    /// assembly on; see `JacobianLayout::hand_over`).
+    pub fn writes_jacobian_storage(&self) -> bool {
+        self.layout.writes_storage()
     }
 
     /// Collective, before any value of a Jacobian is added: evaluates contact with tangents,
@@ -491,7 +499,11 @@ impl Problem<'_, '_> {
             self.layout.clear();
             let result = self.add_tangents(&gathered);
             // collective, whatever happened on this rank (see `residual`)
-            jacobian.set_values_coo(self.layout.values())?;
+            if let Some(bound) = self.layout.hand_over(jacobian)? {
+                let mut everywhere = 0;
+                self.session.world().all_reduce_into(&i32::from(bound), &mut everywhere, SystemOperation::min());
+                self.layout.keep_storage(everywhere == 1);
+            }
             result
         })?
     }
