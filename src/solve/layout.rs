@@ -11,7 +11,9 @@
 //! bellows). Sorted and without repeats, the lists cost PETSc less than half as much to take
 //! in as the blocks one after another (12 against 28 ms on the default bellows, 1 rank), and
 //! that recurs at every refit: so the element entries are sorted once per step and a refit
-//! only merges the contact pairs in.
+//! only merges the contact pairs in. From a matrix's second assembly on, the values skip
+//! MatSetValuesCOO: the layout knows by then where PETSc stores each of its rank's rows and
+//! copies its values there in runs ([`JacobianLayout::hand_over`]).
 
 use crate::element::solid::DOFS;
 use crate::error::Result;
