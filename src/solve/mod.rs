@@ -8,5 +8,6 @@ pub mod pattern;
 pub mod problem;
 pub mod schedule;
 pub mod stepping;
+mod storage;
 
 pub use stepping::{run, RunOptions, RunSummary};
