@@ -60,7 +60,6 @@ const FUNCTIONS: &[&str] = &[
     "MatZeroEntries",
     "MatMult",
     "MatGetType",
-    "MatGetSize",
     "MatGetOwnershipRange",
     "MatMPIAIJGetSeqAIJ",
     "MatGetRowIJ",

@@ -77,13 +77,19 @@ pub trait MatOps {
         let mut end = 0;
         // SAFETY: valid handle; two output integers.
         check(unsafe { sys::MatGetOwnershipRange(self.raw(), &mut first, &mut end) }, "MatGetOwnershipRange")?;
-        let LocalBlocks { diagonal, off_diagonal } = local_blocks(self.raw())?;
+        let LocalBlocks { diagonal, off_diagonal, colmap } = local_blocks(self.raw())?;
         let (diagonal_ptr, mut diagonal_cols) = block_structure(diagonal)?;
         diagonal_cols.iter_mut().for_each(|c| *c += first);
         let (off_diagonal_ptr, off_diagonal_cols) = match off_diagonal {
-            Some((block, colmap)) => {
+            Some(block) => {
                 let (ptr, cols) = block_structure(block)?;
-                (ptr, cols.iter().map(|&c| colmap[c as usize]).collect())
+                if colmap.is_null() && !cols.is_empty() {
+                    return Err(crate::error::Error::Internal("MatMPIAIJGetSeqAIJ: no column map for the off-diagonal block".into()));
+                }
+                // SAFETY: PETSc's column map has an entry for every local column the block
+                // uses, and these are such columns.
+                let global = cols.iter().map(|&c| unsafe { *colmap.add(c as usize) }).collect();
+                (ptr, global)
             }
             None => (vec![0; diagonal_ptr.len()], Vec::new()),
         };
@@ -99,7 +105,7 @@ pub trait MatOps {
         let blocks = local_blocks(self.raw())?;
         let mut diagonal = BlockValues::lend(blocks.diagonal)?;
         let mut off_diagonal = match blocks.off_diagonal {
-            Some((block, _)) => Some(BlockValues::lend(block)?),
+            Some(block) => Some(BlockValues::lend(block)?),
             None => None,
         };
         fill(diagonal.values(), off_diagonal.as_mut().map_or(&mut [][..], |b| b.values()));
@@ -136,11 +142,12 @@ pub struct OwnedStructure {
 }
 
 /// The sequential blocks holding this rank's rows: the matrix itself on one rank (seqaij); the
-/// diagonal and off-diagonal blocks on several (mpiaij), with the global column of each of the
-/// latter's local ones.
+/// diagonal and off-diagonal blocks on several (mpiaij).
 struct LocalBlocks {
     diagonal: sys::Mat,
-    off_diagonal: Option<(sys::Mat, Vec<sys::PetscInt>)>,
+    off_diagonal: Option<sys::Mat>,
+    /// The off-diagonal block's column map (global column of each local one), PETSc's own.
+    colmap: *const sys::PetscInt,
 }
 
 fn local_blocks(mat: sys::Mat) -> Result<LocalBlocks> {
@@ -150,45 +157,45 @@ fn local_blocks(mat: sys::Mat) -> Result<LocalBlocks> {
     // SAFETY: a non-null type name is a NUL-terminated string owned by PETSc.
     let name = if ty.is_null() { "" } else { unsafe { std::ffi::CStr::from_ptr(ty) }.to_str().unwrap_or("") };
     match name {
-        "seqaij" => Ok(LocalBlocks { diagonal: mat, off_diagonal: None }),
+        "seqaij" => Ok(LocalBlocks { diagonal: mat, off_diagonal: None, colmap: std::ptr::null() }),
         "mpiaij" => {
             let (mut d, mut o, mut colmap) = (std::ptr::null_mut(), std::ptr::null_mut(), std::ptr::null());
             // SAFETY: valid mpiaij handle; PETSc returns its blocks and the off-diagonal block's
-            // column map, read (copied) at once below.
+            // column map (alive as long as the structure).
             check(unsafe { sys::MatMPIAIJGetSeqAIJ(mat, &mut d, &mut o, &mut colmap) }, "MatMPIAIJGetSeqAIJ")?;
-            let (mut rows, mut cols) = (0, 0);
-            // SAFETY: valid handle; two output integers.
-            check(unsafe { sys::MatGetSize(o, &mut rows, &mut cols) }, "MatGetSize")?;
-            let columns = if cols == 0 || colmap.is_null() {
-                Vec::new()
-            } else {
-                // SAFETY: the map has one entry per column of the off-diagonal block.
-                unsafe { std::slice::from_raw_parts(colmap, cols as usize) }.to_vec()
-            };
-            Ok(LocalBlocks { diagonal: d, off_diagonal: Some((o, columns)) })
+            Ok(LocalBlocks { diagonal: d, off_diagonal: Some(o), colmap })
         }
         other => Err(crate::error::Error::Internal(format!("matrix type '{other}': only seqaij and mpiaij expose their storage"))),
     }
 }
 
-/// Row pointers and (local) columns of a sequential AIJ block, copied.
-fn block_structure(block: sys::Mat) -> Result<(Vec<usize>, Vec<sys::PetscInt>)> {
+/// Reads the row pointers (n + 1 entries) and local columns of a sequential AIJ block through
+/// `read`, between MatGetRowIJ and MatRestoreRowIJ.
+fn read_rows<R>(block: sys::Mat, read: impl FnOnce(&[sys::PetscInt], *const sys::PetscInt) -> R) -> Result<R> {
     let (mut n, mut ia, mut ja, mut done) = (0, std::ptr::null(), std::ptr::null(), sys::PetscBool_PETSC_FALSE);
+    let no = sys::PetscBool_PETSC_FALSE;
     // SAFETY: valid handle; 0-based, not symmetrised, not inode-compressed: PETSc returns its
-    // own CSR arrays, which are read here and handed back below.
-    check(unsafe { sys::MatGetRowIJ(block, 0, sys::PetscBool_PETSC_FALSE, sys::PetscBool_PETSC_FALSE, &mut n, &mut ia, &mut ja, &mut done) }, "MatGetRowIJ")?;
+    // own CSR arrays (O(1) for seqaij), read here and handed back below.
+    check(unsafe { sys::MatGetRowIJ(block, 0, no, no, &mut n, &mut ia, &mut ja, &mut done) }, "MatGetRowIJ")?;
     if done != sys::PetscBool_PETSC_TRUE || ia.is_null() {
         return Err(crate::error::Error::Internal("MatGetRowIJ: no row structure for this matrix".into()));
     }
-    // SAFETY: ia has n + 1 entries, ja has ia[n].
-    let ptr: Vec<usize> = unsafe { std::slice::from_raw_parts(ia, n as usize + 1) }.iter().map(|&v| v as usize).collect();
-    let cols = if ptr[n as usize] == 0 { Vec::new() } else { unsafe { std::slice::from_raw_parts(ja, ptr[n as usize]) }.to_vec() };
+    // SAFETY: ia has n + 1 entries.
+    let result = read(unsafe { std::slice::from_raw_parts(ia, n as usize + 1) }, ja);
     // SAFETY: the arrays obtained above, handed back.
-    check(
-        unsafe { sys::MatRestoreRowIJ(block, 0, sys::PetscBool_PETSC_FALSE, sys::PetscBool_PETSC_FALSE, &mut n, &mut ia, &mut ja, &mut done) },
-        "MatRestoreRowIJ",
-    )?;
-    Ok((ptr, cols))
+    check(unsafe { sys::MatRestoreRowIJ(block, 0, no, no, &mut n, &mut ia, &mut ja, &mut done) }, "MatRestoreRowIJ")?;
+    Ok(result)
+}
+
+/// Row pointers and (local) columns of a sequential AIJ block, copied.
+fn block_structure(block: sys::Mat) -> Result<(Vec<usize>, Vec<sys::PetscInt>)> {
+    read_rows(block, |ia, ja| {
+        let ptr: Vec<usize> = ia.iter().map(|&v| v as usize).collect();
+        let nonzeros = *ptr.last().unwrap_or(&0);
+        // SAFETY: ja has ia[n] entries.
+        let cols = if nonzeros == 0 { Vec::new() } else { unsafe { std::slice::from_raw_parts(ja, nonzeros) }.to_vec() };
+        (ptr, cols)
+    })
 }
 
 /// The value array of a sequential AIJ block, lent by PETSc until `give_back`.
@@ -200,18 +207,7 @@ struct BlockValues {
 
 impl BlockValues {
     fn lend(block: sys::Mat) -> Result<Self> {
-        let (mut n, mut ia, mut ja, mut done) = (0, std::ptr::null(), std::ptr::null(), sys::PetscBool_PETSC_FALSE);
-        // SAFETY: valid handle; PETSc returns its own row pointers (O(1) for seqaij), of which
-        // only the last, the nonzero count, is read before they are handed back.
-        check(
-            unsafe { sys::MatGetRowIJ(block, 0, sys::PetscBool_PETSC_FALSE, sys::PetscBool_PETSC_FALSE, &mut n, &mut ia, &mut ja, &mut done) },
-            "MatGetRowIJ",
-        )?;
-        let len = if done == sys::PetscBool_PETSC_TRUE && !ia.is_null() { (unsafe { *ia.add(n as usize) }) as usize } else { 0 };
-        check(
-            unsafe { sys::MatRestoreRowIJ(block, 0, sys::PetscBool_PETSC_FALSE, sys::PetscBool_PETSC_FALSE, &mut n, &mut ia, &mut ja, &mut done) },
-            "MatRestoreRowIJ",
-        )?;
+        let len = read_rows(block, |ia, _| ia.last().map_or(0, |&n| n as usize))?;
         let mut array: *mut f64 = std::ptr::null_mut();
         // SAFETY: valid seqaij handle; PETSc lends its value array (len entries) until restored.
         check(unsafe { sys::MatSeqAIJGetArray(block, &mut array) }, "MatSeqAIJGetArray")?;

@@ -60,10 +60,20 @@ pub struct JacobianLayout {
     /// the last Jacobian (nearly all of them) finds its places without a lookup per pair.
     engagements: HashMap<usize, (Vec<usize>, Vec<[usize; 4]>)>,
     values: Vec<f64>,
-    /// Where the values go in PETSc's own storage of the matrix they were last bound to (see
-    /// [`JacobianLayout::hand_over`]); none until a matrix with this layout's structure has
-    /// been assembled once.
-    storage: Option<Storage>,
+    /// Where the values go in PETSc's own storage (see [`JacobianLayout::hand_over`]).
+    binding: Binding,
+}
+
+/// How a Jacobian reaches the matrix.
+enum Binding {
+    /// Through MatSetValuesCOO, binding to the storage afterwards: a new matrix or structure.
+    Unbound,
+    /// Straight into the storage of this matrix.
+    Bound(Storage),
+    /// Through MatSetValuesCOO only: some rank's storage is not laid out as the lists (kept
+    /// until the structure or the matrix changes, so the binding is not tried at every
+    /// Jacobian).
+    Refused,
 }
 
 impl JacobianLayout {
@@ -98,7 +108,7 @@ impl JacobianLayout {
             pairs: HashMap::new(),
             engagements: HashMap::new(),
             values: Vec::new(),
-            storage: None,
+            binding: Binding::Unbound,
         };
         layout.set_pairs(pairs, dof);
         layout
@@ -162,7 +172,7 @@ impl JacobianLayout {
         (self.rows, self.cols) = merged.iter().map(|&k| unkey(k)).unzip();
         self.values = vec![0.0; merged.len()];
         self.engagements.clear();
-        self.storage = None;
+        self.binding = Binding::Unbound;
     }
 
     /// Global (row, column) of every entry, in value order, for MatSetPreallocationCOO.
@@ -238,7 +248,7 @@ impl JacobianLayout {
     /// Forgets where the values went (a new matrix: its first hand-over goes through
     /// MatSetValuesCOO, which leaves it assembled).
     pub fn forget_storage(&mut self) {
-        self.storage = None;
+        self.binding = Binding::Unbound;
     }
 
     /// Collective: sets `matrix`'s values (those of all ranks summed) from this layout's. The
@@ -248,11 +258,20 @@ impl JacobianLayout {
     /// (None).
     pub fn hand_over(&mut self, matrix: &mut impl MatOps) -> Result<Option<bool>> {
         let handle = matrix.raw() as usize;
-        let Some(storage) = self.storage.as_ref().filter(|s| s.matrix == handle) else {
-            matrix.set_values_coo(&self.values)?;
-            let structure = matrix.owned_structure()?;
-            self.storage = Storage::bind(&self.rows, &self.cols, &structure, handle);
-            return Ok(Some(self.storage.is_some()));
+        let storage = match &self.binding {
+            Binding::Bound(storage) if storage.matrix == handle => storage,
+            Binding::Refused => {
+                matrix.set_values_coo(&self.values)?;
+                return Ok(None);
+            }
+            _ => {
+                matrix.set_values_coo(&self.values)?;
+                let structure = matrix.owned_structure()?;
+                let bound = Storage::bind(&self.rows, &self.cols, &structure, handle);
+                let everywhere = bound.is_some();
+                self.binding = bound.map_or(Binding::Refused, Binding::Bound);
+                return Ok(Some(everywhere));
+            }
         };
         let values = &self.values;
         matrix.write_owned(|diagonal, off_diagonal| {
@@ -278,19 +297,67 @@ impl JacobianLayout {
     /// could bind (`everywhere`): the direct path is collective through its assembly.
     pub fn keep_storage(&mut self, everywhere: bool) {
         if !everywhere {
-            self.storage = None;
+            self.binding = Binding::Refused;
         }
     }
 
     /// Whether hand-overs go straight into PETSc's storage.
     pub fn writes_storage(&self) -> bool {
-        self.storage.is_some()
+        matches!(self.binding, Binding::Bound(_))
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A matrix that records what the layout asks of it and stores its rows unlike the lists.
+    #[derive(Default)]
+    struct Refusing {
+        coo: usize,
+        structures: std::cell::Cell<usize>,
+    }
+
+    impl MatOps for Refusing {
+        fn raw(&self) -> crate::petsc::sys::Mat {
+            std::ptr::null_mut()
+        }
+        fn set_values_coo(&mut self, _: &[f64]) -> Result<()> {
+            self.coo += 1;
+            Ok(())
+        }
+        fn owned_structure(&self) -> Result<crate::petsc::OwnedStructure> {
+            self.structures.set(self.structures.get() + 1);
+            Ok(crate::petsc::OwnedStructure {
+                first: 0,
+                end: 1,
+                diagonal_ptr: vec![0, 0],
+                diagonal_cols: vec![],
+                off_diagonal_ptr: vec![0, 0],
+                off_diagonal_cols: vec![],
+            })
+        }
+    }
+
+    #[test]
+    fn a_refused_binding_is_not_tried_again_until_the_structure_changes() {
+        let dof = vec![[0, 1]];
+        let mut layout = JacobianLayout::new(&[], [(0, 0)], &dof);
+        let mut m = Refusing::default();
+        // the structure PETSc reports lacks the layout's entries: no binding
+        assert_eq!(layout.hand_over(&mut m).unwrap(), Some(false));
+        layout.keep_storage(false);
+        assert!(!layout.writes_storage());
+        assert_eq!(m.structures.get(), 1);
+        for _ in 0..3 {
+            assert_eq!(layout.hand_over(&mut m).unwrap(), None, "COO, no agreement to reach");
+        }
+        assert_eq!((m.coo, m.structures.get()), (4, 1), "values through COO every time, the structure not read again");
+        // a refit tries again
+        layout.set_pairs([(0, 0)], &dof);
+        assert_eq!(layout.hand_over(&mut m).unwrap(), Some(false));
+        assert_eq!(m.structures.get(), 2);
+    }
 
     #[test]
     fn entries_sorted_once_each_and_every_block_added_at_its_place() {
