@@ -49,6 +49,8 @@ pub struct JacobianLayout {
     /// For each element entry: its place in the values (through `element_key`, kept
     /// composed so the hot loop has one indirection).
     element_place: Vec<u32>,
+    /// The key of every entry, in value order (sorted, distinct): the elements' and the pairs'.
+    keys: Vec<u64>,
     /// Global row and column of every entry, in value order (sorted, distinct).
     rows: Vec<PetscInt>,
     cols: Vec<PetscInt>,
@@ -100,8 +102,9 @@ impl JacobianLayout {
             element_key[entry as usize] = (element_keys.len() - 1) as u32;
         }
         let mut layout = JacobianLayout {
+            keys: element_keys.clone(),
             element_keys,
-            element_place: vec![NOWHERE_U32; element_key.len()],
+            element_place: element_key.clone(),
             element_key,
             rows: Vec::new(),
             cols: Vec::new(),
@@ -114,63 +117,77 @@ impl JacobianLayout {
         layout
     }
 
-    /// Replaces the contact pairs (a <= b): the element entries stay, the pairs' entries are
-    /// merged in, and every place is renewed (so are the values, zeroed).
+    /// Replaces the contact pairs (a <= b); the values are zeroed. Within a step the pattern
+    /// only grows, so a refit merges the new pairs' entries into the lists and moves the places
+    /// already known along (a refit costs a pass over the lists, not a sort of them and a
+    /// search for every place); a pair left out sends the lists back to the elements' alone.
     pub fn set_pairs(&mut self, pairs: impl IntoIterator<Item = (usize, usize)>, dof: &[[PetscInt; 2]]) {
-        let pairs: Vec<(usize, usize)> = pairs.into_iter().collect();
+        let mut pairs: Vec<(usize, usize)> = pairs.into_iter().collect();
+        pairs.sort_unstable();
+        pairs.dedup();
+        if pairs.iter().filter(|p| self.pairs.contains_key(p)).count() < self.pairs.len() {
+            self.keys.clone_from(&self.element_keys);
+            self.element_place.copy_from_slice(&self.element_key);
+            self.pairs.clear();
+        }
+        pairs.retain(|p| !self.pairs.contains_key(p));
         let blocks = |a: usize, b: usize| if a == b { [(a, a), (a, a)] } else { [(a, b), (b, a)] };
-        let mut contact_keys: Vec<u64> = Vec::with_capacity(8 * pairs.len());
+        let mut added: Vec<u64> = Vec::with_capacity(8 * pairs.len());
         for &(a, b) in &pairs {
             debug_assert!(a <= b, "pairs are ordered");
             for (r, c) in blocks(a, b) {
                 for &row in &dof[r] {
                     for &col in &dof[c] {
                         if row >= 0 && col >= 0 {
-                            contact_keys.push(key(row, col));
+                            added.push(key(row, col));
                         }
                     }
                 }
             }
         }
-        contact_keys.sort_unstable();
-        contact_keys.dedup();
-        // merge the two sorted lists; each element key learns its place
-        let mut merged = Vec::with_capacity(self.element_keys.len() + contact_keys.len());
-        let mut element_position = Vec::with_capacity(self.element_keys.len());
-        let (mut e, mut c) = (0, 0);
-        while e < self.element_keys.len() || c < contact_keys.len() {
-            let next_element = self.element_keys.get(e).copied().unwrap_or(u64::MAX);
-            let next_contact = contact_keys.get(c).copied().unwrap_or(u64::MAX);
-            let k = next_element.min(next_contact);
-            if next_element == k {
-                element_position.push(merged.len() as u32);
-                e += 1;
+        added.sort_unstable();
+        added.dedup();
+        // merge the two sorted lists; each known entry learns where it moved
+        let mut merged = Vec::with_capacity(self.keys.len() + added.len());
+        let mut moved = Vec::with_capacity(self.keys.len());
+        let (mut o, mut a) = (0, 0);
+        while o < self.keys.len() || a < added.len() {
+            let next_known = self.keys.get(o).copied().unwrap_or(u64::MAX);
+            let next_added = added.get(a).copied().unwrap_or(u64::MAX);
+            let k = next_known.min(next_added);
+            if next_known == k {
+                moved.push(merged.len() as u32);
+                o += 1;
             }
-            if next_contact == k {
-                c += 1;
+            if next_added == k {
+                a += 1;
             }
             merged.push(k);
         }
-        for (place, &k) in self.element_place.iter_mut().zip(&self.element_key) {
-            *place = if k == NOWHERE_U32 { NOWHERE_U32 } else { element_position[k as usize] };
+        if merged.len() > self.keys.len() {
+            for place in self.element_place.iter_mut().filter(|p| **p != NOWHERE_U32) {
+                *place = moved[*place as usize];
+            }
+            for place in self.pairs.values_mut().flatten().filter(|p| **p != NOWHERE) {
+                *place = moved[*place] as usize;
+            }
         }
-        let place_of = |row: PetscInt, col: PetscInt| if row >= 0 && col >= 0 { merged.binary_search(&key(row, col)).expect("merged") } else { NOWHERE };
-        self.pairs = pairs
-            .iter()
-            .map(|&(a, b)| {
-                let mut places = [NOWHERE; 8];
-                for (n, (r, c)) in blocks(a, b).into_iter().enumerate() {
-                    for ci in 0..2 {
-                        for cj in 0..2 {
-                            places[4 * n + 2 * ci + cj] = place_of(dof[r][ci], dof[c][cj]);
-                        }
+        self.keys = merged;
+        let keys = &self.keys;
+        let place_of = |row: PetscInt, col: PetscInt| if row >= 0 && col >= 0 { keys.binary_search(&key(row, col)).expect("merged") } else { NOWHERE };
+        for (a, b) in pairs {
+            let mut places = [NOWHERE; 8];
+            for (n, (r, c)) in blocks(a, b).into_iter().enumerate() {
+                for ci in 0..2 {
+                    for cj in 0..2 {
+                        places[4 * n + 2 * ci + cj] = place_of(dof[r][ci], dof[c][cj]);
                     }
                 }
-                ((a, b), places)
-            })
-            .collect();
-        (self.rows, self.cols) = merged.iter().map(|&k| unkey(k)).unzip();
-        self.values = vec![0.0; merged.len()];
+            }
+            self.pairs.insert((a, b), places);
+        }
+        (self.rows, self.cols) = self.keys.iter().map(|&k| unkey(k)).unzip();
+        self.values = vec![0.0; self.keys.len()];
         self.engagements.clear();
         self.binding = Binding::Unbound;
     }
@@ -357,6 +374,46 @@ mod tests {
         layout.set_pairs([(0, 0)], &dof);
         assert_eq!(layout.hand_over(&mut m).unwrap(), Some(false));
         assert_eq!(m.structures.get(), 2);
+    }
+
+    #[test]
+    fn a_grown_pattern_is_laid_out_as_one_built_whole() {
+        let first: [PetscInt; DOFS] = std::array::from_fn(|i| if i == 3 { -1 } else { i as PetscInt });
+        let second: [PetscInt; DOFS] = std::array::from_fn(|i| (i + 8) as PetscInt);
+        let dof = vec![[100, 101], [102, -1], [104, 105], [8, 9], [30, 31]];
+        let all = [(0, 2), (1, 1), (0, 3), (2, 4), (3, 4)];
+        let whole = JacobianLayout::new(&[first, second], all, &dof);
+        let mut grown = JacobianLayout::new(&[first, second], [(0, 2), (1, 1)], &dof);
+        grown.set_pairs(all[..4].iter().copied(), &dof);
+        grown.set_pairs(all, &dof);
+        assert_eq!(grown.indices(), whole.indices());
+        // the element blocks land at their entries: the blocks' sums, entry by entry
+        let mut layouts = [grown, whole];
+        let columns: Vec<f64> = (0..ELEMENT_BLOCK).map(|n| n as f64).collect();
+        let mut expected: HashMap<(PetscInt, PetscInt), f64> = HashMap::new();
+        for (k, dofs) in [first, second].iter().enumerate() {
+            for layout in &mut layouts {
+                layout.add_element(k, &columns);
+            }
+            for (n, v) in columns.iter().enumerate() {
+                let (r, c) = (dofs[n % DOFS], dofs[n / DOFS]);
+                if r >= 0 && c >= 0 {
+                    *expected.entry((r, c)).or_default() += v;
+                }
+            }
+        }
+        let (rows, cols) = layouts[0].indices();
+        for ((r, c), v) in rows.iter().zip(cols).zip(layouts[0].values()) {
+            assert_eq!(*v, expected.get(&(*r, *c)).copied().unwrap_or(0.0), "entry ({r}, {c})");
+        }
+        // and the engagements at the same places in both
+        for layout in &mut layouts {
+            let tangent: Vec<f64> = (0..36).map(|v| 1000.0 + v as f64).collect();
+            layout.add_engagement(&[2, 0, 4], &tangent);
+            layout.add_engagement(&[3, 4], &tangent[..16]);
+        }
+        assert_eq!(layouts[0].values(), layouts[1].values());
+        assert!(layouts[0].values().iter().filter(|&&v| v >= 1000.0).count() >= 20, "the engagements found their places");
     }
 
     #[test]
