@@ -3,7 +3,7 @@
 //! master edges its slave edges face, so facing surfaces are cut at the same place and their
 //! couplings stay on one rank.
 
-use super::contact::{edge_neighbourhood, surfaces_and_directions};
+use super::contact_surfaces::{edge_neighbourhood, surfaces_and_directions};
 use crate::contact::search::EdgeGrid;
 use crate::dist::Affinity;
 use crate::model::{ContactIntegration, Model};

@@ -7,67 +7,22 @@
 //! reverse pass; each pass of a two-pass pair carries half of the penalty force, so the
 //! pressure at a slave node, p = max(0, lambda - eps g), is the contact pressure in both modes.
 
+pub use super::contact_surfaces::contact_nodes;
+use super::contact_surfaces::{edge_neighbourhood, surfaces_and_directions};
+pub use super::engagement::Engagement;
+use super::engagement::PointHessians;
 use super::pattern::ContactPattern;
 use super::problem::ROUNDOFF_ULPS;
-use crate::contact::integrated::{weighted_gaps, GapSample, SampleMatrix};
-use crate::contact::node_to_edge::{edge_residual, edge_residual_and_tangent, ContactLaw, EdgeProjection};
+use crate::contact::integrated::weighted_gaps;
+use crate::contact::node_to_edge::{edge_residual, ContactLaw};
 use crate::contact::search::EdgeGrid;
 use crate::contact::surface::ContactSurface;
 use crate::dist::{DofMap, Partition};
 use crate::model::{ContactIntegration, ContactPair, Model, Penalty};
 use crate::petsc::sys::PetscInt;
 
-/// Mesh nodes of every contact surface of the model (sorted).
-pub fn contact_nodes(model: &Model) -> Vec<usize> {
-    let mut nodes: Vec<usize> =
-        model.contacts.iter().flat_map(|c| [&c.slave, &c.master]).flat_map(|s| model.surfaces[s].iter().flat_map(|&e| model.mesh.edge_nodes(e))).collect();
-    nodes.sort_unstable();
-    nodes.dedup();
-    nodes
-}
-
-/// One direction of a pair, by surface index: its slave nodes bear on its master's edges and
-/// carry `weight` of the pair's force (one half each in a two-pass pair).
-pub(super) struct Direction {
-    pub pair: usize,
-    pub slave: usize,
-    pub master: usize,
-    pub weight: f64,
-}
-
-/// The model's contact surfaces (each once, however many pairs name it) and the directions of
-/// every pair over them.
-pub(super) fn surfaces_and_directions(model: &Model) -> (Vec<ContactSurface>, Vec<Direction>) {
-    let mut names: Vec<&str> = Vec::new();
-    for c in &model.contacts {
-        for s in [c.slave.as_str(), c.master.as_str()] {
-            if !names.contains(&s) {
-                names.push(s);
-            }
-        }
-    }
-    let surfaces = names.iter().map(|n| ContactSurface::new(&model.mesh, &model.surfaces[*n])).collect();
-    let index = |n: &str| names.iter().position(|m| *m == n).expect("surface listed");
-    let mut directions = Vec::new();
-    for (pair, c) in model.contacts.iter().enumerate() {
-        let (s, m) = (index(&c.slave), index(&c.master));
-        let two = c.two_pass && s != m;
-        let weight = if two { 0.5 } else { 1.0 };
-        directions.push(Direction { pair, slave: s, master: m, weight });
-        if two {
-            directions.push(Direction { pair, slave: m, master: s, weight });
-        }
-    }
-    (surfaces, directions)
-}
-
-/// Self-contact: the edges a slave edge may not bear on, those within `hops` of its nodes.
-pub(super) fn edge_neighbourhood(surface: &ContactSurface, edge: usize, hops: usize) -> Vec<usize> {
-    let mut near: Vec<usize> = surface.edges[edge].iter().flat_map(|&n| surface.neighbourhood(n, hops)).collect();
-    near.sort_unstable();
-    near.dedup();
-    near
-}
+mod output;
+pub use output::PassOutput;
 
 /// One direction of a pair: slave nodes of one surface against the segments of another.
 struct Pass {
@@ -86,27 +41,6 @@ struct Pass {
     /// slave node (node-to-segment, in `owned` order) may not bear on, its own neighbourhood;
     /// fixed by the topology, so listed once. Empty for two surfaces.
     excluded: Vec<Vec<usize>>,
-}
-
-/// The contribution of one active slave node: residual and tangent over `nodes`.
-pub struct Engagement {
-    /// Mesh nodes the contribution couples (the slave node first).
-    pub nodes: Vec<usize>,
-    /// Two entries per node, (r, z).
-    pub residual: Vec<f64>,
-    /// Row-major, (2 nodes) x (2 nodes); empty until an evaluation asks for tangents.
-    pub tangent: Vec<f64>,
-    /// What the tangent is computed from, kept so a residual-only evaluation (the line
-    /// search's) can be completed by the Jacobian at the same iterate without a new search.
-    recipe: TangentRecipe,
-}
-
-enum TangentRecipe {
-    /// Node-to-segment: the kernel's arguments.
-    Nodal { xs: [f64; 2], master: [[f64; 2]; 3], projection: EdgeProjection, law: ContactLaw },
-    /// Segment integration: K = stiffness dg dg^T - weighted_pressure d2g, with dg (`gradient`,
-    /// over the engagement's nodes) and d2g the sums over the node's integration points.
-    Integrated { samples: Vec<GapSample>, gradient: Vec<f64>, stiffness: f64, weighted_pressure: f64 },
 }
 
 /// What an evaluation must provide.
@@ -260,7 +194,7 @@ impl ContactAssembly {
             let x = |n: usize| positions[slot[n]];
             self.point_hessians.reset(self.points);
             for e in &mut self.engagements {
-                e.tangent = tangent(&e.recipe, &e.nodes, &x, &mut self.point_hessians);
+                e.form_tangent(&x, &mut self.point_hessians);
                 self.pattern.require(&e.nodes);
             }
             self.with_tangents = true;
@@ -341,12 +275,7 @@ impl ContactAssembly {
             self.states[p][k] = SlaveState { gap: proj.gap, pressure, force: pressure * area, traction: 0.0 };
             if multiplier - eps * proj.gap >= 0.0 {
                 self.roundoff += (ROUNDOFF_ULPS * f64::EPSILON * eps * area * xs[0].hypot(xs[1])).powi(2);
-                out.push(Engagement {
-                    nodes: vec![node, en[0], en[1], en[2]],
-                    residual: residual.as_slice().to_vec(),
-                    tangent: Vec::new(),
-                    recipe: TangentRecipe::Nodal { xs, master: en.map(x), projection: proj, law },
-                });
+                out.push(Engagement::nodal(node, en, residual.as_slice().to_vec(), xs, en.map(x), proj, law));
             }
         }
     }
@@ -383,58 +312,15 @@ impl ContactAssembly {
             if trial < 0.0 {
                 continue;
             }
-            // dg over the nodes the samples couple
-            let nodes = sample_nodes(slave.nodes[g.index], &g.samples);
-            let mut gradient = vec![0.0; 2 * nodes.len()];
-            for s in &g.samples {
-                let sg = s.gradient();
-                for (a, &n) in s.nodes.iter().enumerate() {
-                    let at = position_in(&nodes, n);
-                    gradient[2 * at] += sg[2 * a];
-                    gradient[2 * at + 1] += sg[2 * a + 1];
-                }
-            }
             let xs = x(slave.nodes[g.index]);
             self.roundoff += (ROUNDOFF_ULPS * f64::EPSILON * pass.weight * eps * area * xs[0].hypot(xs[1])).powi(2);
-            let residual = gradient.iter().map(|v| -pass.weight * pressure * v).collect();
-            let recipe =
-                TangentRecipe::Integrated { samples: g.samples, gradient, stiffness: pass.weight * eps / area, weighted_pressure: pass.weight * pressure };
-            out.push(Engagement { nodes, residual, tangent: Vec::new(), recipe });
+            out.push(Engagement::integrated(slave.nodes[g.index], g.samples, pass.weight * eps / area, pass.weight * pressure));
         }
     }
 
     /// Round-off floor (squared) of this rank's last evaluation.
     pub fn roundoff_squares(&self) -> f64 {
         self.roundoff
-    }
-
-    /// This rank's contact forces on every contact node (last evaluation), to be summed over
-    /// ranks before [`ContactAssembly::recover_tractions`].
-    pub fn nodal_forces(&self) -> Vec<f64> {
-        self.nodal_forces.iter().flatten().copied().collect()
-    }
-
-    /// Sets the recovered traction of every owned slave node from the contact forces on all
-    /// contact nodes summed over ranks (`forces`, as from [`ContactAssembly::nodal_forces`]).
-    pub fn recover_tractions(&mut self, forces: &[f64]) {
-        let slot = &self.slot;
-        let positions = &self.positions;
-        let x = |n: usize| positions[slot[n]];
-        for (p, pass) in self.passes.iter().enumerate() {
-            let slave = &self.surfaces[pass.slave];
-            let normal_force: Vec<f64> = slave
-                .nodes
-                .iter()
-                .map(|&n| {
-                    let nn = slave.node_normal(n, x);
-                    forces[2 * slot[n]] * nn[0] + forces[2 * slot[n] + 1] * nn[1]
-                })
-                .collect();
-            let traction = slave.recover_pressure(&normal_force);
-            for (k, &i) in pass.owned.iter().enumerate() {
-                self.states[p][k].traction = traction[i];
-            }
-        }
     }
 
     /// Uzawa update of the augmented-Lagrangian pairs from the last evaluation:
@@ -484,132 +370,4 @@ impl ContactAssembly {
     pub fn pattern_mut(&mut self) -> &mut ContactPattern {
         &mut self.pattern
     }
-
-    /// Per pair: (active slave nodes, largest penetration, total normal force per radian)
-    /// over this rank's slave nodes.
-    pub fn pair_summaries(&self, model: &Model) -> Vec<(f64, f64, f64)> {
-        let mut out = vec![(0.0, 0.0, 0.0); model.contacts.len()];
-        for (p, pass) in self.passes.iter().enumerate() {
-            let o = &mut out[pass.pair];
-            for s in &self.states[p] {
-                if s.pressure > 0.0 {
-                    o.0 += 1.0;
-                    o.1 = f64::max(o.1, -s.gap);
-                    o.2 += s.force;
-                }
-            }
-        }
-        out
-    }
-
-    /// For output: per pass (pair index, pass number within the pair, slab offset, total,
-    /// owned slave mesh nodes, their areas, states).
-    pub fn pass_outputs(&self) -> Vec<PassOutput<'_>> {
-        let mut number = vec![0usize; self.passes.iter().map(|p| p.pair + 1).max().unwrap_or(0)];
-        self.passes
-            .iter()
-            .enumerate()
-            .map(|(p, pass)| {
-                let slave = &self.surfaces[pass.slave];
-                let n = number[pass.pair];
-                number[pass.pair] += 1;
-                PassOutput {
-                    pair: pass.pair,
-                    pass: n,
-                    offset: pass.offset,
-                    total: pass.total,
-                    nodes: pass.owned.iter().map(|&i| slave.nodes[i]).collect(),
-                    areas: pass.owned.iter().map(|&i| slave.areas[i] * pass.weight).collect(),
-                    states: &self.states[p],
-                }
-            })
-            .collect()
-    }
-}
-
-/// The nodes the samples of a slave node couple, the node first.
-fn sample_nodes(node: usize, samples: &[GapSample]) -> Vec<usize> {
-    let mut nodes = vec![node];
-    for s in samples {
-        for &n in &s.nodes {
-            if !nodes.contains(&n) {
-                nodes.push(n);
-            }
-        }
-    }
-    nodes
-}
-
-fn position_in(nodes: &[usize], n: usize) -> usize {
-    nodes.iter().position(|&q| q == n).expect("listed")
-}
-
-/// The tangent (row-major over `nodes`) an engagement's recipe gives at positions `x`.
-fn tangent(recipe: &TangentRecipe, nodes: &[usize], x: &impl Fn(usize) -> [f64; 2], hessians: &mut PointHessians) -> Vec<f64> {
-    match recipe {
-        TangentRecipe::Nodal { xs, master, projection, law } => {
-            let (_, k, _) = edge_residual_and_tangent(*xs, master, projection, law);
-            k.transpose().as_slice().to_vec()
-        }
-        TangentRecipe::Integrated { samples, gradient, stiffness, weighted_pressure } => {
-            let m = gradient.len();
-            let mut k = vec![0.0; m * m];
-            for i in 0..m {
-                for j in 0..m {
-                    k[i * m + j] = stiffness * gradient[i] * gradient[j];
-                }
-            }
-            // -p d2g
-            for s in samples {
-                let h = hessians.at(s, x);
-                let f = weighted_pressure * s.weight;
-                let map = s.nodes.map(|n| 2 * position_in(nodes, n));
-                for a in 0..12 {
-                    let row = map[a / 2] + a % 2;
-                    for b in 0..12 {
-                        k[row * m + map[b / 2] + b % 2] -= f * h[(a, b)];
-                    }
-                }
-            }
-            k
-        }
-    }
-}
-
-/// The Hessians of the pointwise gap at the integration points of one evaluation, computed
-/// when a tangent first asks (each point serves the two slave nodes whose hats cover it).
-#[derive(Default)]
-struct PointHessians {
-    /// Per point, its index in `matrices` (u32::MAX until computed).
-    slot: Vec<u32>,
-    matrices: Vec<SampleMatrix>,
-}
-
-impl PointHessians {
-    /// Forgets every Hessian; `points` points to come.
-    fn reset(&mut self, points: usize) {
-        self.slot.clear();
-        self.slot.resize(points, u32::MAX);
-        self.matrices.clear();
-    }
-
-    /// The (unweighted) Hessian at `sample`'s point.
-    fn at(&mut self, sample: &GapSample, x: &impl Fn(usize) -> [f64; 2]) -> &SampleMatrix {
-        if self.slot[sample.point] == u32::MAX {
-            self.slot[sample.point] = self.matrices.len() as u32;
-            self.matrices.push(sample.point_hessian(x));
-        }
-        &self.matrices[self.slot[sample.point] as usize]
-    }
-}
-
-/// This rank's slab of one pass, for the results file.
-pub struct PassOutput<'a> {
-    pub pair: usize,
-    pub pass: usize,
-    pub offset: usize,
-    pub total: usize,
-    pub nodes: Vec<usize>,
-    pub areas: Vec<f64>,
-    pub states: &'a [SlaveState],
 }

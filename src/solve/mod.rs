@@ -2,6 +2,8 @@
 
 pub mod affinity;
 pub mod contact;
+mod contact_surfaces;
+mod engagement;
 mod kept;
 pub mod layout;
 pub mod pattern;

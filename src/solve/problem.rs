@@ -6,7 +6,8 @@
 //! `trial`; [`Problem::commit`] copies trial to committed after a converged increment. A failed
 //! attempt never touches `committed`, so a cutback has nothing to undo.
 
-use super::contact::{contact_nodes, ContactAssembly, ContactCarry, Need};
+use super::contact::{ContactAssembly, ContactCarry, Need};
+use super::contact_surfaces::contact_nodes;
 pub use super::kept::ElementFields;
 use super::kept::{KeptTangent, KeptTangents, LastEvaluation};
 use super::layout::JacobianLayout;

@@ -1,0 +1,89 @@
+//! What contact reports after a converged increment: the forces on the contact nodes and the
+//! tractions recovered from them, per-pair summaries for the history, and each pass's slab
+//! of slave-node states for the results file.
+
+use super::{ContactAssembly, SlaveState};
+use crate::model::Model;
+
+impl ContactAssembly {
+    /// This rank's contact forces on every contact node (last evaluation), to be summed over
+    /// ranks before [`ContactAssembly::recover_tractions`].
+    pub fn nodal_forces(&self) -> Vec<f64> {
+        self.nodal_forces.iter().flatten().copied().collect()
+    }
+
+    /// Sets the recovered traction of every owned slave node from the contact forces on all
+    /// contact nodes summed over ranks (`forces`, as from [`ContactAssembly::nodal_forces`]).
+    pub fn recover_tractions(&mut self, forces: &[f64]) {
+        let slot = &self.slot;
+        let positions = &self.positions;
+        let x = |n: usize| positions[slot[n]];
+        for (p, pass) in self.passes.iter().enumerate() {
+            let slave = &self.surfaces[pass.slave];
+            let normal_force: Vec<f64> = slave
+                .nodes
+                .iter()
+                .map(|&n| {
+                    let nn = slave.node_normal(n, x);
+                    forces[2 * slot[n]] * nn[0] + forces[2 * slot[n] + 1] * nn[1]
+                })
+                .collect();
+            let traction = slave.recover_pressure(&normal_force);
+            for (k, &i) in pass.owned.iter().enumerate() {
+                self.states[p][k].traction = traction[i];
+            }
+        }
+    }
+
+    /// Per pair: (active slave nodes, largest penetration, total normal force per radian)
+    /// over this rank's slave nodes.
+    pub fn pair_summaries(&self, model: &Model) -> Vec<(f64, f64, f64)> {
+        let mut out = vec![(0.0, 0.0, 0.0); model.contacts.len()];
+        for (p, pass) in self.passes.iter().enumerate() {
+            let o = &mut out[pass.pair];
+            for s in &self.states[p] {
+                if s.pressure > 0.0 {
+                    o.0 += 1.0;
+                    o.1 = f64::max(o.1, -s.gap);
+                    o.2 += s.force;
+                }
+            }
+        }
+        out
+    }
+
+    /// For output: per pass (pair index, pass number within the pair, slab offset, total,
+    /// owned slave mesh nodes, their areas, states).
+    pub fn pass_outputs(&self) -> Vec<PassOutput<'_>> {
+        let mut number = vec![0usize; self.passes.iter().map(|p| p.pair + 1).max().unwrap_or(0)];
+        self.passes
+            .iter()
+            .enumerate()
+            .map(|(p, pass)| {
+                let slave = &self.surfaces[pass.slave];
+                let n = number[pass.pair];
+                number[pass.pair] += 1;
+                PassOutput {
+                    pair: pass.pair,
+                    pass: n,
+                    offset: pass.offset,
+                    total: pass.total,
+                    nodes: pass.owned.iter().map(|&i| slave.nodes[i]).collect(),
+                    areas: pass.owned.iter().map(|&i| slave.areas[i] * pass.weight).collect(),
+                    states: &self.states[p],
+                }
+            })
+            .collect()
+    }
+}
+
+/// This rank's slab of one pass, for the results file.
+pub struct PassOutput<'a> {
+    pub pair: usize,
+    pub pass: usize,
+    pub offset: usize,
+    pub total: usize,
+    pub nodes: Vec<usize>,
+    pub areas: Vec<f64>,
+    pub states: &'a [SlaveState],
+}
