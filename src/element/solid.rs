@@ -229,8 +229,8 @@ pub fn compute_solid(input: &SolidInput<'_>, u: &[[f64; 2]; NODES], mut tangents
 
 /// The element tangent d f_int / d u from the material tangents of an evaluation:
 /// K = sum_q G_q^T A_q G_q + sum_q G_q^T b_q (x) Theta_q, products written over G's nonzeros.
-/// The F-bar part is of rank 3: with Theta_q = sum_k basis[q][k] psi_k it is
-/// sum_k c_k (x) psi_k, c_k = sum_q basis[q][k] G_q^T b_q, three outer products for the whole
+/// The F-bar part is of rank 3: with Theta_q = sum_k `basis[q][k]` psi_k it is
+/// sum_k c_k (x) psi_k, c_k = sum_q `basis[q][k]` G_q^T b_q, three outer products for the whole
 /// element instead of a term in every point's product.
 pub fn solid_tangent(geo: &ElementGeometry, material: &MaterialTangents) -> ElementMatrix {
     // psi_k = sum_p coef[p][k] (dv/dF)_p G_p and c_k

@@ -13,7 +13,7 @@ pub const MAX_TABLE_POINTS: usize = 32;
 pub enum Hardening {
     /// sigma_y(ep) = yield_stress + modulus * ep (MPa); elastic when yield_stress is infinite.
     Linear { yield_stress: f64, modulus: f64 },
-    /// Piecewise linear through `points[..len]` = (ep, sigma_y), ep[0] = 0, constant after.
+    /// Piecewise linear through `points[..len]` = (ep, sigma_y), `ep[0] = 0`, constant after.
     Table { points: [(f64, f64); MAX_TABLE_POINTS], len: usize },
 }
 

@@ -5,7 +5,7 @@
 //!   every owner borrows it (lifetime `'s`) so the compiler orders the drops.
 //! - One owner per handle (`Drop` calls XDestroy and never panics), no `Clone`; borrowed views
 //!   (`*View`) for the handles PETSc passes into callbacks.
-//! - [`check`] turns a non-zero PetscErrorCode into [`Error::Petsc`] with PETSc's own message;
+//! - `check` turns a non-zero PetscErrorCode into [`Error::Petsc`] with PETSc's own message;
 //!   PETSc's error handler is replaced by the returning one so no trace is printed.
 #![allow(unsafe_code)]
 

@@ -12,7 +12,7 @@ pub struct Engagement {
     pub nodes: Vec<usize>,
     /// Two entries per node, (r, z).
     pub residual: Vec<f64>,
-    /// Row-major, (2 nodes) x (2 nodes); empty until [`Engagement::form_tangent`].
+    /// Row-major, (2 nodes) x (2 nodes); empty until the tangent is formed (`form_tangent`).
     pub tangent: Vec<f64>,
     /// What the tangent is formed from.
     recipe: TangentRecipe,

@@ -1,6 +1,7 @@
-//! The discrete nonlinear problem F(u) = f_int(u) - f_ext(u) = 0 over the free DOFs, evaluated
-//! by looping over this rank's elements and adding into PETSc (off-rank rows go through the
-//! stash). Implements [`NonlinearProblem`] for SNES.
+//! The discrete nonlinear problem F(u) = f_int(u) - f_ext(u) = 0 over the free DOFs: this
+//! rank's elements, their history, the loads in force and contact. The loops that assemble
+//! the residual and the Jacobian, and the implementation of SNES's `NonlinearProblem`, are in
+//! `problem/assembly.rs`.
 //!
 //! History: a residual evaluation reads `committed` (the last converged increment) and writes
 //! `trial`; [`Problem::commit`] copies trial to committed after a converged increment. A failed
@@ -12,7 +13,6 @@ pub use super::kept::ElementFields;
 use super::kept::{KeptTangent, KeptTangents, LastEvaluation};
 use super::layout::JacobianLayout;
 use crate::dist::{DofMap, Partition};
-use crate::element::pressure::{compute_pressure_load, pressure_load_stiffness};
 use crate::element::solid::ElementMatrix;
 use crate::element::solid::{compute_solid, solid_tangent, ElementGeometry, MaterialTangents, SolidInput, SolidResponse, DOFS, NODES, QUADRATURE_POINTS};
 use crate::error::{Error, Result};
@@ -20,8 +20,9 @@ use crate::fe::shape::edge_nodes;
 use crate::material::{Kinematics, PointState, J2};
 use crate::model::{Material, Model};
 use crate::petsc::sys::PetscInt;
-use crate::petsc::{LogStage, MatOps, Matrix, MatrixView, NonlinearProblem, PetscSession, Scatter, VecOps, Vector, VectorView};
-use mpi::collective::{CommunicatorCollectives, SystemOperation};
+use crate::petsc::{LogStage, Matrix, PetscSession, Scatter, VecOps, Vector};
+
+mod assembly;
 
 /// Round-off allowance per assembled contribution, in units in the last place: the floor
 /// estimate ignores the linear solve's own error and the sums inside each kernel, so it is
@@ -267,7 +268,7 @@ impl<'s, 'm> Problem<'s, 'm> {
     }
 
     /// A new matrix for this step's Jacobian, its structure the layout's: the elements and
-    /// every contact coupling found so far (see [`Problem::fit_pattern`]).
+    /// every contact coupling found so far (see `fit_pattern`).
     pub fn jacobian_matrix(&mut self) -> Result<Matrix<'s>> {
         self.layout.forget_storage();
         let (rows, cols) = self.layout.indices();
@@ -278,28 +279,6 @@ impl<'s, 'm> Problem<'s, 'm> {
     /// assembly on; see `JacobianLayout::hand_over`).
     pub fn writes_jacobian_storage(&self) -> bool {
         self.layout.writes_storage()
-    }
-
-    /// Collective, before any value of a Jacobian is added: evaluates contact with tangents,
-    /// and when an engagement on any rank couples two free DOFs that the pattern lacks, gives
-    /// `jacobian` room for them in place (a new layout and COO preallocation on every rank)
-    /// instead of letting PETSc reallocate the whole matrix once per row that overflows. The
-    /// matrix keeps its identity, so SNES and the KSP keep theirs; its nonzero state changes,
-    /// so MUMPS redoes its symbolic analysis once.
-    fn fit_pattern(&mut self, jacobian: &mut impl MatOps) -> Result<()> {
-        let Some(contact) = self.contact.as_mut() else { return Ok(()) };
-        let stage = self.stages.contact;
-        stage.run(|| contact.evaluate(self.model, Need::Tangent))?;
-        let dof = &self.dofs.dof;
-        let free = |n: usize| dof[n].iter().any(|&d| d >= 0);
-        if contact.pattern_mut().synchronise(&self.session.world(), |a, b| free(a) && free(b)) {
-            contact.pattern_mut().refits += 1;
-            self.layout.set_pairs(contact.pattern().pairs(), &self.dofs.dof);
-            let (rows, cols) = self.layout.indices();
-            jacobian.preallocate_coo(rows, cols)?;
-            self.structure_changed = true;
-        }
-        Ok(())
     }
 
     /// Fetches the free DOFs of this rank's elements (and the positions of all contact nodes)
@@ -359,69 +338,6 @@ impl<'s, 'm> Problem<'s, 'm> {
         }
     }
 
-    /// Evaluates f_int - f_ext (+ contact) at the gathered state: calls `sink(node, component,
-    /// value)` for every entry, stores the trial history (and, with `keep_tangents`, the
-    /// material tangents for the Jacobian), and writes the output fields into `fields` (the
-    /// nodal forces summed afresh).
-    fn residual_entries(&mut self, gathered: &[f64], keep_tangents: bool, fields: &mut ElementFields, mut sink: impl FnMut(usize, usize, f64)) -> Result<()> {
-        fields.nodal_force.fill([0.0; 2]);
-        let mut sink = |node: usize, c: usize, v: f64| {
-            fields.nodal_force[node][c] += v;
-            sink(node, c, v);
-        };
-        let mut us = Vec::with_capacity(self.elements.len());
-        let mut roundoff = 0.0;
-        let mut kept = std::mem::take(&mut self.kept);
-        for k in 0..self.elements.len() {
-            let u = self.displacements(&self.elements[k], gathered);
-            let entry = &mut kept.elements[k];
-            // written in place: invalid until the evaluation has succeeded
-            entry.valid &= !keep_tangents;
-            let out = match self.solid(k, &u, keep_tangents.then_some(&mut entry.material)) {
-                Ok(out) => out,
-                Err(e) => {
-                    self.kept = kept;
-                    return Err(e);
-                }
-            };
-            if keep_tangents {
-                (entry.valid, entry.u, entry.temperature_change) = (true, u, self.load.temperature_change);
-            }
-            self.trial[k] = out.state;
-            let size = self.elements[k].roundoff_scale * u.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs())) + out.internal_force.abs().max();
-            roundoff += (ROUNDOFF_ULPS * f64::EPSILON * size).powi(2);
-            fields.stress[k] = out.stress;
-            fields.plastic_strain[k] = out.state.map(|s| s.ep);
-            let conn = &self.model.mesh.elements[self.elements[k].element];
-            for i in 0..DOFS {
-                sink(conn[i / 2], i % 2, out.internal_force[i]);
-            }
-            us.push(u);
-        }
-        self.kept = kept;
-        for (k, local, p) in self.pressure_edges() {
-            let f = compute_pressure_load(&self.edge_positions(k, &local, &us[k]), p);
-            let conn = &self.model.mesh.elements[self.elements[k].element];
-            for (j, &a) in local.iter().enumerate() {
-                for c in 0..2 {
-                    sink(conn[a], c, -f[j][c]);
-                }
-            }
-        }
-        let stage = self.stages.contact;
-        if let Some(contact) = self.contact.as_mut() {
-            stage.run(|| contact.evaluate(self.model, Need::Residual))?;
-            for e in contact.engagements() {
-                for (i, &v) in e.residual.iter().enumerate() {
-                    sink(e.nodes[i / 2], i % 2, v);
-                }
-            }
-            roundoff += contact.roundoff_squares();
-        }
-        self.roundoff = roundoff;
-        Ok(())
-    }
-
     /// Stresses, plastic strains and nodal forces at the state `x` (after convergence, for
     /// output and reactions); also leaves the trial history of `x` ready to commit.
     pub fn evaluate_fields(&mut self, x: &impl VecOps) -> Result<ElementFields> {
@@ -439,143 +355,5 @@ impl<'s, 'm> Problem<'s, 'm> {
         let mut fields = ElementFields::zeros(self.elements.len(), self.model.mesh.coords.len());
         self.residual_entries(&gathered, false, &mut fields, |_, _, _| {})?;
         Ok(fields)
-    }
-}
-
-impl NonlinearProblem for Problem<'_, '_> {
-    fn roundoff_squares(&self) -> f64 {
-        self.roundoff
-    }
-
-    fn residual(&mut self, x: &VectorView<'_>, f: &mut VectorView<'_>) -> Result<()> {
-        let stage = self.stages.residual;
-        stage.run(|| self.assemble_residual(x, f))?
-    }
-
-    fn jacobian(&mut self, x: &VectorView<'_>, jacobian: &mut MatrixView<'_>) -> Result<()> {
-        self.assemble_jacobian(x, jacobian)
-    }
-
-    fn take_structure_change(&mut self) -> bool {
-        std::mem::take(&mut self.structure_changed)
-    }
-}
-
-impl Problem<'_, '_> {
-    /// F(x) at the free DOFs, assembled.
-    pub fn assemble_residual(&mut self, x: &impl VecOps, f: &mut impl VecOps) -> Result<()> {
-        let gathered = self.gather(x)?;
-        f.set_all(0.0)?;
-        let mut local = vec![0.0; gathered.len()];
-        let slots = std::mem::take(&mut self.node_slots);
-        // the last evaluation's buffers, refilled
-        let mut fields = self.last.take().map_or_else(|| ElementFields::zeros(self.elements.len(), self.model.mesh.coords.len()), |l| l.fields);
-        let result = self.residual_entries(&gathered, true, &mut fields, |node, c, v| {
-            // prescribed DOFs (the only ones without a slot) take no residual
-            if let Some(r) = local.get_mut(slots[node][c]) {
-                *r += v;
-            }
-        });
-        self.node_slots = slots;
-        if result.is_ok() {
-            let multipliers = self.contact.as_ref().map(|c| c.multipliers().clone());
-            self.last = Some(LastEvaluation { gathered, load: self.load_generation, multipliers, fields });
-        } else {
-            // Assembly is collective: a rank whose evaluation failed (an inverted element)
-            // still takes part, with nothing to add, and reports the failure afterwards;
-            // returning before it would leave the other ranks waiting in the scatter.
-            local.fill(0.0);
-        }
-        self.local_residual.write()?.copy_from_slice(&local);
-        self.scatter.add_back(&self.local_residual, f)?;
-        result
-    }
-
-    /// The tangent dF/du of the free DOFs at `x`, assembled.
-    pub fn assemble_jacobian(&mut self, x: &impl VecOps, jacobian: &mut impl MatOps) -> Result<()> {
-        let stage = self.stages.jacobian;
-        stage.run(|| {
-            let gathered = self.gather(x)?;
-            self.fit_pattern(jacobian)?;
-            self.layout.clear();
-            let result = self.add_tangents(&gathered);
-            // collective, whatever happened on this rank (see `residual`)
-            if let Some(bound) = self.layout.hand_over(jacobian)? {
-                let mut everywhere = 0;
-                self.session.world().all_reduce_into(&i32::from(bound), &mut everywhere, SystemOperation::min());
-                self.layout.keep_storage(everywhere == 1);
-            }
-            result
-        })?
-    }
-
-    /// K_fp delta: the force at the free DOFs when the prescribed DOFs move by `delta`
-    /// (per node, entries of free DOFs ignored) and the free ones stay at `x`, to first order,
-    /// from the element tangents at `x`. The load predictor of an increment solves
-    /// K_ff du = -K_fp delta, so a prescribed displacement spreads through the structure
-    /// before Newton starts, instead of squashing the elements next to the moved nodes.
-    /// Contact and load-stiffness couplings of prescribed nodes are left out (a predictor).
-    pub fn prescribed_coupling(&mut self, x: &impl VecOps, delta: &[[f64; 2]], f: &mut impl VecOps) -> Result<()> {
-        let gathered = self.gather(x)?;
-        f.set_all(0.0)?;
-        let (mut rows, mut values) = (Vec::new(), Vec::new());
-        let mut result = Ok(());
-        for k in 0..self.elements.len() {
-            let conn = self.model.mesh.elements[self.elements[k].element];
-            let moved: Vec<usize> = (0..DOFS).filter(|&j| self.elements[k].dofs[j] < 0 && delta[conn[j / 2]][j % 2] != 0.0).collect();
-            if moved.is_empty() {
-                continue;
-            }
-            let u = self.displacements(&self.elements[k], &gathered);
-            let tangent = match self.element_tangent(k, &u) {
-                Ok(t) => t,
-                Err(e) => {
-                    result = Err(e);
-                    break;
-                }
-            };
-            for i in (0..DOFS).filter(|&i| self.elements[k].dofs[i] >= 0) {
-                rows.push(self.elements[k].dofs[i]);
-                values.push(moved.iter().map(|&j| tangent[(i, j)] * delta[conn[j / 2]][j % 2]).sum());
-            }
-        }
-        // collective, whatever happened on this rank (see `residual`)
-        if result.is_ok() {
-            f.add_values(&rows, &values)?;
-        }
-        f.assemble()?;
-        result
-    }
-
-    /// Writes this rank's element, follower-pressure and contact tangents into the layout
-    /// (contact evaluated by `fit_pattern` first).
-    fn add_tangents(&mut self, gathered: &[f64]) -> Result<()> {
-        let mut us = Vec::with_capacity(self.elements.len());
-        for k in 0..self.elements.len() {
-            let u = self.displacements(&self.elements[k], gathered);
-            let k_e = self.element_tangent(k, &u)?;
-            self.layout.add_element(k, k_e.as_slice());
-            us.push(u);
-        }
-        if self.model.kinematics == Kinematics::Finite {
-            // follower pressure, d(-f_ext)/du, at the entries of the element the edge bounds
-            let edges: Vec<(usize, [usize; 3], f64)> = self.pressure_edges().collect();
-            for (k, local, p) in edges {
-                let kp = pressure_load_stiffness(&self.edge_positions(k, &local, &us[k]), p);
-                let at = |i: usize| 2 * local[i / 2] + i % 2;
-                for (i, row) in kp.iter().enumerate() {
-                    for (j, v) in row.iter().enumerate() {
-                        self.layout.add_element_entry(k, at(i), at(j), -v);
-                    }
-                }
-            }
-        }
-        // the engagements and their tangents at this iterate: `fit_pattern` evaluated them
-        if let Some(contact) = self.contact.as_ref() {
-            for e in contact.engagements() {
-                self.layout.add_engagement(&e.nodes, &e.tangent);
-            }
-        }
-        Ok(())
     }
 }
