@@ -1,0 +1,197 @@
+//! The bellows' parameters: the joint's geometry, mesh sizes, material, loads and stepping, with
+//! the paper's DN300 case as defaults, read from TOML by field name and checked before a mesh
+//! is made.
+
+use crate::error::{Error, Result};
+
+/// Parameters of the joint and of the analysis. Lengths in mm, stresses in MPa. Read from
+/// TOML by field name (`BellowsParams::from_toml_file`), missing fields at their defaults.
+#[derive(Clone, Debug, PartialEq, serde::Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct BellowsParams {
+    pub tube_inner_radius: f64,
+    pub tube_thickness: f64,
+    pub length: f64,
+    /// Axial length of tube A (tube B is as long, at the other end).
+    pub tube_length: f64,
+    pub convolutions: usize,
+    pub pitch: f64,
+    /// Convolution height w: radial extent of the ply-pack mid-surface (root bottom to crest
+    /// top), 2 torus radii plus the sidewall.
+    pub height: f64,
+    /// Mean radius of the root and crest tori (ply-pack mid-surface).
+    pub torus_radius: f64,
+    pub plies: usize,
+    pub ply_thickness: f64,
+    /// Length of each cylindrical tangent.
+    pub tangent_length: f64,
+    pub sleeve_thickness: f64,
+    /// Sleeve overlap with tube A (bonded) and tube B (sliding), from the tube ends.
+    pub sleeve_overlap: f64,
+    // material
+    pub youngs_modulus: f64,
+    pub poissons_ratio: f64,
+    pub thermal_expansion: f64,
+    pub yield_stress: f64,
+    pub hardening_modulus: f64,
+    // loads
+    pub temperature: f64,
+    pub pressure: f64,
+    /// Axial compression of tube B's end, mm (positive shortens the joint).
+    pub displacement: f64,
+    pub heat_increments: usize,
+    pub increments: usize,
+    /// Contact penalty, N/mm^3.
+    pub penalty: f64,
+    // mesh
+    /// Elements through each ply's thickness.
+    pub ply_elements: usize,
+    /// Element length along the ply meridian, mm.
+    pub ply_element_length: f64,
+    /// Elements through the tube and sleeve walls.
+    pub wall_elements: usize,
+    /// Element length along tubes and sleeve, mm.
+    pub wall_element_length: f64,
+}
+
+impl Default for BellowsParams {
+    fn default() -> Self {
+        BellowsParams {
+            tube_inner_radius: 150.0,
+            tube_thickness: 10.0,
+            length: 400.0,
+            tube_length: 128.0,
+            convolutions: 6,
+            pitch: 24.0,
+            height: 20.0,
+            torus_radius: 6.0,
+            plies: 2,
+            ply_thickness: 1.0,
+            tangent_length: 20.0,
+            sleeve_thickness: 10.0,
+            sleeve_overlap: 40.0,
+            youngs_modulus: 200_000.0,
+            poissons_ratio: 0.3,
+            thermal_expansion: 1.875e-5,
+            yield_stress: 300.0,
+            hardening_modulus: 1000.0,
+            temperature: 200.0,
+            pressure: 0.6,
+            displacement: 70.0,
+            heat_increments: 2,
+            increments: 240,
+            penalty: 1.0e4,
+            ply_elements: 2,
+            ply_element_length: 1.0,
+            wall_elements: 3,
+            wall_element_length: 4.0,
+        }
+    }
+}
+
+impl BellowsParams {
+    /// Total thickness of the ply pack.
+    pub fn pack_thickness(&self) -> f64 {
+        self.plies as f64 * self.ply_thickness
+    }
+
+    /// Parameters from a TOML file of `field = value` lines (unknown fields are an error).
+    pub fn from_toml_file(path: &std::path::Path) -> Result<Self> {
+        let text = std::fs::read_to_string(path).map_err(|source| Error::Read { path: path.to_path_buf(), source })?;
+        toml::from_str(&text).map_err(|e| Error::input(format!("{}: {}", path.display(), e.message())))
+    }
+
+    /// The coarse version of the same case (`--quick`): one element through each ply, 2 mm
+    /// along the meridian, 8 mm along the walls, at most 40 requested increments.
+    pub fn quick(mut self) -> Self {
+        self.ply_elements = 1;
+        self.ply_element_length = 2.0;
+        self.wall_element_length = 8.0;
+        self.wall_elements = 2;
+        self.increments = self.increments.min(40);
+        self
+    }
+
+    /// Checks the parameters describe a joint that can be built; names the offending value.
+    pub fn validate(&self) -> Result<()> {
+        let positive = [
+            ("tube inner radius", self.tube_inner_radius),
+            ("tube thickness", self.tube_thickness),
+            ("length", self.length),
+            ("tube length", self.tube_length),
+            ("pitch", self.pitch),
+            ("convolution height", self.height),
+            ("torus radius", self.torus_radius),
+            ("ply thickness", self.ply_thickness),
+            ("tangent length", self.tangent_length),
+            ("sleeve thickness", self.sleeve_thickness),
+            ("ply element length", self.ply_element_length),
+            ("wall element length", self.wall_element_length),
+            ("penalty", self.penalty),
+            ("Young's modulus", self.youngs_modulus),
+            ("yield stress", self.yield_stress),
+        ];
+        for (name, v) in positive {
+            if !(v > 0.0 && v.is_finite()) {
+                return Err(Error::input(format!("bellows: {name} must be > 0, got {v}")));
+            }
+        }
+        for (name, n) in [
+            ("plies", self.plies),
+            ("convolutions", self.convolutions),
+            ("increments", self.increments),
+            ("heat increments", self.heat_increments),
+            ("ply elements", self.ply_elements),
+            ("wall elements", self.wall_elements),
+        ] {
+            if n == 0 {
+                return Err(Error::input(format!("bellows: {name} must be at least 1")));
+            }
+        }
+        let rm = self.torus_radius;
+        let pack = self.pack_thickness();
+        if rm <= pack / 2.0 {
+            return Err(Error::input(format!(
+                "bellows: torus radius {rm} must exceed half the ply pack ({}): the inner ply would fold onto itself",
+                pack / 2.0
+            )));
+        }
+        if (self.pitch - 4.0 * rm).abs() > 1e-9 {
+            return Err(Error::input(format!("bellows: U-shaped convolutions of torus radius {rm} have pitch 4 x {rm} = {}, not {}", 4.0 * rm, self.pitch)));
+        }
+        let sidewall = self.sidewall();
+        if sidewall < 0.0 {
+            return Err(Error::input(format!("bellows: convolution height {} is less than two torus radii ({})", self.height, 2.0 * rm)));
+        }
+        let convoluted = self.convolutions as f64 * self.pitch;
+        let gap = self.length - 2.0 * self.tube_length;
+        if (gap - convoluted).abs() > 1e-6 {
+            return Err(Error::input(format!(
+                "bellows: {} convolutions of pitch {} span {convoluted} mm, but the tubes leave {gap} mm between them (length {} - 2 x tube length {})",
+                self.convolutions, self.pitch, self.length, self.tube_length
+            )));
+        }
+        if self.tangent_length > self.tube_length || self.sleeve_overlap > self.tube_length {
+            return Err(Error::input("bellows: the tangents and the sleeve overlap must fit on the tubes"));
+        }
+        if self.sleeve_thickness >= self.tube_inner_radius {
+            return Err(Error::input("bellows: the sleeve is thicker than the tube bore"));
+        }
+        if !(self.poissons_ratio > -1.0 && self.poissons_ratio < 0.5) {
+            return Err(Error::input(format!("bellows: Poisson's ratio must lie in (-1, 0.5), got {}", self.poissons_ratio)));
+        }
+        if self.displacement.is_nan() || self.displacement.abs() >= convoluted {
+            return Err(Error::input(format!("bellows: a displacement of {} mm exceeds the convoluted length {convoluted} mm", self.displacement)));
+        }
+        Ok(())
+    }
+
+    pub(super) fn sidewall(&self) -> f64 {
+        self.height - 2.0 * self.torus_radius
+    }
+
+    /// Radius of the tubes' outside surface, where the ply pack's inside sits on the tangents.
+    pub(super) fn tube_outer_radius(&self) -> f64 {
+        self.tube_inner_radius + self.tube_thickness
+    }
+}
