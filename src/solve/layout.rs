@@ -49,8 +49,6 @@ pub struct JacobianLayout {
     /// For each element entry: its place in the values (through `element_key`, kept
     /// composed so the hot loop has one indirection).
     element_place: Vec<u32>,
-    /// The key of every entry, in value order (sorted, distinct): the elements' and the pairs'.
-    keys: Vec<u64>,
     /// Global row and column of every entry, in value order (sorted, distinct).
     rows: Vec<PetscInt>,
     cols: Vec<PetscInt>,
@@ -102,12 +100,11 @@ impl JacobianLayout {
             element_key[entry as usize] = (element_keys.len() - 1) as u32;
         }
         let mut layout = JacobianLayout {
-            keys: element_keys.clone(),
+            rows: element_keys.iter().map(|&k| unkey(k).0).collect(),
+            cols: element_keys.iter().map(|&k| unkey(k).1).collect(),
             element_keys,
             element_place: element_key.clone(),
             element_key,
-            rows: Vec::new(),
-            cols: Vec::new(),
             pairs: HashMap::new(),
             engagements: HashMap::new(),
             values: Vec::new(),
@@ -126,7 +123,7 @@ impl JacobianLayout {
         pairs.sort_unstable();
         pairs.dedup();
         if pairs.iter().filter(|p| self.pairs.contains_key(p)).count() < self.pairs.len() {
-            self.keys.clone_from(&self.element_keys);
+            (self.rows, self.cols) = self.element_keys.iter().map(|&k| unkey(k)).unzip();
             self.element_place.copy_from_slice(&self.element_key);
             self.pairs.clear();
         }
@@ -148,11 +145,12 @@ impl JacobianLayout {
         added.sort_unstable();
         added.dedup();
         // merge the two sorted lists; each known entry learns where it moved
-        let mut merged = Vec::with_capacity(self.keys.len() + added.len());
-        let mut moved = Vec::with_capacity(self.keys.len());
+        let known = self.rows.len();
+        let mut merged = Vec::with_capacity(known + added.len());
+        let mut moved = Vec::with_capacity(known);
         let (mut o, mut a) = (0, 0);
-        while o < self.keys.len() || a < added.len() {
-            let next_known = self.keys.get(o).copied().unwrap_or(u64::MAX);
+        while o < known || a < added.len() {
+            let next_known = if o < known { key(self.rows[o], self.cols[o]) } else { u64::MAX };
             let next_added = added.get(a).copied().unwrap_or(u64::MAX);
             let k = next_known.min(next_added);
             if next_known == k {
@@ -164,7 +162,7 @@ impl JacobianLayout {
             }
             merged.push(k);
         }
-        if merged.len() > self.keys.len() {
+        if merged.len() > known {
             for place in self.element_place.iter_mut().filter(|p| **p != NOWHERE_U32) {
                 *place = moved[*place as usize];
             }
@@ -172,9 +170,7 @@ impl JacobianLayout {
                 *place = moved[*place] as usize;
             }
         }
-        self.keys = merged;
-        let keys = &self.keys;
-        let place_of = |row: PetscInt, col: PetscInt| if row >= 0 && col >= 0 { keys.binary_search(&key(row, col)).expect("merged") } else { NOWHERE };
+        let place_of = |row: PetscInt, col: PetscInt| if row >= 0 && col >= 0 { merged.binary_search(&key(row, col)).expect("merged") } else { NOWHERE };
         for (a, b) in pairs {
             let mut places = [NOWHERE; 8];
             for (n, (r, c)) in blocks(a, b).into_iter().enumerate() {
@@ -186,8 +182,8 @@ impl JacobianLayout {
             }
             self.pairs.insert((a, b), places);
         }
-        (self.rows, self.cols) = self.keys.iter().map(|&k| unkey(k)).unzip();
-        self.values = vec![0.0; self.keys.len()];
+        (self.rows, self.cols) = merged.iter().map(|&k| unkey(k)).unzip();
+        self.values = vec![0.0; merged.len()];
         self.engagements.clear();
         self.binding = Binding::Unbound;
     }
