@@ -103,8 +103,7 @@ struct StudyArgs {
 
 /// `slideline penalty-study`: the study spec for the bellows or a deck, then the runs.
 fn penalty_study(session: &PetscSession, args: &StudyArgs) -> Result<(), Error> {
-    use slideline::model::{Model, Penalty};
-    use slideline::study::{parse_penalties, StudySpec};
+    use slideline::study::{parse_penalties, StudySpec, Subject};
     let penalties = parse_penalties(&args.penalties, args.per_decade)?;
     let mut bellows = model::bellows::BellowsParams::default();
     if args.quick {
@@ -113,48 +112,17 @@ fn penalty_study(session: &PetscSession, args: &StudyArgs) -> Result<(), Error> 
     bellows.increments = args.increments.unwrap_or(bellows.increments);
     bellows.displacement = args.displacement.unwrap_or(bellows.displacement);
     bellows.validate()?;
-    let deck = args.deck.as_ref().map(|d| model::deck::read(d)).transpose()?;
-    let with_penalty = |penalty: Penalty| -> Result<Model, Error> {
-        let mut m = match &deck {
-            Some(m) => m.clone(),
-            None => model::bellows::model(&bellows)?,
-        };
-        for c in &mut m.contacts {
-            c.penalty = penalty;
-        }
-        Ok(m)
+    let subject = match &args.deck {
+        Some(d) => Subject::Deck(model::deck::read(d)?),
+        None => Subject::Bellows(bellows),
     };
-    let (reaction_set, scale, unit, length, length_name) = match &deck {
-        None => (args.reaction.clone().unwrap_or_else(|| "moving_end".into()), -SECTOR_RADIANS, "N/sector", bellows.ply_thickness, "ply"),
-        Some(m) => {
-            let set =
-                args.reaction.clone().ok_or_else(|| Error::input("penalty-study --deck: name the node set whose reaction to compare with --reaction SET"))?;
-            if !m.node_sets.contains_key(&set) {
-                return Err(Error::input(format!("--reaction: no node set {set:?} in the deck")));
-            }
-            if m.contacts.is_empty() {
-                return Err(Error::input("penalty-study --deck: the deck has no contact pair"));
-            }
-            let h = m
-                .contacts
-                .iter()
-                .map(|c| {
-                    slideline::contact::surface::ContactSurface::new(&m.mesh, &m.surfaces[&c.master]).edge_length.iter().fold(f64::INFINITY, |a, &b| a.min(b))
-                })
-                .fold(f64::INFINITY, f64::min);
-            (set, 2.0 * std::f64::consts::PI, "N ring", h, "master edge")
-        }
-    };
+    let measures = subject.measures(args.reaction.clone())?;
     let spec = StudySpec {
-        model: &with_penalty,
+        subject,
         penalties,
         dimensionless: args.dimensionless,
         augmented: args.augmented,
-        reaction_column: format!("reaction_{reaction_set}_z"),
-        reaction_scale: scale,
-        reaction_unit: unit.into(),
-        length,
-        length_name: length_name.into(),
+        measures,
         tolerance: args.tolerance,
         output: args.output.clone(),
         progress: !args.quiet,
@@ -384,7 +352,12 @@ fn main() -> ExitCode {
             };
             let root = session.world().rank() == 0;
             let output = output.unwrap_or_else(|| PathBuf::from(deck.file_stem().unwrap_or_default()).with_extension("h5"));
-            let model = read_model(&deck, root && !quiet);
+            let model = model::read_deck(&deck).map(|(m, notes)| {
+                if root && !quiet {
+                    notes.iter().for_each(|note| println!("note: {note}"));
+                }
+                m
+            });
             let segment = model.as_ref().ok().and_then(|m| m.reaction_segment_degrees);
             let result = model.and_then(|m| run(&session, &m, &RunOptions { output, progress: !quiet }));
             finish(result, root, |summary| {
@@ -399,21 +372,6 @@ fn main() -> ExitCode {
             })
         }
     }
-}
-
-/// The model of `slideline run`: a TOML deck, or an Abaqus/CalculiX deck (.inp), whose reading
-/// notes (formulations, conventions) are printed on rank 0.
-fn read_model(deck: &std::path::Path, print_notes: bool) -> Result<model::Model, Error> {
-    if !deck.extension().is_some_and(|e| e.eq_ignore_ascii_case("inp")) {
-        return model::deck::read(deck);
-    }
-    let read = model::inp::read(deck)?;
-    if print_notes {
-        for note in &read.notes {
-            println!("note: {note}");
-        }
-    }
-    Ok(read.model)
 }
 
 /// `--mesh-only`: the joint's mesh and sets as Gmsh 4.1 (OUTPUT with .msh) and as a results

@@ -9,13 +9,16 @@
 use crate::error::{Error, Result};
 use crate::io::plots::{line_plot, Axes, Curve};
 use crate::io::reader::ResultsReader;
-use crate::model::{AugmentedLagrangian, Model, Penalty};
+use crate::model::{AugmentedLagrangian, Penalty};
 use crate::petsc::PetscSession;
 use crate::solve::{run, RunOptions};
 use mpi::traits::{Communicator, CommunicatorCollectives};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
+
+mod subject;
+pub use subject::{Measures, Subject};
 
 /// Penalty values from "a..b" (log-spaced, `per_decade` per decade, both ends included) or
 /// "a,b,c".
@@ -65,21 +68,14 @@ pub struct StudyRow {
 }
 
 /// What the study runs and how it reports.
-pub struct StudySpec<'a> {
-    /// The model with a given penalty (N/mm^3 or kappa, as `dimensionless` says).
-    pub model: &'a dyn Fn(Penalty) -> Result<Model>,
+pub struct StudySpec {
+    /// The model, run with each penalty (N/mm^3 or kappa, as `dimensionless` says).
+    pub subject: Subject,
     pub penalties: Vec<f64>,
     pub dimensionless: bool,
     /// Also run the middle penalty with augmented-Lagrangian updates (the reference).
     pub augmented: bool,
-    /// History column of the reaction to compare, and a scale for printing it (N per sector
-    /// for the bellows, per radian otherwise) with its unit.
-    pub reaction_column: String,
-    pub reaction_scale: f64,
-    pub reaction_unit: String,
-    /// Length the penetration is compared with (the ply thickness), and its name.
-    pub length: f64,
-    pub length_name: String,
+    pub measures: Measures,
     pub tolerance: f64,
     pub output: PathBuf,
     pub progress: bool,
@@ -94,7 +90,7 @@ fn penalty_of(value: f64, dimensionless: bool) -> Penalty {
 }
 
 /// Runs the study; every rank returns the rows (rank 0 has written the file and pictures).
-pub fn penalty_study(session: &PetscSession, spec: &StudySpec<'_>) -> Result<Vec<StudyRow>> {
+pub fn penalty_study(session: &PetscSession, spec: &StudySpec) -> Result<Vec<StudyRow>> {
     let root = session.world().rank() == 0;
     let dir = PathBuf::from(format!("{}_runs", spec.output.with_extension("").display()));
     if root {
@@ -108,10 +104,10 @@ pub fn penalty_study(session: &PetscSession, spec: &StudySpec<'_>) -> Result<Vec
     }
     let mut rows = Vec::new();
     for (label, value, augmented) in runs {
-        let mut model = (spec.model)(penalty_of(value, spec.dimensionless))?;
+        let mut model = spec.subject.model(penalty_of(value, spec.dimensionless))?;
         if augmented {
             for c in &mut model.contacts {
-                c.augmented_lagrangian = Some(AugmentedLagrangian { penetration_tolerance: 1e-3 * spec.length, max_augmentations: 10 });
+                c.augmented_lagrangian = Some(AugmentedLagrangian { penetration_tolerance: 1e-3 * spec.measures.length, max_augmentations: 10 });
             }
         }
         let results = dir.join(format!("penalty_{label}.h5"));
@@ -148,7 +144,7 @@ pub fn penalty_study(session: &PetscSession, spec: &StudySpec<'_>) -> Result<Vec
     Ok(rows)
 }
 
-fn summarise(results: &Path, label: &str, penalty: f64, augmented: bool, converged: bool, wall: f64, spec: &StudySpec<'_>) -> Result<StudyRow> {
+fn summarise(results: &Path, label: &str, penalty: f64, augmented: bool, converged: bool, wall: f64, spec: &StudySpec) -> Result<StudyRow> {
     let r = ResultsReader::open(results)?;
     let rows = r.history_rows()?;
     let penetration = r
@@ -159,7 +155,7 @@ fn summarise(results: &Path, label: &str, penalty: f64, augmented: bool, converg
         .collect::<Result<Vec<f64>>>()?
         .into_iter()
         .fold(0.0, f64::max);
-    let reaction = r.history(&spec.reaction_column).ok().and_then(|v| v.last().copied()).unwrap_or(f64::NAN) * spec.reaction_scale;
+    let reaction = r.history(&spec.measures.reaction_column).ok().and_then(|v| v.last().copied()).unwrap_or(f64::NAN) * spec.measures.reaction_scale;
     Ok(StudyRow {
         label: label.to_string(),
         penalty,
@@ -172,7 +168,7 @@ fn summarise(results: &Path, label: &str, penalty: f64, augmented: bool, converg
         cutbacks: rows.iter().map(|(_, row)| row.cutbacks).sum(),
         wall_time: wall,
         penetration,
-        relative_penetration: penetration / spec.length,
+        relative_penetration: penetration / spec.measures.length,
         reaction,
         difference: f64::NAN,
         results: results.to_path_buf(),
@@ -214,7 +210,7 @@ fn row_line(r: &StudyRow) -> String {
 }
 
 /// The printed summary table and the recommendation line.
-pub fn table(rows: &[StudyRow], spec: &StudySpec<'_>) -> String {
+pub fn table(rows: &[StudyRow], spec: &StudySpec) -> String {
     let mut s = String::new();
     let unit = if spec.dimensionless { "kappa" } else { "N/mm^3" };
     let _ = writeln!(
@@ -230,8 +226,8 @@ pub fn table(rows: &[StudyRow], spec: &StudySpec<'_>) -> String {
         "cutback",
         "wall s",
         "max pen mm",
-        format!("% {}", spec.length_name),
-        format!("reaction {}", spec.reaction_unit),
+        format!("% {}", spec.measures.length_name),
+        format!("reaction {}", spec.measures.reaction_unit),
         "vs ref"
     );
     for r in rows {
@@ -252,7 +248,7 @@ pub fn table(rows: &[StudyRow], spec: &StudySpec<'_>) -> String {
                 best.wall_time,
                 best.penetration,
                 100.0 * best.relative_penetration,
-                spec.length_name
+                spec.measures.length_name
             );
         }
         None => {
@@ -264,7 +260,7 @@ pub fn table(rows: &[StudyRow], spec: &StudySpec<'_>) -> String {
 
 /// The study file: /summary/COLUMN (one row per run) and /runs/LABEL/history/COLUMN copied
 /// from each run's own results file (named in the group's attribute `results`); and the PNGs.
-fn write_study(spec: &StudySpec<'_>, rows: &[StudyRow]) -> Result<()> {
+fn write_study(spec: &StudySpec, rows: &[StudyRow]) -> Result<()> {
     let path = &spec.output;
     let err = |e: hdf5::Error| Error::Output { path: path.clone(), message: e.to_string() };
     let file = hdf5::File::create(path).map_err(err)?;
@@ -277,7 +273,7 @@ fn write_study(spec: &StudySpec<'_>, rows: &[StudyRow]) -> Result<()> {
     file.new_attr::<hdf5::types::VarLenUnicode>()
         .create("reaction")
         .map_err(err)?
-        .write_scalar(&text(&format!("{} x {} ({})", spec.reaction_column, spec.reaction_scale, spec.reaction_unit))?)
+        .write_scalar(&text(&format!("{} x {} ({})", spec.measures.reaction_column, spec.measures.reaction_scale, spec.measures.reaction_unit))?)
         .map_err(err)?;
     let summary = file.create_group("summary").map_err(err)?;
     let columns: Vec<(&str, Vec<f64>)> = vec![
@@ -341,7 +337,7 @@ fn write_study(spec: &StudySpec<'_>, rows: &[StudyRow]) -> Result<()> {
         &name("reaction"),
         "End reaction vs penalty",
         &xlabel,
-        &format!("reaction ({})", spec.reaction_unit),
+        &format!("reaction ({})", spec.measures.reaction_unit),
         &[Curve { label: "reaction at the last increment".into(), points: plain.iter().map(|r| (x(r), r.reaction)).collect() }],
         &[],
         Axes::DataRange,

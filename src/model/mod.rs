@@ -15,6 +15,18 @@ pub use mesh::{Edge, Mesh, NODES_PER_ELEMENT};
 use crate::error::{Error, Result};
 pub use crate::material::Kinematics;
 use std::collections::BTreeMap;
+use std::path::Path;
+
+/// Reads an input deck by its extension: an Abaqus/CalculiX deck (.inp), with the notes on
+/// how it was read (formulations, conventions), or a TOML deck (no notes).
+pub fn read_deck(path: &Path) -> Result<(Model, Vec<String>)> {
+    if path.extension().is_some_and(|e| e.eq_ignore_ascii_case("inp")) {
+        let read = inp::read(path)?;
+        Ok((read.model, read.notes))
+    } else {
+        Ok((deck::read(path)?, Vec::new()))
+    }
+}
 
 /// Displacement component in the (r, z) plane.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
