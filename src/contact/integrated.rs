@@ -156,7 +156,7 @@ pub fn weighted_gaps(
         // surface runs on under the slave edge from one to the other, and the probes between
         // would find those edges again; they are spared (a fifth of the bellows' searches).
         // Five probes could miss a short master edge too: a cut is for accuracy, not validity
-        let mut probe = |xi: f64, masters: &mut Vec<usize>| {
+        let mut probe = |xi: f64| {
             let found = grid.closest_edge(master, x, point(&xs, xi), skip, capture, hint).map(|(m, _)| m);
             if let Some(m) = found {
                 hint = Some(m);
@@ -166,14 +166,14 @@ pub fn weighted_gaps(
             }
             found
         };
-        let ends = [probe(-1.0, &mut masters), probe(1.0, &mut masters)];
+        let ends = [probe(-1.0), probe(1.0)];
         let continuous = match ends {
             [Some(a), Some(b)] => a == b || master.neighbours[a].contains(&Some(b)),
             _ => false,
         };
         if !continuous {
             for xi in [-0.5, 0.0, 0.5] {
-                probe(xi, &mut masters);
+                probe(xi);
             }
         }
         for &m in &masters {
@@ -247,10 +247,19 @@ mod tests {
 
     #[test]
     fn a_uniform_gap_between_non_matching_faces_gives_consistent_weighted_gaps() {
-        // upper block's bottom (7 elements) 0.01 below the lower block's top (5 elements)
+        // upper block's bottom 0.01 below the lower block's top: a slave face finer than its
+        // master (7 on 5 elements), and one so much coarser (2 on 7) that a slave edge's ends
+        // find master edges that are not neighbours, whose corners the probes between must
+        // find for the integration to be exact on the master side
+        for (slave_divisions, master_divisions) in [(7, 5), (2, 7)] {
+            uniform_gap_consistent(slave_divisions, master_divisions);
+        }
+    }
+
+    fn uniform_gap_consistent(slave_divisions: usize, master_divisions: usize) {
         let specs = [
-            Block { name: "lower".into(), r: [0.0, 10.0], z: [0.0, 5.0], divisions: [5, 1], grading: [1.0, 1.0] },
-            Block { name: "upper".into(), r: [0.0, 10.0], z: [4.99, 10.0], divisions: [7, 1], grading: [1.0, 1.0] },
+            Block { name: "lower".into(), r: [0.0, 10.0], z: [0.0, 5.0], divisions: [master_divisions, 1], grading: [1.0, 1.0] },
+            Block { name: "upper".into(), r: [0.0, 10.0], z: [4.99, 10.0], divisions: [slave_divisions, 1], grading: [1.0, 1.0] },
         ];
         let (mesh, sets) = blocks(&specs).unwrap();
         let slave = ContactSurface::new(&mesh, &sets.surfaces["upper_bottom"]);

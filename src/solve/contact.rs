@@ -344,12 +344,12 @@ impl ContactAssembly {
         })
     }
 
-    /// Accepts the multipliers in use (after a converged increment).
     /// The multipliers in use (augmented Lagrangian; zeros for a pure penalty).
     pub fn multipliers(&self) -> &Multipliers {
         &self.current
     }
 
+    /// Accepts the multipliers in use (after a converged increment).
     pub fn commit(&mut self) {
         self.committed.clone_from(&self.current);
     }

@@ -27,8 +27,8 @@ enum TangentRecipe {
 }
 
 impl Engagement {
-    /// Node-to-segment: slave node `node` on the master edge `master` (nodes `edge`, positions
-    /// `x_master`), with the kernel's residual over [node, edge...].
+    /// Node-to-segment: slave node `node` at `xs` on the master edge with nodes `edge` at
+    /// `x_master`, projected at `projection`; `residual` is the kernel's over [node, edge...].
     pub(super) fn nodal(
         node: usize,
         edge: [usize; 3],
@@ -42,9 +42,9 @@ impl Engagement {
         Engagement { nodes: vec![node, edge[0], edge[1], edge[2]], residual, tangent: Vec::new(), recipe }
     }
 
-    /// Segment integration: slave node `node` at nodal pressure `pressure` (times the pass's
-    /// weight in `weighted_pressure`), its weighted gap made of `samples`; `stiffness` is the
-    /// pass's weight times eps / A. The residual is -weighted_pressure dg.
+    /// Segment integration: slave node `node`, its weighted gap made of `samples`, at the
+    /// nodal pressure times the pass's weight `weighted_pressure`; `stiffness` is the pass's
+    /// weight times eps / A. The residual is -weighted_pressure dg.
     pub(super) fn integrated(node: usize, samples: Vec<GapSample>, stiffness: f64, weighted_pressure: f64) -> Self {
         let nodes = sample_nodes(node, &samples);
         let mut gradient = vec![0.0; 2 * nodes.len()];
