@@ -69,7 +69,7 @@ impl Problem<'_, '_> {
             self.fit_pattern(jacobian)?;
             self.layout.clear();
             let result = self.add_tangents(&gathered);
-            // collective, whatever happened on this rank (see `residual`)
+            // collective, whatever happened on this rank (see `assemble_residual`)
             if let Some(bound) = self.layout.hand_over(jacobian)? {
                 let mut everywhere = 0;
                 self.session.world().all_reduce_into(&i32::from(bound), &mut everywhere, SystemOperation::min());
@@ -109,7 +109,7 @@ impl Problem<'_, '_> {
                 values.push(moved.iter().map(|&j| tangent[(i, j)] * delta[conn[j / 2]][j % 2]).sum());
             }
         }
-        // collective, whatever happened on this rank (see `residual`)
+        // collective, whatever happened on this rank (see `assemble_residual`)
         if result.is_ok() {
             f.add_values(&rows, &values)?;
         }
