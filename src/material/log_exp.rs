@@ -28,18 +28,26 @@ pub fn log_sym2<T: Scalar>(a: &Sym2<T>) -> Sym2<T> {
     let g0 = (m * m - s).ln() * 0.5;
     // g1 = atanh(d/m) / d = (1/m) * atanh(x)/x with x^2 = s / m^2
     let x2 = s / (m * m);
-    let ratio = if x2.re() < 1e-2 {
-        // atanh(x)/x = sum x^(2k) / (2k+1); 10 terms: error < 1e-20 for x^2 < 0.01
-        let mut sum = T::from_f64(ATANH_SERIES[9]);
+    let (ratio, slope) = atanh_ratio(x2.re());
+    combine(a, m, g0, x2.lift(ratio, slope) / m)
+}
+
+/// atanh(x)/x and its derivative, as functions of y = x^2 in [0, 1).
+fn atanh_ratio(y: f64) -> (f64, f64) {
+    if y < 1e-2 {
+        // sum y^k / (2k+1) and its derivative; 10 terms: error < 1e-20 for y < 0.01
+        let (mut g, mut dg) = (ATANH_SERIES[9], 0.0);
         for k in (0..9).rev() {
-            sum = sum * x2 + ATANH_SERIES[k];
+            dg = dg * y + g;
+            g = g * y + ATANH_SERIES[k];
         }
-        sum
+        (g, dg)
     } else {
-        let x = x2.sqrt();
-        ((x + 1.0) / (-x + 1.0)).ln() * 0.5 / x
-    };
-    combine(a, m, g0, ratio / m)
+        // d/dy atanh(sqrt y) / sqrt y = (1 / (1 - y) - g) / (2 y)
+        let x = y.sqrt();
+        let g = ((1.0 + x) / (1.0 - x)).ln() * 0.5 / x;
+        (g, (1.0 / (1.0 - y) - g) / (2.0 * y))
+    }
 }
 
 /// Exponential of a symmetric 2x2 matrix.
