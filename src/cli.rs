@@ -1,0 +1,226 @@
+//! The command line's grammar: subcommands and their flags, with the help text users read.
+
+use clap::{Parser, Subcommand};
+use slideline::{model, Error};
+use std::path::PathBuf;
+
+/// Parallel nonlinear finite-element solver for axisymmetric solids in contact, on PETSc.
+///
+/// Units throughout: mm, N, MPa, degC. Run in parallel with `mpirun -n 2 slideline run DECK`.
+#[derive(Parser)]
+#[command(name = "slideline", version, propagate_version = true)]
+pub struct Cli {
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+#[derive(Subcommand)]
+pub enum Command {
+    /// Analyse an axial bellows expansion joint (the seed paper's DN300 case by default).
+    ///
+    /// Geometry, material and loads default to the paper's values; every one can be changed
+    /// by a flag. Step 1 heats to --temperature with --pressure inside, step 2 compresses the
+    /// joint by --displacement in --increments increments.
+    Bellows(BellowsArgs),
+    /// Run the analysis described by a TOML deck and write results to HDF5 (+ XDMF for ParaView).
+    ///
+    /// PETSc options go after `--`, e.g.
+    /// `slideline run cylinder.toml -- -snes_monitor -ksp_type gmres -pc_type gamg -log_view`.
+    /// The PETSC_OPTIONS environment variable is honoured too.
+    Run {
+        /// The input deck: TOML (see README), or an Abaqus/CalculiX deck (.inp; the subset in the
+        /// README's "Abaqus/CalculiX input" section).
+        deck: PathBuf,
+        /// Results file (HDF5). Default: the deck's name with extension .h5, in the current directory.
+        #[arg(short, long)]
+        output: Option<PathBuf>,
+        /// No progress lines.
+        #[arg(short, long)]
+        quiet: bool,
+        /// PETSc options (after `--`).
+        #[arg(last = true, allow_hyphen_values = true)]
+        petsc: Vec<String>,
+    },
+    /// Read a results file: the run's summary and history, a field at an increment, a node's
+    /// or set's time series, two runs side by side, the force-displacement picture. No MPI.
+    Post(PostArgs),
+    /// Run one model for a range of penalty values (and with the augmented Lagrangian) and
+    /// compare iterations, penetration and reaction: the bellows (default) or a deck.
+    PenaltyStudy(StudyArgs),
+}
+
+#[derive(clap::Args)]
+pub struct StudyArgs {
+    /// A TOML deck to study instead of the bellows (every contact pair gets each penalty).
+    #[arg(long)]
+    pub deck: Option<PathBuf>,
+    /// Penalty values: a range "1e2..1e6" (log-spaced) or a list "1e3,1e4,1e5".
+    #[arg(long, default_value = "1e2..1e6")]
+    pub penalties: String,
+    /// Values per decade of a range.
+    #[arg(long, default_value_t = 2)]
+    pub per_decade: usize,
+    /// The values are the dimensionless kappa (eps = kappa E / h), not N/mm^3.
+    #[arg(long)]
+    pub dimensionless: bool,
+    /// Also run the middle penalty with augmented-Lagrangian updates (the reference).
+    #[arg(long)]
+    pub augmented: bool,
+    /// Reaction tolerance of the recommendation, relative to the reference.
+    #[arg(long, default_value_t = 0.01)]
+    pub tolerance: f64,
+    /// Node set whose axial reaction is compared (bellows: moving_end).
+    #[arg(long)]
+    pub reaction: Option<String>,
+    /// Bellows: the coarse mesh of --quick.
+    #[arg(long)]
+    pub quick: bool,
+    /// Bellows: increments of the compression step.
+    #[arg(long)]
+    pub increments: Option<usize>,
+    /// Bellows: axial compression, mm.
+    #[arg(long)]
+    pub displacement: Option<f64>,
+    /// The study file (HDF5); each run's results go to a directory beside it.
+    #[arg(short, long, default_value = "penalty_study.h5")]
+    pub output: PathBuf,
+    #[arg(short, long)]
+    pub quiet: bool,
+    /// PETSc options (after `--`).
+    #[arg(last = true, allow_hyphen_values = true)]
+    pub petsc: Vec<String>,
+}
+
+#[derive(clap::Args)]
+pub struct PostArgs {
+    /// The results file (HDF5) of a run.
+    pub file: PathBuf,
+    /// Write the history table as CSV to this file (all columns, full precision).
+    #[arg(long)]
+    pub csv: Option<PathBuf>,
+    /// Field to report (displacement, stress, von_mises, von_mises_mean,
+    /// equivalent_plastic_strain, equivalent_plastic_strain_max): min/max and where.
+    #[arg(long, requires = "increment")]
+    pub field: Option<String>,
+    /// Increment (1-based, as in the history) for --field.
+    #[arg(long)]
+    pub increment: Option<usize>,
+    /// Time series of the node with this external number.
+    #[arg(long)]
+    pub node: Option<u64>,
+    /// Time series of this node set (its reaction if constrained, else its mean displacement).
+    #[arg(long)]
+    pub set: Option<String>,
+    /// Another results file: the two histories side by side.
+    #[arg(long)]
+    pub compare: Option<PathBuf>,
+    /// Write FILE_force.png (axial reactions against time).
+    #[arg(long)]
+    pub plot: bool,
+    /// Print the deck text stored in the file.
+    #[arg(long)]
+    pub deck: bool,
+}
+
+/// Flags of `slideline bellows` (mm, MPa, degC).
+#[derive(clap::Args)]
+#[command(allow_negative_numbers = true)]
+pub struct BellowsArgs {
+    /// A TOML file of joint parameters (any field of BellowsParams, e.g. examples/bellows.toml);
+    /// flags given on the command line override it.
+    #[arg(long)]
+    pub params: Option<PathBuf>,
+    /// Number of plies in the pack.
+    #[arg(long, default_value_t = 2)]
+    pub plies: usize,
+    /// Thickness of each ply, mm.
+    #[arg(long, default_value_t = 1.0)]
+    pub ply_thickness: f64,
+    /// Number of convolutions.
+    #[arg(long, default_value_t = 6)]
+    pub convolutions: usize,
+    /// Convolution pitch, mm (4 x torus radius for U shapes).
+    #[arg(long, default_value_t = 24.0)]
+    pub pitch: f64,
+    /// Convolution height w (mid-surface, root to crest), mm.
+    #[arg(long, default_value_t = 20.0)]
+    pub height: f64,
+    /// Mean radius of the root and crest tori, mm.
+    #[arg(long, default_value_t = 6.0)]
+    pub torus_radius: f64,
+    /// Axial compression of the joint, mm.
+    #[arg(long, default_value_t = 70.0)]
+    pub displacement: f64,
+    /// Increments of the compression step.
+    #[arg(long, default_value_t = 240)]
+    pub increments: usize,
+    /// Contact penalty, N/mm^3 (MPa per mm of penetration).
+    #[arg(long, default_value_t = 1.0e4)]
+    pub penalty: f64,
+    /// Operating temperature, degC (from 20).
+    #[arg(long, default_value_t = 200.0)]
+    pub temperature: f64,
+    /// Internal pressure, MPa (0.6 = 6 bar).
+    #[arg(long, default_value_t = 0.6)]
+    pub pressure: f64,
+    /// Initial yield stress, MPa.
+    #[arg(long, default_value_t = 300.0)]
+    pub yield_stress: f64,
+    /// Linear isotropic hardening modulus, MPa.
+    #[arg(long, default_value_t = 1000.0)]
+    pub hardening: f64,
+    /// Element length along the plies, mm.
+    #[arg(long, default_value_t = 1.0)]
+    pub ply_element_length: f64,
+    /// Elements through each ply.
+    #[arg(long, default_value_t = 2)]
+    pub ply_elements: usize,
+    /// A coarse, quick version of the same case (about a minute).
+    #[arg(long)]
+    pub quick: bool,
+    /// Write the mesh (Gmsh .msh next to --output) and stop.
+    #[arg(long)]
+    pub mesh_only: bool,
+    /// Results file (HDF5).
+    #[arg(short, long, default_value = "bellows.h5")]
+    pub output: PathBuf,
+    /// No progress lines.
+    #[arg(short, long)]
+    pub quiet: bool,
+    /// PETSc options (after `--`).
+    #[arg(last = true, allow_hyphen_values = true)]
+    pub petsc: Vec<String>,
+}
+
+impl BellowsArgs {
+    /// The joint's parameters: the defaults (the seed case) or the `--params` file, then every
+    /// flag given on the command line (`given(id)`), then `--quick`.
+    pub fn params(&self, given: impl Fn(&str) -> bool) -> Result<model::bellows::BellowsParams, Error> {
+        let mut p = match &self.params {
+            Some(path) => model::bellows::BellowsParams::from_toml_file(path)?,
+            None => model::bellows::BellowsParams::default(),
+        };
+        let from_file = self.params.is_some();
+        let mut take = |id: &str, set: &mut dyn FnMut(&mut model::bellows::BellowsParams)| {
+            if !from_file || given(id) {
+                set(&mut p);
+            }
+        };
+        take("plies", &mut |p| p.plies = self.plies);
+        take("ply_thickness", &mut |p| p.ply_thickness = self.ply_thickness);
+        take("convolutions", &mut |p| p.convolutions = self.convolutions);
+        take("pitch", &mut |p| p.pitch = self.pitch);
+        take("height", &mut |p| p.height = self.height);
+        take("torus_radius", &mut |p| p.torus_radius = self.torus_radius);
+        take("displacement", &mut |p| p.displacement = self.displacement);
+        take("increments", &mut |p| p.increments = self.increments);
+        take("penalty", &mut |p| p.penalty = self.penalty);
+        take("temperature", &mut |p| p.temperature = self.temperature);
+        take("pressure", &mut |p| p.pressure = self.pressure);
+        take("yield_stress", &mut |p| p.yield_stress = self.yield_stress);
+        take("hardening", &mut |p| p.hardening_modulus = self.hardening);
+        take("ply_element_length", &mut |p| p.ply_element_length = self.ply_element_length);
+        take("ply_elements", &mut |p| p.ply_elements = self.ply_elements);
+        Ok(if self.quick { p.quick() } else { p })
+    }
+}
