@@ -247,44 +247,30 @@ pub fn solid_tangent(geo: &ElementGeometry, material: &MaterialTangents) -> Elem
             }
         }
     }
-    // M_q = A_q G_q, row f over the element DOFs
-    let mut m = [[[0.0; DOFS]; 5]; QUADRATURE_POINTS];
+    // rows of K, row-major
+    let mut k = [[0.0; DOFS]; DOFS];
+    for i in 0..DOFS {
+        for j in 0..DOFS {
+            k[i][j] = c[0][i] * psi[0][j] + c[1][i] * psi[1][j] + c[2][i] * psi[2][j];
+        }
+    }
     for q in 0..QUADRATURE_POINTS {
         let (g, t) = (&geo.gradients[q], &material[q]);
-        for (f, row) in m[q].iter_mut().enumerate() {
-            let a = &t.stress_f[f];
+        // M = A G, row i over the element DOFs
+        let mut m = [[0.0; DOFS]; 5];
+        for (i, row) in m.iter_mut().enumerate() {
+            let a = &t.stress_f[i];
             for n in 0..NODES {
                 row[2 * n] = a[0] * g.dr[n] + a[1] * g.dz[n] + a[4] * g.hoop[n];
                 row[2 * n + 1] = a[2] * g.dr[n] + a[3] * g.dz[n];
             }
         }
-    }
-    // K = sum_k c_k (x) psi_k + sum_q G_q^T M_q, in tiles of 4 nodes x 2 columns whose sums stay
-    // in registers over all points (the radial row of node n combines M's rows 0, 1, 4, the
-    // axial row 2, 3)
-    const NB: usize = 2;
-    const CB: usize = 4;
-    let mut k = [[0.0; DOFS]; DOFS];
-    for n0 in (0..NODES).step_by(NB) {
-        for j0 in (0..DOFS).step_by(CB) {
-            let mut radial = [[0.0; CB]; NB];
-            let mut axial = [[0.0; CB]; NB];
-            for q in 0..QUADRATURE_POINTS {
-                let (g, m) = (&geo.gradients[q], &m[q]);
-                for i in 0..NB {
-                    let (dr, dz, hoop) = (g.dr[n0 + i], g.dz[n0 + i], g.hoop[n0 + i]);
-                    for j in 0..CB {
-                        radial[i][j] += dr * m[0][j0 + j] + dz * m[1][j0 + j] + hoop * m[4][j0 + j];
-                        axial[i][j] += dr * m[2][j0 + j] + dz * m[3][j0 + j];
-                    }
-                }
-            }
-            for i in 0..NB {
-                for j in 0..CB {
-                    let (r, z, col) = (2 * (n0 + i), 2 * (n0 + i) + 1, j0 + j);
-                    k[r][col] = radial[i][j] + c[0][r] * psi[0][col] + c[1][r] * psi[1][col] + c[2][r] * psi[2][col];
-                    k[z][col] = axial[i][j] + c[0][z] * psi[0][col] + c[1][z] * psi[1][col] + c[2][z] * psi[2][col];
-                }
+        // K += G^T M: the radial row of node n combines M's rows 0, 1, 4; the axial row 2, 3
+        for n in 0..NODES {
+            let (dr, dz, hoop) = (g.dr[n], g.dz[n], g.hoop[n]);
+            for j in 0..DOFS {
+                k[2 * n][j] += dr * m[0][j] + dz * m[1][j] + hoop * m[4][j];
+                k[2 * n + 1][j] += dr * m[2][j] + dz * m[3][j];
             }
         }
     }

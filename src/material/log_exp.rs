@@ -127,7 +127,7 @@ mod tests {
     #[test]
     fn derivative_is_smooth_through_coincident_eigenvalues() {
         // d log(A) / d A at A = I is the identity map; then on either side of the series
-        // switch (x^2 = 0.0090 and 0.0123) and well past it (x^2 = 0.15)
+        // switch (x^2 = 0.0083 and 0.0123) and well past it (x^2 = 0.15)
         for a in [[1.0, 1.0, 0.0], [1.0 + 0.2, 1.0, 0.0], [1.25, 1.0, 0.0], [2.0, 1.0, 0.3]] {
             let h = 1e-6;
             let d = log_sym2(&[Dual::<3>::variable(a[0], 0), Dual::variable(a[1], 1), Dual::variable(a[2], 2)]);
