@@ -12,7 +12,11 @@ use std::hash::{BuildHasherDefault, Hasher};
 
 pub struct EdgeGrid {
     cell: f64,
-    cells: HashMap<(i64, i64), Vec<usize>, BuildHasherDefault<CellHasher>>,
+    /// Per occupied cell, the range of `edges` listing the edges whose inflated box meets it
+    /// (one list for the whole grid rather than a vector per cell: the grid is rebuilt at every
+    /// evaluation, and a thousand small allocations cost more than the counting below).
+    cells: HashMap<(i64, i64), (u32, u32), BuildHasherDefault<CellHasher>>,
+    edges: Vec<usize>,
     /// Per edge, the box (low, high corners) of its Bezier control points, which holds the
     /// curve: the distance to it is a lower bound on the distance to the edge.
     hulls: Vec<[[f64; 2]; 2]>,
@@ -50,25 +54,45 @@ impl EdgeGrid {
         let n = surface.edges.len().max(1);
         let mean: f64 = surface.edges.iter().map(|e| dist(x(e[0]), x(e[1]))).sum::<f64>() / n as f64;
         let cell = (mean + 2.0 * capture).max(f64::MIN_POSITIVE);
-        let mut cells: HashMap<(i64, i64), Vec<usize>, BuildHasherDefault<CellHasher>> = HashMap::with_capacity_and_hasher(2 * n, Default::default());
+        let mut cells: HashMap<(i64, i64), (u32, u32), BuildHasherDefault<CellHasher>> = HashMap::with_capacity_and_hasher(2 * n, Default::default());
         let mut hulls = Vec::with_capacity(surface.edges.len());
-        for (k, e) in surface.edges.iter().enumerate() {
+        // each edge's span of cells, counted per cell; then each cell's range of the list, and
+        // the edges written into it in index order
+        let mut spans = Vec::with_capacity(surface.edges.len());
+        for e in &surface.edges {
             let p = e.map(&x);
             hulls.push(hull(&p));
-            let lo = [0, 1].map(|i| p.iter().map(|q| q[i]).fold(f64::INFINITY, f64::min) - capture);
-            let hi = [0, 1].map(|i| p.iter().map(|q| q[i]).fold(f64::NEG_INFINITY, f64::max) + capture);
-            for i in cell_of(lo[0], cell)..=cell_of(hi[0], cell) {
-                for j in cell_of(lo[1], cell)..=cell_of(hi[1], cell) {
-                    cells.entry((i, j)).or_default().push(k);
+            let lo = [0, 1].map(|i| cell_of(p.iter().map(|q| q[i]).fold(f64::INFINITY, f64::min) - capture, cell));
+            let hi = [0, 1].map(|i| cell_of(p.iter().map(|q| q[i]).fold(f64::NEG_INFINITY, f64::max) + capture, cell));
+            for i in lo[0]..=hi[0] {
+                for j in lo[1]..=hi[1] {
+                    cells.entry((i, j)).or_default().1 += 1;
+                }
+            }
+            spans.push((lo, hi));
+        }
+        let mut total = 0;
+        for range in cells.values_mut() {
+            let count = range.1;
+            *range = (total, total);
+            total += count;
+        }
+        let mut edges = vec![0; total as usize];
+        for (k, (lo, hi)) in spans.into_iter().enumerate() {
+            for i in lo[0]..=hi[0] {
+                for j in lo[1]..=hi[1] {
+                    let range = cells.get_mut(&(i, j)).expect("counted in the first pass");
+                    edges[range.1 as usize] = k;
+                    range.1 += 1;
                 }
             }
         }
-        EdgeGrid { cell, cells, hulls }
+        EdgeGrid { cell, cells, edges, hulls }
     }
 
     /// Edges whose inflated box may contain `p`.
     pub fn candidates(&self, p: [f64; 2]) -> &[usize] {
-        self.cells.get(&(cell_of(p[0], self.cell), cell_of(p[1], self.cell))).map(|v| v.as_slice()).unwrap_or(&[])
+        self.cells.get(&(cell_of(p[0], self.cell), cell_of(p[1], self.cell))).map_or(&[], |&(start, end)| &self.edges[start as usize..end as usize])
     }
 
     /// Whether any edge (outside `excluded`) lies within `capture` of some point of the
@@ -80,7 +104,8 @@ impl EdgeGrid {
         let b = hull(x);
         for i in cell_of(b[0][0], self.cell)..=cell_of(b[1][0], self.cell) {
             for j in cell_of(b[0][1], self.cell)..=cell_of(b[1][1], self.cell) {
-                let Some(edges) = self.cells.get(&(i, j)) else { continue };
+                let Some(&(start, end)) = self.cells.get(&(i, j)) else { continue };
+                let edges = &self.edges[start as usize..end as usize];
                 if edges.iter().any(|&k| box_gap(&b, &self.hulls[k]) <= capture && !excluded.contains(&k)) {
                     return true;
                 }
