@@ -1,0 +1,217 @@
+//! The mesh cards of a deck: *NODE, *ELEMENT (CAX4 elements get shared mid-side nodes),
+//! *NSET / *ELSET, *SURFACE.
+
+use super::cards::{error_at, Card, DataLine, Location};
+use super::{face_side, Builder};
+use crate::error::Result;
+use crate::model::mesh::Edge;
+use std::collections::{BTreeSet, HashMap};
+
+impl Builder {
+    pub(super) fn nodes(&mut self, card: &Card) -> Result<()> {
+        card.only(&["NSET"])?;
+        let mut ids = Vec::new();
+        for d in &card.data {
+            let id = d.id("NODE", 0, "node number")?;
+            let r = d.number("NODE", 1, "r (first coordinate)", Some(0.0))?;
+            let z = d.number("NODE", 2, "z (second coordinate)", Some(0.0))?;
+            if d.fields.len() > 3 && d.number("NODE", 3, "third coordinate", Some(0.0))? != 0.0 {
+                return Err(error_at(&d.at, "NODE", format!("node {id} has a third coordinate: axisymmetric models lie in the r-z plane")));
+            }
+            if self.node_index.contains_key(&id) {
+                return Err(error_at(&d.at, "NODE", format!("node {id} is defined twice (or clashes with a mid-side node added to a CAX4 element)")));
+            }
+            self.node_index.insert(id, self.mesh.coords.len());
+            ids.push(self.mesh.coords.len());
+            self.mesh.coords.push([r, z]);
+            self.mesh.node_ids.push(id);
+        }
+        if let Some(name) = card.param("NSET") {
+            self.node_sets.entry(name.to_uppercase()).or_default().extend(ids);
+        }
+        Ok(())
+    }
+
+    pub(super) fn node(&self, d: &DataLine, keyword: &str, k: usize) -> Result<usize> {
+        let id = d.id(keyword, k, "node number")?;
+        self.node_index.get(&id).copied().ok_or_else(|| error_at(&d.at, keyword, format!("node {id} is not defined")))
+    }
+
+    pub(super) fn elements(&mut self, card: &Card) -> Result<()> {
+        card.only(&["TYPE", "ELSET"])?;
+        let kind = card.required("TYPE")?.to_uppercase();
+        let corners_only = match kind.as_str() {
+            "CAX8" | "CAX8R" => false,
+            "CAX4" | "CAX4R" => true,
+            other => {
+                return Err(card
+                    .error(format!("element type {other} is outside the subset (slideline reads the axisymmetric quadrilaterals CAX8, CAX8R, CAX4, CAX4R)")))
+            }
+        };
+        let per_element = if corners_only { 4 } else { 8 };
+        // an element's node list may continue on following lines
+        let mut pending: Vec<(String, Location)> = Vec::new();
+        let mut ids = Vec::new();
+        for d in &card.data {
+            pending.extend(d.fields.iter().filter(|f| !f.is_empty()).map(|f| (f.clone(), d.at.clone())));
+            if pending.len() < per_element + 1 {
+                continue;
+            }
+            if pending.len() > per_element + 1 {
+                return Err(error_at(&d.at, "ELEMENT", format!("{kind} takes {per_element} nodes, got {}", pending.len() - 1)));
+            }
+            let line = DataLine { fields: pending.iter().map(|p| p.0.clone()).collect(), at: pending[0].1.clone() };
+            pending.clear();
+            let id = line.id("ELEMENT", 0, "element number")?;
+            if self.element_index.contains_key(&id) {
+                return Err(error_at(&line.at, "ELEMENT", format!("element {id} is defined twice")));
+            }
+            let mut conn = [0usize; 8];
+            for (k, slot) in conn.iter_mut().take(per_element).enumerate() {
+                *slot = self.node(&line, "ELEMENT", k + 1)?;
+            }
+            if corners_only {
+                for s in 0..4 {
+                    conn[4 + s] = self.midside(conn[s], conn[(s + 1) % 4]);
+                }
+            }
+            self.element_index.insert(id, self.mesh.elements.len());
+            ids.push(self.mesh.elements.len());
+            self.mesh.elements.push(conn);
+            self.mesh.element_ids.push(id);
+        }
+        if let Some((_, at)) = pending.first() {
+            return Err(error_at(at, "ELEMENT", format!("{kind} takes {per_element} nodes, the last element has {}", pending.len() - 1)));
+        }
+        *self.element_types.entry(kind).or_default() += ids.len();
+        if let Some(name) = card.param("ELSET") {
+            self.element_sets.entry(name.to_uppercase()).or_default().extend(ids);
+        }
+        Ok(())
+    }
+
+    /// The mid-side node between corners `a` and `b` of a CAX4 element (shared by both
+    /// elements on the edge), at the middle of the straight edge.
+    pub(super) fn midside(&mut self, a: usize, b: usize) -> usize {
+        let key = (a.min(b), a.max(b));
+        if let Some(&n) = self.added_midside.get(&key) {
+            return n;
+        }
+        let (pa, pb) = (self.mesh.coords[a], self.mesh.coords[b]);
+        let id = self.node_index.keys().max().copied().unwrap_or(0) + 1;
+        let n = self.mesh.coords.len();
+        self.mesh.coords.push([0.5 * (pa[0] + pb[0]), 0.5 * (pa[1] + pb[1])]);
+        self.mesh.node_ids.push(id);
+        self.node_index.insert(id, n);
+        self.added_midside.insert(key, n);
+        n
+    }
+
+    /// The nodes of data field `k`: a node number or a node set name.
+    pub(super) fn node_items(&self, d: &DataLine, keyword: &str, k: usize) -> Result<Vec<usize>> {
+        let f = d.fields.get(k).map(|s| s.as_str()).unwrap_or("");
+        if f.chars().all(|c| c.is_ascii_digit()) && !f.is_empty() {
+            return Ok(vec![self.node(d, keyword, k)?]);
+        }
+        self.node_sets
+            .get(&f.to_uppercase())
+            .cloned()
+            .ok_or_else(|| error_at(&d.at, keyword, format!("node set '{f}' is not defined (define it before its use)")))
+    }
+
+    /// The elements of data field `k`: an element number or an element set name.
+    pub(super) fn element_items(&self, d: &DataLine, keyword: &str, k: usize) -> Result<Vec<usize>> {
+        let f = d.fields.get(k).map(|s| s.as_str()).unwrap_or("");
+        if f.chars().all(|c| c.is_ascii_digit()) && !f.is_empty() {
+            let id = d.id(keyword, k, "element number")?;
+            return self.element_index.get(&id).map(|&e| vec![e]).ok_or_else(|| error_at(&d.at, keyword, format!("element {id} is not defined")));
+        }
+        self.element_sets
+            .get(&f.to_uppercase())
+            .cloned()
+            .ok_or_else(|| error_at(&d.at, keyword, format!("element set '{f}' is not defined (define it before its use)")))
+    }
+
+    pub(super) fn set(&mut self, card: &Card) -> Result<()> {
+        let nodes = card.keyword == "NSET";
+        let kw = card.keyword.as_str();
+        let param = if nodes { "NSET" } else { "ELSET" };
+        card.only(&[param, "GENERATE"])?;
+        let name = card.required(param)?.to_uppercase();
+        let mut members = Vec::new();
+        for d in &card.data {
+            if card.has("GENERATE") {
+                let (first, last) = (d.id(kw, 0, "first number")?, d.id(kw, 1, "last number")?);
+                let step = if d.fields.len() > 2 { d.id(kw, 2, "increment")? } else { 1 };
+                if last < first {
+                    return Err(error_at(&d.at, kw, format!("GENERATE from {first} to {last}: the last number is smaller")));
+                }
+                for id in (first..=last).step_by(step as usize) {
+                    let index = if nodes { self.node_index.get(&id) } else { self.element_index.get(&id) };
+                    let what = if nodes { "node" } else { "element" };
+                    members.push(*index.ok_or_else(|| error_at(&d.at, kw, format!("{what} {id} (generated) is not defined")))?);
+                }
+            } else {
+                for k in (0..d.fields.len()).filter(|&k| !d.fields[k].is_empty()) {
+                    members.extend(if nodes { self.node_items(d, kw, k)? } else { self.element_items(d, kw, k)? });
+                }
+            }
+        }
+        let set = if nodes { self.node_sets.entry(name).or_default() } else { self.element_sets.entry(name).or_default() };
+        set.extend(members);
+        set.sort_unstable();
+        set.dedup();
+        Ok(())
+    }
+
+    pub(super) fn surface(&mut self, card: &Card) -> Result<()> {
+        card.only(&["NAME", "TYPE"])?;
+        let name = card.required("NAME")?.to_uppercase();
+        let mut edges = Vec::new();
+        match card.param("TYPE").map(|t| t.to_uppercase()).as_deref() {
+            None | Some("ELEMENT") => {
+                for d in &card.data {
+                    let face = d.fields.get(1).map(|s| s.to_uppercase()).unwrap_or_default();
+                    let side = face_side(&face, 'S')
+                        .ok_or_else(|| error_at(&d.at, "SURFACE", format!("face '{face}': axisymmetric quadrilaterals have faces S1 to S4")))?;
+                    edges.extend(self.element_items(d, "SURFACE", 0)?.into_iter().map(|element| Edge { element, side }));
+                }
+            }
+            Some("NODE") => {
+                let mut nodes = BTreeSet::new();
+                for d in &card.data {
+                    nodes.extend(self.node_items(d, "SURFACE", 0)?);
+                }
+                // the free faces whose two corners belong to the set (CAX4 faces have no mid-side node in it)
+                let mut count: HashMap<(usize, usize), usize> = HashMap::new();
+                for conn in &self.mesh.elements {
+                    for s in 0..4 {
+                        let (a, b) = (conn[s], conn[(s + 1) % 4]);
+                        *count.entry((a.min(b), a.max(b))).or_default() += 1;
+                    }
+                }
+                for (element, conn) in self.mesh.elements.iter().enumerate() {
+                    for side in 0..4 {
+                        let (a, b) = (conn[side], conn[(side + 1) % 4]);
+                        if count[&(a.min(b), a.max(b))] == 1 && nodes.contains(&a) && nodes.contains(&b) {
+                            edges.push(Edge { element, side });
+                        }
+                    }
+                }
+                if edges.is_empty() {
+                    return Err(card.error(format!("node-based surface {name}: no free element face has both corners in the set")));
+                }
+                self.notes.push(format!(
+                    "surface {name} ({}) is node-based: slideline uses the {} free element faces whose corners belong to it",
+                    card.at,
+                    edges.len()
+                ));
+            }
+            Some(other) => return Err(card.error(format!("TYPE={other} is not supported (ELEMENT or NODE)"))),
+        }
+        edges.sort();
+        edges.dedup();
+        self.surfaces.entry(name).or_default().extend(edges);
+        Ok(())
+    }
+}

@@ -1,0 +1,289 @@
+//! The history part of a deck: *AMPLITUDE, *INITIAL CONDITIONS / *TEMPERATURE, *STEP and
+//! *STATIC, *BOUNDARY, *DLOAD, and the steps they expand to (split at amplitude points).
+
+use super::cards::{error_at, normalise, Card};
+use super::{face_side, Builder, StepDef, Target};
+use crate::error::Result;
+use crate::model::mesh::Edge;
+use crate::model::{Component, PrescribedDisplacement, Pressure, Step};
+use std::collections::{BTreeMap, BTreeSet};
+
+impl Builder {
+    pub(super) fn amplitude(&mut self, card: &Card) -> Result<()> {
+        card.only(&["NAME", "TIME", "DEFINITION"])?;
+        if card.param("TIME").is_some_and(|t| normalise(t) != "STEP TIME") {
+            return Err(card.error("only TIME=STEP TIME is supported"));
+        }
+        if card.param("DEFINITION").is_some_and(|t| !t.eq_ignore_ascii_case("TABULAR")) {
+            return Err(card.error("only DEFINITION=TABULAR is supported"));
+        }
+        let name = card.required("NAME")?.to_uppercase();
+        let mut values = Vec::new();
+        for d in &card.data {
+            let fields: Vec<usize> = (0..d.fields.len()).filter(|&k| !d.fields[k].is_empty()).collect();
+            if !fields.len().is_multiple_of(2) {
+                return Err(error_at(&d.at, "AMPLITUDE", "values come in (time, amplitude) pairs"));
+            }
+            for pair in fields.chunks(2) {
+                values.push((d.number("AMPLITUDE", pair[0], "time", None)?, d.number("AMPLITUDE", pair[1], "amplitude", None)?));
+            }
+        }
+        if values.is_empty() || values.windows(2).any(|w| w[1].0 <= w[0].0) {
+            return Err(card.error(format!("amplitude {name} needs (time, value) pairs with increasing times")));
+        }
+        self.amplitudes.insert(name, values);
+        Ok(())
+    }
+
+    pub(super) fn amplitude_ref(&self, card: &Card) -> Result<Option<String>> {
+        match card.param("AMPLITUDE") {
+            None => Ok(None),
+            Some(a) => {
+                let a = a.to_uppercase();
+                if self.amplitudes.contains_key(&a) {
+                    Ok(Some(a))
+                } else {
+                    Err(card.error(format!("amplitude {a} is not defined (define it before its use)")))
+                }
+            }
+        }
+    }
+
+    /// The single temperature that the data lines set on every node.
+    pub(super) fn uniform_temperature(&self, card: &Card) -> Result<f64> {
+        let mut covered = BTreeSet::new();
+        let mut value: Option<f64> = None;
+        for d in &card.data {
+            let t = d.number(&card.keyword, 1, "temperature", None)?;
+            if value.is_some_and(|v| v != t) {
+                return Err(error_at(&d.at, &card.keyword, "slideline applies one uniform temperature: every line must give the same value"));
+            }
+            value = Some(t);
+            covered.extend(self.node_items(d, &card.keyword, 0)?);
+        }
+        let t = value.ok_or_else(|| card.error("needs a data line: node set, temperature"))?;
+        // the deck's own nodes (mid-side nodes added to CAX4 elements cannot be named)
+        let named = self.mesh.coords.len() - self.added_midside.len();
+        if covered.len() != named {
+            return Err(card.error(format!("slideline applies one uniform temperature: the sets given cover {} of the {named} nodes", covered.len())));
+        }
+        Ok(t)
+    }
+
+    pub(super) fn step_mut(&mut self, card: &Card) -> Result<&mut StepDef> {
+        match self.steps.last_mut() {
+            Some(s) if self.in_step => Ok(s),
+            _ => Err(card.error("belongs inside a *STEP")),
+        }
+    }
+
+    pub(super) fn step(&mut self, card: &Card) -> Result<()> {
+        card.only(&["NLGEOM", "INC", "NAME", "AMPLITUDE"])?;
+        if self.in_step {
+            return Err(card.error("the previous *STEP has no *END STEP"));
+        }
+        if card.param("AMPLITUDE").is_some_and(|a| !a.eq_ignore_ascii_case("RAMP")) {
+            return Err(card.error("only AMPLITUDE=RAMP (loads ramped over the step) is supported; use an *AMPLITUDE for other histories"));
+        }
+        let nlgeom = match card.param("NLGEOM").map(|v| v.to_uppercase()) {
+            None => None,
+            Some(v) if v.is_empty() || v == "YES" => Some(true),
+            Some(v) if v == "NO" => Some(false),
+            Some(v) => return Err(card.error(format!("NLGEOM={v}: YES or NO"))),
+        };
+        let name = card.param("NAME").map(|s| s.to_string()).unwrap_or_else(|| format!("step-{}", self.steps.len() + 1));
+        self.steps.push(StepDef {
+            name,
+            at: card.at.clone(),
+            nlgeom,
+            initial: 1.0,
+            period: 1.0,
+            minimum: None,
+            boundaries: Vec::new(),
+            pressures: Vec::new(),
+            temperature: None,
+            new_loads: false,
+        });
+        self.in_step = true;
+        Ok(())
+    }
+
+    pub(super) fn static_procedure(&mut self, card: &Card) -> Result<()> {
+        card.only(&["DIRECT", "SOLVER"])?;
+        if card.has("SOLVER") {
+            self.notes.push(format!("*STATIC ({}): SOLVER= ignored, the linear solver is PETSc's (options after `--`)", card.at));
+        }
+        let step = self.step_mut(card)?;
+        if let Some(d) = card.data.first() {
+            let period = d.number("STATIC", 1, "time period", Some(1.0))?;
+            let initial = d.number("STATIC", 0, "initial increment", Some(period))?;
+            if !(period > 0.0 && initial > 0.0 && initial <= period * (1.0 + 1e-12)) {
+                return Err(error_at(&d.at, "STATIC", format!("need 0 < initial increment ({initial}) <= time period ({period})")));
+            }
+            step.period = period;
+            step.initial = initial;
+            step.minimum = d.fields.get(2).filter(|f| !f.is_empty()).map(|_| d.number("STATIC", 2, "minimum increment", None)).transpose()?;
+        }
+        Ok(())
+    }
+
+    pub(super) fn boundary(&mut self, card: &Card) -> Result<()> {
+        card.only(&["OP", "AMPLITUDE"])?;
+        if card.param("OP").is_some_and(|o| !o.eq_ignore_ascii_case("MOD")) {
+            return Err(card.error("only OP=MOD is supported (slideline keeps a constraint once applied)"));
+        }
+        let amplitude = self.amplitude_ref(card)?;
+        for d in &card.data {
+            let target = d.fields.first().cloned().unwrap_or_default();
+            let nodes = self.node_items(d, "BOUNDARY", 0)?;
+            let set = if target.chars().all(|c| c.is_ascii_digit()) {
+                let name = format!("N{target}");
+                self.node_sets.insert(name.clone(), nodes);
+                name
+            } else {
+                target.to_uppercase()
+            };
+            let word = d.fields.get(1).map(|s| s.to_uppercase()).unwrap_or_default();
+            let (first, last, value) = match word.as_str() {
+                "ENCASTRE" | "PINNED" => (1, 2, 0.0),
+                "XSYMM" => (1, 1, 0.0),
+                "YSYMM" => (2, 2, 0.0),
+                _ => {
+                    let first = d.id("BOUNDARY", 1, "first degree of freedom")?;
+                    let last = if d.fields.get(2).is_some_and(|f| !f.is_empty()) { d.id("BOUNDARY", 2, "last degree of freedom")? } else { first };
+                    (first, last, d.number("BOUNDARY", 3, "value", Some(0.0))?)
+                }
+            };
+            if first > last || last > 2 {
+                return Err(error_at(&d.at, "BOUNDARY", format!("degrees of freedom {first} to {last}: axisymmetric nodes have 1 (ur) and 2 (uz)")));
+            }
+            for dof in first..=last {
+                let component = if dof == 1 { Component::R } else { Component::Z };
+                if self.in_step {
+                    let step = self.steps.last_mut().expect("in a step");
+                    step.boundaries.retain(|b| b.key != (set.clone(), component));
+                    step.boundaries.push(Target { key: (set.clone(), component), value, amplitude: amplitude.clone() });
+                } else {
+                    if value != 0.0 || amplitude.is_some() {
+                        return Err(error_at(&d.at, "BOUNDARY", "a prescribed (non-zero) value belongs inside a *STEP; model data only fixes"));
+                    }
+                    self.fixed.push((set.clone(), component));
+                }
+            }
+        }
+        Ok(())
+    }
+
+    pub(super) fn dload(&mut self, card: &Card) -> Result<()> {
+        card.only(&["OP", "AMPLITUDE"])?;
+        let new = match card.param("OP").map(|o| o.to_uppercase()).as_deref() {
+            None | Some("MOD") => false,
+            Some("NEW") => true,
+            Some(o) => return Err(card.error(format!("OP={o}: MOD or NEW"))),
+        };
+        let amplitude = self.amplitude_ref(card)?;
+        self.step_mut(card)?;
+        let mut loads = Vec::new();
+        for d in &card.data {
+            let label = d.fields.get(1).map(|s| s.to_uppercase()).unwrap_or_default();
+            let side =
+                face_side(&label, 'P').ok_or_else(|| error_at(&d.at, "DLOAD", format!("load type '{label}': slideline reads face pressures P1 to P4")))?;
+            let elements = self.element_items(d, "DLOAD", 0)?;
+            let value = d.number("DLOAD", 2, "magnitude", None)?;
+            // the loaded faces as a surface named after the element set and face
+            let surface = format!("DLOAD_{}_{label}", d.fields[0].to_uppercase());
+            self.surfaces.insert(surface.clone(), elements.into_iter().map(|element| Edge { element, side }).collect());
+            loads.push(Target { key: surface, value, amplitude: amplitude.clone() });
+        }
+        let step = self.step_mut(card)?;
+        step.new_loads |= new;
+        for l in loads {
+            step.pressures.retain(|p| p.key != l.key);
+            step.pressures.push(l);
+        }
+        Ok(())
+    }
+
+    /// slideline steps ramp every target linearly from the previous step's value; a step whose
+    /// loads follow an *AMPLITUDE is split at the amplitude's points so that the piecewise-linear
+    /// history is followed exactly.
+    pub(super) fn expand_steps(&mut self, initial_temperature: f64) -> Result<Vec<Step>> {
+        let mut displacement_now: BTreeMap<(String, Component), f64> = self.fixed.iter().map(|k| (k.clone(), 0.0)).collect();
+        let mut pressure_now: BTreeMap<String, f64> = BTreeMap::new();
+        let mut temperature_now = initial_temperature;
+        let mut out = Vec::new();
+        let mut total_time = 0.0;
+        for (k, s) in self.steps.iter_mut().enumerate() {
+            // fixed model-data constraints join the first step
+            if k == 0 {
+                for key in &self.fixed {
+                    if !s.boundaries.iter().any(|b| &b.key == key) {
+                        s.boundaries.insert(0, Target { key: key.clone(), value: 0.0, amplitude: None });
+                    }
+                }
+            }
+            if s.new_loads {
+                for (surface, v) in pressure_now.iter_mut() {
+                    if !s.pressures.iter().any(|p| &p.key == surface) {
+                        s.pressures.push(Target { key: surface.clone(), value: 0.0, amplitude: None });
+                        *v = 0.0;
+                    }
+                }
+            }
+            let increments = ((s.period / s.initial) - 1e-9).ceil().max(1.0) as usize;
+            let mut used: BTreeSet<&String> = BTreeSet::new();
+            used.extend(s.boundaries.iter().filter_map(|b| b.amplitude.as_ref()));
+            used.extend(s.pressures.iter().filter_map(|b| b.amplitude.as_ref()));
+            used.extend(s.temperature.iter().filter_map(|b| b.amplitude.as_ref()));
+            let mut times: Vec<f64> =
+                used.iter().flat_map(|a| self.amplitudes[*a].iter().map(|p| p.0)).filter(|&t| t > 1e-12 * s.period && t < s.period * (1.0 - 1e-12)).collect();
+            times.push(s.period);
+            times.sort_by(f64::total_cmp);
+            times.dedup_by(|a, b| (*a - *b).abs() <= 1e-12 * s.period);
+            let period = s.period;
+            let (d0, p0, t0) = (displacement_now.clone(), pressure_now.clone(), temperature_now);
+            let mut previous_time = 0.0;
+            for (j, &time) in times.iter().enumerate() {
+                let displacements = s
+                    .boundaries
+                    .iter()
+                    .map(|b| {
+                        let before = d0.get(&b.key).copied().unwrap_or(0.0);
+                        PrescribedDisplacement { node_set: b.key.0.clone(), component: b.key.1, value: b.at(before, time, period, &self.amplitudes) }
+                    })
+                    .collect::<Vec<_>>();
+                let pressures = s
+                    .pressures
+                    .iter()
+                    .map(|p| Pressure { surface: p.key.clone(), value: p.at(p0.get(&p.key).copied().unwrap_or(0.0), time, period, &self.amplitudes) })
+                    .collect::<Vec<_>>();
+                let temperature = s.temperature.as_ref().map(|t| t.at(t0, time, period, &self.amplitudes));
+                for d in &displacements {
+                    displacement_now.insert((d.node_set.clone(), d.component), d.value);
+                }
+                for p in &pressures {
+                    pressure_now.insert(p.surface.clone(), p.value);
+                }
+                if let Some(t) = temperature {
+                    temperature_now = t;
+                }
+                let name = if times.len() == 1 { s.name.clone() } else { format!("{}.{}", s.name, j + 1) };
+                let share = ((increments as f64) * (time - previous_time) / s.period).round().max(1.0) as usize;
+                let time_span = Some([total_time + previous_time, total_time + time]);
+                out.push(Step { name, increments: share, displacements, pressures, temperature, time_span });
+                previous_time = time;
+            }
+            total_time += s.period;
+            if times.len() > 1 {
+                self.notes.push(format!(
+                    "{} ({}) follows its amplitudes in {} sub-steps ending at step times {}",
+                    s.name,
+                    s.at,
+                    times.len(),
+                    times.iter().map(|t| format!("{t}")).collect::<Vec<_>>().join(", ")
+                ));
+            }
+        }
+        Ok(out)
+    }
+}
