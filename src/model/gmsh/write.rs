@@ -46,22 +46,8 @@ pub fn to_msh(mesh: &Mesh, sets: &MeshSets) -> String {
         let sig: Vec<i32> = element_groups.iter().enumerate().filter(|(_, (_, m))| m.contains(&e)).map(|(k, _)| k as i32 + 1).collect();
         surface_entities.entry(sig).or_default().push(e);
     }
-    let mut curve_entities: BTreeMap<Vec<i32>, Vec<Edge>> = BTreeMap::new();
-    let mut edges: Vec<Edge> = surface_groups.iter().flat_map(|(_, e)| e.iter().copied()).collect();
-    edges.sort_unstable();
-    edges.dedup();
-    for e in edges {
-        let sig: Vec<i32> = surface_groups.iter().enumerate().filter(|(_, (_, m))| m.contains(&e)).map(|(k, _)| first_curve_tag + k as i32).collect();
-        curve_entities.entry(sig).or_default().push(e);
-    }
-    let mut point_entities: BTreeMap<Vec<i32>, Vec<usize>> = BTreeMap::new();
-    let mut points: Vec<usize> = point_groups.iter().flat_map(|(_, m)| m.iter().copied()).collect();
-    points.sort_unstable();
-    points.dedup();
-    for n in points {
-        let sig: Vec<i32> = point_groups.iter().enumerate().filter(|(_, (_, m))| m.contains(&n)).map(|(k, _)| first_point_tag + k as i32).collect();
-        point_entities.entry(sig).or_default().push(n);
-    }
+    let curve_entities = by_membership(&surface_groups, first_curve_tag);
+    let point_entities = by_membership(&point_groups, first_point_tag);
     // a point entity holds one node: split groups
     let point_list: Vec<(Vec<i32>, usize)> = point_entities.into_iter().flat_map(|(sig, nodes)| nodes.into_iter().map(move |n| (sig.clone(), n))).collect();
 
@@ -119,4 +105,18 @@ pub fn to_msh(mesh: &Mesh, sets: &MeshSets) -> String {
     }
     let _ = writeln!(out, "$EndElements");
     out
+}
+
+/// The members of `groups` (physical tags `first_tag + k`), one entity per signature: the
+/// tags of the groups an item belongs to.
+fn by_membership<T: Copy + Ord>(groups: &[(&String, &Vec<T>)], first_tag: i32) -> BTreeMap<Vec<i32>, Vec<T>> {
+    let mut items: Vec<T> = groups.iter().flat_map(|(_, m)| m.iter().copied()).collect();
+    items.sort_unstable();
+    items.dedup();
+    let mut entities: BTreeMap<Vec<i32>, Vec<T>> = BTreeMap::new();
+    for item in items {
+        let signature = groups.iter().enumerate().filter(|(_, (_, m))| m.contains(&item)).map(|(k, _)| first_tag + k as i32).collect();
+        entities.entry(signature).or_default().push(item);
+    }
+    entities
 }
