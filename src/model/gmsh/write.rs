@@ -7,7 +7,7 @@ use crate::model::mesh::{Edge, Mesh, MeshSets};
 use std::collections::BTreeMap;
 use std::path::Path;
 
-/// Writes `mesh` with its sets as a Gmsh .msh 4.1 ASCII file that [`read`] reads back to the
+/// Writes `mesh` with its sets as a Gmsh .msh 4.1 ASCII file that [`read`](super::read) reads back to the
 /// same model: element sets become physical surfaces, surfaces physical curves (3-node
 /// lines), and node sets that are neither (nor `all`) physical points. Entities group the
 /// items that share the same set memberships.
