@@ -92,7 +92,12 @@ impl EdgeGrid {
 
     /// Edges whose inflated box may contain `p`.
     pub fn candidates(&self, p: [f64; 2]) -> &[usize] {
-        self.cells.get(&(cell_of(p[0], self.cell), cell_of(p[1], self.cell))).map_or(&[], |&(start, end)| &self.edges[start as usize..end as usize])
+        self.cell_edges((cell_of(p[0], self.cell), cell_of(p[1], self.cell)))
+    }
+
+    /// Edges whose inflated box meets cell `key`.
+    fn cell_edges(&self, key: (i64, i64)) -> &[usize] {
+        self.cells.get(&key).map_or(&[], |&(start, end)| &self.edges[start as usize..end as usize])
     }
 
     /// Whether any edge (outside `excluded`) lies within `capture` of some point of the
@@ -104,9 +109,7 @@ impl EdgeGrid {
         let b = hull(x);
         for i in cell_of(b[0][0], self.cell)..=cell_of(b[1][0], self.cell) {
             for j in cell_of(b[0][1], self.cell)..=cell_of(b[1][1], self.cell) {
-                let Some(&(start, end)) = self.cells.get(&(i, j)) else { continue };
-                let edges = &self.edges[start as usize..end as usize];
-                if edges.iter().any(|&k| box_gap(&b, &self.hulls[k]) <= capture && !excluded.contains(&k)) {
+                if self.cell_edges((i, j)).iter().any(|&k| box_gap(&b, &self.hulls[k]) <= capture && !excluded.contains(&k)) {
                     return true;
                 }
             }
