@@ -115,9 +115,38 @@ pub fn weighted_gaps(
     excluded: &[Vec<usize>],
     capture: f64,
 ) -> Vec<WeightedGap> {
+    let mut out = Vec::new();
+    weighted_gaps_into(slave, master, x, x0, indices, excluded, capture, &mut out);
+    out.retain(|g| !g.samples.is_empty());
+    out
+}
+
+/// [`weighted_gaps`] into `out`, one entry per node of `indices` in its order (no samples for a
+/// node none of whose points finds a master). The entries of the last call are refilled, their
+/// sample vectors kept, so a contact evaluation does not allocate them again.
+#[allow(clippy::too_many_arguments)]
+pub fn weighted_gaps_into(
+    slave: &ContactSurface,
+    master: &ContactSurface,
+    x: &impl Fn(usize) -> [f64; 2],
+    x0: &impl Fn(usize) -> [f64; 2],
+    indices: &[usize],
+    excluded: &[Vec<usize>],
+    capture: f64,
+    out: &mut Vec<WeightedGap>,
+) {
     let grid = EdgeGrid::new(master, x, capture);
-    let mut out: Vec<WeightedGap> = Vec::with_capacity(indices.len());
-    let mut best_weight: Vec<f64> = Vec::with_capacity(indices.len());
+    out.truncate(indices.len());
+    for (k, &i) in indices.iter().enumerate() {
+        match out.get_mut(k) {
+            Some(g) => {
+                g.samples.clear();
+                (g.index, g.gap, g.master_edge) = (i, 0.0, usize::MAX);
+            }
+            None => out.push(WeightedGap { index: i, gap: 0.0, samples: Vec::new(), master_edge: usize::MAX }),
+        }
+    }
+    let mut best_weight = vec![0.0f64; indices.len()];
     // requested node index (into slave.nodes) -> position in `indices`
     let mut lookup = vec![usize::MAX; slave.nodes.len()];
     for (k, &i) in indices.iter().enumerate() {
@@ -128,10 +157,6 @@ pub fn weighted_gaps(
     let mut edges: Vec<usize> = indices.iter().flat_map(|&i| slave.edges_of(slave.nodes[i]).iter().copied()).collect();
     edges.sort_unstable();
     edges.dedup();
-    for &i in indices {
-        out.push(WeightedGap { index: i, gap: 0.0, samples: Vec::new(), master_edge: usize::MAX });
-        best_weight.push(0.0);
-    }
     // the master edge of the last point found: consecutive points mostly share it
     let mut hint = None;
     let mut points = 0;
@@ -231,8 +256,6 @@ pub fn weighted_gaps(
             }
         }
     }
-    out.retain(|g| !g.samples.is_empty());
-    out
 }
 
 fn point(x: &[[f64; 2]; 3], xi: f64) -> [f64; 2] {

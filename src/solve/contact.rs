@@ -10,10 +10,10 @@
 pub use super::contact_surfaces::contact_nodes;
 use super::contact_surfaces::{edge_neighbourhood, surfaces_and_directions};
 pub use super::engagement::Engagement;
-use super::engagement::PointHessians;
+use super::engagement::{Engagements, PointHessians};
 use super::pattern::ContactPattern;
 use super::problem::ROUNDOFF_ULPS;
-use crate::contact::integrated::weighted_gaps;
+use crate::contact::integrated::{weighted_gaps_into, WeightedGap};
 use crate::contact::node_to_edge::{edge_residual, ContactLaw};
 use crate::contact::search::EdgeGrid;
 use crate::contact::surface::ContactSurface;
@@ -99,7 +99,10 @@ pub struct ContactAssembly {
     /// The engagements of the last evaluation, and the positions and multipliers it was made
     /// at: SNES asks for the Jacobian at the iterate whose residual it has just evaluated, and
     /// the search need not run twice; only the tangents are added.
-    engagements: Vec<Engagement>,
+    engagements: Engagements,
+    /// Per pass, the weighted gaps of the last evaluation (one per owned slave node), kept so
+    /// the next one refills their sample vectors.
+    gaps: Vec<Vec<WeightedGap>>,
     evaluated_at: Option<(Vec<[f64; 2]>, Multipliers)>,
     /// Whether the engagements carry their tangents.
     with_tangents: bool,
@@ -161,7 +164,8 @@ impl ContactAssembly {
             states,
             nodal_forces: Vec::new(),
             roundoff: 0.0,
-            engagements: Vec::new(),
+            engagements: Engagements::default(),
+            gaps: Vec::new(),
             evaluated_at: None,
             with_tangents: false,
             points: 0,
@@ -193,7 +197,7 @@ impl ContactAssembly {
             let (slot, positions) = (&self.slot, &self.positions);
             let x = |n: usize| positions[slot[n]];
             self.point_hessians.reset(self.points);
-            for e in &mut self.engagements {
+            for e in self.engagements.as_mut_slice() {
                 e.form_tangent(&x, &mut self.point_hessians);
                 self.pattern.require(&e.nodes);
             }
@@ -215,7 +219,7 @@ impl ContactAssembly {
                 ContactIntegration::Segment => self.evaluate_integrated(model, pair, p, &mut out),
             }
         }
-        for e in &out {
+        for e in out.as_slice() {
             for (a, &n) in e.nodes.iter().enumerate() {
                 for c in 0..2 {
                     self.nodal_forces[self.slot[n]][c] += e.residual[2 * a + c];
@@ -229,7 +233,7 @@ impl ContactAssembly {
 
     /// The active slave nodes' contributions from the last `evaluate`.
     pub fn engagements(&self) -> &[Engagement] {
-        &self.engagements
+        self.engagements.as_slice()
     }
 
     fn penalty(model: &Model, pair: &ContactPair, master: &ContactSurface, edge: usize) -> f64 {
@@ -240,7 +244,7 @@ impl ContactAssembly {
     }
 
     /// Node-to-segment: the gap at each slave node, on the master edge it projects to.
-    fn evaluate_nodal(&mut self, model: &Model, pair: &ContactPair, p: usize, out: &mut Vec<Engagement>) {
+    fn evaluate_nodal(&mut self, model: &Model, pair: &ContactPair, p: usize, out: &mut Engagements) {
         let pass = &self.passes[p];
         let (slot, positions) = (&self.slot, &self.positions);
         let x = |n: usize| positions[slot[n]];
@@ -275,34 +279,35 @@ impl ContactAssembly {
             self.states[p][k] = SlaveState { gap: proj.gap, pressure, force: pressure * area, traction: 0.0 };
             if multiplier - eps * proj.gap >= 0.0 {
                 self.roundoff += (ROUNDOFF_ULPS * f64::EPSILON * eps * area * xs[0].hypot(xs[1])).powi(2);
-                out.push(Engagement::nodal(node, en, residual.as_slice().to_vec(), xs, en.map(x), proj, law));
+                out.next_slot().set_nodal(node, en, residual.as_slice(), xs, en.map(x), proj, law);
             }
         }
     }
 
     /// Segment integration: weighted gaps g_a = integral N_a g r ds and nodal pressures.
-    fn evaluate_integrated(&mut self, model: &Model, pair: &ContactPair, p: usize, out: &mut Vec<Engagement>) {
+    fn evaluate_integrated(&mut self, model: &Model, pair: &ContactPair, p: usize, out: &mut Engagements) {
         let pass = &self.passes[p];
         let (slot, positions) = (&self.slot, &self.positions);
         let x = |n: usize| positions[slot[n]];
         let x0 = |n: usize| model.mesh.coords[n];
         let (slave, master) = (&self.surfaces[pass.slave], &self.surfaces[pass.master]);
-        let mut gaps = weighted_gaps(slave, master, &x, &x0, &pass.owned, &pass.excluded, pair.capture_distance);
+        if self.gaps.len() <= p {
+            self.gaps.resize_with(p + 1, Vec::new);
+        }
+        let gaps = &mut self.gaps[p];
+        weighted_gaps_into(slave, master, &x, &x0, &pass.owned, &pass.excluded, pair.capture_distance, gaps);
         // number the points across passes
         let first = self.points;
         for s in gaps.iter_mut().flat_map(|g| g.samples.iter_mut()) {
             s.point += first;
             self.points = self.points.max(s.point + 1);
         }
-        let mut owned_position = vec![usize::MAX; slave.nodes.len()];
-        for (k, &i) in pass.owned.iter().enumerate() {
-            owned_position[i] = k;
-        }
-        for s in self.states[p].iter_mut() {
-            *s = SlaveState { gap: f64::NAN, ..SlaveState::default() };
-        }
-        for g in gaps {
-            let k = owned_position[g.index];
+        // gaps[k] is owned slave node k's
+        for (k, g) in gaps.iter().enumerate() {
+            if g.samples.is_empty() {
+                self.states[p][k] = SlaveState { gap: f64::NAN, ..SlaveState::default() };
+                continue;
+            }
             let area = slave.hat_areas[g.index];
             let eps = Self::penalty(model, pair, master, g.master_edge);
             let lambda = self.current[p][k];
@@ -314,7 +319,7 @@ impl ContactAssembly {
             }
             let xs = x(slave.nodes[g.index]);
             self.roundoff += (ROUNDOFF_ULPS * f64::EPSILON * pass.weight * eps * area * xs[0].hypot(xs[1])).powi(2);
-            out.push(Engagement::integrated(slave.nodes[g.index], g.samples, pass.weight * eps / area, pass.weight * pressure));
+            out.next_slot().set_integrated(slave.nodes[g.index], &g.samples, pass.weight * eps / area, pass.weight * pressure);
         }
     }
 

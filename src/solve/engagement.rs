@@ -6,7 +6,9 @@
 use crate::contact::integrated::{GapSample, SampleMatrix};
 use crate::contact::node_to_edge::{edge_residual_and_tangent, ContactLaw, EdgeProjection};
 
-/// The contribution of one active slave node: residual and tangent over `nodes`.
+/// The contribution of one active slave node: residual and tangent over `nodes`. Its vectors
+/// are refilled from one evaluation to the next ([`Engagements`]), not allocated again.
+#[derive(Default)]
 pub struct Engagement {
     /// Mesh nodes the contribution couples (the slave node first).
     pub nodes: Vec<usize>,
@@ -16,87 +18,135 @@ pub struct Engagement {
     pub tangent: Vec<f64>,
     /// What the tangent is formed from.
     recipe: TangentRecipe,
+    /// Segment integration: the node's integration points, and dg over `nodes` (their sum).
+    samples: Vec<GapSample>,
+    gradient: Vec<f64>,
 }
 
+#[derive(Default)]
 enum TangentRecipe {
+    #[default]
+    None,
     /// Node-to-segment: the kernel's arguments.
     Nodal { xs: [f64; 2], master: [[f64; 2]; 3], projection: EdgeProjection, law: ContactLaw },
-    /// Segment integration: K = stiffness dg dg^T - weighted_pressure d2g, with dg (`gradient`,
-    /// over the engagement's nodes) and d2g the sums over the node's integration points.
-    Integrated { samples: Vec<GapSample>, gradient: Vec<f64>, stiffness: f64, weighted_pressure: f64 },
+    /// Segment integration: K = stiffness dg dg^T - weighted_pressure d2g, with dg (`gradient`)
+    /// and d2g the sums over the node's integration points (`samples`).
+    Integrated { stiffness: f64, weighted_pressure: f64 },
 }
 
 impl Engagement {
     /// Node-to-segment: slave node `node` at `xs` on the master edge with nodes `edge` at
     /// `x_master`, projected at `projection`; `residual` is the kernel's over [node, edge...].
-    pub(super) fn nodal(
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn set_nodal(
+        &mut self,
         node: usize,
         edge: [usize; 3],
-        residual: Vec<f64>,
+        residual: &[f64],
         xs: [f64; 2],
         x_master: [[f64; 2]; 3],
         projection: EdgeProjection,
         law: ContactLaw,
-    ) -> Self {
-        let recipe = TangentRecipe::Nodal { xs, master: x_master, projection, law };
-        Engagement { nodes: vec![node, edge[0], edge[1], edge[2]], residual, tangent: Vec::new(), recipe }
+    ) {
+        self.recipe = TangentRecipe::Nodal { xs, master: x_master, projection, law };
+        refill(&mut self.nodes, [node, edge[0], edge[1], edge[2]]);
+        refill(&mut self.residual, residual.iter().copied());
+        self.tangent.clear();
+        self.samples.clear();
+        self.gradient.clear();
     }
 
     /// Segment integration: slave node `node`, its weighted gap made of `samples`, at the
     /// nodal pressure times the pass's weight `weighted_pressure`; `stiffness` is the pass's
     /// weight times eps / A. The residual is -weighted_pressure dg.
-    pub(super) fn integrated(node: usize, samples: Vec<GapSample>, stiffness: f64, weighted_pressure: f64) -> Self {
-        let nodes = sample_nodes(node, &samples);
-        let mut gradient = vec![0.0; 2 * nodes.len()];
-        for s in &samples {
+    pub(super) fn set_integrated(&mut self, node: usize, samples: &[GapSample], stiffness: f64, weighted_pressure: f64) {
+        self.recipe = TangentRecipe::Integrated { stiffness, weighted_pressure };
+        sample_nodes(node, samples, &mut self.nodes);
+        refill(&mut self.samples, samples.iter().copied());
+        self.gradient.clear();
+        self.gradient.resize(2 * self.nodes.len(), 0.0);
+        for s in samples {
             let sg = s.gradient();
             for (a, &n) in s.nodes.iter().enumerate() {
-                let at = position_in(&nodes, n);
-                gradient[2 * at] += sg[2 * a];
-                gradient[2 * at + 1] += sg[2 * a + 1];
+                let at = position_in(&self.nodes, n);
+                self.gradient[2 * at] += sg[2 * a];
+                self.gradient[2 * at + 1] += sg[2 * a + 1];
             }
         }
-        let residual = gradient.iter().map(|v| -weighted_pressure * v).collect();
-        Engagement { nodes, residual, tangent: Vec::new(), recipe: TangentRecipe::Integrated { samples, gradient, stiffness, weighted_pressure } }
+        refill(&mut self.residual, self.gradient.iter().map(|v| -weighted_pressure * v));
+        self.tangent.clear();
     }
 
     /// Forms the tangent at positions `x` (those of the evaluation that found the engagement),
     /// the segment-integrated ones from `hessians` of the same evaluation.
     pub(super) fn form_tangent(&mut self, x: &impl Fn(usize) -> [f64; 2], hessians: &mut PointHessians) {
-        self.tangent = match &self.recipe {
+        self.tangent.clear();
+        match &self.recipe {
+            TangentRecipe::None => {}
             TangentRecipe::Nodal { xs, master, projection, law } => {
                 let (_, k, _) = edge_residual_and_tangent(*xs, master, projection, law);
-                k.transpose().as_slice().to_vec()
+                self.tangent.extend_from_slice(k.transpose().as_slice());
             }
-            TangentRecipe::Integrated { samples, gradient, stiffness, weighted_pressure } => {
-                let m = gradient.len();
-                let mut k = vec![0.0; m * m];
-                for i in 0..m {
-                    for j in 0..m {
-                        k[i * m + j] = stiffness * gradient[i] * gradient[j];
-                    }
-                }
+            &TangentRecipe::Integrated { stiffness, weighted_pressure } => {
+                let (g, m) = (&self.gradient, self.gradient.len());
+                self.tangent.extend((0..m * m).map(|ij| stiffness * g[ij / m] * g[ij % m]));
                 // -p d2g
-                for s in samples {
+                for s in &self.samples {
                     let h = hessians.at(s, x);
                     let f = weighted_pressure * s.weight;
                     let map = s.nodes.map(|n| 2 * position_in(&self.nodes, n));
                     for a in 0..12 {
                         let row = map[a / 2] + a % 2;
                         for b in 0..12 {
-                            k[row * m + map[b / 2] + b % 2] -= f * h[(a, b)];
+                            self.tangent[row * m + map[b / 2] + b % 2] -= f * h[(a, b)];
                         }
                     }
                 }
-                k
             }
-        };
+        }
     }
 }
 
-/// The nodes the samples of a slave node couple, the node first.
-fn sample_nodes(node: usize, samples: &[GapSample]) -> Vec<usize> {
-    let mut nodes = vec![node];
+/// The engagements of the last evaluation: the slots past `len` keep their vectors for the
+/// next one, so an evaluation refills them instead of allocating (DESIGN: no allocation in
+/// the hot path).
+#[derive(Default)]
+pub(super) struct Engagements {
+    slots: Vec<Engagement>,
+    len: usize,
+}
+
+impl Engagements {
+    pub(super) fn clear(&mut self) {
+        self.len = 0;
+    }
+
+    /// The next slot, for one of `Engagement`'s setters to fill.
+    pub(super) fn next_slot(&mut self) -> &mut Engagement {
+        if self.len == self.slots.len() {
+            self.slots.push(Engagement::default());
+        }
+        self.len += 1;
+        &mut self.slots[self.len - 1]
+    }
+
+    pub(super) fn as_slice(&self) -> &[Engagement] {
+        &self.slots[..self.len]
+    }
+
+    pub(super) fn as_mut_slice(&mut self) -> &mut [Engagement] {
+        &mut self.slots[..self.len]
+    }
+}
+
+fn refill<T>(v: &mut Vec<T>, items: impl IntoIterator<Item = T>) {
+    v.clear();
+    v.extend(items);
+}
+
+/// The nodes the samples of a slave node couple, the node first, into `nodes`.
+fn sample_nodes(node: usize, samples: &[GapSample], nodes: &mut Vec<usize>) {
+    refill(nodes, [node]);
     for s in samples {
         for &n in &s.nodes {
             if !nodes.contains(&n) {
@@ -104,7 +154,6 @@ fn sample_nodes(node: usize, samples: &[GapSample]) -> Vec<usize> {
             }
         }
     }
-    nodes
 }
 
 fn position_in(nodes: &[usize], n: usize) -> usize {
