@@ -19,7 +19,7 @@
 //! from its edge's nodes). The integration points' positions are taken as fixed on the slave
 //! edge: the integrand is continuous across the split points, so their motion adds nothing.
 //!
-//! The search and the gaps come first ([`weighted_gaps`], with each integration point kept as
+//! The search and the gaps come first ([`weighted_gaps_into`], with each integration point kept as
 //! a [`GapSample`]); the gradient of a sample is closed-form and cheap, its Hessian (dual
 //! numbers) is asked for only where a tangent is wanted, so residual-only evaluations (the
 //! line search's) skip it.
@@ -46,7 +46,7 @@ pub struct GapSample {
     pub projection: EdgeProjection,
     /// psi_a w r ds: the sample's weight in the node's weighted gap.
     pub weight: f64,
-    /// Index of the integration point among those of its `weighted_gaps` call: the samples
+    /// Index of the integration point among those of its `weighted_gaps_into` call: the samples
     /// of one point (one per slave node whose hat covers it) share it, and their Hessians
     /// differ only by the weight.
     pub point: usize,
@@ -102,28 +102,11 @@ pub struct WeightedGap {
 }
 
 /// Weighted gaps of the slave nodes `indices` (into `slave.nodes`) against `master`, at
-/// positions `x` (current) and `x0` (reference, for the weights). `excluded[edge]` lists the
-/// master edges a slave edge may not bear on (self-contact; empty, or no entry, for none).
-/// Nodes none of whose integration points finds a master are left out.
-#[allow(clippy::too_many_arguments)]
-pub fn weighted_gaps(
-    slave: &ContactSurface,
-    master: &ContactSurface,
-    x: &impl Fn(usize) -> [f64; 2],
-    x0: &impl Fn(usize) -> [f64; 2],
-    indices: &[usize],
-    excluded: &[Vec<usize>],
-    capture: f64,
-) -> Vec<WeightedGap> {
-    let mut out = Vec::new();
-    weighted_gaps_into(slave, master, x, x0, indices, excluded, capture, &mut out);
-    out.retain(|g| !g.samples.is_empty());
-    out
-}
-
-/// [`weighted_gaps`] into `out`, one entry per node of `indices` in its order (no samples for a
-/// node none of whose points finds a master). The entries of the last call are refilled, their
-/// sample vectors kept, so a contact evaluation does not allocate them again.
+/// positions `x` (current) and `x0` (reference, for the weights), into `out`: one entry per node
+/// of `indices`, in its order, with no samples for a node none of whose integration points finds
+/// a master. `excluded[edge]` lists the master edges a slave edge may not bear on (self-contact;
+/// empty, or no entry, for none). The entries of the last call are refilled, their sample
+/// vectors kept, so a contact evaluation does not allocate them again.
 #[allow(clippy::too_many_arguments)]
 pub fn weighted_gaps_into(
     slave: &ContactSurface,
@@ -289,8 +272,10 @@ mod tests {
         let master = ContactSurface::new(&mesh, &sets.surfaces["lower_top"]);
         let x = |n: usize| mesh.coords[n];
         let all: Vec<usize> = (0..slave.nodes.len()).collect();
-        let gaps = weighted_gaps(&slave, &master, &x, &x, &all, &[], 0.5);
+        let mut gaps = Vec::new();
+        weighted_gaps_into(&slave, &master, &x, &x, &all, &[], 0.5, &mut gaps);
         assert_eq!(gaps.len(), slave.nodes.len());
+        assert!(gaps.iter().all(|g| !g.samples.is_empty()), "every slave node faces the master");
         for g in &gaps {
             let area = slave.hat_areas[g.index];
             assert!((g.gap - (-0.01) * area).abs() < 1e-12, "node {}: {} vs {}", g.index, g.gap, -0.01 * area);

@@ -7,7 +7,7 @@ use crate::contact::integrated::{GapSample, SampleMatrix};
 use crate::contact::node_to_edge::{edge_residual_and_tangent, ContactLaw, EdgeProjection};
 
 /// The contribution of one active slave node: residual and tangent over `nodes`. Its vectors
-/// are refilled from one evaluation to the next ([`Engagements`]), not allocated again.
+/// are refilled from one evaluation to the next (in an `Engagements` slot), not allocated again.
 #[derive(Default)]
 pub struct Engagement {
     /// Mesh nodes the contribution couples (the slave node first).
