@@ -152,6 +152,7 @@ impl ContactAssembly {
             None => (passes.iter().map(|p| vec![0.0; p.owned.len()]).collect(), ContactPattern::default()),
         };
         let states = passes.iter().map(|p| vec![SlaveState::default(); p.owned.len()]).collect();
+        let gaps = passes.iter().map(|_| Vec::new()).collect();
         Some(ContactAssembly {
             surfaces,
             current: committed.clone(),
@@ -165,7 +166,7 @@ impl ContactAssembly {
             nodal_forces: Vec::new(),
             roundoff: 0.0,
             engagements: Engagements::default(),
-            gaps: Vec::new(),
+            gaps,
             evaluated_at: None,
             with_tangents: false,
             points: 0,
@@ -291,9 +292,6 @@ impl ContactAssembly {
         let x = |n: usize| positions[slot[n]];
         let x0 = |n: usize| model.mesh.coords[n];
         let (slave, master) = (&self.surfaces[pass.slave], &self.surfaces[pass.master]);
-        if self.gaps.len() <= p {
-            self.gaps.resize_with(p + 1, Vec::new);
-        }
         let gaps = &mut self.gaps[p];
         weighted_gaps_into(slave, master, &x, &x0, &pass.owned, &pass.excluded, pair.capture_distance, gaps);
         // number the points across passes

@@ -23,15 +23,19 @@ pub struct Engagement {
     gradient: Vec<f64>,
 }
 
-#[derive(Default)]
 enum TangentRecipe {
-    #[default]
-    None,
     /// Node-to-segment: the kernel's arguments.
     Nodal { xs: [f64; 2], master: [[f64; 2]; 3], projection: EdgeProjection, law: ContactLaw },
     /// Segment integration: K = stiffness dg dg^T - weighted_pressure d2g, with dg (`gradient`)
     /// and d2g the sums over the node's integration points (`samples`).
     Integrated { stiffness: f64, weighted_pressure: f64 },
+}
+
+/// A new slot's recipe, before a setter fills it: no samples, so no tangent.
+impl Default for TangentRecipe {
+    fn default() -> Self {
+        TangentRecipe::Integrated { stiffness: 0.0, weighted_pressure: 0.0 }
+    }
 }
 
 impl Engagement {
@@ -82,7 +86,6 @@ impl Engagement {
     pub(super) fn form_tangent(&mut self, x: &impl Fn(usize) -> [f64; 2], hessians: &mut PointHessians) {
         self.tangent.clear();
         match &self.recipe {
-            TangentRecipe::None => {}
             TangentRecipe::Nodal { xs, master, projection, law } => {
                 let (_, k, _) = edge_residual_and_tangent(*xs, master, projection, law);
                 self.tangent.extend_from_slice(k.transpose().as_slice());
