@@ -126,7 +126,10 @@ pub struct ResultsFile {
     elements: usize,
     node_slab: (usize, usize),
     element_slab: (usize, usize),
-    increments: Vec<xdmf::IncrementEntry>,
+    /// Converged increments written so far.
+    increments: usize,
+    /// The XDMF sidecar, on rank 0 (which writes it).
+    sidecar: Option<xdmf::Sidecar>,
     contact_mesh_written: bool,
     /// Reactions also per segment of this angle (degrees), CalculiX's convention for .inp runs.
     reaction_segment_degrees: Option<f64>,
@@ -195,7 +198,8 @@ impl ResultsFile {
             elements: ne,
             node_slab,
             element_slab,
-            increments: Vec::new(),
+            increments: 0,
+            sidecar: (rank == 0).then(|| xdmf::Sidecar::new(path, nn, ne)),
             contact_mesh_written: false,
             reaction_segment_degrees: model.reaction_segment_degrees,
         })
@@ -207,7 +211,7 @@ impl ResultsFile {
 
     /// Converged increments written so far.
     pub fn increments_written(&self) -> usize {
-        self.increments.len()
+        self.increments
     }
 
     /// Writes one converged increment (collective): this rank's displacement slab (owned
@@ -216,7 +220,7 @@ impl ResultsFile {
     pub fn write_increment(&mut self, step_name: &str, row: &HistoryRow, fields: &IncrementFields<'_>, partition: &Partition) -> Result<()> {
         let IncrementFields { displacement: owned_displacement, stress: local_stress, plastic_strain: local_plastic_strain, contact } = *fields;
         let err = h5err(&self.path);
-        let index = self.increments.len() + 1;
+        let index = self.increments + 1;
         let name = format!("{index:06}");
         let g = self.file.group("increments").map_err(&err)?.create_group(&name).map_err(&err)?;
         for (attr, value) in [("step", row.step as f64), ("increment", row.increment as f64), ("load_factor", row.load_factor), ("time", row.time)] {
@@ -246,9 +250,9 @@ impl ResultsFile {
         }
         self.append_history(row)?;
         self.file.flush().map_err(h5err(&self.path))?;
-        self.increments.push(xdmf::IncrementEntry { group: name, time: row.time });
-        if self.rank == 0 {
-            xdmf::write(&self.path, self.nodes, self.elements, &self.increments)?;
+        self.increments += 1;
+        if let Some(sidecar) = self.sidecar.as_mut() {
+            sidecar.add_increment(&name, row.time)?;
         }
         Ok(())
     }
@@ -323,8 +327,8 @@ impl ResultsFile {
         }
         let err = h5err(&self.path);
         let history = self.file.group("history").map_err(&err)?;
-        let n = self.increments.len(); // rows already written
-                                       // the columns in the order the run prints them (HDF5 lists members alphabetically)
+        let n = self.increments; // rows already written
+                                 // the columns in the order the run prints them (HDF5 lists members alphabetically)
         let order: Vec<&str> = columns.iter().map(|(name, _)| name.as_str()).collect();
         if !order.iter().all(|c| history.link_exists(c)) {
             if history.attr_names().map_err(&err)?.iter().any(|a| a == "columns") {
