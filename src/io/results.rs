@@ -327,8 +327,9 @@ impl ResultsFile {
         }
         let err = h5err(&self.path);
         let history = self.file.group("history").map_err(&err)?;
-        let n = self.increments; // rows already written
-                                 // the columns in the order the run prints them (HDF5 lists members alphabetically)
+        // rows already written
+        let n = self.increments;
+        // the columns in the order the run prints them (HDF5 lists members alphabetically)
         let order: Vec<&str> = columns.iter().map(|(name, _)| name.as_str()).collect();
         if !order.iter().all(|c| history.link_exists(c)) {
             if history.attr_names().map_err(&err)?.iter().any(|a| a == "columns") {
