@@ -234,22 +234,27 @@ pub fn mesh(p: &BellowsParams) -> Result<(Mesh, MeshSets)> {
             out.add_surface(&mesh, name, edges.clone());
         }
     }
-    // the wetted boundary: bores of tube A (before the sleeve), sleeve, tube B (beyond it) and
-    // the pack's inside over the convolutions
-    let wetted: Vec<Edge> = sets.surfaces["tube_a_inner"]
-        .iter()
-        .chain(&sets.surfaces["sleeve_inner"])
-        .chain(&sets.surfaces["tube_b_inner"])
-        .chain(&sets.surfaces["ply1_inner"])
-        .copied()
-        .filter(|&e| {
-            let nodes = mesh.edge_nodes(e);
-            let z = nodes.map(|n| mesh.coords[n][1]);
-            let r = nodes.map(|n| mesh.coords[n][0]);
-            let on_tube = r.iter().all(|&r| (r - ri).abs() < 1e-9);
-            // tube bores are wetted only where the sleeve does not cover them
-            !(on_tube && z.iter().all(|&z| z > sa - 1e-9 && z < sb + 1e-9))
-        })
+    // the wetted boundary: everything the fluid reaches. The sleeve is a liner, not a seal, so
+    // the fluid fills the cavity between it and the bellows: the bores of tube A (before the
+    // sleeve) and tube B (beyond it), the sleeve's bore and both its end faces, and the
+    // cavity's walls: the sleeve's outside, the tube end faces (tube A's at z = za, tube B's
+    // at z = zb) and the pack's inside over the convolutions. The sliding fit of the sleeve in
+    // tube B's bore is a contact interface and carries no pressure (a film there would press
+    // both faces alike). Faces are chosen in the reference configuration.
+    let surface = |name: &str| sets.surfaces[name].iter().copied();
+    let tube_bores = surface("tube_a_inner").chain(surface("tube_b_inner")).filter(|&e| {
+        // tube bores are wetted only where the sleeve does not cover them
+        let z = mesh.edge_nodes(e).map(|n| mesh.coords[n][1]);
+        !z.iter().all(|&z| z > sa - 1e-9 && z < sb + 1e-9)
+    });
+    let wetted: Vec<Edge> = tube_bores
+        .chain(surface("sleeve_inner"))
+        .chain(surface("sleeve_bottom"))
+        .chain(surface("sleeve_top"))
+        .chain(surface("sleeve_outer").filter(|&e| mesh.edge_nodes(e).iter().all(|&n| mesh.coords[n][1] > za - 1e-9 && mesh.coords[n][1] < zb + 1e-9)))
+        .chain(surface("tube_a_top"))
+        .chain(surface("tube_b_bottom"))
+        .chain(surface("ply1_inner"))
         .collect();
     out.add_surface(&mesh, "wetted", wetted);
     Ok((mesh, out))
@@ -423,6 +428,41 @@ mod tests {
             }
         }
         assert!(used.iter().all(|&u| u));
+    }
+
+    /// The fluid's boundary is unbroken but for the pipe's open ends (z = 0 and L) and the
+    /// sliding fit of the sleeve in tube B (z = zb to zb + overlap, a node on each body at
+    /// either end): every other wetted edge end is shared by exactly two wetted edges.
+    #[test]
+    fn the_wetted_surface_is_the_whole_fluid_boundary() {
+        let p = BellowsParams::default();
+        let (mesh, sets) = mesh(&p).unwrap();
+        let mut ends: HashMap<usize, usize> = HashMap::new();
+        for &e in &sets.surfaces["wetted"] {
+            let [a, b, _] = mesh.edge_nodes(e);
+            *ends.entry(a).or_default() += 1;
+            *ends.entry(b).or_default() += 1;
+        }
+        let mut open: Vec<[f64; 2]> = ends.iter().filter(|(_, &k)| k != 2).map(|(&n, _)| mesh.coords[n]).collect();
+        open.sort_by(|a, b| a[1].total_cmp(&b[1]));
+        let ri = p.tube_inner_radius;
+        let (zb, sb) = (p.length - p.tube_length, p.length - p.tube_length + p.sleeve_overlap);
+        assert_eq!(open, vec![[ri, 0.0], [ri, zb], [ri, zb], [ri, sb], [ri, sb], [ri, p.length]], "the wetted boundary has gaps");
+        // the faces facing the cavity and the sleeve's ends are in it: the axial pressure
+        // force on tube A and the sleeve (per radian, p = 1) is that of tube A's end annulus
+        let on_a_side = |e: &Edge| sets.element_sets["tube_a"].contains(&e.element) || sets.element_sets["sleeve"].contains(&e.element);
+        let axial: f64 = sets.surfaces["wetted"]
+            .iter()
+            .filter(|e| on_a_side(e))
+            .map(|&e| {
+                // the z-force of p = 1 on an edge from a to b (body on its left, outward
+                // normal on its right) is the integral of r dr: (r_b^2 - r_a^2) / 2
+                let [a, b, _] = mesh.edge_nodes(e).map(|n| mesh.coords[n]);
+                (b[0] * b[0] - a[0] * a[0]) / 2.0
+            })
+            .sum();
+        let annulus = (p.tube_outer_radius().powi(2) - p.tube_inner_radius.powi(2)) / 2.0;
+        assert!((axial.abs() - annulus).abs() < 1e-9 * annulus, "axial force on tube A and sleeve {axial}, annulus {annulus}");
     }
 
     #[test]

@@ -107,6 +107,25 @@ impl Builder {
         n
     }
 
+    /// An added mid-side node joins every node set that holds both corners of its edge, so that
+    /// a constraint on the set holds the whole (quadratic) edge, as it holds CalculiX's linear
+    /// edge between the two corners.
+    pub(super) fn join_midside_nodes_to_sets(&mut self) {
+        if self.added_midside.is_empty() {
+            return;
+        }
+        for set in self.node_sets.values_mut() {
+            set.sort_unstable();
+            set.dedup();
+            let holds = |n: &usize| set.binary_search(n).is_ok();
+            let mut joined: Vec<usize> = self.added_midside.iter().filter(|((a, b), _)| holds(a) && holds(b)).map(|(_, &m)| m).collect();
+            if !joined.is_empty() {
+                set.append(&mut joined);
+                set.sort_unstable();
+            }
+        }
+    }
+
     /// The nodes of data field `k`: a node number or a node set name.
     pub(super) fn node_items(&self, d: &DataLine, keyword: &str, k: usize) -> Result<Vec<usize>> {
         let f = d.fields.get(k).map(|s| s.as_str()).unwrap_or("");

@@ -108,6 +108,8 @@ struct StepDef {
     temperature: Option<Target<()>>,
     /// *DLOAD, OP=NEW: loads of earlier steps not restated are removed.
     new_loads: bool,
+    /// A procedure card (*STATIC) was read.
+    has_procedure: bool,
 }
 
 #[derive(Default)]
@@ -217,8 +219,16 @@ fn build(cards: &[Card], source_text: String) -> Result<InpModel> {
                 if !b.in_step {
                     return Err(card.error("without a *STEP"));
                 }
+                let step = b.steps.last().expect("in a step");
+                if !step.has_procedure {
+                    return Err(error_at(&step.at, "STEP", "has no procedure card: slideline runs *STATIC steps (add *STATIC after *STEP)"));
+                }
                 b.in_step = false;
             }
+            "CONTROLS" => {
+                b.notes.push(format!("*CONTROLS ({}) ignored: slideline's own convergence controls apply", card.at));
+            }
+            "TIME POINTS" => b.time_points(card)?,
             kw if OUTPUT_REQUESTS.contains(&kw) => {
                 b.output_requests.insert(format!("*{kw}"));
             }
@@ -238,6 +248,7 @@ impl Builder {
             let at = &self.steps.last().expect("in a step").at;
             return Err(error_at(at, "STEP", "has no *END STEP"));
         }
+        self.join_midside_nodes_to_sets();
         for (kind, n) in &self.element_types {
             let how = match kind.as_str() {
                 "CAX8" => "slideline's 8-node axisymmetric quadrilateral (3 x 3 Gauss points, F-bar)",
@@ -414,8 +425,9 @@ mod tests {
         let shared = m.mesh.elements[0][5]; // side 2-3 of element 1 ...
         assert_eq!(m.mesh.elements[1][7], shared); // ... is side 3-2 of element 2
         assert_eq!(m.mesh.coords[shared], [12.0, 1.0]);
-        // GENERATE plus a second card extend one set; set names are case-insensitive
-        assert_eq!(m.node_sets["BOTTOM"].len(), 3);
+        // GENERATE plus a second card extend one set; set names are case-insensitive; the
+        // mid-side nodes of edges 1-2 and 2-5 join it
+        assert_eq!(m.node_sets["BOTTOM"].len(), 5);
         assert_eq!(m.element_material, vec![0, 0]);
         // a two-point *PLASTIC table is linear hardening up to its last point
         let h = m.materials[0].plasticity.unwrap();

@@ -103,6 +103,7 @@ impl Builder {
             pressures: Vec::new(),
             temperature: None,
             new_loads: false,
+            has_procedure: false,
         });
         self.in_step = true;
         Ok(())
@@ -114,6 +115,10 @@ impl Builder {
             self.notes.push(format!("*STATIC ({}): SOLVER= ignored, the linear solver is PETSc's (options after `--`)", card.at));
         }
         let step = self.step_mut(card)?;
+        if step.has_procedure {
+            return Err(card.error("a step takes one procedure card"));
+        }
+        step.has_procedure = true;
         if let Some(d) = card.data.first() {
             let period = d.number("STATIC", 1, "time period", Some(1.0))?;
             let initial = d.number("STATIC", 0, "initial increment", Some(period))?;
@@ -124,6 +129,30 @@ impl Builder {
             step.initial = initial;
             step.minimum = d.fields.get(2).filter(|f| !f.is_empty()).map(|_| d.number("STATIC", 2, "minimum increment", None)).transpose()?;
         }
+        Ok(())
+    }
+
+    /// *TIME POINTS: read (its times must increase) and noted; the results file holds every
+    /// increment, a superset of the listed times' output.
+    pub(super) fn time_points(&mut self, card: &Card) -> Result<()> {
+        card.only(&["NAME", "GENERATE", "TIME"])?;
+        let name = card.required("NAME")?.to_uppercase();
+        let mut times = Vec::new();
+        for d in &card.data {
+            for k in (0..d.fields.len()).filter(|&k| !d.fields[k].is_empty()) {
+                times.push(d.number("TIME POINTS", k, "time", None)?);
+            }
+        }
+        if card.has("GENERATE") && times.len() % 3 != 0 {
+            return Err(card.error("GENERATE takes (start, end, increment) triples"));
+        }
+        if !card.has("GENERATE") && times.windows(2).any(|w| w[1] <= w[0]) {
+            return Err(card.error(format!("time points {name}: the times must increase")));
+        }
+        self.notes.push(format!(
+            "*TIME POINTS {name} ({}): output requests using it are answered at every increment (the listed times are not forced as increment ends)",
+            card.at
+        ));
         Ok(())
     }
 
@@ -188,11 +217,23 @@ impl Builder {
             let label = d.fields.get(1).map(|s| s.to_uppercase()).unwrap_or_default();
             let side =
                 face_side(&label, 'P').ok_or_else(|| error_at(&d.at, "DLOAD", format!("load type '{label}': slideline reads face pressures P1 to P4")))?;
-            let elements = self.element_items(d, "DLOAD", 0)?;
             let value = d.number("DLOAD", 2, "magnitude", None)?;
-            // the loaded faces as a surface named after the element set and face
-            let surface = format!("DLOAD_{}_{label}", d.fields[0].to_uppercase());
-            self.surfaces.insert(surface.clone(), elements.into_iter().map(|element| Edge { element, side }).collect());
+            let target = d.fields[0].to_uppercase();
+            // as CalculiX's dloads.f: an element (set) first, then an element-face surface,
+            // whose own faces are loaded (the label's face number is then not used)
+            let is_elements = target.chars().all(|c| c.is_ascii_digit()) || self.element_sets.contains_key(&target);
+            let surface = if !is_elements && self.surfaces.contains_key(&target) {
+                target
+            } else {
+                let elements = self.element_items(d, "DLOAD", 0)?;
+                // the loaded faces as a surface named after the element set and face
+                let surface = format!("DLOAD_{target}_{label}");
+                self.surfaces.insert(surface.clone(), elements.into_iter().map(|element| Edge { element, side }).collect());
+                surface
+            };
+            if loads.iter().any(|l: &Target<String>| l.key == surface) {
+                return Err(error_at(&d.at, "DLOAD", format!("{surface} is loaded twice in one *DLOAD card: give one pressure per face")));
+            }
             loads.push(Target { key: surface, value, amplitude: amplitude.clone() });
         }
         let step = self.step_mut(card)?;
