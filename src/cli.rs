@@ -181,6 +181,9 @@ pub struct BellowsArgs {
     /// Write the mesh (Gmsh .msh next to --output) and stop.
     #[arg(long)]
     pub mesh_only: bool,
+    /// Write the model as a CalculiX/Abaqus deck (`slideline run` and `ccx` both run it) and stop.
+    #[arg(long, value_name = "FILE.inp")]
+    pub export_inp: Option<PathBuf>,
     /// Results file (HDF5).
     #[arg(short, long, default_value = "bellows.h5")]
     pub output: PathBuf,

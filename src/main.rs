@@ -94,6 +94,16 @@ fn main() -> ExitCode {
                 Ok(p) => p,
                 Err(e) => return fail(&e, true),
             };
+            if let Some(path) = &args.export_inp {
+                // no MPI needed: every rank would write the same file
+                return match model::bellows::model(&params).and_then(|m| model::inp::write(&m, &params.title(), path)) {
+                    Ok(()) => {
+                        println!("deck written to {}", path.display());
+                        ExitCode::SUCCESS
+                    }
+                    Err(e) => fail(&e, true),
+                };
+            }
             let session = match PetscSession::initialize(&args.petsc) {
                 Ok(s) => s,
                 Err(e) => return fail(&e, true),

@@ -58,8 +58,8 @@
 
 use super::mesh::{blocks, rectangle, Block, MeshSets};
 use super::{
-    gmsh, AugmentedLagrangian, Component, ContactIntegration, ContactPair, Kinematics, Material, Model, Penalty, Plasticity, PrescribedDisplacement, Pressure,
-    Step, SteppingControls,
+    default_capture_distance, gmsh, AugmentedLagrangian, Component, ContactIntegration, ContactPair, Kinematics, Material, Model, Penalty, Plasticity,
+    PrescribedDisplacement, Pressure, Step, SteppingControls,
 };
 use crate::error::{Error, Result};
 use serde::Deserialize;
@@ -349,12 +349,12 @@ pub fn parse(text: &str, path: &Path) -> Result<Model> {
             (None, Some(v)) => Penalty::Factor(v),
             _ => return Err(Error::input(format!("contact '{name}': give exactly one of penalty (N/mm^3) or penalty_factor (kappa in eps = kappa E / h)"))),
         };
-        // default capture distance: twice the longest edge of the master surface
         let capture_distance = match c.capture_distance {
             Some(d) => d,
             None => {
-                let edges = surfaces.get(&c.master).ok_or_else(|| Error::input(format!("contact '{name}': unknown surface '{}'", c.master)))?;
-                2.0 * edges.iter().map(|&e| mesh.edge_length(e)).fold(0.0, f64::max)
+                let edges = |s: &String| surfaces.get(s).map(|v| v.as_slice()).ok_or_else(|| Error::input(format!("contact '{name}': unknown surface '{s}'")));
+                let (master, slave) = (edges(&c.master)?, edges(&c.slave)?);
+                default_capture_distance(&mesh, slave, master, c.two_pass)
             }
         };
         let augmented_lagrangian = c

@@ -28,6 +28,13 @@ pub fn read_deck(path: &Path) -> Result<(Model, Vec<String>)> {
     }
 }
 
+/// A contact pair's default capture distance: twice the longest edge a slave node may meet
+/// (the master's, and in a two-pass pair the slave's too).
+pub fn default_capture_distance(mesh: &Mesh, slave: &[Edge], master: &[Edge], two_pass: bool) -> f64 {
+    let met = if two_pass { slave } else { &[] };
+    2.0 * master.iter().chain(met).map(|&e| mesh.edge_length(e)).fold(0.0, f64::max)
+}
+
 /// Displacement component in the (r, z) plane.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
 pub enum Component {

@@ -95,6 +95,14 @@ impl BellowsParams {
         self.plies as f64 * self.ply_thickness
     }
 
+    /// One line naming the joint (an exported deck's heading).
+    pub fn title(&self) -> String {
+        format!(
+            "slideline bellows: {} plies x {} mm, {} convolutions, pitch {}, height {}; {} MPa at {} degC, {} mm compression in {} increments, penalty {} N/mm^3",
+            self.plies, self.ply_thickness, self.convolutions, self.pitch, self.height, self.pressure, self.temperature, self.displacement, self.increments, self.penalty
+        )
+    }
+
     /// Parameters from a TOML file of `field = value` lines (unknown fields are an error).
     pub fn from_toml_file(path: &std::path::Path) -> Result<Self> {
         let text = std::fs::read_to_string(path).map_err(|source| Error::Read { path: path.to_path_buf(), source })?;

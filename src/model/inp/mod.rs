@@ -20,9 +20,12 @@ pub mod cards;
 mod mesh;
 mod properties;
 mod steps;
+mod write;
+
+pub use write::{to_inp, write};
 
 use super::mesh::{Edge, Mesh};
-use super::{Component, ContactIntegration, ContactPair, Kinematics, Material, Model, Penalty, Plasticity, SteppingControls};
+use super::{Component, ContactIntegration, Kinematics, Material, Model, Plasticity, SteppingControls};
 use crate::error::{Error, Result};
 use cards::{error_at, Card, DataLine, Location};
 use std::collections::{BTreeMap, BTreeSet, HashMap};
@@ -305,32 +308,7 @@ impl Builder {
         };
         let steps = self.expand_steps(reference_temperature)?;
 
-        let mut contacts = Vec::new();
-        for (slave, master, interaction, integration, at) in &self.contacts {
-            let slope = self.interactions[interaction]
-                .slope
-                .ok_or_else(|| error_at(at, "CONTACT PAIR", format!("interaction {interaction} has no *SURFACE BEHAVIOR")))?;
-            let longest = self.surfaces[master].iter().map(|&e| self.mesh.edge_length(e)).fold(0.0, f64::max);
-            let name = if slave == master { slave.clone() } else { format!("{slave}-{master}") };
-            self.notes.push(format!(
-                "contact {name}: frictionless penalty {slope} N/mm^3 (the LINEAR slope), {}",
-                match integration {
-                    ContactIntegration::Segment => "gap integrated along the slave surface (SURFACE TO SURFACE)",
-                    ContactIntegration::NodeToSegment => "node-to-segment slide line (NODE TO SURFACE)",
-                }
-            ));
-            contacts.push(ContactPair {
-                name,
-                slave: slave.clone(),
-                master: master.clone(),
-                two_pass: false,
-                integration: *integration,
-                penalty: Penalty::Stiffness(slope),
-                capture_distance: 2.0 * longest,
-                augmented_lagrangian: None,
-                exclude_neighbours: 2,
-            });
-        }
+        let contacts = self.contact_pairs()?;
         let mut stepping = SteppingControls::default();
         if let Some(min) = self.steps.iter().filter_map(|s| s.minimum.map(|m| m / s.period)).reduce(f64::min) {
             stepping.min_increment = min.clamp(1e-12, 1.0);

@@ -4,7 +4,7 @@
 use super::cards::{error_at, normalise, Card};
 use super::{single, Builder};
 use crate::error::Result;
-use crate::model::ContactIntegration;
+use crate::model::{default_capture_distance, ContactIntegration, ContactPair, Penalty};
 
 impl Builder {
     pub(super) fn material_property(&mut self, card: &Card) -> Result<()> {
@@ -106,5 +106,62 @@ impl Builder {
             self.contacts.push((name(0)?, name(1)?, interaction.clone(), integration, d.at.clone()));
         }
         Ok(())
+    }
+
+    /// The deck's contact pairs as slideline's: a pair listed both ways with one interaction
+    /// is one two-pass pair (each direction carries half its force, so its penalty is twice
+    /// the slope: the same forces as CalculiX's two pairs); a pair listed twice is refused.
+    pub(super) fn contact_pairs(&mut self) -> Result<Vec<ContactPair>> {
+        let mut contacts: Vec<ContactPair> = Vec::new();
+        let mut merged = vec![false; self.contacts.len()];
+        for (i, (slave, master, interaction, integration, at)) in self.contacts.iter().enumerate() {
+            if merged[i] {
+                continue;
+            }
+            let slope = self.interactions[interaction]
+                .slope
+                .ok_or_else(|| error_at(at, "CONTACT PAIR", format!("interaction {interaction} has no *SURFACE BEHAVIOR")))?;
+            if let Some((_, _, _, _, first)) = self.contacts[..i].iter().find(|c| &c.0 == slave && &c.1 == master) {
+                return Err(error_at(at, "CONTACT PAIR", format!("the pair {slave}, {master} is already defined at {first}")));
+            }
+            let reverse = (slave != master)
+                .then(|| (i + 1..self.contacts.len()).find(|&j| !merged[j] && self.contacts[j].0 == *master && self.contacts[j].1 == *slave))
+                .flatten();
+            let two_pass = match reverse {
+                Some(j) if self.contacts[j].2 == *interaction && self.contacts[j].3 == *integration => {
+                    merged[j] = true;
+                    true
+                }
+                Some(j) => {
+                    return Err(error_at(
+                        &self.contacts[j].4,
+                        "CONTACT PAIR",
+                        format!("{master}, {slave} reverses the pair at {at} with another interaction or type: slideline's two-pass pair takes one"),
+                    ))
+                }
+                None => false,
+            };
+            let name = if slave == master { slave.clone() } else { format!("{slave}-{master}") };
+            self.notes.push(format!(
+                "contact {name}: frictionless penalty {slope} N/mm^3 (the LINEAR slope), {}{}",
+                match integration {
+                    ContactIntegration::Segment => "gap integrated along the slave surface (SURFACE TO SURFACE)",
+                    ContactIntegration::NodeToSegment => "node-to-segment slide line (NODE TO SURFACE)",
+                },
+                if two_pass { "; listed both ways: one two-pass pair, each direction carrying half the force of penalty 2 x slope" } else { "" }
+            ));
+            contacts.push(ContactPair {
+                name,
+                slave: slave.clone(),
+                master: master.clone(),
+                two_pass,
+                integration: *integration,
+                penalty: Penalty::Stiffness(if two_pass { 2.0 * slope } else { slope }),
+                capture_distance: default_capture_distance(&self.mesh, &self.surfaces[slave], &self.surfaces[master], two_pass),
+                augmented_lagrangian: None,
+                exclude_neighbours: 2,
+            });
+        }
+        Ok(contacts)
     }
 }

@@ -1,0 +1,184 @@
+//! A [`Model`] written as a CalculiX/Abaqus deck that both CalculiX and slideline's reader run:
+//! CAX8 mesh, node and element sets, element-face surfaces, materials (*PLASTIC as a table),
+//! one *SURFACE INTERACTION and *CONTACT PAIR per pair with its penalty as the LINEAR slope,
+//! *DLOAD per loaded face label, the steps with *STATIC, DIRECT (fixed increments), and
+//! *NODE PRINT of every constrained set's reaction.
+//!
+//! slideline's two-pass pair (each direction carrying half the force) is written as two pairs,
+//! one per direction, each with half the penalty: the same forces, and what CalculiX needs to
+//! treat both surfaces alike.
+
+use crate::error::{Error, Result};
+use crate::model::{Component, ContactIntegration, Model, Penalty, Plasticity};
+use std::collections::BTreeSet;
+use std::fmt::Write as _;
+use std::path::Path;
+
+/// Plastic strain of the last point of a linear-hardening table: past any strain a run reaches,
+/// since slideline's (and Abaqus') tables are flat after their last point.
+const LINEAR_TABLE_END_STRAIN: f64 = 10.0;
+
+/// Writes `model` to `path` as an .inp deck; `title` heads it.
+pub fn write(model: &Model, title: &str, path: &Path) -> Result<()> {
+    let text = to_inp(model, title)?;
+    std::fs::write(path, text).map_err(|e| Error::Output { path: path.to_path_buf(), message: e.to_string() })
+}
+
+/// The deck's text.
+pub fn to_inp(model: &Model, title: &str) -> Result<String> {
+    let mut out = String::new();
+    let w = &mut out;
+    let mesh = &model.mesh;
+    let _ = writeln!(w, "*HEADING\n{title}\n** written by slideline {}; units mm, N, MPa, degC", env!("CARGO_PKG_VERSION"));
+    let _ = writeln!(w, "*NODE, NSET=NALL");
+    for (id, c) in mesh.node_ids.iter().zip(&mesh.coords) {
+        let _ = writeln!(w, "{id}, {}, {}", num(c[0]), num(c[1]));
+    }
+    let _ = writeln!(w, "*ELEMENT, TYPE=CAX8, ELSET=EALL");
+    for (id, conn) in mesh.element_ids.iter().zip(&mesh.elements) {
+        let nodes: Vec<String> = conn.iter().map(|&n| mesh.node_ids[n].to_string()).collect();
+        let _ = writeln!(w, "{id}, {}", nodes.join(", "));
+    }
+    for (name, nodes) in &model.node_sets {
+        listing(w, &format!("*NSET, NSET={}", checked_name(name)?), nodes.iter().map(|&n| mesh.node_ids[n]));
+    }
+    for (name, elements) in &model.element_sets {
+        listing(w, &format!("*ELSET, ELSET={}", checked_name(name)?), elements.iter().map(|&e| mesh.element_ids[e]));
+    }
+    let contact_surfaces: BTreeSet<&str> = model.contacts.iter().flat_map(|c| [c.slave.as_str(), c.master.as_str()]).collect();
+    for name in contact_surfaces {
+        let _ = writeln!(w, "*SURFACE, NAME={}, TYPE=ELEMENT", checked_name(name)?);
+        for e in model.surface(name)? {
+            let _ = writeln!(w, "{}, S{}", mesh.element_ids[e.element], e.side + 1);
+        }
+    }
+    // loaded faces: an element set per surface and face label, the form every reader knows
+    let mut loaded: Vec<(String, Vec<(String, usize)>)> = Vec::new();
+    for surface in model.steps.iter().flat_map(|s| s.pressures.iter().map(|p| p.surface.as_str())).collect::<BTreeSet<_>>() {
+        let mut labels = Vec::new();
+        for side in 0..4 {
+            let elements: Vec<u64> = model.surface(surface)?.iter().filter(|e| e.side == side).map(|e| mesh.element_ids[e.element]).collect();
+            if !elements.is_empty() {
+                let elset = format!("{}_P{}", checked_name(surface)?, side + 1);
+                listing(w, &format!("*ELSET, ELSET={elset}"), elements.into_iter());
+                labels.push((elset, side + 1));
+            }
+        }
+        loaded.push((surface.to_string(), labels));
+    }
+
+    for (k, m) in model.materials.iter().enumerate() {
+        let _ = writeln!(w, "*MATERIAL, NAME={}", checked_name(&m.name)?);
+        let _ = writeln!(w, "*ELASTIC\n{}, {}", num(m.youngs_modulus), num(m.poissons_ratio));
+        let _ = writeln!(w, "*EXPANSION, ZERO={}\n{}", num(model.reference_temperature), num(m.thermal_expansion));
+        match m.plasticity {
+            None => {}
+            Some(Plasticity::Linear { yield_stress, modulus }) => {
+                let end = yield_stress + modulus * LINEAR_TABLE_END_STRAIN;
+                let _ = writeln!(w, "*PLASTIC\n{}, 0.\n{}, {}", num(yield_stress), num(end), num(LINEAR_TABLE_END_STRAIN));
+            }
+            Some(Plasticity::Table { points, len }) => {
+                let _ = writeln!(w, "*PLASTIC");
+                for (strain, stress) in &points[..len] {
+                    let _ = writeln!(w, "{}, {}", num(*stress), num(*strain));
+                }
+            }
+        }
+        let elements = (0..mesh.elements.len()).filter(|&e| model.element_material[e] == k).map(|e| mesh.element_ids[e]);
+        let elset = format!("MATERIAL_{}", checked_name(&m.name)?);
+        listing(w, &format!("*ELSET, ELSET={elset}"), elements);
+        let _ = writeln!(w, "*SOLID SECTION, ELSET={elset}, MATERIAL={}", checked_name(&m.name)?);
+    }
+
+    for c in &model.contacts {
+        let Penalty::Stiffness(penalty) = c.penalty else {
+            return Err(Error::input(format!("contact '{}': a dimensionless penalty factor has no .inp form: give the penalty in N/mm^3", c.name)));
+        };
+        let two_pass = c.two_pass && c.slave != c.master;
+        let slope = if two_pass { penalty / 2.0 } else { penalty };
+        let kind = match c.integration {
+            ContactIntegration::Segment => "SURFACE TO SURFACE",
+            ContactIntegration::NodeToSegment => "NODE TO SURFACE",
+        };
+        let name = checked_name(&c.name)?;
+        let _ = writeln!(w, "*SURFACE INTERACTION, NAME={name}\n*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR\n{}", num(slope));
+        let _ = writeln!(w, "*CONTACT PAIR, INTERACTION={name}, TYPE={kind}\n{}, {}", c.slave, c.master);
+        if two_pass {
+            let _ = writeln!(w, "*CONTACT PAIR, INTERACTION={name}, TYPE={kind}\n{}, {}", c.master, c.slave);
+        }
+    }
+    let _ = writeln!(w, "*INITIAL CONDITIONS, TYPE=TEMPERATURE\nNALL, {}", num(model.reference_temperature));
+
+    let constrained: BTreeSet<&str> = model.steps.iter().flat_map(|s| s.displacements.iter().map(|d| d.node_set.as_str())).collect();
+    let mut time = 0.0;
+    for step in &model.steps {
+        let period = step.time_span.map_or(1.0, |[a, b]| b - a);
+        if let Some([start, _]) = step.time_span {
+            if (start - time).abs() > 1e-12 * period.max(1.0) {
+                return Err(Error::input(format!("step '{}' starts at time {start}, not where the previous one ended ({time})", step.name)));
+            }
+        }
+        time += period;
+        let nlgeom = if model.kinematics == crate::model::Kinematics::Finite { ", NLGEOM" } else { "" };
+        let _ = writeln!(w, "** step {}\n*STEP{nlgeom}, INC=1000000", step.name);
+        let _ = writeln!(w, "*STATIC, DIRECT\n{}, {}", num(period / step.increments as f64), num(period));
+        if !step.displacements.is_empty() {
+            let _ = writeln!(w, "*BOUNDARY");
+            for d in &step.displacements {
+                let dof = match d.component {
+                    Component::R => 1,
+                    Component::Z => 2,
+                };
+                let _ = writeln!(w, "{}, {dof}, {dof}, {}", d.node_set, num(d.value));
+            }
+        }
+        if !step.pressures.is_empty() {
+            let _ = writeln!(w, "*DLOAD");
+            for p in &step.pressures {
+                let (_, labels) = loaded.iter().find(|(s, _)| s == &p.surface).expect("every loaded surface listed");
+                for (elset, face) in labels {
+                    let _ = writeln!(w, "{elset}, P{face}, {}", num(p.value));
+                }
+            }
+        }
+        if let Some(t) = step.temperature {
+            let _ = writeln!(w, "*TEMPERATURE\nNALL, {}", num(t));
+        }
+        for set in &constrained {
+            let _ = writeln!(w, "*NODE PRINT, NSET={set}, TOTALS=ONLY\nRF");
+        }
+        let _ = writeln!(w, "*NODE FILE\nU\n*EL FILE\nS, PEEQ\n*END STEP");
+    }
+    Ok(out)
+}
+
+/// A number in at most 20 characters (CalculiX reads fields of 20): the shortest text that
+/// reads back to the same double where it fits, else 14 digits after the point.
+fn num(x: f64) -> String {
+    let shortest = format!("{x:?}");
+    if shortest.len() <= 20 {
+        shortest
+    } else {
+        format!("{x:.13e}")
+    }
+}
+
+/// `keyword` and its members, 16 numbers a line.
+fn listing(w: &mut String, keyword: &str, ids: impl Iterator<Item = u64>) {
+    let ids: Vec<String> = ids.map(|i| i.to_string()).collect();
+    let _ = writeln!(w, "{keyword}");
+    for chunk in ids.chunks(16) {
+        let _ = writeln!(w, "{}", chunk.join(", "));
+    }
+}
+
+/// A name both readers take as one word: letters, digits and underscores, at most 80 long.
+fn checked_name(name: &str) -> Result<&str> {
+    let ok =
+        !name.is_empty() && name.len() <= 80 && name.chars().all(|c| c.is_ascii_alphanumeric() || c == '_') && !name.starts_with(|c: char| c.is_ascii_digit());
+    if ok {
+        Ok(name)
+    } else {
+        Err(Error::input(format!("name '{name}' cannot be written to an .inp deck: use letters, digits and underscores, starting with a letter")))
+    }
+}
