@@ -196,16 +196,19 @@ pub struct BellowsArgs {
 }
 
 impl BellowsArgs {
-    /// The joint's parameters: the defaults (the seed case) or the `--params` file, then every
-    /// flag given on the command line (`given(id)`), then `--quick`.
+    /// The joint's parameters: the defaults (the seed case) or the `--params` file, then
+    /// `--quick`, then every flag given on the command line (`given(id)`): a flag given
+    /// explicitly wins over both.
     pub fn params(&self, given: impl Fn(&str) -> bool) -> Result<model::bellows::BellowsParams, Error> {
         let mut p = match &self.params {
             Some(path) => model::bellows::BellowsParams::from_toml_file(path)?,
             None => model::bellows::BellowsParams::default(),
         };
-        let from_file = self.params.is_some();
+        if self.quick {
+            p = p.quick();
+        }
         let mut take = |id: &str, set: &mut dyn FnMut(&mut model::bellows::BellowsParams)| {
-            if !from_file || given(id) {
+            if given(id) {
                 set(&mut p);
             }
         };
@@ -224,6 +227,6 @@ impl BellowsArgs {
         take("hardening", &mut |p| p.hardening_modulus = self.hardening);
         take("ply_element_length", &mut |p| p.ply_element_length = self.ply_element_length);
         take("ply_elements", &mut |p| p.ply_elements = self.ply_elements);
-        Ok(if self.quick { p.quick() } else { p })
+        Ok(p)
     }
 }

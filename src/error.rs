@@ -24,7 +24,7 @@ pub enum Error {
     #[error("step {step} did not converge at load factor {load_factor:.6}: {reason}")]
     NotConverged { step: String, load_factor: f64, reason: String },
 
-    #[error("HDF5 output {path}: {message}")]
+    #[error("cannot write {path}: {message}")]
     Output { path: PathBuf, message: String },
 
     #[error("MPI: {0}")]

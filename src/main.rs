@@ -80,10 +80,16 @@ fn post(args: &PostArgs) -> Result<(), Error> {
 }
 
 fn main() -> ExitCode {
-    let matches = Cli::command().get_matches();
+    let matches = match Cli::command().try_get_matches() {
+        Ok(m) => m,
+        // under mpirun every rank parses the same line: one of them says what is wrong
+        Err(e) if launched_as_rank_zero() => e.exit(),
+        Err(e) => return ExitCode::from(e.exit_code() as u8),
+    };
     let cli = match Cli::from_arg_matches(&matches) {
         Ok(cli) => cli,
-        Err(e) => e.exit(),
+        Err(e) if launched_as_rank_zero() => e.exit(),
+        Err(e) => return ExitCode::from(e.exit_code() as u8),
     };
     match cli.command {
         Command::Bellows(args) => {
@@ -92,7 +98,7 @@ fn main() -> ExitCode {
             // bad flags and parameter files are reported before MPI and PETSc start
             let params = match args.params(given).and_then(|p| p.validate().map(|()| p)) {
                 Ok(p) => p,
-                Err(e) => return fail(&e, true),
+                Err(e) => return fail(&e, launched_as_rank_zero()),
             };
             if let Some(path) = &args.export_inp {
                 // no MPI needed: every rank would write the same file
@@ -101,12 +107,15 @@ fn main() -> ExitCode {
                         println!("deck written to {}", path.display());
                         ExitCode::SUCCESS
                     }
-                    Err(e) => fail(&e, true),
+                    Err(e) => fail(&e, launched_as_rank_zero()),
                 };
+            }
+            if let Err(e) = slideline::io::check_output_path(&args.output, None) {
+                return fail(&e, launched_as_rank_zero());
             }
             let session = match PetscSession::initialize(&args.petsc) {
                 Ok(s) => s,
-                Err(e) => return fail(&e, true),
+                Err(e) => return fail(&e, launched_as_rank_zero()),
             };
             if args.mesh_only {
                 return match write_mesh(&session, &params, &args.output) {
@@ -125,7 +134,7 @@ fn main() -> ExitCode {
         Command::PenaltyStudy(args) => {
             let session = match PetscSession::initialize(&args.petsc) {
                 Ok(s) => s,
-                Err(e) => return fail(&e, true),
+                Err(e) => return fail(&e, launched_as_rank_zero()),
             };
             let root = session.world().rank() == 0;
             match penalty_study(&session, &args) {
@@ -138,12 +147,15 @@ fn main() -> ExitCode {
             Err(e) => fail(&e, true),
         },
         Command::Run { deck, output, quiet, petsc } => {
+            let output = output.unwrap_or_else(|| PathBuf::from(deck.file_stem().unwrap_or_default()).with_extension("h5"));
+            if let Err(e) = slideline::io::check_output_path(&output, Some(&deck)) {
+                return fail(&e, launched_as_rank_zero());
+            }
             let session = match PetscSession::initialize(&petsc) {
                 Ok(s) => s,
-                Err(e) => return fail(&e, true),
+                Err(e) => return fail(&e, launched_as_rank_zero()),
             };
             let root = session.world().rank() == 0;
-            let output = output.unwrap_or_else(|| PathBuf::from(deck.file_stem().unwrap_or_default()).with_extension("h5"));
             let model = model::read_deck(&deck).map(|(m, notes)| {
                 if root && !quiet {
                     notes.iter().for_each(|note| println!("note: {note}"));
@@ -208,13 +220,19 @@ fn finish(result: Result<RunSummary, Error>, root: bool, then: impl FnOnce(&RunS
             if root {
                 print_summary(&summary);
                 if let Err(e) = then(&summary) {
-                    return fail(&e, true);
+                    return fail(&e, launched_as_rank_zero());
                 }
             }
             ExitCode::SUCCESS
         }
         Err(e) => fail(&e, root),
     }
+}
+
+/// Whether this process is rank 0 of its launch (or launched alone), read from the launcher's
+/// environment: for messages printed before MPI starts.
+fn launched_as_rank_zero() -> bool {
+    ["OMPI_COMM_WORLD_RANK", "PMI_RANK", "PMIX_RANK"].iter().all(|v| std::env::var(v).map_or(true, |r| r == "0"))
 }
 
 fn fail(e: &Error, print: bool) -> ExitCode {

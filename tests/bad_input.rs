@@ -81,3 +81,72 @@ fn four_node_quadrilaterals_are_refused_by_name() {
     let run = run_deck(&format!("[mesh]\nfile = \"q4.msh\"\n{MATERIAL}[[step]]\n"), &[("q4.msh", &path)], 1, &[]);
     assert_rejected(&run, &["q4.msh:", "element 1", "4-node quadrilateral"]);
 }
+
+/// Values that would run into a meaningless solve are refused while reading, each by name.
+#[test]
+fn non_finite_and_absurd_values_are_refused_when_read() {
+    let step = |extra: &str| format!("[[step]]\nboundary = [ {{ set = \"bottom\", uz = 0.0 }} ]\n{extra}");
+    for (deck, needles) in [
+        (format!("{RECT}{MATERIAL}{}", step("pressure = [ { surface = \"inner\", value = nan } ]\n")), vec!["pressure on 'inner'", "finite"]),
+        (format!("{RECT}{MATERIAL}{}", step("pressure = [ { surface = \"inner\", value = inf } ]\n")), vec!["pressure on 'inner'", "finite"]),
+        (format!("{RECT}{MATERIAL}{}", step("temperature = inf\n")), vec!["temperature", "finite"]),
+        (format!("reference_temperature = nan\n{RECT}{MATERIAL}{}", step("")), vec!["reference temperature", "finite"]),
+        (format!("{RECT}[[material]]\nname = \"fog\"\nyoungs_modulus = 1e-300\npoissons_ratio = 0.3\n{}", step("")), vec!["'fog'", "Young's modulus"]),
+        (format!("{RECT}{MATERIAL}{}", step("increments = 1000000000000\n")), vec!["increments", "1000000000000"]),
+        (
+            format!("{RECT}{MATERIAL}{}", step("pressure = [ { surface = \"inner\", value = 1.0 }, { surface = \"inner\", value = 2.0 } ]\n")),
+            vec!["'inner'", "two pressures"],
+        ),
+        (
+            format!("[mesh]\nrectangle = {{ r = [1.0, 2.0], z = [0.0, 1.0], divisions = [100000, 100000] }}\n{MATERIAL}{}", step("")),
+            vec!["100000 x 100000", "elements"],
+        ),
+    ] {
+        let run = run_deck(&deck, &[], 1, &[]);
+        assert_rejected(&run, &needles);
+    }
+}
+
+#[test]
+fn two_values_on_one_degree_of_freedom_are_refused() {
+    // the same set twice, and two sets sharing the corner node at (1, 0)
+    for boundary in ["{ set = \"bottom\", uz = 0.0 }, { set = \"bottom\", uz = 0.1 }", "{ set = \"bottom\", uz = 0.0 }, { set = \"inner\", uz = 0.1 }"] {
+        let run = run_deck(&format!("{RECT}{MATERIAL}[[step]]\nboundary = [ {boundary} ]\n"), &[], 1, &[]);
+        assert_rejected(&run, &["uz", "0.1", "one degree of freedom takes one value"]);
+    }
+    // the same value twice is one constraint
+    run_deck(&format!("{RECT}{MATERIAL}[[step]]\nboundary = [ {{ set = \"bottom\", uz = 0.0 }}, {{ set = \"inner\", uz = 0.0 }} ]\n"), &[], 1, &[]).assert_ok();
+}
+
+#[test]
+fn a_body_free_to_move_axially_is_refused() {
+    let run = run_deck(
+        &format!("{RECT}{MATERIAL}[[step]]\nboundary = [ {{ set = \"inner\", ur = 0.0 }} ]\npressure = [ {{ surface = \"outer\", value = 1.0 }} ]\n"),
+        &[],
+        1,
+        &[],
+    );
+    assert_rejected(&run, &["free to move along the axis", "prescribe uz"]);
+}
+
+#[test]
+fn duplicate_contact_pair_names_are_refused_when_read() {
+    let blocks = "[[mesh.block]]\nname = \"a\"\nr = [1.0, 2.0]\nz = [0.0, 1.0]\ndivisions = [1, 1]\n[[mesh.block]]\nname = \"b\"\nr = [2.0, 3.0]\nz = [0.0, 1.0]\ndivisions = [1, 1]\n";
+    let pair = "[[contact]]\nname = \"fit\"\nslave = \"b_inner\"\nmaster = \"a_outer\"\npenalty = 1e4\n";
+    let step = "[[step]]\nboundary = [ { set = \"a_bottom\", uz = 0.0 }, { set = \"b_bottom\", uz = 0.0 } ]\n";
+    let run = run_deck(&format!("{blocks}{MATERIAL}{pair}{pair}{step}"), &[], 1, &[]);
+    assert_rejected(&run, &["'fit'", "used twice"]);
+}
+
+#[test]
+fn an_output_path_that_cannot_be_written_is_refused_before_the_solve() {
+    let deck = format!("{RECT}{MATERIAL}{STEP}");
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("deck.toml"), &deck).unwrap();
+    for (output, needle) in [("missing/out.h5", "does not exist"), (".", "is a directory"), ("deck.toml", "input deck")] {
+        let out = command_in(dir.path(), 1).current_dir(dir.path()).args(["run", "deck.toml", "-o", output]).output().unwrap();
+        let run = Run { h5: dir.path().join(output), dir: tempfile::tempdir().unwrap(), output: out };
+        assert_rejected(&run, &["cannot write", needle]);
+    }
+    assert_eq!(std::fs::read_to_string(dir.path().join("deck.toml")).unwrap(), deck, "the deck is untouched");
+}

@@ -79,3 +79,36 @@ fn a_parameter_file_sets_the_joint_and_flags_override_it() {
     // tangent B ends 20 past the convolutions: 128 + 5 x 24 + 20 = 268
     assert!((zmax_ply - 268.0).abs() < 1e-9, "{zmax_ply}");
 }
+
+#[test]
+fn flags_given_explicitly_win_over_quick_and_are_validated() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = command_in(dir.path(), 1).current_dir(dir.path()).args(["bellows", "--quick", "--ply-elements", "3", "--export-inp", "q.inp"]).output().unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let quick_3 = std::fs::read_to_string(dir.path().join("q.inp")).unwrap();
+    let out = command_in(dir.path(), 1).current_dir(dir.path()).args(["bellows", "--quick", "--export-inp", "q1.inp"]).output().unwrap();
+    assert!(out.status.success());
+    let quick_1 = std::fs::read_to_string(dir.path().join("q1.inp")).unwrap();
+    let elements = |deck: &str| deck.lines().skip_while(|l| !l.starts_with("*ELEMENT")).skip(1).take_while(|l| !l.starts_with('*')).count();
+    // three elements through each ply instead of --quick's one: more elements
+    assert!(elements(&quick_3) > elements(&quick_1), "{} vs {}", elements(&quick_3), elements(&quick_1));
+    for (flag, value, needle) in
+        [("--ply-elements", "0", "ply elements"), ("--ply-element-length", "0", "ply element length"), ("--temperature", "inf", "temperature")]
+    {
+        let out = bellows(dir.path(), &["--quick", flag, value]);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{flag} {value}: {err}");
+        assert!(err.contains(needle), "{flag} {value}: {err}");
+    }
+}
+
+#[test]
+fn a_command_line_error_is_printed_once_under_mpirun() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = command_in(dir.path(), 2).args(["bellows", "--no-such-flag"]).output().unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(err.matches("unexpected argument").count(), 1, "{err}");
+    let out = command_in(dir.path(), 2).args(["bellows", "--plies", "0"]).output().unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(err.matches("plies must be").count(), 1, "{err}");
+}

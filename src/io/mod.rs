@@ -7,3 +7,37 @@ pub mod xdmf;
 pub use results::{ContactSummary, HistoryRow, IncrementFields, ResultsFile};
 pub mod plots;
 pub mod reader;
+
+use crate::error::{Error, Result};
+use std::path::Path;
+
+/// Checks before any solve that a results file can be written at `path` (and does not
+/// overwrite `input`, the deck it comes from): bad input, exit 2, "cannot write FILE: reason".
+pub fn check_output_path(path: &Path, input: Option<&Path>) -> Result<()> {
+    let refuse = |reason: String| Err(Error::input(format!("cannot write {}: {reason}", path.display())));
+    if path.is_dir() {
+        return refuse("it is a directory; give a file name such as results.h5".into());
+    }
+    let parent = match path.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p,
+        _ => Path::new("."),
+    };
+    if !parent.is_dir() {
+        return refuse(format!("the directory {} does not exist", parent.display()));
+    }
+    if let (Some(input), Ok(out)) = (input, path.canonicalize()) {
+        if input.canonicalize().is_ok_and(|i| i == out) {
+            return refuse("it is the input deck; give the results another name".into());
+        }
+    }
+    // a probe file shows the directory takes new files (permissions, read-only mounts)
+    let probe = parent.join(format!(".slideline-probe-{}", std::process::id()));
+    match std::fs::OpenOptions::new().write(true).create_new(true).open(&probe) {
+        Ok(_) => {
+            let _ = std::fs::remove_file(&probe);
+            Ok(())
+        }
+        Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => Ok(()),
+        Err(e) => refuse(e.to_string()),
+    }
+}

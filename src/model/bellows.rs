@@ -15,8 +15,8 @@
 
 use super::mesh::{mapped_block, Edge, Mesh, MeshSets};
 use super::{
-    default_capture_distance, AugmentedLagrangian, Component, ContactIntegration, ContactPair, Kinematics, Material, Model, Penalty, Plasticity,
-    PrescribedDisplacement, Pressure, Step, SteppingControls,
+    AugmentedLagrangian, Component, ContactIntegration, ContactPair, Kinematics, Material, Model, Penalty, Plasticity, PrescribedDisplacement, Pressure, Step,
+    SteppingControls,
 };
 use crate::error::Result;
 use std::collections::HashMap;
@@ -323,7 +323,6 @@ pub fn model(p: &BellowsParams) -> Result<Model> {
         thermal_expansion: p.thermal_expansion,
         plasticity: Some(Plasticity::linear(p.yield_stress, p.hardening_modulus)),
     };
-    let capture = |slave: &str, master: &str, two_pass: bool| default_capture_distance(&mesh, &sets.surfaces[slave], &sets.surfaces[master], two_pass);
     let pair = |name: &str, slave: &str, master: &str, two_pass: bool| ContactPair {
         name: name.to_string(),
         slave: slave.to_string(),
@@ -334,7 +333,7 @@ pub fn model(p: &BellowsParams) -> Result<Model> {
         // quadratic edges meet with different normals.
         integration: ContactIntegration::Segment,
         penalty: Penalty::Stiffness(p.penalty),
-        capture_distance: capture(slave, master, two_pass),
+        capture_distance: (2.0 * p.ply_thickness).max(2.0 * p.ply_element_length),
         augmented_lagrangian: None::<AugmentedLagrangian>,
         exclude_neighbours: 4,
     };

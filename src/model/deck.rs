@@ -44,7 +44,7 @@
 //!                                   # "node-to-segment": the paper's nodal slide line
 //! penalty = 1.0e5                   # N/mm^3 (MPa per mm of penetration); or instead
 //! # penalty_factor = 10.0           # kappa: eps = kappa E / h (master E and edge length h)
-//! capture_distance = 1.0            # mm (default: twice the longest master edge)
+//! capture_distance = 1.0            # mm (default: twice the longest edge a slave node may meet)
 //! augmented_lagrangian = { penetration_tolerance = 1e-4, max_augmentations = 10 }  # optional
 //! exclude_neighbours = 2            # self-contact: segments this close along the surface
 //!

@@ -43,6 +43,30 @@ impl Mesh {
         (m[0] - a[0]).hypot(m[1] - a[1]) + (b[0] - m[0]).hypot(b[1] - m[1])
     }
 
+    /// The connected bodies (node lists, each sorted), nodes joined through shared elements.
+    pub fn bodies(&self) -> Vec<Vec<usize>> {
+        let mut parent: Vec<usize> = (0..self.coords.len()).collect();
+        fn root(parent: &mut [usize], mut n: usize) -> usize {
+            while parent[n] != n {
+                parent[n] = parent[parent[n]];
+                n = parent[n];
+            }
+            n
+        }
+        for conn in &self.elements {
+            for &n in &conn[1..] {
+                let (a, b) = (root(&mut parent, conn[0]), root(&mut parent, n));
+                parent[a.max(b)] = a.min(b);
+            }
+        }
+        let mut groups: BTreeMap<usize, Vec<usize>> = BTreeMap::new();
+        let used: std::collections::HashSet<usize> = self.elements.iter().flatten().copied().collect();
+        for n in (0..self.coords.len()).filter(|n| used.contains(n)) {
+            groups.entry(root(&mut parent, n)).or_default().push(n);
+        }
+        groups.into_values().collect()
+    }
+
     /// Checks the mesh has elements, lies at r >= 0, and has no inverted or degenerate element.
     pub fn validate(&self) -> Result<()> {
         if self.elements.is_empty() {
@@ -88,6 +112,23 @@ impl MeshSets {
     }
 }
 
+/// Most elements a generated mesh may have (about 2 GB of mesh and matrix on a workstation).
+pub const MAX_GENERATED_ELEMENTS: usize = 5_000_000;
+
+/// Refuses a generated mesh of more than [`MAX_GENERATED_ELEMENTS`] elements before any of it
+/// is allocated.
+pub fn check_element_count(count: Option<usize>, divisions: [usize; 2]) -> Result<()> {
+    match count {
+        Some(n) if n <= MAX_GENERATED_ELEMENTS => Ok(()),
+        _ => Err(Error::input(format!(
+            "mesh divisions {} x {}: {} elements is more than slideline generates ({MAX_GENERATED_ELEMENTS})",
+            divisions[0],
+            divisions[1],
+            divisions[0] as f64 * divisions[1] as f64
+        ))),
+    }
+}
+
 /// Structured block of `nr x nz` Q8 elements on [r0, r1] x [z0, z1]. Sets: element set `all`,
 /// node set `all`, and surfaces with node sets `inner` (r = r0), `outer` (r = r1),
 /// `bottom` (z = z0), `top` (z = z1).
@@ -102,6 +143,7 @@ pub fn graded_rectangle(r: [f64; 2], z: [f64; 2], divisions: [usize; 2], ratio: 
     if nr == 0 || nz == 0 {
         return Err(Error::input(format!("mesh.rectangle: divisions must be at least 1, got {divisions:?}")));
     }
+    check_element_count(nr.checked_mul(nz), divisions)?;
     if !(r[1] > r[0] && z[1] > z[0] && r[0] >= 0.0) {
         return Err(Error::input(format!("mesh.rectangle: need 0 <= r0 < r1 and z0 < z1, got r = {r:?}, z = {z:?}")));
     }

@@ -35,8 +35,15 @@ pub fn default_capture_distance(mesh: &Mesh, slave: &[Edge], master: &[Edge], tw
     2.0 * master.iter().chain(met).map(|&e| mesh.edge_length(e)).fold(0.0, f64::max)
 }
 
+/// Smallest Young's modulus accepted, MPa: below it the displacements of any load overflow
+/// what an engineering model means (and the data are in the wrong units).
+pub const MIN_YOUNGS_MODULUS: f64 = 1e-6;
+
+/// Most increments a step may ask for.
+pub const MAX_INCREMENTS: usize = 1_000_000;
+
 /// Displacement component in the (r, z) plane.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub enum Component {
     R = 0,
     Z = 1,
@@ -200,6 +207,12 @@ impl Model {
             if !(m.youngs_modulus > 0.0 && m.youngs_modulus.is_finite()) {
                 return Err(Error::input(format!("material '{}': Young's modulus must be > 0, got {}", m.name, m.youngs_modulus)));
             }
+            if m.youngs_modulus < MIN_YOUNGS_MODULUS {
+                return Err(Error::input(format!(
+                    "material '{}': Young's modulus {} MPa is below {MIN_YOUNGS_MODULUS} MPa (units are mm, N, MPa: steel is 2e5)",
+                    m.name, m.youngs_modulus
+                )));
+            }
             if !(m.poissons_ratio > -1.0 && m.poissons_ratio < 0.5) {
                 return Err(Error::input(format!("material '{}': Poisson's ratio must lie in (-1, 0.5), got {}", m.name, m.poissons_ratio)));
             }
@@ -244,12 +257,23 @@ impl Model {
                 }
             }
         }
+        let mut names: Vec<&str> = self.contacts.iter().map(|c| c.name.as_str()).collect();
+        names.sort_unstable();
+        if let Some(w) = names.windows(2).find(|w| w[0] == w[1]) {
+            return Err(Error::input(format!("contact pair name '{}' is used twice: give each pair its own name", w[0])));
+        }
+        if !self.reference_temperature.is_finite() {
+            return Err(Error::input(format!("the reference temperature must be finite, got {}", self.reference_temperature)));
+        }
         if self.steps.is_empty() {
             return Err(Error::input("the model has no steps: add a [[step]]"));
         }
         for step in &self.steps {
-            if step.increments == 0 {
-                return Err(Error::input(format!("step '{}': increments must be at least 1", step.name)));
+            if step.increments == 0 || step.increments > MAX_INCREMENTS {
+                return Err(Error::input(format!("step '{}': increments must lie in 1..={MAX_INCREMENTS}, got {}", step.name, step.increments)));
+            }
+            if let Some(t) = step.temperature.filter(|t| !t.is_finite()) {
+                return Err(Error::input(format!("step '{}': temperature must be finite, got {t}", step.name)));
             }
             for d in &step.displacements {
                 self.node_set(&d.node_set).map_err(|e| Error::input(format!("step '{}': {e}", step.name)))?;
@@ -257,8 +281,81 @@ impl Model {
                     return Err(Error::input(format!("step '{}': displacement on '{}' is not finite", step.name, d.node_set)));
                 }
             }
-            for p in &step.pressures {
+            for (k, p) in step.pressures.iter().enumerate() {
                 self.surface(&p.surface).map_err(|e| Error::input(format!("step '{}': {e}", step.name)))?;
+                if !p.value.is_finite() {
+                    return Err(Error::input(format!("step '{}': pressure on '{}' must be finite, got {}", step.name, p.surface, p.value)));
+                }
+                if step.pressures[..k].iter().any(|q| q.surface == p.surface) {
+                    return Err(Error::input(format!(
+                        "step '{}': surface '{}' is given two pressures: give one (their sum, if both act)",
+                        step.name, p.surface
+                    )));
+                }
+            }
+        }
+        self.check_constraints()?;
+        Ok(())
+    }
+
+    /// Refuses two different values prescribed on one degree of freedom (by two entries of
+    /// the constraints in force in a step: a step's own and those kept from earlier steps),
+    /// and a body that no constraint holds axially (a rigid-body motion along z, which the
+    /// solver would answer with an arbitrary offset). A body touching a contact surface is
+    /// left to the contact to hold.
+    fn check_constraints(&self) -> Result<()> {
+        let mut in_force: BTreeMap<(String, Component), (f64, String)> = BTreeMap::new();
+        let mut held_z = vec![false; self.mesh.coords.len()];
+        for step in &self.steps {
+            for (k, d) in step.displacements.iter().enumerate() {
+                if let Some(e) = step.displacements[..k].iter().find(|e| e.node_set == d.node_set && e.component == d.component && e.value != d.value) {
+                    return Err(Error::input(format!(
+                        "step '{}': set '{}' is given {} = {} and {} = {}: one degree of freedom takes one value",
+                        step.name,
+                        d.node_set,
+                        d.component.name(),
+                        e.value,
+                        d.component.name(),
+                        d.value
+                    )));
+                }
+                in_force.insert((d.node_set.clone(), d.component), (d.value, step.name.clone()));
+            }
+            let mut by_dof: std::collections::HashMap<(usize, Component), (&str, f64)> = std::collections::HashMap::new();
+            for ((set, component), (value, _)) in &in_force {
+                for &n in self.node_set(set)? {
+                    if *component == Component::Z {
+                        held_z[n] = true;
+                    }
+                    match by_dof.insert((n, *component), (set.as_str(), *value)) {
+                        Some((other, v)) if v != *value => {
+                            return Err(Error::input(format!(
+                                "step '{}': node {} has {} = {v} from set '{other}' and {} = {value} from set '{set}': one degree of freedom takes one value",
+                                step.name,
+                                self.mesh.node_ids[n],
+                                component.name(),
+                                component.name()
+                            )))
+                        }
+                        _ => {}
+                    }
+                }
+            }
+        }
+        let touching: std::collections::HashSet<usize> = self
+            .contacts
+            .iter()
+            .flat_map(|c| [&c.slave, &c.master])
+            .filter_map(|s| self.surfaces.get(s))
+            .flat_map(|edges| edges.iter().flat_map(|&e| self.mesh.edge_nodes(e)))
+            .collect();
+        for body in self.mesh.bodies() {
+            if !body.iter().any(|&n| held_z[n] || touching.contains(&n)) {
+                let n = body[0];
+                return Err(Error::input(format!(
+                    "the body containing node {} (at r = {}, z = {}) has no prescribed uz and no contact: it is free to move along the axis; prescribe uz on one of its nodes",
+                    self.mesh.node_ids[n], self.mesh.coords[n][0], self.mesh.coords[n][1]
+                )));
             }
         }
         Ok(())

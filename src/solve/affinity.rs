@@ -86,7 +86,7 @@ master = "lower_top"
 penalty = 1.0e4
 capture_distance = 0.5
 [[step]]
-boundary = [ { set = "lower_bottom", uz = 0.0 } ]
+boundary = [ { set = "lower_bottom", uz = 0.0 }, { set = "far_bottom", uz = 0.0 } ]
 "#;
 
     #[test]

@@ -144,6 +144,17 @@ impl BellowsParams {
                 return Err(Error::input(format!("bellows: {name} must be > 0, got {v}")));
             }
         }
+        for (name, v) in [
+            ("temperature", self.temperature),
+            ("pressure", self.pressure),
+            ("thermal expansion", self.thermal_expansion),
+            ("hardening modulus", self.hardening_modulus),
+            ("sleeve overlap", self.sleeve_overlap),
+        ] {
+            if !v.is_finite() {
+                return Err(Error::input(format!("bellows: {name} must be a finite number, got {v}")));
+            }
+        }
         for (name, n) in [
             ("plies", self.plies),
             ("convolutions", self.convolutions),
