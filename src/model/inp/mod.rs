@@ -463,4 +463,36 @@ mod tests {
         let err = parse(&format!("{MESH}{deck}"), Path::new("t.inp")).err().unwrap().to_string();
         assert!(err.contains("t.inp:24") && err.contains("cover 3 of the 6 nodes"), "{err}");
     }
+
+    #[test]
+    fn a_dload_on_an_element_face_surface_loads_the_surface_faces() {
+        // as CalculiX's dloads.f: the name is a surface, whose own faces are loaded (S3 here,
+        // whatever the label's face number)
+        let deck = "*SURFACE, NAME=UPPER\nA, S3\n*STEP\n*STATIC\n*BOUNDARY\nBOTTOM, 2, 2\n*DLOAD\nUPPER, P1, 50.\n*END STEP\n";
+        let m = read(deck).model;
+        let p = &m.steps[0].pressures;
+        assert_eq!((p.len(), p[0].surface.as_str(), p[0].value), (1, "UPPER", 50.0));
+        assert_eq!(m.surfaces["UPPER"], vec![Edge { element: 0, side: 2 }, Edge { element: 1, side: 2 }]);
+    }
+
+    #[test]
+    fn controls_and_time_points_are_noted_and_a_step_needs_a_procedure() {
+        let deck = "*TIME POINTS, NAME=T1\n0.5, 1.\n*STEP\n*STATIC\n*CONTROLS, PARAMETERS=TIME INCREMENTATION\n4, 8\n*BOUNDARY\nBOTTOM, 2, 2\n*NODE PRINT, NSET=TOP, TIME POINTS=T1\nU\n*END STEP\n";
+        let notes = read(deck).notes;
+        assert!(notes.iter().any(|n| n.contains("*CONTROLS") && n.contains("ignored")), "{notes:?}");
+        assert!(notes.iter().any(|n| n.contains("*TIME POINTS T1") && n.contains("every increment")), "{notes:?}");
+        let err = parse(&format!("{MESH}*STEP\n*BOUNDARY\nBOTTOM, 2, 2\n*END STEP\n"), Path::new("t.inp")).err().unwrap().to_string();
+        assert!(err.contains("t.inp:24") && err.contains("no procedure card"), "{err}");
+    }
+
+    #[test]
+    fn an_interaction_may_follow_its_contact_pair_and_isotropic_is_spelt_out() {
+        let deck = "*MATERIAL, NAME=IRON\n*ELASTIC, TYPE=ISOTROPIC\n200000., 0.3\n*SURFACE, NAME=L\nA, S2\n*SURFACE, NAME=R\nA, S4\n\
+*CONTACT PAIR, INTERACTION=LATER, TYPE=SURFACE TO SURFACE\nL, R\n*SURFACE INTERACTION, NAME=LATER\n*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR\n1.e5\n\
+*STEP\n*STATIC\n*BOUNDARY\nBOTTOM, 2, 2\n*END STEP\n";
+        let m = read(deck).model;
+        assert_eq!(m.materials[1].youngs_modulus, 200000.0);
+        assert_eq!(m.contacts.len(), 1);
+        assert_eq!(m.contacts[0].penalty, crate::model::Penalty::Stiffness(1e5));
+    }
 }

@@ -12,7 +12,7 @@ impl Builder {
         match card.keyword.as_str() {
             "ELASTIC" => {
                 card.only(&["TYPE"])?;
-                if card.param("TYPE").is_some_and(|t| !t.eq_ignore_ascii_case("ISO")) {
+                if card.param("TYPE").is_some_and(|t| !isotropic(t)) {
                     return Err(card.error("only TYPE=ISO (isotropic) is supported"));
                 }
                 let d = single(card)?;
@@ -20,7 +20,7 @@ impl Builder {
             }
             "EXPANSION" => {
                 card.only(&["TYPE", "ZERO"])?;
-                if card.param("TYPE").is_some_and(|t| !t.eq_ignore_ascii_case("ISO")) {
+                if card.param("TYPE").is_some_and(|t| !isotropic(t)) {
                     return Err(card.error("only TYPE=ISO (isotropic) is supported"));
                 }
                 m.expansion = single(card)?.number("EXPANSION", 0, "expansion coefficient", None)?;
@@ -82,10 +82,8 @@ impl Builder {
 
     pub(super) fn contact_pair(&mut self, card: &Card) -> Result<()> {
         card.only(&["INTERACTION", "TYPE", "SMALL SLIDING"])?;
+        // the interaction may be defined after the pair (CalculiX reads the deck whole)
         let interaction = card.required("INTERACTION")?.to_uppercase();
-        if !self.interactions.contains_key(&interaction) {
-            return Err(card.error(format!("surface interaction {interaction} is not defined")));
-        }
         let integration = match card.param("TYPE").map(normalise).as_deref() {
             None | Some("NODE TO SURFACE") => ContactIntegration::NodeToSegment,
             Some("SURFACE TO SURFACE") => ContactIntegration::Segment,
@@ -118,7 +116,10 @@ impl Builder {
             if merged[i] {
                 continue;
             }
-            let slope = self.interactions[interaction]
+            let slope = self
+                .interactions
+                .get(interaction)
+                .ok_or_else(|| error_at(at, "CONTACT PAIR", format!("surface interaction {interaction} is not defined")))?
                 .slope
                 .ok_or_else(|| error_at(at, "CONTACT PAIR", format!("interaction {interaction} has no *SURFACE BEHAVIOR")))?;
             if let Some((_, _, _, _, first)) = self.contacts[..i].iter().find(|c| &c.0 == slave && &c.1 == master) {
@@ -164,4 +165,9 @@ impl Builder {
         }
         Ok(contacts)
     }
+}
+
+/// TYPE=ISO, also spelt ISOTROPIC (both are Abaqus' and CalculiX's).
+fn isotropic(t: &str) -> bool {
+    t.eq_ignore_ascii_case("ISO") || t.eq_ignore_ascii_case("ISOTROPIC")
 }
