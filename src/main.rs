@@ -50,6 +50,7 @@ fn penalty_study(session: &PetscSession, args: &StudyArgs) -> Result<(), Error> 
 fn post(args: &PostArgs) -> Result<(), Error> {
     use slideline::post;
     let r = ResultsReader::open(&args.file)?;
+    r.notes()?.iter().for_each(|note| eprintln!("note: {note}"));
     let detail = args.field.is_some() || args.node.is_some() || args.set.is_some() || args.compare.is_some() || args.csv.is_some() || args.plot || args.deck;
     if !detail {
         print!("{}\n{}", post::summary(&r)?, post::history_table(&r)?);

@@ -84,3 +84,37 @@ fn post_reproduces_the_run_and_reports_fields() {
         assert!(err.contains(needle) && err.lines().count() == 1, "{args:?}: {err}");
     }
 }
+
+/// A run that died while writing leaves an increment without its completion mark and history
+/// columns of unequal length: post reads the complete rows, says what it ignored, never panics.
+#[test]
+fn post_reads_a_file_cut_short_with_a_note() {
+    let dir = tempfile::tempdir().unwrap();
+    let deck = dir.path().join("fit.toml");
+    std::fs::write(&deck, self::deck()).unwrap();
+    let h5 = dir.path().join("fit.h5");
+    let run = command_in(dir.path(), 1).arg("run").arg(&deck).arg("-o").arg(&h5).arg("--quiet").output().unwrap();
+    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+    {
+        let file = hdf5::File::open_rw(&h5).unwrap();
+        // the last increment lost its mark; one history column lost its last two rows
+        file.group("increments/000005").unwrap().delete_attr("complete").unwrap();
+        let history = file.group("history").unwrap();
+        let time = history.dataset("time").unwrap().read_raw::<f64>().unwrap();
+        history.unlink("wall_time").unwrap();
+        history.new_dataset::<f64>().shape(3).create("wall_time").unwrap().write_raw(&time[..3]).unwrap();
+    }
+    let h5s = h5.to_str().unwrap();
+    let out = post(dir.path(), &[h5s]);
+    let (text, err) = (String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr));
+    assert!(out.status.success(), "{text}{err}");
+    assert!(err.contains("000005") && err.contains("not completely written"), "{err}");
+    assert!(err.contains("differ in length") && err.contains("wall_time"), "{err}");
+    assert_eq!(text.lines().filter(|l| l.starts_with("step ") && l.contains(" inc ")).count(), 3, "{text}");
+    let out = post(dir.path(), &[h5s, "--field", "von_mises", "--increment", "5"]);
+    assert_eq!(out.status.code(), Some(2), "the incomplete increment is not offered");
+    // a CSV that cannot be written is named as such, not as HDF5 output
+    let out = post(dir.path(), &[h5s, "--csv", "/nonexistent/dir/h.csv"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("cannot write /nonexistent/dir/h.csv") && !err.contains("HDF5"), "{err}");
+}

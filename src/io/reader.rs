@@ -91,12 +91,50 @@ impl ResultsReader {
         Ok(ds.read_raw::<u64>().map_err(|e| missing(&self.path, &path, e))?.into_iter().map(|k| k as usize).collect())
     }
 
-    /// Names of the increments written (zero-padded, so sorted in order).
+    /// Names of the complete increments (zero-padded, so sorted in order); an increment a run
+    /// left half-written is not among them (see [`ResultsReader::notes`]).
     pub fn increments(&self) -> Result<Vec<String>> {
+        let (complete, _) = self.increments_by_completion()?;
+        Ok(complete)
+    }
+
+    /// (complete, incomplete) increment names. Files written before increments were marked
+    /// have every increment complete.
+    fn increments_by_completion(&self) -> Result<(Vec<String>, Vec<String>)> {
         let g = self.file.group("increments").map_err(|e| missing(&self.path, "increments", e))?;
         let mut names = g.member_names().map_err(|e| missing(&self.path, "increments", e))?;
         names.sort();
-        Ok(names)
+        if !self.file.attr_names().is_ok_and(|a| a.iter().any(|n| n == super::results::COMPLETION_MARKED)) {
+            return Ok((names, Vec::new()));
+        }
+        let is_complete = |n: &String| g.group(n).and_then(|inc| inc.attr_names()).is_ok_and(|a| a.iter().any(|x| x == super::results::COMPLETE));
+        Ok(names.into_iter().partition(is_complete))
+    }
+
+    /// What a reader of this file should be told: increments left incomplete by a run that
+    /// died while writing them, history columns of unequal length (both ignored past the
+    /// complete increments).
+    pub fn notes(&self) -> Result<Vec<String>> {
+        let mut notes = Vec::new();
+        let (complete, incomplete) = self.increments_by_completion()?;
+        if !incomplete.is_empty() {
+            notes.push(format!(
+                "{}: increment(s) {} were not completely written (the run stopped while writing them) and are ignored",
+                self.path.display(),
+                incomplete.join(", ")
+            ));
+        }
+        let lengths: Vec<(String, usize)> =
+            self.history_columns()?.into_iter().map(|c| Ok((c.clone(), self.read_f64(&format!("history/{c}"))?.len()))).collect::<Result<_>>()?;
+        if lengths.iter().any(|(_, n)| *n != complete.len()) {
+            let (shortest, n) = lengths.iter().min_by_key(|c| c.1).cloned().unwrap_or_default();
+            notes.push(format!(
+                "{}: the history columns differ in length (shortest: {shortest}, {n} rows) from the {} complete increments: only the rows all of them hold are read",
+                self.path.display(),
+                complete.len()
+            ));
+        }
+        Ok(notes)
     }
 
     /// Nodal displacement (u_r, u_z) at an increment.
@@ -202,8 +240,20 @@ impl ResultsReader {
         Ok(g.attr(name).and_then(|a| a.read_scalar::<VarLenUnicode>()).map_err(|e| missing(&self.path, &what, e))?.to_string())
     }
 
-    /// One history column (a row per converged increment).
+    /// One history column (a row per converged increment): the rows that every column holds
+    /// and whose increments are complete, so that all columns line up.
     pub fn history(&self, column: &str) -> Result<Vec<f64>> {
-        self.read_f64(&format!("history/{column}"))
+        let mut rows = self.read_f64(&format!("history/{column}"))?;
+        rows.truncate(self.rows_held()?);
+        Ok(rows)
+    }
+
+    /// Rows of the history that every column holds, of complete increments.
+    fn rows_held(&self) -> Result<usize> {
+        let g = self.file.group("history").map_err(|e| missing(&self.path, "history", e))?;
+        let names = g.member_names().map_err(|e| missing(&self.path, "history", e))?;
+        let shortest =
+            names.iter().map(|n| g.dataset(n).map(|d| d.size())).collect::<std::result::Result<Vec<_>, _>>().map_err(|e| missing(&self.path, "history", e))?;
+        Ok(shortest.into_iter().min().unwrap_or(0).min(self.increments()?.len()))
     }
 }

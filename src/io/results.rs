@@ -135,6 +135,11 @@ pub struct ResultsFile {
     reaction_segment_degrees: Option<f64>,
 }
 
+/// Attribute of an increment group written after everything else of the increment.
+pub const COMPLETE: &str = "complete";
+/// Root attribute of files whose increments carry [`COMPLETE`] (older files do not).
+pub const COMPLETION_MARKED: &str = "increments_marked_complete";
+
 fn h5err(path: &Path) -> impl Fn(hdf5::Error) -> Error + '_ {
     move |e| Error::Output { path: path.to_path_buf(), message: e.to_string() }
 }
@@ -156,6 +161,8 @@ impl ResultsFile {
             file.new_attr::<VarLenUnicode>().create(name).map_err(&err)?.write_scalar(&text(value)?).map_err(&err)?;
         }
         file.new_attr::<u32>().create("ranks").map_err(&err)?.write_scalar(&(partition.size as u32)).map_err(&err)?;
+        // readers trust only increments marked complete (a run that dies mid-write leaves one unmarked)
+        file.new_attr::<u8>().create(COMPLETION_MARKED).map_err(&err)?.write_scalar(&1u8).map_err(&err)?;
         file.new_attr::<u32>().create("steps").map_err(&err)?.write_scalar(&(model.steps.len() as u32)).map_err(&err)?;
 
         let mesh = &model.mesh;
@@ -249,6 +256,8 @@ impl ResultsFile {
             self.write_contact(&g, row, contact, partition)?;
         }
         self.append_history(row)?;
+        // last: the mark that every dataset and the history row of the increment are written
+        g.new_attr::<u8>().create(COMPLETE).map_err(h5err(&self.path))?.write_scalar(&1u8).map_err(h5err(&self.path))?;
         self.file.flush().map_err(h5err(&self.path))?;
         self.increments += 1;
         if let Some(sidecar) = self.sidecar.as_mut() {
