@@ -150,3 +150,27 @@ fn an_output_path_that_cannot_be_written_is_refused_before_the_solve() {
     }
     assert_eq!(std::fs::read_to_string(dir.path().join("deck.toml")).unwrap(), deck, "the deck is untouched");
 }
+
+/// A results file being written by a live run is refused; a lock left by a process that is
+/// gone is replaced with a note; the lock is removed when the run ends.
+#[test]
+fn a_results_file_in_use_is_refused_and_a_stale_lock_replaced() {
+    let deck = format!("{RECT}{MATERIAL}{STEP}");
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("deck.toml"), &deck).unwrap();
+    let lock = dir.path().join("out.h5.lock");
+    let host = std::fs::read_to_string("/proc/sys/kernel/hostname").unwrap();
+    let run = || command_in(dir.path(), 1).current_dir(dir.path()).args(["run", "deck.toml", "-o", "out.h5"]).output().unwrap();
+    // held by this test process: alive
+    std::fs::write(&lock, format!("host {} pid {}\n", host.trim(), std::process::id())).unwrap();
+    let out = run();
+    let held = Run { h5: dir.path().join("out.h5"), dir: tempfile::tempdir().unwrap(), output: out };
+    assert_rejected(&held, &["out.h5", "another run is writing it", "out.h5.lock"]);
+    assert!(!dir.path().join("out.h5").exists(), "nothing written");
+    // held by a process that is gone (pids stay below 2^22 on Linux)
+    std::fs::write(&lock, format!("host {} pid 4194304\n", host.trim())).unwrap();
+    let out = run();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(String::from_utf8_lossy(&out.stdout).contains("replaced the stale lock"));
+    assert!(!lock.exists(), "the lock is removed at the end of the run");
+}

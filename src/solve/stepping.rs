@@ -12,6 +12,7 @@ use super::problem::{initial_history, LoadState, Problem};
 use super::schedule::StepLoads;
 use crate::dist::{DofMap, Partition};
 use crate::error::{Error, Result};
+use crate::io::lock::ResultsLock;
 use crate::io::{ContactSummary, HistoryRow, IncrementFields, ResultsFile};
 use crate::model::Model;
 use crate::petsc::{Matrix, NonlinearProblem, PetscSession, Snes, SolveReport, VecOps, Vector};
@@ -51,6 +52,10 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
     let nodes = model.mesh.coords.len();
     let controls = model.stepping;
     let partition = Partition::new(session, &model.mesh, &super::affinity::partition_affinity(model))?;
+    let (_lock, note) = ResultsLock::acquire(&options.output, &world)?;
+    if let (true, Some(note)) = (root, note) {
+        println!("note: {note}");
+    }
     let mut results = ResultsFile::create(&options.output, session, model, &partition)?;
     if root && options.progress {
         println!("slideline: {} nodes, {} elements on {} rank(s); results -> {}", nodes, model.mesh.elements.len(), partition.size, options.output.display());

@@ -1,0 +1,85 @@
+//! A lock file beside a results file (`FILE.lock`, created exclusively by rank 0, holding the
+//! host and process id), so that two runs writing the same results never mix their data. A
+//! lock left by a process of this host that is gone is replaced, with a note.
+
+use crate::error::{Error, Result};
+use mpi::collective::SystemOperation;
+use mpi::topology::SimpleCommunicator;
+use mpi::traits::*;
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+/// Held while a run writes its results; removed on drop (rank 0).
+pub struct ResultsLock {
+    path: Option<PathBuf>,
+}
+
+fn host() -> String {
+    std::fs::read_to_string("/proc/sys/kernel/hostname").map(|h| h.trim().to_string()).unwrap_or_else(|_| "unknown".into())
+}
+
+/// The lock's path for results file `results`.
+pub fn lock_path(results: &Path) -> PathBuf {
+    let mut name = results.file_name().unwrap_or_default().to_os_string();
+    name.push(".lock");
+    results.with_file_name(name)
+}
+
+impl ResultsLock {
+    /// Takes the lock on rank 0 (collective: every rank gets the same outcome); returns the
+    /// note to print when a stale lock was replaced.
+    pub fn acquire(results: &Path, world: &SimpleCommunicator) -> Result<(Self, Option<String>)> {
+        let root = world.rank() == 0;
+        let outcome = if root { take(&lock_path(results), results) } else { Ok(None) };
+        let failed = i32::from(outcome.is_err());
+        let mut any = 0i32;
+        world.all_reduce_into(&failed, &mut any, SystemOperation::max());
+        match outcome {
+            Err(e) => Err(e),
+            Ok(_) if any != 0 => Err(Error::input(format!("{}: locked by another run (see rank 0's message)", results.display()))),
+            Ok(note) => Ok((ResultsLock { path: root.then(|| lock_path(results)) }, note)),
+        }
+    }
+}
+
+impl Drop for ResultsLock {
+    fn drop(&mut self) {
+        if let Some(path) = &self.path {
+            let _ = std::fs::remove_file(path);
+        }
+    }
+}
+
+/// Creates `lock` exclusively, replacing a stale one; the note says when it did.
+fn take(lock: &Path, results: &Path) -> Result<Option<String>> {
+    let me = format!("host {} pid {}\n", host(), std::process::id());
+    let create = || std::fs::OpenOptions::new().write(true).create_new(true).open(lock);
+    let cannot = |e: std::io::Error| Error::input(format!("cannot write {}: cannot create its lock {}: {e}", results.display(), lock.display()));
+    let mut note = None;
+    let mut file = match create() {
+        Ok(f) => f,
+        Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => {
+            let held = std::fs::read_to_string(lock).unwrap_or_default();
+            let words: Vec<&str> = held.split_whitespace().collect();
+            let (their_host, pid) = match words.as_slice() {
+                ["host", h, "pid", p] => (h.to_string(), p.parse::<u32>().ok()),
+                _ => (String::new(), None),
+            };
+            let gone = their_host == host() && pid.is_some_and(|p| !Path::new(&format!("/proc/{p}")).exists());
+            if !gone {
+                return Err(Error::input(format!(
+                    "cannot write {}: another run is writing it ({}, lock {}); remove the lock if that run is gone",
+                    results.display(),
+                    if held.trim().is_empty() { "unknown process".to_string() } else { held.trim().to_string() },
+                    lock.display()
+                )));
+            }
+            std::fs::remove_file(lock).map_err(cannot)?;
+            note = Some(format!("replaced the stale lock {} of a run that is gone ({})", lock.display(), held.trim()));
+            create().map_err(cannot)?
+        }
+        Err(e) => return Err(cannot(e)),
+    };
+    file.write_all(me.as_bytes()).map_err(cannot)?;
+    Ok(note)
+}
