@@ -68,6 +68,12 @@ impl PetscSession {
     /// `-snes_monitor -pc_type gamg`) put in the options database as if given on the command line.
     /// The PETSC_OPTIONS environment variable is honoured as well, as PETSc always does.
     pub fn initialize(petsc_options: &[String]) -> Result<Self> {
+        // Scotch (the partitioner under ptscotch) runs several threads whose interleaving
+        // changes the partition from run to run; with one thread repeated runs are identical.
+        // Set before MPI and PETSc start any thread; a user's own setting is kept.
+        if std::env::var_os("SCOTCH_PTHREAD_NUMBER").is_none() {
+            std::env::set_var("SCOTCH_PTHREAD_NUMBER", "1");
+        }
         let universe = mpi::initialize().ok_or_else(|| Error::Mpi("MPI was already initialised".into()))?;
         let mut args = vec![CString::new("slideline").expect("static name")];
         for o in petsc_options {
@@ -94,6 +100,13 @@ impl PetscSession {
     /// The raw communicator PETSc objects are created on (MPI_COMM_WORLD).
     pub fn comm(&self) -> Comm {
         self.universe.world().as_raw()
+    }
+
+    /// The raw communicator of this rank alone (MPI_COMM_SELF), for work done on one rank.
+    pub fn comm_self(&self) -> Comm {
+        // SAFETY: reads the mpi crate's handle of MPI_COMM_SELF, valid while MPI is initialised
+        // (the session holds the universe).
+        unsafe { mpi::ffi::RSMPI_COMM_SELF }
     }
 
     /// The PETSc options this session was started with.
