@@ -16,6 +16,8 @@ const FUNCTIONS: &[&str] = &[
     "PetscReturnErrorHandler",
     "PetscMallocA",
     "PetscOptionsHasName",
+    "PetscOptionsLeftGet",
+    "PetscOptionsLeftRestore",
     "PetscLogStageRegister",
     "PetscLogStageGetId",
     "PetscLogStagePush",

@@ -130,6 +130,7 @@ fn main() -> ExitCode {
                 println!("bellows: {} plies x {} mm, {} convolutions, pitch {}, height {}; EJMA axial rate {:.1} N/mm full ring, {:.2} N/mm per 2.5-degree sector (Cf = {EJMA_CF})", params.plies, params.ply_thickness, params.convolutions, params.pitch, params.height, ejma, ejma * 2.5 / 360.0);
             }
             let result = model::bellows::model(&params).and_then(|m| run(&session, &m, &RunOptions { output: args.output.clone(), progress: !args.quiet }));
+            warn_unused_options(&session, root);
             finish(result, root, |summary| report(&params, summary, &args.output))
         }
         Command::PenaltyStudy(args) => {
@@ -138,7 +139,9 @@ fn main() -> ExitCode {
                 Err(e) => return fail(&e, launched_as_rank_zero()),
             };
             let root = session.world().rank() == 0;
-            match penalty_study(&session, &args) {
+            let result = penalty_study(&session, &args);
+            warn_unused_options(&session, root);
+            match result {
                 Ok(()) => ExitCode::SUCCESS,
                 Err(e) => fail(&e, root),
             }
@@ -165,6 +168,7 @@ fn main() -> ExitCode {
             });
             let segment = model.as_ref().ok().and_then(|m| m.reaction_segment_degrees);
             let result = model.and_then(|m| run(&session, &m, &RunOptions { output, progress: !quiet }));
+            warn_unused_options(&session, root);
             finish(result, root, |summary| {
                 if let (Some(degrees), Some(last)) = (segment, summary.history.last()) {
                     // CalculiX's convention, for reading beside its .dat file
@@ -227,6 +231,16 @@ fn finish(result: Result<RunSummary, Error>, root: bool, then: impl FnOnce(&RunS
             ExitCode::SUCCESS
         }
         Err(e) => fail(&e, root),
+    }
+}
+
+/// Rank 0 names the PETSc options nothing read (a misspelt option is otherwise silently
+/// ignored).
+fn warn_unused_options(session: &PetscSession, root: bool) {
+    if root {
+        for option in session.unused_options() {
+            eprintln!("warning: PETSc option {option} was not used (misspelt? `-- -help` lists the options PETSc reads)");
+        }
     }
 }
 

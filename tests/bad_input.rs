@@ -174,3 +174,12 @@ fn a_results_file_in_use_is_refused_and_a_stale_lock_replaced() {
     assert!(String::from_utf8_lossy(&out.stdout).contains("replaced the stale lock"));
     assert!(!lock.exists(), "the lock is removed at the end of the run");
 }
+
+#[test]
+fn a_misspelt_petsc_option_is_named_in_a_warning() {
+    let run = run_deck(&format!("{RECT}{MATERIAL}{STEP}"), &[], 1, &["--", "-snes_monitr", "-ksp_type", "preonly"]);
+    run.assert_ok();
+    let err = run.stderr();
+    assert!(err.contains("warning: PETSc option -snes_monitr was not used"), "{err}");
+    assert!(!err.contains("-ksp_type"), "an option PETSc read is not reported: {err}");
+}

@@ -114,6 +114,37 @@ impl PetscSession {
         &self.options
     }
 
+    /// The options given that nothing has read so far (a misspelt `-snes_monitr`), as
+    /// `-name` or `-name value`.
+    pub fn unused_options(&self) -> Vec<String> {
+        let mut n: sys::PetscInt = 0;
+        let mut names: *mut *mut c_char = std::ptr::null_mut();
+        let mut values: *mut *mut c_char = std::ptr::null_mut();
+        // SAFETY: NULL is the global database; the out-pointers are valid and the arrays are
+        // handed back to PetscOptionsLeftRestore with the same count, as the manual asks.
+        if unsafe { sys::PetscOptionsLeftGet(std::ptr::null_mut(), &mut n, &mut names, &mut values) } != 0 {
+            return Vec::new();
+        }
+        let text = |p: *mut c_char| -> Option<String> {
+            // SAFETY: PETSc returns NUL-terminated strings (or NULL for an option without value)
+            (!p.is_null()).then(|| unsafe { std::ffi::CStr::from_ptr(p) }.to_string_lossy().into_owned())
+        };
+        let left = (0..usize::try_from(n).unwrap_or(0))
+            .map(|k| {
+                // SAFETY: both arrays hold n entries
+                let (name, value) = unsafe { (*names.add(k), *values.add(k)) };
+                let name = format!("-{}", text(name).unwrap_or_default());
+                match text(value) {
+                    Some(v) if !v.is_empty() => format!("{name} {v}"),
+                    _ => name,
+                }
+            })
+            .collect();
+        // SAFETY: restores exactly what LeftGet returned
+        unsafe { sys::PetscOptionsLeftRestore(std::ptr::null_mut(), &mut n, &mut names, &mut values) };
+        left
+    }
+
     /// Whether `name` (e.g. `-pc_type`) is set in the options database.
     pub fn has_option(&self, name: &str) -> bool {
         let Ok(cname) = CString::new(name) else {
