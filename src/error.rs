@@ -39,6 +39,10 @@ pub enum Error {
     Panic(String),
 }
 
+/// PETSc error codes that mean the options asked for something it cannot do:
+/// PETSC_ERR_SUP (56), PETSC_ERR_ARG_UNKNOWN_TYPE (86), PETSC_ERR_MISSING_FACTOR (92).
+const PETSC_OPTION_ERRORS: [i32; 3] = [56, 86, 92];
+
 impl Error {
     pub fn input(message: impl Into<String>) -> Self {
         Error::Input(message.into())
@@ -48,6 +52,9 @@ impl Error {
     pub fn exit_code(&self) -> i32 {
         match self {
             Error::Input(_) | Error::Read { .. } => 2,
+            // PETSc refusing what its options ask for (an unsupported operation, an unknown
+            // type, a factorisation the matrix type lacks) is bad input, as an unknown flag is
+            Error::Petsc { code, .. } if PETSC_OPTION_ERRORS.contains(code) => 2,
             Error::NotConverged { .. } => 3,
             _ => 1,
         }

@@ -183,3 +183,11 @@ fn a_misspelt_petsc_option_is_named_in_a_warning() {
     assert!(err.contains("warning: PETSc option -snes_monitr was not used"), "{err}");
     assert!(!err.contains("-ksp_type"), "an option PETSc read is not reported: {err}");
 }
+
+#[test]
+fn a_preconditioner_alone_is_refused_alike_on_one_and_two_ranks() {
+    for ranks in [1, 2] {
+        let run = run_deck(&format!("{RECT}{MATERIAL}{STEP}"), &[], ranks, &["--", "-pc_type", "ilu"]);
+        assert_rejected(&run, &["-pc_type ilu", "-ksp_type preonly", "Krylov"]);
+    }
+}

@@ -9,7 +9,7 @@
 mod callbacks;
 
 use super::{check, linesearch, sys, Comm, MatOps, Matrix, MatrixView, PetscSession, SessionBorrow, VecOps, Vector, VectorView};
-use crate::error::Result;
+use crate::error::{Error, Result};
 use callbacks::{convergence_trampoline, jacobian_trampoline, reset_factorisation, residual_trampoline, CallbackContext};
 use mpi::topology::SimpleCommunicator;
 use mpi::traits::*;
@@ -91,6 +91,19 @@ pub struct Snes<'s> {
     _session: SessionBorrow<'s>,
 }
 
+/// With the default `-ksp_type preonly` a preconditioner other than an exact factorisation
+/// would be applied once instead of solving: on one rank Newton then fails to converge, on
+/// two PETSc may refuse the type. Refused up front, the same on any number of ranks.
+fn check_preconditioner_alone(options: &[String]) -> Result<()> {
+    let value = |name: &str| options.iter().position(|o| o == name).and_then(|k| options.get(k + 1));
+    match value("-pc_type") {
+        Some(pc) if !["lu", "cholesky"].contains(&pc.as_str()) && value("-ksp_type").is_none() => Err(Error::input(format!(
+            "-pc_type {pc} with slideline's default -ksp_type preonly applies the preconditioner once instead of solving: add a Krylov method (e.g. -ksp_type gmres), or use -pc_type lu"
+        ))),
+        _ => Ok(()),
+    }
+}
+
 impl<'s> Snes<'s> {
     /// A SNES on the session's world communicator.
     pub fn new(session: &'s PetscSession) -> Result<Self> {
@@ -111,6 +124,7 @@ impl<'s> Snes<'s> {
     }
 
     fn configure_defaults(&mut self, session: &PetscSession) -> Result<()> {
+        check_preconditioner_alone(session.options())?;
         // SAFETY: valid SNES; the KSP, PC and line search are borrowed from it, not owned.
         unsafe {
             let mut ksp = std::ptr::null_mut();
