@@ -22,13 +22,19 @@ fn post(dir: &Path, args: &[&str]) -> std::process::Output {
     command_in(dir, 1).arg("post").args(args).output().expect("run slideline post")
 }
 
+/// Runs the deck on `ranks` ranks in `dir`: (results path, the run's output).
+fn run_fit(dir: &Path, ranks: usize, extra: &[&str]) -> (std::path::PathBuf, std::process::Output) {
+    let deck = dir.join("fit.toml");
+    std::fs::write(&deck, self::deck()).unwrap();
+    let h5 = dir.join("fit.h5");
+    let run = command_in(dir, ranks).arg("run").arg(&deck).arg("-o").arg(&h5).args(extra).output().unwrap();
+    (h5, run)
+}
+
 #[test]
 fn post_reproduces_the_run_and_reports_fields() {
     let dir = tempfile::tempdir().unwrap();
-    let deck = dir.path().join("fit.toml");
-    std::fs::write(&deck, self::deck()).unwrap();
-    let h5 = dir.path().join("fit.h5");
-    let run = command_in(dir.path(), 2).arg("run").arg(&deck).arg("-o").arg(&h5).output().unwrap();
+    let (h5, run) = run_fit(dir.path(), 2, &[]);
     let printed = String::from_utf8_lossy(&run.stdout).into_owned();
     assert!(run.status.success(), "{printed}{}", String::from_utf8_lossy(&run.stderr));
     let h5s = h5.to_str().unwrap();
@@ -90,10 +96,7 @@ fn post_reproduces_the_run_and_reports_fields() {
 #[test]
 fn post_reads_a_file_cut_short_with_a_note() {
     let dir = tempfile::tempdir().unwrap();
-    let deck = dir.path().join("fit.toml");
-    std::fs::write(&deck, self::deck()).unwrap();
-    let h5 = dir.path().join("fit.h5");
-    let run = command_in(dir.path(), 1).arg("run").arg(&deck).arg("-o").arg(&h5).arg("--quiet").output().unwrap();
+    let (h5, run) = run_fit(dir.path(), 1, &["--quiet"]);
     assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
     {
         let file = hdf5::File::open_rw(&h5).unwrap();

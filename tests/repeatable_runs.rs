@@ -1,6 +1,5 @@
-//! Two runs of the same model on the same ranks give bit-identical results: the partition is
-//! computed on rank 0 alone and broadcast, so nothing depends on how the ranks' messages
-//! interleave. Case: the quick bellows joint compressed 20 mm in 10 increments, twice on 2 ranks.
+//! Two runs of the same model on the same ranks give bit-identical results: Scotch partitions
+//! with one thread, so the partition does not depend on how its threads interleave. Case: the quick bellows joint compressed 20 mm in 10 increments, twice on 2 ranks.
 
 mod common;
 use common::{command_in, Results};

@@ -4,6 +4,7 @@ use crate::error::{Error, Result};
 use crate::fe::shape::edge_nodes;
 use crate::model::Mesh;
 use crate::petsc::{partition_graph, PetscSession};
+use mpi::datatype::PartitionMut;
 use mpi::traits::*;
 use std::collections::HashMap;
 
@@ -49,43 +50,33 @@ impl Partition {
         if ne < size {
             return Err(Error::input(format!("the mesh has {ne} elements, fewer than the {size} MPI ranks")));
         }
-        // Rank 0 partitions the whole dual graph alone and hands the result to every rank:
-        // every rank holds the mesh, and a partition computed on one rank does not depend on
-        // how the ranks' messages interleave, so repeated runs are bit-identical.
-        let mut status = 0i32;
+        // Each rank hands PETSc an even block of rows of the dual graph.
+        let first = rank * ne / size;
+        let last = (rank + 1) * ne / size;
+        let mut neighbours = dual_graph(mesh);
+        for &[a, b] in &affinity.links {
+            if a != b {
+                neighbours[a].push(b);
+                neighbours[b].push(a);
+            }
+        }
+        for v in &mut neighbours {
+            v.sort_unstable();
+            v.dedup();
+        }
+        let mut offsets = vec![0];
+        let mut adjacency = Vec::new();
+        for nb in &neighbours[first..last] {
+            adjacency.extend(nb);
+            offsets.push(adjacency.len());
+        }
+        let weights = (!affinity.work.is_empty()).then(|| &affinity.work[first..last]);
+        let local_parts = partition_graph(session, session.comm(), ne, &offsets, &adjacency, weights, size)?;
+        let local_parts: Vec<u64> = local_parts.into_iter().map(|p| p as u64).collect();
+        let counts: Vec<i32> = (0..size).map(|r| ((r + 1) * ne / size - r * ne / size) as i32).collect();
+        let displs: Vec<i32> = (0..size).map(|r| (r * ne / size) as i32).collect();
         let mut all = vec![0u64; ne];
-        let mut failure = None;
-        if rank == 0 {
-            let mut neighbours = dual_graph(mesh);
-            for &[a, b] in &affinity.links {
-                if a != b {
-                    neighbours[a].push(b);
-                    neighbours[b].push(a);
-                }
-            }
-            let mut offsets = vec![0];
-            let mut adjacency = Vec::new();
-            for v in &mut neighbours {
-                v.sort_unstable();
-                v.dedup();
-                adjacency.extend(v.iter());
-                offsets.push(adjacency.len());
-            }
-            let weights = (!affinity.work.is_empty()).then_some(&affinity.work[..]);
-            match partition_graph(session, session.comm_self(), ne, &offsets, &adjacency, weights, size) {
-                Ok(parts) => all.iter_mut().zip(parts).for_each(|(a, p)| *a = p as u64),
-                Err(e) => {
-                    status = 1;
-                    failure = Some(e);
-                }
-            }
-        }
-        let root_process = world.process_at_rank(0);
-        root_process.broadcast_into(&mut status);
-        if status != 0 {
-            return Err(failure.unwrap_or_else(|| Error::Internal("the partition failed on rank 0".into())));
-        }
-        root_process.broadcast_into(&mut all[..]);
+        world.all_gather_varcount_into(&local_parts[..], &mut PartitionMut::new(&mut all[..], counts, displs));
         let element_rank: Vec<usize> = all.into_iter().map(|p| p as usize).collect();
         Ok(Self::from_element_ranks(mesh, element_rank, rank, size))
     }
