@@ -102,13 +102,6 @@ impl PetscSession {
         self.universe.world().as_raw()
     }
 
-    /// The raw communicator of this rank alone (MPI_COMM_SELF), for work done on one rank.
-    pub fn comm_self(&self) -> Comm {
-        // SAFETY: reads the mpi crate's handle of MPI_COMM_SELF, valid while MPI is initialised
-        // (the session holds the universe).
-        unsafe { mpi::ffi::RSMPI_COMM_SELF }
-    }
-
     /// The PETSc options this session was started with.
     pub fn options(&self) -> &[String] {
         &self.options
