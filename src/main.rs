@@ -7,6 +7,7 @@ use clap::{CommandFactory, FromArgMatches};
 use cli::{Cli, Command, PostArgs, StudyArgs};
 use mpi::traits::Communicator;
 use slideline::dist::Partition;
+use slideline::io::plots::{outline_picture, SegmentLayer};
 use slideline::io::reader::ResultsReader;
 use slideline::io::ResultsFile;
 use slideline::petsc::PetscSession;
@@ -183,6 +184,12 @@ fn main() -> ExitCode {
     }
 }
 
+/// `OUTPUT_name.png` beside the output.
+fn picture_path(output: &std::path::Path, name: &str) -> PathBuf {
+    let stem = output.file_stem().unwrap_or_default().to_string_lossy();
+    output.with_file_name(format!("{stem}_{name}.png"))
+}
+
 /// `--mesh-only`: the joint's mesh and sets as Gmsh 4.1 (OUTPUT with .msh) and as a results
 /// file without increments (OUTPUT: /mesh with its sets, the layout of every results file).
 fn write_mesh(session: &PetscSession, params: &model::bellows::BellowsParams, output: &std::path::Path) -> Result<(), Error> {
@@ -197,6 +204,14 @@ fn write_mesh(session: &PetscSession, params: &model::bellows::BellowsParams, ou
     drop(ResultsFile::create(output, session, &m, &partition)?);
     if root {
         println!("mesh written to {} and {}", msh.display(), output.display());
+        // where the pressure acts, to check the load before a run
+        let picture = picture_path(output, "wetted");
+        let layers = [
+            SegmentLayer { label: "boundary".into(), segments: mesh.edge_segments(&mesh.free_edges()), width: 1 },
+            SegmentLayer { label: format!("wetted: {} MPa", params.pressure), segments: mesh.edge_segments(&sets.surfaces["wetted"]), width: 4 },
+        ];
+        outline_picture(&picture, "bellows joint: the faces the pressure acts on (meridian section)", &layers)?;
+        println!("picture: {}", picture.display());
     }
     Ok(())
 }

@@ -42,6 +42,8 @@ fn mesh_only_writes_the_seed_joint_as_gmsh() {
     for name in ["wetted", "ply1_outer", "ply2_inner", "sleeve_outer", "tube_b_inner"] {
         assert!(!sets.surfaces[name].is_empty(), "{name}");
     }
+    // the picture of the wetted faces, beside it
+    assert!(std::fs::metadata(dir.path().join("b_wetted.png")).is_ok_and(|m| m.len() > 10_000), "no picture of the wetted faces");
     // and as HDF5: the /mesh group of a results file, same nodes, no increments
     let file = hdf5::File::open(dir.path().join("b.h5")).unwrap();
     let shape = file.dataset("mesh/coordinates").unwrap().shape();

@@ -101,6 +101,59 @@ pub fn line_plot(path: &Path, title: &str, x_label: &str, y_label: &str, curves:
     root.present().map_err(|e| err(&e))
 }
 
+/// Line segments ((r, z) ends) of one kind in an outline picture, with their legend label.
+pub struct SegmentLayer {
+    pub label: String,
+    pub segments: Vec<[[f64; 2]; 2]>,
+    pub width: u32,
+}
+
+/// An (r, z) outline drawn to scale, z across and r up (a meridian section): each layer's
+/// segments in its own colour (grey first, then the palette), with a legend.
+pub fn outline_picture(path: &Path, title: &str, layers: &[SegmentLayer]) -> Result<()> {
+    use_bundled_font();
+    let err = draw_err(path);
+    let ends = layers.iter().flat_map(|l| l.segments.iter().flatten());
+    let (mut r0, mut r1, mut z0, mut z1) = (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY);
+    for p in ends {
+        (r0, r1, z0, z1) = (r0.min(p[0]), r1.max(p[0]), z0.min(p[1]), z1.max(p[1]));
+    }
+    let pad = 0.03 * (z1 - z0).max(r1 - r0);
+    let (r0, r1, z0, z1) = (r0 - pad, r1 + pad, z0 - pad, z1 + pad);
+    // to scale: the plot's height follows from its width and the section's proportions
+    let width = 1800u32;
+    let plot_width = f64::from(width - 150);
+    let height = (plot_width * (r1 - r0) / (z1 - z0)).round() as u32 + 190;
+    let root = BitMapBackend::new(path, (width, height)).into_drawing_area();
+    root.fill(&WHITE).map_err(|e| err(&e))?;
+    let mut chart = ChartBuilder::on(&root)
+        .caption(title, ("sans-serif", 26))
+        .margin(20)
+        .x_label_area_size(50)
+        .y_label_area_size(80)
+        .build_cartesian_2d(z0..z1, r0..r1)
+        .map_err(|e| err(&e))?;
+    chart.configure_mesh().disable_mesh().x_desc("z, mm").y_desc("r, mm").label_style(("sans-serif", 16)).draw().map_err(|e| err(&e))?;
+    let palette = [RGBColor(150, 150, 150), RGBColor(31, 119, 180), RGBColor(214, 39, 40), RGBColor(44, 160, 44)];
+    for (k, layer) in layers.iter().enumerate() {
+        let style = palette[k % palette.len()].stroke_width(layer.width);
+        chart
+            .draw_series(layer.segments.iter().map(|[a, b]| PathElement::new(vec![(a[1], a[0]), (b[1], b[0])], style)))
+            .map_err(|e| err(&e))?
+            .label(layer.label.as_str())
+            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 24, y)], style));
+    }
+    chart
+        .configure_series_labels()
+        .position(SeriesLabelPosition::UpperLeft)
+        .label_font(("sans-serif", 18))
+        .background_style(WHITE.mix(0.9))
+        .border_style(BLACK)
+        .draw()
+        .map_err(|e| err(&e))?;
+    root.present().map_err(|e| err(&e))
+}
+
 /// A Q8 mesh in its deformed configuration with one value per element.
 pub struct FieldPicture<'a> {
     pub coordinates: &'a [[f64; 2]],

@@ -43,6 +43,31 @@ impl Mesh {
         (m[0] - a[0]).hypot(m[1] - a[1]) + (b[0] - m[0]).hypot(b[1] - m[1])
     }
 
+    /// The element sides on no other element: the boundary of every body.
+    pub fn free_edges(&self) -> Vec<Edge> {
+        let mut count: std::collections::HashMap<(usize, usize), usize> = std::collections::HashMap::new();
+        let key = |e: Edge| {
+            let [a, b, _] = self.edge_nodes(e);
+            (a.min(b), a.max(b))
+        };
+        let all = (0..self.elements.len()).flat_map(|element| (0..4).map(move |side| Edge { element, side }));
+        for e in all.clone() {
+            *count.entry(key(e)).or_default() += 1;
+        }
+        all.filter(|&e| count[&key(e)] == 1).collect()
+    }
+
+    /// The straight pieces (start to middle, middle to end) of `edges`, as (r, z) pairs.
+    pub fn edge_segments(&self, edges: &[Edge]) -> Vec<[[f64; 2]; 2]> {
+        edges
+            .iter()
+            .flat_map(|&e| {
+                let [a, b, m] = self.edge_nodes(e).map(|n| self.coords[n]);
+                [[a, m], [m, b]]
+            })
+            .collect()
+    }
+
     /// The connected bodies (node lists, each sorted), nodes joined through shared elements.
     pub fn bodies(&self) -> Vec<Vec<usize>> {
         let mut parent: Vec<usize> = (0..self.coords.len()).collect();
