@@ -5,7 +5,7 @@ use super::cards::{error_at, Card, DataLine, Location};
 use super::{face_side, Builder};
 use crate::error::Result;
 use crate::model::mesh::Edge;
-use std::collections::{BTreeSet, HashMap};
+use std::collections::BTreeSet;
 
 impl Builder {
     pub(super) fn nodes(&mut self, card: &Card) -> Result<()> {
@@ -202,21 +202,10 @@ impl Builder {
                     nodes.extend(self.node_items(d, "SURFACE", 0)?);
                 }
                 // the free faces whose two corners belong to the set (CAX4 faces have no mid-side node in it)
-                let mut count: HashMap<(usize, usize), usize> = HashMap::new();
-                for conn in &self.mesh.elements {
-                    for s in 0..4 {
-                        let (a, b) = (conn[s], conn[(s + 1) % 4]);
-                        *count.entry((a.min(b), a.max(b))).or_default() += 1;
-                    }
-                }
-                for (element, conn) in self.mesh.elements.iter().enumerate() {
-                    for side in 0..4 {
-                        let (a, b) = (conn[side], conn[(side + 1) % 4]);
-                        if count[&(a.min(b), a.max(b))] == 1 && nodes.contains(&a) && nodes.contains(&b) {
-                            edges.push(Edge { element, side });
-                        }
-                    }
-                }
+                edges.extend(self.mesh.free_edges().into_iter().filter(|&e| {
+                    let [a, b, _] = self.mesh.edge_nodes(e);
+                    nodes.contains(&a) && nodes.contains(&b)
+                }));
                 if edges.is_empty() {
                     return Err(card.error(format!("node-based surface {name}: no free element face has both corners in the set")));
                 }
