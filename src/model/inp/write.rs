@@ -1,7 +1,8 @@
 //! A [`Model`] written as a CalculiX/Abaqus deck that both CalculiX and slideline's reader run:
 //! CAX8 mesh, node and element sets, element-face surfaces, materials (*PLASTIC as a table),
 //! one *SURFACE INTERACTION and *CONTACT PAIR per pair with its penalty as the LINEAR slope,
-//! *DLOAD per loaded face label, the steps with *STATIC, DIRECT (fixed increments), and
+//! *DLOAD per loaded face label, the steps with *STATIC (the requested increment, which both
+//! codes cut back when Newton fails and never exceed; the smallest is `min_increment`), and
 //! *NODE PRINT of every constrained set's reaction.
 //!
 //! slideline's two-pass pair (each direction carrying half the force) is written as two pairs,
@@ -121,7 +122,9 @@ pub fn to_inp(model: &Model, title: &str) -> Result<String> {
         time += period;
         let nlgeom = if model.kinematics == crate::model::Kinematics::Finite { ", NLGEOM" } else { "" };
         let _ = writeln!(w, "** step {}\n*STEP{nlgeom}, INC=1000000", step.name);
-        let _ = writeln!(w, "*STATIC, DIRECT\n{}, {}", num(period / step.increments as f64), num(period));
+        let dt = period / step.increments as f64;
+        let dt_min = model.stepping.min_increment * period;
+        let _ = writeln!(w, "*STATIC\n{}, {}, {}, {}", num(dt), num(period), num(dt_min), num(dt));
         if !step.displacements.is_empty() {
             let _ = writeln!(w, "*BOUNDARY");
             for d in &step.displacements {
