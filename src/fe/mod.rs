@@ -2,5 +2,6 @@
 //! Pure functions over small fixed-size types; no PETSc, MPI or I/O.
 
 pub mod axisymmetric;
+pub mod extrapolate;
 pub mod quadrature;
 pub mod shape;

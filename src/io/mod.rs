@@ -2,6 +2,7 @@
 //! sidecar for ParaView.
 
 pub mod lock;
+pub mod nodal;
 pub mod results;
 pub mod xdmf;
 

@@ -25,6 +25,7 @@
 //! data is written by each rank for its own contiguous slab. The file is flushed after every
 //! converged increment, so a run that dies keeps everything converged before.
 
+use super::nodal::NodalWriter;
 use super::xdmf;
 use crate::dist::Partition;
 use crate::element::solid::QUADRATURE_POINTS;
@@ -46,6 +47,8 @@ pub struct IncrementFields<'a> {
     /// Cauchy stress at the Gauss points of the local elements.
     pub stress: &'a [[[f64; 4]; QUADRATURE_POINTS]],
     pub plastic_strain: &'a [[f64; QUADRATURE_POINTS]],
+    /// The uniform temperature, degC.
+    pub temperature: f64,
     /// Contact slave nodes of the passes this rank owns.
     pub contact: &'a [PassOutput<'a>],
 }
@@ -133,6 +136,7 @@ pub struct ResultsFile {
     contact_mesh_written: bool,
     /// Reactions also per segment of this angle (degrees), CalculiX's convention for .inp runs.
     reaction_segment_degrees: Option<f64>,
+    nodal: NodalWriter,
 }
 
 /// Attribute of an increment group written after everything else of the increment.
@@ -209,6 +213,7 @@ impl ResultsFile {
             sidecar: (rank == 0).then(|| xdmf::Sidecar::new(path, nn, ne)),
             contact_mesh_written: false,
             reaction_segment_degrees: model.reaction_segment_degrees,
+            nodal: NodalWriter::new(world, mesh, partition),
         })
     }
 
@@ -225,7 +230,7 @@ impl ResultsFile {
     /// nodes, partition order) and stress slab (local elements), the history row, then
     /// flushes and rewrites the XDMF sidecar.
     pub fn write_increment(&mut self, step_name: &str, row: &HistoryRow, fields: &IncrementFields<'_>, partition: &Partition) -> Result<()> {
-        let IncrementFields { displacement: owned_displacement, stress: local_stress, plastic_strain: local_plastic_strain, contact } = *fields;
+        let IncrementFields { displacement: owned_displacement, stress: local_stress, plastic_strain: local_plastic_strain, temperature, contact } = *fields;
         let err = h5err(&self.path);
         let index = self.increments + 1;
         let name = format!("{index:06}");
@@ -247,6 +252,7 @@ impl ResultsFile {
         write_rows(&g, "equivalent_plastic_strain", &[self.elements, QUADRATURE_POINTS], self.element_slab, &ep, &self.path)?;
         let ep_max: Vec<f64> = local_plastic_strain.iter().map(|c| c.iter().fold(0.0f64, |m, &v| m.max(v))).collect();
         write_rows(&g, "equivalent_plastic_strain_max", &[self.elements], self.element_slab, &ep_max, &self.path)?;
+        self.nodal.write(&g, owned_displacement, local_stress, local_plastic_strain, temperature, &self.path)?;
         // Newton history of the increment: identical on all ranks, written by rank 0.
         let norms = &row.residual_norms;
         let (slab, data): ((usize, usize), &[f64]) = if self.rank == 0 { ((0, norms.len()), norms) } else { ((0, 0), &[]) };
@@ -370,7 +376,14 @@ impl ResultsFile {
 
 /// Creates dataset `name` of `shape` in `group` (collective) and writes rows
 /// `slab.0..slab.1` (first dimension) from `data` (row-major) on this rank.
-fn write_rows<T: hdf5::H5Type + Copy>(group: &hdf5::Group, name: &str, shape: &[usize], slab: (usize, usize), data: &[T], path: &Path) -> Result<()> {
+pub(super) fn write_rows<T: hdf5::H5Type + Copy>(
+    group: &hdf5::Group,
+    name: &str,
+    shape: &[usize],
+    slab: (usize, usize),
+    data: &[T],
+    path: &Path,
+) -> Result<()> {
     let err = h5err(path);
     let ds = group.new_dataset::<T>().shape(shape.to_vec()).create(name).map_err(&err)?;
     let rows = slab.1 - slab.0;

@@ -1,8 +1,12 @@
-//! XDMF (version 2) sidecar describing the HDF5 results as a time series of Q8 meshes, so
-//! ParaView opens `results.xmf` directly (Xdmf reader). Displacement is exposed as a
-//! 3-component vector (u_r, u_z, 0) for Warp By Vector; stresses are per element (mean von
-//! Mises) since XDMF has no quadrature-point centring.
+//! XDMF 3 sidecar describing the HDF5 results as a time series of Q8 meshes, so that ParaView
+//! (its default Xdmf3 reader and the legacy one) and meshio open `results.xmf` directly. Every
+//! data item is a plain HDF5 dataset (no functions or hyperslabs, which Xdmf3 and meshio skip):
+//! the displacement as a 3-component vector (u_r, u_z, 0) for Warp By Vector, the stress
+//! components, von Mises stress, equivalent plastic strain and temperature at the nodes
+//! (carried there from the Gauss points, see `io::nodal`), and per element the mean von Mises
+//! stress, the largest plastic strain and the rank.
 
+use super::nodal::NODAL_SCALARS;
 use crate::error::{Error, Result};
 use std::fmt::Write as _;
 use std::io::Write as _;
@@ -40,7 +44,7 @@ impl Sidecar {
     pub fn add_increment(&mut self, group: &str, time: f64) -> Result<()> {
         self.push_grid(group, time);
         const HEADER: &str =
-            "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"2.0\"><Domain><Grid Name=\"slideline\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+            "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\"><Domain><Grid Name=\"slideline\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
         const FOOTER: &str = "</Grid></Domain></Xdmf>\n";
         let tmp = self.target.with_extension("xmf.tmp");
         let io = |source| Error::Output { path: self.target.clone(), message: format!("{source}") };
@@ -56,12 +60,6 @@ impl Sidecar {
         let item = |path: &str, dims: &str, ty: &str, precision: u32| {
             format!(r#"<DataItem Dimensions="{dims}" NumberType="{ty}" Precision="{precision}" Format="HDF">{file}:{path}</DataItem>"#)
         };
-        let column = |path: &str, c: usize| {
-            format!(
-                r#"<DataItem ItemType="HyperSlab" Dimensions="{nodes} 1"><DataItem Dimensions="3 2" Format="XML">0 {c} 1 1 {nodes} 1</DataItem>{}</DataItem>"#,
-                item(path, &format!("{nodes} 2"), "Float", 8)
-            )
-        };
         let g = format!("/increments/{group}");
         let x = &mut self.grids;
         let _ = writeln!(x, r#"<Grid Name="increment {group}" GridType="Uniform"><Time Value="{time}"/>"#);
@@ -73,15 +71,23 @@ impl Sidecar {
         let _ = writeln!(x, r#"<Geometry GeometryType="XY">{}</Geometry>"#, item("/mesh/coordinates", &format!("{nodes} 2"), "Float", 8));
         let _ = writeln!(
             x,
-            r#"<Attribute Name="displacement" AttributeType="Vector" Center="Node"><DataItem ItemType="Function" Function="JOIN($0, $1, 0.0 * $0)" Dimensions="{nodes} 3">{}{}</DataItem></Attribute>"#,
-            column(&format!("{g}/displacement"), 0),
-            column(&format!("{g}/displacement"), 1)
+            r#"<Attribute Name="displacement" AttributeType="Vector" Center="Node">{}</Attribute>"#,
+            item(&format!("{g}/nodal/displacement"), &format!("{nodes} 3"), "Float", 8)
         );
-        let _ = writeln!(
-            x,
-            r#"<Attribute Name="von_mises_mean" AttributeType="Scalar" Center="Cell">{}</Attribute>"#,
-            item(&format!("{g}/von_mises_mean"), &elements.to_string(), "Float", 8)
-        );
+        for name in NODAL_SCALARS.iter().chain(&["temperature"]) {
+            let _ = writeln!(
+                x,
+                r#"<Attribute Name="{name}" AttributeType="Scalar" Center="Node">{}</Attribute>"#,
+                item(&format!("{g}/nodal/{name}"), &nodes.to_string(), "Float", 8)
+            );
+        }
+        for name in ["von_mises_mean", "equivalent_plastic_strain_max"] {
+            let _ = writeln!(
+                x,
+                r#"<Attribute Name="{name}" AttributeType="Scalar" Center="Cell">{}</Attribute>"#,
+                item(&format!("{g}/{name}"), &elements.to_string(), "Float", 8)
+            );
+        }
         let _ = writeln!(
             x,
             r#"<Attribute Name="rank" AttributeType="Scalar" Center="Cell">{}</Attribute>"#,
@@ -105,7 +111,7 @@ mod tests {
             sidecar.add_increment(&format!("{:06}", k + 1), time).unwrap();
             let text = std::fs::read_to_string(sidecar_path(&h5)).unwrap();
             assert_eq!(text.matches("<Grid Name=\"increment").count(), k + 1);
-            assert!(text.contains(&format!("<Time Value=\"{time}\"/>")) && text.contains(&format!("run.h5:/increments/{:06}/displacement", k + 1)));
+            assert!(text.contains(&format!("<Time Value=\"{time}\"/>")) && text.contains(&format!("run.h5:/increments/{:06}/nodal/displacement", k + 1)));
             assert_eq!(text.matches("<Grid").count(), text.matches("</Grid>").count(), "every grid closed, the collection too");
             assert!(text.trim_end().ends_with("</Grid></Domain></Xdmf>"));
             assert!(!h5.with_extension("xmf.tmp").exists(), "the temporary file is renamed into place");

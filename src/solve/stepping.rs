@@ -170,8 +170,13 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
                 reactions,
             };
             let contact_output = problem.contact.as_ref().map(|c| c.pass_outputs()).unwrap_or_default();
-            let increment_fields =
-                IncrementFields { displacement: &owned, stress: &fields.stress, plastic_strain: &fields.plastic_strain, contact: &contact_output };
+            let increment_fields = IncrementFields {
+                displacement: &owned,
+                stress: &fields.stress,
+                plastic_strain: &fields.plastic_strain,
+                temperature: model.reference_temperature + loads.at(model, lambda).temperature_change,
+                contact: &contact_output,
+            };
             output.run(|| results.write_increment(&step.name, &row, &increment_fields, &partition))??;
             if root && options.progress {
                 println!("{}", row.progress_line(&step.name, model.steps.len()));
