@@ -77,4 +77,12 @@ pressure = [ { surface = "inner", value = 900.0 } ]
     }
     // the last stored displacement field is readable
     assert!(!res.nodes().is_empty());
+    // the status file: a line per stored increment, numbered as the file's groups, the
+    // cutbacks, and why the run stopped
+    let sta = std::fs::read_to_string(run.h5.with_extension("sta")).expect("out.sta beside the results");
+    let rows: Vec<&str> = sta.lines().filter(|l| l.trim_start().chars().next().is_some_and(|c| c.is_ascii_digit())).collect();
+    assert_eq!(rows.len(), steps.len(), "{sta}");
+    let last_number: usize = rows.last().unwrap().split_whitespace().next().unwrap().parse().unwrap();
+    assert_eq!(format!("increments/{last_number:06}"), *res.increments().last().unwrap());
+    assert!(sta.contains("# step 2 cutback at lambda") && sta.trim_end().ends_with("stopped: the increment would fall below min_increment"), "{sta}");
 }

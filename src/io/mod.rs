@@ -4,6 +4,7 @@
 pub mod lock;
 pub mod nodal;
 pub mod results;
+pub mod status;
 pub mod xdmf;
 
 pub use results::{ContactSummary, HistoryRow, IncrementFields, ResultsFile};

@@ -213,6 +213,7 @@ impl ResultsReader {
                 })
                 .collect();
             let row = HistoryRow {
+                number: k + 1,
                 step: step[k] as usize,
                 increment: increment[k] as usize,
                 load_factor: lambda[k],

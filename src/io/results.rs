@@ -68,7 +68,11 @@ pub struct ContactSummary {
 /// One row of the history table.
 #[derive(Clone, Debug)]
 pub struct HistoryRow {
+    /// The increment's number over the whole run, 1-based: its group /increments/NNNNNN, post's
+    /// --increment, the pictures' names.
+    pub number: usize,
     pub step: usize,
+    /// The increment's number within its step.
     pub increment: usize,
     /// Load factor within the step, in (0, 1].
     pub load_factor: f64,
@@ -93,13 +97,16 @@ pub struct HistoryRow {
 }
 
 impl HistoryRow {
-    /// The progress line the run prints for this row (and `slideline post` prints again).
+    /// The progress line the run prints for this row (and `slideline post` prints again):
+    /// the run-wide increment number (#N), then the step's own; the reactions; the contact
+    /// pairs summed in one field (active nodes, largest penetration).
     pub fn progress_line(&self, step_name: &str, steps: usize) -> String {
         let mut line = format!(
-            "step {}/{} {:<10} inc {:>4} lambda {:.4}  newton {:>2}  ksp {:>3}  |F| {:.2e}  ep_max {:.3e}  {:>7.2} s",
+            "step {}/{} {:<10} #{:<4} inc {:>4} lambda {:.4}  newton {:>2}  ksp {:>3}  |F| {:.2e}  ep_max {:.3e}  {:>7.2} s",
             self.step,
             steps,
             step_name,
+            self.number,
             self.increment,
             self.load_factor,
             self.newton_iterations,
@@ -109,15 +116,37 @@ impl HistoryRow {
             self.wall_time
         );
         for (set, f) in &self.reactions {
-            line.push_str(&format!("  {set}: Fr {:.4e} Fz {:.4e} N/rad", f[0], f[1]));
+            line.push_str(&format!("  {set} Fr {:.3e} Fz {:.3e} N/rad", f[0], f[1]));
         }
-        for c in &self.contacts {
-            line.push_str(&format!("  {}: {} active, pen {:.2e} mm", c.name, c.active_nodes, c.max_penetration));
+        if !self.contacts.is_empty() {
+            let active: usize = self.contacts.iter().map(|c| c.active_nodes).sum();
+            let penetration = self.contacts.iter().map(|c| c.max_penetration).fold(0.0, f64::max);
+            line.push_str(&format!("  contact {active} active, pen {penetration:.2e} mm"));
         }
         if self.augmentations > 0 {
             line.push_str(&format!("  AL x{}", self.augmentations));
         }
         line
+    }
+
+    /// The status file's header and one row per increment (`RESULTS.sta`, as Abaqus' .sta).
+    pub const STATUS_HEADER: &'static str = "  number  step  inc  cutbacks  newton  load_factor        time   wall_s  max_penetration_mm  ep_max";
+
+    pub fn status_line(&self) -> String {
+        let penetration = self.contacts.iter().map(|c| c.max_penetration).fold(0.0, f64::max);
+        format!(
+            "{:>8}  {:>4}  {:>3}  {:>8}  {:>6}  {:>11.6}  {:>10.6}  {:>7.1}  {:>18.3e}  {:.3e}",
+            self.number,
+            self.step,
+            self.increment,
+            self.cutbacks,
+            self.newton_iterations,
+            self.load_factor,
+            self.time,
+            self.wall_time,
+            penetration,
+            self.max_plastic_strain
+        )
     }
 }
 

@@ -13,6 +13,7 @@ use super::schedule::StepLoads;
 use crate::dist::{DofMap, Partition};
 use crate::error::{Error, Result};
 use crate::io::lock::ResultsLock;
+use crate::io::status::StatusFile;
 use crate::io::{ContactSummary, HistoryRow, IncrementFields, ResultsFile};
 use crate::model::Model;
 use crate::petsc::{Matrix, NonlinearProblem, PetscSession, Snes, SolveReport, VecOps, Vector};
@@ -57,6 +58,8 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
         println!("note: {note}");
     }
     let mut results = ResultsFile::create(&options.output, session, model, &partition)?;
+    let title = format!("{} nodes, {} elements on {} rank(s); results {}", nodes, model.mesh.elements.len(), partition.size, options.output.display());
+    let mut status = if root { Some(StatusFile::create(&options.output, &title)?) } else { None };
     if root && options.progress {
         println!("slideline: {} nodes, {} elements on {} rank(s); results -> {}", nodes, model.mesh.elements.len(), partition.size, options.output.display());
     }
@@ -108,7 +111,18 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
                         report.newton_iterations
                     );
                 }
+                if let Some(status) = status.as_mut() {
+                    status.note(&format!(
+                        "step {} cutback at lambda {target:.6} ({} after {} Newton iterations)",
+                        s + 1,
+                        report.reason_name(),
+                        report.newton_iterations
+                    ));
+                }
                 if size < controls.min_increment {
+                    if let Some(status) = status.as_mut() {
+                        status.note("stopped: the increment would fall below min_increment");
+                    }
                     return Err(Error::NotConverged {
                         step: step.name.clone(),
                         load_factor: target,
@@ -151,6 +165,7 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
                 .map(|set| (set.clone(), model.node_sets[set].iter().fold([0.0; 2], |acc, &n| [acc[0] + force[2 * n], acc[1] + force[2 * n + 1]])))
                 .collect();
             let row = HistoryRow {
+                number: rows.len() + 1,
                 step: s + 1,
                 increment,
                 load_factor: lambda,
@@ -178,6 +193,9 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
                 contact: &contact_output,
             };
             output.run(|| results.write_increment(&step.name, &row, &increment_fields, &partition))??;
+            if let Some(status) = status.as_mut() {
+                status.record(&row);
+            }
             if root && options.progress {
                 println!("{}", row.progress_line(&step.name, model.steps.len()));
             }
@@ -196,6 +214,9 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
         world.all_reduce_into(&local, &mut total, SystemOperation::sum());
         (reserved_couplings, pattern_refits) = (total as usize, refits);
         previous = Some(loads);
+    }
+    if let Some(status) = status.as_mut() {
+        status.note(&format!("completed: {} increments in {:.1} s", rows.len(), start.elapsed().as_secs_f64()));
     }
     Ok(RunSummary { history: rows, wall_time: start.elapsed().as_secs_f64(), ranks: partition.size, displacement, reserved_couplings, pattern_refits })
 }
