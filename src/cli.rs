@@ -100,23 +100,26 @@ pub struct PostArgs {
     pub csv: Option<PathBuf>,
     /// Field to report (displacement, stress, von_mises, von_mises_mean,
     /// equivalent_plastic_strain, equivalent_plastic_strain_max): min/max and where.
-    #[arg(long, requires = "increment")]
-    pub field: Option<String>,
-    /// Increment (1-based, as in the history) for --field.
     #[arg(long)]
-    pub increment: Option<usize>,
+    pub field: Option<String>,
+    /// Increment for --field: its number (the run's #N, the file's /increments/NNNNNN) or `last`.
+    #[arg(long, default_value = "last")]
+    pub increment: String,
     /// Time series of the node with this external number.
     #[arg(long)]
     pub node: Option<u64>,
     /// Time series of this node set (its reaction if constrained, else its mean displacement).
     #[arg(long)]
     pub set: Option<String>,
-    /// Another results file: the two histories side by side.
+    /// Another results file of the same model: the two histories side by side.
     #[arg(long)]
     pub compare: Option<PathBuf>,
-    /// Write FILE_force.png (axial reactions against time).
+    /// With --compare: compare the histories of different models anyway.
     #[arg(long)]
-    pub plot: bool,
+    pub force: bool,
+    /// Draw the axial reactions against the prescribed displacement (PNG; default FILE_force.png).
+    #[arg(long, value_name = "PNG", num_args = 0..=1, default_missing_value = "")]
+    pub plot: Option<PathBuf>,
     /// Print the deck text stored in the file.
     #[arg(long)]
     pub deck: bool,

@@ -52,7 +52,8 @@ fn post(args: &PostArgs) -> Result<(), Error> {
     use slideline::post;
     let r = ResultsReader::open(&args.file)?;
     r.notes()?.iter().for_each(|note| eprintln!("note: {note}"));
-    let detail = args.field.is_some() || args.node.is_some() || args.set.is_some() || args.compare.is_some() || args.csv.is_some() || args.plot || args.deck;
+    let detail =
+        args.field.is_some() || args.node.is_some() || args.set.is_some() || args.compare.is_some() || args.csv.is_some() || args.plot.is_some() || args.deck;
     if !detail {
         print!("{}\n{}", post::summary(&r)?, post::history_table(&r)?);
     }
@@ -64,7 +65,7 @@ fn post(args: &PostArgs) -> Result<(), Error> {
         println!("history written to {}", path.display());
     }
     if let Some(name) = &args.field {
-        print!("{}", post::field(&r, name, args.increment.unwrap_or(0))?);
+        print!("{}", post::field(&r, name, post::increment_number(&r, &args.increment)?)?);
     }
     if let Some(id) = args.node {
         print!("{}", post::node_series(&r, id)?);
@@ -73,10 +74,11 @@ fn post(args: &PostArgs) -> Result<(), Error> {
         print!("{}", post::set_series(&r, set)?);
     }
     if let Some(other) = &args.compare {
-        print!("{}", post::compare(&r, &ResultsReader::open(other)?)?);
+        print!("{}", post::compare(&r, &ResultsReader::open(other)?, args.force)?);
     }
-    if args.plot {
-        println!("picture: {}", post::plot(&r)?.display());
+    if let Some(path) = &args.plot {
+        let path = (!path.as_os_str().is_empty()).then_some(path.as_path());
+        println!("picture: {}", post::plot(&r, path)?.display());
     }
     Ok(())
 }

@@ -42,17 +42,33 @@ pub fn history_table(r: &ResultsReader) -> Result<String> {
     Ok(r.history_rows()?.iter().map(|(name, row)| row.progress_line(name, steps) + "\n").collect())
 }
 
-/// The history columns as CSV (header line, one row per increment, full precision).
+/// Whether a history column counts things (written as integers in the CSV).
+fn is_count(column: &str) -> bool {
+    ["step", "increment", "newton_iterations", "linear_iterations", "cutbacks", "augmentations"].contains(&column) || column.ends_with("_active_nodes")
+}
+
+/// The history columns as CSV (header line, one row per increment): counts as integers, every
+/// other value in full precision (the shortest text that reads back to the same double).
 pub fn history_csv(r: &ResultsReader) -> Result<String> {
     let columns = r.history_columns()?;
     let data: Vec<Vec<f64>> = columns.iter().map(|c| r.history(c)).collect::<Result<_>>()?;
-    let mut s = columns.join(",") + "\n";
+    let mut w = csv::Writer::from_writer(Vec::new());
+    let csv_err = |e: csv::Error| Error::Internal(format!("CSV: {e}"));
+    w.write_record(&columns).map_err(csv_err)?;
     for k in 0..data.first().map_or(0, Vec::len) {
-        let row: Vec<String> = data.iter().map(|c| format!("{:e}", c[k])).collect();
-        s.push_str(&row.join(","));
-        s.push('\n');
+        let row =
+            columns.iter().zip(&data).map(|(name, c)| if is_count(name) && c[k].fract() == 0.0 { format!("{}", c[k] as i64) } else { format!("{:?}", c[k]) });
+        w.write_record(row).map_err(csv_err)?;
     }
-    Ok(s)
+    String::from_utf8(w.into_inner().map_err(|e| Error::Internal(format!("CSV: {e}")))?).map_err(|e| Error::Internal(format!("CSV: {e}")))
+}
+
+/// The increment `which` names: `last`, or a number (1-based, the run's numbering).
+pub fn increment_number(r: &ResultsReader, which: &str) -> Result<usize> {
+    if which.eq_ignore_ascii_case("last") {
+        return Ok(r.increments()?.len());
+    }
+    which.parse().map_err(|_| Error::input(format!("--increment {which}: give an increment number or `last`")))
 }
 
 /// Name of increment `number` (1-based, as the history counts them) or a clear error.
@@ -169,7 +185,21 @@ pub fn set_series(r: &ResultsReader, set: &str) -> Result<String> {
 
 /// Two runs' histories side by side, matched by time: every reaction column both have, and
 /// the Newton iterations.
-pub fn compare(a: &ResultsReader, b: &ResultsReader) -> Result<String> {
+pub fn compare(a: &ResultsReader, b: &ResultsReader, force: bool) -> Result<String> {
+    let (na, nb) = (a.node_ids()?, b.node_ids()?);
+    let (ea, eb) = (a.element_ids()?.len(), b.element_ids()?.len());
+    let (mut sa, mut sb) = (na.clone(), nb.clone());
+    sa.sort_unstable();
+    sb.sort_unstable();
+    if !force && (sa != sb || ea != eb) {
+        return Err(Error::input(format!(
+            "{} ({} nodes, {ea} elements) and {} ({} nodes, {eb} elements) are runs of different models; --force compares their histories anyway",
+            a.path().display(),
+            na.len(),
+            b.path().display(),
+            nb.len()
+        )));
+    }
     let (ca, cb) = (a.history_columns()?, b.history_columns()?);
     let shared: Vec<&String> = ca.iter().filter(|c| c.starts_with("reaction_") && !c.ends_with("_ring") && cb.contains(c)).collect();
     let (ta, tb) = (a.history("time")?, b.history("time")?);
@@ -199,21 +229,40 @@ pub fn compare(a: &ResultsReader, b: &ResultsReader) -> Result<String> {
 
 /// Force-displacement picture next to the file: every constrained set's axial reaction (full
 /// ring) against the total time (step - 1 + load factor). Returns its path.
-pub fn plot(r: &ResultsReader) -> Result<PathBuf> {
-    let time = r.history("time")?;
-    let curves: Vec<Curve> = r
-        .history_columns()?
+pub fn plot(r: &ResultsReader, path: Option<&Path>) -> Result<PathBuf> {
+    let columns = r.history_columns()?;
+    let sets: Vec<&str> = columns.iter().filter_map(|c| c.strip_prefix("reaction_")?.strip_suffix("_z_ring")).collect();
+    // the prescribed displacement: the constrained set that moves the most along z (its mean
+    // u_z at each increment); without one, the history's time
+    let increments = r.increments()?;
+    let mut travel: Vec<(&str, Vec<f64>)> = Vec::new();
+    for &set in &sets {
+        let members = r.node_set(set)?;
+        let uz: Vec<f64> = increments
+            .iter()
+            .map(|inc| {
+                Ok(r.displacement(inc)?.iter().enumerate().filter(|(n, _)| members.binary_search(n).is_ok()).map(|(_, u)| u[1]).sum::<f64>()
+                    / members.len().max(1) as f64)
+            })
+            .collect::<Result<_>>()?;
+        travel.push((set, uz));
+    }
+    let moving = travel.iter().max_by(|a, b| a.1.iter().fold(0.0f64, |m, v| m.max(v.abs())).total_cmp(&b.1.iter().fold(0.0f64, |m, v| m.max(v.abs()))));
+    let (x, x_label): (Vec<f64>, String) = match moving {
+        Some((set, uz)) if uz.iter().any(|v| *v != 0.0) => (uz.iter().map(|v| v.abs()).collect(), format!("|u_z| of {set}, mm (the prescribed displacement)")),
+        _ => (r.history("time")?, "time (step - 1 + load factor)".into()),
+    };
+    let curves: Vec<Curve> = sets
         .iter()
-        .filter_map(|c| Some((c, c.strip_prefix("reaction_")?.strip_suffix("_z_ring")?)))
-        .map(|(c, set)| {
-            let f = r.history(c)?;
+        .map(|set| {
+            let f = r.history(&format!("reaction_{set}_z_ring"))?;
             Ok(Curve {
-                label: format!("{set}: F_z (full ring)"),
-                points: time.iter().zip(&f).filter(|(_, v)| v.is_finite()).map(|(&t, &v)| (t, v.abs())).collect(),
+                label: format!("{set}: |F_z| (full ring)"),
+                points: x.iter().zip(&f).filter(|(_, v)| v.is_finite()).map(|(&u, &v)| (u, v.abs())).collect(),
             })
         })
         .collect::<Result<_>>()?;
-    let path = Path::new(&format!("{}_force.png", r.path().with_extension("").display())).to_path_buf();
-    line_plot(&path, "Axial reactions", "time (step - 1 + load factor)", "|F_z| (N, full ring)", &curves, &[], Axes::FromOrigin)?;
+    let path = path.map(Path::to_path_buf).unwrap_or_else(|| Path::new(&format!("{}_force.png", r.path().with_extension("").display())).to_path_buf());
+    line_plot(&path, "Axial reactions", &x_label, "|F_z| (N, full ring)", &curves, &[], Axes::FromOrigin)?;
     Ok(path)
 }

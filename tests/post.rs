@@ -64,6 +64,19 @@ fn post_reproduces_the_run_and_reports_fields() {
         }
     }
     assert!(header.contains(&"contact_fit_max_penetration") && header.contains(&"reaction_outer_top_z_ring"));
+    // counts are integers
+    let first: Vec<&str> = table.lines().nth(1).unwrap().split(',').collect();
+    let at = |name: &str| first[header.iter().position(|h| *h == name).unwrap()];
+    assert_eq!((at("step"), at("increment")), ("1", "1"), "{table}");
+    assert!(at("newton_iterations").parse::<u32>().is_ok() && at("contact_fit_active_nodes").parse::<u32>().is_ok(), "{table}");
+
+    // --field defaults to the last increment; --plot draws the reactions against the
+    // prescribed displacement at the path given
+    let out = post(dir.path(), &[h5s, "--field", "displacement"]);
+    assert!(String::from_utf8_lossy(&out.stdout).contains("at increment 5 "), "{}", String::from_utf8_lossy(&out.stdout));
+    let png = dir.path().join("pictures_fd.png");
+    let out = post(dir.path(), &[h5s, "--plot", png.to_str().unwrap()]);
+    assert!(out.status.success() && std::fs::metadata(&png).is_ok_and(|m| m.len() > 10_000), "{}", String::from_utf8_lossy(&out.stderr));
 
     // a field at an increment: min and max with a place; a set's reaction series
     let out = post(dir.path(), &[h5s, "--field", "von_mises", "--increment", "5"]);
@@ -72,6 +85,16 @@ fn post_reproduces_the_run_and_reports_fields() {
     let out = post(dir.path(), &[h5s, "--set", "outer_top"]);
     let text = String::from_utf8_lossy(&out.stdout).into_owned();
     assert!(text.contains("reaction of node set outer_top") && text.lines().count() == 2 + 5, "{text}");
+
+    // a run of another model is refused by --compare unless forced
+    let other = dir.path().join("other.h5");
+    let small = "[mesh]\nrectangle = { r = [1.0, 2.0], z = [0.0, 1.0], divisions = [2, 1] }\n[[material]]\nname = \"steel\"\nyoungs_modulus = 200000.0\npoissons_ratio = 0.3\n[[step]]\nboundary = [ { set = \"bottom\", uz = 0.0 }, { set = \"top\", uz = -0.001 } ]\n";
+    std::fs::write(dir.path().join("other.toml"), small).unwrap();
+    assert!(command_in(dir.path(), 1).arg("run").arg(dir.path().join("other.toml")).arg("-o").arg(&other).arg("-q").output().unwrap().status.success());
+    let out = post(dir.path(), &[h5s, "--compare", other.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("different models; --force"), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(post(dir.path(), &[h5s, "--compare", other.to_str().unwrap(), "--force"]).status.success());
 
     // bad input: one message each, exit 2
     let not_h5 = dir.path().join("fit.toml");
