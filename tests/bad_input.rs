@@ -191,3 +191,16 @@ fn a_preconditioner_alone_is_refused_alike_on_one_and_two_ranks() {
         assert_rejected(&run, &["-pc_type ilu", "-ksp_type preonly", "Krylov"]);
     }
 }
+
+#[test]
+fn a_geometry_or_a_binary_file_given_as_the_mesh_is_named() {
+    let dir = tempfile::tempdir().unwrap();
+    let geo = dir.path().join("m.geo");
+    std::fs::write(&geo, "Point(1) = {0, 0, 0};\n").unwrap();
+    let run = run_deck(&format!("[mesh]\nfile = \"m.geo\"\n{MATERIAL}{STEP}"), &[("m.geo", &geo)], 1, &[]);
+    assert_rejected(&run, &["m.geo", "mesh it first", "gmsh -2 -order 2"]);
+    let bin = dir.path().join("b.msh");
+    std::fs::write(&bin, b"$MeshFormat\n4.1 1 8\n\x01\x00\x00\x00\xff\xfe\n$EndMeshFormat\n").unwrap();
+    let run = run_deck(&format!("[mesh]\nfile = \"b.msh\"\n{MATERIAL}{STEP}"), &[("b.msh", &bin)], 1, &[]);
+    assert_rejected(&run, &["b.msh", "binary"]);
+}

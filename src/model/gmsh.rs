@@ -23,7 +23,17 @@ mod write;
 pub use write::{to_msh, write};
 
 pub fn read(path: &Path) -> Result<(Mesh, MeshSets)> {
-    let text = std::fs::read_to_string(path).map_err(|source| Error::Read { path: path.to_path_buf(), source })?;
+    if path.extension().is_some_and(|e| e.eq_ignore_ascii_case("geo")) {
+        return Err(Error::input(format!(
+            "{}: a Gmsh geometry, not a mesh: mesh it first (gmsh -2 -order 2 -format msh41 {}) and give the .msh",
+            path.display(),
+            path.display()
+        )));
+    }
+    let bytes = std::fs::read(path).map_err(|source| Error::Read { path: path.to_path_buf(), source })?;
+    let text = String::from_utf8(bytes).map_err(|_| {
+        Error::input(format!("{}: not a text file: slideline reads ASCII .msh 4.1 (a binary .msh: save it as ASCII, Mesh.Binary = 0)", path.display()))
+    })?;
     parse(&text, &path.display().to_string())
 }
 
