@@ -363,7 +363,7 @@ pub fn model(p: &BellowsParams) -> Result<Model> {
             time_span: None,
         },
     ];
-    let source_text = format!("built-in bellows model: {p:#?}");
+    let source_text = p.to_toml();
     let n = mesh.elements.len();
     let model = Model {
         mesh,
@@ -463,6 +463,17 @@ mod tests {
             .sum();
         let annulus = (p.tube_outer_radius().powi(2) - p.tube_inner_radius.powi(2)) / 2.0;
         assert!((axial.abs() - annulus).abs() < 1e-9 * annulus, "axial force on tube A and sleeve {axial}, annulus {annulus}");
+    }
+
+    #[test]
+    fn the_kept_deck_reads_back_to_the_same_parameters() {
+        let p = BellowsParams { plies: 3, displacement: 12.5, ..BellowsParams::default() }.quick();
+        let dir = std::env::temp_dir().join(format!("slideline-params-{}.toml", std::process::id()));
+        std::fs::write(&dir, p.to_toml()).unwrap();
+        let back = BellowsParams::from_toml_file(&dir).unwrap();
+        std::fs::remove_file(&dir).unwrap();
+        assert_eq!(back, p);
+        assert!(model(&p).unwrap().source_text.starts_with("# slideline bellows: 3 plies"));
     }
 
     #[test]

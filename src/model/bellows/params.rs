@@ -6,7 +6,7 @@ use crate::error::{Error, Result};
 
 /// Parameters of the joint and of the analysis. Lengths in mm, stresses in MPa. Read from
 /// TOML by field name (`BellowsParams::from_toml_file`), missing fields at their defaults.
-#[derive(Clone, Debug, PartialEq, serde::Deserialize)]
+#[derive(Clone, Debug, PartialEq, serde::Deserialize, serde::Serialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct BellowsParams {
     pub tube_inner_radius: f64,
@@ -93,6 +93,13 @@ impl BellowsParams {
     /// Total thickness of the ply pack.
     pub fn pack_thickness(&self) -> f64 {
         self.plies as f64 * self.ply_thickness
+    }
+
+    /// The parameters as a TOML parameter file (`slideline bellows --params FILE` runs the same
+    /// model again), headed by a comment saying so: the deck text a results file keeps.
+    pub fn to_toml(&self) -> String {
+        let body = toml::to_string(self).unwrap_or_else(|e| format!("# (parameters not writable as TOML: {e})\n"));
+        format!("# {}\n# slideline bellows --params THIS_FILE runs this model again\n{body}", self.title())
     }
 
     /// One line naming the joint (an exported deck's heading).
