@@ -86,6 +86,24 @@ fn post_reproduces_the_run_and_reports_fields() {
     let text = String::from_utf8_lossy(&out.stdout).into_owned();
     assert!(text.contains("reaction of node set outer_top") && text.lines().count() == 2 + 5, "{text}");
 
+    // every dataset says its units and what it is
+    fn undescribed(g: &hdf5::Group, out: &mut Vec<String>) {
+        for ds in g.datasets().unwrap() {
+            let attrs = ds.attr_names().unwrap();
+            if !(attrs.contains(&"units".to_string()) && attrs.contains(&"description".to_string())) {
+                out.push(ds.name());
+            }
+        }
+        for sub in g.groups().unwrap() {
+            undescribed(&sub, out);
+        }
+    }
+    let mut missing = Vec::new();
+    undescribed(&file.group("/").unwrap(), &mut missing);
+    assert!(missing.is_empty(), "datasets without units or description: {missing:?}");
+    let units = |path: &str| file.dataset(path).unwrap().attr("units").unwrap().read_scalar::<hdf5::types::VarLenUnicode>().unwrap().to_string();
+    assert_eq!((units("increments/000001/stress").as_str(), units("history/reaction_outer_top_z_ring").as_str()), ("MPa", "N"));
+
     // a run of another model is refused by --compare unless forced
     let other = dir.path().join("other.h5");
     let small = "[mesh]\nrectangle = { r = [1.0, 2.0], z = [0.0, 1.0], divisions = [2, 1] }\n[[material]]\nname = \"steel\"\nyoungs_modulus = 200000.0\npoissons_ratio = 0.3\n[[step]]\nboundary = [ { set = \"bottom\", uz = 0.0 }, { set = \"top\", uz = -0.001 } ]\n";

@@ -388,6 +388,8 @@ impl ResultsFile {
             } else {
                 // A column that appears later (a set constrained from step 2 on) starts with NaN rows.
                 let ds = history.new_dataset::<f64>().chunk(256).shape(0..).create(name.as_str()).map_err(&err)?;
+                let (units, description) = super::describe::describe_column(&name);
+                describe_dataset(&ds, units, &description, &self.path)?;
                 ds.resize(n).map_err(&err)?;
                 if n > 0 && self.rank == 0 {
                     ds.write_slice(&vec![f64::NAN; n], 0..n).map_err(&err)?;
@@ -405,6 +407,16 @@ impl ResultsFile {
 
 /// Creates dataset `name` of `shape` in `group` (collective) and writes rows
 /// `slab.0..slab.1` (first dimension) from `data` (row-major) on this rank.
+/// Writes the `units` and `description` attributes of a dataset (collective).
+fn describe_dataset(ds: &hdf5::Dataset, units: &str, description: &str, path: &Path) -> Result<()> {
+    let err = h5err(path);
+    for (attr, text) in [("units", units), ("description", description)] {
+        let value: VarLenUnicode = text.parse().map_err(|_| Error::Output { path: path.to_path_buf(), message: format!("attribute text {text:?}") })?;
+        ds.new_attr::<VarLenUnicode>().create(attr).map_err(&err)?.write_scalar(&value).map_err(&err)?;
+    }
+    Ok(())
+}
+
 pub(super) fn write_rows<T: hdf5::H5Type + Copy>(
     group: &hdf5::Group,
     name: &str,
@@ -415,6 +427,8 @@ pub(super) fn write_rows<T: hdf5::H5Type + Copy>(
 ) -> Result<()> {
     let err = h5err(path);
     let ds = group.new_dataset::<T>().shape(shape.to_vec()).create(name).map_err(&err)?;
+    let (units, description) = super::describe::describe(&group.name(), name);
+    describe_dataset(&ds, units, &description, path)?;
     let rows = slab.1 - slab.0;
     if rows == 0 {
         return Ok(());

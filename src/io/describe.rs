@@ -1,0 +1,61 @@
+//! Units and a description of every dataset of a results file, written as its `units` and
+//! `description` attributes so that the file explains itself to any HDF5 reader.
+
+/// (units, description) of dataset `name` in group `group` (an HDF5 path such as
+/// `/increments/000001/contact/fit/pass0`).
+pub fn describe(group: &str, name: &str) -> (&'static str, String) {
+    let g = group.trim_start_matches('/');
+    let top = g.split('/').next().unwrap_or("");
+    match (top, name) {
+        ("mesh", _) if g.ends_with("node_sets") => ("-", format!("node set {name}: rows of /mesh/coordinates")),
+        ("mesh", _) if g.ends_with("element_sets") => ("-", format!("element set {name}: rows of /mesh/connectivity")),
+        ("mesh", "coordinates") => ("mm", "r, z of each node".into()),
+        ("mesh", "connectivity") => ("-", "the 8 nodes of each Q8 element (rows of /mesh/coordinates), corners then mid-sides, counter-clockwise".into()),
+        ("mesh", "node_ids") => ("-", "external node numbers (the input's)".into()),
+        ("mesh", "element_ids") => ("-", "external element numbers (the input's)".into()),
+        ("mesh", "element_rank") => ("-", "MPI rank that assembled the element".into()),
+        ("mesh", "nodes") => ("-", "slave nodes of the contact pass (rows of /mesh/coordinates)".into()),
+        ("mesh", "areas") => ("mm^2 per radian", "tributary area of each slave node of the contact pass".into()),
+        (_, "displacement") if g.ends_with("nodal") => ("mm", "u_r, u_z, 0 at each node (a 3-vector for ParaView)".into()),
+        (_, "displacement") => ("mm", "u_r, u_z at each node".into()),
+        (_, "stress") => ("MPa", "Cauchy stress [s_rr, s_zz, s_tt, s_rz] at the 3 x 3 Gauss points of each element (xi fastest)".into()),
+        (_, "von_mises") if g.ends_with("nodal") => ("MPa", "von Mises stress at the nodes (Gauss values carried to the nodes, averaged)".into()),
+        (_, "von_mises") => ("MPa", "von Mises stress at the 3 x 3 Gauss points".into()),
+        (_, "von_mises_mean") => ("MPa", "element mean of the von Mises stress".into()),
+        (_, "equivalent_plastic_strain") if g.ends_with("nodal") => {
+            ("-", "equivalent plastic strain at the nodes (carried from the Gauss points, averaged)".into())
+        }
+        (_, "equivalent_plastic_strain") => ("-", "equivalent plastic strain at the 3 x 3 Gauss points".into()),
+        (_, "equivalent_plastic_strain_max") => ("-", "largest equivalent plastic strain of each element".into()),
+        (_, "temperature") => ("degC", "temperature at the nodes".into()),
+        (_, "residual_norms") => ("N per radian", "||F|| at each Newton iterate of the increment".into()),
+        (_, "gap") => ("mm", "normal gap at each slave node (negative: penetration)".into()),
+        (_, "pressure") => ("MPa", "contact pressure at each slave node".into()),
+        (_, "traction") => ("MPa", "contact traction recovered from the nodal contact forces".into()),
+        (_, "active") => ("-", "1 where the slave node is in contact".into()),
+        (_, n) if n.starts_with("stress_") => ("MPa", format!("{} at the nodes (Gauss values carried to the nodes, averaged)", n.replace('_', " "))),
+        _ => ("-", name.replace('_', " ")),
+    }
+}
+
+/// (units, description) of history column `name`.
+pub fn describe_column(name: &str) -> (&'static str, String) {
+    let per_radian = "N per radian";
+    match name {
+        "step" => ("-", "step number".into()),
+        "increment" => ("-", "increment number within the step".into()),
+        "load_factor" => ("-", "load factor within the step".into()),
+        "time" => ("-", "total time: step - 1 + load factor, or the input deck's time".into()),
+        "newton_iterations" | "linear_iterations" => ("-", name.replace('_', " ")),
+        "residual_norm" => (per_radian, "||F|| at convergence".into()),
+        "cutbacks" => ("-", "failed attempts before the increment converged".into()),
+        "augmentations" => ("-", "augmented-Lagrangian multiplier updates".into()),
+        "max_equivalent_plastic_strain" => ("-", "largest equivalent plastic strain of the model".into()),
+        "wall_time" => ("s", "wall time since the start of the run".into()),
+        n if n.ends_with("_2deg") => ("N per 2-degree segment", format!("{} (CalculiX's axisymmetric convention)", n.replace('_', " "))),
+        n if n.ends_with("_ring") => ("N", format!("{} (full 360-degree ring)", n.replace('_', " "))),
+        n if n.starts_with("reaction_") || n.ends_with("_force") => (per_radian, n.replace('_', " ")),
+        n if n.ends_with("_max_penetration") => ("mm", n.replace('_', " ")),
+        n => ("-", n.replace('_', " ")),
+    }
+}
