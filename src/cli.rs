@@ -178,6 +178,10 @@ pub struct BellowsArgs {
     /// Elements through each ply.
     #[arg(long, default_value_t = 2)]
     pub ply_elements: usize,
+    /// Write the fields of every N-th increment (and of the last of each step); the history
+    /// keeps every increment.
+    #[arg(long, default_value_t = 1, value_name = "N")]
+    pub output_every: usize,
     /// A coarse, quick version of the same case (about a minute).
     #[arg(long)]
     pub quick: bool,
@@ -230,6 +234,7 @@ impl BellowsArgs {
         take("hardening", &mut |p| p.hardening_modulus = self.hardening);
         take("ply_element_length", &mut |p| p.ply_element_length = self.ply_element_length);
         take("ply_elements", &mut |p| p.ply_elements = self.ply_elements);
+        take("output_every", &mut |p| p.output_every = self.output_every);
         Ok(p)
     }
 }

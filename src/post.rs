@@ -63,21 +63,38 @@ pub fn history_csv(r: &ResultsReader) -> Result<String> {
     String::from_utf8(w.into_inner().map_err(|e| Error::Internal(format!("CSV: {e}")))?).map_err(|e| Error::Internal(format!("CSV: {e}")))
 }
 
-/// The increment `which` names: `last`, or a number (1-based, the run's numbering).
+/// The run-wide number of an increment group's name ("000042" -> 42).
+fn number_of(name: &str) -> usize {
+    name.parse().unwrap_or(0)
+}
+
+/// The increment `which` names: `last` (the last one with fields), or a number (1-based, the
+/// run's numbering).
 pub fn increment_number(r: &ResultsReader, which: &str) -> Result<usize> {
     if which.eq_ignore_ascii_case("last") {
-        return Ok(r.increments()?.len());
+        return Ok(r.increments()?.last().map_or(0, |n| number_of(n)));
     }
     which.parse().map_err(|_| Error::input(format!("--increment {which}: give an increment number or `last`")))
 }
 
-/// Name of increment `number` (1-based, as the history counts them) or a clear error.
+/// Name of the group of increment `number` (the run's numbering) or a clear error: out of
+/// range, or an increment whose fields the run did not write.
 fn increment_name(r: &ResultsReader, number: usize) -> Result<String> {
     let names = r.increments()?;
-    if number == 0 || number > names.len() {
-        return Err(Error::input(format!("{}: increment {number} out of range: the file has increments 1..{}", r.path().display(), names.len())));
+    let rows = r.history("step")?.len();
+    if number == 0 || number > rows {
+        return Err(Error::input(format!("{}: increment {number} out of range: the file has increments 1..{rows}", r.path().display())));
     }
-    Ok(names[number - 1].clone())
+    let name = format!("{number:06}");
+    if names.contains(&name) {
+        return Ok(name);
+    }
+    let with_fields: Vec<String> = names.iter().map(|n| number_of(n).to_string()).collect();
+    Err(Error::input(format!(
+        "{}: increment {number} has no fields (the run wrote them for increments {}); its history row is there",
+        r.path().display(),
+        with_fields.join(", ")
+    )))
 }
 
 /// Min and max of a field at an increment, per component, with where they are: nodal fields
@@ -150,9 +167,9 @@ pub fn node_series(r: &ResultsReader, id: u64) -> Result<String> {
     let node = ids.iter().position(|&n| n == id).ok_or_else(|| Error::input(format!("{}: no node {id}", r.path().display())))?;
     let x = r.coordinates()?[node];
     let mut s = format!("node {id} at (r, z) = ({:.4}, {:.4}) mm\n{:>10} {:>10} {:>16} {:>16}\n", x[0], x[1], "increment", "time", "u_r (mm)", "u_z (mm)");
-    for (k, inc) in r.increments()?.iter().enumerate() {
-        let u = r.displacement(inc)?[node];
-        let _ = writeln!(s, "{:>10} {:>10.4} {:>16.8e} {:>16.8e}", k + 1, r.increment_attr(inc, "time")?, u[0], u[1]);
+    for inc in r.increments()? {
+        let u = r.displacement(&inc)?[node];
+        let _ = writeln!(s, "{:>10} {:>10.4} {:>16.8e} {:>16.8e}", number_of(&inc), r.increment_attr(&inc, "time")?, u[0], u[1]);
     }
     Ok(s)
 }
@@ -175,10 +192,10 @@ pub fn set_series(r: &ResultsReader, set: &str) -> Result<String> {
     let members = r.node_set(set)?;
     let mut s =
         format!("mean displacement of node set {set} ({} nodes)\n{:>10} {:>10} {:>16} {:>16}\n", members.len(), "increment", "time", "u_r (mm)", "u_z (mm)");
-    for (k, inc) in r.increments()?.iter().enumerate() {
-        let u = r.displacement(inc)?;
+    for inc in r.increments()? {
+        let u = r.displacement(&inc)?;
         let mean = [0, 1].map(|c| members.iter().map(|&n| u[n][c]).sum::<f64>() / members.len().max(1) as f64);
-        let _ = writeln!(s, "{:>10} {:>10.4} {:>16.8e} {:>16.8e}", k + 1, time[k], mean[0], mean[1]);
+        let _ = writeln!(s, "{:>10} {:>10.4} {:>16.8e} {:>16.8e}", number_of(&inc), r.increment_attr(&inc, "time")?, mean[0], mean[1]);
     }
     Ok(s)
 }

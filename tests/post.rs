@@ -162,3 +162,33 @@ fn post_reads_a_file_cut_short_with_a_note() {
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(err.contains("cannot write /nonexistent/dir/h.csv") && !err.contains("HDF5"), "{err}");
 }
+
+/// `[output] every = 3`: the fields of increments 3, 6 and 7 (the last of the step), the
+/// history of all 7; post, the XDMF sidecar and meshio follow the run's numbering.
+#[test]
+fn output_every_n_keeps_the_fields_of_every_nth_and_the_last_increment() {
+    let dir = tempfile::tempdir().unwrap();
+    let deck = "[output]\nevery = 3\n[mesh]\nrectangle = { r = [1.0, 2.0], z = [0.0, 1.0], divisions = [2, 1] }\n[[material]]\nname = \"steel\"\nyoungs_modulus = 200000.0\npoissons_ratio = 0.3\n[[step]]\nincrements = 7\nboundary = [ { set = \"bottom\", uz = 0.0 }, { set = \"top\", uz = -0.007 } ]\n";
+    std::fs::write(dir.path().join("d.toml"), deck).unwrap();
+    let h5 = dir.path().join("d.h5");
+    let run = command_in(dir.path(), 2).arg("run").arg(dir.path().join("d.toml")).arg("-o").arg(&h5).arg("-q").output().unwrap();
+    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+    let file = hdf5::File::open(&h5).unwrap();
+    assert_eq!(file.group("increments").unwrap().member_names().unwrap(), vec!["000003", "000006", "000007"]);
+    assert_eq!(file.dataset("history/time").unwrap().read_raw::<f64>().unwrap().len(), 7);
+    let xmf = std::fs::read_to_string(h5.with_extension("xmf")).unwrap();
+    assert_eq!(xmf.matches("<Grid Name=\"increment").count(), 3);
+    let h5s = h5.to_str().unwrap();
+    let out = post(dir.path(), &[h5s, "--field", "displacement", "--increment", "4"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.code() == Some(2) && err.contains("increment 4 has no fields") && err.contains("3, 6, 7"), "{err}");
+    let out = post(dir.path(), &[h5s, "--field", "displacement"]);
+    assert!(String::from_utf8_lossy(&out.stdout).contains("at increment 7 "), "{}", String::from_utf8_lossy(&out.stdout));
+    let out = post(dir.path(), &[h5s]);
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert_eq!(text.lines().filter(|l| l.starts_with("step ") && l.contains(" inc ")).count(), 7, "{text}");
+    let script = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scripts/check_xdmf.py");
+    let check = std::process::Command::new("python3").arg(script).arg(h5.with_extension("xmf")).output().unwrap();
+    let text = String::from_utf8_lossy(&check.stdout);
+    assert!(check.status.success() && text.contains("3 steps (of 7 history rows)"), "{text}{}", String::from_utf8_lossy(&check.stderr));
+}

@@ -126,10 +126,11 @@ impl ResultsReader {
         }
         let lengths: Vec<(String, usize)> =
             self.history_columns()?.into_iter().map(|c| Ok((c.clone(), self.read_f64(&format!("history/{c}"))?.len()))).collect::<Result<_>>()?;
-        if lengths.iter().any(|(_, n)| *n != complete.len()) {
+        let held = self.rows_held()?;
+        if lengths.iter().any(|(_, n)| *n != held) {
             let (shortest, n) = lengths.iter().min_by_key(|c| c.1).cloned().unwrap_or_default();
             notes.push(format!(
-                "{}: the history columns differ in length (shortest: {shortest}, {n} rows) from the {} complete increments: only the rows all of them hold are read",
+                "{}: the history columns differ in length (shortest: {shortest}, {n} rows; {} complete increments with fields): only the {held} rows all of them hold are read",
                 self.path.display(),
                 complete.len()
             ));
@@ -188,10 +189,16 @@ impl ResultsReader {
         let (augmentations, ep, wall) = (need("augmentations")?, need("max_equivalent_plastic_strain")?, need("wall_time")?);
         let sets: Vec<&str> = columns.iter().filter_map(|c| c.strip_prefix("reaction_")?.strip_suffix("_r")).collect();
         let pairs: Vec<&str> = columns.iter().filter_map(|c| c.strip_prefix("contact_")?.strip_suffix("_active_nodes")).collect();
-        let increments = self.increments()?;
+        // a row's step name: its increment group's, or (a run that wrote the fields of some
+        // increments only) the file's list of step names
+        let step_names: Vec<String> = self.text_attr("step_names").map(|t| t.lines().map(str::to_string).collect()).unwrap_or_default();
         let mut rows = Vec::with_capacity(step.len());
         for k in 0..step.len() {
-            let name = increments.get(k).map(|inc| self.increment_text_attr(inc, "step_name")).transpose()?.unwrap_or_default();
+            let group = format!("{:06}", k + 1);
+            let name = match self.increment_text_attr(&group, "step_name") {
+                Ok(name) => name,
+                Err(_) => step_names.get((step[k] as usize).saturating_sub(1)).cloned().unwrap_or_default(),
+            };
             let reactions = sets
                 .iter()
                 .filter_map(|set| {
@@ -242,19 +249,22 @@ impl ResultsReader {
     }
 
     /// One history column (a row per converged increment): the rows that every column holds
-    /// and whose increments are complete, so that all columns line up.
+    /// and that come before any increment left incomplete, so that all columns line up.
     pub fn history(&self, column: &str) -> Result<Vec<f64>> {
         let mut rows = self.read_f64(&format!("history/{column}"))?;
         rows.truncate(self.rows_held()?);
         Ok(rows)
     }
 
-    /// Rows of the history that every column holds, of complete increments.
+    /// Rows of the history that every column holds, before the first increment left
+    /// incomplete (its row may be cut short too).
     fn rows_held(&self) -> Result<usize> {
         let g = self.file.group("history").map_err(|e| missing(&self.path, "history", e))?;
         let names = g.member_names().map_err(|e| missing(&self.path, "history", e))?;
         let shortest =
             names.iter().map(|n| g.dataset(n).map(|d| d.size())).collect::<std::result::Result<Vec<_>, _>>().map_err(|e| missing(&self.path, "history", e))?;
-        Ok(shortest.into_iter().min().unwrap_or(0).min(self.increments()?.len()))
+        let (_, incomplete) = self.increments_by_completion()?;
+        let before_incomplete = incomplete.first().and_then(|n| n.parse::<usize>().ok()).map_or(usize::MAX, |n| n - 1);
+        Ok(shortest.into_iter().min().unwrap_or(0).min(before_incomplete))
     }
 }

@@ -190,6 +190,7 @@ impl ResultsFile {
             ("units", "length mm, force N, stress MPa, temperature degC, time s; forces and reactions per radian unless named _ring (full 360 degrees)"),
             ("petsc_options", &session.options().join(" ")),
             ("slideline_version", env!("CARGO_PKG_VERSION")),
+            ("step_names", &model.steps.iter().map(|s| s.name.as_str()).collect::<Vec<_>>().join("\n")),
         ] {
             file.new_attr::<VarLenUnicode>().create(name).map_err(&err)?.write_scalar(&text(value)?).map_err(&err)?;
         }
@@ -250,20 +251,39 @@ impl ResultsFile {
         &self.path
     }
 
-    /// Converged increments written so far.
+    /// Converged increments written so far (history rows).
     pub fn increments_written(&self) -> usize {
         self.increments
     }
 
-    /// Writes one converged increment (collective): this rank's displacement slab (owned
-    /// nodes, partition order) and stress slab (local elements), the history row, then
-    /// flushes and rewrites the XDMF sidecar.
-    pub fn write_increment(&mut self, step_name: &str, row: &HistoryRow, fields: &IncrementFields<'_>, partition: &Partition) -> Result<()> {
+    /// Writes one converged increment (collective): its history row, and with `fields` its
+    /// group /increments/NNNNNN (NNNNNN the run-wide number): this rank's displacement slab
+    /// (owned nodes, partition order) and stress slab (local elements), the nodal and contact
+    /// fields, marked complete last; then flushes and rewrites the XDMF sidecar.
+    pub fn write_increment(&mut self, step_name: &str, row: &HistoryRow, fields: Option<&IncrementFields<'_>>, partition: &Partition) -> Result<()> {
+        let name = format!("{:06}", row.number);
+        let group = fields.map(|f| self.write_fields(&name, step_name, row, f, partition)).transpose()?;
+        self.append_history(row)?;
+        if let Some(g) = &group {
+            // last: the mark that every dataset and the history row of the increment are written
+            g.new_attr::<u8>().create(COMPLETE).map_err(h5err(&self.path))?.write_scalar(&1u8).map_err(h5err(&self.path))?;
+        }
+        self.file.flush().map_err(h5err(&self.path))?;
+        self.increments += 1;
+        if group.is_none() {
+            return Ok(());
+        }
+        if let Some(sidecar) = self.sidecar.as_mut() {
+            sidecar.add_increment(&name, row.time)?;
+        }
+        Ok(())
+    }
+
+    /// The fields of one increment in a new group `name` (collective).
+    fn write_fields(&mut self, name: &str, step_name: &str, row: &HistoryRow, fields: &IncrementFields<'_>, partition: &Partition) -> Result<hdf5::Group> {
         let IncrementFields { displacement: owned_displacement, stress: local_stress, plastic_strain: local_plastic_strain, temperature, contact } = *fields;
         let err = h5err(&self.path);
-        let index = self.increments + 1;
-        let name = format!("{index:06}");
-        let g = self.file.group("increments").map_err(&err)?.create_group(&name).map_err(&err)?;
+        let g = self.file.group("increments").map_err(&err)?.create_group(name).map_err(&err)?;
         for (attr, value) in [("step", row.step as f64), ("increment", row.increment as f64), ("load_factor", row.load_factor), ("time", row.time)] {
             g.new_attr::<f64>().create(attr).map_err(&err)?.write_scalar(&value).map_err(&err)?;
         }
@@ -290,15 +310,7 @@ impl ResultsFile {
         if !contact.is_empty() {
             self.write_contact(&g, row, contact, partition)?;
         }
-        self.append_history(row)?;
-        // last: the mark that every dataset and the history row of the increment are written
-        g.new_attr::<u8>().create(COMPLETE).map_err(h5err(&self.path))?.write_scalar(&1u8).map_err(h5err(&self.path))?;
-        self.file.flush().map_err(h5err(&self.path))?;
-        self.increments += 1;
-        if let Some(sidecar) = self.sidecar.as_mut() {
-            sidecar.add_increment(&name, row.time)?;
-        }
-        Ok(())
+        Ok(g)
     }
 
     /// Per pass of each pair: gap, pressure and active flag of every slave node (this rank's

@@ -15,8 +15,8 @@
 
 use super::mesh::{mapped_block, Edge, Mesh, MeshSets};
 use super::{
-    AugmentedLagrangian, Component, ContactIntegration, ContactPair, Kinematics, Material, Model, Penalty, Plasticity, PrescribedDisplacement, Pressure, Step,
-    SteppingControls,
+    AugmentedLagrangian, Component, ContactIntegration, ContactPair, Kinematics, Material, Model, OutputControls, Penalty, Plasticity, PrescribedDisplacement,
+    Pressure, Step, SteppingControls,
 };
 use crate::error::Result;
 use std::collections::HashMap;
@@ -376,6 +376,7 @@ pub fn model(p: &BellowsParams) -> Result<Model> {
         kinematics: Kinematics::Finite,
         // contact and plasticity take 8-11 Newton iterations per increment: count those as easy
         stepping: SteppingControls { easy_iterations: 12, ..SteppingControls::default() },
+        output: OutputControls { every: p.output_every },
         contacts,
         steps,
         source_text,

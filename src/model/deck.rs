@@ -12,6 +12,9 @@
 //! max_newton_iterations = 25
 //! predictor = true                  # start from the linear response to moved prescribed DOFs
 //!
+//! [output]                         # optional
+//! every = 1                         # fields of every N-th increment (and the last of each step)
+//!
 //! [mesh]
 //! file = "cylinder.msh"             # Gmsh 4.1, relative to the deck; or instead:
 //! # rectangle = { r = [100.0, 130.0], z = [0.0, 10.0], divisions = [12, 2] }
@@ -58,8 +61,8 @@
 
 use super::mesh::{blocks, rectangle, Block, MeshSets};
 use super::{
-    default_capture_distance, gmsh, AugmentedLagrangian, Component, ContactIntegration, ContactPair, Kinematics, Material, Model, Penalty, Plasticity,
-    PrescribedDisplacement, Pressure, Step, SteppingControls,
+    default_capture_distance, gmsh, AugmentedLagrangian, Component, ContactIntegration, ContactPair, Kinematics, Material, Model, OutputControls, Penalty,
+    Plasticity, PrescribedDisplacement, Pressure, Step, SteppingControls,
 };
 use crate::error::{Error, Result};
 use serde::Deserialize;
@@ -76,6 +79,8 @@ struct DeckFile {
     #[serde(default)]
     stepping: SteppingSpec,
     #[serde(default)]
+    output: OutputSpec,
+    #[serde(default)]
     material: Vec<MaterialSpec>,
     #[serde(default)]
     section: Vec<SectionSpec>,
@@ -83,6 +88,13 @@ struct DeckFile {
     contact: Vec<ContactSpec>,
     #[serde(default)]
     step: Vec<StepSpec>,
+}
+
+#[derive(Deserialize, Default)]
+#[serde(deny_unknown_fields)]
+struct OutputSpec {
+    /// Fields of every N-th increment (and of the last of each step).
+    every: Option<usize>,
 }
 
 #[derive(Deserialize)]
@@ -387,6 +399,7 @@ pub fn parse(text: &str, path: &Path) -> Result<Model> {
         reference_temperature: deck.reference_temperature,
         kinematics,
         stepping: deck.stepping.controls(),
+        output: OutputControls { every: deck.output.every.unwrap_or(1) },
         contacts,
         steps,
         source_text: text.to_string(),

@@ -144,6 +144,28 @@ impl Default for SteppingControls {
     }
 }
 
+/// What the results file keeps: the fields (displacement, stresses, contact state) of every
+/// `every`-th increment and of the last increment of each step; the history has a row for
+/// every converged increment whatever this says. The solver computes the same either way.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct OutputControls {
+    pub every: usize,
+}
+
+impl Default for OutputControls {
+    fn default() -> Self {
+        OutputControls { every: 1 }
+    }
+}
+
+impl OutputControls {
+    /// Whether the fields of run-wide increment `number` are written (`last_of_step`: it ends
+    /// its step).
+    pub fn writes_fields(&self, number: usize, last_of_step: bool) -> bool {
+        last_of_step || number % self.every == 0
+    }
+}
+
 /// A displacement prescribed on every node of a node set; `value` is reached at the end of
 /// the step, ramped linearly from the value at the step's start.
 #[derive(Clone, Debug, PartialEq)]
@@ -190,6 +212,8 @@ pub struct Model {
     /// Finite strains and rotations with follower pressure (NLGEOM), or small strain.
     pub kinematics: Kinematics,
     pub stepping: SteppingControls,
+    /// What the results file keeps of each increment.
+    pub output: OutputControls,
     pub contacts: Vec<ContactPair>,
     pub steps: Vec<Step>,
     /// The text the model was read from, kept for the output file.
@@ -227,6 +251,9 @@ impl Model {
                     return Err(Error::input(format!("material '{}': hardening modulus must be >= 0, got {modulus}", m.name)));
                 }
             }
+        }
+        if self.output.every == 0 {
+            return Err(Error::input("[output]: every must be at least 1 (fields of every increment)"));
         }
         let c = &self.stepping;
         let sane = c.cutback_factor > 0.0 && c.cutback_factor < 1.0 && c.growth_factor >= 1.0 && c.min_increment > 0.0 && c.min_increment <= 1.0;

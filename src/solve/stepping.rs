@@ -192,7 +192,8 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
                 temperature: model.reference_temperature + loads.at(model, lambda).temperature_change,
                 contact: &contact_output,
             };
-            output.run(|| results.write_increment(&step.name, &row, &increment_fields, &partition))??;
+            let with_fields = model.output.writes_fields(row.number, lambda >= 1.0).then_some(&increment_fields);
+            output.run(|| results.write_increment(&step.name, &row, with_fields, &partition))??;
             if let Some(status) = status.as_mut() {
                 status.record(&row);
             }

@@ -52,6 +52,9 @@ pub struct BellowsParams {
     pub wall_elements: usize,
     /// Element length along tubes and sleeve, mm.
     pub wall_element_length: f64,
+    // output
+    /// Fields of every N-th increment in the results file (and of the last of each step).
+    pub output_every: usize,
 }
 
 impl Default for BellowsParams {
@@ -82,6 +85,7 @@ impl Default for BellowsParams {
             increments: 240,
             penalty: 1.0e4,
             ply_elements: 2,
+            output_every: 1,
             ply_element_length: 1.0,
             wall_elements: 3,
             wall_element_length: 4.0,
@@ -169,6 +173,7 @@ impl BellowsParams {
             ("heat increments", self.heat_increments),
             ("ply elements", self.ply_elements),
             ("wall elements", self.wall_elements),
+            ("output every", self.output_every),
         ] {
             if n == 0 {
                 return Err(Error::input(format!("bellows: {name} must be at least 1")));

@@ -137,6 +137,8 @@ struct Builder {
     in_step: bool,
     element_types: BTreeMap<String, usize>,
     output_requests: BTreeSet<String>,
+    /// FREQUENCY= of the file output requests (the smallest given).
+    output_every: Option<usize>,
     notes: Vec<String>,
 }
 
@@ -234,6 +236,13 @@ fn build(cards: &[Card], source_text: String) -> Result<InpModel> {
             "TIME POINTS" => b.time_points(card)?,
             kw if OUTPUT_REQUESTS.contains(&kw) => {
                 b.output_requests.insert(format!("*{kw}"));
+                // the frequency of the results file's field output
+                if kw == "NODE FILE" || kw == "EL FILE" || kw == "CONTACT FILE" {
+                    if let Some(f) = card.param("FREQUENCY") {
+                        let every: usize = f.parse().ok().filter(|&n| n >= 1).ok_or_else(|| card.error(format!("FREQUENCY={f}: a whole number >= 1")))?;
+                        b.output_every = Some(b.output_every.map_or(every, |e: usize| e.min(every)));
+                    }
+                }
             }
             other => {
                 return Err(card.error(format!(
@@ -262,7 +271,11 @@ impl Builder {
         }
         if !self.output_requests.is_empty() {
             let list: Vec<&str> = self.output_requests.iter().map(|s| s.as_str()).collect();
-            self.notes.push(format!("output requests ({}) are answered by the results file: every field at every increment", list.join(", ")));
+            let every = match self.output_every {
+                Some(n) if n > 1 => format!("every field at every {n}th increment and at the end of each step (FREQUENCY={n}), the history at every increment"),
+                _ => "every field at every increment".to_string(),
+            };
+            self.notes.push(format!("output requests ({}) are answered by the results file: {every}", list.join(", ")));
         }
 
         let mut materials = Vec::new();
@@ -326,6 +339,7 @@ impl Builder {
             reference_temperature,
             kinematics,
             stepping,
+            output: super::OutputControls { every: self.output_every.unwrap_or(1) },
             contacts,
             steps,
             source_text,
@@ -494,5 +508,15 @@ mod tests {
         assert_eq!(m.materials[1].youngs_modulus, 200000.0);
         assert_eq!(m.contacts.len(), 1);
         assert_eq!(m.contacts[0].penalty, crate::model::Penalty::Stiffness(1e5));
+    }
+
+    #[test]
+    fn file_output_frequency_sets_how_often_fields_are_written() {
+        let deck = "*STEP\n*STATIC\n*BOUNDARY\nBOTTOM, 2, 2\n*NODE FILE, FREQUENCY=5\nU\n*EL FILE, FREQUENCY=4\nS\n*END STEP\n";
+        let read = read(deck);
+        assert_eq!(read.model.output.every, 4, "the smaller of the two");
+        assert!(read.notes.iter().any(|n| n.contains("every 4th increment")), "{:?}", read.notes);
+        let err = parse(&format!("{MESH}*STEP\n*STATIC\n*NODE FILE, FREQUENCY=0\nU\n*END STEP\n"), Path::new("t.inp")).err().unwrap().to_string();
+        assert!(err.contains("FREQUENCY=0"), "{err}");
     }
 }
