@@ -114,3 +114,25 @@ fn a_command_line_error_is_printed_once_under_mpirun() {
     let err = String::from_utf8_lossy(&out.stderr);
     assert_eq!(err.matches("plies must be").count(), 1, "{err}");
 }
+
+/// On a terminal the run draws a progress bar (step, increment, load factor, elapsed, ETA);
+/// through a pipe it prints the plain line per increment.
+#[test]
+fn a_terminal_gets_a_progress_bar_and_a_pipe_plain_lines() {
+    let dir = tempfile::tempdir().unwrap();
+    let exe = env!("CARGO_BIN_EXE_slideline");
+    let args = "bellows --quick --displacement 10 --increments 4 -o b.h5";
+    // `script` runs the command on a pseudo-terminal
+    let out = std::process::Command::new("script")
+        .args(["-qec", &format!("{exe} {args}"), "/dev/null"])
+        .current_dir(dir.path())
+        .env("OMPI_ALLOW_RUN_AS_ROOT", "1")
+        .env("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1")
+        .output()
+        .expect("script (util-linux)");
+    let tty = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success() && tty.contains("ETA") && tty.contains("step 2/2 compress #6"), "{tty}");
+    let out = command_in(dir.path(), 1).current_dir(dir.path()).args(args.split(' ')).output().unwrap();
+    let piped = String::from_utf8_lossy(&out.stdout);
+    assert!(!piped.contains("ETA") && piped.lines().any(|l| l.starts_with("step 2/2 compress   #6")), "{piped}");
+}

@@ -10,6 +10,7 @@ pub mod xdmf;
 
 pub use results::{ContactSummary, HistoryRow, IncrementFields, ResultsFile};
 pub mod plots;
+pub mod progress;
 pub mod reader;
 
 use crate::error::{Error, Result};

@@ -13,6 +13,7 @@ use super::schedule::StepLoads;
 use crate::dist::{DofMap, Partition};
 use crate::error::{Error, Result};
 use crate::io::lock::ResultsLock;
+use crate::io::progress::Progress;
 use crate::io::status::StatusFile;
 use crate::io::{ContactSummary, HistoryRow, IncrementFields, ResultsFile};
 use crate::model::Model;
@@ -60,9 +61,14 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
     let mut results = ResultsFile::create(&options.output, session, model, &partition)?;
     let title = format!("{} nodes, {} elements on {} rank(s); results {}", nodes, model.mesh.elements.len(), partition.size, options.output.display());
     let mut status = if root { Some(StatusFile::create(&options.output, &title)?) } else { None };
-    if root && options.progress {
-        println!("slideline: {} nodes, {} elements on {} rank(s); results -> {}", nodes, model.mesh.elements.len(), partition.size, options.output.display());
-    }
+    let progress = Progress::new(root && options.progress, model.steps.len());
+    progress.note(&format!(
+        "slideline: {} nodes, {} elements on {} rank(s); results -> {}",
+        nodes,
+        model.mesh.elements.len(),
+        partition.size,
+        options.output.display()
+    ));
     let mut displacement = vec![[0.0; 2]; nodes];
     let mut history = initial_history(model, &partition);
     let mut carry = None;
@@ -101,16 +107,14 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
                 problem.reset();
                 cutbacks += 1;
                 size = (target - lambda) * controls.cutback_factor;
-                if root && options.progress {
-                    println!(
-                        "step {}/{} {:<10} cutback at lambda {target:.6} ({} after {} Newton iterations); retrying with {size:.3e}",
-                        s + 1,
-                        model.steps.len(),
-                        step.name,
-                        report.reason_name(),
-                        report.newton_iterations
-                    );
-                }
+                progress.note(&format!(
+                    "step {}/{} {:<10} cutback at lambda {target:.6} ({} after {} Newton iterations); retrying with {size:.3e}",
+                    s + 1,
+                    model.steps.len(),
+                    step.name,
+                    report.reason_name(),
+                    report.newton_iterations
+                ));
                 if let Some(status) = status.as_mut() {
                     status.note(&format!(
                         "step {} cutback at lambda {target:.6} ({} after {} Newton iterations)",
@@ -197,9 +201,7 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
             if let Some(status) = status.as_mut() {
                 status.record(&row);
             }
-            if root && options.progress {
-                println!("{}", row.progress_line(&step.name, model.steps.len()));
-            }
+            progress.increment(&row, &step.name, model.steps.len());
             rows.push(row);
             cutbacks = 0;
             if report.newton_iterations <= controls.easy_iterations {
@@ -216,6 +218,7 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
         (reserved_couplings, pattern_refits) = (total as usize, refits);
         previous = Some(loads);
     }
+    progress.finish();
     if let Some(status) = status.as_mut() {
         status.note(&format!("completed: {} increments in {:.1} s", rows.len(), start.elapsed().as_secs_f64()));
     }
