@@ -90,14 +90,7 @@ pub fn line_plot(path: &Path, title: &str, x_label: &str, y_label: &str, curves:
             .label(m.label.as_str())
             .legend(|(x, y)| Cross::new((x + 12, y), 7, BLACK.stroke_width(2)));
     }
-    chart
-        .configure_series_labels()
-        .position(if axes == Axes::FromOrigin { SeriesLabelPosition::LowerRight } else { SeriesLabelPosition::UpperRight })
-        .label_font(("sans-serif", 18))
-        .background_style(WHITE.mix(0.9))
-        .border_style(BLACK)
-        .draw()
-        .map_err(|e| err(&e))?;
+    draw_legend(&mut chart, if axes == Axes::FromOrigin { SeriesLabelPosition::LowerRight } else { SeriesLabelPosition::UpperRight }).map_err(|e| err(&e))?;
     root.present().map_err(|e| err(&e))
 }
 
@@ -143,15 +136,13 @@ pub fn outline_picture(path: &Path, title: &str, layers: &[SegmentLayer]) -> Res
             .label(layer.label.as_str())
             .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 24, y)], style));
     }
-    chart
-        .configure_series_labels()
-        .position(SeriesLabelPosition::UpperLeft)
-        .label_font(("sans-serif", 18))
-        .background_style(WHITE.mix(0.9))
-        .border_style(BLACK)
-        .draw()
-        .map_err(|e| err(&e))?;
+    draw_legend(&mut chart, SeriesLabelPosition::UpperLeft).map_err(|e| err(&e))?;
     root.present().map_err(|e| err(&e))
+}
+
+/// The series' legend, boxed, at `position`.
+fn draw_legend<'a, CT: CoordTranslate>(chart: &mut ChartContext<'a, BitMapBackend<'a>, CT>, position: SeriesLabelPosition) -> DrawResult {
+    chart.configure_series_labels().position(position).label_font(("sans-serif", 18)).background_style(WHITE.mix(0.9)).border_style(BLACK).draw()
 }
 
 /// A Q8 mesh in its deformed configuration with one value per element.
