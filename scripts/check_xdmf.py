@@ -73,6 +73,15 @@ def main():
         worst = np.abs(point_data[field] - expected).max() / scale
         if worst > 1e-12:
             fail(f"last step: nodal {field} differs from the Gauss points carried to the nodes by {worst:.2e}")
+    if "contact" in inc:
+        expected = np.zeros(points.shape[0])
+        for pair in inc["contact"]:
+            for name in inc["contact"][pair]:
+                nodes = h5["mesh/contact"][pair][name]["nodes"][:]
+                np.maximum.at(expected, nodes, inc["contact"][pair][name]["pressure"][:])
+        if not np.array_equal(point_data["contact_pressure"], expected):
+            fail("last step: nodal contact_pressure differs from the largest pass pressure at each slave node")
+        print(f"contact pressure at the nodes equals the passes' (max {expected.max():.3f} MPa, {int(point_data['contact_status'].sum())} nodes in contact)")
     print(f"{reader.num_steps} steps (of {rows} history rows) at the history's times; displacement and element fields equal the HDF5 file's;")
     print(f"nodal stresses at the last step equal the Gauss-point stresses carried to the nodes (max |s_rr| {np.abs(point_data['stress_rr']).max():.3f} MPa)")
     print("ok")

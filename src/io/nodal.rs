@@ -12,6 +12,7 @@ use crate::error::Result;
 use crate::fe::axisymmetric::von_mises;
 use crate::fe::extrapolate::{accumulate_nodal, gauss_to_nodes};
 use crate::model::Mesh;
+use crate::solve::contact::PassOutput;
 use mpi::collective::SystemOperation;
 use mpi::topology::SimpleCommunicator;
 use mpi::traits::*;
@@ -29,6 +30,8 @@ pub struct NodalWriter {
     nodes: usize,
     node_slab: (usize, usize),
     matrix: [[f64; 9]; 8],
+    /// File row of each mesh node (contact slave nodes come by mesh index).
+    node_position: Vec<usize>,
 }
 
 impl NodalWriter {
@@ -41,6 +44,7 @@ impl NodalWriter {
             nodes: mesh.coords.len(),
             node_slab: (partition.node_offsets[rank], partition.node_offsets[rank + 1]),
             matrix: gauss_to_nodes(),
+            node_position: partition.node_position.clone(),
         }
     }
 
@@ -53,6 +57,7 @@ impl NodalWriter {
         stress: &[[[f64; 4]; QP]],
         plastic_strain: &[[f64; QP]],
         temperature: f64,
+        contact: &[PassOutput<'_>],
         path: &Path,
     ) -> Result<()> {
         let g = increment.create_group("nodal").map_err(|e| crate::error::Error::Output { path: path.to_path_buf(), message: e.to_string() })?;
@@ -73,6 +78,37 @@ impl NodalWriter {
             write_rows(&g, name, &[self.nodes], self.node_slab, &owned, path)?;
         }
         let t = vec![temperature; self.node_slab.1 - self.node_slab.0];
-        write_rows(&g, "temperature", &[self.nodes], self.node_slab, &t, path)
+        write_rows(&g, "temperature", &[self.nodes], self.node_slab, &t, path)?;
+        if !contact.is_empty() {
+            self.write_contact(&g, contact, path)?;
+        }
+        Ok(())
+    }
+
+    /// The contact state at the nodes: pressure (MPa, the largest over the pairs and passes
+    /// a node is a slave of, 0 elsewhere), status (1 in contact), gap (mm, the smallest; NaN
+    /// off the slave surfaces).
+    fn write_contact(&self, g: &hdf5::Group, contact: &[PassOutput<'_>], path: &Path) -> Result<()> {
+        let n = self.nodes;
+        let mut most = vec![0.0f64; 2 * n];
+        let mut least = vec![f64::INFINITY; n];
+        for p in contact {
+            for (&node, state) in p.nodes.iter().zip(p.states) {
+                let row = self.node_position[node];
+                most[row] = most[row].max(state.pressure);
+                most[n + row] = most[n + row].max(f64::from(u8::from(state.pressure > 0.0)));
+                least[row] = least[row].min(state.gap);
+            }
+        }
+        let (mut most_all, mut least_all) = (vec![0.0f64; 2 * n], vec![0.0f64; n]);
+        self.world.all_reduce_into(&most[..], &mut most_all[..], SystemOperation::max());
+        self.world.all_reduce_into(&least[..], &mut least_all[..], SystemOperation::min());
+        let owned = self.node_slab.0..self.node_slab.1;
+        let pressure: Vec<f64> = owned.clone().map(|r| most_all[r]).collect();
+        let status: Vec<f64> = owned.clone().map(|r| most_all[n + r]).collect();
+        let gap: Vec<f64> = owned.map(|r| if least_all[r].is_finite() { least_all[r] } else { f64::NAN }).collect();
+        write_rows(g, "contact_pressure", &[n], self.node_slab, &pressure, path)?;
+        write_rows(g, "contact_status", &[n], self.node_slab, &status, path)?;
+        write_rows(g, "contact_gap", &[n], self.node_slab, &gap, path)
     }
 }

@@ -1,7 +1,8 @@
 //! What a run says while it runs (rank 0): on a terminal a progress bar with the step, the
 //! increment, the load factor, the elapsed time and an estimate of the rest; otherwise (a pipe,
-//! a file, mpirun's forwarding) the plain line per increment. Cutbacks and notes go above the
-//! bar or between the lines.
+//! a file) the plain line per increment. Under mpirun the plain lines too: OpenMPI hands its
+//! ranks a pseudo-terminal whatever mpirun's own output is, so a rank cannot tell whether a
+//! person is watching. Cutbacks and notes go above the bar or between the lines.
 
 use super::HistoryRow;
 use indicatif::{ProgressBar, ProgressStyle};
@@ -22,7 +23,9 @@ impl Progress {
         if !show {
             return Progress::Quiet;
         }
-        if !std::io::stdout().is_terminal() {
+        // set by mpirun (OpenMPI) or a PMI launcher (MPICH), not in a singleton run
+        let launched = ["OMPI_COMMAND", "PMI_RANK"].iter().any(|v| std::env::var_os(v).is_some());
+        if launched || !std::io::stdout().is_terminal() {
             return Progress::Lines;
         }
         let bar = ProgressBar::new(steps as u64 * TICKS_PER_STEP);

@@ -240,7 +240,7 @@ impl ResultsFile {
             node_slab,
             element_slab,
             increments: 0,
-            sidecar: (rank == 0).then(|| xdmf::Sidecar::new(path, nn, ne)),
+            sidecar: (rank == 0).then(|| xdmf::Sidecar::new(path, nn, ne, !model.contacts.is_empty())),
             contact_mesh_written: false,
             reaction_segment_degrees: model.reaction_segment_degrees,
             nodal: NodalWriter::new(world, mesh, partition),
@@ -301,7 +301,7 @@ impl ResultsFile {
         write_rows(&g, "equivalent_plastic_strain", &[self.elements, QUADRATURE_POINTS], self.element_slab, &ep, &self.path)?;
         let ep_max: Vec<f64> = local_plastic_strain.iter().map(|c| c.iter().fold(0.0f64, |m, &v| m.max(v))).collect();
         write_rows(&g, "equivalent_plastic_strain_max", &[self.elements], self.element_slab, &ep_max, &self.path)?;
-        self.nodal.write(&g, owned_displacement, local_stress, local_plastic_strain, temperature, &self.path)?;
+        self.nodal.write(&g, owned_displacement, local_stress, local_plastic_strain, temperature, contact, &self.path)?;
         // Newton history of the increment: identical on all ranks, written by rank 0.
         let norms = &row.residual_norms;
         let (slab, data): ((usize, usize), &[f64]) = if self.rank == 0 { ((0, norms.len()), norms) } else { ((0, 0), &[]) };

@@ -31,12 +31,14 @@ pub struct Sidecar {
     elements: usize,
     /// The grids written so far, one per increment.
     grids: String,
+    /// The model has contact pairs: the nodal contact fields are written.
+    contact: bool,
 }
 
 impl Sidecar {
-    pub fn new(h5: &Path, nodes: usize, elements: usize) -> Self {
+    pub fn new(h5: &Path, nodes: usize, elements: usize, contact: bool) -> Self {
         let file = h5.file_name().map(|f| f.to_string_lossy().into_owned()).unwrap_or_default();
-        Sidecar { target: sidecar_path(h5), file, nodes, elements, grids: String::new() }
+        Sidecar { target: sidecar_path(h5), file, nodes, elements, grids: String::new(), contact }
     }
 
     /// Adds the grid of the increment stored in group `/increments/{group}` at `time`, and
@@ -74,7 +76,8 @@ impl Sidecar {
             r#"<Attribute Name="displacement" AttributeType="Vector" Center="Node">{}</Attribute>"#,
             item(&format!("{g}/nodal/displacement"), &format!("{nodes} 3"), "Float", 8)
         );
-        for name in NODAL_SCALARS.iter().chain(&["temperature"]) {
+        let contact: &[&str] = if self.contact { &["contact_pressure", "contact_status", "contact_gap"] } else { &[] };
+        for name in NODAL_SCALARS.iter().chain(&["temperature"]).chain(contact) {
             let _ = writeln!(
                 x,
                 r#"<Attribute Name="{name}" AttributeType="Scalar" Center="Node">{}</Attribute>"#,
@@ -106,7 +109,7 @@ mod tests {
         let dir = std::env::temp_dir().join(format!("slideline-xdmf-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
         let h5 = dir.join("run.h5");
-        let mut sidecar = Sidecar::new(&h5, 10, 2);
+        let mut sidecar = Sidecar::new(&h5, 10, 2, false);
         for (k, time) in [0.5, 1.0, 1.25].into_iter().enumerate() {
             sidecar.add_increment(&format!("{:06}", k + 1), time).unwrap();
             let text = std::fs::read_to_string(sidecar_path(&h5)).unwrap();
