@@ -331,7 +331,7 @@ impl Model {
     /// solver would answer with an arbitrary offset). A body touching a contact surface is
     /// left to the contact to hold.
     fn check_constraints(&self) -> Result<()> {
-        let mut in_force: BTreeMap<(String, Component), (f64, String)> = BTreeMap::new();
+        let mut in_force: BTreeMap<(String, Component), f64> = BTreeMap::new();
         let mut held_z = vec![false; self.mesh.coords.len()];
         for step in &self.steps {
             for (k, d) in step.displacements.iter().enumerate() {
@@ -346,10 +346,10 @@ impl Model {
                         d.value
                     )));
                 }
-                in_force.insert((d.node_set.clone(), d.component), (d.value, step.name.clone()));
+                in_force.insert((d.node_set.clone(), d.component), d.value);
             }
             let mut by_dof: std::collections::HashMap<(usize, Component), (&str, f64)> = std::collections::HashMap::new();
-            for ((set, component), (value, _)) in &in_force {
+            for ((set, component), value) in &in_force {
                 for &n in self.node_set(set)? {
                     if *component == Component::Z {
                         held_z[n] = true;
