@@ -113,6 +113,8 @@ struct StepDef {
     new_loads: bool,
     /// A procedure card (*STATIC) was read.
     has_procedure: bool,
+    /// The time points its output requests name: (times, in total time).
+    time_points: Vec<(Vec<f64>, bool)>,
 }
 
 #[derive(Default)]
@@ -139,6 +141,8 @@ struct Builder {
     output_requests: BTreeSet<String>,
     /// FREQUENCY= of the file output requests (the smallest given).
     output_every: Option<usize>,
+    /// *TIME POINTS by name: (times, in total time).
+    time_points: BTreeMap<String, (Vec<f64>, bool)>,
     notes: Vec<String>,
 }
 
@@ -236,6 +240,7 @@ fn build(cards: &[Card], source_text: String) -> Result<InpModel> {
             "TIME POINTS" => b.time_points(card)?,
             kw if OUTPUT_REQUESTS.contains(&kw) => {
                 b.output_requests.insert(format!("*{kw}"));
+                b.use_time_points(card)?;
                 // the frequency of the results file's field output
                 if kw == "NODE FILE" || kw == "EL FILE" || kw == "CONTACT FILE" {
                     if let Some(f) = card.param("FREQUENCY") {
@@ -490,11 +495,17 @@ mod tests {
     }
 
     #[test]
-    fn controls_and_time_points_are_noted_and_a_step_needs_a_procedure() {
-        let deck = "*TIME POINTS, NAME=T1\n0.5, 1.\n*STEP\n*STATIC\n*CONTROLS, PARAMETERS=TIME INCREMENTATION\n4, 8\n*BOUNDARY\nBOTTOM, 2, 2\n*NODE PRINT, NSET=TOP, TIME POINTS=T1\nU\n*END STEP\n";
-        let notes = read(deck).notes;
-        assert!(notes.iter().any(|n| n.contains("*CONTROLS") && n.contains("ignored")), "{notes:?}");
-        assert!(notes.iter().any(|n| n.contains("*TIME POINTS T1") && n.contains("every increment")), "{notes:?}");
+    fn controls_are_noted_time_points_end_increments_and_a_step_needs_a_procedure() {
+        let deck = "*TIME POINTS, NAME=T1\n0.3, 1.\n*STEP\n*STATIC\n0.25, 1.\n*CONTROLS, PARAMETERS=TIME INCREMENTATION\n4, 8\n*BOUNDARY\nBOTTOM, 2, 2\n*NODE PRINT, NSET=TOP, TIME POINTS=T1\nU\n*END STEP\n";
+        let read = read(deck);
+        assert!(read.notes.iter().any(|n| n.contains("*CONTROLS") && n.contains("ignored")), "{:?}", read.notes);
+        // 4 increments of 0.25 and a time point at 0.3: sub-steps ending at 0.3 and 1
+        let ends: Vec<f64> = read.model.steps.iter().map(|s| s.time_span.unwrap()[1]).collect();
+        assert_eq!(ends, vec![0.3, 1.0]);
+        let generated =
+            "*TIME POINTS, NAME=T2, GENERATE\n0., 1., 0.5\n*STEP\n*STATIC\n0.1, 1.\n*BOUNDARY\nBOTTOM, 2, 2\n*NODE FILE, TIME POINTS=T2\nU\n*END STEP\n";
+        let ends: Vec<f64> = self::read(generated).model.steps.iter().map(|s| s.time_span.unwrap()[1]).collect();
+        assert_eq!(ends, vec![0.5, 1.0]);
         let err = parse(&format!("{MESH}*STEP\n*BOUNDARY\nBOTTOM, 2, 2\n*END STEP\n"), Path::new("t.inp")).err().unwrap().to_string();
         assert!(err.contains("t.inp:24") && err.contains("no procedure card"), "{err}");
     }

@@ -104,6 +104,7 @@ impl Builder {
             temperature: None,
             new_loads: false,
             has_procedure: false,
+            time_points: Vec::new(),
         });
         self.in_step = true;
         Ok(())
@@ -132,27 +133,53 @@ impl Builder {
         Ok(())
     }
 
-    /// *TIME POINTS: read (its times must increase) and noted; the results file holds every
-    /// increment, a superset of the listed times' output.
+    /// *TIME POINTS: the listed times (GENERATE: start, end, increment triples), in step time
+    /// or, with TIME=TOTAL TIME, in total time; an output request naming them makes its step's
+    /// increments end on them ([`Builder::use_time_points`]).
     pub(super) fn time_points(&mut self, card: &Card) -> Result<()> {
         card.only(&["NAME", "GENERATE", "TIME"])?;
         let name = card.required("NAME")?.to_uppercase();
-        let mut times = Vec::new();
+        let total = match card.param("TIME").map(normalise).as_deref() {
+            None | Some("STEP TIME") => false,
+            Some("TOTAL TIME") => true,
+            Some(other) => return Err(card.error(format!("TIME={other}: STEP TIME or TOTAL TIME"))),
+        };
+        let mut values = Vec::new();
         for d in &card.data {
             for k in (0..d.fields.len()).filter(|&k| !d.fields[k].is_empty()) {
-                times.push(d.number("TIME POINTS", k, "time", None)?);
+                values.push(d.number("TIME POINTS", k, "time", None)?);
             }
         }
-        if card.has("GENERATE") && times.len() % 3 != 0 {
-            return Err(card.error("GENERATE takes (start, end, increment) triples"));
+        let times = if card.has("GENERATE") {
+            if values.len() % 3 != 0 {
+                return Err(card.error("GENERATE takes (start, end, increment) triples"));
+            }
+            let mut times = Vec::new();
+            for t in values.chunks(3) {
+                let (start, end, step) = (t[0], t[1], t[2]);
+                if !(step > 0.0 && end >= start) {
+                    return Err(card.error(format!("GENERATE {start}, {end}, {step}: need end >= start and an increment > 0")));
+                }
+                let n = ((end - start) / step + 1e-9).floor() as usize;
+                times.extend((0..=n).map(|k| start + k as f64 * step));
+            }
+            times
+        } else {
+            values
+        };
+        if times.is_empty() || times.windows(2).any(|w| w[1] <= w[0]) {
+            return Err(card.error(format!("time points {name}: give increasing times")));
         }
-        if !card.has("GENERATE") && times.windows(2).any(|w| w[1] <= w[0]) {
-            return Err(card.error(format!("time points {name}: the times must increase")));
-        }
-        self.notes.push(format!(
-            "*TIME POINTS {name} ({}): output requests using it are answered at every increment (the listed times are not forced as increment ends)",
-            card.at
-        ));
+        self.time_points.insert(name, (times, total));
+        Ok(())
+    }
+
+    /// An output request's TIME POINTS=: its step's increments end on those times.
+    pub(super) fn use_time_points(&mut self, card: &Card) -> Result<()> {
+        let Some(name) = card.param("TIME POINTS").map(str::to_uppercase) else { return Ok(()) };
+        let points =
+            self.time_points.get(&name).cloned().ok_or_else(|| card.error(format!("time points {name} are not defined (define them before their use)")))?;
+        self.step_mut(card)?.time_points.push(points);
         Ok(())
     }
 
@@ -276,8 +303,15 @@ impl Builder {
             used.extend(s.boundaries.iter().filter_map(|b| b.amplitude.as_ref()));
             used.extend(s.pressures.iter().filter_map(|b| b.amplitude.as_ref()));
             used.extend(s.temperature.iter().filter_map(|b| b.amplitude.as_ref()));
-            let mut times: Vec<f64> =
-                used.iter().flat_map(|a| self.amplitudes[*a].iter().map(|p| p.0)).filter(|&t| t > 1e-12 * s.period && t < s.period * (1.0 - 1e-12)).collect();
+            // the step is split at its amplitudes' points and at the time points its output
+            // requests name, so that increments end there
+            let listed = s.time_points.iter().flat_map(|(times, total)| times.iter().map(move |&t| if *total { t - total_time } else { t }));
+            let mut times: Vec<f64> = used
+                .iter()
+                .flat_map(|a| self.amplitudes[*a].iter().map(|p| p.0))
+                .chain(listed)
+                .filter(|&t| t > 1e-12 * s.period && t < s.period * (1.0 - 1e-12))
+                .collect();
             times.push(s.period);
             times.sort_by(f64::total_cmp);
             times.dedup_by(|a, b| (*a - *b).abs() <= 1e-12 * s.period);
@@ -317,7 +351,7 @@ impl Builder {
             total_time += s.period;
             if times.len() > 1 {
                 self.notes.push(format!(
-                    "{} ({}) follows its amplitudes in {} sub-steps ending at step times {}",
+                    "{} ({}) is split at its amplitudes' points and output time points into {} sub-steps ending at step times {}",
                     s.name,
                     s.at,
                     times.len(),
