@@ -30,7 +30,14 @@ fn penalty_study(session: &PetscSession, args: &StudyArgs) -> Result<(), Error> 
     bellows.displacement = args.displacement.unwrap_or(bellows.displacement);
     bellows.validate()?;
     let subject = match &args.deck {
-        Some(d) => Subject::Deck(model::deck::read(d)?),
+        // a TOML or an .inp deck, as `slideline run` reads it
+        Some(d) => {
+            let (model, notes) = model::read_deck(d)?;
+            if session.world().rank() == 0 && !args.quiet {
+                notes.iter().for_each(|note| println!("note: {note}"));
+            }
+            Subject::Deck(model)
+        }
         None => Subject::Bellows(bellows),
     };
     let measures = subject.measures(args.reaction.clone())?;

@@ -87,3 +87,22 @@ fn coarse_bellows_study_has_a_row_per_penalty() {
     }
     assert!(stdout.contains("recommendation:"), "{stdout}");
 }
+
+/// An .inp deck that `slideline run` reads is studied as well (CalculiX's shrink fit of
+/// tests/data/inp, its set names as the deck spells them).
+#[test]
+fn a_calculix_deck_is_studied_as_run_reads_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let study = dir.path().join("study.h5");
+    let out = command_in(dir.path(), 1)
+        .args(["penalty-study", "--deck"])
+        .arg(common::data("inp/shrink_fit.inp"))
+        .args(["--reaction", "RING_TOP", "--penalties", "1e4,1e5", "-o"])
+        .arg(&study)
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{stdout}{}", String::from_utf8_lossy(&out.stderr));
+    assert!(stdout.contains("note: "), "the deck's reading notes are printed: {stdout}");
+    assert_eq!(summary(&study, "converged"), vec![1.0, 1.0], "{stdout}");
+}
