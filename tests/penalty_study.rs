@@ -106,3 +106,26 @@ fn a_calculix_deck_is_studied_as_run_reads_it() {
     assert!(stdout.contains("note: "), "the deck's reading notes are printed: {stdout}");
     assert_eq!(summary(&study, "converged"), vec![1.0, 1.0], "{stdout}");
 }
+
+/// The augmented-Lagrangian reference is driven below the stiffest plain run's penetration:
+/// it does augment, and it penetrates least.
+#[test]
+fn the_augmented_reference_augments_past_the_stiffest_penalty() {
+    let dir = tempfile::tempdir().unwrap();
+    let deck = dir.path().join("fit.toml");
+    std::fs::write(&deck, shrink_fit_deck(true, "penalty = 1.0", "")).unwrap();
+    let study = dir.path().join("study.h5");
+    let out = command_in(dir.path(), 1)
+        .args(["penalty-study", "--deck"])
+        .arg(&deck)
+        .args(["--reaction", "outer_top", "--penalties", "1e3,1e4", "--augmented", "-o"])
+        .arg(&study)
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{stdout}{}", String::from_utf8_lossy(&out.stderr));
+    let (augmented, augmentations, penetration) = (summary(&study, "augmented"), summary(&study, "augmentations"), summary(&study, "max_penetration"));
+    assert_eq!(augmented, vec![0.0, 0.0, 1.0]);
+    assert!(augmentations[2] > 0.0 && augmentations[..2].iter().all(|&a| a == 0.0), "{augmentations:?}");
+    assert!(penetration[2] < 0.6 * penetration[1], "the reference penetrates least: {penetration:?}");
+}
