@@ -16,7 +16,7 @@
 //! every = 1                         # fields of every N-th increment (and the last of each step)
 //!
 //! [mesh]
-//! file = "cylinder.msh"             # Gmsh 4.1, relative to the deck; or instead:
+//! file = "cylinder.msh"             # Gmsh 4.1 or 2.2 ASCII, relative to the deck; or instead:
 //! # rectangle = { r = [100.0, 130.0], z = [0.0, 10.0], divisions = [12, 2] }
 //! # or separate bodies, sets prefixed by the block name (tube, tube_inner, tube_top, ...):
 //! # [[mesh.block]]

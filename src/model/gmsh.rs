@@ -1,4 +1,4 @@
-//! Reader for Gmsh .msh 4.1 ASCII meshes.
+//! Reader for Gmsh .msh 4.1 and 2.2 ASCII meshes.
 //!
 //! Physical groups become sets: a 2D group becomes an element set (and a node set of its
 //! nodes), a 1D group a surface of 3-node edges (and the node set of its nodes), a 0D group a
@@ -80,6 +80,16 @@ fn need<T: Copy>(v: &[T], n: usize, lines: &Lines, what: &str) -> Result<()> {
     Ok(())
 }
 
+/// Dimension of a Gmsh element type (points 0, lines 1, surfaces 2, volumes 3).
+fn type_dimension(ty: u32) -> i32 {
+    match ty {
+        15 => 0,
+        1 | 8 | 26 | 27 | 28 => 1,
+        2 | 3 | 9 | 10 | 16 | 20 | 21 | 22 | 23 | 24 | 25 => 2,
+        _ => 3,
+    }
+}
+
 pub fn parse(text: &str, name: &str) -> Result<(Mesh, MeshSets)> {
     let mut lines = Lines { name, lines: text.lines().enumerate(), line: 0 };
     let mut physical_names: HashMap<(i32, i32), String> = HashMap::new();
@@ -89,16 +99,18 @@ pub fn parse(text: &str, name: &str) -> Result<(Mesh, MeshSets)> {
     // (dim, entity, type, tag, node tags)
     let mut elements: Vec<(i32, i32, u32, u64, Vec<u64>, usize)> = Vec::new();
     let mut seen_format = false;
+    // format 2.2: each element names its physical group itself (its first tag)
+    let mut legacy = false;
 
     while let Ok(header) = lines.next() {
         match header {
             "$MeshFormat" => {
                 let l = lines.next()?;
                 let f: Vec<&str> = l.split_whitespace().collect();
-                if f.first() != Some(&"4.1") {
-                    return Err(
-                        lines.error(format!("unsupported .msh version {:?}: slideline reads format 4.1 (Gmsh: -format msh41)", f.first().unwrap_or(&"")))
-                    );
+                legacy = f.first() == Some(&"2.2");
+                if f.first() != Some(&"4.1") && !legacy {
+                    return Err(lines
+                        .error(format!("unsupported .msh version {:?}: slideline reads formats 4.1 and 2.2 (Gmsh: -format msh41)", f.first().unwrap_or(&""))));
                 }
                 if f.get(1) != Some(&"0") {
                     return Err(lines.error("binary .msh files are not supported: save as ASCII (Mesh.Binary = 0)"));
@@ -140,6 +152,39 @@ pub fn parse(text: &str, name: &str) -> Result<(Mesh, MeshSets)> {
                     }
                 }
                 lines.expect("$EndEntities")?;
+            }
+            "$Nodes" if legacy => {
+                let n: Vec<u64> = lines.numbers("$Nodes count")?;
+                need(&n, 1, &lines, "$Nodes count")?;
+                for _ in 0..n[0] {
+                    let v: Vec<f64> = lines.numbers("node")?;
+                    need(&v, 4, &lines, "node (tag x y z)")?;
+                    let tag = v[0] as u64;
+                    if v[3] != 0.0 {
+                        return Err(lines.error(format!("node {tag} has z = {}: the mesh must lie in the x-y plane (x = r, y = z)", v[3])));
+                    }
+                    node_coords.insert(tag, [v[1], v[2]]);
+                }
+                lines.expect("$EndNodes")?;
+            }
+            "$Elements" if legacy => {
+                let n: Vec<u64> = lines.numbers("$Elements count")?;
+                need(&n, 1, &lines, "$Elements count")?;
+                for _ in 0..n[0] {
+                    // tag type ntags tags... nodes...; the first tag is the physical group
+                    let v: Vec<u64> = lines.numbers("element")?;
+                    need(&v, 3, &lines, "element")?;
+                    let (tag, ty, ntags) = (v[0], v[1] as u32, v[2] as usize);
+                    need(&v, 3 + ntags, &lines, "element tags")?;
+                    let dim = type_dimension(ty);
+                    // one entity per physical group, so the 4.1 path's lookups serve
+                    let entity = if ntags > 0 { v[3] as i32 } else { -1 };
+                    if ntags > 0 {
+                        entity_physicals.insert((dim, entity), vec![entity]);
+                    }
+                    elements.push((dim, entity, ty, tag, v[3 + ntags..].to_vec(), lines.line));
+                }
+                lines.expect("$EndElements")?;
             }
             "$Nodes" => {
                 let h: Vec<u64> = lines.numbers("$Nodes header")?;
@@ -320,6 +365,22 @@ fn type_name(ty: u32) -> String {
 mod tests {
     use super::*;
     use crate::model::mesh::{blocks, Block};
+
+    /// A format 2.2 file: one Q8 (physical surface "plate"), its bottom side as a 3-node line
+    /// (physical curve "bottom") and a corner point (physical point "corner").
+    const MSH22: &str = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$PhysicalNames\n3\n0 3 \"corner\"\n1 2 \"bottom\"\n2 1 \"plate\"\n$EndPhysicalNames\n\
+$Nodes\n8\n1 10 0 0\n2 12 0 0\n3 12 2 0\n4 10 2 0\n5 11 0 0\n6 12 1 0\n7 11 2 0\n8 10 1 0\n$EndNodes\n\
+$Elements\n3\n1 15 2 3 1 1\n2 8 2 2 1 1 2 5\n3 16 2 1 1 1 2 3 4 5 6 7 8\n$EndElements\n";
+
+    #[test]
+    fn a_format_2_2_mesh_reads_with_its_physical_groups() {
+        let (mesh, sets) = parse(MSH22, "t.msh").unwrap();
+        assert_eq!((mesh.coords.len(), mesh.elements.len()), (8, 1));
+        assert_eq!(mesh.coords[mesh.elements[0][2]], [12.0, 2.0]);
+        assert_eq!(sets.element_sets["plate"], vec![0]);
+        assert_eq!(sets.surfaces["bottom"], vec![Edge { element: 0, side: 0 }]);
+        assert_eq!(sets.node_sets["corner"].iter().map(|&n| mesh.node_ids[n]).collect::<Vec<_>>(), vec![1]);
+    }
 
     #[test]
     fn written_meshes_read_back_with_their_sets() {
