@@ -163,12 +163,13 @@ fn post_reads_a_file_cut_short_with_a_note() {
     assert!(err.contains("cannot write /nonexistent/dir/h.csv") && !err.contains("HDF5"), "{err}");
 }
 
-/// `[output] every = 3`: the fields of increments 3, 6 and 7 (the last of the step), the
-/// history of all 7; post, the XDMF sidecar and meshio follow the run's numbering.
+/// `[output] every = 3, fields = ["von_mises"]`: the displacement and von Mises stress of
+/// increments 3, 6 and 7 (the last of the step), the history of all 7; post, the XDMF sidecar
+/// and meshio follow the run's numbering; an unknown field is refused by name.
 #[test]
 fn output_every_n_keeps_the_fields_of_every_nth_and_the_last_increment() {
     let dir = tempfile::tempdir().unwrap();
-    let deck = "[output]\nevery = 3\n[mesh]\nrectangle = { r = [1.0, 2.0], z = [0.0, 1.0], divisions = [2, 1] }\n[[material]]\nname = \"steel\"\nyoungs_modulus = 200000.0\npoissons_ratio = 0.3\n[[step]]\nincrements = 7\nboundary = [ { set = \"bottom\", uz = 0.0 }, { set = \"top\", uz = -0.007 } ]\n";
+    let deck = "[output]\nevery = 3\nfields = [\"von_mises\"]\n[mesh]\nrectangle = { r = [1.0, 2.0], z = [0.0, 1.0], divisions = [2, 1] }\n[[material]]\nname = \"steel\"\nyoungs_modulus = 200000.0\npoissons_ratio = 0.3\n[[step]]\nincrements = 7\nboundary = [ { set = \"bottom\", uz = 0.0 }, { set = \"top\", uz = -0.007 } ]\n";
     std::fs::write(dir.path().join("d.toml"), deck).unwrap();
     let h5 = dir.path().join("d.h5");
     let run = command_in(dir.path(), 2).arg("run").arg(dir.path().join("d.toml")).arg("-o").arg(&h5).arg("-q").output().unwrap();
@@ -176,6 +177,11 @@ fn output_every_n_keeps_the_fields_of_every_nth_and_the_last_increment() {
     let file = hdf5::File::open(&h5).unwrap();
     assert_eq!(file.group("increments").unwrap().member_names().unwrap(), vec!["000003", "000006", "000007"]);
     assert_eq!(file.dataset("history/time").unwrap().read_raw::<f64>().unwrap().len(), 7);
+    // fields = ["von_mises"]: beside the displacement, von Mises only
+    let mut kept = file.group("increments/000003").unwrap().member_names().unwrap();
+    kept.sort();
+    assert_eq!(kept, vec!["displacement", "nodal", "residual_norms", "von_mises", "von_mises_mean"]);
+    assert_eq!(file.group("increments/000003/nodal").unwrap().member_names().unwrap(), vec!["displacement", "von_mises"]);
     let xmf = std::fs::read_to_string(h5.with_extension("xmf")).unwrap();
     assert_eq!(xmf.matches("<Grid Name=\"increment").count(), 3);
     let h5s = h5.to_str().unwrap();
@@ -191,4 +197,8 @@ fn output_every_n_keeps_the_fields_of_every_nth_and_the_last_increment() {
     let check = std::process::Command::new("python3").arg(script).arg(h5.with_extension("xmf")).output().unwrap();
     let text = String::from_utf8_lossy(&check.stdout);
     assert!(check.status.success() && text.contains("3 steps (of 7 history rows)"), "{text}{}", String::from_utf8_lossy(&check.stderr));
+    std::fs::write(dir.path().join("bad.toml"), deck.replace("\"von_mises\"", "\"strain\"")).unwrap();
+    let out = command_in(dir.path(), 1).arg("run").arg(dir.path().join("bad.toml")).arg("-o").arg(dir.path().join("bad.h5")).output().unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.code() == Some(2) && err.contains("unknown field \"strain\""), "{err}");
 }

@@ -11,7 +11,7 @@ use crate::element::solid::QUADRATURE_POINTS as QP;
 use crate::error::Result;
 use crate::fe::axisymmetric::von_mises;
 use crate::fe::extrapolate::{accumulate_nodal, gauss_to_nodes};
-use crate::model::Mesh;
+use crate::model::{Mesh, OutputFields};
 use crate::solve::contact::PassOutput;
 use mpi::collective::SystemOperation;
 use mpi::topology::SimpleCommunicator;
@@ -21,6 +21,15 @@ use std::path::Path;
 /// The nodal scalars, in dataset order: the four stress components, von Mises, equivalent
 /// plastic strain.
 pub const NODAL_SCALARS: [&str; 6] = ["stress_rr", "stress_zz", "stress_tt", "stress_rz", "von_mises", "equivalent_plastic_strain"];
+
+/// Whether nodal scalar `name` (one of [`NODAL_SCALARS`]) belongs to the fields kept.
+pub fn nodal_scalar_kept(name: &str, fields: OutputFields) -> bool {
+    match name {
+        "von_mises" => fields.von_mises,
+        "equivalent_plastic_strain" => fields.plastic_strain,
+        _ => fields.stress,
+    }
+}
 
 /// What a rank needs to write the nodal fields: its elements' nodes as file rows.
 pub struct NodalWriter {
@@ -32,10 +41,11 @@ pub struct NodalWriter {
     matrix: [[f64; 9]; 8],
     /// File row of each mesh node (contact slave nodes come by mesh index).
     node_position: Vec<usize>,
+    fields: OutputFields,
 }
 
 impl NodalWriter {
-    pub fn new(world: SimpleCommunicator, mesh: &Mesh, partition: &Partition) -> Self {
+    pub fn new(world: SimpleCommunicator, mesh: &Mesh, partition: &Partition, fields: OutputFields) -> Self {
         let connectivity = partition.local_elements().iter().map(|&e| mesh.elements[e].map(|n| partition.node_position[n])).collect();
         let rank = partition.rank;
         NodalWriter {
@@ -45,6 +55,7 @@ impl NodalWriter {
             node_slab: (partition.node_offsets[rank], partition.node_offsets[rank + 1]),
             matrix: gauss_to_nodes(),
             node_position: partition.node_position.clone(),
+            fields,
         }
     }
 
@@ -73,13 +84,15 @@ impl NodalWriter {
         let mut total = vec![0.0f64; local.len()];
         self.world.all_reduce_into(&local[..], &mut total[..], SystemOperation::sum());
         let (sums, counts) = total.split_at(self.nodes * C);
-        for (c, name) in NODAL_SCALARS.iter().enumerate() {
+        for (c, name) in NODAL_SCALARS.iter().enumerate().filter(|(_, name)| nodal_scalar_kept(name, self.fields)) {
             let owned: Vec<f64> = (self.node_slab.0..self.node_slab.1).map(|n| sums[n * C + c] / counts[n].max(1.0)).collect();
             write_rows(&g, name, &[self.nodes], self.node_slab, &owned, path)?;
         }
-        let t = vec![temperature; self.node_slab.1 - self.node_slab.0];
-        write_rows(&g, "temperature", &[self.nodes], self.node_slab, &t, path)?;
-        if !contact.is_empty() {
+        if self.fields.temperature {
+            let t = vec![temperature; self.node_slab.1 - self.node_slab.0];
+            write_rows(&g, "temperature", &[self.nodes], self.node_slab, &t, path)?;
+        }
+        if !contact.is_empty() && self.fields.contact {
             self.write_contact(&g, contact, path)?;
         }
         Ok(())

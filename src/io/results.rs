@@ -31,7 +31,7 @@ use crate::dist::Partition;
 use crate::element::solid::QUADRATURE_POINTS;
 use crate::error::{Error, Result};
 use crate::fe::axisymmetric::von_mises;
-use crate::model::Model;
+use crate::model::{Model, OutputFields};
 use crate::petsc::PetscSession;
 use crate::solve::contact::PassOutput;
 use hdf5::types::VarLenUnicode;
@@ -166,6 +166,8 @@ pub struct ResultsFile {
     /// Reactions also per segment of this angle (degrees), CalculiX's convention for .inp runs.
     reaction_segment_degrees: Option<f64>,
     nodal: NodalWriter,
+    /// The fields written beside the displacement.
+    fields: OutputFields,
 }
 
 /// Attribute of an increment group written after everything else of the increment.
@@ -240,10 +242,11 @@ impl ResultsFile {
             node_slab,
             element_slab,
             increments: 0,
-            sidecar: (rank == 0).then(|| xdmf::Sidecar::new(path, nn, ne, !model.contacts.is_empty())),
+            sidecar: (rank == 0).then(|| xdmf::Sidecar::new(path, nn, ne, model.output.fields, !model.contacts.is_empty())),
             contact_mesh_written: false,
             reaction_segment_degrees: model.reaction_segment_degrees,
-            nodal: NodalWriter::new(world, mesh, partition),
+            nodal: NodalWriter::new(world, mesh, partition, model.output.fields),
+            fields: model.output.fields,
         })
     }
 
@@ -291,23 +294,30 @@ impl ResultsFile {
         g.new_attr::<VarLenUnicode>().create("step_name").map_err(&err)?.write_scalar(&step_name_v).map_err(&err)?;
         let u: Vec<f64> = owned_displacement.iter().flatten().copied().collect();
         write_rows(&g, "displacement", &[self.nodes, 2], self.node_slab, &u, &self.path)?;
-        let s: Vec<f64> = local_stress.iter().flatten().flatten().copied().collect();
-        write_rows(&g, "stress", &[self.elements, QUADRATURE_POINTS, 4], self.element_slab, &s, &self.path)?;
-        let vm: Vec<f64> = local_stress.iter().flatten().map(von_mises).collect();
-        write_rows(&g, "von_mises", &[self.elements, QUADRATURE_POINTS], self.element_slab, &vm, &self.path)?;
-        let mean: Vec<f64> = vm.chunks(QUADRATURE_POINTS).map(|c| c.iter().sum::<f64>() / QUADRATURE_POINTS as f64).collect();
-        write_rows(&g, "von_mises_mean", &[self.elements], self.element_slab, &mean, &self.path)?;
-        let ep: Vec<f64> = local_plastic_strain.iter().flatten().copied().collect();
-        write_rows(&g, "equivalent_plastic_strain", &[self.elements, QUADRATURE_POINTS], self.element_slab, &ep, &self.path)?;
-        let ep_max: Vec<f64> = local_plastic_strain.iter().map(|c| c.iter().fold(0.0f64, |m, &v| m.max(v))).collect();
-        write_rows(&g, "equivalent_plastic_strain_max", &[self.elements], self.element_slab, &ep_max, &self.path)?;
+        let f = self.fields;
+        if f.stress {
+            let s: Vec<f64> = local_stress.iter().flatten().flatten().copied().collect();
+            write_rows(&g, "stress", &[self.elements, QUADRATURE_POINTS, 4], self.element_slab, &s, &self.path)?;
+        }
+        if f.von_mises {
+            let vm: Vec<f64> = local_stress.iter().flatten().map(von_mises).collect();
+            write_rows(&g, "von_mises", &[self.elements, QUADRATURE_POINTS], self.element_slab, &vm, &self.path)?;
+            let mean: Vec<f64> = vm.chunks(QUADRATURE_POINTS).map(|c| c.iter().sum::<f64>() / QUADRATURE_POINTS as f64).collect();
+            write_rows(&g, "von_mises_mean", &[self.elements], self.element_slab, &mean, &self.path)?;
+        }
+        if f.plastic_strain {
+            let ep: Vec<f64> = local_plastic_strain.iter().flatten().copied().collect();
+            write_rows(&g, "equivalent_plastic_strain", &[self.elements, QUADRATURE_POINTS], self.element_slab, &ep, &self.path)?;
+            let ep_max: Vec<f64> = local_plastic_strain.iter().map(|c| c.iter().fold(0.0f64, |m, &v| m.max(v))).collect();
+            write_rows(&g, "equivalent_plastic_strain_max", &[self.elements], self.element_slab, &ep_max, &self.path)?;
+        }
         self.nodal.write(&g, owned_displacement, local_stress, local_plastic_strain, temperature, contact, &self.path)?;
         // Newton history of the increment: identical on all ranks, written by rank 0.
         let norms = &row.residual_norms;
         let (slab, data): ((usize, usize), &[f64]) = if self.rank == 0 { ((0, norms.len()), norms) } else { ((0, 0), &[]) };
         write_rows(&g, "residual_norms", &[norms.len()], slab, data, &self.path)?;
         drop(err);
-        if !contact.is_empty() {
+        if !contact.is_empty() && f.contact {
             self.write_contact(&g, row, contact, partition)?;
         }
         Ok(g)

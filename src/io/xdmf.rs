@@ -6,8 +6,9 @@
 //! (carried there from the Gauss points, see `io::nodal`), and per element the mean von Mises
 //! stress, the largest plastic strain and the rank.
 
-use super::nodal::NODAL_SCALARS;
+use super::nodal::{nodal_scalar_kept, NODAL_SCALARS};
 use crate::error::{Error, Result};
+use crate::model::OutputFields;
 use std::fmt::Write as _;
 use std::io::Write as _;
 use std::path::{Path, PathBuf};
@@ -31,14 +32,16 @@ pub struct Sidecar {
     elements: usize,
     /// The grids written so far, one per increment.
     grids: String,
+    /// The fields written beside the displacement.
+    fields: OutputFields,
     /// The model has contact pairs: the nodal contact fields are written.
     contact: bool,
 }
 
 impl Sidecar {
-    pub fn new(h5: &Path, nodes: usize, elements: usize, contact: bool) -> Self {
+    pub fn new(h5: &Path, nodes: usize, elements: usize, fields: OutputFields, contact: bool) -> Self {
         let file = h5.file_name().map(|f| f.to_string_lossy().into_owned()).unwrap_or_default();
-        Sidecar { target: sidecar_path(h5), file, nodes, elements, grids: String::new(), contact }
+        Sidecar { target: sidecar_path(h5), file, nodes, elements, grids: String::new(), fields, contact }
     }
 
     /// Adds the grid of the increment stored in group `/increments/{group}` at `time`, and
@@ -76,15 +79,20 @@ impl Sidecar {
             r#"<Attribute Name="displacement" AttributeType="Vector" Center="Node">{}</Attribute>"#,
             item(&format!("{g}/nodal/displacement"), &format!("{nodes} 3"), "Float", 8)
         );
-        let contact: &[&str] = if self.contact { &["contact_pressure", "contact_status", "contact_gap"] } else { &[] };
-        for name in NODAL_SCALARS.iter().chain(&["temperature"]).chain(contact) {
+        let f = self.fields;
+        let contact: &[&str] = if self.contact && f.contact { &["contact_pressure", "contact_status", "contact_gap"] } else { &[] };
+        let temperature: &[&str] = if f.temperature { &["temperature"] } else { &[] };
+        let scalars = NODAL_SCALARS.iter().filter(|name| nodal_scalar_kept(name, f));
+        for name in scalars.chain(temperature).chain(contact) {
             let _ = writeln!(
                 x,
                 r#"<Attribute Name="{name}" AttributeType="Scalar" Center="Node">{}</Attribute>"#,
                 item(&format!("{g}/nodal/{name}"), &nodes.to_string(), "Float", 8)
             );
         }
-        for name in ["von_mises_mean", "equivalent_plastic_strain_max"] {
+        let element: Vec<&str> =
+            [("von_mises_mean", f.von_mises), ("equivalent_plastic_strain_max", f.plastic_strain)].into_iter().filter(|e| e.1).map(|e| e.0).collect();
+        for name in element {
             let _ = writeln!(
                 x,
                 r#"<Attribute Name="{name}" AttributeType="Scalar" Center="Cell">{}</Attribute>"#,
@@ -109,7 +117,7 @@ mod tests {
         let dir = std::env::temp_dir().join(format!("slideline-xdmf-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
         let h5 = dir.join("run.h5");
-        let mut sidecar = Sidecar::new(&h5, 10, 2, false);
+        let mut sidecar = Sidecar::new(&h5, 10, 2, OutputFields::ALL, false);
         for (k, time) in [0.5, 1.0, 1.25].into_iter().enumerate() {
             sidecar.add_increment(&format!("{:06}", k + 1), time).unwrap();
             let text = std::fs::read_to_string(sidecar_path(&h5)).unwrap();

@@ -376,7 +376,7 @@ pub fn model(p: &BellowsParams) -> Result<Model> {
         kinematics: Kinematics::Finite,
         // contact and plasticity take 8-11 Newton iterations per increment: count those as easy
         stepping: SteppingControls { easy_iterations: 12, ..SteppingControls::default() },
-        output: OutputControls { every: p.output_every },
+        output: OutputControls { every: p.output_every, ..OutputControls::default() },
         contacts,
         steps,
         source_text,

@@ -14,6 +14,7 @@
 //!
 //! [output]                         # optional
 //! every = 1                         # fields of every N-th increment (and the last of each step)
+//! fields = ["stress", "von_mises", "plastic_strain", "temperature", "contact"]  # default: all
 //!
 //! [mesh]
 //! file = "cylinder.msh"             # Gmsh 4.1 or 2.2 ASCII, relative to the deck; or instead:
@@ -61,8 +62,8 @@
 
 use super::mesh::{blocks, rectangle, Block, MeshSets};
 use super::{
-    default_capture_distance, gmsh, AugmentedLagrangian, Component, ContactIntegration, ContactPair, Kinematics, Material, Model, OutputControls, Penalty,
-    Plasticity, PrescribedDisplacement, Pressure, Step, SteppingControls,
+    default_capture_distance, gmsh, AugmentedLagrangian, Component, ContactIntegration, ContactPair, Kinematics, Material, Model, OutputControls, OutputFields,
+    Penalty, Plasticity, PrescribedDisplacement, Pressure, Step, SteppingControls,
 };
 use crate::error::{Error, Result};
 use serde::Deserialize;
@@ -95,6 +96,8 @@ struct DeckFile {
 struct OutputSpec {
     /// Fields of every N-th increment (and of the last of each step).
     every: Option<usize>,
+    /// Which fields beside the displacement (default: all).
+    fields: Option<Vec<String>>,
 }
 
 #[derive(Deserialize)]
@@ -399,7 +402,10 @@ pub fn parse(text: &str, path: &Path) -> Result<Model> {
         reference_temperature: deck.reference_temperature,
         kinematics,
         stepping: deck.stepping.controls(),
-        output: OutputControls { every: deck.output.every.unwrap_or(1) },
+        output: OutputControls {
+            every: deck.output.every.unwrap_or(1),
+            fields: deck.output.fields.as_deref().map(OutputFields::from_names).transpose()?.unwrap_or(OutputFields::ALL),
+        },
         contacts,
         steps,
         source_text: text.to_string(),

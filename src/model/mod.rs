@@ -150,11 +150,55 @@ impl Default for SteppingControls {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct OutputControls {
     pub every: usize,
+    /// Which fields beside the displacement (always written) the results keep.
+    pub fields: OutputFields,
+}
+
+/// The fields an increment's group holds beside the displacement: named in a deck's
+/// `fields = [...]` by [`OutputFields::NAMES`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct OutputFields {
+    /// Gauss-point stresses and the stress components at the nodes.
+    pub stress: bool,
+    /// Von Mises stress at the Gauss points, its element mean, at the nodes.
+    pub von_mises: bool,
+    /// Equivalent plastic strain at the Gauss points, its element maximum, at the nodes.
+    pub plastic_strain: bool,
+    pub temperature: bool,
+    /// Contact gap, pressure, traction and status per pass and at the nodes.
+    pub contact: bool,
+}
+
+impl OutputFields {
+    pub const NAMES: [&'static str; 5] = ["stress", "von_mises", "plastic_strain", "temperature", "contact"];
+    pub const ALL: OutputFields = OutputFields { stress: true, von_mises: true, plastic_strain: true, temperature: true, contact: true };
+
+    /// The fields named in `names` (each one of [`Self::NAMES`]).
+    pub fn from_names(names: &[String]) -> Result<Self> {
+        let mut f = OutputFields { stress: false, von_mises: false, plastic_strain: false, temperature: false, contact: false };
+        for name in names {
+            match name.as_str() {
+                "stress" => f.stress = true,
+                "von_mises" => f.von_mises = true,
+                "plastic_strain" => f.plastic_strain = true,
+                "temperature" => f.temperature = true,
+                "contact" => f.contact = true,
+                "displacement" => {}
+                other => {
+                    return Err(Error::input(format!(
+                        "[output] fields: unknown field {other:?} (the fields are {}; the displacement is always written)",
+                        Self::NAMES.join(", ")
+                    )))
+                }
+            }
+        }
+        Ok(f)
+    }
 }
 
 impl Default for OutputControls {
     fn default() -> Self {
-        OutputControls { every: 1 }
+        OutputControls { every: 1, fields: OutputFields::ALL }
     }
 }
 

@@ -344,7 +344,7 @@ impl Builder {
             reference_temperature,
             kinematics,
             stepping,
-            output: super::OutputControls { every: self.output_every.unwrap_or(1) },
+            output: super::OutputControls { every: self.output_every.unwrap_or(1), ..Default::default() },
             contacts,
             steps,
             source_text,
