@@ -30,22 +30,27 @@ fn summary(path: &std::path::Path, column: &str) -> Vec<f64> {
     f.dataset(&format!("summary/{column}")).unwrap_or_else(|e| panic!("summary/{column}: {e}")).read_raw::<f64>().unwrap()
 }
 
+/// Runs `penalty-study --deck DECK ARGS... -o study.h5` on `ranks` ranks in `dir`: the study
+/// file and the printed output; panics with the output unless it succeeded.
+fn study_deck(dir: &std::path::Path, ranks: usize, deck: &std::path::Path, args: &[&str]) -> (std::path::PathBuf, String) {
+    let study = dir.join("study.h5");
+    let out = command_in(dir, ranks).args(["penalty-study", "--deck"]).arg(deck).args(args).arg("-o").arg(&study).output().unwrap();
+    let stdout = String::from_utf8_lossy(&out.stdout).into_owned();
+    assert!(out.status.success(), "{stdout}{}", String::from_utf8_lossy(&out.stderr));
+    (study, stdout)
+}
+
+/// The shrink fit deck with a penalty each study run replaces, written in `dir`.
+fn fit_deck(dir: &std::path::Path) -> std::path::PathBuf {
+    let deck = dir.join("fit.toml");
+    std::fs::write(&deck, shrink_fit_deck(true, "penalty = 1.0", "")).unwrap();
+    deck
+}
+
 #[test]
 fn shrink_fit_penetration_falls_as_the_penalty_rises() {
     let dir = tempfile::tempdir().unwrap();
-    let deck = dir.path().join("fit.toml");
-    // the penalty is replaced by each of the study's values
-    std::fs::write(&deck, shrink_fit_deck(true, "penalty = 1.0", "")).unwrap();
-    let study = dir.path().join("study.h5");
-    let out = command_in(dir.path(), 2)
-        .args(["penalty-study", "--deck"])
-        .arg(&deck)
-        .args(["--reaction", "outer_top", "--penalties", "1e3,1e4,1e5", "-o"])
-        .arg(&study)
-        .output()
-        .unwrap();
-    let stdout = String::from_utf8_lossy(&out.stdout);
-    assert!(out.status.success(), "{stdout}{}", String::from_utf8_lossy(&out.stderr));
+    let (study, stdout) = study_deck(dir.path(), 2, &fit_deck(dir.path()), &["--reaction", "outer_top", "--penalties", "1e3,1e4,1e5"]);
     let penetration = summary(&study, "max_penetration");
     assert_eq!(penetration.len(), 3);
     for w in penetration.windows(2) {
@@ -93,16 +98,7 @@ fn coarse_bellows_study_has_a_row_per_penalty() {
 #[test]
 fn a_calculix_deck_is_studied_as_run_reads_it() {
     let dir = tempfile::tempdir().unwrap();
-    let study = dir.path().join("study.h5");
-    let out = command_in(dir.path(), 1)
-        .args(["penalty-study", "--deck"])
-        .arg(common::data("inp/shrink_fit.inp"))
-        .args(["--reaction", "RING_TOP", "--penalties", "1e4,1e5", "-o"])
-        .arg(&study)
-        .output()
-        .unwrap();
-    let stdout = String::from_utf8_lossy(&out.stdout);
-    assert!(out.status.success(), "{stdout}{}", String::from_utf8_lossy(&out.stderr));
+    let (study, stdout) = study_deck(dir.path(), 1, &common::data("inp/shrink_fit.inp"), &["--reaction", "RING_TOP", "--penalties", "1e4,1e5"]);
     assert!(stdout.contains("note: "), "the deck's reading notes are printed: {stdout}");
     assert_eq!(summary(&study, "converged"), vec![1.0, 1.0], "{stdout}");
 }
@@ -112,18 +108,7 @@ fn a_calculix_deck_is_studied_as_run_reads_it() {
 #[test]
 fn the_augmented_reference_augments_past_the_stiffest_penalty() {
     let dir = tempfile::tempdir().unwrap();
-    let deck = dir.path().join("fit.toml");
-    std::fs::write(&deck, shrink_fit_deck(true, "penalty = 1.0", "")).unwrap();
-    let study = dir.path().join("study.h5");
-    let out = command_in(dir.path(), 1)
-        .args(["penalty-study", "--deck"])
-        .arg(&deck)
-        .args(["--reaction", "outer_top", "--penalties", "1e3,1e4", "--augmented", "-o"])
-        .arg(&study)
-        .output()
-        .unwrap();
-    let stdout = String::from_utf8_lossy(&out.stdout);
-    assert!(out.status.success(), "{stdout}{}", String::from_utf8_lossy(&out.stderr));
+    let (study, _) = study_deck(dir.path(), 1, &fit_deck(dir.path()), &["--reaction", "outer_top", "--penalties", "1e3,1e4", "--augmented"]);
     let (augmented, augmentations, penetration) = (summary(&study, "augmented"), summary(&study, "augmentations"), summary(&study, "max_penetration"));
     assert_eq!(augmented, vec![0.0, 0.0, 1.0]);
     assert!(augmentations[2] > 0.0 && augmentations[..2].iter().all(|&a| a == 0.0), "{augmentations:?}");
