@@ -37,6 +37,13 @@ pub enum Command {
         /// No progress lines.
         #[arg(short, long)]
         quiet: bool,
+        /// Continue the run that wrote this results file (from its last complete increment, or
+        /// --increment), with this deck: the same model, possibly more increments or further steps.
+        #[arg(long, value_name = "FILE.h5")]
+        restart: Option<PathBuf>,
+        /// The increment (#N, as the run printed it) to continue from.
+        #[arg(long, value_name = "N", requires = "restart")]
+        increment: Option<usize>,
         /// PETSc options (after `--`).
         #[arg(last = true, allow_hyphen_values = true)]
         petsc: Vec<String>,
@@ -194,6 +201,13 @@ pub struct BellowsArgs {
     /// Results file (HDF5).
     #[arg(short, long, default_value = "bellows.h5")]
     pub output: PathBuf,
+    /// Continue the run that wrote this results file (its parameters, unless --params or flags
+    /// change them: more increments, say) from its last complete increment or --increment.
+    #[arg(long, value_name = "FILE.h5")]
+    pub restart: Option<PathBuf>,
+    /// The increment (#N, as the run printed it) to continue from.
+    #[arg(long, value_name = "N", requires = "restart")]
+    pub increment: Option<usize>,
     /// No progress lines.
     #[arg(short, long)]
     pub quiet: bool,
@@ -207,9 +221,14 @@ impl BellowsArgs {
     /// `--quick`, then every flag given on the command line (`given(id)`): a flag given
     /// explicitly wins over both.
     pub fn params(&self, given: impl Fn(&str) -> bool) -> Result<model::bellows::BellowsParams, Error> {
-        let mut p = match &self.params {
-            Some(path) => model::bellows::BellowsParams::from_toml_file(path)?,
-            None => model::bellows::BellowsParams::default(),
+        let mut p = match (&self.params, &self.restart) {
+            (Some(path), _) => model::bellows::BellowsParams::from_toml_file(path)?,
+            // a restart continues the file's own joint
+            (None, Some(file)) => {
+                let deck = slideline::io::reader::ResultsReader::open(file)?.text_attr("deck")?;
+                model::bellows::BellowsParams::from_toml(&deck, &format!("{}: its deck (not a bellows run?)", file.display()))?
+            }
+            (None, None) => model::bellows::BellowsParams::default(),
         };
         if self.quick {
             p = p.quick();

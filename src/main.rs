@@ -139,7 +139,7 @@ fn main() -> ExitCode {
                 let ejma = model::bellows::ejma_axial_rate(&params, EJMA_CF);
                 println!("bellows: {} plies x {} mm, {} convolutions, pitch {}, height {}; EJMA axial rate {:.1} N/mm full ring, {:.2} N/mm per 2.5-degree sector (Cf = {EJMA_CF})", params.plies, params.ply_thickness, params.convolutions, params.pitch, params.height, ejma, ejma * 2.5 / 360.0);
             }
-            let result = model::bellows::model(&params).and_then(|m| run(&session, &m, &RunOptions { output: args.output.clone(), progress: !args.quiet }));
+            let result = model::bellows::model(&params).and_then(|m| run(&session, &m, &RunOptions { output: args.output.clone(), progress: !args.quiet, restart: restart_from(&args.restart, args.increment) }));
             warn_unused_options(&session, root);
             finish(result, root, |summary| report(&params, summary, &args.output))
         }
@@ -160,7 +160,7 @@ fn main() -> ExitCode {
             Ok(()) => ExitCode::SUCCESS,
             Err(e) => fail(&e, true),
         },
-        Command::Run { deck, output, quiet, petsc } => {
+        Command::Run { deck, output, quiet, restart, increment, petsc } => {
             let output = output.unwrap_or_else(|| PathBuf::from(deck.file_stem().unwrap_or_default()).with_extension("h5"));
             if let Err(e) = slideline::io::check_output_path(&output, Some(&deck)) {
                 return fail(&e, launched_as_rank_zero());
@@ -177,7 +177,7 @@ fn main() -> ExitCode {
                 m
             });
             let segment = model.as_ref().ok().and_then(|m| m.reaction_segment_degrees);
-            let result = model.and_then(|m| run(&session, &m, &RunOptions { output, progress: !quiet }));
+            let result = model.and_then(|m| run(&session, &m, &RunOptions { output, progress: !quiet, restart: restart_from(&restart, increment) }));
             warn_unused_options(&session, root);
             finish(result, root, |summary| {
                 if let (Some(degrees), Some(last)) = (segment, summary.history.last()) {
@@ -191,6 +191,11 @@ fn main() -> ExitCode {
             })
         }
     }
+}
+
+/// The restart a run's flags ask for.
+fn restart_from(file: &Option<PathBuf>, increment: Option<usize>) -> Option<slideline::io::restart::RestartFrom> {
+    file.clone().map(|file| slideline::io::restart::RestartFrom { file, increment })
 }
 
 /// `OUTPUT_name.png` beside the output.

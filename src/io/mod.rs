@@ -4,6 +4,7 @@
 pub mod describe;
 pub mod lock;
 pub mod nodal;
+pub mod restart;
 pub mod results;
 pub mod status;
 pub mod xdmf;

@@ -36,6 +36,11 @@ impl ResultsReader {
         &self.path
     }
 
+    /// The file itself, for the restart's own groups.
+    pub(super) fn file(&self) -> &hdf5::File {
+        &self.file
+    }
+
     fn read_f64(&self, name: &str) -> Result<Vec<f64>> {
         let ds = self.file.dataset(name).map_err(|e| missing(&self.path, name, e))?;
         ds.read_raw::<f64>().map_err(|e| missing(&self.path, name, e))

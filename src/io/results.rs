@@ -26,6 +26,7 @@
 //! converged increment, so a run that dies keeps everything converged before.
 
 use super::nodal::NodalWriter;
+use super::restart::{write_state, CommittedState};
 use super::xdmf;
 use crate::dist::Partition;
 use crate::element::solid::QUADRATURE_POINTS;
@@ -168,6 +169,7 @@ pub struct ResultsFile {
     nodal: NodalWriter,
     /// The fields written beside the displacement.
     fields: OutputFields,
+    world: mpi::topology::SimpleCommunicator,
 }
 
 /// Attribute of an increment group written after everything else of the increment.
@@ -175,7 +177,7 @@ pub const COMPLETE: &str = "complete";
 /// Root attribute of files whose increments carry [`COMPLETE`] (older files do not).
 pub const COMPLETION_MARKED: &str = "increments_marked_complete";
 
-fn h5err(path: &Path) -> impl Fn(hdf5::Error) -> Error + '_ {
+pub(super) fn h5err(path: &Path) -> impl Fn(hdf5::Error) -> Error + '_ {
     move |e| Error::Output { path: path.to_path_buf(), message: e.to_string() }
 }
 
@@ -247,11 +249,28 @@ impl ResultsFile {
             reaction_segment_degrees: model.reaction_segment_degrees,
             nodal: NodalWriter::new(world, mesh, partition, model.output.fields),
             fields: model.output.fields,
+            world: session.world(),
         })
     }
 
     pub fn path(&self) -> &Path {
         &self.path
+    }
+
+    /// Continues the history of the run a restart continues: its rows up to the restart
+    /// increment (so that the numbering and the history go on from there), and the file it
+    /// came from as the root attribute `restarted_from` (collective).
+    pub fn continue_history(&mut self, from: &Path, rows: &[(String, HistoryRow)]) -> Result<()> {
+        let err = h5err(&self.path);
+        let text: VarLenUnicode = format!("{} increment {}", from.display(), rows.len())
+            .parse()
+            .map_err(|_| Error::Output { path: self.path.clone(), message: "restart file name".into() })?;
+        self.file.new_attr::<VarLenUnicode>().create("restarted_from").map_err(&err)?.write_scalar(&text).map_err(&err)?;
+        for (_, row) in rows {
+            self.append_history(row)?;
+            self.increments += 1;
+        }
+        self.file.flush().map_err(&err)
     }
 
     /// Converged increments written so far (history rows).
@@ -263,9 +282,18 @@ impl ResultsFile {
     /// group /increments/NNNNNN (NNNNNN the run-wide number): this rank's displacement slab
     /// (owned nodes, partition order) and stress slab (local elements), the nodal and contact
     /// fields, marked complete last; then flushes and rewrites the XDMF sidecar.
-    pub fn write_increment(&mut self, step_name: &str, row: &HistoryRow, fields: Option<&IncrementFields<'_>>, partition: &Partition) -> Result<()> {
+    pub fn write_increment(
+        &mut self,
+        step_name: &str,
+        row: &HistoryRow,
+        fields: Option<(&IncrementFields<'_>, &CommittedState<'_>)>,
+        partition: &Partition,
+    ) -> Result<()> {
         let name = format!("{:06}", row.number);
-        let group = fields.map(|f| self.write_fields(&name, step_name, row, f, partition)).transpose()?;
+        let group = fields.map(|(f, _)| self.write_fields(&name, step_name, row, f, partition)).transpose()?;
+        if let (Some(g), Some((_, state))) = (&group, fields) {
+            write_state(&self.file, g, &self.world, row.number, state, &self.path)?;
+        }
         self.append_history(row)?;
         if let Some(g) = &group {
             // last: the mark that every dataset and the history row of the increment are written

@@ -71,8 +71,17 @@ pub type Multipliers = Vec<Vec<f64>>;
 /// What contact carries from one step's problem into the next: the committed multipliers and
 /// the reserved sparsity pattern.
 pub struct ContactCarry {
-    pub multipliers: Multipliers,
+    pub multipliers: CarriedMultipliers,
     pub pattern: ContactPattern,
+}
+
+/// Committed multipliers handed to a new problem.
+pub enum CarriedMultipliers {
+    /// Per pass, per owned slave node (the same partition's previous step).
+    Owned(Multipliers),
+    /// Per pass, (mesh node, multiplier) of every slave node with a nonzero one (a restart's,
+    /// from the results file; any partition).
+    ByNode(Vec<Vec<(usize, f64)>>),
 }
 
 pub struct ContactAssembly {
@@ -147,9 +156,20 @@ impl ContactAssembly {
             slot[n] = k;
         }
         let gathered_slot = nodes.iter().map(|&n| dofs.dof[n].map(|g| if g >= 0 { slot_of(g) } else { usize::MAX })).collect();
+        let zeros = || passes.iter().map(|p| vec![0.0; p.owned.len()]).collect::<Multipliers>();
         let (committed, pattern) = match carry {
-            Some(c) => (c.multipliers, c.pattern),
-            None => (passes.iter().map(|p| vec![0.0; p.owned.len()]).collect(), ContactPattern::default()),
+            Some(ContactCarry { multipliers: CarriedMultipliers::Owned(m), pattern }) => (m, pattern),
+            Some(ContactCarry { multipliers: CarriedMultipliers::ByNode(by_node), pattern }) => {
+                let mut m = zeros();
+                for ((values, pass), saved) in m.iter_mut().zip(&passes).zip(&by_node) {
+                    let saved: std::collections::HashMap<usize, f64> = saved.iter().copied().collect();
+                    for (v, &i) in values.iter_mut().zip(&pass.owned) {
+                        *v = saved.get(&surfaces[pass.slave].nodes[i]).copied().unwrap_or(0.0);
+                    }
+                }
+                (m, pattern)
+            }
+            None => (zeros(), ContactPattern::default()),
         };
         let states = passes.iter().map(|p| vec![SlaveState::default(); p.owned.len()]).collect();
         let gaps = passes.iter().map(|_| Vec::new()).collect();
@@ -363,7 +383,17 @@ impl ContactAssembly {
     }
 
     pub fn into_carry(self) -> ContactCarry {
-        ContactCarry { multipliers: self.committed, pattern: self.pattern }
+        ContactCarry { multipliers: CarriedMultipliers::Owned(self.committed), pattern: self.pattern }
+    }
+
+    /// The committed multipliers of this rank's slave nodes, per pass: (mesh node, value) where
+    /// nonzero (what a restart needs; zero for every pure-penalty pair).
+    pub fn committed_by_node(&self) -> Vec<Vec<(usize, f64)>> {
+        self.passes
+            .iter()
+            .zip(&self.committed)
+            .map(|(pass, values)| pass.owned.iter().zip(values).filter(|(_, v)| **v != 0.0).map(|(&i, &v)| (self.surfaces[pass.slave].nodes[i], v)).collect())
+            .collect()
     }
 
     pub fn pattern(&self) -> &ContactPattern {

@@ -34,6 +34,9 @@ pub struct ContactPattern {
     covered: HashMap<usize, u64>,
     /// How many times a matrix was refitted in place for new couplings.
     pub refits: usize,
+    /// Couplings reserved since the results file last took them (`take_fresh`): the file keeps
+    /// the pattern as it grows, so a restart rebuilds the very matrix structure.
+    fresh: Vec<(usize, usize)>,
 }
 
 impl ContactPattern {
@@ -70,8 +73,19 @@ impl ContactPattern {
     fn reserve_pending(&mut self, needs_room: impl Fn(usize, usize) -> bool) -> bool {
         let pending = std::mem::take(&mut self.pending);
         let grown = pending.iter().any(|&(a, b)| needs_room(a, b));
+        self.fresh.extend(pending.iter().copied());
         self.reserved.extend(pending);
         grown
+    }
+
+    /// A pattern holding `reserved` (a restart's), with `refits` refits so far.
+    pub fn restored(reserved: impl IntoIterator<Item = (usize, usize)>, refits: usize) -> Self {
+        ContactPattern { reserved: reserved.into_iter().map(|(a, b)| ordered(a, b)).collect(), refits, ..Default::default() }
+    }
+
+    /// The couplings reserved since the last call.
+    pub fn take_fresh(&mut self) -> Vec<(usize, usize)> {
+        std::mem::take(&mut self.fresh)
     }
 
     /// The reserved couplings (a <= b).

@@ -262,6 +262,11 @@ impl<'s, 'm> Problem<'s, 'm> {
         std::mem::replace(&mut self.load, load)
     }
 
+    /// The committed history of this rank's elements.
+    pub fn committed_history(&self) -> &History {
+        &self.committed
+    }
+
     /// The committed history and what contact carries, for the next step's problem.
     pub fn into_history(self) -> (History, Option<ContactCarry>) {
         (self.committed, self.contact.map(|c| c.into_carry()))

@@ -8,14 +8,18 @@
 //! the requested size. Below `min_increment` the run stops with every converged increment in
 //! the results file.
 
-use super::problem::{initial_history, LoadState, Problem};
+use super::contact::{CarriedMultipliers, ContactCarry};
+use super::pattern::ContactPattern;
+use super::problem::{initial_history, History, LoadState, Problem};
 use super::schedule::StepLoads;
 use crate::dist::{DofMap, Partition};
 use crate::error::{Error, Result};
 use crate::io::lock::ResultsLock;
+use crate::io::restart::{CommittedState, RestartFrom, RestartPoint};
 use crate::io::progress::Progress;
 use crate::io::status::StatusFile;
 use crate::io::{ContactSummary, HistoryRow, IncrementFields, ResultsFile};
+use crate::material::PointState;
 use crate::model::Model;
 use crate::petsc::{Matrix, NonlinearProblem, PetscSession, Snes, SolveReport, VecOps, Vector};
 use mpi::collective::SystemOperation;
@@ -29,6 +33,8 @@ pub struct RunOptions {
     pub output: PathBuf,
     /// Print a line per increment (rank 0).
     pub progress: bool,
+    /// Continue the run that wrote this file from one of its increments.
+    pub restart: Option<RestartFrom>,
 }
 
 #[derive(Clone, Debug)]
@@ -54,6 +60,7 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
     let nodes = model.mesh.coords.len();
     let controls = model.stepping;
     let partition = Partition::new(session, &model.mesh, &super::affinity::partition_affinity(model))?;
+    let resume = options.restart.as_ref().map(|from| restart_point(from, &options.output, model)).transpose()?;
     let (_lock, note) = ResultsLock::acquire(&options.output, &world)?;
     if let (true, Some(note)) = (root, note) {
         println!("note: {note}");
@@ -75,8 +82,33 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
     let (mut reserved_couplings, mut pattern_refits) = (0usize, 0usize);
     let mut rows = Vec::new();
     let mut previous: Option<StepLoads> = None;
-    for (s, step) in model.steps.iter().enumerate() {
-        let loads = StepLoads::new(model, s, previous.as_ref(), &displacement);
+    // a restart: the state of its increment, and where the stepping stood
+    let mut first_step = 0;
+    let mut resumed: Option<(Vec<[f64; 2]>, f64, f64, usize)> = None;
+    let mut wall_before = 0.0;
+    if let Some(point) = resume {
+        progress.note(&format!("restart: continuing {} from increment #{} (step {}, load factor {})", point.file.display(), point.number, point.step + 1, point.load_factor));
+        results.continue_history(&point.file, &point.rows)?;
+        wall_before = point.rows.last().map_or(0.0, |(_, r)| r.wall_time);
+        rows = point.rows.iter().map(|(_, r)| r.clone()).collect();
+        let zeros = vec![[0.0; 2]; nodes];
+        for k in 0..point.step {
+            previous = Some(StepLoads::new(model, k, previous.as_ref(), if k == 0 { &zeros } else { &point.step_ends[k - 1] }));
+        }
+        history = restored_history(model, &partition, &point);
+        if !model.contacts.is_empty() {
+            let mine = |r: usize| if point.ranks == partition.size { r == partition.rank } else { r % partition.size == partition.rank };
+            let pattern = ContactPattern::restored(point.pattern.iter().filter(|p| mine(p.0)).map(|p| (p.1, p.2)), point.refits);
+            carry = Some(ContactCarry { multipliers: CarriedMultipliers::ByNode(point.multipliers.clone()), pattern });
+        }
+        first_step = point.step;
+        let step_start = if point.step == 0 { zeros } else { point.step_ends[point.step - 1].clone() };
+        resumed = Some((step_start, point.load_factor, point.next_size, point.increment));
+        displacement = point.displacement;
+    }
+    for (s, step) in model.steps.iter().enumerate().skip(first_step) {
+        let resumed_here = resumed.take();
+        let loads = StepLoads::new(model, s, previous.as_ref(), resumed_here.as_ref().map_or(&displacement, |r| &r.0));
         let dofs = DofMap::new(&partition, &loads.prescribed_mask(nodes))?;
         let mut x = Vector::mpi(session, comm, dofs.local_len())?;
         let mut residual = x.duplicate()?;
@@ -88,7 +120,10 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
         let mut snes = Snes::new(session)?;
 
         let requested = 1.0 / step.increments as f64;
-        let (mut lambda, mut size, mut increment, mut cutbacks) = (0.0f64, requested, 0usize, 0usize);
+        let (mut lambda, mut size, mut increment, mut cutbacks) = match resumed_here {
+            Some((_, lambda, size, increment)) => (lambda, size.min(requested), increment, 0usize),
+            None => (0.0f64, requested, 0usize, 0usize),
+        };
         while lambda < 1.0 {
             // land exactly on 1 rather than leave a sliver
             let target = if lambda + size > 1.0 - 1e-9 * requested { 1.0 } else { lambda + size };
@@ -185,8 +220,15 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
                 augmentations,
                 max_plastic_strain: max_ep,
                 contacts,
-                wall_time: start.elapsed().as_secs_f64(),
+                wall_time: wall_before + start.elapsed().as_secs_f64(),
                 reactions,
+            };
+            // the next attempt's size: kept after a hard increment, grown after an easy one
+            size = if report.newton_iterations <= controls.easy_iterations { (done * controls.growth_factor).min(requested) } else { done };
+            let with_fields = model.output.writes_fields(row.number, lambda >= 1.0);
+            let fresh_pattern = match (with_fields, problem.contact.as_mut()) {
+                (true, Some(c)) => c.pattern_mut().take_fresh(),
+                _ => Vec::new(),
             };
             let contact_output = problem.contact.as_ref().map(|c| c.pass_outputs()).unwrap_or_default();
             let increment_fields = IncrementFields {
@@ -196,19 +238,27 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
                 temperature: model.reference_temperature + loads.at(model, lambda).temperature_change,
                 contact: &contact_output,
             };
-            let with_fields = model.output.writes_fields(row.number, lambda >= 1.0).then_some(&increment_fields);
-            output.run(|| results.write_increment(&step.name, &row, with_fields, &partition))??;
+            let state = with_fields.then(|| {
+                let (multipliers, refits) = problem.contact.as_ref().map_or((Vec::new(), 0), |c| (c.committed_by_node(), c.pattern().refits));
+                CommittedState {
+                    mesh: &model.mesh,
+                    history: problem.committed_history(),
+                    local_elements: partition.local_elements(),
+                    initial: PointState::initial(model.kinematics),
+                    multipliers,
+                    fresh_pattern,
+                    next_size: size,
+                    refits,
+                }
+            });
+            let written = state.as_ref().map(|state| (&increment_fields, state));
+            output.run(|| results.write_increment(&step.name, &row, written, &partition))??;
             if let Some(status) = status.as_mut() {
                 status.record(&row);
             }
             progress.increment(&row, &step.name, model.steps.len());
             rows.push(row);
             cutbacks = 0;
-            if report.newton_iterations <= controls.easy_iterations {
-                size = (done * controls.growth_factor).min(requested);
-            } else {
-                size = done;
-            }
         }
         (history, carry) = problem.into_history();
         // couplings are reserved per rank (each for its own engagements): report the sum
@@ -223,6 +273,36 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
         status.note(&format!("completed: {} increments in {:.1} s", rows.len(), start.elapsed().as_secs_f64()));
     }
     Ok(RunSummary { history: rows, wall_time: start.elapsed().as_secs_f64(), ranks: partition.size, displacement, reserved_couplings, pattern_refits })
+}
+
+/// Reads the restart point (every rank, serially), refusing to overwrite the file it reads.
+fn restart_point(from: &RestartFrom, output: &std::path::Path, model: &Model) -> Result<RestartPoint> {
+    let same = match (std::fs::canonicalize(&from.file), std::fs::canonicalize(output)) {
+        (Ok(a), Ok(b)) => a == b,
+        _ => false,
+    };
+    if same {
+        return Err(Error::input(format!(
+            "cannot restart from {} into itself: write the continued run to another file (--output NAME.h5); it holds the history from the start and the fields from the restart on",
+            from.file.display()
+        )));
+    }
+    RestartPoint::read(from, model)
+}
+
+/// This rank's elements' history at a restart point.
+fn restored_history(model: &Model, partition: &Partition, point: &RestartPoint) -> History {
+    let mut history = initial_history(model, partition);
+    let mut local = vec![usize::MAX; model.mesh.elements.len()];
+    for (k, &e) in partition.local_elements().iter().enumerate() {
+        local[e] = k;
+    }
+    for &(e, q, state) in &point.plastic {
+        if let Some(point) = history.get_mut(local[e]).and_then(|h| h.get_mut(q)) {
+            *point = state;
+        }
+    }
+    history
 }
 
 /// One attempt at an increment: a Newton solve and, for augmented-Lagrangian pairs, Uzawa

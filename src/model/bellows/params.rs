@@ -117,7 +117,12 @@ impl BellowsParams {
     /// Parameters from a TOML file of `field = value` lines (unknown fields are an error).
     pub fn from_toml_file(path: &std::path::Path) -> Result<Self> {
         let text = std::fs::read_to_string(path).map_err(|source| Error::Read { path: path.to_path_buf(), source })?;
-        toml::from_str(&text).map_err(|e| Error::input(format!("{}: {}", path.display(), e.message())))
+        Self::from_toml(&text, &path.display().to_string())
+    }
+
+    /// Parameters from TOML text; `origin` names where it came from in an error.
+    pub fn from_toml(text: &str, origin: &str) -> Result<Self> {
+        toml::from_str(text).map_err(|e| Error::input(format!("{origin}: {}", e.message())))
     }
 
     /// The coarse version of the same case (`--quick`): one element through each ply, 2 mm

@@ -1,0 +1,314 @@
+//! Restart: what a converged increment leaves in the results file so that a later run can
+//! continue from it exactly, and reading it back.
+//!
+//! Beside its fields, each increment group the run writes holds `state/` (attributes
+//! `next_increment_size`, `pattern_refits`): the plastic state of every Gauss point that has
+//! left its initial state (`plastic_points` (n, 2) [element id, point], `plastic_state` (n, 5)
+//! [the four components of C_p^-1 or eps_p, equivalent plastic strain]) and the
+//! augmented-Lagrangian multipliers that are nonzero (`multiplier_nodes_passK`, `multipliers_passK`).
+//! The Jacobian's contact couplings grow through the run and are kept once, in
+//! `/restart/pattern` (rows [increment number, rank, node id, node id]), so that a continued
+//! run builds the very matrix structure the uninterrupted one had (MUMPS orders by structure:
+//! the same structure, the same round-off). The displacement is the increment's own field.
+//! Everything is keyed by node and element ids, so any partition can read it; the continued run
+//! is bit-identical to the uninterrupted one on the same number of ranks.
+
+use super::reader::ResultsReader;
+use super::results::{h5err, write_rows};
+use super::HistoryRow;
+use crate::element::solid::QUADRATURE_POINTS as QP;
+use crate::error::{Error, Result};
+use crate::material::PointState;
+use crate::model::{Mesh, Model};
+use mpi::datatype::PartitionMut;
+use mpi::topology::SimpleCommunicator;
+use mpi::traits::*;
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+
+/// This rank's part of what a restart needs of a converged increment.
+pub struct CommittedState<'a> {
+    pub mesh: &'a Mesh,
+    /// Committed history of the local elements (`local_elements` order).
+    pub history: &'a [[PointState; QP]],
+    /// Mesh indices of the local elements.
+    pub local_elements: &'a [usize],
+    /// The initial state of a Gauss point (points still in it are not stored).
+    pub initial: PointState,
+    /// Per contact pass, (mesh node, multiplier) of this rank's slave nodes with a nonzero one.
+    pub multipliers: Vec<Vec<(usize, f64)>>,
+    /// Contact couplings this rank reserved since the last state written (mesh nodes).
+    pub fresh_pattern: Vec<(usize, usize)>,
+    /// Size of the next increment's first attempt (load factor).
+    pub next_size: f64,
+    pub refits: usize,
+}
+
+/// Writes `state` into increment group `g` (collective) and appends the fresh pattern rows to
+/// `/restart/pattern`.
+pub(super) fn write_state(
+    file: &hdf5::File,
+    g: &hdf5::Group,
+    world: &SimpleCommunicator,
+    number: usize,
+    state: &CommittedState<'_>,
+    path: &Path,
+) -> Result<()> {
+    let err = h5err(path);
+    let mesh = state.mesh;
+    let sg = g.create_group("state").map_err(&err)?;
+    sg.new_attr::<f64>().create("next_increment_size").map_err(&err)?.write_scalar(&state.next_size).map_err(&err)?;
+    sg.new_attr::<u64>().create("pattern_refits").map_err(&err)?.write_scalar(&(state.refits as u64)).map_err(&err)?;
+    let mut points = Vec::new();
+    let mut values = Vec::new();
+    for (&e, history) in state.local_elements.iter().zip(state.history) {
+        for (q, s) in history.iter().enumerate() {
+            if *s != state.initial {
+                points.extend([mesh.element_ids[e], q as u64]);
+                values.extend(s.plastic.iter().copied().chain([s.ep]));
+            }
+        }
+    }
+    write_gathered(&sg, world, "plastic_points", 2, &points, path)?;
+    write_gathered(&sg, world, "plastic_state", 5, &values, path)?;
+    for (p, pass) in state.multipliers.iter().enumerate() {
+        let nodes: Vec<u64> = pass.iter().map(|&(n, _)| mesh.node_ids[n]).collect();
+        let values: Vec<f64> = pass.iter().map(|&(_, v)| v).collect();
+        write_gathered(&sg, world, &format!("multiplier_nodes_pass{p}"), 1, &nodes, path)?;
+        write_gathered(&sg, world, &format!("multipliers_pass{p}"), 1, &values, path)?;
+    }
+    // the pattern's new rows, gathered to every rank (resizing is collective), written by rank 0
+    let local: Vec<u64> =
+        state.fresh_pattern.iter().flat_map(|&(a, b)| [number as u64, world.rank() as u64, mesh.node_ids[a], mesh.node_ids[b]]).collect();
+    let all = all_gather(world, &local);
+    let restart = if file.link_exists("restart") { file.group("restart") } else { file.create_group("restart") }.map_err(&err)?;
+    let ds = if restart.link_exists("pattern") {
+        restart.dataset("pattern").map_err(&err)?
+    } else {
+        restart.new_dataset::<u64>().chunk((4096, 4)).shape((0.., 4)).create("pattern").map_err(&err)?
+    };
+    let held = ds.shape()[0];
+    let rows = all.len() / 4;
+    if rows > 0 {
+        ds.resize((held + rows, 4)).map_err(&err)?;
+        if world.rank() == 0 {
+            let view = ndarray::ArrayView2::from_shape((rows, 4), &all).map_err(|e| Error::Output { path: path.to_path_buf(), message: e.to_string() })?;
+            ds.write_slice(view, (held..held + rows, ..)).map_err(&err)?;
+        }
+    }
+    Ok(())
+}
+
+/// Every rank's `local` values concatenated in rank order, on every rank.
+fn all_gather<T: Equivalence + Copy + Default>(world: &SimpleCommunicator, local: &[T]) -> Vec<T> {
+    let size = world.size() as usize;
+    let mut counts = vec![0i32; size];
+    world.all_gather_into(&(local.len() as i32), &mut counts[..]);
+    let displs: Vec<i32> = counts.iter().scan(0, |acc, &c| Some(std::mem::replace(acc, *acc + c))).collect();
+    let mut all = vec![T::default(); counts.iter().sum::<i32>() as usize];
+    world.all_gather_varcount_into(local, &mut PartitionMut::new(&mut all[..], counts, displs));
+    all
+}
+
+/// Dataset `name` of rows of `width` values, each rank writing its `local` rows after those of
+/// the ranks before it (collective). Not created when no rank has a row.
+fn write_gathered<T: hdf5::H5Type + Equivalence + Copy>(g: &hdf5::Group, world: &SimpleCommunicator, name: &str, width: usize, local: &[T], path: &Path) -> Result<()> {
+    let rows = (local.len() / width) as u64;
+    let size = world.size() as usize;
+    let mut counts = vec![0u64; size];
+    world.all_gather_into(&rows, &mut counts[..]);
+    let total = counts.iter().sum::<u64>() as usize;
+    if total == 0 {
+        return Ok(());
+    }
+    let first = counts[..world.rank() as usize].iter().sum::<u64>() as usize;
+    let shape = if width == 1 { vec![total] } else { vec![total, width] };
+    write_rows(g, name, &shape, (first, first + rows as usize), local, path)
+}
+
+/// Which increment to continue from.
+#[derive(Clone, Debug)]
+pub struct RestartFrom {
+    pub file: PathBuf,
+    /// The increment's run-wide number; None: the last complete one holding a state.
+    pub increment: Option<usize>,
+}
+
+/// A converged increment read back for a restart, in the deck's node and element numbering.
+pub struct RestartPoint {
+    pub file: PathBuf,
+    /// Run-wide number of the increment (its group /increments/NNNNNN).
+    pub number: usize,
+    /// Step index (0-based), increment within the step, load factor within the step.
+    pub step: usize,
+    pub increment: usize,
+    pub load_factor: f64,
+    pub next_size: f64,
+    pub refits: usize,
+    /// Displacement of every mesh node at the increment.
+    pub displacement: Vec<[f64; 2]>,
+    /// Displacement at the end of each step before the increment's (their loads carry over).
+    pub step_ends: Vec<Vec<[f64; 2]>>,
+    /// (mesh element, Gauss point, state) of every point not in its initial state.
+    pub plastic: Vec<(usize, usize, PointState)>,
+    /// Per pass, (mesh node, multiplier).
+    pub multipliers: Vec<Vec<(usize, f64)>>,
+    /// (rank that reserved it, mesh node, mesh node).
+    pub pattern: Vec<(usize, usize, usize)>,
+    /// Ranks of the run that wrote the file.
+    pub ranks: usize,
+    /// History rows up to and including the increment, with their step names.
+    pub rows: Vec<(String, HistoryRow)>,
+}
+
+impl RestartPoint {
+    /// Reads the state at `from` and checks that `model` is the model that wrote it (same
+    /// mesh, same steps up to the increment's); bad input otherwise.
+    pub fn read(from: &RestartFrom, model: &Model) -> Result<RestartPoint> {
+        let reader = ResultsReader::open(&from.file)?;
+        let path = from.file.display().to_string();
+        let bad = |message: String| Error::input(format!("cannot restart from {path}: {message}"));
+        let (nodes, elements) = check_mesh(&reader, model).map_err(bad)?;
+        let with_state: Vec<String> = reader.increments()?.into_iter().filter(|name| reader.file().link_exists(&format!("increments/{name}/state"))).collect();
+        let name = match from.increment {
+            None => with_state.last().cloned().ok_or_else(|| bad("it holds no increment with a restart state (written by an older slideline, or no increment converged)".into()))?,
+            Some(n) => {
+                let name = format!("{n:06}");
+                if !with_state.contains(&name) {
+                    let first = with_state.first().map(|s| s.trim_start_matches('0').to_string()).unwrap_or_default();
+                    let last = with_state.last().map(|s| s.trim_start_matches('0').to_string()).unwrap_or_default();
+                    return Err(bad(match with_state.is_empty() {
+                        true => "it holds no increment with a restart state".into(),
+                        false => format!("increment {n} is not among its {} restartable increments ({first} .. {last}; with [output] every = N only every N-th is)", with_state.len()),
+                    }));
+                }
+                name
+            }
+        };
+        let number: usize = name.parse().map_err(|_| bad(format!("increment group {name}")))?;
+        let step = reader.increment_attr(&name, "step")? as usize - 1;
+        let names: Vec<String> = reader.text_attr("step_names")?.lines().map(str::to_string).collect();
+        for (k, saved) in names.iter().enumerate().take(step + 1) {
+            match model.steps.get(k) {
+                Some(s) if s.name == *saved => {}
+                Some(s) => return Err(bad(format!("its step {} is {saved:?}, the deck's is {:?} (a continued run may add steps, not change those done)", k + 1, s.name))),
+                None => return Err(bad(format!("increment {number} is in step {} ({saved:?}), the deck has {} step(s)", k + 1, model.steps.len()))),
+            }
+        }
+        let to_model = |file_order: Vec<[f64; 2]>| {
+            let mut out = vec![[0.0; 2]; nodes.len()];
+            for (k, v) in file_order.into_iter().enumerate() {
+                out[nodes[k]] = v;
+            }
+            out
+        };
+        let displacement = to_model(reader.displacement(&name)?);
+        // the last complete increment of each earlier step (always written) gives its end
+        let mut step_ends = Vec::new();
+        let all = reader.increments()?;
+        for k in 0..step {
+            let end = all.iter().rev().find(|g| reader.increment_attr(g, "step").ok() == Some((k + 1) as f64) && reader.increment_attr(g, "load_factor").ok() == Some(1.0));
+            let end = end.ok_or_else(|| bad(format!("the end of step {} is not in the file", k + 1)))?;
+            step_ends.push(to_model(reader.displacement(end)?));
+        }
+        let group = format!("increments/{name}/state");
+        let file = reader.file();
+        let sg = file.group(&group).map_err(|e| bad(format!("{group}: {e}")))?;
+        let next_size = sg.attr("next_increment_size").and_then(|a| a.read_scalar::<f64>()).map_err(|e| bad(format!("{group}: {e}")))?;
+        let refits = sg.attr("pattern_refits").and_then(|a| a.read_scalar::<u64>()).map_err(|e| bad(format!("{group}: {e}")))? as usize;
+        let read_u64 = |ds: &str| -> Result<Vec<u64>> {
+            if !sg.link_exists(ds) {
+                return Ok(Vec::new());
+            }
+            sg.dataset(ds).and_then(|d| d.read_raw::<u64>()).map_err(|e| bad(format!("{group}/{ds}: {e}")))
+        };
+        let read_f64 = |ds: &str| -> Result<Vec<f64>> {
+            if !sg.link_exists(ds) {
+                return Ok(Vec::new());
+            }
+            sg.dataset(ds).and_then(|d| d.read_raw::<f64>()).map_err(|e| bad(format!("{group}/{ds}: {e}")))
+        };
+        let node_index: HashMap<u64, usize> = model.mesh.node_ids.iter().enumerate().map(|(k, &id)| (id, k)).collect();
+        let node = |id: u64| node_index.get(&id).copied().ok_or_else(|| bad(format!("node {id} of its state is not in the mesh")));
+        let points = read_u64("plastic_points")?;
+        let states = read_f64("plastic_state")?;
+        let mut plastic = Vec::with_capacity(points.len() / 2);
+        for (p, s) in points.chunks_exact(2).zip(states.chunks_exact(5)) {
+            let e = elements.get(&p[0]).copied().ok_or_else(|| bad(format!("element {} of its state is not in the mesh", p[0])))?;
+            plastic.push((e, p[1] as usize, PointState { plastic: [s[0], s[1], s[2], s[3]], ep: s[4] }));
+        }
+        let passes = (0..).take_while(|p| sg.link_exists(&format!("multiplier_nodes_pass{p}")) || sg.link_exists(&format!("multipliers_pass{p}")));
+        let mut multipliers = Vec::new();
+        for p in passes {
+            let ids = read_u64(&format!("multiplier_nodes_pass{p}"))?;
+            let values = read_f64(&format!("multipliers_pass{p}"))?;
+            multipliers.push(ids.into_iter().zip(values).map(|(id, v)| Ok((node(id)?, v))).collect::<Result<Vec<_>>>()?);
+        }
+        let mut pattern = Vec::new();
+        if file.link_exists("restart/pattern") {
+            let rows = file.dataset("restart/pattern").and_then(|d| d.read_raw::<u64>()).map_err(|e| bad(format!("restart/pattern: {e}")))?;
+            for r in rows.chunks_exact(4).filter(|r| r[0] as usize <= number) {
+                pattern.push((r[1] as usize, node(r[2])?, node(r[3])?));
+            }
+        }
+        let mut rows = reader.history_rows()?;
+        if rows.len() < number {
+            return Err(bad(format!("its history holds {} rows, fewer than the increment's number {number}", rows.len())));
+        }
+        rows.truncate(number);
+        Ok(RestartPoint {
+            file: from.file.clone(),
+            number,
+            step,
+            increment: reader.increment_attr(&name, "increment")? as usize,
+            load_factor: reader.increment_attr(&name, "load_factor")?,
+            next_size,
+            refits,
+            displacement,
+            step_ends,
+            plastic,
+            multipliers,
+            pattern,
+            ranks: reader.count_attr("ranks")?,
+            rows,
+        })
+    }
+}
+
+/// The file's node rows as mesh nodes and its element ids as mesh elements, after checking
+/// that the file's mesh is the model's: same nodes (ids and coordinates), same elements (ids
+/// and connectivity). The first difference otherwise.
+fn check_mesh(reader: &ResultsReader, model: &Model) -> std::result::Result<(Vec<usize>, HashMap<u64, usize>), String> {
+    let io = |e: Error| e.to_string();
+    let mesh = &model.mesh;
+    let (ids, coords) = (reader.node_ids().map_err(io)?, reader.coordinates().map_err(io)?);
+    let (element_ids, connectivity) = (reader.element_ids().map_err(io)?, reader.connectivity().map_err(io)?);
+    if ids.len() != mesh.coords.len() || element_ids.len() != mesh.elements.len() {
+        return Err(format!(
+            "its mesh has {} nodes and {} elements, the deck's {} and {} (a restart continues the same model)",
+            ids.len(),
+            element_ids.len(),
+            mesh.coords.len(),
+            mesh.elements.len()
+        ));
+    }
+    let node_index: HashMap<u64, usize> = mesh.node_ids.iter().enumerate().map(|(k, &id)| (id, k)).collect();
+    let scale = mesh.coords.iter().flatten().fold(1.0f64, |m, v| m.max(v.abs()));
+    let mut nodes = Vec::with_capacity(ids.len());
+    for (id, x) in ids.iter().zip(&coords) {
+        let n = *node_index.get(id).ok_or_else(|| format!("its node {id} is not in the deck's mesh"))?;
+        let y = mesh.coords[n];
+        if (x[0] - y[0]).abs() > 1e-12 * scale || (x[1] - y[1]).abs() > 1e-12 * scale {
+            return Err(format!("node {id} is at ({}, {}) in the file and at ({}, {}) in the deck", x[0], x[1], y[0], y[1]));
+        }
+        nodes.push(n);
+    }
+    let element_index: HashMap<u64, usize> = mesh.element_ids.iter().enumerate().map(|(k, &id)| (id, k)).collect();
+    for (id, conn) in element_ids.iter().zip(&connectivity) {
+        let e = *element_index.get(id).ok_or_else(|| format!("its element {id} is not in the deck's mesh"))?;
+        if conn.iter().zip(&mesh.elements[e]).any(|(&row, &n)| nodes.get(row) != Some(&n)) {
+            return Err(format!("element {id} joins other nodes in the file than in the deck"));
+        }
+    }
+    Ok((nodes, element_index))
+}

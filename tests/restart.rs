@@ -1,0 +1,202 @@
+//! Restart: a run continued from an increment of its results file equals the uninterrupted run
+//! bit for bit from there on (history and every field, the restart state included), on 1 and
+//! on 2 ranks, after a SIGKILL too; it may continue with a deck that adds a step; and it is
+//! refused, with a clear message, for a different mesh, a file without the state and its own
+//! file as output.
+//!
+//! Case: the quick bellows compressed 20 mm in 10 increments (step 1 heats and pressurises,
+//! step 2 compresses: 12 increments in all), the case whose 2-rank runs are repeatable (see
+//! repeatable_runs.rs: MUMPS's parallel factorisation is not bit-repeatable everywhere, and a
+//! continuation cannot be more repeatable than the run it continues).
+
+mod common;
+use common::{command_in, Results};
+use hdf5::types::TypeDescriptor;
+use std::path::Path;
+use std::process::Output;
+
+const BELLOWS: [&str; 6] = ["--quick", "--displacement", "20", "--increments", "10", "--quiet"];
+
+fn bellows(dir: &Path, ranks: usize, extra: &[&str]) -> Output {
+    command_in(dir, ranks).current_dir(dir).arg("bellows").args(BELLOWS).args(extra).output().unwrap()
+}
+
+/// `slideline bellows --restart FILE ...`: the file's own joint (its parameters).
+fn bellows_restart(dir: &Path, ranks: usize, file: &str, extra: &[&str]) -> Output {
+    command_in(dir, ranks).current_dir(dir).args(["bellows", "--quiet", "--restart", file]).args(extra).output().unwrap()
+}
+
+fn ok(out: Output) -> Output {
+    assert!(out.status.success(), "{}\n{}", String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr));
+    out
+}
+
+/// Every dataset under `group` of `a` and `b`, compared bit for bit (floats by their bits).
+fn assert_same_datasets(a: &hdf5::Group, b: &hdf5::Group) {
+    let names = a.member_names().unwrap();
+    assert_eq!(names, b.member_names().unwrap(), "{}: members", a.name());
+    for name in names {
+        if let Ok(g) = a.group(&name) {
+            assert_same_datasets(&g, &b.group(&name).unwrap());
+            continue;
+        }
+        let (x, y) = (a.dataset(&name).unwrap(), b.dataset(&name).unwrap());
+        let what = format!("{}/{name}", a.name());
+        assert_eq!(x.shape(), y.shape(), "{what}");
+        match x.dtype().unwrap().to_descriptor().unwrap() {
+            TypeDescriptor::Float(_) => {
+                let (p, q) = (x.read_raw::<f64>().unwrap(), y.read_raw::<f64>().unwrap());
+                assert!(p.iter().zip(&q).all(|(u, v)| u.to_bits() == v.to_bits()), "{what} differs");
+            }
+            TypeDescriptor::Unsigned(hdf5::types::IntSize::U1) => assert_eq!(x.read_raw::<u8>().unwrap(), y.read_raw::<u8>().unwrap(), "{what}"),
+            TypeDescriptor::Unsigned(_) => assert_eq!(x.read_raw::<u64>().unwrap(), y.read_raw::<u64>().unwrap(), "{what}"),
+            other => panic!("{what}: unexpected type {other:?}"),
+        }
+    }
+}
+
+/// `continued` (restarted from increment `from`) holds the uninterrupted run's history (but
+/// the wall time) and, from increment from + 1 on, its increments bit for bit.
+fn assert_continues(full: &Path, continued: &Path, from: usize) {
+    let (a, b) = (Results::open(full), Results::open(continued));
+    let columns = a.file.group("history").unwrap().member_names().unwrap();
+    assert_eq!(columns, b.file.group("history").unwrap().member_names().unwrap());
+    for name in columns.iter().filter(|c| *c != "wall_time") {
+        let (x, y) = (a.history(name), b.history(name));
+        let same = x.len() == y.len() && x.iter().zip(&y).all(|(p, q)| p.to_bits() == q.to_bits());
+        assert!(same, "history {name}: {x:?} vs {y:?}");
+    }
+    let later: Vec<String> = a.file.group("increments").unwrap().member_names().unwrap().into_iter().filter(|n| n.parse::<usize>().unwrap() > from).collect();
+    assert!(!later.is_empty(), "the run went on after {from}");
+    assert_eq!(b.file.group("increments").unwrap().member_names().unwrap(), later, "the continued file holds the increments after the restart");
+    for name in &later {
+        let g = format!("increments/{name}");
+        assert_same_datasets(&a.file.group(&g).unwrap(), &b.file.group(&g).unwrap());
+    }
+    assert!(b.file.attr("restarted_from").is_ok());
+}
+
+fn bit_identical_continuation(ranks: usize) {
+    let dir = tempfile::tempdir().unwrap();
+    ok(bellows(dir.path(), ranks, &["-o", "full.h5"]));
+    // mid-step, and at the end of step 1 (the next step's loads start from the file's state)
+    for from in [6, 1] {
+        let name = format!("from{from}.h5");
+        let out = ok(bellows_restart(dir.path(), ranks, "full.h5", &["--increment", &from.to_string(), "-o", &name]));
+        assert!(String::from_utf8_lossy(&out.stdout).contains("end reaction"), "the continued run reports as the full one");
+        assert_continues(&dir.path().join("full.h5"), &dir.path().join(&name), from);
+    }
+}
+
+#[test]
+fn continuation_is_bit_identical_on_one_rank() {
+    bit_identical_continuation(1);
+}
+
+#[test]
+fn continuation_is_bit_identical_on_two_ranks() {
+    bit_identical_continuation(2);
+}
+
+#[test]
+fn a_killed_run_continues_from_its_last_complete_increment() {
+    let dir = tempfile::tempdir().unwrap();
+    ok(bellows(dir.path(), 1, &["-o", "full.h5"]));
+    let mut child = command_in(dir.path(), 1).current_dir(dir.path()).arg("bellows").args(BELLOWS).args(["-o", "killed.h5"]).spawn().unwrap();
+    // kill it once the status file shows a few increments of step 2 converged
+    let status = dir.path().join("killed.sta");
+    let started = std::time::Instant::now();
+    loop {
+        let rows = std::fs::read_to_string(&status).map(|t| t.lines().filter(|l| l.trim_start().starts_with(char::is_numeric)).count()).unwrap_or(0);
+        if rows >= 4 {
+            break;
+        }
+        assert!(child.try_wait().unwrap().is_none(), "the run ended before it could be killed");
+        assert!(started.elapsed().as_secs() < 300, "no progress in the status file");
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+    child.kill().unwrap(); // SIGKILL
+    child.wait().unwrap();
+    let held = slideline_increments(&dir.path().join("killed.h5"));
+    assert!((4..12).contains(&held), "killed after {held} increments");
+    ok(bellows_restart(dir.path(), 1, "killed.h5", &["-o", "continued.h5"]));
+    assert_continues(&dir.path().join("full.h5"), &dir.path().join("continued.h5"), held);
+}
+
+/// Complete increments of a results file (as `slideline post` counts them).
+fn slideline_increments(path: &Path) -> usize {
+    let f = hdf5::File::open(path).unwrap();
+    let g = f.group("increments").unwrap();
+    g.member_names().unwrap().iter().filter(|n| g.group(n).unwrap().attr("complete").is_ok()).count()
+}
+
+const PLASTIC_CYLINDER: &str = r#"[mesh]
+rectangle = { r = [100.0, 130.0], z = [0.0, 1.0], divisions = [8, 1] }
+[[material]]
+name = "steel"
+model = "j2"
+youngs_modulus = 200000.0
+poissons_ratio = 0.3
+yield_stress = 300.0
+hardening_modulus = 1000.0
+[[step]]
+name = "load"
+increments = 6
+boundary = [ { set = "bottom", uz = 0.0 }, { set = "top", uz = 0.0 } ]
+pressure = [ { surface = "inner", value = 84.0 } ]
+"#;
+
+const UNLOAD: &str = r#"[[step]]
+name = "unload"
+increments = 3
+pressure = [ { surface = "inner", value = 0.0 } ]
+"#;
+
+#[test]
+fn a_continued_run_may_add_a_step_and_equals_the_run_of_the_longer_deck() {
+    let dir = tempfile::tempdir().unwrap();
+    let (short, long) = (dir.path().join("load.toml"), dir.path().join("cycle.toml"));
+    std::fs::write(&short, PLASTIC_CYLINDER).unwrap();
+    std::fs::write(&long, format!("{PLASTIC_CYLINDER}{UNLOAD}")).unwrap();
+    let run = |args: &[&str]| ok(command_in(dir.path(), 1).current_dir(dir.path()).arg("run").args(args).arg("--quiet").output().unwrap());
+    run(&[long.to_str().unwrap(), "-o", "cycle.h5"]);
+    run(&[short.to_str().unwrap(), "-o", "load.h5"]);
+    run(&[long.to_str().unwrap(), "--restart", "load.h5", "-o", "unload.h5"]);
+    // the load step left plastic strain to carry over, and the unloading kept it
+    let b = Results::open(&dir.path().join("unload.h5"));
+    assert!(b.history("max_equivalent_plastic_strain").last().copied().unwrap() > 1e-4);
+    assert_continues(&dir.path().join("cycle.h5"), &dir.path().join("unload.h5"), 6);
+}
+
+fn refused(out: Output, needle: &str) {
+    assert_eq!(out.status.code(), Some(2), "{}", String::from_utf8_lossy(&out.stderr));
+    let text = String::from_utf8_lossy(&out.stderr);
+    assert!(text.contains(needle), "{needle:?} not in: {text}");
+    assert!(!text.contains("panicked") && text.lines().filter(|l| !l.trim().is_empty()).count() <= 2, "one clear message: {text}");
+}
+
+#[test]
+fn restarts_that_cannot_continue_the_run_are_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    ok(bellows(dir.path(), 1, &["-o", "full.h5"]));
+    // another mesh: the ply elements' length changed
+    refused(bellows_restart(dir.path(), 1, "full.h5", &["--ply-element-length", "1.5", "-o", "other.h5"]), "cannot restart from full.h5: its mesh has");
+    // an increment the file does not hold
+    refused(bellows_restart(dir.path(), 1, "full.h5", &["--increment", "40", "-o", "other.h5"]), "increment 40 is not among its 12 restartable increments (1 .. 12");
+    // into itself
+    refused(bellows_restart(dir.path(), 1, "full.h5", &["-o", "full.h5"]), "into itself");
+    // a file without the state (as an older slideline wrote it)
+    std::fs::copy(dir.path().join("full.h5"), dir.path().join("stateless.h5")).unwrap();
+    {
+        let f = hdf5::File::open_rw(dir.path().join("stateless.h5")).unwrap();
+        for name in f.group("increments").unwrap().member_names().unwrap() {
+            f.group(&format!("increments/{name}")).unwrap().unlink("state").unwrap();
+        }
+    }
+    refused(bellows_restart(dir.path(), 1, "stateless.h5", &["-o", "other.h5"]), "holds no increment with a restart state");
+    // a deck whose steps differ from the file's
+    let deck = dir.path().join("deck.toml");
+    std::fs::write(&deck, PLASTIC_CYLINDER).unwrap();
+    let out = command_in(dir.path(), 1).current_dir(dir.path()).args(["run", deck.to_str().unwrap(), "--restart", "full.h5", "-o", "other.h5"]).output().unwrap();
+    refused(out, "cannot restart from full.h5: its mesh has");
+}
