@@ -1,10 +1,11 @@
-//! Reader for Gmsh .msh 4.1 and 2.2 ASCII meshes.
+//! Reader for Gmsh .msh meshes: format 4.1 (ASCII and binary) and 2.2 (ASCII).
 //!
 //! Physical groups become sets: a 2D group becomes an element set (and a node set of its
 //! nodes), a 1D group a surface of 3-node edges (and the node set of its nodes), a 0D group a
 //! node set. Every name is the group's physical name (or `physical_<tag>` if it has none).
 //! Elements must be 8-node quadrilaterals (Gmsh type 16: `Mesh.ElementOrder = 2`,
-//! `Mesh.SecondOrderIncomplete = 1`, recombined). Errors name the file and line.
+//! `Mesh.SecondOrderIncomplete = 1`, recombined). Errors name the file and line (the element
+//! block in a binary file).
 //!
 //! (The `mshio` crate was considered: it drops node tags of densely numbered files and ignores
 //! `$PhysicalNames`, which is where set names come from.)
@@ -19,6 +20,7 @@ const QUAD8: u32 = 16;
 const LINE3: u32 = 8;
 const POINT: u32 = 15;
 
+mod binary;
 mod write;
 pub use write::{to_msh, write};
 
@@ -31,10 +33,34 @@ pub fn read(path: &Path) -> Result<(Mesh, MeshSets)> {
         )));
     }
     let bytes = std::fs::read(path).map_err(|source| Error::Read { path: path.to_path_buf(), source })?;
-    let text = String::from_utf8(bytes).map_err(|_| {
-        Error::input(format!("{}: not a text file: slideline reads ASCII .msh 4.1 (a binary .msh: save it as ASCII, Mesh.Binary = 0)", path.display()))
-    })?;
-    parse(&text, &path.display().to_string())
+    let name = path.display().to_string();
+    if binary::is_binary(&bytes) {
+        return assemble(binary::parse(&bytes, &name)?, &name);
+    }
+    let text = String::from_utf8(bytes)
+        .map_err(|_| Error::input(format!("{name}: neither a text .msh nor a binary .msh 4.1 (Gmsh: -format msh41, or msh22 for text)")))?;
+    parse(&text, &name)
+}
+
+/// What a .msh file says, before it becomes a mesh: physical names, the entities' physical
+/// groups, node coordinates and elements of every dimension.
+#[derive(Default)]
+struct RawMesh {
+    physical_names: HashMap<(i32, i32), String>,
+    /// (dim, entity tag) -> physical tags
+    entity_physicals: HashMap<(i32, i32), Vec<i32>>,
+    node_coords: HashMap<u64, [f64; 2]>,
+    elements: Vec<RawElement>,
+}
+
+struct RawElement {
+    dim: i32,
+    entity: i32,
+    ty: u32,
+    tag: u64,
+    nodes: Vec<u64>,
+    /// Where it is, for messages: "FILE:LINE" (text) or "FILE, element block K" (binary).
+    at: String,
 }
 
 struct Lines<'a> {
@@ -90,14 +116,15 @@ fn type_dimension(ty: u32) -> i32 {
     }
 }
 
+/// A text .msh (4.1 or 2.2) as a mesh and its sets.
 pub fn parse(text: &str, name: &str) -> Result<(Mesh, MeshSets)> {
+    assemble(parse_text(text, name)?, name)
+}
+
+fn parse_text(text: &str, name: &str) -> Result<RawMesh> {
     let mut lines = Lines { name, lines: text.lines().enumerate(), line: 0 };
-    let mut physical_names: HashMap<(i32, i32), String> = HashMap::new();
-    // (dim, entity tag) -> physical tags
-    let mut entity_physicals: HashMap<(i32, i32), Vec<i32>> = HashMap::new();
-    let mut node_coords: HashMap<u64, [f64; 2]> = HashMap::new();
-    // (dim, entity, type, tag, node tags)
-    let mut elements: Vec<(i32, i32, u32, u64, Vec<u64>, usize)> = Vec::new();
+    let mut raw = RawMesh::default();
+    let RawMesh { physical_names, entity_physicals, node_coords, elements } = &mut raw;
     let mut seen_format = false;
     // format 2.2: each element names its physical group itself (its first tag)
     let mut legacy = false;
@@ -113,7 +140,7 @@ pub fn parse(text: &str, name: &str) -> Result<(Mesh, MeshSets)> {
                         .error(format!("unsupported .msh version {:?}: slideline reads formats 4.1 and 2.2 (Gmsh: -format msh41)", f.first().unwrap_or(&""))));
                 }
                 if f.get(1) != Some(&"0") {
-                    return Err(lines.error("binary .msh files are not supported: save as ASCII (Mesh.Binary = 0)"));
+                    return Err(lines.error("a binary .msh 2.2: slideline reads binary files in format 4.1 (Gmsh: -format msh41) and 2.2 as text"));
                 }
                 lines.expect("$EndMeshFormat")?;
                 seen_format = true;
@@ -182,7 +209,7 @@ pub fn parse(text: &str, name: &str) -> Result<(Mesh, MeshSets)> {
                     if ntags > 0 {
                         entity_physicals.insert((dim, entity), vec![entity]);
                     }
-                    elements.push((dim, entity, ty, tag, v[3 + ntags..].to_vec(), lines.line));
+                    elements.push(RawElement { dim, entity, ty, tag, nodes: v[3 + ntags..].to_vec(), at: format!("{name}:{}", lines.line) });
                 }
                 lines.expect("$EndElements")?;
             }
@@ -223,7 +250,7 @@ pub fn parse(text: &str, name: &str) -> Result<(Mesh, MeshSets)> {
                     for _ in 0..b[3] {
                         let v: Vec<u64> = lines.numbers("element")?;
                         need(&v, 2, &lines, "element")?;
-                        elements.push((dim, entity, ty, v[0], v[1..].to_vec(), lines.line));
+                        elements.push(RawElement { dim, entity, ty, tag: v[0], nodes: v[1..].to_vec(), at: format!("{name}:{}", lines.line) });
                     }
                 }
                 lines.expect("$EndElements")?;
@@ -240,24 +267,30 @@ pub fn parse(text: &str, name: &str) -> Result<(Mesh, MeshSets)> {
     if !seen_format {
         return Err(Error::input(format!("{name}: not a Gmsh mesh (no $MeshFormat section)")));
     }
+    Ok(raw)
+}
+
+/// The mesh of a file's 8-node quadrilaterals and the sets of its physical groups.
+fn assemble(raw: RawMesh, name: &str) -> Result<(Mesh, MeshSets)> {
+    let RawMesh { physical_names, entity_physicals, node_coords, elements } = raw;
 
     // Q8 elements define the mesh; only their nodes are kept.
     let mut mesh = Mesh::default();
     let mut node_index: HashMap<u64, usize> = HashMap::new();
     let mut entity_elements: BTreeMap<i32, Vec<usize>> = BTreeMap::new();
-    for (dim, entity, ty, tag, nodes, line) in &elements {
+    for RawElement { dim, entity, ty, tag, nodes, at } in &elements {
         if *dim != 2 {
             continue;
         }
         if *ty != QUAD8 {
-            return Err(Error::input(format!("{name}:{line}: element {tag} is {}; slideline uses 8-node quadrilaterals (Gmsh type 16: Mesh.ElementOrder = 2, Mesh.SecondOrderIncomplete = 1, recombined)", type_name(*ty))));
+            return Err(Error::input(format!("{at}: element {tag} is {}; slideline uses 8-node quadrilaterals (Gmsh type 16: Mesh.ElementOrder = 2, Mesh.SecondOrderIncomplete = 1, recombined)", type_name(*ty))));
         }
         if nodes.len() != 8 {
-            return Err(Error::input(format!("{name}:{line}: element {tag} lists {} nodes, an 8-node quadrilateral needs 8", nodes.len())));
+            return Err(Error::input(format!("{at}: element {tag} lists {} nodes, an 8-node quadrilateral needs 8", nodes.len())));
         }
         let mut conn = [0usize; 8];
         for (k, t) in nodes.iter().enumerate() {
-            let c = *node_coords.get(t).ok_or_else(|| Error::input(format!("{name}:{line}: element {tag} uses node {t}, which is not in $Nodes")))?;
+            let c = *node_coords.get(t).ok_or_else(|| Error::input(format!("{at}: element {tag} uses node {t}, which is not in $Nodes")))?;
             conn[k] = *node_index.entry(*t).or_insert_with(|| {
                 mesh.coords.push(c);
                 mesh.node_ids.push(*t);
@@ -292,7 +325,7 @@ pub fn parse(text: &str, name: &str) -> Result<(Mesh, MeshSets)> {
         }
     }
     let mut surfaces: BTreeMap<String, Vec<Edge>> = BTreeMap::new();
-    for (dim, entity, ty, tag, nodes, line) in &elements {
+    for RawElement { dim, entity, ty, tag, nodes, at } in &elements {
         let phys = entity_physicals.get(&(*dim, *entity)).map(|v| v.as_slice()).unwrap_or(&[]);
         if phys.is_empty() || *dim > 1 {
             continue;
@@ -301,21 +334,21 @@ pub fn parse(text: &str, name: &str) -> Result<(Mesh, MeshSets)> {
             node_index
                 .get(t)
                 .copied()
-                .ok_or_else(|| Error::input(format!("{name}:{line}: element {tag} uses node {t}, which belongs to no 8-node quadrilateral")))
+                .ok_or_else(|| Error::input(format!("{at}: element {tag} uses node {t}, which belongs to no 8-node quadrilateral")))
         };
         match (*dim, *ty) {
             (1, LINE3) if nodes.len() == 3 => {
                 let (a, b) = (index(&nodes[0])?, index(&nodes[1])?);
                 let edge = *side_of
                     .get(&(a.min(b), a.max(b)))
-                    .ok_or_else(|| Error::input(format!("{name}:{line}: line element {tag} is not a side of any quadrilateral")))?;
+                    .ok_or_else(|| Error::input(format!("{at}: line element {tag} is not a side of any quadrilateral")))?;
                 for &p in phys {
                     surfaces.entry(group_name(1, p)).or_default().push(edge);
                 }
             }
             (1, _) => {
                 return Err(Error::input(format!(
-                    "{name}:{line}: element {tag} in a physical curve is {}; surfaces need 3-node lines (type 8)",
+                    "{at}: element {tag} in a physical curve is {}; surfaces need 3-node lines (type 8)",
                     type_name(*ty)
                 )))
             }
@@ -325,7 +358,7 @@ pub fn parse(text: &str, name: &str) -> Result<(Mesh, MeshSets)> {
                     sets.node_sets.entry(group_name(0, p)).or_default().push(n);
                 }
             }
-            _ => return Err(Error::input(format!("{name}:{line}: element {tag} of type {ty} in a physical point group is not a point"))),
+            _ => return Err(Error::input(format!("{at}: element {tag} of type {ty} in a physical point group is not a point"))),
         }
     }
     for (nm, mut edges) in surfaces {
@@ -380,6 +413,28 @@ $Elements\n3\n1 15 2 3 1 1\n2 8 2 2 1 1 2 5\n3 16 2 1 1 1 2 3 4 5 6 7 8\n$EndEle
         assert_eq!(sets.element_sets["plate"], vec![0]);
         assert_eq!(sets.surfaces["bottom"], vec![Edge { element: 0, side: 0 }]);
         assert_eq!(sets.node_sets["corner"].iter().map(|&n| mesh.node_ids[n]).collect::<Vec<_>>(), vec![1]);
+    }
+
+    #[test]
+    fn a_binary_msh_4_1_reads_as_its_text_twin() {
+        // both written by Gmsh 4 itself (tests/data/make_binary_msh.py)
+        let data = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data");
+        let (text, text_sets) = read(&data.join("plate_text.msh")).unwrap();
+        let (bin, bin_sets) = read(&data.join("plate_binary.msh")).unwrap();
+        assert_eq!((bin.elements.len(), bin.coords.len()), (8, 37), "4 x 2 Q8 elements");
+        assert_eq!((&bin.elements, &bin.node_ids, &bin.element_ids), (&text.elements, &text.node_ids, &text.element_ids));
+        // the text file prints 16 digits, the binary one holds every bit
+        assert!(bin.coords.iter().flatten().zip(text.coords.iter().flatten()).all(|(a, b)| (a - b).abs() < 1e-13));
+        assert_eq!(bin_sets.surfaces, text_sets.surfaces);
+        assert_eq!(bin_sets.node_sets, text_sets.node_sets);
+        assert_eq!(bin_sets.element_sets, text_sets.element_sets);
+        assert_eq!(bin_sets.surfaces["bottom"].len(), 4);
+        assert_eq!(bin_sets.node_sets["corner"].iter().map(|&n| bin.coords[n]).collect::<Vec<_>>(), vec![[10.0, 0.0]]);
+        // cut short: a message naming the section, not a panic
+        let bytes = std::fs::read(data.join("plate_binary.msh")).unwrap();
+        let cut = bytes.len() * 2 / 3;
+        let message = binary::parse(&bytes[..cut], "cut.msh").err().expect("refused").to_string();
+        assert!(message.contains("cut.msh: $"), "{message}");
     }
 
     #[test]
