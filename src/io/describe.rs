@@ -9,6 +9,11 @@ pub fn describe(group: &str, name: &str) -> (&'static str, String) {
     match (top, name) {
         ("mesh", _) if g.ends_with("node_sets") => ("-", format!("node set {name}: rows of /mesh/coordinates")),
         ("mesh", _) if g.ends_with("element_sets") => ("-", format!("element set {name}: rows of /mesh/connectivity")),
+        ("restart", "pattern") => ("-", "contact couplings the Jacobian reserved: [increment number, rank, node id, node id], as they were added (restart)".into()),
+        (_, "plastic_points") => ("-", "[element id, Gauss point] of each Gauss point that has left its initial state (restart)".into()),
+        (_, "plastic_state") => ("-", "committed plastic state of those points: C_p^-1 (finite strain) or eps_p (small strain) [rr, zz, tt, rz], equivalent plastic strain (restart)".into()),
+        (_, n) if n.starts_with("multiplier_nodes_pass") => ("-", "node ids of the slave nodes with a nonzero augmented-Lagrangian multiplier (restart)".into()),
+        (_, n) if n.starts_with("multipliers_pass") => ("MPa", "their committed augmented-Lagrangian multipliers (restart)".into()),
         ("mesh", "coordinates") => ("mm", "r, z of each node".into()),
         ("mesh", "connectivity") => ("-", "the 8 nodes of each Q8 element (rows of /mesh/coordinates), corners then mid-sides, counter-clockwise".into()),
         ("mesh", "node_ids") => ("-", "external node numbers (the input's)".into()),

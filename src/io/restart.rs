@@ -14,7 +14,7 @@
 //! is bit-identical to the uninterrupted one on the same number of ranks.
 
 use super::reader::ResultsReader;
-use super::results::{h5err, write_rows};
+use super::results::{describe_dataset, h5err, write_rows};
 use super::HistoryRow;
 use crate::element::solid::QUADRATURE_POINTS as QP;
 use crate::error::{Error, Result};
@@ -85,7 +85,10 @@ pub(super) fn write_state(
     let ds = if restart.link_exists("pattern") {
         restart.dataset("pattern").map_err(&err)?
     } else {
-        restart.new_dataset::<u64>().chunk((4096, 4)).shape((0.., 4)).create("pattern").map_err(&err)?
+        let ds = restart.new_dataset::<u64>().chunk((4096, 4)).shape((0.., 4)).create("pattern").map_err(&err)?;
+        let (units, description) = super::describe::describe(&restart.name(), "pattern");
+        describe_dataset(&ds, units, &description, path)?;
+        ds
     };
     let held = ds.shape()[0];
     let rows = all.len() / 4;

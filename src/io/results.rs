@@ -458,7 +458,7 @@ impl ResultsFile {
 /// Creates dataset `name` of `shape` in `group` (collective) and writes rows
 /// `slab.0..slab.1` (first dimension) from `data` (row-major) on this rank.
 /// Writes the `units` and `description` attributes of a dataset (collective).
-fn describe_dataset(ds: &hdf5::Dataset, units: &str, description: &str, path: &Path) -> Result<()> {
+pub(super) fn describe_dataset(ds: &hdf5::Dataset, units: &str, description: &str, path: &Path) -> Result<()> {
     let err = h5err(path);
     for (attr, text) in [("units", units), ("description", description)] {
         let value: VarLenUnicode = text.parse().map_err(|_| Error::Output { path: path.to_path_buf(), message: format!("attribute text {text:?}") })?;
