@@ -2,6 +2,7 @@
 //! seed paper (Wriggers), contact surfaces as polylines with consistent axisymmetric
 //! tributary areas, and the closest-segment search. Pure: no PETSc, no MPI.
 
+pub mod friction;
 pub mod integrated;
 pub mod node_to_edge;
 pub mod search;

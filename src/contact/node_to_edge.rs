@@ -106,22 +106,40 @@ pub fn project_on_edge(xs: [f64; 2], x: &[[f64; 2]; 3]) -> Option<EdgeProjection
     Some(EdgeProjection { xi, gap, normal, distance })
 }
 
-/// Residual f = -p A [n, -N_k n] of the slave node at `xs` on the edge `x`, with `xi` the
-/// converged projection; generic so the dual version gives the tangent.
-fn residual<T: Scalar>(xs: &[T; 2], x: &[[T; 2]; 3], xi_converged: f64, law: &ContactLaw) -> [T; 8] {
-    let ContactLaw { area, penalty, multiplier, free_ends } = *law;
-    // one Newton step of the projection at the converged xi: value unchanged, derivative
-    // -r_x / r_xi by the implicit function theorem
+/// The contact point of the slave node at `xs` on the edge `x`: edge coordinate, master shape
+/// functions there, unit tangent, outward normal, gap and contact pressure
+/// p = (lambda - eps g) w(xi) (w the free-end taper). Generic, so the dual version carries the
+/// derivatives: the projection's dependence on the nodes enters through one Newton step of the
+/// projection equation at the converged `xi_converged` (value unchanged, derivative
+/// -r_x / r_xi by the implicit function theorem).
+pub(crate) struct ContactPoint<T> {
+    pub xi: T,
+    pub shape: [T; 3],
+    pub tangent: [T; 2],
+    pub normal: [T; 2],
+    pub gap: T,
+    pub pressure: T,
+}
+
+pub(crate) fn contact_point<T: Scalar>(xs: &[T; 2], x: &[[T; 2]; 3], xi_converged: f64, law: &ContactLaw) -> ContactPoint<T> {
     let xi0 = T::from_f64(xi_converged);
     let (r, dr) = projection_equation(xs, x, xi0);
     let xi = xi0 - r / T::from_f64(dr.re());
     let (p, t, _) = curve(x, xi);
     let lt = (t[0] * t[0] + t[1] * t[1]).sqrt();
-    let n = [t[1] / lt, -t[0] / lt];
-    let gap = (xs[0] - p[0]) * n[0] + (xs[1] - p[1]) * n[1];
-    let pressure = -(gap * penalty) + multiplier; // the caller ensures it is >= 0
+    let tangent = [t[0] / lt, t[1] / lt];
+    let normal = [tangent[1], -tangent[0]];
+    let gap = (xs[0] - p[0]) * normal[0] + (xs[1] - p[1]) * normal[1];
+    let pressure = (-(gap * law.penalty) + law.multiplier) * end_taper(xi, law.free_ends); // the caller ensures >= 0
     let shape = [xi * (xi - 1.0) * 0.5, xi * (xi + 1.0) * 0.5, -(xi * xi) + 1.0];
-    let c = -(pressure * area) * end_taper(xi, free_ends);
+    ContactPoint { xi, shape, tangent, normal, gap, pressure }
+}
+
+/// Residual f = -p A [n, -N_k n] of the slave node at `xs` on the edge `x`, with `xi` the
+/// converged projection; generic so the dual version gives the tangent.
+fn residual<T: Scalar>(xs: &[T; 2], x: &[[T; 2]; 3], xi_converged: f64, law: &ContactLaw) -> [T; 8] {
+    let ContactPoint { shape, normal: n, pressure, .. } = contact_point(xs, x, xi_converged, law);
+    let c = -(pressure * law.area);
     [
         n[0] * c,
         n[1] * c,
@@ -139,7 +157,7 @@ fn residual<T: Scalar>(xs: &[T; 2], x: &[[T; 2]; 3], xi_converged: f64, law: &Co
 /// FREE_END_EXTENSION past the end, so a node sliding off the surface lets go gradually
 /// instead of dropping its force in one iteration (which makes Newton cycle). Generic: its
 /// derivative enters the tangent.
-fn end_taper<T: Scalar>(xi: T, free_ends: [bool; 2]) -> T {
+pub(crate) fn end_taper<T: Scalar>(xi: T, free_ends: [bool; 2]) -> T {
     let over = if free_ends[0] && xi.re() < -1.0 {
         -xi - 1.0
     } else if free_ends[1] && xi.re() > 1.0 {
