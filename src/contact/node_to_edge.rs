@@ -107,17 +107,15 @@ pub fn project_on_edge(xs: [f64; 2], x: &[[f64; 2]; 3]) -> Option<EdgeProjection
 }
 
 /// The contact point of the slave node at `xs` on the edge `x`: edge coordinate, master shape
-/// functions there, unit tangent, outward normal, gap and contact pressure
+/// functions there, unit tangent, outward normal and contact pressure
 /// p = (lambda - eps g) w(xi) (w the free-end taper). Generic, so the dual version carries the
 /// derivatives: the projection's dependence on the nodes enters through one Newton step of the
 /// projection equation at the converged `xi_converged` (value unchanged, derivative
 /// -r_x / r_xi by the implicit function theorem).
 pub(crate) struct ContactPoint<T> {
-    pub xi: T,
     pub shape: [T; 3],
     pub tangent: [T; 2],
     pub normal: [T; 2],
-    pub gap: T,
     pub pressure: T,
 }
 
@@ -132,7 +130,7 @@ pub(crate) fn contact_point<T: Scalar>(xs: &[T; 2], x: &[[T; 2]; 3], xi_converge
     let gap = (xs[0] - p[0]) * normal[0] + (xs[1] - p[1]) * normal[1];
     let pressure = (-(gap * law.penalty) + law.multiplier) * end_taper(xi, law.free_ends); // the caller ensures >= 0
     let shape = [xi * (xi - 1.0) * 0.5, xi * (xi + 1.0) * 0.5, -(xi * xi) + 1.0];
-    ContactPoint { xi, shape, tangent, normal, gap, pressure }
+    ContactPoint { shape, tangent, normal, pressure }
 }
 
 /// Residual f = -p A [n, -N_k n] of the slave node at `xs` on the edge `x`, with `xi` the

@@ -13,6 +13,8 @@ pub fn describe(group: &str, name: &str) -> (&'static str, String) {
         (_, "plastic_points") => ("-", "[element id, Gauss point] of each Gauss point that has left its initial state (restart)".into()),
         (_, "plastic_state") => ("-", "committed plastic state of those points: C_p^-1 (finite strain) or eps_p (small strain) [rr, zz, tt, rz], equivalent plastic strain (restart)".into()),
         (_, n) if n.starts_with("multiplier_nodes_pass") => ("-", "node ids of the slave nodes with a nonzero augmented-Lagrangian multiplier (restart)".into()),
+        (_, n) if n.starts_with("slip_nodes_pass") => ("-", "node ids of the slave nodes with a slip reference (friction; restart)".into()),
+        (_, n) if n.starts_with("slip_pass") => ("-", "their slip reference: [master edge index, edge coordinate, tangential traction (MPa)] (friction; restart)".into()),
         (_, n) if n.starts_with("multipliers_pass") => ("MPa", "their committed augmented-Lagrangian multipliers (restart)".into()),
         ("mesh", "coordinates") => ("mm", "r, z of each node".into()),
         ("mesh", "connectivity") => ("-", "the 8 nodes of each Q8 element (rows of /mesh/coordinates), corners then mid-sides, counter-clockwise".into()),
@@ -41,6 +43,8 @@ pub fn describe(group: &str, name: &str) -> (&'static str, String) {
         (_, "pressure") => ("MPa", "contact pressure at each slave node".into()),
         (_, "traction") => ("MPa", "contact traction recovered from the nodal contact forces".into()),
         (_, "active") => ("-", "1 where the slave node is in contact".into()),
+        (_, "shear") => ("MPa", "frictional traction at each slave node, along the master's tangent (positive: resisting the slave's slip in the tangent's direction)".into()),
+        (_, "sliding") => ("-", "1 where the slave node slides (friction at its Coulomb limit), 0 where it sticks or is open".into()),
         (_, n) if n.starts_with("stress_") => ("MPa", format!("{} at the nodes (Gauss values carried to the nodes, averaged)", n.replace('_', " "))),
         _ => ("-", name.replace('_', " ")),
     }

@@ -20,6 +20,7 @@ use crate::element::solid::QUADRATURE_POINTS as QP;
 use crate::error::{Error, Result};
 use crate::material::PointState;
 use crate::model::{Mesh, Model};
+use crate::solve::contact::SlipPoint;
 use mpi::datatype::PartitionMut;
 use mpi::topology::SimpleCommunicator;
 use mpi::traits::*;
@@ -37,6 +38,8 @@ pub struct CommittedState<'a> {
     pub initial: PointState,
     /// Per contact pass, (mesh node, multiplier) of this rank's slave nodes with a nonzero one.
     pub multipliers: Vec<Vec<(usize, f64)>>,
+    /// Per contact pass, (mesh node, slip reference) of this rank's slave nodes that have one.
+    pub slip: Vec<Vec<(usize, SlipPoint)>>,
     /// Contact couplings this rank reserved since the last state written (mesh nodes).
     pub fresh_pattern: Vec<(usize, usize)>,
     /// Size of the next increment's first attempt (load factor).
@@ -59,6 +62,8 @@ pub(super) fn write_state(
     let sg = g.create_group("state").map_err(&err)?;
     sg.new_attr::<f64>().create("next_increment_size").map_err(&err)?.write_scalar(&state.next_size).map_err(&err)?;
     sg.new_attr::<u64>().create("pattern_refits").map_err(&err)?.write_scalar(&(state.refits as u64)).map_err(&err)?;
+    // a pass's datasets are left out where no rank has a row: the count says how many to read
+    sg.new_attr::<u64>().create("contact_passes").map_err(&err)?.write_scalar(&(state.multipliers.len() as u64)).map_err(&err)?;
     let mut points = Vec::new();
     let mut values = Vec::new();
     for (&e, history) in state.local_elements.iter().zip(state.history) {
@@ -76,6 +81,12 @@ pub(super) fn write_state(
         let values: Vec<f64> = pass.iter().map(|&(_, v)| v).collect();
         write_gathered(&sg, world, &format!("multiplier_nodes_pass{p}"), 1, &nodes, path)?;
         write_gathered(&sg, world, &format!("multipliers_pass{p}"), 1, &values, path)?;
+    }
+    for (p, pass) in state.slip.iter().enumerate() {
+        let nodes: Vec<u64> = pass.iter().map(|&(n, _)| mesh.node_ids[n]).collect();
+        let values: Vec<f64> = pass.iter().flat_map(|(_, s)| [s.edge as f64, s.xi, s.traction]).collect();
+        write_gathered(&sg, world, &format!("slip_nodes_pass{p}"), 1, &nodes, path)?;
+        write_gathered(&sg, world, &format!("slip_pass{p}"), 3, &values, path)?;
     }
     // the pattern's new rows, gathered to every rank (resizing is collective), written by rank 0
     let local: Vec<u64> =
@@ -156,6 +167,8 @@ pub struct RestartPoint {
     pub plastic: Vec<(usize, usize, PointState)>,
     /// Per pass, (mesh node, multiplier).
     pub multipliers: Vec<Vec<(usize, f64)>>,
+    /// Per pass, (mesh node, slip reference) (friction).
+    pub slip: Vec<Vec<(usize, SlipPoint)>>,
     /// (rank that reserved it, mesh node, mesh node).
     pub pattern: Vec<(usize, usize, usize)>,
     /// Ranks of the run that wrote the file.
@@ -240,12 +253,23 @@ impl RestartPoint {
             let e = elements.get(&p[0]).copied().ok_or_else(|| bad(format!("element {} of its state is not in the mesh", p[0])))?;
             plastic.push((e, p[1] as usize, PointState { plastic: [s[0], s[1], s[2], s[3]], ep: s[4] }));
         }
-        let passes = (0..).take_while(|p| sg.link_exists(&format!("multiplier_nodes_pass{p}")) || sg.link_exists(&format!("multipliers_pass{p}")));
+        let passes = sg.attr("contact_passes").and_then(|a| a.read_scalar::<u64>()).map_err(|e| bad(format!("{group}: {e}")))? as usize;
         let mut multipliers = Vec::new();
-        for p in passes {
+        for p in 0..passes {
             let ids = read_u64(&format!("multiplier_nodes_pass{p}"))?;
             let values = read_f64(&format!("multipliers_pass{p}"))?;
             multipliers.push(ids.into_iter().zip(values).map(|(id, v)| Ok((node(id)?, v))).collect::<Result<Vec<_>>>()?);
+        }
+        let mut slip = Vec::new();
+        for p in 0..passes {
+            let ids = read_u64(&format!("slip_nodes_pass{p}"))?;
+            let values = read_f64(&format!("slip_pass{p}"))?;
+            slip.push(
+                ids.into_iter()
+                    .zip(values.chunks_exact(3))
+                    .map(|(id, v)| Ok((node(id)?, SlipPoint { edge: v[0] as usize, xi: v[1], traction: v[2] })))
+                    .collect::<Result<Vec<_>>>()?,
+            );
         }
         let mut pattern = Vec::new();
         if file.link_exists("restart/pattern") {
@@ -271,6 +295,7 @@ impl RestartPoint {
             step_ends,
             plastic,
             multipliers,
+            slip,
             pattern,
             ranks: reader.count_attr("ranks")?,
             rows,

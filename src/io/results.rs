@@ -383,6 +383,12 @@ impl ResultsFile {
             write_rows(&pg, "gap", &[p.total], slab, &gap, &self.path)?;
             write_rows(&pg, "pressure", &[p.total], slab, &pressure, &self.path)?;
             write_rows(&pg, "active", &[p.total], slab, &active, &self.path)?;
+            if p.friction {
+                let shear: Vec<f64> = p.states.iter().map(|s| s.shear).collect();
+                let sliding: Vec<u8> = p.states.iter().map(|s| u8::from(s.sliding)).collect();
+                write_rows(&pg, "shear", &[p.total], slab, &shear, &self.path)?;
+                write_rows(&pg, "sliding", &[p.total], slab, &sliding, &self.path)?;
+            }
         }
         Ok(())
     }

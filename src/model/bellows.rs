@@ -336,6 +336,7 @@ pub fn model(p: &BellowsParams) -> Result<Model> {
         capture_distance: (2.0 * p.ply_thickness).max(2.0 * p.ply_element_length),
         augmented_lagrangian: None::<AugmentedLagrangian>,
         exclude_neighbours: 4,
+        friction: None,
     };
     let mut contacts = Vec::new();
     for k in 1..p.plies {

@@ -51,6 +51,8 @@
 //! capture_distance = 1.0            # mm (default: twice the longest edge a slave node may meet)
 //! augmented_lagrangian = { penetration_tolerance = 1e-4, max_augmentations = 10 }  # optional
 //! exclude_neighbours = 2            # self-contact: segments this close along the surface
+//! friction = 0.2                    # Coulomb's mu (optional; node-to-segment pairs)
+//! tangential_penalty = 1.0e5        # MPa/mm of slip in stick (default: the normal penalty)
 //!
 //! [[step]]
 //! name = "load"
@@ -62,7 +64,7 @@
 
 use super::mesh::{blocks, rectangle, Block, MeshSets};
 use super::{
-    default_capture_distance, gmsh, AugmentedLagrangian, Component, ContactIntegration, ContactPair, Kinematics, Material, Model, OutputControls, OutputFields,
+    default_capture_distance, gmsh, AugmentedLagrangian, Friction, Component, ContactIntegration, ContactPair, Kinematics, Material, Model, OutputControls, OutputFields,
     Penalty, Plasticity, PrescribedDisplacement, Pressure, Step, SteppingControls,
 };
 use crate::error::{Error, Result};
@@ -116,6 +118,8 @@ struct ContactSpec {
     augmented_lagrangian: Option<AugmentedSpec>,
     #[serde(default = "two")]
     exclude_neighbours: usize,
+    friction: Option<f64>,
+    tangential_penalty: Option<f64>,
 }
 
 #[derive(Deserialize, Default, Clone, Copy)]
@@ -376,6 +380,7 @@ pub fn parse(text: &str, path: &Path) -> Result<Model> {
             .augmented_lagrangian
             .as_ref()
             .map(|a| AugmentedLagrangian { penetration_tolerance: a.penetration_tolerance, max_augmentations: a.max_augmentations });
+        let friction = Friction::from_values(&name, c.friction, c.tangential_penalty)?;
         contacts.push(ContactPair {
             name,
             slave: c.slave.clone(),
@@ -389,6 +394,7 @@ pub fn parse(text: &str, path: &Path) -> Result<Model> {
             capture_distance,
             augmented_lagrangian,
             exclude_neighbours: c.exclude_neighbours,
+            friction,
         });
     }
     let kinematics = if deck.nlgeom { Kinematics::Finite } else { Kinematics::Small };

@@ -117,6 +117,33 @@ pub struct ContactPair {
     /// Self-contact: segments within this many segments of a node along the surface are
     /// never its master.
     pub exclude_neighbours: usize,
+    /// Coulomb friction; None: frictionless.
+    pub friction: Option<Friction>,
+}
+
+/// Coulomb friction of a contact pair, regularised by a tangential penalty.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Friction {
+    /// Friction coefficient mu (> 0).
+    pub coefficient: f64,
+    /// Tangential traction per unit slip in stick, MPa/mm; None: the pair's normal penalty.
+    pub tangential_penalty: Option<f64>,
+}
+
+impl Friction {
+    /// The friction of a deck's `friction` and `tangential_penalty` values (pair `name`):
+    /// None for mu = 0; bad input for a negative or non-finite mu or penalty.
+    pub fn from_values(name: &str, coefficient: Option<f64>, tangential_penalty: Option<f64>) -> crate::error::Result<Option<Friction>> {
+        let bad = |m: String| crate::error::Error::input(format!("contact '{name}': {m}"));
+        match (coefficient, tangential_penalty) {
+            (None, Some(_)) => Err(bad("tangential_penalty without friction (give friction = mu)".into())),
+            (None, None) => Ok(None),
+            (Some(mu), _) if !mu.is_finite() || mu < 0.0 => Err(bad(format!("friction coefficient {mu}: give mu >= 0"))),
+            (Some(_), Some(k)) if !k.is_finite() || k <= 0.0 => Err(bad(format!("tangential_penalty {k}: give a positive stiffness (MPa/mm)"))),
+            (Some(mu), _) if mu == 0.0 => Ok(None),
+            (Some(mu), k) => Ok(Some(Friction { coefficient: mu, tangential_penalty: k })),
+        }
+    }
 }
 
 /// How the load steps are subdivided when Newton struggles.
@@ -298,6 +325,13 @@ impl Model {
         }
         if self.output.every == 0 {
             return Err(Error::input("[output]: every must be at least 1 (fields of every increment)"));
+        }
+        if let Some(c) = self.contacts.iter().find(|c| c.friction.is_some() && c.integration == ContactIntegration::Segment) {
+            // not yet: friction on segment-integrated pairs (refused rather than ignored)
+            return Err(Error::input(format!(
+                "contact '{}': friction is implemented for node-to-segment pairs only so far (integration = \"node-to-segment\" in a deck, TYPE=NODE TO SURFACE in an .inp)",
+                c.name
+            )));
         }
         let c = &self.stepping;
         let sane = c.cutback_factor > 0.0 && c.cutback_factor < 1.0 && c.growth_factor >= 1.0 && c.min_increment > 0.0 && c.min_increment <= 1.0;

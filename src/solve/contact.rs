@@ -10,9 +10,10 @@
 pub use super::contact_surfaces::contact_nodes;
 use super::contact_surfaces::{edge_neighbourhood, surfaces_and_directions};
 pub use super::engagement::Engagement;
-use super::engagement::{Engagements, PointHessians};
+use super::engagement::{Engagements, FrictionRecipe, PointHessians};
 use super::pattern::ContactPattern;
 use super::problem::ROUNDOFF_ULPS;
+use crate::contact::friction::{FrictionLaw, SlipReference};
 use crate::contact::integrated::{weighted_gaps_into, WeightedGap};
 use crate::contact::node_to_edge::{edge_residual, ContactLaw};
 use crate::contact::search::EdgeGrid;
@@ -41,6 +42,8 @@ struct Pass {
     /// slave node (node-to-segment, in `owned` order) may not bear on, its own neighbourhood;
     /// fixed by the topology, so listed once. Empty for two surfaces.
     excluded: Vec<Vec<usize>>,
+    /// The pair has friction.
+    friction: bool,
 }
 
 /// What an evaluation must provide.
@@ -63,7 +66,25 @@ pub struct SlaveState {
     /// (both passes): the p with integral N_i p r ds = f_i.n_i at every node. Set after a
     /// converged increment.
     pub traction: f64,
+    /// Frictional (tangential) traction, MPa, along the master's tangent (0 without friction).
+    pub shear: f64,
+    /// Whether the node slides (friction at its Coulomb limit).
+    pub sliding: bool,
 }
+
+/// Where a slave node's slip is measured from (friction): the master edge (an index into the
+/// master surface's edges) and coordinate of the material point it was at after the last
+/// converged increment, and its tangential traction then (0 when the contact was open).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SlipPoint {
+    pub edge: usize,
+    pub xi: f64,
+    pub traction: f64,
+}
+
+/// Per pass, per owned slave node: its slip reference (None where no master edge was within
+/// reach).
+pub type SlipPoints = Vec<Vec<Option<SlipPoint>>>;
 
 /// Multipliers (augmented Lagrangian) of every owned slave node, per pass.
 pub type Multipliers = Vec<Vec<f64>>;
@@ -73,6 +94,15 @@ pub type Multipliers = Vec<Vec<f64>>;
 pub struct ContactCarry {
     pub multipliers: CarriedMultipliers,
     pub pattern: ContactPattern,
+    pub slip: CarriedSlip,
+}
+
+/// Committed slip references handed to a new problem.
+pub enum CarriedSlip {
+    /// Per pass, per owned slave node (the same partition's previous step).
+    Owned(SlipPoints),
+    /// Per pass, (mesh node, reference) of the slave nodes that have one (a restart's).
+    ByNode(Vec<Vec<(usize, SlipPoint)>>),
 }
 
 /// Committed multipliers handed to a new problem.
@@ -121,6 +151,10 @@ pub struct ContactAssembly {
     point_hessians: PointHessians,
     /// The contact couplings the Jacobian's pattern holds (and those it must take).
     pattern: ContactPattern,
+    /// Friction: the slip references of the last converged increment, and those the last
+    /// evaluation found (committed with the increment).
+    slip_committed: SlipPoints,
+    slip_trial: SlipPoints,
 }
 
 impl ContactAssembly {
@@ -146,7 +180,7 @@ impl ContactAssembly {
                 (true, ContactIntegration::NodeToSegment) => owned.iter().map(|&i| surface.neighbourhood(surface.nodes[i], c.exclude_neighbours)).collect(),
                 (true, ContactIntegration::Segment) => (0..surface.edges.len()).map(|e| edge_neighbourhood(surface, e, c.exclude_neighbours)).collect(),
             };
-            passes.push(Pass { pair: d.pair, slave, master, weight: d.weight, owned, offset, total: order.len(), excluded });
+            passes.push(Pass { pair: d.pair, slave, master, weight: d.weight, owned, offset, total: order.len(), excluded, friction: c.friction.is_some() });
         }
         let mut nodes: Vec<usize> = surfaces.iter().flat_map(|s| s.nodes.iter().copied()).collect();
         nodes.sort_unstable();
@@ -157,19 +191,40 @@ impl ContactAssembly {
         }
         let gathered_slot = nodes.iter().map(|&n| dofs.dof[n].map(|g| if g >= 0 { slot_of(g) } else { usize::MAX })).collect();
         let zeros = || passes.iter().map(|p| vec![0.0; p.owned.len()]).collect::<Multipliers>();
-        let (committed, pattern) = match carry {
-            Some(ContactCarry { multipliers: CarriedMultipliers::Owned(m), pattern }) => (m, pattern),
-            Some(ContactCarry { multipliers: CarriedMultipliers::ByNode(by_node), pattern }) => {
-                let mut m = zeros();
-                for ((values, pass), saved) in m.iter_mut().zip(&passes).zip(&by_node) {
-                    let saved: std::collections::HashMap<usize, f64> = saved.iter().copied().collect();
-                    for (v, &i) in values.iter_mut().zip(&pass.owned) {
-                        *v = saved.get(&surfaces[pass.slave].nodes[i]).copied().unwrap_or(0.0);
+        let nowhere = || passes.iter().map(|p| vec![None; p.owned.len()]).collect::<SlipPoints>();
+        // per pass, the value saved for each owned slave node (a restart's, by mesh node)
+        fn by_node<T: Copy>(passes: &[Pass], surfaces: &[ContactSurface], saved: &[Vec<(usize, T)>], out: &mut [Vec<T>], wrap: impl Fn(T) -> T) {
+            for ((values, pass), saved) in out.iter_mut().zip(passes).zip(saved) {
+                let saved: std::collections::HashMap<usize, T> = saved.iter().copied().collect();
+                for (v, &i) in values.iter_mut().zip(&pass.owned) {
+                    if let Some(&s) = saved.get(&surfaces[pass.slave].nodes[i]) {
+                        *v = wrap(s);
                     }
                 }
-                (m, pattern)
             }
-            None => (zeros(), ContactPattern::default()),
+        }
+        let (committed, pattern, slip) = match carry {
+            Some(ContactCarry { multipliers, pattern, slip }) => {
+                let m = match multipliers {
+                    CarriedMultipliers::Owned(m) => m,
+                    CarriedMultipliers::ByNode(saved) => {
+                        let mut m = zeros();
+                        by_node(&passes, &surfaces, &saved, &mut m, |v| v);
+                        m
+                    }
+                };
+                let s = match slip {
+                    CarriedSlip::Owned(s) => s,
+                    CarriedSlip::ByNode(saved) => {
+                        let mut s = nowhere();
+                        let saved: Vec<Vec<(usize, Option<SlipPoint>)>> = saved.into_iter().map(|v| v.into_iter().map(|(n, p)| (n, Some(p))).collect()).collect();
+                        by_node(&passes, &surfaces, &saved, &mut s, |v| v);
+                        s
+                    }
+                };
+                (m, pattern, s)
+            }
+            None => (zeros(), ContactPattern::default(), nowhere()),
         };
         let states = passes.iter().map(|p| vec![SlaveState::default(); p.owned.len()]).collect();
         let gaps = passes.iter().map(|_| Vec::new()).collect();
@@ -192,6 +247,8 @@ impl ContactAssembly {
             points: 0,
             point_hessians: PointHessians::default(),
             pattern,
+            slip_trial: slip.clone(),
+            slip_committed: slip,
         })
     }
 
@@ -288,6 +345,7 @@ impl ContactAssembly {
             });
             let Some((edge, proj)) = found else {
                 self.states[p][k] = SlaveState { gap: f64::NAN, ..SlaveState::default() };
+                self.slip_trial[p][k] = None;
                 continue;
             };
             let eps = Self::penalty(model, pair, master, edge);
@@ -297,11 +355,27 @@ impl ContactAssembly {
             let multiplier = self.current[p][k];
             let law = ContactLaw { area, penalty: eps, multiplier, free_ends };
             let (residual, pressure) = edge_residual(xs, &en.map(x), &proj, &law);
-            self.states[p][k] = SlaveState { gap: proj.gap, pressure, force: pressure * area, traction: 0.0 };
-            if multiplier - eps * proj.gap >= 0.0 {
+            let mut state = SlaveState { gap: proj.gap, pressure, force: pressure * area, ..SlaveState::default() };
+            // an open node's slip is measured, once it closes, from where it is now
+            self.slip_trial[p][k] = Some(SlipPoint { edge, xi: proj.xi, traction: 0.0 });
+            let closed = multiplier - eps * proj.gap >= 0.0;
+            if closed {
                 self.roundoff += (ROUNDOFF_ULPS * f64::EPSILON * eps * area * xs[0].hypot(xs[1])).powi(2);
                 out.next_slot().set_nodal(node, en, residual.as_slice(), xs, en.map(x), proj, law);
             }
+            if let (Some(f), true) = (pair.friction, closed) {
+                let reference = self.slip_committed[p][k].unwrap_or(SlipPoint { edge, xi: proj.xi, traction: 0.0 });
+                let reference_nodes = master.edges[reference.edge];
+                let friction = FrictionLaw { coefficient: f.coefficient, penalty: f.tangential_penalty.unwrap_or(eps) };
+                let from = SlipReference { xi: reference.xi, traction: reference.traction };
+                let recipe = FrictionRecipe { xs, master: en.map(x), reference: reference_nodes.map(x), xi: proj.xi, from, law, friction };
+                let (residual, slip) = recipe.residual();
+                self.roundoff += (ROUNDOFF_ULPS * f64::EPSILON * friction.penalty * area * xs[0].hypot(xs[1])).powi(2);
+                out.next_slot().set_friction(node, en, reference_nodes, residual.as_slice(), recipe);
+                self.slip_trial[p][k] = Some(SlipPoint { edge, xi: proj.xi, traction: slip.traction });
+                (state.shear, state.sliding) = (slip.traction, slip.slipping);
+            }
+            self.states[p][k] = state;
         }
     }
 
@@ -331,7 +405,7 @@ impl ContactAssembly {
             let lambda = self.current[p][k];
             let trial = lambda - eps * g.gap / area;
             let pressure = trial.max(0.0);
-            self.states[p][k] = SlaveState { gap: g.gap / area, pressure, force: pressure * area * pass.weight, traction: 0.0 };
+            self.states[p][k] = SlaveState { gap: g.gap / area, pressure, force: pressure * area * pass.weight, ..SlaveState::default() };
             if trial < 0.0 {
                 continue;
             }
@@ -372,9 +446,11 @@ impl ContactAssembly {
         &self.current
     }
 
-    /// Accepts the multipliers in use (after a converged increment).
+    /// Accepts the multipliers in use and the slip references of the last evaluation (after a
+    /// converged increment).
     pub fn commit(&mut self) {
         self.committed.clone_from(&self.current);
+        self.slip_committed.clone_from(&self.slip_trial);
     }
 
     /// Drops multiplier updates of a failed attempt.
@@ -383,7 +459,17 @@ impl ContactAssembly {
     }
 
     pub fn into_carry(self) -> ContactCarry {
-        ContactCarry { multipliers: CarriedMultipliers::Owned(self.committed), pattern: self.pattern }
+        ContactCarry { multipliers: CarriedMultipliers::Owned(self.committed), pattern: self.pattern, slip: CarriedSlip::Owned(self.slip_committed) }
+    }
+
+    /// The committed slip references of this rank's slave nodes, per pass: (mesh node,
+    /// reference) where there is one (what a restart needs with friction).
+    pub fn slip_by_node(&self) -> Vec<Vec<(usize, SlipPoint)>> {
+        self.passes
+            .iter()
+            .zip(&self.slip_committed)
+            .map(|(pass, points)| pass.owned.iter().zip(points).filter_map(|(&i, s)| s.map(|s| (self.surfaces[pass.slave].nodes[i], s))).collect())
+            .collect()
     }
 
     /// The committed multipliers of this rank's slave nodes, per pass: (mesh node, value) where

@@ -3,6 +3,7 @@
 //! more); the Jacobian at the same iterate then forms their tangents from what each kept (its
 //! recipe), without searching again.
 
+use crate::contact::friction::{friction_residual, friction_residual_and_tangent, FrictionLaw, FrictionState, FrictionVector, SlipReference};
 use crate::contact::integrated::{GapSample, SampleMatrix};
 use crate::contact::node_to_edge::{edge_residual_and_tangent, ContactLaw, EdgeProjection};
 
@@ -29,6 +30,27 @@ enum TangentRecipe {
     /// Segment integration: K = stiffness dg dg^T - weighted_pressure d2g, with dg (`gradient`)
     /// and d2g the sums over the node's integration points (`samples`).
     Integrated { stiffness: f64, weighted_pressure: f64 },
+    /// Friction at a node-to-segment node: the kernel's arguments, and the position in `nodes`
+    /// of each of its 7 nodes (slave, edge, reference edge; shared nodes listed once).
+    Friction { recipe: FrictionRecipe, slots: [usize; 7] },
+}
+
+/// The friction kernel's arguments at one slave node (see `contact::friction`).
+#[derive(Clone, Copy, Debug)]
+pub(super) struct FrictionRecipe {
+    pub xs: [f64; 2],
+    pub master: [[f64; 2]; 3],
+    pub reference: [[f64; 2]; 3],
+    pub xi: f64,
+    pub from: SlipReference,
+    pub law: ContactLaw,
+    pub friction: FrictionLaw,
+}
+
+impl FrictionRecipe {
+    pub fn residual(&self) -> (FrictionVector, FrictionState) {
+        friction_residual(self.xs, &self.master, &self.reference, self.xi, &self.from, &self.law, &self.friction)
+    }
 }
 
 /// A new slot's recipe, before a setter fills it: no samples, so no tangent.
@@ -55,6 +77,32 @@ impl Engagement {
         self.recipe = TangentRecipe::Nodal { xs, master: x_master, projection, law };
         refill(&mut self.nodes, [node, edge[0], edge[1], edge[2]]);
         refill(&mut self.residual, residual.iter().copied());
+        self.tangent.clear();
+        self.samples.clear();
+        self.gradient.clear();
+    }
+
+    /// Friction at slave node `node` projecting on the edge `edge`, its slip measured from the
+    /// reference edge `reference`; `residual` is the kernel's over [node, edge, reference].
+    pub(super) fn set_friction(&mut self, node: usize, edge: [usize; 3], reference: [usize; 3], residual: &[f64], recipe: FrictionRecipe) {
+        self.nodes.clear();
+        let mut slots = [0usize; 7];
+        for (a, n) in [node, edge[0], edge[1], edge[2], reference[0], reference[1], reference[2]].into_iter().enumerate() {
+            slots[a] = match self.nodes.iter().position(|&q| q == n) {
+                Some(at) => at,
+                None => {
+                    self.nodes.push(n);
+                    self.nodes.len() - 1
+                }
+            };
+        }
+        self.residual.clear();
+        self.residual.resize(2 * self.nodes.len(), 0.0);
+        for (a, &at) in slots.iter().enumerate() {
+            self.residual[2 * at] += residual[2 * a];
+            self.residual[2 * at + 1] += residual[2 * a + 1];
+        }
+        self.recipe = TangentRecipe::Friction { recipe, slots };
         self.tangent.clear();
         self.samples.clear();
         self.gradient.clear();
@@ -89,6 +137,17 @@ impl Engagement {
             TangentRecipe::Nodal { xs, master, projection, law } => {
                 let (_, k, _) = edge_residual_and_tangent(*xs, master, projection, law);
                 self.tangent.extend_from_slice(k.transpose().as_slice());
+            }
+            TangentRecipe::Friction { recipe: r, slots } => {
+                let (_, k, _) = friction_residual_and_tangent(r.xs, &r.master, &r.reference, r.xi, &r.from, &r.law, &r.friction);
+                let m = 2 * self.nodes.len();
+                self.tangent.resize(m * m, 0.0);
+                let at = |i: usize| 2 * slots[i / 2] + i % 2;
+                for i in 0..14 {
+                    for j in 0..14 {
+                        self.tangent[at(i) * m + at(j)] += k[(i, j)];
+                    }
+                }
             }
             &TangentRecipe::Integrated { stiffness, weighted_pressure } => {
                 let (g, m) = (&self.gradient, self.gradient.len());

@@ -8,7 +8,7 @@
 //! the requested size. Below `min_increment` the run stops with every converged increment in
 //! the results file.
 
-use super::contact::{CarriedMultipliers, ContactCarry};
+use super::contact::{CarriedMultipliers, CarriedSlip, ContactCarry};
 use super::pattern::ContactPattern;
 use super::problem::{initial_history, History, LoadState, Problem};
 use super::schedule::StepLoads;
@@ -99,7 +99,11 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
         if !model.contacts.is_empty() {
             let mine = |r: usize| if point.ranks == partition.size { r == partition.rank } else { r % partition.size == partition.rank };
             let pattern = ContactPattern::restored(point.pattern.iter().filter(|p| mine(p.0)).map(|p| (p.1, p.2)), point.refits);
-            carry = Some(ContactCarry { multipliers: CarriedMultipliers::ByNode(point.multipliers.clone()), pattern });
+            carry = Some(ContactCarry {
+                multipliers: CarriedMultipliers::ByNode(point.multipliers.clone()),
+                pattern,
+                slip: CarriedSlip::ByNode(point.slip.clone()),
+            });
         }
         first_step = point.step;
         let step_start = if point.step == 0 { zeros } else { point.step_ends[point.step - 1].clone() };
@@ -239,13 +243,15 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
                 contact: &contact_output,
             };
             let state = with_fields.then(|| {
-                let (multipliers, refits) = problem.contact.as_ref().map_or((Vec::new(), 0), |c| (c.committed_by_node(), c.pattern().refits));
+                let (multipliers, slip, refits) =
+                    problem.contact.as_ref().map_or((Vec::new(), Vec::new(), 0), |c| (c.committed_by_node(), c.slip_by_node(), c.pattern().refits));
                 CommittedState {
                     mesh: &model.mesh,
                     history: problem.committed_history(),
                     local_elements: partition.local_elements(),
                     initial: PointState::initial(model.kinematics),
                     multipliers,
+                    slip,
                     fresh_pattern,
                     next_size: size,
                     refits,

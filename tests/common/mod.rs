@@ -84,6 +84,9 @@ impl Results {
     pub fn u64s(&self, name: &str) -> Vec<u64> {
         self.file.dataset(name).unwrap_or_else(|e| panic!("{name}: {e}")).read_raw::<u64>().unwrap()
     }
+    pub fn u8s(&self, name: &str) -> Vec<u8> {
+        self.file.dataset(name).unwrap_or_else(|e| panic!("{name}: {e}")).read_raw::<u8>().unwrap()
+    }
     pub fn i64s(&self, name: &str) -> Vec<i64> {
         self.file.dataset(name).unwrap_or_else(|e| panic!("{name}: {e}")).read_raw::<i64>().unwrap()
     }

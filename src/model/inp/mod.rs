@@ -79,6 +79,8 @@ struct MaterialDef {
 
 struct Interaction {
     slope: Option<f64>,
+    /// *FRICTION: mu and the stick slope (MPa/mm), if given.
+    friction: Option<(f64, Option<f64>)>,
 }
 
 /// A displacement, pressure or temperature target of a step, optionally through an amplitude.
@@ -191,7 +193,7 @@ fn build(cards: &[Card], source_text: String) -> Result<InpModel> {
             "SURFACE INTERACTION" => {
                 card.only(&["NAME"])?;
                 let name = card.required("NAME")?.to_uppercase();
-                b.interactions.insert(name.clone(), Interaction { slope: None });
+                b.interactions.insert(name.clone(), Interaction { slope: None, friction: None });
                 b.current_interaction = Some(name);
                 last_owner = "SURFACE INTERACTION";
             }

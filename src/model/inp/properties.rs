@@ -4,7 +4,7 @@
 use super::cards::{error_at, normalise, Card};
 use super::{single, Builder};
 use crate::error::Result;
-use crate::model::{default_capture_distance, ContactIntegration, ContactPair, Penalty};
+use crate::model::{default_capture_distance, ContactIntegration, ContactPair, Friction, Penalty};
 
 impl Builder {
     pub(super) fn material_property(&mut self, card: &Card) -> Result<()> {
@@ -56,11 +56,19 @@ impl Builder {
     pub(super) fn interaction_property(&mut self, card: &Card) -> Result<()> {
         let name = self.current_interaction.clone().expect("checked by the caller");
         if card.keyword == "FRICTION" {
+            // Abaqus' parameters (ELASTIC SLIP, SLIP TOLERANCE, EXPONENTIAL DECAY, ...) are refused
             card.only(&[])?;
-            let mu = card.data.first().map(|d| d.number("FRICTION", 0, "friction coefficient", None)).transpose()?.unwrap_or(0.0);
-            if mu != 0.0 {
-                return Err(card.error(format!("friction coefficient {mu}: slideline's contact is frictionless")));
+            let d = card.data.first().ok_or_else(|| card.error("needs the friction coefficient (mu[, stick slope])"))?;
+            let mu = d.number("FRICTION", 0, "friction coefficient", None)?;
+            // CalculiX's second value: the stick slope, MPa/mm (tangential stress per unit slip)
+            let stick = (d.fields.len() > 1 && !d.fields[1].is_empty()).then(|| d.number("FRICTION", 1, "stick slope (MPa/mm)", None)).transpose()?;
+            if !mu.is_finite() || mu < 0.0 {
+                return Err(card.error(format!("friction coefficient {mu}: give mu >= 0")));
             }
+            if let Some(k) = stick.filter(|k| !k.is_finite() || *k <= 0.0) {
+                return Err(card.error(format!("stick slope {k}: give a positive stiffness (MPa/mm)")));
+            }
+            self.interactions.get_mut(&name).expect("registered").friction = (mu > 0.0).then_some((mu, stick));
             return Ok(());
         }
         card.only(&["PRESSURE-OVERCLOSURE"])?;
@@ -116,12 +124,9 @@ impl Builder {
             if merged[i] {
                 continue;
             }
-            let slope = self
-                .interactions
-                .get(interaction)
-                .ok_or_else(|| error_at(at, "CONTACT PAIR", format!("surface interaction {interaction} is not defined")))?
-                .slope
-                .ok_or_else(|| error_at(at, "CONTACT PAIR", format!("interaction {interaction} has no *SURFACE BEHAVIOR")))?;
+            let found = self.interactions.get(interaction).ok_or_else(|| error_at(at, "CONTACT PAIR", format!("surface interaction {interaction} is not defined")))?;
+            let slope = found.slope.ok_or_else(|| error_at(at, "CONTACT PAIR", format!("interaction {interaction} has no *SURFACE BEHAVIOR")))?;
+            let friction = found.friction;
             if let Some((_, _, _, _, first)) = self.contacts[..i].iter().find(|c| &c.0 == slave && &c.1 == master) {
                 return Err(error_at(at, "CONTACT PAIR", format!("the pair {slave}, {master} is already defined at {first}")));
             }
@@ -143,8 +148,19 @@ impl Builder {
                 None => false,
             };
             let name = if slave == master { slave.clone() } else { format!("{slave}-{master}") };
+            // two-pass: each direction carries half the force, so its stiffnesses are doubled
+            let passes = if two_pass { 2.0 } else { 1.0 };
+            let friction = friction.map(|(mu, stick)| Friction { coefficient: mu, tangential_penalty: stick.map(|k| passes * k) });
             self.notes.push(format!(
-                "contact {name}: frictionless penalty {slope} N/mm^3 (the LINEAR slope), {}{}",
+                "contact {name}: {} penalty {slope} N/mm^3 (the LINEAR slope), {}{}",
+                match friction {
+                    None => "frictionless".to_string(),
+                    Some(f) => format!(
+                        "Coulomb friction mu = {} with a stick slope of {} MPa/mm,",
+                        f.coefficient,
+                        f.tangential_penalty.map_or(format!("{slope} (the normal slope; none given)"), |k| (k / passes).to_string())
+                    ),
+                },
                 match integration {
                     ContactIntegration::Segment => "gap integrated along the slave surface (SURFACE TO SURFACE)",
                     ContactIntegration::NodeToSegment => "node-to-segment slide line (NODE TO SURFACE)",
@@ -161,6 +177,7 @@ impl Builder {
                 capture_distance: default_capture_distance(&self.mesh, &self.surfaces[slave], &self.surfaces[master], two_pass),
                 augmented_lagrangian: None,
                 exclude_neighbours: 2,
+                friction,
             });
         }
         Ok(contacts)

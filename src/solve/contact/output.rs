@@ -71,6 +71,7 @@ impl ContactAssembly {
                     nodes: pass.owned.iter().map(|&i| slave.nodes[i]).collect(),
                     areas: pass.owned.iter().map(|&i| slave.areas[i] * pass.weight).collect(),
                     states: &self.states[p],
+                    friction: pass.friction,
                 }
             })
             .collect()
@@ -86,4 +87,6 @@ pub struct PassOutput<'a> {
     pub nodes: Vec<usize>,
     pub areas: Vec<f64>,
     pub states: &'a [SlaveState],
+    /// The pair has friction (its shear and sliding state are written).
+    pub friction: bool,
 }
