@@ -111,3 +111,10 @@ fn small_plastic_bellows_with_contact_matches_calculix_within_two_percent() {
     let (reaction, displacement) = compare("small_bellows", "TOP", 2);
     assert!(reaction < 0.02 && displacement < 0.02, "{reaction} {displacement}");
 }
+
+#[test]
+fn push_out_with_coulomb_friction_matches_calculix_within_one_percent() {
+    // gross sliding: the push force is mu N in both codes, N from the penalty-regularised fit
+    let (reaction, displacement) = compare("push_out", "RING_FACES", 2);
+    assert!(reaction < 0.01 && displacement < 0.01, "{reaction} {displacement}");
+}

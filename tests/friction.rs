@@ -93,6 +93,14 @@ fn a_pushed_shrink_fit_sticks_below_mu_n_and_slides_at_mu_n() {
         }
     }
     assert!(stuck >= 1 && slid >= 3, "the push sticks first ({stuck} increments), then slides ({slid})");
+    // and mu times the Lame fit pressure over the bore: on a rigid shaft (r = a = 110) a ring
+    // to b = 125, held axially (plane strain), with radial interference delta = 0.05 has
+    // u(a) = delta = (1 + nu) a p / E ((1 - 2 nu) a^2 + b^2) / (b^2 - a^2)
+    let (a, b, nu, e, delta, length) = (110.0f64, 125.0f64, 0.3, 200000.0, 0.05, 4.0);
+    let p_lame = delta * e / ((1.0 + nu) * a * ((1.0 - 2.0 * nu) * a * a + b * b) / (b * b - a * a));
+    let expected = MU * p_lame * a * length; // per radian
+    let last = rows.last().unwrap().0;
+    assert!((last / expected - 1.0).abs() < 0.02, "push force {last} N/rad against mu p_Lame r L = {expected} (p_Lame {p_lame} MPa)");
     // frictionless, the same push needs no force at all
     let run = run_deck(&deck_with(2.0e-4, 2, "", RIGID_TUBE), &[], 1, &[]);
     run.assert_ok();

@@ -7,6 +7,8 @@ sets, element-face surfaces, materials, contact pairs and steps.
 
 lame.inp          thick cylinder a = 100, b = 150 under 100 MPa inside, ends held axially
                   (plane strain), elastic, small strain. Mesh in lame_mesh.inc (*INCLUDE).
+push_out.inp      a ring r 60..80 shrunk on a rigid shaft (0.05 mm interference), then pushed
+                  0.1 mm along it: node-to-surface contact with Coulomb friction mu = 0.2.
 shrink_fit.inp    tube r 50..60.05 shrunk into a ring r 60..80 (0.05 mm radial interference),
                   face-to-face penalty contact; step 2 adds 50 MPa in the bore through an
                   *AMPLITUDE (full at half the step, then held). Elastic, small strain.
@@ -189,6 +191,47 @@ def shrink_fit():
     write("shrink_fit.inp", deck)
 
 
+def push_out():
+    """A ring r 60..80 shrunk on a rigid shaft (the tube r 50..60.05, every node held: 0.05 mm
+    radial interference), both 10 mm long; step 1 makes the fit with the ring's faces held
+    axially, step 2 pushes the ring 0.1 mm along the shaft by its faces. Node-to-surface penalty
+    contact with Coulomb friction mu = 0.2 and a stick slope of 1e5 MPa/mm."""
+    m = Mesh()
+    h, nj = 10.0, 4
+    gi, ri = m.block(2, nj, lambda I, J: (50.0 + 10.05 * I / 4, h * J / (2 * nj)))
+    go, ro = m.block(6, nj, lambda I, J: (60.0 + 20.0 * I / 12, h * J / (2 * nj)))
+    deck = ["*HEADING", "Push-out: ring r 60..80 shrunk on a rigid shaft r 60.05, pushed 0.1 mm along it, mu = 0.2"]
+    deck += m.node_lines()
+    deck += m.element_lines([e for r in ri for e in r], "SHAFT")
+    deck += m.element_lines([e for r in ro for e in r], "RING")
+    deck += ["*ELSET, ELSET=ALL", "SHAFT, RING"]
+    shaft_nodes = sorted({n for r in ri for e in r for n in m.elements[e - 1][1]})
+    deck += listing("*NSET, NSET=SHAFT_ALL", shaft_nodes)
+    deck += listing("*NSET, NSET=RING_FACES", side(go, 6, nj, "bottom") + side(go, 6, nj, "top"))
+    deck += ["*NSET, NSET=PROBE", f"{go[0, nj]}, {go[12, 2 * nj]}"]
+    deck += surface("SHAFT_OUT", [(r[-1], 2) for r in ri])
+    deck += surface("RING_IN", [(r[0], 4) for r in ro])
+    deck += STEEL + ["*SOLID SECTION, ELSET=ALL, MATERIAL=STEEL",
+                     "*SURFACE INTERACTION, NAME=FIT",
+                     "*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR", "1.e6",
+                     "*FRICTION", "0.2, 1.e5",
+                     "*CONTACT PAIR, INTERACTION=FIT, TYPE=NODE TO SURFACE", "RING_IN, SHAFT_OUT",
+                     "*BOUNDARY", "SHAFT_ALL, 1, 2",
+                     "*STEP", "*STATIC, DIRECT", "1., 1.",
+                     "*BOUNDARY", "RING_FACES, 2, 2, 0.",
+                     "*NODE PRINT, NSET=RING_FACES, TOTALS=ONLY", "RF",
+                     "*NODE PRINT, NSET=PROBE", "U",
+                     "*NODE FILE", "U", "*EL FILE", "S",
+                     "*END STEP",
+                     "*STEP", "*STATIC, DIRECT", "0.1, 1.",
+                     "*BOUNDARY", "RING_FACES, 2, 2, 0.1",
+                     "*NODE PRINT, NSET=RING_FACES, TOTALS=ONLY", "RF",
+                     "*NODE PRINT, NSET=PROBE", "U",
+                     "*NODE FILE", "U", "*EL FILE", "S",
+                     "*END STEP"]
+    write("push_out.inp", deck)
+
+
 def hertz():
     R, top, height = 50.0, 12.0, 10.0
     m = Mesh()
@@ -325,5 +368,6 @@ def small_bellows():
 if __name__ == "__main__":
     lame()
     shrink_fit()
+    push_out()
     hertz()
     small_bellows()
