@@ -138,3 +138,21 @@ fn bad_friction_input_is_refused() {
     assert_eq!(run.code(), 2, "{}", run.stderr());
     assert!(run.stderr().contains("friction is implemented for node-to-segment pairs only so far"), "{}", run.stderr());
 }
+
+#[test]
+fn a_run_with_friction_continues_bit_identically_from_a_restart() {
+    // the slip references (where each node's slip is measured from) are part of the state
+    let text = deck(2.0e-4, 10, &format!("friction = {MU}"));
+    let full = run_deck(&text, &[], 1, &[]);
+    full.assert_ok();
+    let deck_path = full.dir.path().join("deck.toml");
+    let continued = full.dir.path().join("continued.h5");
+    let out = common::command_in(full.dir.path(), 1)
+        .arg("run")
+        .arg(&deck_path)
+        .args(["--restart", full.h5.to_str().unwrap(), "--increment", "5", "-q", "-o", continued.to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    common::assert_continues(&full.h5, &continued, 5);
+}

@@ -10,8 +10,7 @@
 //! continuation cannot be more repeatable than the run it continues).
 
 mod common;
-use common::{command_in, Results};
-use hdf5::types::TypeDescriptor;
+use common::{assert_continues, command_in, Results};
 use std::path::Path;
 use std::process::Output;
 
@@ -29,51 +28,6 @@ fn bellows_restart(dir: &Path, ranks: usize, file: &str, extra: &[&str]) -> Outp
 fn ok(out: Output) -> Output {
     assert!(out.status.success(), "{}\n{}", String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr));
     out
-}
-
-/// Every dataset under `group` of `a` and `b`, compared bit for bit (floats by their bits).
-fn assert_same_datasets(a: &hdf5::Group, b: &hdf5::Group) {
-    let names = a.member_names().unwrap();
-    assert_eq!(names, b.member_names().unwrap(), "{}: members", a.name());
-    for name in names {
-        if let Ok(g) = a.group(&name) {
-            assert_same_datasets(&g, &b.group(&name).unwrap());
-            continue;
-        }
-        let (x, y) = (a.dataset(&name).unwrap(), b.dataset(&name).unwrap());
-        let what = format!("{}/{name}", a.name());
-        assert_eq!(x.shape(), y.shape(), "{what}");
-        match x.dtype().unwrap().to_descriptor().unwrap() {
-            TypeDescriptor::Float(_) => {
-                let (p, q) = (x.read_raw::<f64>().unwrap(), y.read_raw::<f64>().unwrap());
-                assert!(p.iter().zip(&q).all(|(u, v)| u.to_bits() == v.to_bits()), "{what} differs");
-            }
-            TypeDescriptor::Unsigned(hdf5::types::IntSize::U1) => assert_eq!(x.read_raw::<u8>().unwrap(), y.read_raw::<u8>().unwrap(), "{what}"),
-            TypeDescriptor::Unsigned(_) => assert_eq!(x.read_raw::<u64>().unwrap(), y.read_raw::<u64>().unwrap(), "{what}"),
-            other => panic!("{what}: unexpected type {other:?}"),
-        }
-    }
-}
-
-/// `continued` (restarted from increment `from`) holds the uninterrupted run's history (but
-/// the wall time) and, from increment from + 1 on, its increments bit for bit.
-fn assert_continues(full: &Path, continued: &Path, from: usize) {
-    let (a, b) = (Results::open(full), Results::open(continued));
-    let columns = a.file.group("history").unwrap().member_names().unwrap();
-    assert_eq!(columns, b.file.group("history").unwrap().member_names().unwrap());
-    for name in columns.iter().filter(|c| *c != "wall_time") {
-        let (x, y) = (a.history(name), b.history(name));
-        let same = x.len() == y.len() && x.iter().zip(&y).all(|(p, q)| p.to_bits() == q.to_bits());
-        assert!(same, "history {name}: {x:?} vs {y:?}");
-    }
-    let later: Vec<String> = a.file.group("increments").unwrap().member_names().unwrap().into_iter().filter(|n| n.parse::<usize>().unwrap() > from).collect();
-    assert!(!later.is_empty(), "the run went on after {from}");
-    assert_eq!(b.file.group("increments").unwrap().member_names().unwrap(), later, "the continued file holds the increments after the restart");
-    for name in &later {
-        let g = format!("increments/{name}");
-        assert_same_datasets(&a.file.group(&g).unwrap(), &b.file.group(&g).unwrap());
-    }
-    assert!(b.file.attr("restarted_from").is_ok());
 }
 
 fn bit_identical_continuation(ranks: usize) {

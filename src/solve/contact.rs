@@ -450,7 +450,12 @@ impl ContactAssembly {
     /// converged increment).
     pub fn commit(&mut self) {
         self.committed.clone_from(&self.current);
-        self.slip_committed.clone_from(&self.slip_trial);
+        if self.passes.iter().any(|p| p.friction) {
+            self.slip_committed.clone_from(&self.slip_trial);
+            // the last evaluation measured slip from the old references: the next one (the
+            // predictor's tangent at this very state) must not reuse it
+            self.evaluated_at = None;
+        }
     }
 
     /// Drops multiplier updates of a failed attempt.
