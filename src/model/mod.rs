@@ -326,13 +326,6 @@ impl Model {
         if self.output.every == 0 {
             return Err(Error::input("[output]: every must be at least 1 (fields of every increment)"));
         }
-        if let Some(c) = self.contacts.iter().find(|c| c.friction.is_some() && c.integration == ContactIntegration::Segment) {
-            // not yet: friction on segment-integrated pairs (refused rather than ignored)
-            return Err(Error::input(format!(
-                "contact '{}': friction is implemented for node-to-segment pairs only so far (integration = \"node-to-segment\" in a deck, TYPE=NODE TO SURFACE in an .inp)",
-                c.name
-            )));
-        }
         let c = &self.stepping;
         let sane = c.cutback_factor > 0.0 && c.cutback_factor < 1.0 && c.growth_factor >= 1.0 && c.min_increment > 0.0 && c.min_increment <= 1.0;
         if !sane || c.max_newton_iterations == 0 {

@@ -82,6 +82,58 @@ pub struct SlipPoint {
     pub traction: f64,
 }
 
+/// Where each slave node of a pass with friction starts measuring its slip: its projection on
+/// the master in the undeformed mesh (none beyond the capture distance).
+fn initial_slip_references(model: &Model, surfaces: &[ContactSurface], passes: &[Pass]) -> SlipPoints {
+    let x = |n: usize| model.mesh.coords[n];
+    passes
+        .iter()
+        .map(|pass| {
+            let pair = &model.contacts[pass.pair];
+            if !pass.friction {
+                return vec![None; pass.owned.len()];
+            }
+            let (slave, master) = (&surfaces[pass.slave], &surfaces[pass.master]);
+            let grid = EdgeGrid::new(master, &x, pair.capture_distance);
+            pass.owned
+                .iter()
+                .map(|&i| {
+                    let node = slave.nodes[i];
+                    let excluded = if pass.slave == pass.master { slave.neighbourhood(node, pair.exclude_neighbours) } else { Vec::new() };
+                    let ns = slave.node_normal(node, x);
+                    grid.closest_edge(master, &x, x(node), &excluded, pair.capture_distance, None)
+                        .filter(|(_, proj)| ns[0] * proj.normal[0] + ns[1] * proj.normal[1] < 0.0)
+                        .map(|(edge, proj)| SlipPoint { edge, xi: proj.xi, traction: 0.0 })
+                })
+                .collect()
+        })
+        .collect()
+}
+
+/// The friction kernel's arguments for a slave node at `xs` projecting at `xi` on master edge
+/// `edge`, its slip measured from `reference`.
+#[allow(clippy::too_many_arguments)]
+fn friction_recipe(
+    master: &ContactSurface,
+    x: &impl Fn(usize) -> [f64; 2],
+    xs: [f64; 2],
+    edge: usize,
+    xi: f64,
+    reference: SlipPoint,
+    law: ContactLaw,
+    friction: FrictionLaw,
+) -> FrictionRecipe {
+    FrictionRecipe {
+        xs,
+        master: master.edges[edge].map(x),
+        reference: master.edges[reference.edge].map(x),
+        xi,
+        from: SlipReference { xi: reference.xi, traction: reference.traction },
+        law,
+        friction,
+    }
+}
+
 /// Per pass, per owned slave node: its slip reference (None where no master edge was within
 /// reach).
 pub type SlipPoints = Vec<Vec<Option<SlipPoint>>>;
@@ -224,7 +276,7 @@ impl ContactAssembly {
                 };
                 (m, pattern, s)
             }
-            None => (zeros(), ContactPattern::default(), nowhere()),
+            None => (zeros(), ContactPattern::default(), initial_slip_references(model, &surfaces, &passes)),
         };
         let states = passes.iter().map(|p| vec![SlaveState::default(); p.owned.len()]).collect();
         let gaps = passes.iter().map(|_| Vec::new()).collect();
@@ -363,15 +415,14 @@ impl ContactAssembly {
                 self.roundoff += (ROUNDOFF_ULPS * f64::EPSILON * eps * area * xs[0].hypot(xs[1])).powi(2);
                 out.next_slot().set_nodal(node, en, residual.as_slice(), xs, en.map(x), proj, law);
             }
-            if let (Some(f), true) = (pair.friction, closed) {
-                let reference = self.slip_committed[p][k].unwrap_or(SlipPoint { edge, xi: proj.xi, traction: 0.0 });
-                let reference_nodes = master.edges[reference.edge];
+            // a node without a reference (beyond reach when the increment started) slides freely
+            // in this increment and has one from the next on
+            if let (Some(f), true, Some(reference)) = (pair.friction, closed, self.slip_committed[p][k]) {
                 let friction = FrictionLaw { coefficient: f.coefficient, penalty: f.tangential_penalty.unwrap_or(eps) };
-                let from = SlipReference { xi: reference.xi, traction: reference.traction };
-                let recipe = FrictionRecipe { xs, master: en.map(x), reference: reference_nodes.map(x), xi: proj.xi, from, law, friction };
+                let recipe = friction_recipe(master, &x, xs, edge, proj.xi, reference, law, friction);
                 let (residual, slip) = recipe.residual();
                 self.roundoff += (ROUNDOFF_ULPS * f64::EPSILON * friction.penalty * area * xs[0].hypot(xs[1])).powi(2);
-                out.next_slot().set_friction(node, en, reference_nodes, residual.as_slice(), recipe);
+                out.next_slot().set_friction(node, en, master.edges[reference.edge], residual.as_slice(), recipe);
                 self.slip_trial[p][k] = Some(SlipPoint { edge, xi: proj.xi, traction: slip.traction });
                 (state.shear, state.sliding) = (slip.traction, slip.slipping);
             }
@@ -379,7 +430,9 @@ impl ContactAssembly {
         }
     }
 
-    /// Segment integration: weighted gaps g_a = integral N_a g r ds and nodal pressures.
+    /// Segment integration: weighted gaps g_a = integral N_a g r ds and nodal pressures; with
+    /// friction, each slave node's slip is measured at its own projection on the master (as
+    /// node-to-segment), the Coulomb limit set by its integrated pressure.
     fn evaluate_integrated(&mut self, model: &Model, pair: &ContactPair, p: usize, out: &mut Engagements) {
         let pass = &self.passes[p];
         let (slot, positions) = (&self.slot, &self.positions);
@@ -394,6 +447,7 @@ impl ContactAssembly {
             s.point += first;
             self.points = self.points.max(s.point + 1);
         }
+        let grid = pair.friction.map(|_| EdgeGrid::new(master, &x, pair.capture_distance));
         // gaps[k] is owned slave node k's
         for (k, g) in gaps.iter().enumerate() {
             if g.samples.is_empty() {
@@ -406,12 +460,35 @@ impl ContactAssembly {
             let trial = lambda - eps * g.gap / area;
             let pressure = trial.max(0.0);
             self.states[p][k] = SlaveState { gap: g.gap / area, pressure, force: pressure * area * pass.weight, ..SlaveState::default() };
-            if trial < 0.0 {
-                continue;
+            let node = slave.nodes[g.index];
+            let xs = x(node);
+            if trial >= 0.0 {
+                self.roundoff += (ROUNDOFF_ULPS * f64::EPSILON * pass.weight * eps * area * xs[0].hypot(xs[1])).powi(2);
+                out.next_slot().set_integrated(node, &g.samples, pass.weight * eps / area, pass.weight * pressure);
             }
-            let xs = x(slave.nodes[g.index]);
-            self.roundoff += (ROUNDOFF_ULPS * f64::EPSILON * pass.weight * eps * area * xs[0].hypot(xs[1])).powi(2);
-            out.next_slot().set_integrated(slave.nodes[g.index], &g.samples, pass.weight * eps / area, pass.weight * pressure);
+            let (Some(f), Some(grid)) = (pair.friction, grid.as_ref()) else { continue };
+            // the node's own projection: where its slip is measured and its friction acts
+            let excluded = if pass.slave == pass.master { slave.neighbourhood(node, pair.exclude_neighbours) } else { Vec::new() };
+            let found = grid.closest_edge(master, &x, xs, &excluded, pair.capture_distance, None).filter(|(_, proj)| {
+                let ns = slave.node_normal(node, x);
+                ns[0] * proj.normal[0] + ns[1] * proj.normal[1] < 0.0
+            });
+            let Some((edge, proj)) = found else {
+                self.slip_trial[p][k] = None;
+                continue;
+            };
+            self.slip_trial[p][k] = Some(SlipPoint { edge, xi: proj.xi, traction: 0.0 });
+            let Some(reference) = self.slip_committed[p][k].filter(|_| trial >= 0.0) else { continue };
+            // the pressure is given (the integrated one): a law of penalty 0 and multiplier p
+            let law = ContactLaw { area: area * pass.weight, penalty: 0.0, multiplier: pressure, free_ends: [false; 2] };
+            let friction = FrictionLaw { coefficient: f.coefficient, penalty: f.tangential_penalty.unwrap_or(eps) };
+            let recipe = friction_recipe(master, &x, xs, edge, proj.xi, reference, law, friction);
+            let (residual, slip) = recipe.residual();
+            self.roundoff += (ROUNDOFF_ULPS * f64::EPSILON * friction.penalty * law.area * xs[0].hypot(xs[1])).powi(2);
+            let slot = out.next_slot();
+            slot.set_friction_integrated(node, master.edges[edge], master.edges[reference.edge], residual.as_slice(), recipe, &g.samples, pressure, -eps / area);
+            self.slip_trial[p][k] = Some(SlipPoint { edge, xi: proj.xi, traction: slip.traction });
+            (self.states[p][k].shear, self.states[p][k].sliding) = (slip.traction, slip.slipping);
         }
     }
 

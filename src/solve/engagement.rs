@@ -33,6 +33,11 @@ enum TangentRecipe {
     /// Friction at a node-to-segment node: the kernel's arguments, and the position in `nodes`
     /// of each of its 7 nodes (slave, edge, reference edge; shared nodes listed once).
     Friction { recipe: FrictionRecipe, slots: [usize; 7] },
+    /// Friction at a segment-integrated node: as `Friction`, the kernel taking the node's
+    /// integrated pressure as given (`recipe.law`: penalty 0, multiplier p); in slip the
+    /// traction mu p also moves with p, by dp = `gradient` over `nodes` (p's dependence on the
+    /// sample nodes of its weighted gap).
+    FrictionIntegrated { recipe: FrictionRecipe, slots: [usize; 7], pressure: f64 },
 }
 
 /// The friction kernel's arguments at one slave node (see `contact::friction`).
@@ -85,6 +90,43 @@ impl Engagement {
     /// Friction at slave node `node` projecting on the edge `edge`, its slip measured from the
     /// reference edge `reference`; `residual` is the kernel's over [node, edge, reference].
     pub(super) fn set_friction(&mut self, node: usize, edge: [usize; 3], reference: [usize; 3], residual: &[f64], recipe: FrictionRecipe) {
+        let slots = self.friction_nodes(node, edge, reference, &[], residual);
+        self.recipe = TangentRecipe::Friction { recipe, slots };
+        self.gradient.clear();
+    }
+
+    /// Friction at a segment-integrated slave node `node` (see `set_friction`), its pressure
+    /// `pressure` = lambda - eps g / A from the weighted gap of `samples`, so dp/du =
+    /// `dp_per_gap` x dg/du.
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn set_friction_integrated(
+        &mut self,
+        node: usize,
+        edge: [usize; 3],
+        reference: [usize; 3],
+        residual: &[f64],
+        recipe: FrictionRecipe,
+        samples: &[GapSample],
+        pressure: f64,
+        dp_per_gap: f64,
+    ) {
+        let slots = self.friction_nodes(node, edge, reference, samples, residual);
+        self.gradient.clear();
+        self.gradient.resize(2 * self.nodes.len(), 0.0);
+        for s in samples {
+            let sg = s.gradient();
+            for (a, &n) in s.nodes.iter().enumerate() {
+                let at = position_in(&self.nodes, n);
+                self.gradient[2 * at] += dp_per_gap * sg[2 * a];
+                self.gradient[2 * at + 1] += dp_per_gap * sg[2 * a + 1];
+            }
+        }
+        self.recipe = TangentRecipe::FrictionIntegrated { recipe, slots, pressure };
+    }
+
+    /// Lists the friction kernel's 7 nodes (shared ones once) and then the samples' other nodes
+    /// in `nodes`, adds the kernel's `residual` there, and returns each kernel node's position.
+    fn friction_nodes(&mut self, node: usize, edge: [usize; 3], reference: [usize; 3], samples: &[GapSample], residual: &[f64]) -> [usize; 7] {
         self.nodes.clear();
         let mut slots = [0usize; 7];
         for (a, n) in [node, edge[0], edge[1], edge[2], reference[0], reference[1], reference[2]].into_iter().enumerate() {
@@ -96,16 +138,20 @@ impl Engagement {
                 }
             };
         }
+        for &n in samples.iter().flat_map(|s| s.nodes.iter()) {
+            if !self.nodes.contains(&n) {
+                self.nodes.push(n);
+            }
+        }
         self.residual.clear();
         self.residual.resize(2 * self.nodes.len(), 0.0);
         for (a, &at) in slots.iter().enumerate() {
             self.residual[2 * at] += residual[2 * a];
             self.residual[2 * at + 1] += residual[2 * a + 1];
         }
-        self.recipe = TangentRecipe::Friction { recipe, slots };
         self.tangent.clear();
         self.samples.clear();
-        self.gradient.clear();
+        slots
     }
 
     /// Segment integration: slave node `node`, its weighted gap made of `samples`, at the
@@ -138,14 +184,25 @@ impl Engagement {
                 let (_, k, _) = edge_residual_and_tangent(*xs, master, projection, law);
                 self.tangent.extend_from_slice(k.transpose().as_slice());
             }
-            TangentRecipe::Friction { recipe: r, slots } => {
-                let (_, k, _) = friction_residual_and_tangent(r.xs, &r.master, &r.reference, r.xi, &r.from, &r.law, &r.friction);
+            TangentRecipe::Friction { recipe: r, slots } | TangentRecipe::FrictionIntegrated { recipe: r, slots, .. } => {
+                let (_, k, state) = friction_residual_and_tangent(r.xs, &r.master, &r.reference, r.xi, &r.from, &r.law, &r.friction);
                 let m = 2 * self.nodes.len();
                 self.tangent.resize(m * m, 0.0);
                 let at = |i: usize| 2 * slots[i / 2] + i % 2;
                 for i in 0..14 {
                     for j in 0..14 {
                         self.tangent[at(i) * m + at(j)] += k[(i, j)];
+                    }
+                }
+                // slip on a segment-integrated node: tau = mu p sign, so d residual = residual / p dp
+                if let (TangentRecipe::FrictionIntegrated { pressure, .. }, true) = (&self.recipe, state.slipping) {
+                    if *pressure > 0.0 {
+                        for i in 0..m {
+                            let f = self.residual[i] / pressure;
+                            for j in 0..m {
+                                self.tangent[i * m + j] += f * self.gradient[j];
+                            }
+                        }
                     }
                 }
             }
