@@ -185,6 +185,19 @@ pub struct BellowsArgs {
     /// Elements through each ply.
     #[arg(long, default_value_t = 2)]
     pub ply_elements: usize,
+    /// Coulomb friction coefficient between the plies (and where a ply's folds touch).
+    #[arg(long, default_value_t = 0.0, value_name = "MU")]
+    pub friction_plies: f64,
+    /// Coulomb friction coefficient between the sleeve and tube B's bore.
+    #[arg(long, default_value_t = 0.0, value_name = "MU")]
+    pub friction_sleeve: f64,
+    /// Tangential penalty of the friction, MPa/mm of elastic slip.
+    #[arg(long, default_value_t = 300.0, value_name = "MPA_PER_MM")]
+    pub tangential_penalty: f64,
+    /// A load cycle: after the compression, a further step takes tube B's end back to where it
+    /// started (the force-displacement picture then shows the loop).
+    #[arg(long)]
+    pub cycle: bool,
     /// Write the fields of every N-th increment (and of the last of each step); the history
     /// keeps every increment.
     #[arg(long, default_value_t = 1, value_name = "N")]
@@ -254,6 +267,10 @@ impl BellowsArgs {
         take("ply_element_length", &mut |p| p.ply_element_length = self.ply_element_length);
         take("ply_elements", &mut |p| p.ply_elements = self.ply_elements);
         take("output_every", &mut |p| p.output_every = self.output_every);
+        take("friction_plies", &mut |p| p.friction_plies = self.friction_plies);
+        take("friction_sleeve", &mut |p| p.friction_sleeve = self.friction_sleeve);
+        take("cycle", &mut |p| p.cycle = self.cycle);
+        take("tangential_penalty", &mut |p| p.tangential_penalty = self.tangential_penalty);
         Ok(p)
     }
 }

@@ -15,7 +15,7 @@
 
 use super::mesh::{mapped_block, Edge, Mesh, MeshSets};
 use super::{
-    AugmentedLagrangian, Component, ContactIntegration, ContactPair, Kinematics, Material, Model, OutputControls, Penalty, Plasticity, PrescribedDisplacement,
+    AugmentedLagrangian, Component, ContactIntegration, ContactPair, Friction, Kinematics, Material, Model, OutputControls, Penalty, Plasticity, PrescribedDisplacement,
     Pressure, Step, SteppingControls,
 };
 use crate::error::Result;
@@ -323,7 +323,7 @@ pub fn model(p: &BellowsParams) -> Result<Model> {
         thermal_expansion: p.thermal_expansion,
         plasticity: Some(Plasticity::linear(p.yield_stress, p.hardening_modulus)),
     };
-    let pair = |name: &str, slave: &str, master: &str, two_pass: bool| ContactPair {
+    let pair = |name: &str, slave: &str, master: &str, two_pass: bool, mu: f64| ContactPair {
         name: name.to_string(),
         slave: slave.to_string(),
         master: master.to_string(),
@@ -336,17 +336,17 @@ pub fn model(p: &BellowsParams) -> Result<Model> {
         capture_distance: (2.0 * p.ply_thickness).max(2.0 * p.ply_element_length),
         augmented_lagrangian: None::<AugmentedLagrangian>,
         exclude_neighbours: 4,
-        friction: None,
+        friction: (mu > 0.0).then_some(Friction { coefficient: mu, tangential_penalty: Some(p.tangential_penalty) }),
     };
     let mut contacts = Vec::new();
     for k in 1..p.plies {
-        contacts.push(pair(&format!("ply{k}_ply{}", k + 1), &format!("ply{}_inner", k + 1), &format!("ply{k}_outer"), true));
+        contacts.push(pair(&format!("ply{k}_ply{}", k + 1), &format!("ply{}_inner", k + 1), &format!("ply{k}_outer"), true, p.friction_plies));
     }
-    contacts.push(pair("sleeve", "sleeve_outer", "tube_b_inner", false));
-    contacts.push(pair("outside_folds", &format!("ply{}_outer", p.plies), &format!("ply{}_outer", p.plies), false));
-    contacts.push(pair("inside_folds", "ply1_inner", "ply1_inner", false));
+    contacts.push(pair("sleeve", "sleeve_outer", "tube_b_inner", false, p.friction_sleeve));
+    contacts.push(pair("outside_folds", &format!("ply{}_outer", p.plies), &format!("ply{}_outer", p.plies), false, p.friction_plies));
+    contacts.push(pair("inside_folds", "ply1_inner", "ply1_inner", false, p.friction_plies));
     let hold = |set: &str, component: Component, value: f64| PrescribedDisplacement { node_set: set.into(), component, value };
-    let steps = vec![
+    let mut steps = vec![
         Step {
             name: "heat".into(),
             increments: p.heat_increments,
@@ -364,6 +364,16 @@ pub fn model(p: &BellowsParams) -> Result<Model> {
             time_span: None,
         },
     ];
+    if p.cycle {
+        steps.push(Step {
+            name: "return".into(),
+            increments: p.increments,
+            displacements: vec![hold("moving_end", Component::Z, 0.0)],
+            pressures: vec![],
+            temperature: None,
+            time_span: None,
+        });
+    }
     let source_text = p.to_toml();
     let n = mesh.elements.len();
     let model = Model {
