@@ -57,6 +57,12 @@ pub struct BellowsReport {
     pub ranks: usize,
     /// (applied displacement mm, reaction N per sector) at every converged increment.
     pub curve: Vec<(f64, f64)>,
+    /// A load cycle (the joint compressed and brought back): the loop's area (N mm per sector:
+    /// the work the end reaction did over the cycle, dissipated or left stored as residual
+    /// stress) and the reaction once back at zero, N per sector.
+    pub cycle: Option<(f64, f64)>,
+    /// Friction coefficients between the plies and of the sleeve.
+    pub friction: (f64, f64),
 }
 
 /// Axial reaction of the moving end, N per sector, compression positive.
@@ -64,13 +70,20 @@ fn end_reaction(row: &HistoryRow) -> f64 {
     row.reactions.iter().find(|(set, _)| set == "moving_end").map(|(_, f)| -f[1] * SECTOR_RADIANS).unwrap_or(f64::NAN)
 }
 
-/// Applied compression at a row: zero in step 1, the load factor's share in step 2.
+/// Applied compression at a row: zero in step 1, the load factor's share in step 2, back to
+/// zero through step 3 (a cycle's return).
 fn applied(row: &HistoryRow, p: &BellowsParams) -> f64 {
-    if row.step >= 2 {
-        row.load_factor * p.displacement
-    } else {
-        0.0
+    match row.step {
+        2 => row.load_factor * p.displacement,
+        3 => (1.0 - row.load_factor) * p.displacement,
+        _ => 0.0,
     }
+}
+
+/// Work of the end reaction around the force-displacement curve from the end of step 1 on,
+/// N mm per sector: the area of the loop when the curve comes back (trapezoids).
+fn loop_area(curve: &[(f64, f64)], from: usize) -> f64 {
+    curve[from..].windows(2).map(|w| 0.5 * (w[0].1 + w[1].1) * (w[1].0 - w[0].0)).sum()
 }
 
 fn largest_penetration(history: &[HistoryRow], pair: impl Fn(&str) -> bool) -> f64 {
@@ -114,8 +127,15 @@ impl BellowsReport {
             Some(k) if k + 1 < curve.len() => (curve[k + 1].1 - curve[k].1) / (curve[k + 1].0 - curve[k].0),
             _ => f64::NAN,
         };
-        let &(displacement, reaction) = curve.last().unwrap_or(&(0.0, f64::NAN));
-        let last = reader.increments()?.last().cloned().unwrap_or_default();
+        // the paper's figures at the end of the compression (the cycle's turning point)
+        let compressed = history.iter().rposition(|r| r.step == 2).unwrap_or(curve.len().saturating_sub(1));
+        let &(displacement, reaction) = curve.get(compressed).unwrap_or(&(0.0, f64::NAN));
+        let cycle = (p.cycle && history.last().is_some_and(|r| r.step == 3 && r.load_factor >= 1.0))
+            .then(|| (loop_area(&curve, heated.unwrap_or(0)), curve.last().map_or(f64::NAN, |c| c.1)));
+        // fields at the end of the compression (always written: the last increment of a step)
+        let written = reader.increments()?;
+        let stroke = history.get(compressed).map(|r| format!("{:06}", r.number)).filter(|n| written.contains(n));
+        let last = stroke.or_else(|| written.last().cloned()).unwrap_or_default();
         Ok(BellowsReport {
             displacement,
             preload,
@@ -135,6 +155,8 @@ impl BellowsReport {
             wall_time,
             ranks,
             curve,
+            cycle,
+            friction: (p.friction_plies, p.friction_sleeve),
         })
     }
 
@@ -164,6 +186,13 @@ impl BellowsReport {
             "-",
         );
         line("max sleeve penetration, mm", format!("{:.2e}", self.sleeve_penetration), "-");
+        if self.friction != (0.0, 0.0) {
+            line("friction mu, plies / sleeve", format!("{} / {}", self.friction.0, self.friction.1), "0 / 0");
+        }
+        if let Some((area, back)) = self.cycle {
+            line("cycle: loop area, N mm per sector", format!("{area:.1}"), "-");
+            line("cycle: reaction back at 0 mm, N per sector", format!("{back:.1}"), "-");
+        }
         line("increments / cutbacks", format!("{} / {}", self.increments, self.cutbacks), "240");
         line("Newton iterations", format!("{}", self.newton_iterations), "-");
         line(&format!("wall time on {} rank(s), s", self.ranks), format!("{:.1}", self.wall_time), "-");

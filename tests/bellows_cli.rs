@@ -18,6 +18,8 @@ fn bad_flags_are_refused_before_any_solve() {
         (vec!["--convolutions", "9"], "convolutions"),
         (vec!["--torus-radius", "0.9", "--pitch", "3.6"], "torus radius"),
         (vec!["--height", "8"], "height"),
+        (vec!["--friction-plies", "-0.1"], "friction between the plies"),
+        (vec!["--tangential-penalty", "0"], "tangential penalty"),
     ] {
         let out = bellows(dir.path(), &args);
         let err = String::from_utf8_lossy(&out.stderr);
@@ -135,4 +137,29 @@ fn a_terminal_gets_a_progress_bar_and_a_pipe_plain_lines() {
     let out = command_in(dir.path(), 1).current_dir(dir.path()).args(args.split(' ')).output().unwrap();
     let piped = String::from_utf8_lossy(&out.stdout);
     assert!(!piped.contains("ETA") && piped.lines().any(|l| l.starts_with("step 2/2 compress   #6")), "{piped}");
+}
+
+#[test]
+fn a_load_cycle_with_friction_between_the_plies_closes_its_loop() {
+    // the quick joint compressed 20 mm in 10 increments and brought back, mu = 0.2 between the
+    // plies: a third step, the reaction back at zero compression, the loop's area reported, the
+    // plies' frictional tractions in the results
+    let dir = tempfile::tempdir().unwrap();
+    let out = command_in(dir.path(), 2)
+        .args(["bellows", "--quick", "--displacement", "20", "--increments", "10", "--friction-plies", "0.2", "--cycle", "-q", "-o"])
+        .arg(dir.path().join("b.h5"))
+        .output()
+        .unwrap();
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{text}\n{}", String::from_utf8_lossy(&out.stderr));
+    let r = common::Results::open(&dir.path().join("b.h5"));
+    let steps = r.history("step");
+    assert_eq!(steps.last().copied(), Some(3.0), "a return step");
+    let line = text.lines().find(|l| l.contains("cycle: loop area")).unwrap_or_else(|| panic!("no loop area in:\n{text}"));
+    let area: f64 = line.split_whitespace().rev().nth(1).unwrap().parse().unwrap();
+    assert!(area > 0.0, "the cycle dissipates: {line}");
+    assert!(text.contains("friction mu, plies / sleeve"), "{text}");
+    let last = r.last_increment();
+    let shear = r.f64s(&format!("{last}/contact/ply1_ply2/pass0/shear"));
+    assert!(shear.iter().any(|s| s.abs() > 0.0), "frictional tractions between the plies");
 }
