@@ -52,6 +52,11 @@ pub struct FrictionState {
     pub traction: f64,
     /// Whether the node slips (|trial| > mu p).
     pub slipping: bool,
+    /// Elastic energy of the tangential penalty, A tau^2 / (2 eps_T), N mm per radian.
+    pub stored: f64,
+    /// Energy dissipated by the slip since the reference (backward Euler: A tau times the slip
+    /// beyond the elastic one, (trial - tau) / eps_T), N mm per radian.
+    pub dissipated: f64,
 }
 
 /// The residual over [s, edge, reference edge] and the state; generic for the tangent.
@@ -73,7 +78,8 @@ fn residual<T: Scalar>(xs: &[T; 2], x: &[[T; 2]; 3], reference: &[[T; 2]; 3], xi
             f[2 + 2 * a + k] = -(point.shape[a] * t[k] * c);
         }
     }
-    (f, FrictionState { traction: tau.re(), slipping })
+    let (t, a, k) = (tau.re(), law.area, friction.penalty);
+    (f, FrictionState { traction: t, slipping, stored: a * t * t / (2.0 * k), dissipated: a * t * (trial.re() - t) / k })
 }
 
 /// The friction residual of a slave node at `xs` projecting at `xi` on the edge `x`, measured

@@ -169,6 +169,19 @@ pub struct SolidResponse {
     pub stress: [[f64; 4]; QUADRATURE_POINTS],
     /// Trial history at each Gauss point.
     pub state: [PointState; QUADRATURE_POINTS],
+    /// The element's energies at this state (per radian, N mm).
+    pub energy: ElementEnergy,
+}
+
+/// Energies of one element at a state, per radian (N mm): the stored elastic energy, the
+/// plastic work (the integral of sigma_y over the equivalent plastic strain), and the
+/// thermal power per degree, sum over the points of alpha tr(tau) dV_0 (the thermal strain's
+/// work is its increment times the temperature change).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct ElementEnergy {
+    pub elastic: f64,
+    pub plastic_work: f64,
+    pub thermal_power: f64,
 }
 
 /// The element state an evaluation needs besides the displacements.
@@ -200,6 +213,7 @@ pub fn compute_solid(input: &SolidInput<'_>, u: &[[f64; 2]; NODES], mut tangents
     let mut force = [0.0; DOFS];
     let mut stress = [[0.0; 4]; QUADRATURE_POINTS];
     let mut state = [PointState::initial(kin); QUADRATURE_POINTS];
+    let mut energy = ElementEnergy::default();
     for q in 0..QUADRATURE_POINTS {
         let w = geo.weights[q];
         let phi: [f64; 5] = if let Some(tangents) = tangents.as_deref_mut() {
@@ -219,12 +233,19 @@ pub fn compute_solid(input: &SolidInput<'_>, u: &[[f64; 2]; NODES], mut tangents
             state[q] = up.state;
             up.phi
         };
+        // Kirchhoff stress: tau = theta sigma (F-bar's volume ratio); sigma in small strain
+        let scale = if kin == Kinematics::Finite { theta[q] } else { 1.0 };
+        let tau = stress[q].map(|s| s * scale);
+        let material = input.material;
+        energy.elastic += w * material.elastic_energy(&tau);
+        energy.plastic_work += w * material.hardening.plastic_work(state[q].ep);
+        energy.thermal_power += w * material.thermal_expansion * (tau[0] + tau[1] + tau[2]);
         let fq = geo.gradients[q].contract(&phi.map(|p| p * w));
         for i in 0..DOFS {
             force[i] += fq[i];
         }
     }
-    Ok(SolidResponse { internal_force: ElementVector::from(force), stress, state })
+    Ok(SolidResponse { internal_force: ElementVector::from(force), stress, state, energy })
 }
 
 /// The element tangent d f_int / d u from the material tangents of an evaluation:

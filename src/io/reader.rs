@@ -3,6 +3,7 @@
 //! the file and the group or dataset that is missing, so a wrong file gives a clear message.
 
 use super::{ContactSummary, HistoryRow};
+use crate::solve::energy::Energies;
 use crate::error::{Error, Result};
 use hdf5::types::VarLenUnicode;
 use std::path::{Path, PathBuf};
@@ -224,6 +225,18 @@ impl ResultsReader {
                     }
                 })
                 .collect();
+            let energy = column("energy_external_work").map(|_| {
+                let value = |name: &str| column(name).map_or(f64::NAN, |c| c[k]);
+                Energies {
+                    external_work: value("energy_external_work"),
+                    initial_contact: value("energy_initial_contact"),
+                    elastic: value("energy_elastic"),
+                    plastic_work: value("energy_plastic_work"),
+                    thermal_work: value("energy_thermal_work"),
+                    contact_stored: value("energy_contact_stored"),
+                    friction_dissipation: value("energy_friction_dissipation"),
+                }
+            });
             let row = HistoryRow {
                 number: k + 1,
                 step: step[k] as usize,
@@ -240,6 +253,7 @@ impl ResultsReader {
                 max_plastic_strain: ep[k],
                 wall_time: wall[k],
                 reactions,
+                energy,
             };
             rows.push((name, row));
         }

@@ -21,6 +21,7 @@ use crate::error::{Error, Result};
 use crate::material::PointState;
 use crate::model::{Mesh, Model};
 use crate::solve::contact::SlipPoint;
+use crate::solve::energy::AuditPoint;
 use mpi::datatype::PartitionMut;
 use mpi::topology::SimpleCommunicator;
 use mpi::traits::*;
@@ -44,6 +45,8 @@ pub struct CommittedState<'a> {
     pub fresh_pattern: Vec<(usize, usize)>,
     /// Size of the next increment's first attempt (load factor).
     pub next_size: f64,
+    /// Where the energy audit's next trapezoids start (the same on every rank).
+    pub audit: &'a AuditPoint,
     pub refits: usize,
 }
 
@@ -88,6 +91,15 @@ pub(super) fn write_state(
         write_gathered(&sg, world, &format!("slip_nodes_pass{p}"), 1, &nodes, path)?;
         write_gathered(&sg, world, &format!("slip_pass{p}"), 3, &values, path)?;
     }
+    // the audit's starting point: replicated, so rank 0 writes it (the nodes with a load)
+    let a = state.audit;
+    sg.new_attr::<f64>().create("audit_thermal_power").map_err(&err)?.write_scalar(&a.thermal_power).map_err(&err)?;
+    sg.new_attr::<f64>().create("audit_temperature").map_err(&err)?.write_scalar(&a.temperature).map_err(&err)?;
+    let loaded: Vec<usize> = if world.rank() == 0 { (0..a.forces.len()).filter(|&n| a.forces[n].iter().any(|&f| f != 0.0)).collect() } else { Vec::new() };
+    let ids: Vec<u64> = loaded.iter().map(|&n| mesh.node_ids[n]).collect();
+    let forces: Vec<f64> = loaded.iter().flat_map(|&n| a.forces[n]).collect();
+    write_gathered(&sg, world, "audit_nodes", 1, &ids, path)?;
+    write_gathered(&sg, world, "audit_forces", 4, &forces, path)?;
     // the pattern's new rows, gathered to every rank (resizing is collective), written by rank 0
     let local: Vec<u64> =
         state.fresh_pattern.iter().flat_map(|&(a, b)| [number as u64, world.rank() as u64, mesh.node_ids[a], mesh.node_ids[b]]).collect();
@@ -169,6 +181,9 @@ pub struct RestartPoint {
     pub multipliers: Vec<Vec<(usize, f64)>>,
     /// Per pass, (mesh node, slip reference) (friction).
     pub slip: Vec<Vec<(usize, SlipPoint)>>,
+    /// The energy audit's starting point (its displacement is `displacement`; the totals are
+    /// in the last row's energies).
+    pub audit: AuditPoint,
     /// (rank that reserved it, mesh node, mesh node).
     pub pattern: Vec<(usize, usize, usize)>,
     /// Ranks of the run that wrote the file.
@@ -271,6 +286,16 @@ impl RestartPoint {
                     .collect::<Result<Vec<_>>>()?,
             );
         }
+        let attr = |name: &str| sg.attr(name).and_then(|a| a.read_scalar::<f64>()).map_err(|e| bad(format!("{group}: {e}")));
+        let mut audit = AuditPoint {
+            forces: vec![[0.0; 4]; model.mesh.coords.len()],
+            displacement: displacement.clone(),
+            thermal_power: attr("audit_thermal_power")?,
+            temperature: attr("audit_temperature")?,
+        };
+        for (id, f) in read_u64("audit_nodes")?.into_iter().zip(read_f64("audit_forces")?.chunks_exact(4)) {
+            audit.forces[node(id)?] = [f[0], f[1], f[2], f[3]];
+        }
         let mut pattern = Vec::new();
         if file.link_exists("restart/pattern") {
             let rows = file.dataset("restart/pattern").and_then(|d| d.read_raw::<u64>()).map_err(|e| bad(format!("restart/pattern: {e}")))?;
@@ -296,6 +321,7 @@ impl RestartPoint {
             plastic,
             multipliers,
             slip,
+            audit,
             pattern,
             ranks: reader.count_attr("ranks")?,
             rows,

@@ -35,6 +35,7 @@ use crate::fe::axisymmetric::von_mises;
 use crate::model::{Model, OutputFields};
 use crate::petsc::PetscSession;
 use crate::solve::contact::PassOutput;
+use crate::solve::energy::Energies;
 use hdf5::types::VarLenUnicode;
 use mpi::traits::AsRaw;
 use ndarray::{ArrayView1, ArrayView2, ArrayView3};
@@ -95,6 +96,8 @@ pub struct HistoryRow {
     pub wall_time: f64,
     /// (set name, [F_r, F_z] per radian), N/rad.
     pub reactions: Vec<(String, [f64; 2])>,
+    /// The energy audit after the increment (None: a file written before the audit existed).
+    pub energy: Option<Energies>,
 }
 
 impl HistoryRow {
@@ -413,6 +416,9 @@ impl ResultsFile {
             columns.push((format!("contact_{}_max_penetration", c.name), c.max_penetration));
             columns.push((format!("contact_{}_force", c.name), c.normal_force));
             columns.push((format!("contact_{}_force_ring", c.name), c.normal_force * ring));
+        }
+        for (name, value) in row.energy.map(|e| e.columns()).into_iter().flatten() {
+            columns.push((name.to_string(), value));
         }
         for (set, f) in &row.reactions {
             columns.push((format!("reaction_{set}_r"), f[0]));

@@ -57,6 +57,33 @@ impl Hardening {
         }
     }
 
+    /// Plastic work per unit volume to reach ep: the integral of sigma_y from 0 to ep (exact:
+    /// the law is piecewise linear), MPa.
+    pub fn plastic_work(&self, ep: f64) -> f64 {
+        if ep <= 0.0 {
+            return 0.0; // (an elastic law's yield stress is infinite)
+        }
+        match self {
+            Hardening::Linear { yield_stress, modulus } => ep * (yield_stress + 0.5 * modulus * ep),
+            Hardening::Table { points, len } => {
+                let p = &points[..*len];
+                let mut work = 0.0;
+                for w in p.windows(2) {
+                    if ep <= w[0].0 {
+                        break;
+                    }
+                    let end = ep.min(w[1].0);
+                    work += 0.5 * (w[0].1 + self.yield_stress(end)) * (end - w[0].0);
+                }
+                let last = p[p.len() - 1];
+                if ep > last.0 {
+                    work += last.1 * (ep - last.0);
+                }
+                work
+            }
+        }
+    }
+
     /// sigma_y(ep), MPa.
     pub fn yield_stress(&self, ep: f64) -> f64 {
         match self {

@@ -131,6 +131,16 @@ impl J2 {
         (stress, elastic, ep)
     }
 
+    /// Stored elastic energy per unit reference volume of the Kirchhoff stress `tau`
+    /// ([rr, zz, tt, rz]; the Cauchy stress in small strain): tau : C^-1 : tau / 2, the
+    /// Hencky energy of the log elastic strain (the small-strain one in small strain), MPa.
+    pub fn elastic_energy(&self, tau: &[f64; 4]) -> f64 {
+        let tr = tau[0] + tau[1] + tau[2];
+        let mean = tr / 3.0;
+        let dev2 = (tau[0] - mean).powi(2) + (tau[1] - mean).powi(2) + (tau[2] - mean).powi(2) + 2.0 * tau[3] * tau[3];
+        dev2 / (4.0 * self.shear_modulus) + tr * tr / (18.0 * self.bulk_modulus)
+    }
+
     fn update_small<T: Scalar>(&self, f: &[T; 5], theta: T, dt: f64, committed: &PointState) -> Update<T> {
         let e = [f[0] - 1.0, f[3] - 1.0, f[4] - 1.0, (f[1] + f[2]) * 0.5];
         // B-bar: the volumetric strain is replaced by the projected one.

@@ -70,6 +70,11 @@ pub struct SlaveState {
     pub shear: f64,
     /// Whether the node slides (friction at its Coulomb limit).
     pub sliding: bool,
+    /// Energies of the node's contact, N mm per radian: stored in the normal penalty and in the
+    /// tangential one, and dissipated by friction since the last converged increment.
+    pub normal_energy: f64,
+    pub friction_stored: f64,
+    pub friction_dissipated: f64,
 }
 
 /// Where a slave node's slip is measured from (friction): the master edge (an index into the
@@ -425,6 +430,11 @@ impl ContactAssembly {
                 out.next_slot().set_friction(node, en, master.edges[reference.edge], residual.as_slice(), recipe);
                 self.slip_trial[p][k] = Some(SlipPoint { edge, xi: proj.xi, traction: slip.traction });
                 (state.shear, state.sliding) = (slip.traction, slip.slipping);
+                (state.friction_stored, state.friction_dissipated) = (slip.stored, slip.dissipated);
+            }
+            if closed {
+                // eps g^2 A / 2 = -g F / 2 (a penalty: the multiplier's part is left out)
+                state.normal_energy = -0.5 * proj.gap * state.force;
             }
             self.states[p][k] = state;
         }
@@ -459,7 +469,13 @@ impl ContactAssembly {
             let lambda = self.current[p][k];
             let trial = lambda - eps * g.gap / area;
             let pressure = trial.max(0.0);
-            self.states[p][k] = SlaveState { gap: g.gap / area, pressure, force: pressure * area * pass.weight, ..SlaveState::default() };
+            self.states[p][k] = SlaveState {
+                gap: g.gap / area,
+                pressure,
+                force: pressure * area * pass.weight,
+                normal_energy: if trial >= 0.0 { -0.5 * (g.gap / area) * pressure * area * pass.weight } else { 0.0 },
+                ..SlaveState::default()
+            };
             let node = slave.nodes[g.index];
             let xs = x(node);
             if trial >= 0.0 {
@@ -488,7 +504,8 @@ impl ContactAssembly {
             let slot = out.next_slot();
             slot.set_friction_integrated(node, master.edges[edge], master.edges[reference.edge], residual.as_slice(), recipe, &g.samples, pressure, -eps / area);
             self.slip_trial[p][k] = Some(SlipPoint { edge, xi: proj.xi, traction: slip.traction });
-            (self.states[p][k].shear, self.states[p][k].sliding) = (slip.traction, slip.slipping);
+            let state = &mut self.states[p][k];
+            (state.shear, state.sliding, state.friction_stored, state.friction_dissipated) = (slip.traction, slip.slipping, slip.stored, slip.dissipated);
         }
     }
 

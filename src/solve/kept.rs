@@ -3,7 +3,7 @@
 //! output after convergence.
 
 use super::contact::Multipliers;
-use crate::element::solid::{MaterialTangents, NODES, QUADRATURE_POINTS};
+use crate::element::solid::{ElementEnergy, MaterialTangents, NODES, QUADRATURE_POINTS};
 
 /// The material tangents each local element's last residual evaluation computed, with the
 /// displacements and temperature they belong to. SNES asks for the Jacobian at the iterate
@@ -51,6 +51,10 @@ pub struct ElementFields {
     /// This rank's part of f_int - f_ext at every node of the mesh (summed over ranks, it is
     /// the reaction at prescribed DOFs), per radian.
     pub nodal_force: Vec<[f64; 2]>,
+    /// This rank's part of the pressure loads at every node (external force, per radian).
+    pub pressure_force: Vec<[f64; 2]>,
+    /// This rank's elements' energies, summed (per radian, N mm).
+    pub energy: ElementEnergy,
 }
 
 impl ElementFields {
@@ -60,6 +64,8 @@ impl ElementFields {
             stress: vec![[[0.0; 4]; QUADRATURE_POINTS]; elements],
             plastic_strain: vec![[0.0; QUADRATURE_POINTS]; elements],
             nodal_force: vec![[0.0; 2]; nodes],
+            pressure_force: vec![[0.0; 2]; nodes],
+            energy: ElementEnergy::default(),
         }
     }
 }

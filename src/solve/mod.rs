@@ -2,6 +2,7 @@
 
 pub mod affinity;
 pub mod contact;
+pub mod energy;
 mod contact_surfaces;
 mod engagement;
 mod kept;

@@ -19,6 +19,8 @@ use crate::io::restart::{CommittedState, RestartFrom, RestartPoint};
 use crate::io::progress::Progress;
 use crate::io::status::StatusFile;
 use crate::io::{ContactSummary, HistoryRow, IncrementFields, ResultsFile};
+use super::energy::{Energies, EnergyAudit};
+use crate::element::solid::ElementEnergy;
 use crate::material::PointState;
 use crate::model::Model;
 use crate::petsc::{Matrix, NonlinearProblem, PetscSession, Snes, SolveReport, VecOps, Vector};
@@ -82,6 +84,7 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
     let (mut reserved_couplings, mut pattern_refits) = (0usize, 0usize);
     let mut rows = Vec::new();
     let mut previous: Option<StepLoads> = None;
+    let mut audit = EnergyAudit::new(nodes, model.reference_temperature);
     // a restart: the state of its increment, and where the stepping stood
     let mut first_step = 0;
     let mut resumed: Option<(Vec<[f64; 2]>, f64, f64, usize)> = None;
@@ -96,6 +99,9 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
             previous = Some(StepLoads::new(model, k, previous.as_ref(), if k == 0 { &zeros } else { &point.step_ends[k - 1] }));
         }
         history = restored_history(model, &partition, &point);
+        if let Some(energy) = point.rows.last().and_then(|(_, r)| r.energy) {
+            audit = EnergyAudit { totals: energy, last: point.audit.clone(), starts_overlapping: false };
+        }
         if !model.contacts.is_empty() {
             let mine = |r: usize| if point.ranks == partition.size { r == partition.rank } else { r % partition.size == partition.rank };
             let pattern = ContactPattern::restored(point.pattern.iter().filter(|p| mine(p.0)).map(|p| (p.1, p.2)), point.refits);
@@ -113,7 +119,8 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
     for (s, step) in model.steps.iter().enumerate().skip(first_step) {
         let resumed_here = resumed.take();
         let loads = StepLoads::new(model, s, previous.as_ref(), resumed_here.as_ref().map_or(&displacement, |r| &r.0));
-        let dofs = DofMap::new(&partition, &loads.prescribed_mask(nodes))?;
+        let prescribed = loads.prescribed_mask(nodes);
+        let dofs = DofMap::new(&partition, &prescribed)?;
         let mut x = Vector::mpi(session, comm, dofs.local_len())?;
         let mut residual = x.duplicate()?;
         let mut correction = x.duplicate()?;
@@ -123,6 +130,19 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
         let mut jacobian = problem.jacobian_matrix()?;
         let mut snes = Snes::new(session)?;
 
+        if s == 0 && resumed_here.is_none() && problem.contact.is_some() {
+            // the energy audit's input from overlaps in the undeformed mesh (a shrink fit)
+            problem.set_load(loads.at(model, 0.0));
+            set_free_values(&mut x, &dofs, &partition, &displacement)?;
+            problem.evaluate_fields(&x)?;
+            let local = problem.contact.as_ref().map_or(0.0, |c| {
+                let e = c.energies();
+                e[0] + e[1]
+            });
+            let mut total = 0.0;
+            world.all_reduce_into(&local, &mut total, SystemOperation::sum());
+            audit.starts_overlapping = total > 0.0;
+        }
         let requested = 1.0 / step.increments as f64;
         let (mut lambda, mut size, mut increment, mut cutbacks) = match resumed_here {
             Some((_, lambda, size, increment)) => (lambda, size.min(requested), increment, 0usize),
@@ -202,6 +222,7 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
                 contact.recover_tractions(&total);
             }
             let contacts = contact_summaries(&world, model, &problem);
+            let energy = audit_increment(&world, model, &mut audit, &problem, &fields, &force, &prescribed, &displacement, &loads.at(model, lambda));
             let reactions = loads
                 .constrained_sets
                 .iter()
@@ -226,6 +247,7 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
                 contacts,
                 wall_time: wall_before + start.elapsed().as_secs_f64(),
                 reactions,
+                energy: Some(energy),
             };
             // the next attempt's size: kept after a hard increment, grown after an easy one
             size = if report.newton_iterations <= controls.easy_iterations { (done * controls.growth_factor).min(requested) } else { done };
@@ -254,6 +276,7 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
                     slip,
                     fresh_pattern,
                     next_size: size,
+                    audit: &audit.last,
                     refits,
                 }
             });
@@ -279,6 +302,33 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
         status.note(&format!("completed: {} increments in {:.1} s", rows.len(), start.elapsed().as_secs_f64()));
     }
     Ok(RunSummary { history: rows, wall_time: start.elapsed().as_secs_f64(), ranks: partition.size, displacement, reserved_couplings, pattern_refits })
+}
+
+/// The energy audit's record of a converged increment (collective: the element and contact
+/// energies and the pressure loads are summed over the ranks).
+#[allow(clippy::too_many_arguments)]
+fn audit_increment(
+    world: &impl Communicator,
+    model: &Model,
+    audit: &mut EnergyAudit,
+    problem: &Problem<'_, '_>,
+    fields: &super::problem::ElementFields,
+    residual: &[f64],
+    prescribed: &[[bool; 2]],
+    displacement: &[[f64; 2]],
+    load: &LoadState,
+) -> Energies {
+    let local: Vec<f64> = fields.pressure_force.iter().flatten().copied().collect();
+    let mut pressure = vec![0.0; local.len()];
+    world.all_reduce_into(&local[..], &mut pressure[..], SystemOperation::sum());
+    let e = fields.energy;
+    let contact = problem.contact.as_ref().map_or([0.0; 3], |c| c.energies());
+    let local = [e.elastic, e.plastic_work, e.thermal_power, contact[0], contact[1], contact[2]];
+    let mut total = [0.0; 6];
+    world.all_reduce_into(&local[..], &mut total[..], SystemOperation::sum());
+    let elements = ElementEnergy { elastic: total[0], plastic_work: total[1], thermal_power: total[2] };
+    let temperature = model.reference_temperature + load.temperature_change;
+    audit.record(residual, prescribed, &pressure, displacement, elements, [total[3], total[4], total[5]], temperature)
 }
 
 /// Reads the restart point (every rank, serially), refusing to overwrite the file it reads.

@@ -35,6 +35,19 @@ impl ContactAssembly {
         }
     }
 
+    /// This rank's slave nodes' contact energies at the last evaluation: (normal penalty stored,
+    /// tangential penalty stored, dissipated by friction since the last converged increment),
+    /// N mm per radian.
+    pub fn energies(&self) -> [f64; 3] {
+        let mut e = [0.0; 3];
+        for s in self.states.iter().flatten() {
+            e[0] += s.normal_energy;
+            e[1] += s.friction_stored;
+            e[2] += s.friction_dissipated;
+        }
+        e
+    }
+
     /// Per pair: (active slave nodes, largest penetration, total normal force per radian)
     /// over this rank's slave nodes.
     pub fn pair_summaries(&self, model: &Model) -> Vec<(f64, f64, f64)> {

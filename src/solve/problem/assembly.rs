@@ -185,6 +185,8 @@ impl Problem<'_, '_> {
         mut sink: impl FnMut(usize, usize, f64),
     ) -> Result<()> {
         fields.nodal_force.fill([0.0; 2]);
+        fields.pressure_force.fill([0.0; 2]);
+        fields.energy = Default::default();
         let mut sink = |node: usize, c: usize, v: f64| {
             fields.nodal_force[node][c] += v;
             sink(node, c, v);
@@ -208,6 +210,9 @@ impl Problem<'_, '_> {
                 (entry.valid, entry.u, entry.temperature_change) = (true, u, self.load.temperature_change);
             }
             self.trial[k] = out.state;
+            fields.energy.elastic += out.energy.elastic;
+            fields.energy.plastic_work += out.energy.plastic_work;
+            fields.energy.thermal_power += out.energy.thermal_power;
             let size = self.elements[k].roundoff_scale * u.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs())) + out.internal_force.abs().max();
             roundoff += (ROUNDOFF_ULPS * f64::EPSILON * size).powi(2);
             fields.stress[k] = out.stress;
@@ -219,12 +224,15 @@ impl Problem<'_, '_> {
             us.push(u);
         }
         self.kept = kept;
+        // the pressure loads, also kept apart (the energy audit's external work)
+        let mut pressure_loads = Vec::new();
         for (k, local, p) in self.pressure_edges() {
             let f = compute_pressure_load(&self.edge_positions(k, &local, &us[k]), p);
             let conn = &self.model.mesh.elements[self.elements[k].element];
             for (j, &a) in local.iter().enumerate() {
                 for c in 0..2 {
                     sink(conn[a], c, -f[j][c]);
+                    pressure_loads.push((conn[a], c, f[j][c]));
                 }
             }
         }
@@ -239,6 +247,9 @@ impl Problem<'_, '_> {
             roundoff += contact.roundoff_squares();
         }
         self.roundoff = roundoff;
+        for (node, c, f) in pressure_loads {
+            fields.pressure_force[node][c] += f;
+        }
         Ok(())
     }
 }
