@@ -9,6 +9,7 @@ use crate::io::plots::{deformed_field, line_plot, Axes, Curve, FieldPicture, Mar
 use crate::io::reader::ResultsReader;
 use crate::io::HistoryRow;
 use crate::model::bellows::BellowsParams;
+use crate::solve::energy::Energies;
 use std::f64::consts::PI;
 use std::path::{Path, PathBuf};
 
@@ -63,6 +64,8 @@ pub struct BellowsReport {
     pub cycle: Option<(f64, f64)>,
     /// Friction coefficients between the plies and of the sleeve.
     pub friction: (f64, f64),
+    /// The energy audit at the last increment, N mm per sector.
+    pub energy: Option<Energies>,
 }
 
 /// Axial reaction of the moving end, N per sector, compression positive.
@@ -157,6 +160,7 @@ impl BellowsReport {
             curve,
             cycle,
             friction: (p.friction_plies, p.friction_sleeve),
+            energy: history.last().and_then(|r| r.energy),
         })
     }
 
@@ -192,6 +196,18 @@ impl BellowsReport {
         if let Some((area, back)) = self.cycle {
             line("cycle: loop area, N mm per sector", format!("{area:.1}"), "-");
             line("cycle: reaction back at 0 mm, N per sector", format!("{back:.1}"), "-");
+        }
+        if let Some(e) = self.energy {
+            // per sector, as the forces
+            let s = |v: f64| format!("{:.1}", v * SECTOR_RADIANS);
+            line("energy, N mm per sector: external work", s(e.external_work), "-");
+            line("  stored elastic / plastic work", format!("{} / {}", s(e.elastic), s(e.plastic_work)), "-");
+            line("  thermal work / friction dissipated", format!("{} / {}", s(e.thermal_work), s(e.friction_dissipation)), "-");
+            line(
+                "  balance error (% of the external work)",
+                format!("{} ({:.3} %)", s(e.balance_error()), 100.0 * e.balance_error() / e.external_work.abs().max(f64::MIN_POSITIVE)),
+                "-",
+            );
         }
         line("increments / cutbacks", format!("{} / {}", self.increments, self.cutbacks), "240");
         line("Newton iterations", format!("{}", self.newton_iterations), "-");

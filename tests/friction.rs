@@ -160,11 +160,13 @@ fn a_run_with_friction_continues_bit_identically_from_a_restart() {
 }
 
 #[test]
-fn assembled_jacobian_with_friction_matches_finite_differences_for_both_integrations() {
+fn assembled_jacobian_with_friction_matches_finite_differences_for_both_integrations_one_and_two_pass() {
     // PETSc's -snes_test_jacobian at every Newton iterate, on 2 ranks: the pushed fit on an
     // elastic tube, through stick and slip
-    for integration in ["node-to-segment", "segment"] {
-        let text = deck(1.2e-4, 4, &format!("friction = {MU}")).replace("integration = \"node-to-segment\"", &format!("integration = \"{integration}\""));
+    for (integration, two_pass) in [("node-to-segment", false), ("segment", false), ("node-to-segment", true), ("segment", true)] {
+        let integration_line = format!("integration = \"{integration}\"\ntwo_pass = {two_pass}");
+        let text = deck(1.2e-4, 4, &format!("friction = {MU}")).replace("integration = \"node-to-segment\"", &integration_line);
+        let integration = format!("{integration}{}", if two_pass { ", two-pass" } else { "" });
         let run = run_deck(&text, &[], 2, &["--", "-snes_test_jacobian"]);
         run.assert_ok();
         let all = common::jacobian_test_ratios(&run.stdout());
