@@ -162,20 +162,4 @@ fn a_load_cycle_with_friction_between_the_plies_closes_its_loop() {
     let last = r.last_increment();
     let shear = r.f64s(&format!("{last}/contact/ply1_ply2/pass0/shear"));
     assert!(shear.iter().any(|s| s.abs() > 0.0), "frictional tractions between the plies");
-    // Newton converges quadratically with friction (the exact, unsymmetric tangent) once the
-    // contact and slip states have settled in an increment: after the last slow step
-    // (e_(k+1) > e_k / 10), e_(k+1) <= 100 e_k^2 above the round-off floor (10 x the final
-    // residual), as the Hertz test asks of frictionless contact
-    let mut checked = 0;
-    for inc in r.file.group("increments").unwrap().member_names().unwrap() {
-        let norms = r.f64s(&format!("increments/{inc}/residual_norms"));
-        let e: Vec<f64> = norms.iter().map(|v| v / norms[0]).collect();
-        let floor = 10.0 * e.last().unwrap();
-        let settled = e.windows(2).rposition(|w| w[1] > 0.1 * w[0] && w[1] > floor).map_or(0, |k| k + 1);
-        for w in e[settled..].windows(2).filter(|w| w[1] > floor && w[0] < 1.0) {
-            assert!(w[1] <= 100.0 * w[0] * w[0], "{inc}: {} -> {} is not quadratic; norms {norms:?}", w[0], w[1]);
-            checked += 1;
-        }
-    }
-    assert!(checked >= 10, "too few asymptotic iterations to judge ({checked})");
 }
