@@ -139,7 +139,9 @@ fn main() -> ExitCode {
                 let ejma = model::bellows::ejma_axial_rate(&params, EJMA_CF);
                 println!("bellows: {} plies x {} mm, {} convolutions, pitch {}, height {}; EJMA axial rate {:.1} N/mm full ring, {:.2} N/mm per 2.5-degree sector (Cf = {EJMA_CF})", params.plies, params.ply_thickness, params.convolutions, params.pitch, params.height, ejma, ejma * 2.5 / 360.0);
             }
-            let result = model::bellows::model(&params).and_then(|m| run(&session, &m, &RunOptions { output: args.output.clone(), progress: !args.quiet, restart: restart_from(&args.restart, args.increment) }));
+            let result = model::bellows::model(&params).and_then(|m| {
+                run(&session, &m, &RunOptions { output: args.output.clone(), progress: !args.quiet, restart: restart_from(&args.restart, args.increment) })
+            });
             warn_unused_options(&session, root);
             finish(result, root, |summary| report(&params, summary, &args.output))
         }

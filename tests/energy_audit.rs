@@ -37,7 +37,8 @@ pressure = [ {{ surface = "inner", value = 0.0 }} ]
 
 /// (external work, elastic, plastic, friction, balance error) per increment.
 fn audit(r: &Results) -> Vec<[f64; 5]> {
-    let columns = ["energy_external_work", "energy_elastic", "energy_plastic_work", "energy_friction_dissipation", "energy_balance_error"].map(|c| r.history(c));
+    let columns =
+        ["energy_external_work", "energy_elastic", "energy_plastic_work", "energy_friction_dissipation", "energy_balance_error"].map(|c| r.history(c));
     (0..columns[0].len()).map(|k| std::array::from_fn(|c| columns[c][k])).collect()
 }
 

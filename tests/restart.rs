@@ -136,7 +136,10 @@ fn restarts_that_cannot_continue_the_run_are_refused() {
     // another mesh: the ply elements' length changed
     refused(bellows_restart(dir.path(), 1, "full.h5", &["--ply-element-length", "1.5", "-o", "other.h5"]), "cannot restart from full.h5: its mesh has");
     // an increment the file does not hold
-    refused(bellows_restart(dir.path(), 1, "full.h5", &["--increment", "40", "-o", "other.h5"]), "increment 40 is not among its 12 restartable increments (1 .. 12");
+    refused(
+        bellows_restart(dir.path(), 1, "full.h5", &["--increment", "40", "-o", "other.h5"]),
+        "increment 40 is not among its 12 restartable increments (1 .. 12",
+    );
     // into itself
     refused(bellows_restart(dir.path(), 1, "full.h5", &["-o", "full.h5"]), "into itself");
     // a file without the state (as an older slideline wrote it)
@@ -151,6 +154,7 @@ fn restarts_that_cannot_continue_the_run_are_refused() {
     // a deck whose steps differ from the file's
     let deck = dir.path().join("deck.toml");
     std::fs::write(&deck, PLASTIC_CYLINDER).unwrap();
-    let out = command_in(dir.path(), 1).current_dir(dir.path()).args(["run", deck.to_str().unwrap(), "--restart", "full.h5", "-o", "other.h5"]).output().unwrap();
+    let out =
+        command_in(dir.path(), 1).current_dir(dir.path()).args(["run", deck.to_str().unwrap(), "--restart", "full.h5", "-o", "other.h5"]).output().unwrap();
     refused(out, "cannot restart from full.h5: its mesh has");
 }

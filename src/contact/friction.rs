@@ -60,7 +60,15 @@ pub struct FrictionState {
 }
 
 /// The residual over [s, edge, reference edge] and the state; generic for the tangent.
-fn residual<T: Scalar>(xs: &[T; 2], x: &[[T; 2]; 3], reference: &[[T; 2]; 3], xi: f64, from: &SlipReference, law: &ContactLaw, friction: &FrictionLaw) -> ([T; 14], FrictionState) {
+fn residual<T: Scalar>(
+    xs: &[T; 2],
+    x: &[[T; 2]; 3],
+    reference: &[[T; 2]; 3],
+    xi: f64,
+    from: &SlipReference,
+    law: &ContactLaw,
+    friction: &FrictionLaw,
+) -> ([T; 14], FrictionState) {
     let point = contact_point(xs, x, xi, law);
     let n_ref = line3(from.xi).0;
     let material: [T; 2] = std::array::from_fn(|c| reference[0][c] * n_ref[0] + reference[1][c] * n_ref[1] + reference[2][c] * n_ref[2]);
@@ -85,7 +93,15 @@ fn residual<T: Scalar>(xs: &[T; 2], x: &[[T; 2]; 3], reference: &[[T; 2]; 3], xi
 /// The friction residual of a slave node at `xs` projecting at `xi` on the edge `x`, measured
 /// from `from` on the reference edge `reference` (current positions; the same edge as `x` if
 /// the node has stayed on it).
-pub fn friction_residual(xs: [f64; 2], x: &[[f64; 2]; 3], reference: &[[f64; 2]; 3], xi: f64, from: &SlipReference, law: &ContactLaw, friction: &FrictionLaw) -> (FrictionVector, FrictionState) {
+pub fn friction_residual(
+    xs: [f64; 2],
+    x: &[[f64; 2]; 3],
+    reference: &[[f64; 2]; 3],
+    xi: f64,
+    from: &SlipReference,
+    law: &ContactLaw,
+    friction: &FrictionLaw,
+) -> (FrictionVector, FrictionState) {
     let (f, state) = residual(&xs, x, reference, xi, from, law, friction);
     (FrictionVector::from(f), state)
 }

@@ -9,14 +9,26 @@ pub fn describe(group: &str, name: &str) -> (&'static str, String) {
     match (top, name) {
         ("mesh", _) if g.ends_with("node_sets") => ("-", format!("node set {name}: rows of /mesh/coordinates")),
         ("mesh", _) if g.ends_with("element_sets") => ("-", format!("element set {name}: rows of /mesh/connectivity")),
-        ("restart", "pattern") => ("-", "contact couplings the Jacobian reserved: [increment number, rank, node id, node id], as they were added (restart)".into()),
+        ("restart", "pattern") => {
+            ("-", "contact couplings the Jacobian reserved: [increment number, rank, node id, node id], as they were added (restart)".into())
+        }
         (_, "plastic_points") => ("-", "[element id, Gauss point] of each Gauss point that has left its initial state (restart)".into()),
-        (_, "plastic_state") => ("-", "committed plastic state of those points: C_p^-1 (finite strain) or eps_p (small strain) [rr, zz, tt, rz], equivalent plastic strain (restart)".into()),
-        (_, n) if n.starts_with("multiplier_nodes_pass") => ("-", "node ids of the slave nodes with a nonzero augmented-Lagrangian multiplier (restart)".into()),
+        (_, "plastic_state") => (
+            "-",
+            "committed plastic state of those points: C_p^-1 (finite strain) or eps_p (small strain) [rr, zz, tt, rz], equivalent plastic strain (restart)"
+                .into(),
+        ),
+        (_, n) if n.starts_with("multiplier_nodes_pass") => {
+            ("-", "node ids of the slave nodes with a nonzero augmented-Lagrangian multiplier (restart)".into())
+        }
         (_, n) if n.starts_with("slip_nodes_pass") => ("-", "node ids of the slave nodes with a slip reference (friction; restart)".into()),
-        (_, n) if n.starts_with("slip_pass") => ("-", "their slip reference: [master edge index, edge coordinate, tangential traction (MPa)] (friction; restart)".into()),
+        (_, n) if n.starts_with("slip_pass") => {
+            ("-", "their slip reference: [master edge index, edge coordinate, tangential traction (MPa)] (friction; restart)".into())
+        }
         (_, "audit_nodes") => ("-", "node ids with a reaction or a pressure load (energy audit; restart)".into()),
-        (_, "audit_forces") => ("N per radian", "their reaction (r, z) and pressure load (r, z), where the next increment's external work starts (restart)".into()),
+        (_, "audit_forces") => {
+            ("N per radian", "their reaction (r, z) and pressure load (r, z), where the next increment's external work starts (restart)".into())
+        }
         (_, n) if n.starts_with("multipliers_pass") => ("MPa", "their committed augmented-Lagrangian multipliers (restart)".into()),
         ("mesh", "coordinates") => ("mm", "r, z of each node".into()),
         ("mesh", "connectivity") => ("-", "the 8 nodes of each Q8 element (rows of /mesh/coordinates), corners then mid-sides, counter-clockwise".into()),
@@ -45,7 +57,10 @@ pub fn describe(group: &str, name: &str) -> (&'static str, String) {
         (_, "pressure") => ("MPa", "contact pressure at each slave node".into()),
         (_, "traction") => ("MPa", "contact traction recovered from the nodal contact forces".into()),
         (_, "active") => ("-", "1 where the slave node is in contact".into()),
-        (_, "shear") => ("MPa", "frictional traction at each slave node, along the master's tangent (positive: resisting the slave's slip in the tangent's direction)".into()),
+        (_, "shear") => (
+            "MPa",
+            "frictional traction at each slave node, along the master's tangent (positive: resisting the slave's slip in the tangent's direction)".into(),
+        ),
         (_, "sliding") => ("-", "1 where the slave node slides (friction at its Coulomb limit), 0 where it sticks or is open".into()),
         (_, n) if n.starts_with("stress_") => ("MPa", format!("{} at the nodes (Gauss values carried to the nodes, averaged)", n.replace('_', " "))),
         _ => ("-", name.replace('_', " ")),
@@ -66,8 +81,13 @@ pub fn describe_column(name: &str) -> (&'static str, String) {
         "augmentations" => ("-", "augmented-Lagrangian multiplier updates".into()),
         "max_equivalent_plastic_strain" => ("-", "largest equivalent plastic strain of the model".into()),
         "wall_time" => ("s", "wall time since the start of the run".into()),
-        "energy_external_work" => ("N mm per radian", "work of the reactions on the prescribed displacements and of the pressure loads, along the load path".into()),
-        "energy_initial_contact" => ("N mm per radian", "penalty energy of the contact overlaps in the undeformed mesh (an interference fit), an input the first increments release".into()),
+        "energy_external_work" => {
+            ("N mm per radian", "work of the reactions on the prescribed displacements and of the pressure loads, along the load path".into())
+        }
+        "energy_initial_contact" => (
+            "N mm per radian",
+            "penalty energy of the contact overlaps in the undeformed mesh (an interference fit), an input the first increments release".into(),
+        ),
         "energy_elastic" => ("N mm per radian", "stored elastic energy (Hencky: tau : C^-1 : tau / 2 over the reference volume)".into()),
         "energy_plastic_work" => ("N mm per radian", "plastic work: the integral of the yield stress over the equivalent plastic strain".into()),
         "energy_thermal_work" => ("N mm per radian", "stress power of the thermal strain along the temperature path (alpha tr(tau) dT)".into()),

@@ -3,8 +3,8 @@
 //! the file and the group or dataset that is missing, so a wrong file gives a clear message.
 
 use super::{ContactSummary, HistoryRow};
-use crate::solve::energy::Energies;
 use crate::error::{Error, Result};
+use crate::solve::energy::Energies;
 use hdf5::types::VarLenUnicode;
 use std::path::{Path, PathBuf};
 

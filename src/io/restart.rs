@@ -101,8 +101,7 @@ pub(super) fn write_state(
     write_gathered(&sg, world, "audit_nodes", 1, &ids, path)?;
     write_gathered(&sg, world, "audit_forces", 4, &forces, path)?;
     // the pattern's new rows, gathered to every rank (resizing is collective), written by rank 0
-    let local: Vec<u64> =
-        state.fresh_pattern.iter().flat_map(|&(a, b)| [number as u64, world.rank() as u64, mesh.node_ids[a], mesh.node_ids[b]]).collect();
+    let local: Vec<u64> = state.fresh_pattern.iter().flat_map(|&(a, b)| [number as u64, world.rank() as u64, mesh.node_ids[a], mesh.node_ids[b]]).collect();
     let all = all_gather(world, &local);
     let restart = if file.link_exists("restart") { file.group("restart") } else { file.create_group("restart") }.map_err(&err)?;
     let ds = if restart.link_exists("pattern") {
@@ -138,7 +137,14 @@ fn all_gather<T: Equivalence + Copy + Default>(world: &SimpleCommunicator, local
 
 /// Dataset `name` of rows of `width` values, each rank writing its `local` rows after those of
 /// the ranks before it (collective). Not created when no rank has a row.
-fn write_gathered<T: hdf5::H5Type + Equivalence + Copy>(g: &hdf5::Group, world: &SimpleCommunicator, name: &str, width: usize, local: &[T], path: &Path) -> Result<()> {
+fn write_gathered<T: hdf5::H5Type + Equivalence + Copy>(
+    g: &hdf5::Group,
+    world: &SimpleCommunicator,
+    name: &str,
+    width: usize,
+    local: &[T],
+    path: &Path,
+) -> Result<()> {
     let rows = (local.len() / width) as u64;
     let size = world.size() as usize;
     let mut counts = vec![0u64; size];
@@ -202,7 +208,10 @@ impl RestartPoint {
         let (nodes, elements) = check_mesh(&reader, model).map_err(bad)?;
         let with_state: Vec<String> = reader.increments()?.into_iter().filter(|name| reader.file().link_exists(&format!("increments/{name}/state"))).collect();
         let name = match from.increment {
-            None => with_state.last().cloned().ok_or_else(|| bad("it holds no increment with a restart state (written by an older slideline, or no increment converged)".into()))?,
+            None => with_state
+                .last()
+                .cloned()
+                .ok_or_else(|| bad("it holds no increment with a restart state (written by an older slideline, or no increment converged)".into()))?,
             Some(n) => {
                 let name = format!("{n:06}");
                 if !with_state.contains(&name) {
@@ -210,7 +219,10 @@ impl RestartPoint {
                     let last = with_state.last().map(|s| s.trim_start_matches('0').to_string()).unwrap_or_default();
                     return Err(bad(match with_state.is_empty() {
                         true => "it holds no increment with a restart state".into(),
-                        false => format!("increment {n} is not among its {} restartable increments ({first} .. {last}; with [output] every = N only every N-th is)", with_state.len()),
+                        false => format!(
+                            "increment {n} is not among its {} restartable increments ({first} .. {last}; with [output] every = N only every N-th is)",
+                            with_state.len()
+                        ),
                     }));
                 }
                 name
@@ -222,7 +234,13 @@ impl RestartPoint {
         for (k, saved) in names.iter().enumerate().take(step + 1) {
             match model.steps.get(k) {
                 Some(s) if s.name == *saved => {}
-                Some(s) => return Err(bad(format!("its step {} is {saved:?}, the deck's is {:?} (a continued run may add steps, not change those done)", k + 1, s.name))),
+                Some(s) => {
+                    return Err(bad(format!(
+                        "its step {} is {saved:?}, the deck's is {:?} (a continued run may add steps, not change those done)",
+                        k + 1,
+                        s.name
+                    )))
+                }
                 None => return Err(bad(format!("increment {number} is in step {} ({saved:?}), the deck has {} step(s)", k + 1, model.steps.len()))),
             }
         }
@@ -238,7 +256,10 @@ impl RestartPoint {
         let mut step_ends = Vec::new();
         let all = reader.increments()?;
         for k in 0..step {
-            let end = all.iter().rev().find(|g| reader.increment_attr(g, "step").ok() == Some((k + 1) as f64) && reader.increment_attr(g, "load_factor").ok() == Some(1.0));
+            let end = all
+                .iter()
+                .rev()
+                .find(|g| reader.increment_attr(g, "step").ok() == Some((k + 1) as f64) && reader.increment_attr(g, "load_factor").ok() == Some(1.0));
             let end = end.ok_or_else(|| bad(format!("the end of step {} is not in the file", k + 1)))?;
             step_ends.push(to_model(reader.displacement(end)?));
         }

@@ -15,8 +15,8 @@
 
 use super::mesh::{mapped_block, Edge, Mesh, MeshSets};
 use super::{
-    AugmentedLagrangian, Component, ContactIntegration, ContactPair, Friction, Kinematics, Material, Model, OutputControls, Penalty, Plasticity, PrescribedDisplacement,
-    Pressure, Step, SteppingControls,
+    AugmentedLagrangian, Component, ContactIntegration, ContactPair, Friction, Kinematics, Material, Model, OutputControls, Penalty, Plasticity,
+    PrescribedDisplacement, Pressure, Step, SteppingControls,
 };
 use crate::error::Result;
 use std::collections::HashMap;

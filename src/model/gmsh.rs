@@ -331,27 +331,18 @@ fn assemble(raw: RawMesh, name: &str) -> Result<(Mesh, MeshSets)> {
             continue;
         }
         let index = |t: &u64| {
-            node_index
-                .get(t)
-                .copied()
-                .ok_or_else(|| Error::input(format!("{at}: element {tag} uses node {t}, which belongs to no 8-node quadrilateral")))
+            node_index.get(t).copied().ok_or_else(|| Error::input(format!("{at}: element {tag} uses node {t}, which belongs to no 8-node quadrilateral")))
         };
         match (*dim, *ty) {
             (1, LINE3) if nodes.len() == 3 => {
                 let (a, b) = (index(&nodes[0])?, index(&nodes[1])?);
-                let edge = *side_of
-                    .get(&(a.min(b), a.max(b)))
-                    .ok_or_else(|| Error::input(format!("{at}: line element {tag} is not a side of any quadrilateral")))?;
+                let edge =
+                    *side_of.get(&(a.min(b), a.max(b))).ok_or_else(|| Error::input(format!("{at}: line element {tag} is not a side of any quadrilateral")))?;
                 for &p in phys {
                     surfaces.entry(group_name(1, p)).or_default().push(edge);
                 }
             }
-            (1, _) => {
-                return Err(Error::input(format!(
-                    "{at}: element {tag} in a physical curve is {}; surfaces need 3-node lines (type 8)",
-                    type_name(*ty)
-                )))
-            }
+            (1, _) => return Err(Error::input(format!("{at}: element {tag} in a physical curve is {}; surfaces need 3-node lines (type 8)", type_name(*ty)))),
             (0, POINT) => {
                 let n = index(&nodes[0])?;
                 for &p in phys {

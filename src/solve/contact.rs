@@ -274,7 +274,8 @@ impl ContactAssembly {
                     CarriedSlip::Owned(s) => s,
                     CarriedSlip::ByNode(saved) => {
                         let mut s = nowhere();
-                        let saved: Vec<Vec<(usize, Option<SlipPoint>)>> = saved.into_iter().map(|v| v.into_iter().map(|(n, p)| (n, Some(p))).collect()).collect();
+                        let saved: Vec<Vec<(usize, Option<SlipPoint>)>> =
+                            saved.into_iter().map(|v| v.into_iter().map(|(n, p)| (n, Some(p))).collect()).collect();
                         by_node(&passes, &surfaces, &saved, &mut s, |v| v);
                         s
                     }
@@ -502,7 +503,16 @@ impl ContactAssembly {
             let (residual, slip) = recipe.residual();
             self.roundoff += (ROUNDOFF_ULPS * f64::EPSILON * friction.penalty * law.area * xs[0].hypot(xs[1])).powi(2);
             let slot = out.next_slot();
-            slot.set_friction_integrated(node, master.edges[edge], master.edges[reference.edge], residual.as_slice(), recipe, &g.samples, pressure, -eps / area);
+            slot.set_friction_integrated(
+                node,
+                master.edges[edge],
+                master.edges[reference.edge],
+                residual.as_slice(),
+                recipe,
+                &g.samples,
+                pressure,
+                -eps / area,
+            );
             self.slip_trial[p][k] = Some(SlipPoint { edge, xi: proj.xi, traction: slip.traction });
             let state = &mut self.states[p][k];
             (state.shear, state.sliding, state.friction_stored, state.friction_dissipated) = (slip.traction, slip.slipping, slip.stored, slip.dissipated);

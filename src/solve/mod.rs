@@ -2,8 +2,8 @@
 
 pub mod affinity;
 pub mod contact;
-pub mod energy;
 mod contact_surfaces;
+pub mod energy;
 mod engagement;
 mod kept;
 pub mod layout;

@@ -9,18 +9,18 @@
 //! the results file.
 
 use super::contact::{CarriedMultipliers, CarriedSlip, ContactCarry};
+use super::energy::{Energies, EnergyAudit};
 use super::pattern::ContactPattern;
 use super::problem::{initial_history, History, LoadState, Problem};
 use super::schedule::StepLoads;
 use crate::dist::{DofMap, Partition};
+use crate::element::solid::ElementEnergy;
 use crate::error::{Error, Result};
 use crate::io::lock::ResultsLock;
-use crate::io::restart::{CommittedState, RestartFrom, RestartPoint};
 use crate::io::progress::Progress;
+use crate::io::restart::{CommittedState, RestartFrom, RestartPoint};
 use crate::io::status::StatusFile;
 use crate::io::{ContactSummary, HistoryRow, IncrementFields, ResultsFile};
-use super::energy::{Energies, EnergyAudit};
-use crate::element::solid::ElementEnergy;
 use crate::material::PointState;
 use crate::model::Model;
 use crate::petsc::{Matrix, NonlinearProblem, PetscSession, Snes, SolveReport, VecOps, Vector};
@@ -90,7 +90,13 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
     let mut resumed: Option<(Vec<[f64; 2]>, f64, f64, usize)> = None;
     let mut wall_before = 0.0;
     if let Some(point) = resume {
-        progress.note(&format!("restart: continuing {} from increment #{} (step {}, load factor {})", point.file.display(), point.number, point.step + 1, point.load_factor));
+        progress.note(&format!(
+            "restart: continuing {} from increment #{} (step {}, load factor {})",
+            point.file.display(),
+            point.number,
+            point.step + 1,
+            point.load_factor
+        ));
         results.continue_history(&point.file, &point.rows)?;
         wall_before = point.rows.last().map_or(0.0, |(_, r)| r.wall_time);
         rows = point.rows.iter().map(|(_, r)| r.clone()).collect();

@@ -124,7 +124,8 @@ impl Builder {
             if merged[i] {
                 continue;
             }
-            let found = self.interactions.get(interaction).ok_or_else(|| error_at(at, "CONTACT PAIR", format!("surface interaction {interaction} is not defined")))?;
+            let found =
+                self.interactions.get(interaction).ok_or_else(|| error_at(at, "CONTACT PAIR", format!("surface interaction {interaction} is not defined")))?;
             let slope = found.slope.ok_or_else(|| error_at(at, "CONTACT PAIR", format!("interaction {interaction} has no *SURFACE BEHAVIOR")))?;
             let friction = found.friction;
             if let Some((_, _, _, _, first)) = self.contacts[..i].iter().find(|c| &c.0 == slave && &c.1 == master) {
