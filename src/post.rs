@@ -265,21 +265,27 @@ pub fn plot(r: &ResultsReader, path: Option<&Path>) -> Result<PathBuf> {
         travel.push((set, uz));
     }
     let moving = travel.iter().max_by(|a, b| a.1.iter().fold(0.0f64, |m, v| m.max(v.abs())).total_cmp(&b.1.iter().fold(0.0f64, |m, v| m.max(v.abs()))));
+    // each quantity signed so that its largest value is positive (a compression plots up and
+    // right), signs kept: a load cycle's return through zero and into tension stays visible
+    let oriented = |v: &[f64]| {
+        let extreme = v.iter().copied().filter(|x| x.is_finite()).fold(0.0f64, |m, x| if x.abs() > m.abs() { x } else { m });
+        let sign = if extreme < 0.0 { -1.0 } else { 1.0 };
+        v.iter().map(|x| sign * x).collect::<Vec<f64>>()
+    };
     let (x, x_label): (Vec<f64>, String) = match moving {
-        Some((set, uz)) if uz.iter().any(|v| *v != 0.0) => (uz.iter().map(|v| v.abs()).collect(), format!("|u_z| of {set}, mm (the prescribed displacement)")),
+        Some((set, uz)) if uz.iter().any(|v| *v != 0.0) => {
+            (oriented(uz), format!("u_z of {set}, mm (the prescribed displacement, signed so its largest is positive)"))
+        }
         _ => (r.history("time")?, "time (step - 1 + load factor)".into()),
     };
     let curves: Vec<Curve> = sets
         .iter()
         .map(|set| {
-            let f = r.history(&format!("reaction_{set}_z_ring"))?;
-            Ok(Curve {
-                label: format!("{set}: |F_z| (full ring)"),
-                points: x.iter().zip(&f).filter(|(_, v)| v.is_finite()).map(|(&u, &v)| (u, v.abs())).collect(),
-            })
+            let f = oriented(&r.history(&format!("reaction_{set}_z_ring"))?);
+            Ok(Curve { label: format!("{set}: F_z (full ring)"), points: x.iter().zip(&f).filter(|(_, v)| v.is_finite()).map(|(&u, &v)| (u, v)).collect() })
         })
         .collect::<Result<_>>()?;
     let path = path.map(Path::to_path_buf).unwrap_or_else(|| Path::new(&format!("{}_force.png", r.path().with_extension("").display())).to_path_buf());
-    line_plot(&path, "Axial reactions", &x_label, "|F_z| (N, full ring)", &curves, &[], Axes::FromOrigin)?;
+    line_plot(&path, "Axial reactions", &x_label, "F_z (N, full ring; each signed so its largest is positive)", &curves, &[], Axes::FromOrigin)?;
     Ok(path)
 }

@@ -40,7 +40,8 @@ pub struct Marker {
 /// How a line plot's axes are ranged.
 #[derive(Clone, Copy, PartialEq, Eq)]
 pub enum Axes {
-    /// From the origin to the data (force against displacement); legend lower right.
+    /// From the origin to the data (force against displacement, room below for a negative
+    /// part of a load cycle); legend upper left, above a curve that rises from the origin.
     FromOrigin,
     /// Around the data alone (log10 values of a study); legend upper right.
     DataRange,
@@ -71,7 +72,7 @@ pub fn line_plot(path: &Path, title: &str, x_label: &str, y_label: &str, curves:
         .margin(20)
         .x_label_area_size(60)
         .y_label_area_size(90)
-        .build_cartesian_2d(x0..x1 + dx, y0..y1 + dy)
+        .build_cartesian_2d(x0..x1 + dx, y0 - if y0 < 0.0 { dy } else { 0.0 }..y1 + dy)
         .map_err(|e| err(&e))?;
     chart.configure_mesh().x_desc(x_label).y_desc(y_label).label_style(("sans-serif", 18)).axis_desc_style(("sans-serif", 20)).draw().map_err(|e| err(&e))?;
     let palette = [RGBColor(31, 119, 180), RGBColor(214, 39, 40), RGBColor(44, 160, 44), RGBColor(148, 103, 189)];
@@ -90,7 +91,7 @@ pub fn line_plot(path: &Path, title: &str, x_label: &str, y_label: &str, curves:
             .label(m.label.as_str())
             .legend(|(x, y)| Cross::new((x + 12, y), 7, BLACK.stroke_width(2)));
     }
-    draw_legend(&mut chart, if axes == Axes::FromOrigin { SeriesLabelPosition::LowerRight } else { SeriesLabelPosition::UpperRight }).map_err(|e| err(&e))?;
+    draw_legend(&mut chart, if axes == Axes::FromOrigin { SeriesLabelPosition::UpperLeft } else { SeriesLabelPosition::UpperRight }).map_err(|e| err(&e))?;
     root.present().map_err(|e| err(&e))
 }
 
