@@ -61,6 +61,7 @@ impl NodalWriter {
 
     /// Writes the nodal group of one increment (collective) from this rank's owned
     /// displacements and its elements' Gauss-point stress and plastic strain.
+    #[allow(clippy::too_many_arguments)]
     pub fn write(
         &self,
         increment: &hdf5::Group,

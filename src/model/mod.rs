@@ -140,8 +140,8 @@ impl Friction {
             (None, None) => Ok(None),
             (Some(mu), _) if !mu.is_finite() || mu < 0.0 => Err(bad(format!("friction coefficient {mu}: give mu >= 0"))),
             (Some(_), Some(k)) if !k.is_finite() || k <= 0.0 => Err(bad(format!("tangential_penalty {k}: give a positive stiffness (MPa/mm)"))),
-            (Some(mu), _) if mu == 0.0 => Ok(None),
-            (Some(mu), k) => Ok(Some(Friction { coefficient: mu, tangential_penalty: k })),
+            // mu = 0: frictionless
+            (Some(mu), k) => Ok((mu > 0.0).then_some(Friction { coefficient: mu, tangential_penalty: k })),
         }
     }
 }
@@ -233,7 +233,7 @@ impl OutputControls {
     /// Whether the fields of run-wide increment `number` are written (`last_of_step`: it ends
     /// its step).
     pub fn writes_fields(&self, number: usize, last_of_step: bool) -> bool {
-        last_of_step || number % self.every == 0
+        last_of_step || number.is_multiple_of(self.every)
     }
 }
 
