@@ -130,6 +130,11 @@ pub struct PostArgs {
     /// Print the deck text stored in the file.
     #[arg(long)]
     pub deck: bool,
+    /// Linearise the stress along straight sections through a wall (ASME VIII-2 Annex 5-A):
+    /// membrane and bending parts in the section's axes, at --increment; each section
+    /// R1,Z1:R2,Z2 in mm (reference coordinates); repeat for more sections.
+    #[arg(long, value_name = "R1,Z1:R2,Z2")]
+    pub linearize: Vec<String>,
 }
 
 /// Flags of `slideline bellows` (mm, MPa, degC).

@@ -59,8 +59,14 @@ fn post(args: &PostArgs) -> Result<(), Error> {
     use slideline::post;
     let r = ResultsReader::open(&args.file)?;
     r.notes()?.iter().for_each(|note| eprintln!("note: {note}"));
-    let detail =
-        args.field.is_some() || args.node.is_some() || args.set.is_some() || args.compare.is_some() || args.csv.is_some() || args.plot.is_some() || args.deck;
+    let detail = args.field.is_some()
+        || args.node.is_some()
+        || args.set.is_some()
+        || args.compare.is_some()
+        || args.csv.is_some()
+        || args.plot.is_some()
+        || args.deck
+        || !args.linearize.is_empty();
     if !detail {
         print!("{}\n{}", post::summary(&r)?, post::history_table(&r)?);
     }
@@ -86,6 +92,9 @@ fn post(args: &PostArgs) -> Result<(), Error> {
     if let Some(path) = &args.plot {
         let path = (!path.as_os_str().is_empty()).then_some(path.as_path());
         println!("picture: {}", post::plot(&r, path)?.display());
+    }
+    if !args.linearize.is_empty() {
+        print!("{}", post::linearize(&r, &args.linearize, post::increment_number(&r, &args.increment)?)?);
     }
     Ok(())
 }

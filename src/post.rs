@@ -289,3 +289,45 @@ pub fn plot(r: &ResultsReader, path: Option<&Path>) -> Result<PathBuf> {
     line_plot(&path, "Axial reactions", &x_label, "F_z (N, full ring; each signed so its largest is positive)", &curves, &[], Axes::FromOrigin)?;
     Ok(path)
 }
+
+/// A section `R1,Z1:R2,Z2` (mm) as its two ends; bad input naming it otherwise.
+pub fn parse_section(text: &str) -> Result<([f64; 2], [f64; 2])> {
+    let bad = || Error::input(format!("--linearize {text:?}: give a section as R1,Z1:R2,Z2 (mm), e.g. 100,5:130,5"));
+    let (a, b) = text.split_once(':').ok_or_else(bad)?;
+    let point = |s: &str| -> Result<[f64; 2]> {
+        let (r, z) = s.split_once(',').ok_or_else(bad)?;
+        let v = [r.trim().parse::<f64>().map_err(|_| bad())?, z.trim().parse::<f64>().map_err(|_| bad())?];
+        v.iter().all(|x| x.is_finite()).then_some(v).ok_or_else(bad)
+    };
+    Ok((point(a)?, point(b)?))
+}
+
+/// The linearised stresses of each section at increment `number` (reference coordinates).
+pub fn linearize(r: &ResultsReader, sections: &[String], number: usize) -> Result<String> {
+    use crate::fe::linearize::{linearize, StressSampler};
+    let sections: Vec<([f64; 2], [f64; 2])> = sections.iter().map(|s| parse_section(s)).collect::<Result<_>>()?;
+    let name = increment_name(r, number)?;
+    let (coords, elements) = (r.coordinates()?, r.connectivity()?);
+    let flat = r
+        .field(&name, "stress")
+        .map_err(|_| Error::input(format!("{}: increment {number} holds no stress (the run's [output] fields)", r.path().display())))?;
+    let stress: Vec<[[f64; 4]; 9]> = flat.chunks_exact(36).map(|e| std::array::from_fn(|q| std::array::from_fn(|c| e[4 * q + c]))).collect();
+    let sampler = StressSampler::new(&coords, &elements, &stress);
+    let mut out = format!("stress linearisation at increment #{number} (MPa; section axes: normal along the section, meridional across it, hoop, shear)\n");
+    for (a, b) in sections {
+        let l = linearize(a, b, 200, |p| sampler.at(p))
+            .map_err(|m| Error::input(format!("{}: section ({}, {}):({}, {}): {m}", r.path().display(), a[0], a[1], b[0], b[1])))?;
+        out.push_str(&format!("section ({}, {}) -> ({}, {}), t = {:.4} mm\n", a[0], a[1], b[0], b[1], l.thickness));
+        out.push_str(&format!("  {:<26} {:>12} {:>12} {:>12} {:>12}\n", "", "normal", "meridional", "hoop", "shear"));
+        let row = |what: &str, v: &[f64; 4]| format!("  {what:<26} {:>12.4} {:>12.4} {:>12.4} {:>12.4}\n", v[0], v[1], v[2], v[3]);
+        out.push_str(&row("membrane", &l.membrane));
+        out.push_str(&row("bending (at the start)", &l.bending));
+        out.push_str(&row("total at the start", &l.total[0]));
+        out.push_str(&row("total at the end", &l.total[1]));
+        out.push_str(&format!(
+            "  von Mises: membrane {:.4}, membrane + bending {:.4} (start) / {:.4} (end)\n",
+            l.membrane_equivalent, l.membrane_plus_bending_equivalent[0], l.membrane_plus_bending_equivalent[1]
+        ));
+    }
+    Ok(out)
+}

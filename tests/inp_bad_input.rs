@@ -101,11 +101,14 @@ fn a_surface_used_in_a_contact_pair_before_it_is_defined_is_named() {
 }
 
 #[test]
-fn friction_and_other_pressure_overclosure_laws_are_refused() {
+fn friction_it_cannot_honour_and_other_pressure_overclosure_laws_are_refused() {
     let model = "*SURFACE INTERACTION, NAME=I\n*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=HARD\n";
     assert_rejected(&run_inp(model, "", &[]), &["model.inp:19", "HARD"]);
-    let model = "*SURFACE INTERACTION, NAME=I\n*FRICTION\n0.2\n";
-    assert_rejected(&run_inp(model, "", &[]), &["model.inp:19", "frictionless"]);
+    // Coulomb friction (mu[, stick slope]) is read; Abaqus' other friction models are not
+    let model = "*SURFACE INTERACTION, NAME=I\n*FRICTION, SLIP TOLERANCE=0.005\n0.2\n";
+    assert_rejected(&run_inp(model, "", &[]), &["model.inp:19", "SLIP TOLERANCE"]);
+    let model = "*SURFACE INTERACTION, NAME=I\n*FRICTION\n-0.2\n";
+    assert_rejected(&run_inp(model, "", &[]), &["model.inp:19", "friction coefficient -0.2"]);
 }
 
 #[test]

@@ -3,5 +3,6 @@
 
 pub mod axisymmetric;
 pub mod extrapolate;
+pub mod linearize;
 pub mod quadrature;
 pub mod shape;

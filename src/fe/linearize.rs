@@ -1,0 +1,212 @@
+//! Stress linearisation along a straight section through a wall (ASME Section VIII Division 2,
+//! Part 5, Annex 5-A, the stress classification line): the membrane part of each stress
+//! component is its mean over the section, the bending part the linear distribution with the
+//! same first moment,
+//!   sigma_m = (1/t) int_0^t sigma dx,   sigma_b = (6/t^2) int_0^t sigma (t/2 - x) dx,
+//! sigma_b being the value at the section's start (x = 0; minus it at the end). The components
+//! are taken in the section's own axes: `normal` along the section (through the wall),
+//! `meridional` across it in the r-z plane, `hoop`, and the in-plane `shear`. The plain
+//! (unweighted) integrals of Annex 5-A, equations (5.A.1) and (5.A.3); the radius-weighted form
+//! for thick axisymmetric sections is not used.
+
+use super::axisymmetric::von_mises;
+use super::extrapolate::gauss_to_nodes;
+use super::shape::q8;
+
+/// A stress tensor in the section's axes: [normal, meridional, hoop, shear].
+pub type SectionComponents = [f64; 4];
+
+/// The linearised stresses of one section.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Linearized {
+    /// Section length (the wall thickness it crosses), mm.
+    pub thickness: f64,
+    pub membrane: SectionComponents,
+    /// Bending at the start (the end takes the opposite sign).
+    pub bending: SectionComponents,
+    /// Von Mises stress of the membrane tensor, and of membrane + bending at the start and at
+    /// the end.
+    pub membrane_equivalent: f64,
+    pub membrane_plus_bending_equivalent: [f64; 2],
+    /// Total stress (section axes) at the start and at the end.
+    pub total: [SectionComponents; 2],
+}
+
+/// Rotates the stress [rr, zz, tt, rz] into the axes of a section running along `d` (unit).
+pub fn section_components(s: &[f64; 4], d: [f64; 2]) -> SectionComponents {
+    let m = [-d[1], d[0]];
+    let along = |u: [f64; 2], v: [f64; 2]| u[0] * (s[0] * v[0] + s[3] * v[1]) + u[1] * (s[3] * v[0] + s[1] * v[1]);
+    [along(d, d), along(m, m), s[2], along(d, m)]
+}
+
+/// Back to [rr-like, zz-like, tt, rz-like] in the section's axes (normal as rr, meridional as
+/// zz), for the von Mises stress, which does not care about the axes.
+fn as_tensor(c: &SectionComponents) -> [f64; 4] {
+    [c[0], c[1], c[2], c[3]]
+}
+
+/// Linearises the stress along the section from `a` to `b` (r, z in mm), sampling `stress_at`
+/// (the stress [rr, zz, tt, rz] at a point, None outside the model) at `intervals` + 1 points
+/// (Simpson's rule; `intervals` even). An error names the first point outside the model.
+pub fn linearize(a: [f64; 2], b: [f64; 2], intervals: usize, stress_at: impl Fn([f64; 2]) -> Option<[f64; 4]>) -> Result<Linearized, String> {
+    let t = (b[0] - a[0]).hypot(b[1] - a[1]);
+    if !(t > 0.0 && t.is_finite()) {
+        return Err(format!("the section's ends ({}, {}) and ({}, {}) must differ", a[0], a[1], b[0], b[1]));
+    }
+    let n = intervals.max(2) + intervals % 2;
+    let d = [(b[0] - a[0]) / t, (b[1] - a[1]) / t];
+    let mut membrane = [0.0; 4];
+    let mut moment = [0.0; 4];
+    let mut total = [[0.0; 4]; 2];
+    for k in 0..=n {
+        let x = t * k as f64 / n as f64;
+        let p = [a[0] + x * d[0], a[1] + x * d[1]];
+        let s = stress_at(p).ok_or_else(|| format!("the section point ({:.6}, {:.6}) lies in no element", p[0], p[1]))?;
+        let c = section_components(&s, d);
+        let w = if k == 0 || k == n {
+            1.0
+        } else if k % 2 == 1 {
+            4.0
+        } else {
+            2.0
+        } * (t / n as f64)
+            / 3.0;
+        for i in 0..4 {
+            membrane[i] += w * c[i];
+            moment[i] += w * c[i] * (0.5 * t - x);
+        }
+        if k == 0 {
+            total[0] = c;
+        }
+        if k == n {
+            total[1] = c;
+        }
+    }
+    let membrane = membrane.map(|v| v / t);
+    let bending = moment.map(|v| 6.0 * v / (t * t));
+    let start: [f64; 4] = std::array::from_fn(|i| membrane[i] + bending[i]);
+    let end: [f64; 4] = std::array::from_fn(|i| membrane[i] - bending[i]);
+    Ok(Linearized {
+        thickness: t,
+        membrane,
+        bending,
+        membrane_equivalent: von_mises(&as_tensor(&membrane)),
+        membrane_plus_bending_equivalent: [von_mises(&as_tensor(&start)), von_mises(&as_tensor(&end))],
+        total,
+    })
+}
+
+/// The stress anywhere in a mesh from its Gauss-point values: the element holding the point
+/// (reference coordinates), its Gauss values carried to its nodes (the biquadratic fit, as the
+/// nodal output does) and interpolated there, so within an element the field is the fitted one.
+pub struct StressSampler<'a> {
+    coords: &'a [[f64; 2]],
+    elements: &'a [[usize; 8]],
+    /// Per element, the stress [rr, zz, tt, rz] at its 8 nodes.
+    nodal: Vec<[[f64; 4]; 8]>,
+    /// Per element, its bounding box (r0, z0, r1, z1).
+    boxes: Vec<[f64; 4]>,
+}
+
+impl<'a> StressSampler<'a> {
+    /// `stress` per element: [rr, zz, tt, rz] at the 3 x 3 Gauss points.
+    pub fn new(coords: &'a [[f64; 2]], elements: &'a [[usize; 8]], stress: &[[[f64; 4]; 9]]) -> Self {
+        let m = gauss_to_nodes();
+        let nodal = stress.iter().map(|g| std::array::from_fn(|a| std::array::from_fn(|c| (0..9).map(|q| m[a][q] * g[q][c]).sum()))).collect();
+        let boxes = elements
+            .iter()
+            .map(|e| {
+                e.iter().fold([f64::INFINITY, f64::INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY], |b, &n| {
+                    let x = coords[n];
+                    [b[0].min(x[0]), b[1].min(x[1]), b[2].max(x[0]), b[3].max(x[1])]
+                })
+            })
+            .collect();
+        StressSampler { coords, elements, nodal, boxes }
+    }
+
+    /// The stress at `p`, None outside every element.
+    pub fn at(&self, p: [f64; 2]) -> Option<[f64; 4]> {
+        for (e, bx) in self.boxes.iter().enumerate() {
+            let tol = 1e-9 * (bx[2] - bx[0]).max(bx[3] - bx[1]);
+            if p[0] < bx[0] - tol || p[0] > bx[2] + tol || p[1] < bx[1] - tol || p[1] > bx[3] + tol {
+                continue;
+            }
+            let x: [[f64; 2]; 8] = self.elements[e].map(|n| self.coords[n]);
+            if let Some(xi) = inverse_map(&x, p) {
+                let (n, _) = q8(xi);
+                return Some(std::array::from_fn(|c| (0..8).map(|a| n[a] * self.nodal[e][a][c]).sum()));
+            }
+        }
+        None
+    }
+}
+
+/// The element coordinates (xi, eta) of `p` in the Q8 element `x`, if it lies inside.
+fn inverse_map(x: &[[f64; 2]; 8], p: [f64; 2]) -> Option<[f64; 2]> {
+    let mut xi = [0.0f64; 2];
+    for _ in 0..30 {
+        let (n, d) = q8(xi);
+        let pos: [f64; 2] = std::array::from_fn(|c| (0..8).map(|a| n[a] * x[a][c]).sum());
+        let r = [p[0] - pos[0], p[1] - pos[1]];
+        // J[c][k] = d x_c / d xi_k
+        let j: [[f64; 2]; 2] = std::array::from_fn(|c| std::array::from_fn(|k| (0..8).map(|a| d[a][k] * x[a][c]).sum()));
+        let det = j[0][0] * j[1][1] - j[0][1] * j[1][0];
+        if det.abs() < 1e-300 {
+            return None;
+        }
+        let step = [(j[1][1] * r[0] - j[0][1] * r[1]) / det, (-j[1][0] * r[0] + j[0][0] * r[1]) / det];
+        xi = [xi[0] + step[0], xi[1] + step[1]];
+        if xi[0].abs() > 3.0 || xi[1].abs() > 3.0 {
+            return None;
+        }
+        if step[0].abs().max(step[1].abs()) < 1e-13 {
+            let inside = xi[0].abs() <= 1.0 + 1e-9 && xi[1].abs() <= 1.0 + 1e-9;
+            return inside.then_some(xi);
+        }
+    }
+    None
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_linear_distribution_is_all_membrane_and_bending_and_rotates_with_the_section() {
+        // sigma_zz = 10 + 4 (r - 2) across r in [2, 4], from 10 to 18: membrane 14, bending (its
+        // linear part at the start) 10 - 14 = -4
+        let field = |p: [f64; 2]| Some([1.0, 10.0 + 4.0 * (p[0] - 2.0), 3.0, 0.5]);
+        let l = linearize([2.0, 1.0], [4.0, 1.0], 20, field).unwrap();
+        assert!((l.thickness - 2.0).abs() < 1e-15);
+        // along r: normal = rr, meridional = zz, shear = rz
+        assert!((l.membrane[1] - 14.0).abs() < 1e-12 && (l.bending[1] + 4.0).abs() < 1e-12, "{l:?}");
+        assert!((l.membrane[0] - 1.0).abs() < 1e-12 && l.bending[0].abs() < 1e-12 && (l.membrane[3] - 0.5).abs() < 1e-12);
+        // the same section walked backwards: the bending flips sign at the (new) start
+        let back = linearize([4.0, 1.0], [2.0, 1.0], 20, field).unwrap();
+        assert!((back.bending[1] - 4.0).abs() < 1e-12 && (back.membrane[1] - 14.0).abs() < 1e-12);
+        // a section along z: the normal is zz
+        let c = section_components(&[1.0, 2.0, 3.0, 0.5], [0.0, 1.0]);
+        assert_eq!(c, [2.0, 1.0, 3.0, -0.5]);
+    }
+
+    #[test]
+    fn the_sampler_interpolates_a_quadratic_field_exactly_and_says_when_outside() {
+        // one Q8 over [1, 3] x [0, 2], Gauss values of s = r^2 (the biquadratic fit holds it)
+        let coords = [[1.0, 0.0], [3.0, 0.0], [3.0, 2.0], [1.0, 2.0], [2.0, 0.0], [3.0, 1.0], [2.0, 2.0], [1.0, 1.0]];
+        let elements = [[0, 1, 2, 3, 4, 5, 6, 7]];
+        let g = 0.6f64.sqrt();
+        let pts = [-g, 0.0, g];
+        let stress: [[f64; 4]; 9] = std::array::from_fn(|q| {
+            let (i, _) = (q % 3, q / 3);
+            let r = 2.0 + pts[i];
+            [r * r, 0.0, 0.0, 0.0]
+        });
+        let s = StressSampler::new(&coords, &elements, &[stress]);
+        for r in [1.0, 1.7, 2.5, 3.0] {
+            let v = s.at([r, 0.3]).unwrap();
+            assert!((v[0] - r * r).abs() < 1e-12, "{r}: {v:?}");
+        }
+        assert!(s.at([3.5, 1.0]).is_none());
+    }
+}
