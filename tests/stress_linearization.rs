@@ -7,6 +7,7 @@
 //!   u_z = k r^2 / 2 + nu k z^2 / (1 - nu) held on its rim, which the quadratic elements hold
 //!   exactly): through its thickness the membrane part is zero and the bending part of
 //!   sigma_rr = sigma_tt = -E k z / (1 - nu) is E k t / (2 (1 - nu)).
+//!
 //! Also `slideline post --linearize` prints the same numbers, and a section leaving the model
 //! is refused with its point named.
 
