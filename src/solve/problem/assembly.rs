@@ -224,15 +224,15 @@ impl Problem<'_, '_> {
             us.push(u);
         }
         self.kept = kept;
-        // the pressure loads, also kept apart (the energy audit's external work)
-        let mut pressure_loads = Vec::new();
+        // the pressure loads, also kept apart (the energy audit's external work; the sink
+        // closure holds only `fields.nodal_force`)
         for (k, local, p) in self.pressure_edges() {
             let f = compute_pressure_load(&self.edge_positions(k, &local, &us[k]), p);
             let conn = &self.model.mesh.elements[self.elements[k].element];
             for (j, &a) in local.iter().enumerate() {
                 for c in 0..2 {
                     sink(conn[a], c, -f[j][c]);
-                    pressure_loads.push((conn[a], c, f[j][c]));
+                    fields.pressure_force[conn[a]][c] += f[j][c];
                 }
             }
         }
@@ -247,9 +247,6 @@ impl Problem<'_, '_> {
             roundoff += contact.roundoff_squares();
         }
         self.roundoff = roundoff;
-        for (node, c, f) in pressure_loads {
-            fields.pressure_force[node][c] += f;
-        }
         Ok(())
     }
 }
