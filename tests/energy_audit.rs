@@ -81,36 +81,10 @@ fn the_plastic_cylinder_balances_its_work_with_elastic_energy_and_plastic_work()
 
 #[test]
 fn a_pushed_shrink_fit_turns_the_push_into_friction() {
-    let deck = r#"[[mesh.block]]
-name = "tube"
-r = [100.0, 110.0]
-z = [0.0, 4.0]
-divisions = [6, 4]
-[[mesh.block]]
-name = "ring"
-r = [109.95, 125.0]
-z = [0.0, 4.0]
-divisions = [9, 4]
-[[material]]
-name = "steel"
-youngs_modulus = 200000.0
-poissons_ratio = 0.3
-[[contact]]
-name = "fit"
-slave = "ring_inner"
-master = "tube_outer"
-penalty = 1.0e5
-friction = 0.2
-[[step]]
-name = "fit"
-increments = 1
-boundary = [ { set = "tube_bottom", uz = 0.0 }, { set = "tube_top", uz = 0.0 }, { set = "ring_bottom", uz = 0.0 }, { set = "ring_top", uz = 0.0 } ]
-[[step]]
-name = "push"
-increments = 40
-boundary = [ { set = "ring_bottom", uz = 2.0e-4 }, { set = "ring_top", uz = 2.0e-4 } ]
-"#;
-    let run = run_deck(deck, &[], 1, &[]);
+    // the fit and push of tests/friction.rs, segment-integrated, in 40 increments
+    let deck = common::pushed_fit_deck(2.0e-4, 40, "friction = 0.2", r#"{ set = "tube_bottom", uz = 0.0 }, { set = "tube_top", uz = 0.0 }"#)
+        .replace("integration = \"node-to-segment\"\n", "");
+    let run = run_deck(&deck, &[], 1, &[]);
     run.assert_ok();
     let r = Results::open(&run.h5);
     let rows = audit(&r);

@@ -8,7 +8,7 @@
 //! rank test lets it deform.)
 
 mod common;
-use common::{run_deck, Results};
+use common::{pushed_fit_deck as deck_with, run_deck, Results};
 
 const MU: f64 = 0.2;
 
@@ -19,41 +19,6 @@ fn deck(push: f64, increments: usize, friction: &str) -> String {
 }
 
 const RIGID_TUBE: &str = r#"{ set = "tube", ur = 0.0, uz = 0.0 }"#;
-
-fn deck_with(push: f64, increments: usize, friction: &str, tube: &str) -> String {
-    format!(
-        r#"[[mesh.block]]
-name = "tube"
-r = [100.0, 110.0]
-z = [0.0, 4.0]
-divisions = [6, 4]
-[[mesh.block]]
-name = "ring"
-r = [109.95, 125.0]
-z = [0.0, 4.0]
-divisions = [9, 4]
-[[material]]
-name = "steel"
-youngs_modulus = 200000.0
-poissons_ratio = 0.3
-[[contact]]
-name = "fit"
-slave = "ring_inner"
-master = "tube_outer"
-integration = "node-to-segment"
-penalty = 1.0e5
-{friction}
-[[step]]
-name = "fit"
-increments = 1
-boundary = [ {tube}, {{ set = "ring_bottom", uz = 0.0 }}, {{ set = "ring_top", uz = 0.0 }} ]
-[[step]]
-name = "push"
-increments = {increments}
-boundary = [ {{ set = "ring_bottom", uz = {push} }}, {{ set = "ring_top", uz = {push} }} ]
-"#
-    )
-}
 
 /// (push force, normal force) per radian and the number of sliding nodes, per increment.
 fn push_history(r: &Results) -> Vec<(f64, f64, usize)> {

@@ -111,17 +111,23 @@ impl Engagement {
         dp_per_gap: f64,
     ) {
         let slots = self.friction_nodes(node, edge, reference, samples, residual);
+        self.sum_gradient(samples, dp_per_gap);
+        self.recipe = TangentRecipe::FrictionIntegrated { recipe, slots, pressure };
+    }
+
+    /// `gradient` = `scale` times the sum of the samples' gap gradients, over `nodes` (which
+    /// hold every sample's nodes).
+    fn sum_gradient(&mut self, samples: &[GapSample], scale: f64) {
         self.gradient.clear();
         self.gradient.resize(2 * self.nodes.len(), 0.0);
         for s in samples {
             let sg = s.gradient();
             for (a, &n) in s.nodes.iter().enumerate() {
                 let at = position_in(&self.nodes, n);
-                self.gradient[2 * at] += dp_per_gap * sg[2 * a];
-                self.gradient[2 * at + 1] += dp_per_gap * sg[2 * a + 1];
+                self.gradient[2 * at] += scale * sg[2 * a];
+                self.gradient[2 * at + 1] += scale * sg[2 * a + 1];
             }
         }
-        self.recipe = TangentRecipe::FrictionIntegrated { recipe, slots, pressure };
     }
 
     /// Lists the friction kernel's 7 nodes (shared ones once) and then the samples' other nodes
@@ -161,16 +167,7 @@ impl Engagement {
         self.recipe = TangentRecipe::Integrated { stiffness, weighted_pressure };
         sample_nodes(node, samples, &mut self.nodes);
         refill(&mut self.samples, samples.iter().copied());
-        self.gradient.clear();
-        self.gradient.resize(2 * self.nodes.len(), 0.0);
-        for s in samples {
-            let sg = s.gradient();
-            for (a, &n) in s.nodes.iter().enumerate() {
-                let at = position_in(&self.nodes, n);
-                self.gradient[2 * at] += sg[2 * a];
-                self.gradient[2 * at + 1] += sg[2 * a + 1];
-            }
-        }
+        self.sum_gradient(samples, 1.0);
         refill(&mut self.residual, self.gradient.iter().map(|v| -weighted_pressure * v));
         self.tangent.clear();
     }

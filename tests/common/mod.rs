@@ -266,3 +266,42 @@ pub fn assert_continues(full: &Path, continued: &Path, from: usize) {
     }
     assert!(b.file.attr("restarted_from").is_ok());
 }
+
+/// A ring (r 109.95..125) shrunk on a tube (r 100..110, 0.05 mm interference), both 4 mm
+/// long, node-to-segment penalty contact 1e5 with `friction` lines; step 1 fits it with both
+/// faces of each held axially (`tube` holds the tube), step 2 pushes the ring's faces by `push`
+/// mm in `increments` increments.
+pub fn pushed_fit_deck(push: f64, increments: usize, friction: &str, tube: &str) -> String {
+    format!(
+        r#"[[mesh.block]]
+name = "tube"
+r = [100.0, 110.0]
+z = [0.0, 4.0]
+divisions = [6, 4]
+[[mesh.block]]
+name = "ring"
+r = [109.95, 125.0]
+z = [0.0, 4.0]
+divisions = [9, 4]
+[[material]]
+name = "steel"
+youngs_modulus = 200000.0
+poissons_ratio = 0.3
+[[contact]]
+name = "fit"
+slave = "ring_inner"
+master = "tube_outer"
+integration = "node-to-segment"
+penalty = 1.0e5
+{friction}
+[[step]]
+name = "fit"
+increments = 1
+boundary = [ {tube}, {{ set = "ring_bottom", uz = 0.0 }}, {{ set = "ring_top", uz = 0.0 }} ]
+[[step]]
+name = "push"
+increments = {increments}
+boundary = [ {{ set = "ring_bottom", uz = {push} }}, {{ set = "ring_top", uz = {push} }} ]
+"#
+    )
+}
