@@ -78,53 +78,26 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
         partition.size,
         options.output.display()
     ));
-    let mut displacement = vec![[0.0; 2]; nodes];
-    let mut history = initial_history(model, &partition);
-    let mut carry = None;
+    let (carried, mut resumed) = match resume {
+        None => (Carried::fresh(model, &partition), None),
+        Some(point) => {
+            progress.note(&format!(
+                "restart: continuing {} from increment #{} (step {}, load factor {})",
+                point.file.display(),
+                point.number,
+                point.step + 1,
+                point.load_factor
+            ));
+            let (carried, at) = Carried::restored(model, &partition, point, &mut results)?;
+            (carried, Some(at))
+        }
+    };
+    let Carried { mut displacement, mut history, mut carry, mut rows, mut previous, mut audit, wall_before } = carried;
     let (mut reserved_couplings, mut pattern_refits) = (0usize, 0usize);
-    let mut rows = Vec::new();
-    let mut previous: Option<StepLoads> = None;
-    let mut audit = EnergyAudit::new(nodes, model.reference_temperature);
-    // a restart: the state of its increment, and where the stepping stood
-    let mut first_step = 0;
-    let mut resumed: Option<(Vec<[f64; 2]>, f64, f64, usize)> = None;
-    let mut wall_before = 0.0;
-    if let Some(point) = resume {
-        progress.note(&format!(
-            "restart: continuing {} from increment #{} (step {}, load factor {})",
-            point.file.display(),
-            point.number,
-            point.step + 1,
-            point.load_factor
-        ));
-        results.continue_history(&point.file, &point.rows)?;
-        wall_before = point.rows.last().map_or(0.0, |(_, r)| r.wall_time);
-        rows = point.rows.iter().map(|(_, r)| r.clone()).collect();
-        let zeros = vec![[0.0; 2]; nodes];
-        for k in 0..point.step {
-            previous = Some(StepLoads::new(model, k, previous.as_ref(), if k == 0 { &zeros } else { &point.step_ends[k - 1] }));
-        }
-        history = restored_history(model, &partition, &point);
-        if let Some(energy) = point.rows.last().and_then(|(_, r)| r.energy) {
-            audit = EnergyAudit { totals: energy, last: point.audit.clone(), starts_overlapping: false };
-        }
-        if !model.contacts.is_empty() {
-            let mine = |r: usize| if point.ranks == partition.size { r == partition.rank } else { r % partition.size == partition.rank };
-            let pattern = ContactPattern::restored(point.pattern.iter().filter(|p| mine(p.0)).map(|p| (p.1, p.2)), point.refits);
-            carry = Some(ContactCarry {
-                multipliers: CarriedMultipliers::ByNode(point.multipliers.clone()),
-                pattern,
-                slip: CarriedSlip::ByNode(point.slip.clone()),
-            });
-        }
-        first_step = point.step;
-        let step_start = if point.step == 0 { zeros } else { point.step_ends[point.step - 1].clone() };
-        resumed = Some((step_start, point.load_factor, point.next_size, point.increment));
-        displacement = point.displacement;
-    }
+    let first_step = resumed.as_ref().map_or(0, |r| r.step);
     for (s, step) in model.steps.iter().enumerate().skip(first_step) {
         let resumed_here = resumed.take();
-        let loads = StepLoads::new(model, s, previous.as_ref(), resumed_here.as_ref().map_or(&displacement, |r| &r.0));
+        let loads = StepLoads::new(model, s, previous.as_ref(), resumed_here.as_ref().map_or(&displacement, |r| &r.step_start));
         let prescribed = loads.prescribed_mask(nodes);
         let dofs = DofMap::new(&partition, &prescribed)?;
         let mut x = Vector::mpi(session, comm, dofs.local_len())?;
@@ -151,7 +124,7 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
         }
         let requested = 1.0 / step.increments as f64;
         let (mut lambda, mut size, mut increment, mut cutbacks) = match resumed_here {
-            Some((_, lambda, size, increment)) => (lambda, size.min(requested), increment, 0usize),
+            Some(r) => (r.load_factor, r.size.min(requested), r.increment, 0usize),
             None => (0.0f64, requested, 0usize, 0usize),
         };
         while lambda < 1.0 {
@@ -335,6 +308,86 @@ fn audit_increment(
     let elements = ElementEnergy { elastic: total[0], plastic_work: total[1], thermal_power: total[2] };
     let temperature = model.reference_temperature + load.temperature_change;
     audit.record(residual, prescribed, &pressure, displacement, elements, [total[3], total[4], total[5]], temperature)
+}
+
+/// What the run carries from one step to the next: the displacement of every node, this rank's
+/// elements' history, contact's committed state and pattern, the history rows, the last step's
+/// loads, the energy audit, and the wall time of the run it continues.
+struct Carried {
+    displacement: Vec<[f64; 2]>,
+    history: History,
+    carry: Option<ContactCarry>,
+    rows: Vec<HistoryRow>,
+    previous: Option<StepLoads>,
+    audit: EnergyAudit,
+    wall_before: f64,
+}
+
+/// Where a restart puts the stepping: the step (0-based), the displacement at its start (its
+/// newly prescribed values ramp from there), the load factor reached, the next increment's size
+/// and the increments the step has taken.
+struct ResumeAt {
+    step: usize,
+    step_start: Vec<[f64; 2]>,
+    load_factor: f64,
+    size: f64,
+    increment: usize,
+}
+
+impl Carried {
+    fn fresh(model: &Model, partition: &Partition) -> Self {
+        let nodes = model.mesh.coords.len();
+        Carried {
+            displacement: vec![[0.0; 2]; nodes],
+            history: initial_history(model, partition),
+            carry: None,
+            rows: Vec::new(),
+            previous: None,
+            audit: EnergyAudit::new(nodes, model.reference_temperature),
+            wall_before: 0.0,
+        }
+    }
+
+    /// The state at a restart point, its history rows copied into `results`.
+    fn restored(model: &Model, partition: &Partition, point: RestartPoint, results: &mut ResultsFile) -> Result<(Self, ResumeAt)> {
+        let nodes = model.mesh.coords.len();
+        results.continue_history(&point.file, &point.rows)?;
+        let zeros = vec![[0.0; 2]; nodes];
+        let mut previous = None;
+        for k in 0..point.step {
+            previous = Some(StepLoads::new(model, k, previous.as_ref(), if k == 0 { &zeros } else { &point.step_ends[k - 1] }));
+        }
+        let mut audit = EnergyAudit::new(nodes, model.reference_temperature);
+        if let Some(energy) = point.rows.last().and_then(|(_, r)| r.energy) {
+            audit = EnergyAudit { totals: energy, last: point.audit.clone(), starts_overlapping: false };
+        }
+        let carry = (!model.contacts.is_empty()).then(|| {
+            // each rank its own couplings on as many ranks as wrote them, shared out otherwise
+            let mine = |r: usize| if point.ranks == partition.size { r == partition.rank } else { r % partition.size == partition.rank };
+            ContactCarry {
+                multipliers: CarriedMultipliers::ByNode(point.multipliers.clone()),
+                pattern: ContactPattern::restored(point.pattern.iter().filter(|p| mine(p.0)).map(|p| (p.1, p.2)), point.refits),
+                slip: CarriedSlip::ByNode(point.slip.clone()),
+            }
+        });
+        let at = ResumeAt {
+            step: point.step,
+            step_start: if point.step == 0 { zeros } else { point.step_ends[point.step - 1].clone() },
+            load_factor: point.load_factor,
+            size: point.next_size,
+            increment: point.increment,
+        };
+        let carried = Carried {
+            history: restored_history(model, partition, &point),
+            carry,
+            rows: point.rows.iter().map(|(_, r)| r.clone()).collect(),
+            previous,
+            audit,
+            wall_before: point.rows.last().map_or(0.0, |(_, r)| r.wall_time),
+            displacement: point.displacement,
+        };
+        Ok((carried, at))
+    }
 }
 
 /// Reads the restart point (every rank, serially), refusing to overwrite the file it reads.
