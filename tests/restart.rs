@@ -158,3 +158,15 @@ fn restarts_that_cannot_continue_the_run_are_refused() {
         command_in(dir.path(), 1).current_dir(dir.path()).args(["run", deck.to_str().unwrap(), "--restart", "full.h5", "-o", "other.h5"]).output().unwrap();
     refused(out, "cannot restart from full.h5: its mesh has");
 }
+
+#[test]
+fn a_finished_compression_carried_on_with_a_cycle_equals_the_cycle_run() {
+    // `bellows --restart FILE --cycle`: the file's joint with a return step added, continued
+    // from the end of the compression; the same as running the cycle at once
+    let dir = tempfile::tempdir().unwrap();
+    ok(bellows(dir.path(), 1, &["-o", "compressed.h5"]));
+    ok(bellows(dir.path(), 1, &["--cycle", "-o", "cycle.h5"]));
+    ok(bellows_restart(dir.path(), 1, "compressed.h5", &["--cycle", "-o", "carried.h5"]));
+    let held = Results::open(&dir.path().join("compressed.h5")).history("step").len();
+    assert_continues(&dir.path().join("cycle.h5"), &dir.path().join("carried.h5"), held);
+}
