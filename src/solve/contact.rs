@@ -420,6 +420,8 @@ impl ContactAssembly {
             if closed {
                 self.roundoff += (ROUNDOFF_ULPS * f64::EPSILON * eps * area * xs[0].hypot(xs[1])).powi(2);
                 out.next_slot().set_nodal(node, en, residual.as_slice(), xs, en.map(x), proj, law);
+                // eps g^2 A / 2 = -g F / 2 (a penalty: the multiplier's part is left out)
+                state.normal_energy = -0.5 * proj.gap * state.force;
             }
             // a node without a reference (beyond reach when the increment started) slides freely
             // in this increment and has one from the next on
@@ -432,10 +434,6 @@ impl ContactAssembly {
                 self.slip_trial[p][k] = Some(SlipPoint { edge, xi: proj.xi, traction: slip.traction });
                 (state.shear, state.sliding) = (slip.traction, slip.slipping);
                 (state.friction_stored, state.friction_dissipated) = (slip.stored, slip.dissipated);
-            }
-            if closed {
-                // eps g^2 A / 2 = -g F / 2 (a penalty: the multiplier's part is left out)
-                state.normal_energy = -0.5 * proj.gap * state.force;
             }
             self.states[p][k] = state;
         }
