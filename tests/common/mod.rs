@@ -224,24 +224,11 @@ pub fn assert_rejected(run: &Run, needles: &[&str]) {
 
 /// Every dataset under `group` of `a` and `b`, compared bit for bit (floats by their bits).
 pub fn assert_same_datasets(a: &hdf5::Group, b: &hdf5::Group) {
-    assert_datasets_within(a, b, 0.0);
-}
-
-/// Floats equal to `relative` of the dataset's largest magnitude (0: bit for bit); integers
-/// equal.
-fn same_within(p: &[f64], q: &[f64], relative: f64) -> bool {
-    let scale = p.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-    p.len() == q.len() && p.iter().zip(q).all(|(u, v)| u.to_bits() == v.to_bits() || (relative > 0.0 && (u - v).abs() <= relative * scale))
-}
-
-/// Every dataset under `group` of `a` and `b`: floats to `relative` (see `same_within`),
-/// integers exactly.
-pub fn assert_datasets_within(a: &hdf5::Group, b: &hdf5::Group, relative: f64) {
     let names = a.member_names().unwrap();
     assert_eq!(names, b.member_names().unwrap(), "{}: members", a.name());
     for name in names {
         if let Ok(g) = a.group(&name) {
-            assert_datasets_within(&g, &b.group(&name).unwrap(), relative);
+            assert_same_datasets(&g, &b.group(&name).unwrap());
             continue;
         }
         let (x, y) = (a.dataset(&name).unwrap(), b.dataset(&name).unwrap());
@@ -250,7 +237,7 @@ pub fn assert_datasets_within(a: &hdf5::Group, b: &hdf5::Group, relative: f64) {
         match x.dtype().unwrap().to_descriptor().unwrap() {
             TypeDescriptor::Float(_) => {
                 let (p, q) = (x.read_raw::<f64>().unwrap(), y.read_raw::<f64>().unwrap());
-                assert!(same_within(&p, &q, relative), "{what} differs");
+                assert!(p.iter().zip(&q).all(|(u, v)| u.to_bits() == v.to_bits()), "{what} differs");
             }
             TypeDescriptor::Unsigned(hdf5::types::IntSize::U1) => assert_eq!(x.read_raw::<u8>().unwrap(), y.read_raw::<u8>().unwrap(), "{what}"),
             TypeDescriptor::Unsigned(_) => assert_eq!(x.read_raw::<u64>().unwrap(), y.read_raw::<u64>().unwrap(), "{what}"),
@@ -262,25 +249,20 @@ pub fn assert_datasets_within(a: &hdf5::Group, b: &hdf5::Group, relative: f64) {
 /// `continued` (restarted from increment `from`) holds the uninterrupted run's history (but
 /// the wall time) and, from increment from + 1 on, its increments bit for bit.
 pub fn assert_continues(full: &Path, continued: &Path, from: usize) {
-    assert_continues_within(full, continued, from, 0.0);
-}
-
-/// `assert_continues` with floats equal to `relative` of each column's or dataset's largest
-/// magnitude (0: bit for bit).
-pub fn assert_continues_within(full: &Path, continued: &Path, from: usize, relative: f64) {
     let (a, b) = (Results::open(full), Results::open(continued));
     let columns = a.file.group("history").unwrap().member_names().unwrap();
     assert_eq!(columns, b.file.group("history").unwrap().member_names().unwrap());
     for name in columns.iter().filter(|c| *c != "wall_time") {
         let (x, y) = (a.history(name), b.history(name));
-        assert!(same_within(&x, &y, relative), "history {name}: {x:?} vs {y:?}");
+        let same = x.len() == y.len() && x.iter().zip(&y).all(|(p, q)| p.to_bits() == q.to_bits());
+        assert!(same, "history {name}: {x:?} vs {y:?}");
     }
     let later: Vec<String> = a.file.group("increments").unwrap().member_names().unwrap().into_iter().filter(|n| n.parse::<usize>().unwrap() > from).collect();
     assert!(!later.is_empty(), "the run went on after {from}");
     assert_eq!(b.file.group("increments").unwrap().member_names().unwrap(), later, "the continued file holds the increments after the restart");
     for name in &later {
         let g = format!("increments/{name}");
-        assert_datasets_within(&a.file.group(&g).unwrap(), &b.file.group(&g).unwrap(), relative);
+        assert_same_datasets(&a.file.group(&g).unwrap(), &b.file.group(&g).unwrap());
     }
     assert!(b.file.attr("restarted_from").is_ok());
 }
