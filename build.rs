@@ -114,6 +114,8 @@ const FUNCTIONS: &[&str] = &[
     "SNESGetConvergenceHistory",
     "SNESSolve",
     "SNESGetConvergedReason",
+    "SNESGetSolution",
+    "SNESGetFunction",
     "SNESGetIterationNumber",
     "SNESGetLinearSolveIterations",
     "SNESSetFunctionDomainError",

@@ -5,7 +5,7 @@ use criterion::{black_box, criterion_group, criterion_main, Criterion, Throughpu
 use slideline::ad::Dual;
 use slideline::element::pressure::{compute_pressure_load, pressure_load_stiffness};
 use slideline::element::solid::{compute_solid, solid_tangent, ElementGeometry, SolidInput};
-use slideline::material::{Kinematics, PointState, J2};
+use slideline::material::{Kinematics, PointState, SurfaceBranch, J2};
 
 fn kernels(c: &mut Criterion) {
     let x = [[10.0, 0.0], [12.5, 0.3], [12.0, 2.2], [9.7, 2.0], [11.2, 0.1], [12.3, 1.3], [10.9, 2.15], [9.9, 1.0]];
@@ -14,7 +14,7 @@ fn kernels(c: &mut Criterion) {
     let m = J2::plastic(200e3, 0.3, 1.2e-5, 300.0, 1000.0);
     let geometry = ElementGeometry::new(&x).unwrap();
     let committed = [PointState::initial(Kinematics::Finite); 9];
-    let input = SolidInput { geometry: &geometry, material: &m, kinematics: Kinematics::Finite, temperature_change: 10.0, committed: &committed };
+    let input = SolidInput { geometry: &geometry, material: &m, kinematics: Kinematics::Finite, temperature_change: 10.0, committed: &committed, surface: SurfaceBranch::Elastic };
 
     let mut g = c.benchmark_group("material");
     g.throughput(Throughput::Elements(1));

@@ -29,7 +29,7 @@
 use crate::ad::Dual;
 use crate::fe::axisymmetric::{map_point, PointGeometry};
 use crate::fe::quadrature::square_3x3;
-use crate::material::{Kinematics, PointState, J2};
+use crate::material::{Kinematics, PointState, SurfaceBranch, J2};
 use nalgebra::{Matrix3, SMatrix, SVector, Vector3};
 
 pub const NODES: usize = 8;
@@ -193,6 +193,8 @@ pub struct SolidInput<'a> {
     pub temperature_change: f64,
     /// History of the last converged increment (read, never written).
     pub committed: &'a [PointState; QUADRATURE_POINTS],
+    /// The response of points on the yield surface (flowing for the load predictor).
+    pub surface: SurfaceBranch,
 }
 
 /// Internal force for nodal displacements `u`, and the material tangents into `tangents` when
@@ -218,7 +220,7 @@ pub fn compute_solid(input: &SolidInput<'_>, u: &[[f64; 2]; NODES], mut tangents
         let w = geo.weights[q];
         let phi: [f64; 5] = if let Some(tangents) = tangents.as_deref_mut() {
             let fd: [Dual<6>; 5] = std::array::from_fn(|i| Dual::variable(f[q][i], i));
-            let up = input.material.update(kin, &fd, Dual::variable(theta[q], 5), input.temperature_change, &input.committed[q])?;
+            let up = input.material.update_on(input.surface, kin, &fd, Dual::variable(theta[q], 5), input.temperature_change, &input.committed[q])?;
             tangents[q] = PointTangent {
                 stress_f: std::array::from_fn(|i| std::array::from_fn(|j| up.phi[i].eps[j] * w)),
                 stress_theta: std::array::from_fn(|i| up.phi[i].eps[5] * w),
@@ -228,7 +230,7 @@ pub fn compute_solid(input: &SolidInput<'_>, u: &[[f64; 2]; NODES], mut tangents
             state[q] = up.state;
             up.phi.map(|p| p.re)
         } else {
-            let up = input.material.update(kin, &f[q], theta[q], input.temperature_change, &input.committed[q])?;
+            let up = input.material.update_on(input.surface, kin, &f[q], theta[q], input.temperature_change, &input.committed[q])?;
             stress[q] = up.cauchy;
             state[q] = up.state;
             up.phi
@@ -337,7 +339,7 @@ mod tests {
                 let (r, z) = (x[a][0], x[a][1]);
                 [amplitude * (0.3 * r - 0.2 * z + 0.05 * z * z), amplitude * (0.5 * r + 0.1 * z - 0.02 * r * z)]
             });
-            let input = SolidInput { geometry: &geometry, material: &STEEL, kinematics: kin, temperature_change: 40.0, committed: &committed };
+            let input = SolidInput { geometry: &geometry, material: &STEEL, kinematics: kin, temperature_change: 40.0, committed: &committed, surface: SurfaceBranch::Elastic };
             let out = compute_solid(&input, &u, None).unwrap();
             assert!(out.state.iter().all(|s| s.ep > 0.0), "{kin:?}: every point should be plastic");
             let err = tangent_error(&input, &u, if kin == Kinematics::Small { 1e-8 } else { 1e-6 });
@@ -350,7 +352,7 @@ mod tests {
         let x = element();
         let geometry = ElementGeometry::new(&x).unwrap();
         let committed = [PointState::initial(Kinematics::Finite); 9];
-        let input = SolidInput { geometry: &geometry, material: &STEEL, kinematics: Kinematics::Finite, temperature_change: 0.0, committed: &committed };
+        let input = SolidInput { geometry: &geometry, material: &STEEL, kinematics: Kinematics::Finite, temperature_change: 0.0, committed: &committed, surface: SurfaceBranch::Elastic };
         // axial translation only (a rotation in the (r, z) plane is not rigid in axisymmetry)
         let u = [[0.0, 3.7]; 8];
         let out = compute_solid(&input, &u, None).unwrap();

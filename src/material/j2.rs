@@ -27,6 +27,24 @@ use crate::ad::Scalar;
 /// Relative tolerance on the yield function below which a trial state counts as elastic.
 pub const YIELD_TOLERANCE: f64 = 1e-10;
 
+/// How far below the yield surface (relative) a trial state still counts as on it when
+/// [`SurfaceBranch::Flowing`] asks: a point that flowed in the last increment is on the
+/// surface to round-off at the converged state; one that unloaded lies below it by far more.
+pub const SURFACE_TOLERANCE: f64 = 1e-6;
+
+/// Which response a trial state on the yield surface (to round-off) takes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum SurfaceBranch {
+    /// Elastic: Newton's first direction of an increment is never softer than the response.
+    #[default]
+    Elastic,
+    /// Flowing (plastic loading, the continuum elasto-plastic tangent at a zero increment):
+    /// the load predictor's tangent at a converged state, since a monotonic load keeps the
+    /// points that flowed flowing. Measured on the default bellows: half the Newton iterations
+    /// of the elastic predictor.
+    Flowing,
+}
+
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Kinematics {
     /// Geometrically linear: small strains and rotations, loads on the reference configuration.
@@ -93,15 +111,28 @@ impl J2 {
     /// temperature change `dt`, from the `committed` history. Fails (a domain error for the
     /// solver) when the deformation is not admissible.
     pub fn update<T: Scalar>(&self, kinematics: Kinematics, f: &[T; 5], theta: T, dt: f64, committed: &PointState) -> Result<Update<T>, String> {
+        self.update_on(SurfaceBranch::Elastic, kinematics, f, theta, dt, committed)
+    }
+
+    /// [`J2::update`] with the given treatment of trial states on the yield surface.
+    pub fn update_on<T: Scalar>(
+        &self,
+        branch: SurfaceBranch,
+        kinematics: Kinematics,
+        f: &[T; 5],
+        theta: T,
+        dt: f64,
+        committed: &PointState,
+    ) -> Result<Update<T>, String> {
         match kinematics {
-            Kinematics::Finite => self.update_finite(f, theta, dt, committed),
-            Kinematics::Small => Ok(self.update_small(f, theta, dt, committed)),
+            Kinematics::Finite => self.update_finite(branch, f, theta, dt, committed),
+            Kinematics::Small => Ok(self.update_small(branch, f, theta, dt, committed)),
         }
     }
 
     /// Radial return on the elastic trial strain `e` ([11, 22, 33, 12], tensor shear).
     /// Returns the stress, the elastic strain after return, and ep.
-    fn return_map<T: Scalar>(&self, e: [T; 4], ep_n: f64) -> ([T; 4], [T; 4], f64) {
+    fn return_map<T: Scalar>(&self, branch: SurfaceBranch, e: [T; 4], ep_n: f64) -> ([T; 4], [T; 4], f64) {
         let (k, g) = (self.bulk_modulus, self.shear_modulus);
         let tr = e[0] + e[1] + e[2];
         let mean = tr / 3.0;
@@ -115,7 +146,13 @@ impl J2 {
             // Elastic predictor: a point on the yield surface to round-off (as every plastic
             // point is at the start of an increment) is elastic, so the first Newton direction
             // of an increment is never softer than the response it predicts.
-            if f.re() > YIELD_TOLERANCE * yield_now {
+            let threshold = match branch {
+                SurfaceBranch::Elastic => YIELD_TOLERANCE,
+                // ep_n > 0: only a point that has yielded can be on the surface
+                SurfaceBranch::Flowing if ep_n > 0.0 => -SURFACE_TOLERANCE,
+                SurfaceBranch::Flowing => YIELD_TOLERANCE,
+            };
+            if f.re() > threshold * yield_now {
                 // the segment of sigma_y(ep) the return ends on (real parts), then dgamma
                 // as an exact function of q_trial on it
                 let (before, _, yield_k, h) = self.hardening.return_segment(q_trial.re(), g, ep_n);
@@ -141,7 +178,7 @@ impl J2 {
         dev2 / (4.0 * self.shear_modulus) + tr * tr / (18.0 * self.bulk_modulus)
     }
 
-    fn update_small<T: Scalar>(&self, f: &[T; 5], theta: T, dt: f64, committed: &PointState) -> Update<T> {
+    fn update_small<T: Scalar>(&self, branch: SurfaceBranch, f: &[T; 5], theta: T, dt: f64, committed: &PointState) -> Update<T> {
         let e = [f[0] - 1.0, f[3] - 1.0, f[4] - 1.0, (f[1] + f[2]) * 0.5];
         // B-bar: the volumetric strain is replaced by the projected one.
         let shift = (theta - (e[0] + e[1] + e[2])) / 3.0;
@@ -149,14 +186,14 @@ impl J2 {
         let ep_n = committed.plastic;
         let bar = [e[0] + shift, e[1] + shift, e[2] + shift, e[3]];
         let trial = [bar[0] - ep_n[0] - th, bar[1] - ep_n[1] - th, bar[2] - ep_n[2] - th, bar[3] - ep_n[3]];
-        let (s, elastic, ep) = self.return_map(trial, committed.ep);
+        let (s, elastic, ep) = self.return_map(branch, trial, committed.ep);
         // unchanged where nothing flowed (bit for bit, so an elastic point's history stays as
         // committed instead of drifting by round-off)
         let plastic = if ep == committed.ep { ep_n } else { std::array::from_fn(|i| trial[i].re() - elastic[i].re() + ep_n[i]) };
         Update { phi: [s[0], s[3], s[3], s[1], s[2]], cauchy: s.map(|v| v.re()), state: PointState { plastic, ep } }
     }
 
-    fn update_finite<T: Scalar>(&self, f: &[T; 5], theta: T, dt: f64, committed: &PointState) -> Result<Update<T>, String> {
+    fn update_finite<T: Scalar>(&self, branch: SurfaceBranch, f: &[T; 5], theta: T, dt: f64, committed: &PointState) -> Result<Update<T>, String> {
         let det2 = f[0] * f[3] - f[1] * f[2];
         let j = det2 * f[4];
         if j.re().is_nan() || j.re() <= 0.0 || theta.re().is_nan() || theta.re() <= 0.0 {
@@ -181,7 +218,7 @@ impl J2 {
         let log_b = log_sym2(&b);
         let shift = (theta / j).ln() * (1.0 / 3.0);
         let trial = [log_b[0] * 0.5 + shift, log_b[1] * 0.5 + shift, b33.ln() * 0.5 + shift, log_b[2] * 0.5];
-        let (tau, elastic, ep) = self.return_map(trial, committed.ep);
+        let (tau, elastic, ep) = self.return_map(branch, trial, committed.ep);
 
         let cauchy = [tau[0], tau[1], tau[2], tau[3]].map(|t| t.re() / theta.re());
         // phi = (J / theta) tau F^-T; in-plane J / det2 = F_tT, in the hoop J / F_tT = det2
@@ -291,6 +328,37 @@ pub(crate) mod tests {
             &PointState { plastic: [1e-3, -5e-4, 0.0, 1e-4], ep: 1e-3 },
         );
         assert!(e < 1e-6, "small-strain plastic: {e:e}");
+    }
+
+    /// The load predictor's tangent at a converged plastic state: with the surface flowing it
+    /// is the one-sided derivative of continued loading (forward differences of real updates
+    /// from that state); the elastic choice is stiffer than that by far.
+    #[test]
+    fn a_flowing_surface_gives_the_tangent_of_continued_loading() {
+        for kin in [Kinematics::Finite, Kinematics::Small] {
+            // stretched past yield in z, then committed: the point is on its yield surface
+            let s = 1.004;
+            let l = 1.0 - 0.5 * (s - 1.0);
+            let f = [l, 0.0, 0.0, s, l];
+            let theta = if kin == Kinematics::Finite { det(&f) } else { f[0] + f[3] + f[4] - 3.0 };
+            let state = STEEL.update(kin, &f, theta, 0.0, &PointState::initial(kin)).unwrap().state;
+            assert!(state.ep > 5e-4, "{kin:?}: plastic expected, ep = {}", state.ep);
+            let vars: [Dual<6>; 6] = std::array::from_fn(|i| Dual::variable(if i < 5 { f[i] } else { theta }, i));
+            let tangent = |branch| STEEL.update_on(branch, kin, &[vars[0], vars[1], vars[2], vars[3], vars[4]], vars[5], 0.0, &state).unwrap().phi;
+            let (flowing, elastic) = (tangent(SurfaceBranch::Flowing), tangent(SurfaceBranch::Elastic));
+            // continued loading: f_zz and theta grow as in the stretch that yielded the point
+            let h = 1e-7;
+            let (dzz, dth) = if kin == Kinematics::Finite { (h, det(&[l, 0.0, 0.0, s + h, l]) - theta) } else { (h, h) };
+            let mut g = f;
+            g[3] += dzz;
+            let ahead = STEEL.update(kin, &g, theta + dth, 0.0, &state).unwrap().phi;
+            let here = STEEL.update(kin, &f, theta, 0.0, &state).unwrap().phi;
+            let fd = (ahead[3] - here[3]) / h;
+            let along = |phi: &[Dual<6>; 5]| phi[3].eps[3] + phi[3].eps[5] * dth / dzz;
+            let scale = along(&elastic).abs();
+            assert!((along(&flowing) - fd).abs() < 1e-4 * scale, "{kin:?}: flowing {} against continued loading {fd}", along(&flowing));
+            assert!(along(&elastic) - fd > 0.3 * scale, "{kin:?}: elastic {} should be far stiffer than {fd}", along(&elastic));
+        }
     }
 
     #[test]

@@ -5,4 +5,4 @@ pub mod j2;
 pub mod log_exp;
 
 pub use hardening::Hardening;
-pub use j2::{Kinematics, PointState, Update, J2};
+pub use j2::{Kinematics, PointState, SurfaceBranch, Update, J2};

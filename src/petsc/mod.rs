@@ -21,7 +21,7 @@ mod vector;
 pub use log::LogStage;
 pub use matrix::{MatOps, Matrix, MatrixView, OwnedStructure};
 pub use partition::partition_graph;
-pub use snes::{NonlinearProblem, Snes, SolveReport};
+pub use snes::{FieldRatios, NonlinearProblem, Snes, SolveReport};
 pub use vector::{IndexSet, Scatter, VecOps, Vector, VectorView};
 
 use crate::error::{Error, Result};

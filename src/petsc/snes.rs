@@ -7,10 +7,13 @@
 //! failure on one rank makes all ranks take the same path instead of deadlocking.
 
 mod callbacks;
+mod field_test;
 
 use super::{check, linesearch, sys, Comm, MatOps, Matrix, MatrixView, PetscSession, SessionBorrow, VecOps, Vector, VectorView};
 use crate::error::{Error, Result};
-use callbacks::{convergence_trampoline, jacobian_trampoline, reset_factorisation, residual_trampoline, CallbackContext};
+use callbacks::{convergence_trampoline, jacobian_trampoline, reset_factorisation, residual_trampoline, CallbackContext, FieldContext};
+pub use field_test::FieldRatios;
+use field_test::ForceAverage;
 use mpi::topology::SimpleCommunicator;
 use mpi::traits::*;
 use std::ffi::c_void;
@@ -35,6 +38,11 @@ pub trait NonlinearProblem {
     /// see the change (its nonzero state stays) and would reuse the symbolic analysis.
     fn take_structure_change(&mut self) -> bool {
         false
+    }
+    /// This rank's sum of the magnitudes of the element (and contact) nodal forces of the last
+    /// residual, and how many there are: the field test's average force.
+    fn force_sums(&self) -> [f64; 2] {
+        [0.0, 0.0]
     }
 }
 
@@ -88,6 +96,12 @@ pub struct Snes<'s> {
     // PETSc writes the residual history into these; boxed so the addresses never move.
     history: Box<[f64]>,
     history_its: Box<[sys::PetscInt]>,
+    /// The field convergence test, when it judges the solves (besides the residual test).
+    field: Option<FieldRatios>,
+    /// Its time-averaged force over the solves that converged.
+    force_average: ForceAverage,
+    /// The unknowns at the start of the increment (the field test's Delta u).
+    increment_start: Option<Vector<'s>>,
     _session: SessionBorrow<'s>,
 }
 
@@ -117,6 +131,9 @@ impl<'s> Snes<'s> {
             world,
             history: vec![0.0; HISTORY_LEN].into_boxed_slice(),
             history_its: vec![0; HISTORY_LEN].into_boxed_slice(),
+            field: None,
+            force_average: ForceAverage::default(),
+            increment_start: None,
             _session: PhantomData,
         };
         snes.configure_defaults(session)?;
@@ -177,6 +194,22 @@ impl<'s> Snes<'s> {
         }
     }
 
+    /// Judges the solves by CalculiX's field test as well (a solve converges when either test
+    /// passes); `None` leaves the residual test alone.
+    pub fn set_field_test(&mut self, ratios: Option<FieldRatios>) {
+        self.field = ratios;
+    }
+
+    /// Records the unknowns at the start of an increment (before its predictor): the field
+    /// test measures the increment's displacement from here. Without it, from the solve's
+    /// initial guess.
+    pub fn mark_increment_start(&mut self, x: &Vector<'s>) -> Result<()> {
+        if self.increment_start.is_none() {
+            self.increment_start = Some(x.duplicate()?);
+        }
+        self.increment_start.as_mut().expect("set above").copy_from(x)
+    }
+
     /// Solves J y = b with the SNES's own linear solver (the same KSP, PC and options as the
     /// Newton steps). While J is unchanged since the last solve, the factorization is reused.
     /// Returns false when the linear solver did not converge (a singular J, a failed pivot).
@@ -209,7 +242,30 @@ impl<'s> Snes<'s> {
         residual: &mut Vector<'_>,
         jacobian: &mut Matrix<'_>,
     ) -> Result<SolveReport> {
-        let mut ctx = CallbackContext { problem, world: &self.world, failure: None, first_norm: 0.0, previous_norm: 0.0 };
+        // the field test's work vectors: the previous iterate, a difference, the start
+        let field_vectors = match self.field {
+            Some(_) => {
+                let start = match &self.increment_start {
+                    Some(s) => s.duplicate().and_then(|mut v| v.copy_from(s).map(|_| v))?,
+                    None => x.duplicate().and_then(|mut v| v.copy_from(x).map(|_| v))?,
+                };
+                Some((x.duplicate()?, x.duplicate()?, start))
+            }
+            None => None,
+        };
+        let field = match (&self.field, &field_vectors) {
+            (Some(ratios), Some((previous, work, start))) => Some(FieldContext {
+                ratios: *ratios,
+                average: self.force_average,
+                previous: previous.raw(),
+                work: work.raw(),
+                start: start.raw(),
+                residuals: Vec::new(),
+                last_average_force: 0.0,
+            }),
+            _ => None,
+        };
+        let mut ctx = CallbackContext { problem, world: &self.world, failure: None, first_norm: 0.0, previous_norm: 0.0, field };
         let ctx_ptr = &mut ctx as *mut CallbackContext<'_, P> as *mut c_void;
         // SAFETY: ctx outlives SNESSolve; the callbacks are cleared again (context NULL) below
         // so PETSc never holds a dangling pointer after this function returns.
@@ -230,7 +286,12 @@ impl<'s> Snes<'s> {
             return Err(err);
         }
         check(code, "SNESSolve")?;
-        self.report()
+        let report = self.report()?;
+        if let (true, Some(field)) = (report.converged(), &ctx.field) {
+            self.force_average.add(field.last_average_force);
+        }
+        drop(field_vectors);
+        Ok(report)
     }
 
     fn report(&self) -> Result<SolveReport> {

@@ -60,6 +60,20 @@ pub trait VecOps {
         check(unsafe { sys::VecAXPY(self.raw(), alpha, other.raw()) }, "VecAXPY")
     }
 
+    /// The largest magnitude of an entry (collective).
+    fn norm_max(&self) -> Result<f64> {
+        let mut v = 0.0;
+        // SAFETY: valid Vec handle, out-pointer to a local.
+        check(unsafe { sys::VecNorm(self.raw(), sys::NormType_NORM_INFINITY, &mut v) }, "VecNorm")?;
+        Ok(v)
+    }
+
+    /// self = a - b (collective; all three laid out alike).
+    fn difference(&mut self, a: &impl VecOps, b: &impl VecOps) -> Result<()> {
+        // SAFETY: valid Vec handles of the same layout (caller); VecWAXPY computes w = alpha x + y.
+        check(unsafe { sys::VecWAXPY(self.raw(), -1.0, b.raw(), a.raw()) }, "VecWAXPY")
+    }
+
     fn norm2(&self) -> Result<f64> {
         let mut v = 0.0;
         // SAFETY: valid Vec handle, out-pointer to a local.

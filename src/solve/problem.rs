@@ -17,7 +17,7 @@ use crate::element::solid::ElementMatrix;
 use crate::element::solid::{compute_solid, solid_tangent, ElementGeometry, MaterialTangents, SolidInput, SolidResponse, DOFS, NODES, QUADRATURE_POINTS};
 use crate::error::{Error, Result};
 use crate::fe::shape::edge_nodes;
-use crate::material::{Kinematics, PointState, J2};
+use crate::material::{Kinematics, PointState, SurfaceBranch, J2};
 use crate::model::{Material, Model};
 use crate::petsc::sys::PetscInt;
 use crate::petsc::{LogStage, Matrix, PetscSession, Scatter, VecOps, Vector};
@@ -108,6 +108,9 @@ pub struct Problem<'s, 'm> {
     structure_changed: bool,
     /// Round-off floor (squared, this rank) of the last residual.
     roundoff: f64,
+    /// How points on the yield surface respond (flowing while the load predictor's tangent
+    /// is formed, elastic otherwise).
+    surface: SurfaceBranch,
     pub contact: Option<ContactAssembly>,
     load: LoadState,
     /// Counts the loads set, so what was evaluated under a load can tell it is still in force.
@@ -219,11 +222,18 @@ impl<'s, 'm> Problem<'s, 'm> {
             layout,
             structure_changed: false,
             roundoff: 0.0,
+            surface: SurfaceBranch::Elastic,
             contact,
             load: LoadState::default(),
             load_generation: 0,
             stages: Stages::new()?,
         })
+    }
+
+    /// Sets how points on the yield surface respond in the tangents formed from now on;
+    /// returns the previous choice.
+    pub fn set_surface_branch(&mut self, surface: SurfaceBranch) -> SurfaceBranch {
+        std::mem::replace(&mut self.surface, surface)
     }
 
     /// Accepts the trial history and contact multipliers of the last evaluation (call after a
@@ -310,6 +320,7 @@ impl<'s, 'm> Problem<'s, 'm> {
             kinematics: self.model.kinematics,
             temperature_change: self.load.temperature_change,
             committed: &self.committed[k],
+            surface: self.surface,
         };
         compute_solid(&input, u, tangents).map_err(|m| Error::Domain(format!("element {}: {m}", self.model.mesh.element_ids[el.element])))
     }
@@ -318,8 +329,11 @@ impl<'s, 'm> Problem<'s, 'm> {
     /// last residual evaluation kept when that was at `u`, else by a new evaluation.
     fn element_tangent(&self, k: usize, u: &[[f64; 2]; NODES]) -> Result<ElementMatrix> {
         let geometry = &self.elements[k].geometry;
-        if let Some(material) = self.kept.get(k, u, self.load.temperature_change) {
-            return Ok(solid_tangent(geometry, material));
+        // the kept tangents are the residual's, elastic on the yield surface
+        if self.surface == SurfaceBranch::Elastic {
+            if let Some(material) = self.kept.get(k, u, self.load.temperature_change) {
+                return Ok(solid_tangent(geometry, material));
+            }
         }
         let mut material = MaterialTangents::default();
         self.solid(k, u, Some(&mut material))?;

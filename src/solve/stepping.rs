@@ -21,7 +21,7 @@ use crate::io::progress::Progress;
 use crate::io::restart::{CommittedState, RestartFrom, RestartPoint};
 use crate::io::status::StatusFile;
 use crate::io::{ContactSummary, HistoryRow, IncrementFields, ResultsFile};
-use crate::material::PointState;
+use crate::material::{PointState, SurfaceBranch};
 use crate::model::Model;
 use crate::petsc::{Matrix, NonlinearProblem, PetscSession, Snes, SolveReport, VecOps, Vector};
 use mpi::collective::SystemOperation;
@@ -482,8 +482,12 @@ fn predict(
         return Ok(());
     }
     let end = problem.set_load(start);
+    // points that flowed keep flowing under a monotonic load: their elasto-plastic tangent
+    // predicts the increment (the elastic one, too stiff, doubled the bellows' Newton iterations)
+    let elastic = problem.set_surface_branch(SurfaceBranch::Flowing);
     let coupling = problem.prescribed_coupling(x, &delta, work);
     let tangent = problem.assemble_jacobian(x, jacobian);
+    problem.set_surface_branch(elastic);
     problem.set_load(end);
     // the refit is collective, so every rank resets
     if problem.take_structure_change() {

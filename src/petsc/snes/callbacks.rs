@@ -2,9 +2,10 @@
 //! trampoline over the caller's problem (the context [`Snes::solve`](super::Snes::solve) sets),
 //! run under `catch_unwind` with the outcome agreed across ranks.
 
+use super::field_test::{field_converged, FieldRatios, ForceAverage, IterateMeasures};
 use super::NonlinearProblem;
 use crate::error::{Error, Result};
-use crate::petsc::{check, sys, MatrixView, VectorView};
+use crate::petsc::{check, sys, MatrixView, VecOps, VectorView};
 use mpi::collective::SystemOperation;
 use mpi::topology::SimpleCommunicator;
 use mpi::traits::*;
@@ -18,6 +19,55 @@ pub(super) struct CallbackContext<'p, P> {
     /// ||F|| at the start and at the previous iterate (convergence test).
     pub first_norm: f64,
     pub previous_norm: f64,
+    /// The field test's state, when it judges this solve.
+    pub field: Option<FieldContext>,
+}
+
+/// What the field test keeps through a solve; the vectors are owned by `Snes::solve`.
+pub(super) struct FieldContext {
+    pub ratios: FieldRatios,
+    pub average: ForceAverage,
+    pub previous: sys::Vec,
+    pub work: sys::Vec,
+    pub start: sys::Vec,
+    /// r_max of every iterate so far.
+    pub residuals: Vec<f64>,
+    /// q-bar of the last iterate judged.
+    pub last_average_force: f64,
+}
+
+impl FieldContext {
+    /// Judges iterate `it` (collective: norms and the force average are global).
+    fn judge<P: NonlinearProblem>(&mut self, snes: sys::SNES, it: usize, problem: &P, world: &SimpleCommunicator) -> Result<bool> {
+        let (mut x, mut f) = (std::ptr::null_mut(), std::ptr::null_mut());
+        // SAFETY: valid SNES inside its solve; the vectors are borrowed from it.
+        unsafe {
+            check(sys::SNESGetSolution(snes, &mut x), "SNESGetSolution")?;
+            check(sys::SNESGetFunction(snes, &mut f, std::ptr::null_mut(), std::ptr::null_mut()), "SNESGetFunction")?;
+        }
+        let (x, f) = (VectorView::from_raw(x), VectorView::from_raw(f));
+        let (previous, mut work, start) = (VectorView::from_raw(self.previous), VectorView::from_raw(self.work), VectorView::from_raw(self.start));
+        let residual_max = f.norm_max()?;
+        let verdict = if it == 0 {
+            false
+        } else {
+            work.difference(&x, &previous)?;
+            let correction_max = work.norm_max()?;
+            work.difference(&x, &start)?;
+            let increment_max = work.norm_max()?;
+            let local = problem.force_sums();
+            let mut global = [0.0; 2];
+            world.all_reduce_into(&local[..], &mut global[..], SystemOperation::sum());
+            let average_force = if global[1] > 0.0 { global[0] / global[1] } else { 0.0 };
+            self.last_average_force = average_force;
+            let m = IterateMeasures { residual_max, correction_max, increment_max, average_force };
+            field_converged(&self.ratios, it, &m, self.average.with(average_force), &self.residuals)
+        };
+        self.residuals.push(residual_max);
+        let mut previous = previous;
+        previous.copy_from(&x)?;
+        Ok(verdict)
+    }
 }
 
 /// Outcome codes agreed across ranks; the largest wins.
@@ -110,6 +160,26 @@ pub(super) unsafe extern "C" fn convergence_trampoline<P: NonlinearProblem>(
     }
     // SAFETY: ctx is the CallbackContext set by Snes::solve (see `guarded`).
     let ctx = unsafe { &mut *(ctx as *mut CallbackContext<'_, P>) };
+    if let Some(field) = ctx.field.as_mut() {
+        // SAFETY: PETSc passes a valid reason pointer for the duration of the call.
+        let open = unsafe { *reason == sys::SNESConvergedReason_SNES_CONVERGED_ITERATING || *reason == sys::SNESConvergedReason_SNES_DIVERGED_MAX_IT };
+        let problem = &*ctx.problem;
+        match catch_unwind(AssertUnwindSafe(|| field.judge(snes, it as usize, problem, ctx.world))) {
+            Ok(Ok(true)) if open => {
+                // SAFETY: as above.
+                unsafe { *reason = sys::SNESConvergedReason_SNES_CONVERGED_FNORM_ABS };
+            }
+            Ok(Ok(_)) => {}
+            Ok(Err(e)) => {
+                ctx.failure = Some(e);
+                return ERR_USER;
+            }
+            Err(_) => {
+                ctx.failure = Some(Error::Panic("the field convergence test panicked".into()));
+                return ERR_USER;
+            }
+        }
+    }
     let local = catch_unwind(AssertUnwindSafe(|| ctx.problem.roundoff_squares())).unwrap_or(0.0);
     let mut global = 0.0f64;
     // every rank runs the convergence test, so the reduction matches; fnorm is global
