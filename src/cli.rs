@@ -44,6 +44,10 @@ pub enum Command {
         /// The increment (#N, as the run printed it) to continue from.
         #[arg(long, value_name = "N", requires = "restart")]
         increment: Option<usize>,
+        /// Newton's convergence test, over the deck's `[stepping] convergence`: `field`
+        /// (CalculiX's and Abaqus's) or `residual` (||F|| down by 1e-10, or to round-off).
+        #[arg(long, value_enum)]
+        convergence: Option<ConvergenceArg>,
         /// PETSc options (after `--`).
         #[arg(last = true, allow_hyphen_values = true)]
         petsc: Vec<String>,
@@ -203,6 +207,11 @@ pub struct BellowsArgs {
     /// started (the force-displacement picture then shows the loop).
     #[arg(long)]
     pub cycle: bool,
+    /// Newton's convergence test: `field` (CalculiX's and Abaqus's: residual forces within
+    /// 0.5 % of the time-averaged force, corrections within 2 % of the increment) or
+    /// `residual` (the residual norm down by 1e-10, or to round-off).
+    #[arg(long, value_enum, default_value_t = ConvergenceArg::Field)]
+    pub convergence: ConvergenceArg,
     /// Write the fields of every N-th increment (and of the last of each step); the history
     /// keeps every increment.
     #[arg(long, default_value_t = 1, value_name = "N")]
@@ -276,6 +285,23 @@ impl BellowsArgs {
         take("friction_sleeve", &mut |p| p.friction_sleeve = self.friction_sleeve);
         take("cycle", &mut |p| p.cycle = self.cycle);
         take("tangential_penalty", &mut |p| p.tangential_penalty = self.tangential_penalty);
+        take("convergence", &mut |p| p.convergence = self.convergence.into());
         Ok(p)
+    }
+}
+
+/// The `--convergence` choices.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum ConvergenceArg {
+    Field,
+    Residual,
+}
+
+impl From<ConvergenceArg> for crate::model::Convergence {
+    fn from(c: ConvergenceArg) -> Self {
+        match c {
+            ConvergenceArg::Field => crate::model::Convergence::Field,
+            ConvergenceArg::Residual => crate::model::Convergence::Residual,
+        }
     }
 }

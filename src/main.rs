@@ -171,7 +171,7 @@ fn main() -> ExitCode {
             Ok(()) => ExitCode::SUCCESS,
             Err(e) => fail(&e, true),
         },
-        Command::Run { deck, output, quiet, restart, increment, petsc } => {
+        Command::Run { deck, output, quiet, restart, increment, convergence, petsc } => {
             let output = output.unwrap_or_else(|| PathBuf::from(deck.file_stem().unwrap_or_default()).with_extension("h5"));
             if let Err(e) = slideline::io::check_output_path(&output, Some(&deck)) {
                 return fail(&e, launched_as_rank_zero());
@@ -184,6 +184,10 @@ fn main() -> ExitCode {
             let model = model::read_deck(&deck).map(|(m, notes)| {
                 if root && !quiet {
                     notes.iter().for_each(|note| println!("note: {note}"));
+                }
+                let mut m = m;
+                if let Some(c) = convergence {
+                    m.stepping.convergence = c.into();
                 }
                 m
             });

@@ -17,7 +17,7 @@
 //! of the master's shape functions; the test states its deviation.
 
 mod common;
-use common::{run_deck, Results};
+use common::{run_deck, Results, TIGHT};
 
 fn deck(integration: &str, two_pass: bool) -> String {
     format!(
@@ -52,7 +52,7 @@ pressure = [ {{ surface = "upper_top", value = 10.0 }} ]
 
 /// (r, pressure, traction) at every slave node of every pass, and the largest |sigma_zz + 10|.
 fn run(integration: &str, two_pass: bool) -> (Vec<(f64, f64, f64)>, f64) {
-    let run = run_deck(&deck(integration, two_pass), &[], 1, &[]);
+    let run = run_deck(&deck(integration, two_pass), &[], 1, TIGHT);
     run.assert_ok();
     let res = Results::open(&run.h5);
     let coords = res.f64s("mesh/coordinates");

@@ -9,7 +9,7 @@
 //! backward Euler, the work trapezoidal; 40 increments give 1.3e-3, 80 give 8e-4 to 9e-4).
 
 mod common;
-use common::{command_in, run_deck, Results};
+use common::{command_in, run_deck, Results, TIGHT};
 
 fn cylinder(yield_stress: f64, load_increments: usize, unload_increments: usize) -> String {
     format!(
@@ -48,7 +48,7 @@ fn largest_work(rows: &[[f64; 5]]) -> f64 {
 
 #[test]
 fn an_elastic_load_cycle_gives_back_all_it_took() {
-    let run = run_deck(&cylinder(1e9, 4, 4), &[], 1, &[]);
+    let run = run_deck(&cylinder(1e9, 4, 4), &[], 1, TIGHT);
     run.assert_ok();
     let rows = audit(&Results::open(&run.h5));
     let peak = largest_work(&rows);

@@ -8,7 +8,7 @@
 //! rank test lets it deform.)
 
 mod common;
-use common::{pushed_fit_deck as deck_with, run_deck, Results};
+use common::{pushed_fit_deck as deck_with, run_deck, Results, TIGHT};
 
 const MU: f64 = 0.2;
 
@@ -45,7 +45,7 @@ fn pushed_fit(integration: &str) {
     // on a rigid tube the contact normal stays radial, so the push force is the friction force
     // alone (on an elastic tube its surface tilts by ~1e-6 under the shear and the normal force
     // adds 1e-5 of mu N)
-    let run = run_deck(&with(deck_with(2.0e-4, 10, &format!("friction = {MU}"), RIGID_TUBE)), &[], 1, &[]);
+    let run = run_deck(&with(deck_with(2.0e-4, 10, &format!("friction = {MU}"), RIGID_TUBE)), &[], 1, TIGHT);
     run.assert_ok();
     let r = Results::open(&run.h5);
     let rows = push_history(&r);
@@ -83,9 +83,9 @@ fn pushed_fit(integration: &str) {
 #[test]
 fn one_and_two_ranks_agree_with_friction() {
     let text = deck(2.0e-4, 10, &format!("friction = {MU}\ntangential_penalty = 5.0e4"));
-    let one = run_deck(&text, &[], 1, &[]);
+    let one = run_deck(&text, &[], 1, TIGHT);
     one.assert_ok();
-    let two = run_deck(&text, &[], 2, &[]);
+    let two = run_deck(&text, &[], 2, TIGHT);
     two.assert_ok();
     let (a, b) = (push_history(&Results::open(&one.h5)), push_history(&Results::open(&two.h5)));
     for (x, y) in a.iter().zip(&b) {

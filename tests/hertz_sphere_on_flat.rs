@@ -25,7 +25,7 @@
 //! Newton converges quadratically once the contact zone has settled in each increment.
 
 mod common;
-use common::{run_deck, Results};
+use common::{run_deck, Results, TIGHT};
 use slideline::model::gmsh;
 use slideline::model::mesh::{graded_rectangle, mapped_block, Edge, Mesh, MeshSets};
 
@@ -158,7 +158,7 @@ fn solve_with(block: f64, n: usize, ratio: f64, friction: &str) -> ((f64, f64, f
     mesh.validate().unwrap();
     let msh = dir.path().join("hertz.msh");
     gmsh::write(&mesh, &sets, &msh).unwrap();
-    let run = run_deck(&deck(friction), &[("hertz.msh", &msh)], 1, &[]);
+    let run = run_deck(&deck(friction), &[("hertz.msh", &msh)], 1, TIGHT);
     run.assert_ok();
     let res = Results::open(&run.h5);
     let coords = res.f64s("mesh/coordinates");

@@ -9,7 +9,7 @@
 //! crosses the master's element boundaries.
 
 mod common;
-use common::{run_deck, Results};
+use common::{run_deck, Results, TIGHT};
 
 const EPS: f64 = 1.0e5;
 
@@ -50,7 +50,7 @@ boundary = [ {{ set = "inner_bottom", uz = 20.0 }} ]
 #[test]
 fn frictionless_sliding_needs_no_axial_force_and_keeps_every_node_in_contact() {
     for integration in ["segment", "node-to-segment"] {
-        let run = run_deck(&deck(integration), &[], 1, &[]);
+        let run = run_deck(&deck(integration), &[], 1, TIGHT);
         run.assert_ok();
         let res = Results::open(&run.h5);
         let fz = res.history("reaction_inner_bottom_z");

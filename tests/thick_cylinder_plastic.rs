@@ -12,7 +12,7 @@
 //! - limit pressure with H = 0: (2 / sqrt 3) sigma_y0 ln(b / a) = 90.89 MPa.
 
 mod common;
-use common::{run_deck, Results};
+use common::{run_deck, Results, TIGHT};
 
 const A: f64 = 100.0;
 const B: f64 = 130.0;
@@ -66,7 +66,7 @@ fn first_yield_pressure_within_half_a_percent() {
 fn newton_converges_quadratically_in_plastic_increments() {
     // 20 increments to 86 MPa: the last four (from 73 MPa, first yield being 70.06) are plastic
     let steps = format!("[[step]]\nincrements = 20\n{HOLD}\npressure = [ {{ surface = \"inner\", value = 86.0 }} ]\n");
-    let run = run_deck(&deck(true, 30, 1000.0, &steps), &[], 1, &[]);
+    let run = run_deck(&deck(true, 30, 1000.0, &steps), &[], 1, TIGHT);
     run.assert_ok();
     let res = Results::open(&run.h5);
     let ep = res.history("max_equivalent_plastic_strain");

@@ -10,7 +10,7 @@
 //! displacements.
 
 mod common;
-use common::{run_deck, Results};
+use common::{run_deck, Results, TIGHT};
 
 const L: f64 = 10.0;
 const R: f64 = 5.0;
@@ -33,7 +33,7 @@ increments = 25
 boundary = [ {{ set = "inner", ur = 0.0 }}, {{ set = "bottom", uz = 0.0 }}, {{ set = "top", uz = {top} }} ]
 "#
     );
-    let run = run_deck(&deck, &[], 1, &[]);
+    let run = run_deck(&deck, &[], 1, TIGHT);
     run.assert_ok();
     let res = Results::open(&run.h5);
     let (e, sy, h) = (200e3, 300.0, 1000.0);

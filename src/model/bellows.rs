@@ -386,7 +386,7 @@ pub fn model(p: &BellowsParams) -> Result<Model> {
         reference_temperature: 20.0,
         kinematics: Kinematics::Finite,
         // contact and plasticity take 8-11 Newton iterations per increment: count those as easy
-        stepping: SteppingControls { easy_iterations: 12, ..SteppingControls::default() },
+        stepping: SteppingControls { easy_iterations: 12, convergence: p.convergence, ..SteppingControls::default() },
         output: OutputControls { every: p.output_every, ..OutputControls::default() },
         contacts,
         steps,

@@ -11,6 +11,7 @@
 //! min_increment = 1e-5              # fraction of the step; below it the run stops (exit 3)
 //! max_newton_iterations = 25
 //! predictor = true                  # start from the linear response to moved prescribed DOFs
+//! convergence = "field"            # CalculiX's / Abaqus's field test; "residual": ||F|| / ||F0|| <= 1e-10
 //!
 //! [output]                         # optional
 //! every = 1                         # fields of every N-th increment (and the last of each step)
@@ -64,7 +65,7 @@
 
 use super::mesh::{blocks, rectangle, Block, MeshSets};
 use super::{
-    default_capture_distance, gmsh, AugmentedLagrangian, Component, ContactIntegration, ContactPair, Friction, Kinematics, Material, Model, OutputControls,
+    default_capture_distance, gmsh, AugmentedLagrangian, Component, ContactIntegration, ContactPair, Convergence, Friction, Kinematics, Material, Model, OutputControls,
     OutputFields, Penalty, Plasticity, PrescribedDisplacement, Pressure, Step, SteppingControls,
 };
 use crate::error::{Error, Result};
@@ -163,6 +164,7 @@ struct SteppingSpec {
     min_increment: Option<f64>,
     max_newton_iterations: Option<usize>,
     predictor: Option<bool>,
+    convergence: Option<Convergence>,
 }
 
 impl SteppingSpec {
@@ -175,6 +177,7 @@ impl SteppingSpec {
             min_increment: self.min_increment.unwrap_or(d.min_increment),
             max_newton_iterations: self.max_newton_iterations.unwrap_or(d.max_newton_iterations),
             predictor: self.predictor.unwrap_or(d.predictor),
+            convergence: self.convergence.unwrap_or(d.convergence),
         }
     }
 }

@@ -163,11 +163,34 @@ pub struct SteppingControls {
     /// (Abaqus' extrapolation; false: from the last converged state with only the prescribed
     /// nodes moved).
     pub predictor: bool,
+    /// How Newton's convergence is judged.
+    pub convergence: Convergence,
+}
+
+/// How a Newton solve is judged converged.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, serde::Deserialize, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Convergence {
+    /// CalculiX's and Abaqus's field test: the largest residual force within 0.5 % of the
+    /// time-averaged force, the largest correction within 2 % of the increment's largest
+    /// displacement (or the residual test below, whichever passes first).
+    #[default]
+    Field,
+    /// ||F|| down by 1e-10 from its start, or to the round-off floor.
+    Residual,
 }
 
 impl Default for SteppingControls {
     fn default() -> Self {
-        SteppingControls { cutback_factor: 0.5, growth_factor: 1.5, easy_iterations: 6, min_increment: 1e-5, max_newton_iterations: 25, predictor: true }
+        SteppingControls {
+            cutback_factor: 0.5,
+            growth_factor: 1.5,
+            easy_iterations: 6,
+            min_increment: 1e-5,
+            max_newton_iterations: 25,
+            predictor: true,
+            convergence: Convergence::default(),
+        }
     }
 }
 

@@ -108,6 +108,9 @@ pub struct Problem<'s, 'm> {
     structure_changed: bool,
     /// Round-off floor (squared, this rank) of the last residual.
     roundoff: f64,
+    /// Sum of the magnitudes of the element and contact nodal forces of the last residual,
+    /// and their number (this rank): the field convergence test's average force.
+    force_sums: [f64; 2],
     /// How points on the yield surface respond (flowing while the load predictor's tangent
     /// is formed, elastic otherwise).
     surface: SurfaceBranch,
@@ -222,6 +225,7 @@ impl<'s, 'm> Problem<'s, 'm> {
             layout,
             structure_changed: false,
             roundoff: 0.0,
+            force_sums: [0.0, 0.0],
             surface: SurfaceBranch::Elastic,
             contact,
             load: LoadState::default(),

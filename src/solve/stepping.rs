@@ -22,8 +22,8 @@ use crate::io::restart::{CommittedState, RestartFrom, RestartPoint};
 use crate::io::status::StatusFile;
 use crate::io::{ContactSummary, HistoryRow, IncrementFields, ResultsFile};
 use crate::material::{PointState, SurfaceBranch};
-use crate::model::Model;
-use crate::petsc::{Matrix, NonlinearProblem, PetscSession, Snes, SolveReport, VecOps, Vector};
+use crate::model::{Convergence, Model};
+use crate::petsc::{FieldRatios, Matrix, NonlinearProblem, PetscSession, Snes, SolveReport, VecOps, Vector};
 use mpi::collective::SystemOperation;
 use mpi::datatype::PartitionMut;
 use mpi::traits::*;
@@ -108,6 +108,7 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
         let mut problem = Problem::new(session, model, &partition, &dofs, &x, history, carry)?;
         let mut jacobian = problem.jacobian_matrix()?;
         let mut snes = Snes::new(session)?;
+        snes.set_field_test((controls.convergence == Convergence::Field).then(FieldRatios::default));
 
         if s == 0 && resumed_here.is_none() && problem.contact.is_some() {
             // the energy audit's input from overlaps in the undeformed mesh (a shrink fit)
@@ -132,6 +133,7 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
             let target = if lambda + size > 1.0 - 1e-9 * requested { 1.0 } else { lambda + size };
             problem.set_load(loads.at(model, target));
             set_free_values(&mut x, &dofs, &partition, &displacement)?;
+            snes.mark_increment_start(&x)?;
             if controls.predictor {
                 predict(&world, &mut snes, &mut problem, loads.at(model, lambda), &mut x, &mut residual, &mut jacobian, &mut correction)?;
             }

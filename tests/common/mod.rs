@@ -33,6 +33,11 @@ pub fn data(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data").join(name)
 }
 
+/// `slideline run` flags for the residual convergence test (||F|| down by 1e-10 or to
+/// round-off), for tests that check an answer or Newton's convergence rate to round-off; the
+/// default field test stops where engineering answers have settled (0.1 % and better).
+pub const TIGHT: &[&str] = &["--convergence", "residual"];
+
 /// The slideline binary under `mpirun -n ranks` (or alone for one rank), with OpenMPI's session
 /// directory under `dir`: concurrently starting OpenMPI 4.1 singletons race to create the
 /// shared one in /tmp and fail with "mkdir ... File exists".

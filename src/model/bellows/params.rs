@@ -51,6 +51,8 @@ pub struct BellowsParams {
     pub tangential_penalty: f64,
     /// After the compression, a further step takes tube B's end back to where it started.
     pub cycle: bool,
+    /// How Newton's convergence is judged.
+    pub convergence: crate::model::Convergence,
     // mesh
     /// Elements through each ply's thickness.
     pub ply_elements: usize,
@@ -100,6 +102,7 @@ impl Default for BellowsParams {
             // limit, mu p / eps_T, is 0.7 % of the quick mesh's 2 mm ply elements at p = 10 MPa,
             // about Abaqus' default allowance (0.5 % of the element length)
             tangential_penalty: 300.0,
+            convergence: crate::model::Convergence::default(),
             cycle: false,
             ply_elements: 2,
             output_every: 1,

@@ -17,6 +17,10 @@ impl NonlinearProblem for Problem<'_, '_> {
         self.roundoff
     }
 
+    fn force_sums(&self) -> [f64; 2] {
+        self.force_sums
+    }
+
     fn residual(&mut self, x: &VectorView<'_>, f: &mut VectorView<'_>) -> Result<()> {
         let stage = self.stages.residual;
         stage.run(|| self.assemble_residual(x, f))?
@@ -193,6 +197,7 @@ impl Problem<'_, '_> {
         };
         let mut us = Vec::with_capacity(self.elements.len());
         let mut roundoff = 0.0;
+        let mut forces = [0.0, 0.0];
         let mut kept = std::mem::take(&mut self.kept);
         for k in 0..self.elements.len() {
             let u = self.displacements(&self.elements[k], gathered);
@@ -215,6 +220,8 @@ impl Problem<'_, '_> {
             fields.energy.thermal_power += out.energy.thermal_power;
             let size = self.elements[k].roundoff_scale * u.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs())) + out.internal_force.abs().max();
             roundoff += (ROUNDOFF_ULPS * f64::EPSILON * size).powi(2);
+            forces[0] += out.internal_force.iter().map(|v| v.abs()).sum::<f64>();
+            forces[1] += DOFS as f64;
             fields.stress[k] = out.stress;
             fields.plastic_strain[k] = out.state.map(|s| s.ep);
             let conn = &self.model.mesh.elements[self.elements[k].element];
@@ -243,10 +250,13 @@ impl Problem<'_, '_> {
                 for (i, &v) in e.residual.iter().enumerate() {
                     sink(e.nodes[i / 2], i % 2, v);
                 }
+                forces[0] += e.residual.iter().map(|v| v.abs()).sum::<f64>();
+                forces[1] += e.residual.len() as f64;
             }
             roundoff += contact.roundoff_squares();
         }
         self.roundoff = roundoff;
+        self.force_sums = forces;
         Ok(())
     }
 }
