@@ -15,6 +15,9 @@ use std::os::raw::c_void;
 /// The full step is kept when the secant's step length is within this of 1.
 pub const FULL_STEP_BAND: f64 = 0.1;
 
+/// Halvings of a step that leaves the residual's domain before the line search gives up.
+const DOMAIN_HALVINGS: usize = 5;
+
 /// The step length of one secant step on F.y from 0 (slope `fty0`) to `lambda` (slope `fty1`),
 /// as PETSc's `cp` computes it (a wrong-signed secant is turned round; a step below `steptol`
 /// is reflected), or None to keep `lambda`: where cp keeps it (F.y fell below `rtol` of its
@@ -96,13 +99,22 @@ unsafe extern "C" fn apply(ls: sys::SNESLineSearch, _ctx: *mut c_void) -> sys::P
         return sys::SNESSetConvergedReason(snes, sys::SNESConvergedReason_SNES_CONVERGED_FNORM_ABS);
     }
 
-    // F at the full step (into F: F(X) is not needed again once F.y is known)
+    // F at the full step (into F: F(X) is not needed again once F.y is known); where the full
+    // step leaves the domain (an element inverted: a stiff penalty's first step can throw a
+    // contact node through its neighbours), halved until it does not
     let mut domain = sys::PetscBool_PETSC_FALSE;
-    petsc_try!(sys::VecWAXPY(w, -lambda, y, x));
-    petsc_try!(sys::SNESComputeFunction(snes, w, f));
-    petsc_try!(sys::SNESGetFunctionDomainError(snes, &mut domain));
-    if domain == sys::PetscBool_PETSC_TRUE {
-        return sys::SNESLineSearchSetReason(ls, sys::SNESLineSearchReason_SNES_LINESEARCH_FAILED_DOMAIN);
+    for halving in 0..=DOMAIN_HALVINGS {
+        petsc_try!(sys::VecWAXPY(w, -lambda, y, x));
+        petsc_try!(sys::SNESComputeFunction(snes, w, f));
+        petsc_try!(sys::SNESGetFunctionDomainError(snes, &mut domain));
+        if domain == sys::PetscBool_PETSC_FALSE {
+            break;
+        }
+        if halving == DOMAIN_HALVINGS {
+            return sys::SNESLineSearchSetReason(ls, sys::SNESLineSearchReason_SNES_LINESEARCH_FAILED_DOMAIN);
+        }
+        // (SNESComputeFunction clears the flag before it evaluates, PETSc >= 3.17)
+        lambda *= 0.5;
     }
     let mut fty1 = 0.0;
     petsc_try!(sys::VecDot(f, y, &mut fty1));
