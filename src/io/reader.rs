@@ -247,6 +247,8 @@ impl ResultsReader {
                 linear_iterations: linear[k] as usize,
                 residual_norm: norm[k],
                 residual_norms: Vec::new(),
+                // a file written before the column existed: no reference force to restore
+                average_force: column("average_force").map_or(0.0, |c| c[k]),
                 cutbacks: cutbacks[k] as usize,
                 augmentations: augmentations[k] as usize,
                 contacts,

@@ -85,6 +85,10 @@ pub struct HistoryRow {
     pub residual_norm: f64,
     /// ||F|| at each Newton iterate of the converged attempt.
     pub residual_norms: Vec<f64>,
+    /// The field convergence test's average force at the converged state (mean magnitude of
+    /// the element and contact nodal forces), N per radian; 0 under the residual test. The
+    /// step's time average of it is the test's reference force, restored on a restart.
+    pub average_force: f64,
     /// Failed attempts (cutbacks) before this increment converged.
     pub cutbacks: usize,
     /// Augmented-Lagrangian multiplier updates in this increment.
@@ -406,6 +410,7 @@ impl ResultsFile {
             ("newton_iterations".into(), row.newton_iterations as f64),
             ("linear_iterations".into(), row.linear_iterations as f64),
             ("residual_norm".into(), row.residual_norm),
+            ("average_force".into(), row.average_force),
             ("cutbacks".into(), row.cutbacks as f64),
             ("augmentations".into(), row.augmentations as f64),
             ("max_equivalent_plastic_strain".into(), row.max_plastic_strain),

@@ -98,8 +98,10 @@ pub struct Snes<'s> {
     history_its: Box<[sys::PetscInt]>,
     /// The field convergence test, when it judges the solves (besides the residual test).
     field: Option<FieldRatios>,
-    /// Its time-averaged force over the solves that converged.
+    /// Its time-averaged force over the increments accepted.
     force_average: ForceAverage,
+    /// The average force of the last converged solve (0 without the field test).
+    last_average_force: f64,
     /// The unknowns at the start of the increment (the field test's Delta u).
     increment_start: Option<Vector<'s>>,
     _session: SessionBorrow<'s>,
@@ -133,6 +135,7 @@ impl<'s> Snes<'s> {
             history_its: vec![0; HISTORY_LEN].into_boxed_slice(),
             field: None,
             force_average: ForceAverage::default(),
+            last_average_force: 0.0,
             increment_start: None,
             _session: PhantomData,
         };
@@ -198,6 +201,20 @@ impl<'s> Snes<'s> {
     /// passes); `None` leaves the residual test alone.
     pub fn set_field_test(&mut self, ratios: Option<FieldRatios>) {
         self.field = ratios;
+    }
+
+    /// Takes the last converged solve's average force into the step's time average (call once
+    /// per accepted increment) and returns it (0 without the field test).
+    pub fn accept_increment(&mut self) -> f64 {
+        let f = if self.field.is_some() { self.last_average_force } else { 0.0 };
+        self.force_average.add(f);
+        f
+    }
+
+    /// Restores the step's time average from the average forces of its accepted increments
+    /// (a restart).
+    pub fn restore_force_average(&mut self, accepted: impl IntoIterator<Item = f64>) {
+        accepted.into_iter().for_each(|f| self.force_average.add(f));
     }
 
     /// Records the unknowns at the start of an increment (before its predictor): the field
@@ -288,7 +305,7 @@ impl<'s> Snes<'s> {
         check(code, "SNESSolve")?;
         let report = self.report()?;
         if let (true, Some(field)) = (report.converged(), &ctx.field) {
-            self.force_average.add(field.last_average_force);
+            self.last_average_force = field.last_average_force;
         }
         drop(field_vectors);
         Ok(report)

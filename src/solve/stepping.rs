@@ -109,6 +109,10 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
         let mut jacobian = problem.jacobian_matrix()?;
         let mut snes = Snes::new(session)?;
         snes.set_field_test((controls.convergence == Convergence::Field).then(FieldRatios::default));
+        if resumed_here.is_some() {
+            // the field test's time average over the step's increments before the restart
+            snes.restore_force_average(rows.iter().filter(|r| r.step == s + 1).map(|r| r.average_force));
+        }
 
         if s == 0 && resumed_here.is_none() && problem.contact.is_some() {
             // the energy audit's input from overlaps in the undeformed mesh (a shrink fit)
@@ -222,6 +226,7 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
                 linear_iterations: report.linear_iterations,
                 residual_norm: report.residual_norms.last().copied().unwrap_or(f64::NAN),
                 residual_norms: report.residual_norms.clone(),
+                average_force: snes.accept_increment(),
                 cutbacks,
                 augmentations,
                 max_plastic_strain: max_ep,
