@@ -245,10 +245,10 @@ fn contact_radius_and_peak_pressure_match_hertz() {
 
 /// A stiff penalty: 50 E per mm (the Code_Aster SSNV104 choice), E = 20 GPa, the sphere pushed
 /// 4 mm into the block by its flat top (contact radius about 14 mm, p0 about a tenth of E), in
-/// small and in finite strain, 10 increments asked. Measured: small strain 2 cutbacks (65
-/// Newton iterations), finite strain 3 (79): the first increments' Newton steps throw contact
-/// nodes far through the block. The target of at most 2 is met in small strain only; the test
-/// holds both where they are, so that neither gets worse unnoticed.
+/// small and in finite strain, 10 increments asked: the full approach with at most 2 cutbacks.
+/// Measured: small strain 2 (65 Newton iterations), finite strain 1 (93); finite strain took 5
+/// before a line-search step that inverts an element was halved instead of failing, and 3 while
+/// an increment grew after one converged in 6 iterations (now 4, CalculiX's rule).
 fn stiff_penalty_run(nlgeom: bool) -> (f64, f64, f64) {
     const E_SOFT: f64 = 20e3;
     let dir = tempfile::tempdir().unwrap();
@@ -284,8 +284,8 @@ boundary = [ {{ set = "block_bottom", uz = 0.0 }}, {{ set = "block_axis", ur = 0
 }
 
 #[test]
-fn a_stiff_penalty_reaches_the_full_approach_with_few_cutbacks() {
-    for (nlgeom, allowed) in [(false, 2.0), (true, 3.0)] {
+fn a_stiff_penalty_reaches_the_full_approach_with_at_most_two_cutbacks() {
+    for (nlgeom, allowed) in [(false, 2.0), (true, 2.0)] {
         let (cutbacks, its, lambda) = stiff_penalty_run(nlgeom);
         assert_eq!(lambda, 1.0);
         assert!(cutbacks <= allowed, "nlgeom {nlgeom}: {cutbacks} cutbacks ({its} Newton iterations)");

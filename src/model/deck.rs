@@ -7,7 +7,7 @@
 //! [stepping]                        # optional; defaults shown
 //! cutback_factor = 0.5              # increment x this after a failed attempt
 //! growth_factor = 1.5               # increment x this after an easy one (never past the request)
-//! easy_iterations = 6               # "easy" = converged within this many Newton iterations
+//! easy_iterations = 4               # "easy" = converged within this many Newton iterations
 //! min_increment = 1e-5              # fraction of the step; below it the run stops (exit 3)
 //! max_newton_iterations = 25
 //! predictor = true                  # start from the linear response to moved prescribed DOFs

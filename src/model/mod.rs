@@ -153,7 +153,9 @@ pub struct SteppingControls {
     pub cutback_factor: f64,
     /// Factor applied after an easy increment (>= 1); never past the requested increment.
     pub growth_factor: f64,
-    /// An increment converged in at most this many Newton iterations is easy.
+    /// An increment converged in at most this many Newton iterations is easy (4: CalculiX's
+    /// I_G, for its field test, the default here too; 6 let a stiff contact's increment grow
+    /// right after a cutback and fail again).
     pub easy_iterations: usize,
     /// Smallest increment, as a fraction of the step, before the run gives up.
     pub min_increment: f64,
@@ -185,7 +187,7 @@ impl Default for SteppingControls {
         SteppingControls {
             cutback_factor: 0.5,
             growth_factor: 1.5,
-            easy_iterations: 6,
+            easy_iterations: 4,
             min_increment: 1e-5,
             max_newton_iterations: 25,
             predictor: true,
