@@ -14,7 +14,14 @@ fn kernels(c: &mut Criterion) {
     let m = J2::plastic(200e3, 0.3, 1.2e-5, 300.0, 1000.0);
     let geometry = ElementGeometry::new(&x).unwrap();
     let committed = [PointState::initial(Kinematics::Finite); 9];
-    let input = SolidInput { geometry: &geometry, material: &m, kinematics: Kinematics::Finite, temperature_change: 10.0, committed: &committed, surface: SurfaceBranch::Elastic };
+    let input = SolidInput {
+        geometry: &geometry,
+        material: &m,
+        kinematics: Kinematics::Finite,
+        temperature_change: 10.0,
+        committed: &committed,
+        surface: SurfaceBranch::Elastic,
+    };
 
     let mut g = c.benchmark_group("material");
     g.throughput(Throughput::Elements(1));

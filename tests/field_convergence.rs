@@ -60,7 +60,11 @@ fn the_field_test_moves_contact_answers_by_less_than_a_thousandth() {
     let pressure = "[[step]]\nname = \"pressure\"\nincrements = 4\nboundary = [ { set = \"inner_bottom\", uz = 0.0 }, { set = \"inner_top\", uz = 0.0 }, { set = \"outer_bottom\", uz = 0.0 }, { set = \"outer_top\", uz = 0.0 } ]\npressure = [ { surface = \"inner_inner\", value = 50.0 } ]\n";
     compare("shrink fit and pressure", &shrink_fit_deck(true, "penalty = 1.0e5", pressure), &["contact_fit_force", "energy_external_work"]);
     let tube = r#"{ set = "tube_bottom", uz = 0.0 }, { set = "tube_top", uz = 0.0 }"#;
-    compare("pushed fit with friction", &pushed_fit_deck(2.0e-4, 10, "friction = 0.2", tube), &["contact_fit_force", "reaction_ring_bottom_z", "energy_friction_dissipation"]);
+    compare(
+        "pushed fit with friction",
+        &pushed_fit_deck(2.0e-4, 10, "friction = 0.2", tube),
+        &["contact_fit_force", "reaction_ring_bottom_z", "energy_friction_dissipation"],
+    );
 }
 
 #[test]

@@ -160,7 +160,8 @@ fn assembled_jacobian_with_friction_matches_finite_differences_for_both_integrat
 fn newton_converges_quadratically_while_the_fit_slides() {
     let tube = r#"{ set = "tube_bottom", uz = 0.0 }, { set = "tube_top", uz = 0.0 }"#;
     for integration in ["node-to-segment", "segment"] {
-        let text = deck_with(2.0e-2, 2, &format!("friction = {MU}"), tube).replace("integration = \"node-to-segment\"", &format!("integration = \"{integration}\""));
+        let text =
+            deck_with(2.0e-2, 2, &format!("friction = {MU}"), tube).replace("integration = \"node-to-segment\"", &format!("integration = \"{integration}\""));
         let run = run_deck(&text, &[], 1, TIGHT);
         run.assert_ok();
         let res = Results::open(&run.h5);

@@ -120,29 +120,35 @@ fn model(block: f64, n: usize, ratio: f64) -> (Mesh, MeshSets) {
     (mesh, sets)
 }
 
-fn deck(friction: &str) -> String {
-    let pressure = FORCE / (std::f64::consts::PI * TOP * TOP);
+/// The sphere-on-block deck: material stiffness `youngs`, the contact law's lines (penalty,
+/// friction), and the step's increments, extra `boundary` entries and further `step` lines.
+fn deck_with(nlgeom: bool, youngs: f64, contact: &str, increments: usize, boundary: &str, step: &str) -> String {
     format!(
-        r#"nlgeom = false
+        r#"nlgeom = {nlgeom}
 [mesh]
 file = "hertz.msh"
 [[material]]
 name = "steel"
-youngs_modulus = {E}
+youngs_modulus = {youngs}
 poissons_ratio = {NU}
 [[contact]]
 name = "hertz"
 slave = "sphere_bottom"
 master = "block_top"
-penalty_factor = 10.0
 capture_distance = 0.5
-{friction}
+{contact}
 [[step]]
-increments = 5
-boundary = [ {{ set = "block_bottom", uz = 0.0 }}, {{ set = "block_axis", ur = 0.0 }}, {{ set = "sphere_axis", ur = 0.0 }} ]
-pressure = [ {{ surface = "sphere_top", value = {pressure} }} ]
+increments = {increments}
+boundary = [ {{ set = "block_bottom", uz = 0.0 }}, {{ set = "block_axis", ur = 0.0 }}, {{ set = "sphere_axis", ur = 0.0 }}{boundary} ]
+{step}
 "#
     )
+}
+
+/// The Hertz case: F on the sphere's flat top as a uniform pressure, kappa = 10.
+fn deck(friction: &str) -> String {
+    let pressure = FORCE / (std::f64::consts::PI * TOP * TOP);
+    deck_with(false, E, &format!("penalty_factor = 10.0\n{friction}"), 5, "", &format!("pressure = [ {{ surface = \"sphere_top\", value = {pressure} }} ]"))
 }
 
 /// (contact radius from the fit, peak pressure, total contact force) for an L x L block.
@@ -255,26 +261,7 @@ fn stiff_penalty_run(nlgeom: bool) -> (f64, f64, f64) {
     let (mesh, sets) = model(25.0, 24, 8.0);
     let msh = dir.path().join("hertz.msh");
     gmsh::write(&mesh, &sets, &msh).unwrap();
-    let deck = format!(
-        r#"nlgeom = {nlgeom}
-[mesh]
-file = "hertz.msh"
-[[material]]
-name = "steel"
-youngs_modulus = {E_SOFT}
-poissons_ratio = {NU}
-[[contact]]
-name = "hertz"
-slave = "sphere_bottom"
-master = "block_top"
-penalty = {penalty}
-capture_distance = 0.5
-[[step]]
-increments = 10
-boundary = [ {{ set = "block_bottom", uz = 0.0 }}, {{ set = "block_axis", ur = 0.0 }}, {{ set = "sphere_axis", ur = 0.0 }}, {{ set = "sphere_top", uz = -4.0 }} ]
-"#,
-        penalty = 50.0 * E_SOFT
-    );
+    let deck = deck_with(nlgeom, E_SOFT, &format!("penalty = {}", 50.0 * E_SOFT), 10, r#", { set = "sphere_top", uz = -4.0 }"#, "");
     let run = run_deck(&deck, &[("hertz.msh", &msh)], 1, &[]);
     run.assert_ok();
     let res = Results::open(&run.h5);

@@ -339,7 +339,14 @@ mod tests {
                 let (r, z) = (x[a][0], x[a][1]);
                 [amplitude * (0.3 * r - 0.2 * z + 0.05 * z * z), amplitude * (0.5 * r + 0.1 * z - 0.02 * r * z)]
             });
-            let input = SolidInput { geometry: &geometry, material: &STEEL, kinematics: kin, temperature_change: 40.0, committed: &committed, surface: SurfaceBranch::Elastic };
+            let input = SolidInput {
+                geometry: &geometry,
+                material: &STEEL,
+                kinematics: kin,
+                temperature_change: 40.0,
+                committed: &committed,
+                surface: SurfaceBranch::Elastic,
+            };
             let out = compute_solid(&input, &u, None).unwrap();
             assert!(out.state.iter().all(|s| s.ep > 0.0), "{kin:?}: every point should be plastic");
             let err = tangent_error(&input, &u, if kin == Kinematics::Small { 1e-8 } else { 1e-6 });
@@ -352,7 +359,14 @@ mod tests {
         let x = element();
         let geometry = ElementGeometry::new(&x).unwrap();
         let committed = [PointState::initial(Kinematics::Finite); 9];
-        let input = SolidInput { geometry: &geometry, material: &STEEL, kinematics: Kinematics::Finite, temperature_change: 0.0, committed: &committed, surface: SurfaceBranch::Elastic };
+        let input = SolidInput {
+            geometry: &geometry,
+            material: &STEEL,
+            kinematics: Kinematics::Finite,
+            temperature_change: 0.0,
+            committed: &committed,
+            surface: SurfaceBranch::Elastic,
+        };
         // axial translation only (a rotation in the (r, z) plane is not rigid in axisymmetry)
         let u = [[0.0, 3.7]; 8];
         let out = compute_solid(&input, &u, None).unwrap();

@@ -77,7 +77,10 @@ pub fn describe_column(name: &str) -> (&'static str, String) {
         "time" => ("-", "total time: step - 1 + load factor, or the input deck's time".into()),
         "newton_iterations" | "linear_iterations" => ("-", name.replace('_', " ")),
         "residual_norm" => (per_radian, "||F|| at convergence".into()),
-        "average_force" => (per_radian, "mean magnitude of the element and contact nodal forces at convergence (the field convergence test's; 0 under the residual test)".into()),
+        "average_force" => (
+            per_radian,
+            "mean magnitude of the element and contact nodal forces at convergence (the field convergence test's; 0 under the residual test)".into(),
+        ),
         "cutbacks" => ("-", "failed attempts before the increment converged".into()),
         "augmentations" => ("-", "augmented-Lagrangian multiplier updates".into()),
         "max_equivalent_plastic_strain" => ("-", "largest equivalent plastic strain of the model".into()),

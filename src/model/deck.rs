@@ -65,8 +65,8 @@
 
 use super::mesh::{blocks, rectangle, Block, MeshSets};
 use super::{
-    default_capture_distance, gmsh, AugmentedLagrangian, Component, ContactIntegration, ContactPair, Convergence, Friction, Kinematics, Material, Model, OutputControls,
-    OutputFields, Penalty, Plasticity, PrescribedDisplacement, Pressure, Step, SteppingControls,
+    default_capture_distance, gmsh, AugmentedLagrangian, Component, ContactIntegration, ContactPair, Convergence, Friction, Kinematics, Material, Model,
+    OutputControls, OutputFields, Penalty, Plasticity, PrescribedDisplacement, Pressure, Step, SteppingControls,
 };
 use crate::error::{Error, Result};
 use serde::Deserialize;
