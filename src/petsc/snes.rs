@@ -259,24 +259,25 @@ impl<'s> Snes<'s> {
         residual: &mut Vector<'_>,
         jacobian: &mut Matrix<'_>,
     ) -> Result<SolveReport> {
-        // the field test's work vectors: the previous iterate, a difference, the start
+        // the field test's work vectors (the previous iterate, a difference) and the start: the
+        // marked increment start (unchanged while this solve runs), else a copy of the guess
         let field_vectors = match self.field {
             Some(_) => {
-                let start = match &self.increment_start {
-                    Some(s) => s.duplicate().and_then(|mut v| v.copy_from(s).map(|_| v))?,
-                    None => x.duplicate().and_then(|mut v| v.copy_from(x).map(|_| v))?,
+                let guess = match self.increment_start {
+                    Some(_) => None,
+                    None => Some(x.duplicate().and_then(|mut v| v.copy_from(x).map(|_| v))?),
                 };
-                Some((x.duplicate()?, x.duplicate()?, start))
+                Some((x.duplicate()?, x.duplicate()?, guess))
             }
             None => None,
         };
         let field = match (&self.field, &field_vectors) {
-            (Some(ratios), Some((previous, work, start))) => Some(FieldContext {
+            (Some(ratios), Some((previous, work, guess))) => Some(FieldContext {
                 ratios: *ratios,
                 average: self.force_average,
                 previous: previous.raw(),
                 work: work.raw(),
-                start: start.raw(),
+                start: guess.as_ref().or(self.increment_start.as_ref()).map(|v| v.raw()).expect("a start"),
                 residuals: Vec::new(),
                 last_average_force: 0.0,
             }),
