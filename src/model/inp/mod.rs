@@ -237,7 +237,7 @@ fn build(cards: &[Card], source_text: String) -> Result<InpModel> {
                 b.in_step = false;
             }
             "CONTROLS" => {
-                b.notes.push(format!("*CONTROLS ({}) ignored: slideline's own convergence controls apply", card.at));
+                b.notes.push(format!("*CONTROLS ({}) ignored: slideline judges convergence by CalculiX's field test with its default ratios", card.at));
             }
             "TIME POINTS" => b.time_points(card)?,
             kw if OUTPUT_REQUESTS.contains(&kw) => {
