@@ -203,3 +203,31 @@ fn output_every_n_keeps_the_fields_of_every_nth_and_the_last_increment() {
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(out.status.code() == Some(2) && err.contains("unknown field \"strain\""), "{err}");
 }
+
+/// A results file another process holds locked (HDF5 takes a flock) is waited for, up to 3 s,
+/// then refused with a message that says so instead of "not an HDF5 file". The lock is held by
+/// flock(1), a process of its own: an HDF5 handle of this test process would leak its lock into
+/// every child process spawned meanwhile (HDF5 opens files without close-on-exec).
+#[test]
+fn post_waits_for_a_locked_file_then_names_the_lock() {
+    let dir = tempfile::tempdir().unwrap();
+    let (h5, run) = run_fit(dir.path(), 1, &["--quiet"]);
+    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+    let h5s = h5.to_str().unwrap().to_string();
+    let hold = |seconds: &str| std::process::Command::new("flock").args(["-x", &h5s, "sleep", seconds]).spawn().expect("flock(1)");
+    // held for 1 s: post waits and reads it
+    let mut holder = hold("1");
+    std::thread::sleep(std::time::Duration::from_millis(300));
+    let out = post(dir.path(), &[&h5s]);
+    holder.wait().unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    // held for longer than post waits: refused, naming the lock
+    let mut holder = hold("6");
+    std::thread::sleep(std::time::Duration::from_millis(300));
+    let out = post(dir.path(), &[&h5s]);
+    holder.kill().unwrap();
+    holder.wait().unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(err.contains("locked by another process") && !err.contains("not an HDF5 file"), "{err}");
+}

@@ -18,12 +18,35 @@ fn missing(path: &Path, what: &str, e: impl std::fmt::Display) -> Error {
     Error::input(format!("{}: cannot read {what}: {e}", path.display()))
 }
 
+/// HDF5 refuses a file another process holds locked (a writer, or one closing it just now),
+/// and a process whose open failed so keeps failing; so the lock is waited for first (HDF5
+/// takes it with flock, as `File::try_lock_shared` tests it), up to `LOCK_WAIT`.
+const LOCK_WAIT: std::time::Duration = std::time::Duration::from_secs(3);
+
+fn open_waiting_for_lock(path: &Path) -> Result<hdf5::File> {
+    let start = std::time::Instant::now();
+    if let Ok(probe) = std::fs::File::open(path) {
+        while let Err(std::fs::TryLockError::WouldBlock) = probe.try_lock_shared() {
+            if start.elapsed() >= LOCK_WAIT {
+                return Err(Error::input(format!(
+                    "{}: locked by another process for {} s (a run still writing it, or a program holding it open); read it when that has finished",
+                    path.display(),
+                    LOCK_WAIT.as_secs()
+                )));
+            }
+            std::thread::sleep(std::time::Duration::from_millis(100));
+        }
+        // the probe's shared lock goes with it; HDF5 takes its own
+    }
+    hdf5::File::open(path).map_err(|e| Error::input(format!("{}: not an HDF5 file ({e})", path.display())))
+}
+
 impl ResultsReader {
     pub fn open(path: &Path) -> Result<Self> {
         if !path.exists() {
             return Err(Error::input(format!("{}: no such file", path.display())));
         }
-        let file = hdf5::File::open(path).map_err(|e| Error::input(format!("{}: not an HDF5 file ({e})", path.display())))?;
+        let file = open_waiting_for_lock(path)?;
         let reader = ResultsReader { file, path: path.to_path_buf() };
         for group in ["mesh", "increments", "history"] {
             if !reader.file.link_exists(group) {
