@@ -14,7 +14,7 @@
 //! history slabs, contact pattern, multipliers) is still distributed.
 
 mod common;
-use common::{assert_continues, command_in, Results};
+use common::{assert_continues, command_in, Results, PLASTIC_STEEL};
 use std::path::Path;
 use std::process::Output;
 
@@ -99,21 +99,18 @@ fn slideline_increments(path: &Path) -> usize {
     g.member_names().unwrap().iter().filter(|n| g.group(n).unwrap().attr("complete").is_ok()).count()
 }
 
-const PLASTIC_CYLINDER: &str = r#"[mesh]
-rectangle = { r = [100.0, 130.0], z = [0.0, 1.0], divisions = [8, 1] }
-[[material]]
-name = "steel"
-model = "j2"
-youngs_modulus = 200000.0
-poissons_ratio = 0.3
-yield_stress = 300.0
-hardening_modulus = 1000.0
-[[step]]
+fn plastic_cylinder() -> String {
+    format!(
+        r#"[mesh]
+rectangle = {{ r = [100.0, 130.0], z = [0.0, 1.0], divisions = [8, 1] }}
+{PLASTIC_STEEL}[[step]]
 name = "load"
 increments = 6
-boundary = [ { set = "bottom", uz = 0.0 }, { set = "top", uz = 0.0 } ]
-pressure = [ { surface = "inner", value = 84.0 } ]
-"#;
+boundary = [ {{ set = "bottom", uz = 0.0 }}, {{ set = "top", uz = 0.0 }} ]
+pressure = [ {{ surface = "inner", value = 84.0 }} ]
+"#
+    )
+}
 
 const UNLOAD: &str = r#"[[step]]
 name = "unload"
@@ -125,8 +122,8 @@ pressure = [ { surface = "inner", value = 0.0 } ]
 fn a_continued_run_may_add_a_step_and_equals_the_run_of_the_longer_deck() {
     let dir = tempfile::tempdir().unwrap();
     let (short, long) = (dir.path().join("load.toml"), dir.path().join("cycle.toml"));
-    std::fs::write(&short, PLASTIC_CYLINDER).unwrap();
-    std::fs::write(&long, format!("{PLASTIC_CYLINDER}{UNLOAD}")).unwrap();
+    std::fs::write(&short, plastic_cylinder()).unwrap();
+    std::fs::write(&long, format!("{}{UNLOAD}", plastic_cylinder())).unwrap();
     let run = |args: &[&str]| ok(command_in(dir.path(), 1).current_dir(dir.path()).arg("run").args(args).arg("--quiet").output().unwrap());
     run(&[long.to_str().unwrap(), "-o", "cycle.h5"]);
     run(&[short.to_str().unwrap(), "-o", "load.h5"]);
@@ -168,7 +165,7 @@ fn restarts_that_cannot_continue_the_run_are_refused() {
     refused(bellows_restart(dir.path(), 1, "stateless.h5", &["-o", "other.h5"]), "holds no increment with a restart state");
     // a deck whose steps differ from the file's
     let deck = dir.path().join("deck.toml");
-    std::fs::write(&deck, PLASTIC_CYLINDER).unwrap();
+    std::fs::write(&deck, plastic_cylinder()).unwrap();
     let out =
         command_in(dir.path(), 1).current_dir(dir.path()).args(["run", deck.to_str().unwrap(), "--restart", "full.h5", "-o", "other.h5"]).output().unwrap();
     refused(out, "cannot restart from full.h5: its mesh has");

@@ -10,7 +10,7 @@
 //! displacements.
 
 mod common;
-use common::{run_deck, Results, TIGHT};
+use common::{run_deck, Results, PLASTIC_STEEL, TIGHT};
 
 const L: f64 = 10.0;
 const R: f64 = 5.0;
@@ -21,14 +21,7 @@ fn kirchhoff_stress_follows_the_hardening_law_to_1e_8() {
     let deck = format!(
         r#"[mesh]
 rectangle = {{ r = [0.0, {R}], z = [0.0, {L}], divisions = [2, 4] }}
-[[material]]
-name = "steel"
-model = "j2"
-youngs_modulus = 200000.0
-poissons_ratio = 0.3
-yield_stress = 300.0
-hardening_modulus = 1000.0
-[[step]]
+{PLASTIC_STEEL}[[step]]
 increments = 25
 boundary = [ {{ set = "inner", ur = 0.0 }}, {{ set = "bottom", uz = 0.0 }}, {{ set = "top", uz = {top} }} ]
 "#

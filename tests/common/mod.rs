@@ -33,6 +33,17 @@ pub fn data(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data").join(name)
 }
 
+/// The seed paper's steel as a deck's only material "steel": J2, E 200 GPa, nu 0.3, yield 300 MPa,
+/// linear hardening 1000 MPa.
+pub const PLASTIC_STEEL: &str = r#"[[material]]
+name = "steel"
+model = "j2"
+youngs_modulus = 200000.0
+poissons_ratio = 0.3
+yield_stress = 300.0
+hardening_modulus = 1000.0
+"#;
+
 /// `slideline run` flags for the residual convergence test (||F|| down by 1e-10 or to
 /// round-off), for tests that check an answer or Newton's convergence rate to round-off; the
 /// default field test stops where engineering answers have settled (0.1 % and better).

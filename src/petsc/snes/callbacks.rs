@@ -46,7 +46,7 @@ impl FieldContext {
             check(sys::SNESGetFunction(snes, &mut f, std::ptr::null_mut(), std::ptr::null_mut()), "SNESGetFunction")?;
         }
         let (x, f) = (VectorView::from_raw(x), VectorView::from_raw(f));
-        let (previous, mut work, start) = (VectorView::from_raw(self.previous), VectorView::from_raw(self.work), VectorView::from_raw(self.start));
+        let (mut previous, mut work, start) = (VectorView::from_raw(self.previous), VectorView::from_raw(self.work), VectorView::from_raw(self.start));
         let residual_max = f.norm_max()?;
         let verdict = if it == 0 {
             false
@@ -64,7 +64,6 @@ impl FieldContext {
             field_converged(&self.ratios, it, &m, self.average.with(average_force), &self.residuals)
         };
         self.residuals.push(residual_max);
-        let mut previous = previous;
         previous.copy_from(&x)?;
         Ok(verdict)
     }
