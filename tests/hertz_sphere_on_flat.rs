@@ -23,6 +23,8 @@
 //! on a block twice as large, graded alike, a and p0 move by 0.14 % and 0.10 %; the rest is
 //! the discretisation (0.06 mm elements, 40 nodes across the contact) and the penalty.
 //! Newton converges quadratically once the contact zone has settled in each increment.
+//! With friction: between like materials nothing changes; a rigid sphere (Spence's problem)
+//! sticks inside the radius of a boundary-element solution of the half-space.
 
 mod common;
 use common::{run_deck, Results, TIGHT};
@@ -72,14 +74,15 @@ fn with_midpoints(s: &[f64]) -> Vec<f64> {
     out
 }
 
-/// The sphere's tip as a transfinite Q8 block, shifted down by `overlap`; sets sphere,
-/// sphere_bottom (the arc), sphere_top, sphere_axis.
-fn sphere(overlap: f64) -> (Mesh, MeshSets) {
-    let theta_max = (TOP / R).asin();
-    let th = with_midpoints(&stations(0.04, 32, theta_max, 24));
+/// The tip of a sphere of `radius` as a transfinite Q8 block, 32 elements along the first 2 mm
+/// of its arc, shifted down by `overlap`; sets sphere, sphere_bottom (the arc), sphere_top,
+/// sphere_axis.
+fn sphere(radius: f64, overlap: f64) -> (Mesh, MeshSets) {
+    let theta_max = (TOP / radius).asin();
+    let th = with_midpoints(&stations(2.0 / radius, 32, theta_max, 24));
     let zs = with_midpoints(&stations(0.5, 8, HEIGHT, 22));
     let (ni, nj) = (th.len(), zs.len());
-    let arc = |t: f64| [R * t.sin(), R * (1.0 - t.cos())];
+    let arc = |t: f64| [radius * t.sin(), radius * (1.0 - t.cos())];
     let p1 = arc(theta_max);
     let corners = [[0.0, 0.0], p1, [TOP, HEIGHT], [0.0, HEIGHT]];
     // Coons patch: bottom the arc, top the flat face, left the axis, right the cut
@@ -100,10 +103,14 @@ fn sphere(overlap: f64) -> (Mesh, MeshSets) {
     (mesh, sets)
 }
 
-/// Sphere plus an L x L block (n x n elements graded by `ratio` towards the contact), as one
-/// mesh with the sets of both.
+/// Sphere (radius R, 0.005 mm into the block) plus an L x L block (n x n elements graded by
+/// `ratio` towards the contact), as one mesh with the sets of both.
 fn model(block: f64, n: usize, ratio: f64) -> (Mesh, MeshSets) {
-    let (mut mesh, mut sets) = sphere(0.005);
+    model_with(sphere(R, 0.005), block, n, ratio)
+}
+
+/// `model` with the sphere given.
+fn model_with((mut mesh, mut sets): (Mesh, MeshSets), block: f64, n: usize, ratio: f64) -> (Mesh, MeshSets) {
     let (b, bs) = graded_rectangle([0.0, block], [-block, 0.0], [n, n], [ratio, 1.0 / ratio]).unwrap();
     let (n0, e0) = (mesh.coords.len(), mesh.elements.len());
     mesh.coords.extend(&b.coords);
@@ -120,17 +127,28 @@ fn model(block: f64, n: usize, ratio: f64) -> (Mesh, MeshSets) {
     (mesh, sets)
 }
 
-/// The sphere-on-block deck: material stiffness `youngs`, the contact law's lines (penalty,
-/// friction), and the step's increments, extra `boundary` entries and further `step` lines.
-fn deck_with(nlgeom: bool, youngs: f64, contact: &str, increments: usize, boundary: &str, step: &str) -> String {
+/// The sphere-on-block deck: the Young's moduli of the sphere and the block, the contact law's
+/// lines (penalty, friction), and the step's increments, extra `boundary` entries and further
+/// `step` lines.
+fn deck_with(nlgeom: bool, [e_sphere, e_block]: [f64; 2], contact: &str, increments: usize, boundary: &str, step: &str) -> String {
     format!(
         r#"nlgeom = {nlgeom}
 [mesh]
 file = "hertz.msh"
 [[material]]
-name = "steel"
-youngs_modulus = {youngs}
+name = "sphere"
+youngs_modulus = {e_sphere}
 poissons_ratio = {NU}
+[[material]]
+name = "block"
+youngs_modulus = {e_block}
+poissons_ratio = {NU}
+[[section]]
+elements = "sphere"
+material = "sphere"
+[[section]]
+elements = "block"
+material = "block"
 [[contact]]
 name = "hertz"
 slave = "sphere_bottom"
@@ -148,7 +166,22 @@ boundary = [ {{ set = "block_bottom", uz = 0.0 }}, {{ set = "block_axis", ur = 0
 /// The Hertz case: F on the sphere's flat top as a uniform pressure, kappa = 10.
 fn deck(friction: &str) -> String {
     let pressure = FORCE / (std::f64::consts::PI * TOP * TOP);
-    deck_with(false, E, &format!("penalty_factor = 10.0\n{friction}"), 5, "", &format!("pressure = [ {{ surface = \"sphere_top\", value = {pressure} }} ]"))
+    deck_with(false, [E, E], &format!("penalty_factor = 10.0\n{friction}"), 5, "", &format!("pressure = [ {{ surface = \"sphere_top\", value = {pressure} }} ]"))
+}
+
+/// (contact radius, peak pressure) of (r, pressure) at the slave nodes: a least-squares fit of
+/// p^2 = p0^2 (1 - r^2 / a^2) over r < 0.8 a (the penalty rounds the pressure off at the edge).
+fn hertz_fit(rp: &[(f64, f64)]) -> (f64, f64) {
+    let peak = rp.iter().map(|x| x.1).fold(0.0, f64::max);
+    // first guess of a: the last node with pressure above 10 % of the peak
+    let a0 = rp.iter().filter(|x| x.1 > 0.1 * peak).map(|x| x.0).fold(0.0, f64::max);
+    let pts: Vec<(f64, f64)> = rp.iter().filter(|x| x.0 < 0.8 * a0).map(|x| (x.0 * x.0, x.1 * x.1)).collect();
+    let n = pts.len() as f64;
+    let (sx, sy) = (pts.iter().map(|p| p.0).sum::<f64>(), pts.iter().map(|p| p.1).sum::<f64>());
+    let (sxx, sxy) = (pts.iter().map(|p| p.0 * p.0).sum::<f64>(), pts.iter().map(|p| p.0 * p.1).sum::<f64>());
+    let c1 = (n * sxy - sx * sy) / (n * sxx - sx * sx);
+    let c0 = (sy - c1 * sx) / n;
+    ((-c0 / c1).sqrt(), peak)
 }
 
 /// (contact radius from the fit, peak pressure, total contact force) for an L x L block.
@@ -171,19 +204,8 @@ fn solve_with(block: f64, n: usize, ratio: f64, friction: &str) -> ((f64, f64, f
     let nodes = res.u64s("mesh/contact/hertz/pass0/nodes");
     let inc = res.last_increment();
     let p = res.f64s(&format!("{inc}/contact/hertz/pass0/pressure"));
-    let mut rp: Vec<(f64, f64)> = nodes.iter().zip(&p).map(|(&n, &p)| (coords[2 * n as usize], p)).collect();
-    rp.sort_by(|a, b| a.0.total_cmp(&b.0));
-    let peak = rp.iter().map(|x| x.1).fold(0.0, f64::max);
-    // first guess of a: the last node with pressure above 10 % of the peak
-    let a0 = rp.iter().filter(|x| x.1 > 0.1 * peak).map(|x| x.0).fold(0.0, f64::max);
-    // least squares p^2 = c0 + c1 r^2 over r < 0.8 a0
-    let pts: Vec<(f64, f64)> = rp.iter().filter(|x| x.0 < 0.8 * a0).map(|x| (x.0 * x.0, x.1 * x.1)).collect();
-    let n = pts.len() as f64;
-    let (sx, sy) = (pts.iter().map(|p| p.0).sum::<f64>(), pts.iter().map(|p| p.1).sum::<f64>());
-    let (sxx, sxy) = (pts.iter().map(|p| p.0 * p.0).sum::<f64>(), pts.iter().map(|p| p.0 * p.1).sum::<f64>());
-    let c1 = (n * sxy - sx * sy) / (n * sxx - sx * sx);
-    let c0 = (sy - c1 * sx) / n;
-    let a = (-c0 / c1).sqrt();
+    let rp: Vec<(f64, f64)> = nodes.iter().zip(&p).map(|(&n, &p)| (coords[2 * n as usize], p)).collect();
+    let (a, peak) = hertz_fit(&rp);
     let force = *res.history("contact_hertz_force_ring").last().unwrap();
     // quadratic convergence once the active set has settled: after the last slow step
     // (e_(k+1) > e_k / 10: the contact zone still changing), e_(k+1) <= 100 e_k^2 for every
@@ -261,7 +283,7 @@ fn stiff_penalty_run(nlgeom: bool) -> (f64, f64, f64) {
     let (mesh, sets) = model(25.0, 24, 8.0);
     let msh = dir.path().join("hertz.msh");
     gmsh::write(&mesh, &sets, &msh).unwrap();
-    let deck = deck_with(nlgeom, E_SOFT, &format!("penalty = {}", 50.0 * E_SOFT), 10, r#", { set = "sphere_top", uz = -4.0 }"#, "");
+    let deck = deck_with(nlgeom, [E_SOFT, E_SOFT], &format!("penalty = {}", 50.0 * E_SOFT), 10, r#", { set = "sphere_top", uz = -4.0 }"#, "");
     let run = run_deck(&deck, &[("hertz.msh", &msh)], 1, &[]);
     run.assert_ok();
     let res = Results::open(&run.h5);
@@ -276,5 +298,93 @@ fn a_stiff_penalty_reaches_the_full_approach_with_at_most_two_cutbacks() {
         let (cutbacks, its, lambda) = stiff_penalty_run(nlgeom);
         assert_eq!(lambda, 1.0);
         assert!(cutbacks <= allowed, "nlgeom {nlgeom}: {cutbacks} cutbacks ({its} Newton iterations)");
+    }
+}
+
+/// Spence's problem (Spence 1975, "The Hertz contact problem with finite friction"): a rigid
+/// sphere pressed into an elastic half-space with Coulomb friction. The pressure pulls the
+/// half-space's surface inwards (for nu < 1/2), the sphere holds it: a central zone sticks and
+/// an annulus slips inwards, and under a growing load the stick radius keeps a fixed fraction
+/// c / a of the contact radius that depends on mu and nu only.
+///
+/// Reference: `scripts/spence_bem.py --mu 0.15 0.2 0.3 --elements 400 --steps 200`, a
+/// boundary-element solution of Spence's problem sharing nothing with slideline (the
+/// half-space's Boussinesq and Cerruti ring loads, Spence's incremental stick/slip conditions).
+/// (Spence's printed values were not at hand; the script's frictionless case is Hertz's to
+/// 0.1 % in a, its c/a moves by 0.5 % from 300 annuli and 150 steps to 400 and 200.)
+const SPENCE_BEM: [(f64, f64); 3] = [(0.15, 0.4869), (0.2, 0.6961), (0.3, 0.8951)];
+
+/// The sphere for Spence's problem: R = 500 and 1000 times stiffer than the block. Spence's
+/// linear theory neglects the slope of the contact surface, along which the sphere's own
+/// descent has a component r / R: with R = 50 (a / R = 0.036) c / a came out 0.775 against the
+/// theory's 0.70 at mu = 0.2, with a / R halved 0.747; with R = 500 0.705.
+const SPENCE_RADIUS: f64 = 500.0;
+
+/// Contact radius and stick radius (each halfway between the outermost slave node inside and
+/// the first outside: the pressure's edge is too steep for `hertz_fit` with friction), and the
+/// peak pressure of the rigid sphere pressed to a Hertz radius of 1.8 mm
+/// in 20 equal increments of force, with friction `mu` (none for 0); also whether the nodes in
+/// contact stick inside c and slide outside it, as the theory has it.
+fn spence_run(mu: f64) -> (f64, f64, f64, bool) {
+    let dir = tempfile::tempdir().unwrap();
+    // 0.09 mm^2 / 2R into the block: touching over r < 0.3 mm at the start
+    let (mesh, sets) = model_with(sphere(SPENCE_RADIUS, 0.09 / (2.0 * SPENCE_RADIUS)), 25.0, 40, 120.0);
+    let msh = dir.path().join("hertz.msh");
+    gmsh::write(&mesh, &sets, &msh).unwrap();
+    let force = spence_force();
+    let friction = if mu > 0.0 { format!("friction = {mu}") } else { String::new() };
+    let deck = deck_with(
+        false,
+        [1000.0 * E, E],
+        &format!("penalty_factor = 10.0\n{friction}"),
+        20,
+        "",
+        &format!("pressure = [ {{ surface = \"sphere_top\", value = {} }} ]", force / (std::f64::consts::PI * TOP * TOP)),
+    );
+    let run = run_deck(&deck, &[("hertz.msh", &msh)], 1, &[]);
+    run.assert_ok();
+    let res = Results::open(&run.h5);
+    let coords = res.f64s("mesh/coordinates");
+    let nodes = res.u64s("mesh/contact/hertz/pass0/nodes");
+    let inc = res.last_increment();
+    let p = res.f64s(&format!("{inc}/contact/hertz/pass0/pressure"));
+    let r: Vec<f64> = nodes.iter().map(|&n| coords[2 * n as usize]).collect();
+    let mut rp: Vec<(f64, f64)> = r.iter().copied().zip(p.iter().copied()).collect();
+    rp.sort_by(|x, y| x.0.total_cmp(&y.0));
+    let p0 = rp.iter().map(|x| x.1).fold(0.0, f64::max);
+    let edge = rp.iter().position(|x| x.1 <= 0.0).expect("the contact reaches the sphere's end");
+    let a = 0.5 * (rp[edge - 1].0 + rp[edge].0);
+    if mu == 0.0 {
+        return (a, 0.0, p0, true);
+    }
+    let sliding = res.u8s(&format!("{inc}/contact/hertz/pass0/sliding"));
+    let mut touching: Vec<(f64, u8)> = (0..r.len()).filter(|&k| p[k] > 0.0).map(|k| (r[k], sliding[k])).collect();
+    touching.sort_by(|x, y| x.0.total_cmp(&y.0));
+    let first = touching.iter().position(|t| t.1 == 1).expect("no node slides");
+    assert!(first > 0, "no node sticks");
+    let c = 0.5 * (touching[first - 1].0 + touching[first].0);
+    let two_zones = touching[first..].iter().all(|t| t.1 == 1);
+    (a, c, p0, two_zones)
+}
+
+/// The force that gives the rigid sphere a Hertz contact radius of 1.8 mm (E* = E / (1 - nu^2)).
+fn spence_force() -> f64 {
+    4.0 * E / (1.0 - NU * NU) * 1.8f64.powi(3) / (3.0 * SPENCE_RADIUS)
+}
+
+#[test]
+fn frictional_indentation_sticks_inside_spences_radius() {
+    // without friction: Hertz's a and p0 for a rigid sphere, within the frictionless test's tolerances
+    let e_star = E / (1.0 - NU * NU);
+    let a_hertz = (3.0 * spence_force() * SPENCE_RADIUS / (4.0 * e_star)).cbrt();
+    let p0_hertz = 3.0 * spence_force() / (2.0 * std::f64::consts::PI * a_hertz * a_hertz);
+    let (a, _, p0, _) = spence_run(0.0);
+    eprintln!("mu 0: a {a:.4} mm against Hertz {a_hertz:.4}, p0 {p0:.1} MPa against {p0_hertz:.1}");
+    assert!((a - a_hertz).abs() <= 0.03 * a_hertz && (p0 - p0_hertz).abs() <= 0.05 * p0_hertz, "a {a}, p0 {p0}");
+    for (mu, reference) in SPENCE_BEM {
+        let (a, c, _, two_zones) = spence_run(mu);
+        eprintln!("mu {mu}: a {a:.4} mm, c {c:.4} mm, c/a {:.4} against {reference} ({:+.1} %)", c / a, 100.0 * (c / a - reference) / reference);
+        assert!(two_zones, "mu {mu}: a node slides inside the stick zone or sticks outside it");
+        assert!((c / a - reference).abs() <= 0.05 * reference, "mu {mu}: c/a {} against {reference}", c / a);
     }
 }
