@@ -77,6 +77,10 @@ struct LocalElement {
     /// E times the mean radius: an element force is computed from displacement differences,
     /// so its round-off is about eps * E * r * |u| (per radian).
     roundoff_scale: f64,
+    /// The element's size: its strains come from F = I + grad u, whose round-off is eps even
+    /// where grad u is tiny, as if |u| were this long (what dominates in a stiff body that
+    /// moves rigidly).
+    roundoff_length: f64,
 }
 
 pub struct Problem<'s, 'm> {
@@ -191,7 +195,9 @@ impl<'s, 'm> Problem<'s, 'm> {
             let geometry = ElementGeometry::new(&coords).map_err(|m| Error::input(format!("element {}: {m}", model.mesh.element_ids[e])))?;
             let mat = &model.materials[model.element_material[e]];
             let roundoff_scale = mat.youngs_modulus * geometry.mean_radius();
-            elements.push(LocalElement { element: e, geometry, coords, dofs: d, slots, material: model.element_material[e], roundoff_scale });
+            let extent = |c: usize| coords.iter().map(|x| x[c]).fold(f64::MIN, f64::max) - coords.iter().map(|x| x[c]).fold(f64::MAX, f64::min);
+            let roundoff_length = extent(0).hypot(extent(1));
+            elements.push(LocalElement { element: e, geometry, coords, dofs: d, slots, material: model.element_material[e], roundoff_scale, roundoff_length });
         }
         let mut position = vec![usize::MAX; model.mesh.elements.len()];
         for (k, el) in elements.iter().enumerate() {

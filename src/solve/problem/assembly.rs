@@ -218,7 +218,9 @@ impl Problem<'_, '_> {
             fields.energy.elastic += out.energy.elastic;
             fields.energy.plastic_work += out.energy.plastic_work;
             fields.energy.thermal_power += out.energy.thermal_power;
-            let size = self.elements[k].roundoff_scale * u.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs())) + out.internal_force.abs().max();
+            let element = &self.elements[k];
+            let size =
+                element.roundoff_scale * (u.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs())) + element.roundoff_length) + out.internal_force.abs().max();
             roundoff += (ROUNDOFF_ULPS * f64::EPSILON * size).powi(2);
             forces[0] += out.internal_force.iter().map(|v| v.abs()).sum::<f64>();
             forces[1] += DOFS as f64;
