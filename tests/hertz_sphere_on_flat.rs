@@ -78,6 +78,14 @@ fn with_midpoints(s: &[f64]) -> Vec<f64> {
 /// of its arc, shifted down by `overlap`; sets sphere, sphere_bottom (the arc), sphere_top,
 /// sphere_axis.
 fn sphere(radius: f64, overlap: f64) -> (Mesh, MeshSets) {
+    cap(radius, overlap, false, "sphere")
+}
+
+/// The sphere's tip (pole at the origin, flat face at z = HEIGHT), shifted down by `overlap`,
+/// or its mirror image in z = 0 (`lower`, shifted up); sets `name`, `name`_axis, and
+/// `name`_bottom and `name`_top, its lower and upper face (the arc is the upper cap's bottom
+/// and the lower cap's top).
+fn cap(radius: f64, overlap: f64, lower: bool, name: &str) -> (Mesh, MeshSets) {
     let theta_max = (TOP / radius).asin();
     let th = with_midpoints(&stations(2.0 / radius, 32, theta_max, 24));
     let zs = with_midpoints(&stations(0.5, 8, HEIGHT, 22));
@@ -86,7 +94,7 @@ fn sphere(radius: f64, overlap: f64) -> (Mesh, MeshSets) {
     let p1 = arc(theta_max);
     let corners = [[0.0, 0.0], p1, [TOP, HEIGHT], [0.0, HEIGHT]];
     // Coons patch: bottom the arc, top the flat face, left the axis, right the cut
-    let (mesh, block) = mapped_block([(ni - 1) / 2, (nj - 1) / 2], |i, j| {
+    let upper = |i: usize, j: usize| {
         let (u, v) = (i as f64 / (ni - 1) as f64, zs[j] / HEIGHT);
         let (b, t, l, r) = (arc(th[i]), [TOP * u, HEIGHT], [0.0, zs[j]], [TOP, p1[1] + (HEIGHT - p1[1]) * v]);
         let x: [f64; 2] = std::array::from_fn(|c| {
@@ -94,12 +102,45 @@ fn sphere(radius: f64, overlap: f64) -> (Mesh, MeshSets) {
                 - ((1.0 - u) * (1.0 - v) * corners[0][c] + u * (1.0 - v) * corners[1][c] + u * v * corners[2][c] + (1.0 - u) * v * corners[3][c])
         });
         [x[0], x[1] - overlap]
+    };
+    // the mirror image runs i backwards to stay counter-clockwise: the axis is its `outer` side
+    let (mesh, block) = mapped_block([(ni - 1) / 2, (nj - 1) / 2], |i, j| {
+        if lower {
+            let [r, z] = upper(ni - 1 - i, j);
+            [r, -z]
+        } else {
+            upper(i, j)
+        }
     });
     let mut sets = MeshSets::default();
-    sets.element_sets.insert("sphere".into(), (0..mesh.elements.len()).collect());
-    sets.add_surface(&mesh, "sphere_bottom", block.surfaces["bottom"].clone());
-    sets.add_surface(&mesh, "sphere_top", block.surfaces["top"].clone());
-    sets.node_sets.insert("sphere_axis".into(), block.node_sets["inner"].clone());
+    sets.element_sets.insert(name.into(), (0..mesh.elements.len()).collect());
+    let (arc_face, flat_face) = if lower { ("top", "bottom") } else { ("bottom", "top") };
+    sets.add_surface(&mesh, &format!("{name}_{arc_face}"), block.surfaces["bottom"].clone());
+    sets.add_surface(&mesh, &format!("{name}_{flat_face}"), block.surfaces["top"].clone());
+    sets.node_sets.insert(format!("{name}_axis"), block.node_sets[if lower { "outer" } else { "inner" }].clone());
+    (mesh, sets)
+}
+
+/// Two sphere tips of radius R touching pole to pole (Code_Aster's SSNV104 arrangement): the
+/// upper one's sets named `sphere`, the lower one's `block` (as `model`'s, so that `deck_with`
+/// serves both).
+fn two_spheres() -> (Mesh, MeshSets) {
+    let (mut mesh, mut sets) = cap(R, 0.0, false, "sphere");
+    let (m, s) = cap(R, 0.0, true, "block");
+    let (n0, e0) = (mesh.coords.len(), mesh.elements.len());
+    mesh.coords.extend(&m.coords);
+    mesh.node_ids.extend((0..m.coords.len()).map(|k| (n0 + k + 1) as u64));
+    mesh.elements.extend(m.elements.iter().map(|c| c.map(|n| n + n0)));
+    mesh.element_ids.extend((0..m.elements.len()).map(|k| (e0 + k + 1) as u64));
+    for (name, elements) in s.element_sets {
+        sets.element_sets.insert(name, elements.iter().map(|e| e + e0).collect());
+    }
+    for (name, nodes) in s.node_sets {
+        sets.node_sets.insert(name, nodes.iter().map(|n| n + n0).collect());
+    }
+    for (name, edges) in s.surfaces {
+        sets.surfaces.insert(name, edges.iter().map(|e| Edge { element: e.element + e0, side: e.side }).collect());
+    }
     (mesh, sets)
 }
 
@@ -283,11 +324,14 @@ fn contact_radius_and_peak_pressure_match_hertz() {
 /// small and in finite strain, 10 increments asked: the full approach with at most 2 cutbacks.
 /// Measured: small strain 2 (65 Newton iterations), finite strain 1 (93); finite strain took 5
 /// before a line-search step that inverts an element was halved instead of failing, and 3 while
-/// an increment grew after one converged in 6 iterations (now 4, CalculiX's rule).
-fn stiff_penalty_run(nlgeom: bool) -> (f64, f64, f64) {
+/// an increment grew after one converged in 6 iterations (now 4, CalculiX's rule). The same on
+/// two spheres touching pole to pole (SSNV104's own arrangement, the upper one's flat face
+/// pushed 4 mm, the lower one's held): 0 cutbacks in both (65 and 62 Newton iterations); they
+/// took 4 in finite strain when started 0.005 mm into each other, an interference the first
+/// increment must remove at any load factor.
+fn stiff_penalty_run(nlgeom: bool, (mesh, sets): (Mesh, MeshSets)) -> (f64, f64, f64) {
     const E_SOFT: f64 = 20e3;
     let dir = tempfile::tempdir().unwrap();
-    let (mesh, sets) = model(25.0, 24, 8.0);
     let msh = dir.path().join("hertz.msh");
     gmsh::write(&mesh, &sets, &msh).unwrap();
     let deck = deck_with(nlgeom, [E_SOFT, E_SOFT], &format!("penalty = {}", 50.0 * E_SOFT), 10, r#", { set = "sphere_top", uz = -4.0 }"#, "");
@@ -301,10 +345,13 @@ fn stiff_penalty_run(nlgeom: bool) -> (f64, f64, f64) {
 
 #[test]
 fn a_stiff_penalty_reaches_the_full_approach_with_at_most_two_cutbacks() {
-    for (nlgeom, allowed) in [(false, 2.0), (true, 2.0)] {
-        let (cutbacks, its, lambda) = stiff_penalty_run(nlgeom);
-        assert_eq!(lambda, 1.0);
-        assert!(cutbacks <= allowed, "nlgeom {nlgeom}: {cutbacks} cutbacks ({its} Newton iterations)");
+    for (name, geometry) in [("sphere on block", model as fn(f64, usize, f64) -> (Mesh, MeshSets)), ("two spheres", |_, _, _| two_spheres())] {
+        for nlgeom in [false, true] {
+            let (cutbacks, its, lambda) = stiff_penalty_run(nlgeom, geometry(25.0, 24, 8.0));
+            eprintln!("{name}, nlgeom {nlgeom}: {cutbacks} cutbacks, {its} Newton iterations");
+            assert_eq!(lambda, 1.0);
+            assert!(cutbacks <= 2.0, "{name}, nlgeom {nlgeom}: {cutbacks} cutbacks ({its} Newton iterations)");
+        }
     }
 }
 
