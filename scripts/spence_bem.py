@@ -13,7 +13,7 @@ incremental stick/slip conditions by an active-set iteration at each load step.
     python3 scripts/spence_bem.py [--mu 0.1 ...] [--nu 0.3] [--elements 400] [--steps 200]
 
 Units: E = 1, sphere radius R = 1, final approach 1 (so a is about 1): c/a is free of all three.
-Needs numpy.
+Needs numpy; about 4 minutes per mu at the defaults (tests/hertz_sphere_on_flat.rs quotes them).
 """
 import argparse
 
