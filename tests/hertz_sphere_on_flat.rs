@@ -27,7 +27,7 @@
 //! sticks inside the radius of a boundary-element solution of the half-space.
 
 mod common;
-use common::{run_deck, Results, TIGHT};
+use common::{run_deck, Results, Run, TIGHT};
 use slideline::model::gmsh;
 use slideline::model::mesh::{graded_rectangle, mapped_block, Edge, Mesh, MeshSets};
 
@@ -217,6 +217,24 @@ fn deck(friction: &str) -> String {
     )
 }
 
+/// Runs `deck` on the model (its mesh as hertz.msh, 1 rank) and opens the results: the run
+/// (which holds the files), the results, and (r, pressure) at the slave nodes at the last
+/// increment, in the order of the file.
+fn run_model((mesh, sets): (Mesh, MeshSets), deck: &str, convergence: &[&str]) -> (Run, Results, Vec<(f64, f64)>) {
+    mesh.validate().unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    let msh = dir.path().join("hertz.msh");
+    gmsh::write(&mesh, &sets, &msh).unwrap();
+    let run = run_deck(deck, &[("hertz.msh", &msh)], 1, convergence);
+    run.assert_ok();
+    let res = Results::open(&run.h5);
+    let coords = res.f64s("mesh/coordinates");
+    let nodes = res.u64s("mesh/contact/hertz/pass0/nodes");
+    let p = res.f64s(&format!("{}/contact/hertz/pass0/pressure", res.last_increment()));
+    let rp = nodes.iter().zip(&p).map(|(&n, &p)| (coords[2 * n as usize], p)).collect();
+    (run, res, rp)
+}
+
 /// (contact radius, peak pressure) of (r, pressure) at the slave nodes: a least-squares fit of
 /// p^2 = p0^2 (1 - r^2 / a^2) over r < 0.8 a (the penalty rounds the pressure off at the edge).
 fn hertz_fit(rp: &[(f64, f64)]) -> (f64, f64) {
@@ -240,19 +258,7 @@ fn solve(block: f64, n: usize, ratio: f64) -> (f64, f64, f64) {
 /// `solve` with `friction` in the contact pair; also the largest |shear| over the last
 /// increment's slave nodes.
 fn solve_with(block: f64, n: usize, ratio: f64, friction: &str) -> ((f64, f64, f64), f64) {
-    let dir = tempfile::tempdir().unwrap();
-    let (mesh, sets) = model(block, n, ratio);
-    mesh.validate().unwrap();
-    let msh = dir.path().join("hertz.msh");
-    gmsh::write(&mesh, &sets, &msh).unwrap();
-    let run = run_deck(&deck(friction), &[("hertz.msh", &msh)], 1, TIGHT);
-    run.assert_ok();
-    let res = Results::open(&run.h5);
-    let coords = res.f64s("mesh/coordinates");
-    let nodes = res.u64s("mesh/contact/hertz/pass0/nodes");
-    let inc = res.last_increment();
-    let p = res.f64s(&format!("{inc}/contact/hertz/pass0/pressure"));
-    let rp: Vec<(f64, f64)> = nodes.iter().zip(&p).map(|(&n, &p)| (coords[2 * n as usize], p)).collect();
+    let (_run, res, rp) = run_model(model(block, n, ratio), &deck(friction), TIGHT);
     let (a, peak) = hertz_fit(&rp);
     let force = *res.history("contact_hertz_force_ring").last().unwrap();
     // quadratic convergence once the active set has settled: after the last slow step
@@ -271,7 +277,7 @@ fn solve_with(block: f64, n: usize, ratio: f64, friction: &str) -> ((f64, f64, f
         }
     }
     assert!(checked >= 2, "too few asymptotic iterations to judge");
-    let shear_name = format!("{inc}/contact/hertz/pass0/shear");
+    let shear_name = format!("{}/contact/hertz/pass0/shear", res.last_increment());
     let shear = if res.file.link_exists(&shear_name) { res.f64s(&shear_name).iter().fold(0.0f64, |m, v| m.max(v.abs())) } else { 0.0 };
     ((a, peak, force), shear)
 }
@@ -329,15 +335,10 @@ fn contact_radius_and_peak_pressure_match_hertz() {
 /// pushed 4 mm, the lower one's held): 0 cutbacks in both (65 and 62 Newton iterations); they
 /// took 4 in finite strain when started 0.005 mm into each other, an interference the first
 /// increment must remove at any load factor.
-fn stiff_penalty_run(nlgeom: bool, (mesh, sets): (Mesh, MeshSets)) -> (f64, f64, f64) {
+fn stiff_penalty_run(nlgeom: bool, model: (Mesh, MeshSets)) -> (f64, f64, f64) {
     const E_SOFT: f64 = 20e3;
-    let dir = tempfile::tempdir().unwrap();
-    let msh = dir.path().join("hertz.msh");
-    gmsh::write(&mesh, &sets, &msh).unwrap();
     let deck = deck_with(nlgeom, [E_SOFT, E_SOFT], &format!("penalty = {}", 50.0 * E_SOFT), 10, r#", { set = "sphere_top", uz = -4.0 }"#, "");
-    let run = run_deck(&deck, &[("hertz.msh", &msh)], 1, &[]);
-    run.assert_ok();
-    let res = Results::open(&run.h5);
+    let (_run, res, _) = run_model(model, &deck, &[]);
     let cutbacks: f64 = res.history("cutbacks").iter().sum();
     let its: f64 = res.history("newton_iterations").iter().sum();
     (cutbacks, its, *res.history("load_factor").last().unwrap())
@@ -380,11 +381,6 @@ const SPENCE_RADIUS: f64 = 500.0;
 /// in 20 equal increments of force, with friction `mu` (none for 0); also whether the nodes in
 /// contact stick inside c and slide outside it, as the theory has it.
 fn spence_run(mu: f64, convergence: &[&str]) -> (f64, f64, f64, bool) {
-    let dir = tempfile::tempdir().unwrap();
-    // 0.09 mm^2 / 2R into the block: touching over r < 0.3 mm at the start
-    let (mesh, sets) = model_with(sphere(SPENCE_RADIUS, 0.09 / (2.0 * SPENCE_RADIUS)), 25.0, 40, 120.0);
-    let msh = dir.path().join("hertz.msh");
-    gmsh::write(&mesh, &sets, &msh).unwrap();
     let force = spence_force();
     let friction = if mu > 0.0 { format!("friction = {mu}") } else { String::new() };
     let deck = deck_with(
@@ -395,25 +391,19 @@ fn spence_run(mu: f64, convergence: &[&str]) -> (f64, f64, f64, bool) {
         "",
         &format!("pressure = [ {{ surface = \"sphere_top\", value = {} }} ]", force / (std::f64::consts::PI * TOP * TOP)),
     );
-    let run = run_deck(&deck, &[("hertz.msh", &msh)], 1, convergence);
-    run.assert_ok();
-    let res = Results::open(&run.h5);
-    let coords = res.f64s("mesh/coordinates");
-    let nodes = res.u64s("mesh/contact/hertz/pass0/nodes");
-    let inc = res.last_increment();
-    let p = res.f64s(&format!("{inc}/contact/hertz/pass0/pressure"));
-    let r: Vec<f64> = nodes.iter().map(|&n| coords[2 * n as usize]).collect();
-    let mut rp: Vec<(f64, f64)> = r.iter().copied().zip(p.iter().copied()).collect();
-    rp.sort_by(|x, y| x.0.total_cmp(&y.0));
-    let p0 = rp.iter().map(|x| x.1).fold(0.0, f64::max);
-    let edge = rp.iter().position(|x| x.1 <= 0.0).expect("the contact reaches the sphere's end");
-    let a = 0.5 * (rp[edge - 1].0 + rp[edge].0);
+    // 0.09 mm^2 / 2R into the block: touching over r < 0.3 mm at the start
+    let sphere = sphere(SPENCE_RADIUS, 0.09 / (2.0 * SPENCE_RADIUS));
+    let (_run, res, rp) = run_model(model_with(sphere, 25.0, 40, 120.0), &deck, convergence);
+    let sliding = if mu > 0.0 { res.u8s(&format!("{}/contact/hertz/pass0/sliding", res.last_increment())) } else { vec![0; rp.len()] };
+    let mut rows: Vec<(f64, f64, u8)> = rp.iter().zip(&sliding).map(|(&(r, p), &s)| (r, p, s)).collect();
+    rows.sort_by(|x, y| x.0.total_cmp(&y.0));
+    let p0 = rows.iter().map(|x| x.1).fold(0.0, f64::max);
+    let edge = rows.iter().position(|x| x.1 <= 0.0).expect("the contact reaches the sphere's end");
+    let a = 0.5 * (rows[edge - 1].0 + rows[edge].0);
     if mu == 0.0 {
         return (a, 0.0, p0, true);
     }
-    let sliding = res.u8s(&format!("{inc}/contact/hertz/pass0/sliding"));
-    let mut touching: Vec<(f64, u8)> = (0..r.len()).filter(|&k| p[k] > 0.0).map(|k| (r[k], sliding[k])).collect();
-    touching.sort_by(|x, y| x.0.total_cmp(&y.0));
+    let touching: Vec<(f64, u8)> = rows.iter().filter(|x| x.1 > 0.0).map(|x| (x.0, x.2)).collect();
     let first = touching.iter().position(|t| t.1 == 1).expect("no node slides");
     assert!(first > 0, "no node sticks");
     let c = 0.5 * (touching[first - 1].0 + touching[first].0);
