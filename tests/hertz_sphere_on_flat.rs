@@ -440,3 +440,38 @@ fn frictional_indentation_sticks_inside_spences_radius() {
     let (a, c, _, _) = spence_run(SPENCE_BEM[1].0, TIGHT);
     assert!((c / a - ratios[1]).abs() < 1e-3, "residual test: c/a {} against {}", c / a, ratios[1]);
 }
+
+/// A stiff tangential penalty: Spence's rigid sphere with mu = 0.2 and eps_T = 3e8 MPa/mm (the
+/// elastic slip at the Coulomb limit about 1e-7 mm), the block 24 x 24 elements, 10
+/// increments. Newton cycles between stick and slip under the shell line search (which follows
+/// the slope of an incremental potential that friction has not); after a failed attempt the
+/// step's remaining solves search with `l2`, also after a restart. Measured: 1 cutback (16
+/// increments); with the shell throughout 4 (79 increments), when each increment went back
+/// to the shell the finer block of the Spence test did not finish.
+#[test]
+fn a_stiff_tangential_penalty_reaches_the_full_load_with_at_most_two_cutbacks() {
+    let pressure = spence_force() / (std::f64::consts::PI * TOP * TOP);
+    let deck = deck_with(
+        false,
+        [1000.0 * E, E],
+        "penalty_factor = 10.0\nfriction = 0.2\ntangential_penalty = 3e8",
+        10,
+        "",
+        &format!("pressure = [ {{ surface = \"sphere_top\", value = {pressure} }} ]"),
+    );
+    let sphere = sphere(SPENCE_RADIUS, 0.09 / (2.0 * SPENCE_RADIUS));
+    let (run, res, _) = run_model(model_with(sphere, 25.0, 24, 8.0), &deck, &[]);
+    let cutbacks = res.history("cutbacks");
+    assert_eq!(*res.history("load_factor").last().unwrap(), 1.0);
+    assert!(cutbacks.iter().sum::<f64>() <= 2.0, "{cutbacks:?} cutbacks");
+    // a restart after the cutback searches as the run did: the same history, bit for bit
+    let after = cutbacks.iter().position(|&c| c > 0.0).expect("a cutback to restart after") + 2;
+    let h5 = run.h5.to_str().unwrap().to_string();
+    let msh = run.dir.path().join("hertz.msh");
+    let again = run_deck(&deck, &[("hertz.msh", &msh)], 1, &["--restart", &h5, "--increment", &after.to_string()]);
+    again.assert_ok();
+    let res2 = Results::open(&again.h5);
+    for column in ["load_factor", "newton_iterations", "contact_hertz_force"] {
+        assert_eq!(res.history(column), res2.history(column), "{column} after a restart at increment {after}");
+    }
+}

@@ -104,6 +104,9 @@ pub struct Snes<'s> {
     last_average_force: f64,
     /// The unknowns at the start of the increment (the field test's Delta u).
     increment_start: Option<Vector<'s>>,
+    /// Whether the line search is PETSc's `l2` for a retried increment (else slideline's
+    /// shell); None when `-snes_linesearch_type` chose it.
+    retry_line_search: Option<bool>,
     _session: SessionBorrow<'s>,
 }
 
@@ -137,6 +140,7 @@ impl<'s> Snes<'s> {
             force_average: ForceAverage::default(),
             last_average_force: 0.0,
             increment_start: None,
+            retry_line_search: (!session.has_option("-snes_linesearch_type")).then_some(false),
             _session: PhantomData,
         };
         snes.configure_defaults(session)?;
@@ -195,6 +199,30 @@ impl<'s> Snes<'s> {
             check(sys::SNESSetTolerances(self.raw, atol.unwrap_or(DEFAULT), rtol.unwrap_or(DEFAULT), 0.0, maxit, -2), "SNESSetTolerances")?;
             check(sys::SNESSetFromOptions(self.raw), "SNESSetFromOptions")
         }
+    }
+
+    /// PETSc's `l2` line search (a secant minimisation of ||F||^2 along the Newton step) for
+    /// the solves after a failed attempt (`retry`), else slideline's shell. The shell follows
+    /// the slope of an incremental potential, which friction has not: at a stiff tangential
+    /// penalty Newton cycles between stick and slip, where `l2` gets through (and going back
+    /// to the shell at the next increment fails again). `-snes_linesearch_type` keeps its
+    /// choice throughout.
+    pub fn set_retry_line_search(&mut self, retry: bool) -> Result<()> {
+        if self.retry_line_search.is_none_or(|current| current == retry) {
+            return Ok(());
+        }
+        let mut ls = std::ptr::null_mut();
+        // SAFETY: valid handle; the line search is the SNES's own.
+        unsafe {
+            check(sys::SNESGetLineSearch(self.raw, &mut ls), "SNESGetLineSearch")?;
+            if retry {
+                check(sys::SNESLineSearchSetType(ls, c"l2".as_ptr()), "SNESLineSearchSetType (l2)")?;
+            } else {
+                check(linesearch::install(ls), "SNESLineSearchSetType (shell)")?;
+            }
+        }
+        self.retry_line_search = Some(retry);
+        Ok(())
     }
 
     /// Judges the solves by CalculiX's field test as well (a solve converges when either test
