@@ -125,13 +125,12 @@ fn cap(radius: f64, overlap: f64, lower: bool, name: &str) -> (Mesh, MeshSets) {
 /// upper one's sets named `sphere`, the lower one's `block` (as `model`'s, so that `deck_with`
 /// serves both).
 fn two_spheres() -> (Mesh, MeshSets) {
-    let (mut mesh, mut sets) = cap(R, 0.0, false, "sphere");
-    let (m, s) = cap(R, 0.0, true, "block");
-    let (n0, e0) = (mesh.coords.len(), mesh.elements.len());
-    mesh.coords.extend(&m.coords);
-    mesh.node_ids.extend((0..m.coords.len()).map(|k| (n0 + k + 1) as u64));
-    mesh.elements.extend(m.elements.iter().map(|c| c.map(|n| n + n0)));
-    mesh.element_ids.extend((0..m.elements.len()).map(|k| (e0 + k + 1) as u64));
+    join(cap(R, 0.0, false, "sphere"), cap(R, 0.0, true, "block"))
+}
+
+/// Two bodies as one mesh with the sets of both (their names distinct).
+fn join((mut mesh, mut sets): (Mesh, MeshSets), (m, s): (Mesh, MeshSets)) -> (Mesh, MeshSets) {
+    let (n0, e0) = mesh.append(&m);
     for (name, elements) in s.element_sets {
         sets.element_sets.insert(name, elements.iter().map(|e| e + e0).collect());
     }
@@ -151,18 +150,14 @@ fn model(block: f64, n: usize, ratio: f64) -> (Mesh, MeshSets) {
 }
 
 /// `model` with the sphere given.
-fn model_with((mut mesh, mut sets): (Mesh, MeshSets), block: f64, n: usize, ratio: f64) -> (Mesh, MeshSets) {
+fn model_with(sphere: (Mesh, MeshSets), block: f64, n: usize, ratio: f64) -> (Mesh, MeshSets) {
     let (b, bs) = graded_rectangle([0.0, block], [-block, 0.0], [n, n], [ratio, 1.0 / ratio]).unwrap();
-    let (n0, e0) = (mesh.coords.len(), mesh.elements.len());
-    mesh.coords.extend(&b.coords);
-    mesh.node_ids.extend((0..b.coords.len()).map(|k| (n0 + k + 1) as u64));
-    mesh.elements.extend(b.elements.iter().map(|c| c.map(|n| n + n0)));
-    mesh.element_ids.extend((0..b.elements.len()).map(|k| (e0 + k + 1) as u64));
-    sets.element_sets.insert("block".into(), (e0..mesh.elements.len()).collect());
-    let shift = |edges: &Vec<Edge>| edges.iter().map(|e| Edge { element: e.element + e0, side: e.side }).collect::<Vec<_>>();
-    sets.add_surface(&mesh, "block_top", shift(&bs.surfaces["top"]));
-    sets.add_surface(&mesh, "block_bottom", shift(&bs.surfaces["bottom"]));
-    sets.add_surface(&mesh, "block_axis", shift(&bs.surfaces["inner"]));
+    let mut named = MeshSets::default();
+    named.element_sets.insert("block".into(), (0..b.elements.len()).collect());
+    for (name, side) in [("block_top", "top"), ("block_bottom", "bottom"), ("block_axis", "inner")] {
+        named.add_surface(&b, name, bs.surfaces[side].clone());
+    }
+    let (mesh, mut sets) = join(sphere, (b, named));
     sets.element_sets.insert("all".into(), (0..mesh.elements.len()).collect());
     sets.node_sets.insert("all".into(), (0..mesh.coords.len()).collect());
     (mesh, sets)
@@ -293,7 +288,8 @@ fn friction_between_like_materials_leaves_hertz_as_it_is() {
     eprintln!("mu 0.3: a {:.4} against {:.4}, p0 {:.1} against {:.1}, largest shear {shear:.3} MPa", rough.0, free.0, rough.1, free.1);
     assert!((rough.0 - free.0).abs() < 0.005 * free.0 && (rough.1 - free.1).abs() < 0.005 * free.1, "{rough:?} against {free:?}");
     // (not zero: the sphere and the block are finite bodies, not the theory's half-spaces;
-    // 2.2 % of p0 measured)
+    // 1.9 % of p0 measured, 2.2 % before a failed attempt switched the rest of the step to
+    // the `l2` line search: friction follows the path)
     assert!(shear < 0.03 * free.1, "shear {shear} MPa against p0 {}", free.1);
 }
 
@@ -328,7 +324,8 @@ fn contact_radius_and_peak_pressure_match_hertz() {
 /// A stiff penalty: 50 E per mm (the Code_Aster SSNV104 choice), E = 20 GPa, the sphere pushed
 /// 4 mm into the block by its flat top (contact radius about 14 mm, p0 about a tenth of E), in
 /// small and in finite strain, 10 increments asked: the full approach with at most 2 cutbacks.
-/// Measured: small strain 2 (65 Newton iterations), finite strain 1 (93); finite strain took 5
+/// Measured: small strain 2 (73 Newton iterations), finite strain 1 (76; 65 and 93 before the
+/// steps went on with `l2` after a failed attempt); finite strain took 5
 /// before a line-search step that inverts an element was halved instead of failing, and 3 while
 /// an increment grew after one converged in 6 iterations (now 4, CalculiX's rule). The same on
 /// two spheres touching pole to pole (SSNV104's own arrangement, the upper one's flat face
@@ -381,19 +378,8 @@ const SPENCE_RADIUS: f64 = 500.0;
 /// in 20 equal increments of force, with friction `mu` (none for 0); also whether the nodes in
 /// contact stick inside c and slide outside it, as the theory has it.
 fn spence_run(mu: f64, convergence: &[&str]) -> (f64, f64, f64, bool) {
-    let force = spence_force();
     let friction = if mu > 0.0 { format!("friction = {mu}") } else { String::new() };
-    let deck = deck_with(
-        false,
-        [1000.0 * E, E],
-        &format!("penalty_factor = 10.0\n{friction}"),
-        20,
-        "",
-        &format!("pressure = [ {{ surface = \"sphere_top\", value = {} }} ]", force / (std::f64::consts::PI * TOP * TOP)),
-    );
-    // 0.09 mm^2 / 2R into the block: touching over r < 0.3 mm at the start
-    let sphere = sphere(SPENCE_RADIUS, 0.09 / (2.0 * SPENCE_RADIUS));
-    let (_run, res, rp) = run_model(model_with(sphere, 25.0, 40, 120.0), &deck, convergence);
+    let (_run, res, rp) = run_model(spence_model(40, 120.0), &spence_deck(&friction, 20), convergence);
     let sliding = if mu > 0.0 { res.u8s(&format!("{}/contact/hertz/pass0/sliding", res.last_increment())) } else { vec![0; rp.len()] };
     let mut rows: Vec<(f64, f64, u8)> = rp.iter().zip(&sliding).map(|(&(r, p), &s)| (r, p, s)).collect();
     rows.sort_by(|x, y| x.0.total_cmp(&y.0));
@@ -414,6 +400,26 @@ fn spence_run(mu: f64, convergence: &[&str]) -> (f64, f64, f64, bool) {
 /// The force that gives the rigid sphere a Hertz contact radius of 1.8 mm (E* = E / (1 - nu^2)).
 fn spence_force() -> f64 {
     4.0 * E / (1.0 - NU * NU) * 1.8f64.powi(3) / (3.0 * SPENCE_RADIUS)
+}
+
+/// Spence's sphere, 0.09 mm^2 / 2R into the block (touching over r < 0.3 mm at the start), on
+/// a 25 mm block of n x n elements graded by `ratio`.
+fn spence_model(n: usize, ratio: f64) -> (Mesh, MeshSets) {
+    model_with(sphere(SPENCE_RADIUS, 0.09 / (2.0 * SPENCE_RADIUS)), 25.0, n, ratio)
+}
+
+/// Spence's deck: the sphere 1000 E, kappa = 10 and the pair's further `contact` lines,
+/// `spence_force` on the flat top in `increments` equal increments.
+fn spence_deck(contact: &str, increments: usize) -> String {
+    let pressure = spence_force() / (std::f64::consts::PI * TOP * TOP);
+    deck_with(
+        false,
+        [1000.0 * E, E],
+        &format!("penalty_factor = 10.0\n{contact}"),
+        increments,
+        "",
+        &format!("pressure = [ {{ surface = \"sphere_top\", value = {pressure} }} ]"),
+    )
 }
 
 #[test]
@@ -450,17 +456,8 @@ fn frictional_indentation_sticks_inside_spences_radius() {
 /// to the shell the finer block of the Spence test did not finish.
 #[test]
 fn a_stiff_tangential_penalty_reaches_the_full_load_with_at_most_two_cutbacks() {
-    let pressure = spence_force() / (std::f64::consts::PI * TOP * TOP);
-    let deck = deck_with(
-        false,
-        [1000.0 * E, E],
-        "penalty_factor = 10.0\nfriction = 0.2\ntangential_penalty = 3e8",
-        10,
-        "",
-        &format!("pressure = [ {{ surface = \"sphere_top\", value = {pressure} }} ]"),
-    );
-    let sphere = sphere(SPENCE_RADIUS, 0.09 / (2.0 * SPENCE_RADIUS));
-    let (run, res, _) = run_model(model_with(sphere, 25.0, 24, 8.0), &deck, &[]);
+    let deck = spence_deck("friction = 0.2\ntangential_penalty = 3e8", 10);
+    let (run, res, _) = run_model(spence_model(24, 8.0), &deck, &[]);
     let cutbacks = res.history("cutbacks");
     assert_eq!(*res.history("load_factor").last().unwrap(), 1.0);
     assert!(cutbacks.iter().sum::<f64>() <= 2.0, "{cutbacks:?} cutbacks");

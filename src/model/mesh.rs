@@ -28,6 +28,17 @@ pub struct Edge {
 }
 
 impl Mesh {
+    /// Appends `other` as a separate body (no node shared), numbering its nodes and elements
+    /// on from this mesh's; returns the offsets (first node, first element) of its entities.
+    pub fn append(&mut self, other: &Mesh) -> (usize, usize) {
+        let (n0, e0) = (self.coords.len(), self.elements.len());
+        self.coords.extend(&other.coords);
+        self.node_ids.extend((0..other.coords.len()).map(|k| (n0 + k + 1) as u64));
+        self.elements.extend(other.elements.iter().map(|c| c.map(|n| n + n0)));
+        self.element_ids.extend((0..other.elements.len()).map(|k| (e0 + k + 1) as u64));
+        (n0, e0)
+    }
+
     pub fn element_coords(&self, e: usize) -> [[f64; 2]; NODES_PER_ELEMENT] {
         self.elements[e].map(|n| self.coords[n])
     }
@@ -263,11 +274,7 @@ pub fn blocks(specs: &[Block]) -> Result<(Mesh, MeshSets)> {
     let mut sets = MeshSets::default();
     for b in specs {
         let (m, s) = graded_rectangle(b.r, b.z, b.divisions, b.grading).map_err(|e| Error::input(format!("mesh block '{}': {e}", b.name)))?;
-        let (n0, e0) = (mesh.coords.len(), mesh.elements.len());
-        mesh.coords.extend(&m.coords);
-        mesh.node_ids.extend((0..m.coords.len()).map(|k| (n0 + k + 1) as u64));
-        mesh.elements.extend(m.elements.iter().map(|c| c.map(|n| n + n0)));
-        mesh.element_ids.extend((0..m.elements.len()).map(|k| (e0 + k + 1) as u64));
+        let (n0, e0) = mesh.append(&m);
         if sets.element_sets.contains_key(&b.name) {
             return Err(Error::input(format!("mesh block '{}' is defined twice", b.name)));
         }

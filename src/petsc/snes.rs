@@ -104,9 +104,9 @@ pub struct Snes<'s> {
     last_average_force: f64,
     /// The unknowns at the start of the increment (the field test's Delta u).
     increment_start: Option<Vector<'s>>,
-    /// Whether the line search is PETSc's `l2` for a retried increment (else slideline's
+    /// Whether the line search is PETSc's `l2`, as after a failed attempt (else slideline's
     /// shell); None when `-snes_linesearch_type` chose it.
-    retry_line_search: Option<bool>,
+    after_failure: Option<bool>,
     _session: SessionBorrow<'s>,
 }
 
@@ -140,7 +140,7 @@ impl<'s> Snes<'s> {
             force_average: ForceAverage::default(),
             last_average_force: 0.0,
             increment_start: None,
-            retry_line_search: (!session.has_option("-snes_linesearch_type")).then_some(false),
+            after_failure: (!session.has_option("-snes_linesearch_type")).then_some(false),
             _session: PhantomData,
         };
         snes.configure_defaults(session)?;
@@ -202,26 +202,26 @@ impl<'s> Snes<'s> {
     }
 
     /// PETSc's `l2` line search (a secant minimisation of ||F||^2 along the Newton step) for
-    /// the solves after a failed attempt (`retry`), else slideline's shell. The shell follows
+    /// the solves after a failed attempt (`failed`), else slideline's shell. The shell follows
     /// the slope of an incremental potential, which friction has not: at a stiff tangential
     /// penalty Newton cycles between stick and slip, where `l2` gets through (and going back
     /// to the shell at the next increment fails again). `-snes_linesearch_type` keeps its
     /// choice throughout.
-    pub fn set_retry_line_search(&mut self, retry: bool) -> Result<()> {
-        if self.retry_line_search.is_none_or(|current| current == retry) {
+    pub fn search_after_failure(&mut self, failed: bool) -> Result<()> {
+        if self.after_failure.is_none_or(|current| current == failed) {
             return Ok(());
         }
         let mut ls = std::ptr::null_mut();
         // SAFETY: valid handle; the line search is the SNES's own.
         unsafe {
             check(sys::SNESGetLineSearch(self.raw, &mut ls), "SNESGetLineSearch")?;
-            if retry {
+            if failed {
                 check(sys::SNESLineSearchSetType(ls, c"l2".as_ptr()), "SNESLineSearchSetType (l2)")?;
             } else {
                 check(linesearch::install(ls), "SNESLineSearchSetType (shell)")?;
             }
         }
-        self.retry_line_search = Some(retry);
+        self.after_failure = Some(failed);
         Ok(())
     }
 

@@ -74,12 +74,10 @@ struct LocalElement {
     /// Position of each free element DOF in the gathered vector.
     slots: [usize; DOFS],
     material: usize,
-    /// E times the mean radius: an element force is computed from displacement differences,
-    /// so its round-off is about eps * E * r * |u| (per radian).
+    /// E times the mean radius, and the element's size: its force is computed from F = I +
+    /// grad u, so its round-off is about eps * E * r * (|u| + size) per radian (the size's
+    /// share dominates in a stiff body that moves rigidly).
     roundoff_scale: f64,
-    /// The element's size: its strains come from F = I + grad u, whose round-off is eps even
-    /// where grad u is tiny, as if |u| were this long (what dominates in a stiff body that
-    /// moves rigidly).
     roundoff_length: f64,
 }
 

@@ -113,7 +113,7 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
             // the field test's time average over the step's increments before the restart
             snes.restore_force_average(rows.iter().filter(|r| r.step == s + 1).map(|r| r.average_force));
         }
-        let resumed_at_cutback = resumed_here.is_some() && rows.iter().any(|r| r.step == s + 1 && r.cutbacks > 0);
+        let failed_before_restart = resumed_here.is_some() && rows.iter().any(|r| r.step == s + 1 && r.cutbacks > 0);
 
         if s == 0 && resumed_here.is_none() && problem.contact.is_some() {
             // the energy audit's input from overlaps in the undeformed mesh (a shrink fit)
@@ -133,9 +133,9 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
             Some(r) => (r.load_factor, r.size.min(requested), r.increment, 0usize),
             None => (0.0f64, requested, 0usize, 0usize),
         };
-        // once an attempt has failed, the step's remaining increments search with `l2` (see
-        // Snes::set_retry_line_search); a restart finds that in the step's history
-        let mut retrying = resumed_at_cutback;
+        // once an attempt has failed, the step's remaining solves search with `l2` (see
+        // Snes::search_after_failure); a restart finds that in the step's history
+        let mut failed_in_step = failed_before_restart;
         while lambda < 1.0 {
             // land exactly on 1 rather than leave a sliver
             let target = if lambda + size > 1.0 - 1e-9 * requested { 1.0 } else { lambda + size };
@@ -150,11 +150,11 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
             // displacements, a stiff penalty), the problem's round-off floor ends the solve
             // (see NonlinearProblem::roundoff_squares). -snes_rtol / -snes_atol override.
             snes.set_tolerances(None, Some(1e-10), Some(controls.max_newton_iterations))?;
-            snes.set_retry_line_search(retrying)?;
+            snes.search_after_failure(failed_in_step)?;
             let (report, augmentations) = solve_increment(&world, model, &mut snes, &mut problem, &mut x, &mut residual, &mut jacobian)?;
             if !report.converged() {
                 problem.reset();
-                retrying = true;
+                failed_in_step = true;
                 cutbacks += 1;
                 size = (target - lambda) * controls.cutback_factor;
                 progress.note(&format!(
