@@ -86,3 +86,59 @@ pressure = [ { surface = "inner", value = 900.0 } ]
     assert_eq!(format!("increments/{last_number:06}"), *res.increments().last().unwrap());
     assert!(sta.contains("# step 2 cutback at lambda") && sta.trim_end().ends_with("stopped: the increment would fall below min_increment"), "{sta}");
 }
+
+/// Two rings stacked along the axis: the lower one held at its bottom face, the upper one held
+/// only by contact and pressed down onto the lower one by 10 MPa on its top face.
+fn stacked_rings(gap: f64) -> String {
+    format!(
+        r#"nlgeom = false
+[[mesh.block]]
+name = "base"
+r = [10.0, 20.0]
+z = [0.0, 4.0]
+divisions = [4, 2]
+[[mesh.block]]
+name = "top"
+r = [10.0, 20.0]
+z = [{z0}, 8.0]
+divisions = [4, 2]
+[[material]]
+name = "steel"
+youngs_modulus = 200000.0
+poissons_ratio = 0.3
+[[contact]]
+name = "seat"
+slave = "top_bottom"
+master = "base_top"
+penalty = 1.0e5
+[[step]]
+name = "press"
+increments = 2
+boundary = [ {{ set = "base_bottom", uz = 0.0 }} ]
+pressure = [ {{ surface = "top_top", value = 10.0 }} ]
+"#,
+        z0 = 4.0 + gap
+    )
+}
+
+#[test]
+fn a_body_only_open_contact_holds_is_named_with_its_gap() {
+    // 0.01 mm apart, nothing fixes the upper ring's axial position until the gap closes: its
+    // tangent is singular, Newton jumps, and the run cuts back to the minimum increment. The
+    // warning at the step's start and the final error both name the ring and the gap.
+    let run = run_deck(&stacked_rings(0.01), &[], 2, &[]);
+    assert_eq!(run.code(), 3, "stderr:\n{}", run.stderr());
+    let err = run.stderr();
+    let named = "(at r = 10, z = 4.01) has no prescribed uz and all its contact is open: 'seat' (smallest gap 0.0100 mm)";
+    let warning = err.lines().find(|l| l.starts_with("warning: step 'press'")).unwrap_or_else(|| panic!("no warning:\n{err}"));
+    assert!(warning.contains(named), "{warning}");
+    let error = err.lines().find(|l| l.starts_with("error:")).unwrap_or_else(|| panic!("no error:\n{err}"));
+    assert!(error.contains("at the last converged state the body containing node") && error.contains(named), "{error}");
+    // touching at the start, the contact holds it: no warning, and the seat carries the load
+    let run = run_deck(&stacked_rings(0.0), &[], 2, &[]);
+    run.assert_ok();
+    assert!(!run.stderr().contains("warning"), "{}", run.stderr());
+    let fz = Results::open(&run.h5).history("reaction_base_bottom_z");
+    let expected = 10.0 * (20.0f64.powi(2) - 10.0f64.powi(2)) / 2.0;
+    assert!((fz.last().unwrap() - expected).abs() < 1e-6 * expected, "F_z {fz:?} against {expected}");
+}

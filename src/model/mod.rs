@@ -465,23 +465,36 @@ impl Model {
                 }
             }
         }
-        let touching: std::collections::HashSet<usize> = self
-            .contacts
-            .iter()
-            .flat_map(|c| [&c.slave, &c.master])
-            .filter_map(|s| self.surfaces.get(s))
-            .flat_map(|edges| edges.iter().flat_map(|&e| self.mesh.edge_nodes(e)))
-            .collect();
-        for body in self.mesh.bodies() {
-            if !body.iter().any(|&n| held_z[n] || touching.contains(&n)) {
-                let n = body[0];
-                return Err(Error::input(format!(
-                    "the body containing node {} (at r = {}, z = {}) has no prescribed uz and no contact: it is free to move along the axis; prescribe uz on one of its nodes",
-                    self.mesh.node_ids[n], self.mesh.coords[n][0], self.mesh.coords[n][1]
-                )));
-            }
+        if let Some((n, _)) = self.axially_free_bodies(&held_z).into_iter().find(|(_, pairs)| pairs.is_empty()) {
+            return Err(Error::input(format!(
+                "the body containing node {} (at r = {}, z = {}) has no prescribed uz and no contact: it is free to move along the axis; prescribe uz on one of its nodes",
+                self.mesh.node_ids[n], self.mesh.coords[n][0], self.mesh.coords[n][1]
+            )));
         }
         Ok(())
+    }
+
+    /// The bodies no node of which has a prescribed uz (`held_z` per node): per body, its first
+    /// node and the contact pairs whose surfaces it lies on, the only things that can hold it
+    /// along the axis (none: nothing does).
+    pub fn axially_free_bodies(&self, held_z: &[bool]) -> Vec<(usize, Vec<usize>)> {
+        let pair_nodes: Vec<std::collections::HashSet<usize>> = self
+            .contacts
+            .iter()
+            .map(|c| {
+                [&c.slave, &c.master]
+                    .into_iter()
+                    .filter_map(|s| self.surfaces.get(s))
+                    .flat_map(|edges| edges.iter().flat_map(|&e| self.mesh.edge_nodes(e)))
+                    .collect()
+            })
+            .collect();
+        self.mesh
+            .bodies()
+            .into_iter()
+            .filter(|body| !body.iter().any(|&n| held_z[n]))
+            .map(|body| (body[0], (0..pair_nodes.len()).filter(|&p| body.iter().any(|n| pair_nodes[p].contains(n))).collect()))
+            .collect()
     }
 
     pub fn node_set(&self, name: &str) -> Result<&[usize]> {

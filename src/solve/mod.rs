@@ -5,6 +5,7 @@ pub mod contact;
 mod contact_surfaces;
 pub mod energy;
 mod engagement;
+mod held;
 mod kept;
 pub mod layout;
 pub mod pattern;

@@ -10,6 +10,7 @@
 
 use super::contact::{CarriedMultipliers, CarriedSlip, ContactCarry};
 use super::energy::{Energies, EnergyAudit};
+use super::held;
 use super::pattern::ContactPattern;
 use super::problem::{initial_history, History, LoadState, Problem};
 use super::schedule::StepLoads;
@@ -115,24 +116,36 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
         }
         let failed_before_restart = resumed_here.is_some() && rows.iter().any(|r| r.step == s + 1 && r.cutbacks > 0);
 
-        if s == 0 && resumed_here.is_none() && problem.contact.is_some() {
-            // the energy audit's input from overlaps in the undeformed mesh (a shrink fit)
-            problem.set_load(loads.at(model, 0.0));
-            set_free_values(&mut x, &dofs, &partition, &displacement)?;
-            problem.evaluate_fields(&x)?;
-            let local = problem.contact.as_ref().map_or(0.0, |c| {
-                let e = c.energies();
-                e[0] + e[1]
-            });
-            let mut total = 0.0;
-            world.all_reduce_into(&local, &mut total, SystemOperation::sum());
-            audit.starts_overlapping = total > 0.0;
-        }
         let requested = 1.0 / step.increments as f64;
-        let (mut lambda, mut size, mut increment, mut cutbacks) = match resumed_here {
+        let (mut lambda, mut size, mut increment, mut cutbacks) = match &resumed_here {
             Some(r) => (r.load_factor, r.size.min(requested), r.increment, 0usize),
             None => (0.0f64, requested, 0usize, 0usize),
         };
+        if problem.contact.is_some() {
+            // the contact at the step's start: overlaps in the undeformed mesh (a shrink fit)
+            // are the energy audit's input, and a body only open contact holds is worth a warning
+            problem.set_load(loads.at(model, lambda));
+            set_free_values(&mut x, &dofs, &partition, &displacement)?;
+            problem.evaluate_fields(&x)?;
+            if s == 0 && resumed_here.is_none() {
+                let local = problem.contact.as_ref().map_or(0.0, |c| {
+                    let e = c.energies();
+                    e[0] + e[1]
+                });
+                let mut total = 0.0;
+                world.all_reduce_into(&local, &mut total, SystemOperation::sum());
+                audit.starts_overlapping = total > 0.0;
+            }
+            for hold in held::open_holds(&world, model, &problem, &prescribed) {
+                let text = format!("warning: step '{}': {hold}; close the gap in the mesh, or prescribe its uz in an earlier step", step.name);
+                if root {
+                    eprintln!("{text}");
+                }
+                if let Some(status) = status.as_mut() {
+                    status.note(&text);
+                }
+            }
+        }
         // once an attempt has failed, the step's remaining solves search with `l2` (see
         // Snes::search_after_failure); a restart finds that in the step's history
         let mut failed_in_step = failed_before_restart;
@@ -177,11 +190,17 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
                     if let Some(status) = status.as_mut() {
                         status.note("stopped: the increment would fall below min_increment");
                     }
+                    // why, where it is a body nothing holds at the last converged state
+                    problem.set_load(loads.at(model, lambda));
+                    set_free_values(&mut x, &dofs, &partition, &displacement)?;
+                    problem.evaluate_fields(&x)?;
+                    let why: String =
+                        held::open_holds(&world, model, &problem, &prescribed).iter().map(|h| format!("; at the last converged state {h}")).collect();
                     return Err(Error::NotConverged {
                         step: step.name.clone(),
                         load_factor: target,
                         reason: format!(
-                            "{} after {} Newton iterations, and the increment would fall below min_increment = {:e}; the {} converged increments before are in {}",
+                            "{} after {} Newton iterations, and the increment would fall below min_increment = {:e}{why}; the {} converged increments before are in {}",
                             report.reason_name(),
                             report.newton_iterations,
                             controls.min_increment,

@@ -65,6 +65,25 @@ impl ContactAssembly {
         out
     }
 
+    /// Per pair: (closed slave nodes, smallest gap in mm, infinite when no slave node has a
+    /// master segment within reach) over this rank's slave nodes at the last evaluation. A
+    /// node touching at a zero gap counts as closed: its penalty stiffness is in the tangent.
+    pub fn pair_openings(&self, model: &Model) -> Vec<(f64, f64)> {
+        let mut out = vec![(0.0, f64::INFINITY); model.contacts.len()];
+        for (p, pass) in self.passes.iter().enumerate() {
+            let o = &mut out[pass.pair];
+            for s in &self.states[p] {
+                if s.pressure > 0.0 || s.gap <= 0.0 {
+                    o.0 += 1.0;
+                }
+                if s.gap.is_finite() {
+                    o.1 = o.1.min(s.gap);
+                }
+            }
+        }
+        out
+    }
+
     /// For output: per pass (pair index, pass number within the pair, slab offset, total,
     /// owned slave mesh nodes, their areas, states).
     pub fn pass_outputs(&self) -> Vec<PassOutput<'_>> {
