@@ -43,6 +43,11 @@ fn parse_dat(text: &str) -> CcxDat {
 
 /// Runs `slideline run DECK.inp` on `ranks` ranks in a copy of tests/data/inp.
 fn run_inp(deck: &str, ranks: usize) -> Run {
+    run_inp_edited(deck, ranks, |text| text)
+}
+
+/// As `run_inp`, with DECK.inp's text passed through `edit` first.
+fn run_inp_edited(deck: &str, ranks: usize, edit: impl Fn(String) -> String) -> Run {
     let dir = tempfile::tempdir().expect("temp dir");
     for entry in std::fs::read_dir(data("inp")).unwrap() {
         let path = entry.unwrap().path();
@@ -50,6 +55,8 @@ fn run_inp(deck: &str, ranks: usize) -> Run {
             std::fs::copy(&path, dir.path().join(path.file_name().unwrap())).unwrap();
         }
     }
+    let path = dir.path().join(format!("{deck}.inp"));
+    std::fs::write(&path, edit(std::fs::read_to_string(&path).unwrap())).unwrap();
     let h5 = dir.path().join("out.h5");
     let output =
         command_in(dir.path(), ranks).current_dir(dir.path()).arg("run").arg(format!("{deck}.inp")).arg("-o").arg(&h5).output().expect("run slideline");
@@ -59,7 +66,11 @@ fn run_inp(deck: &str, ranks: usize) -> Run {
 /// Compares one deck with CalculiX; returns the worst relative differences (reaction history,
 /// end displacements).
 fn compare(deck: &str, set: &str, ranks: usize) -> (f64, f64) {
-    let run = run_inp(deck, ranks);
+    compare_run(&run_inp(deck, ranks), deck, set)
+}
+
+/// Compares a finished run with CalculiX's results of DECK.
+fn compare_run(run: &Run, deck: &str, set: &str) -> (f64, f64) {
     run.assert_ok();
     assert!(run.stdout().contains("2-degree segment"), "the run must say which force convention it writes:\n{}", run.stdout());
     let res = Results::open(&run.h5);
@@ -98,6 +109,21 @@ fn lame_cylinder_matches_calculix_within_one_percent() {
 fn shrink_fit_with_an_amplitude_matches_calculix_within_two_percent() {
     let (reaction, displacement) = compare("shrink_fit", "RING_TOP", 2);
     assert!(reaction < 0.02 && displacement < 0.02, "{reaction} {displacement}");
+}
+
+#[test]
+fn adjust_moves_the_slave_nodes_calculix_moves() {
+    // A tapered tube in a ring: ADJUST=0.01 moves the tube's outer nodes within 0.01 mm of the
+    // ring's bore, and the overclosed ones, onto it; those farther keep their gaps. CalculiX
+    // applies the same rule, so the two agree after 50 MPa in the bore.
+    let run = run_inp("adjusted_fit", 2);
+    assert!(run.stdout().contains("adjust moved 5 slave node(s) onto the master surface, by at most 0.0300 mm"), "the adjustment's note:\n{}", run.stdout());
+    let (reaction, displacement) = compare_run(&run, "adjusted_fit", "TOP");
+    assert!(reaction < 0.02 && displacement < 0.02, "{reaction} {displacement}");
+    // the comparison tells the difference: read without ADJUST, the displacements are a third off
+    let unadjusted = run_inp_edited("adjusted_fit", 1, |text| text.replace(", ADJUST=0.01", ""));
+    let (_, displacement) = compare_run(&unadjusted, "adjusted_fit", "TOP");
+    assert!(displacement > 0.2, "{displacement}");
 }
 
 #[test]

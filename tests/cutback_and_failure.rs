@@ -87,9 +87,10 @@ pressure = [ { surface = "inner", value = 900.0 } ]
     assert!(sta.contains("# step 2 cutback at lambda") && sta.trim_end().ends_with("stopped: the increment would fall below min_increment"), "{sta}");
 }
 
-/// Two rings stacked along the axis: the lower one held at its bottom face, the upper one held
-/// only by contact and pressed down onto the lower one by 10 MPa on its top face.
-fn stacked_rings(gap: f64) -> String {
+/// Two rings stacked along the axis, `gap` apart: the lower one held at its bottom face, the
+/// upper one held only by contact (its pair's extra lines `contact`) and pressed down onto the
+/// lower one by 10 MPa on its top face.
+fn stacked_rings(gap: f64, contact: &str) -> String {
     format!(
         r#"nlgeom = false
 [[mesh.block]]
@@ -111,6 +112,7 @@ name = "seat"
 slave = "top_bottom"
 master = "base_top"
 penalty = 1.0e5
+{contact}
 [[step]]
 name = "press"
 increments = 2
@@ -126,7 +128,7 @@ fn a_body_only_open_contact_holds_is_named_with_its_gap() {
     // 0.01 mm apart, nothing fixes the upper ring's axial position until the gap closes: its
     // tangent is singular, Newton jumps, and the run cuts back to the minimum increment. The
     // warning at the step's start and the final error both name the ring and the gap.
-    let run = run_deck(&stacked_rings(0.01), &[], 2, &[]);
+    let run = run_deck(&stacked_rings(0.01, ""), &[], 2, &[]);
     assert_eq!(run.code(), 3, "stderr:\n{}", run.stderr());
     let err = run.stderr();
     let named = "(at r = 10, z = 4.01) has no prescribed uz and all its contact is open: 'seat' (smallest gap 0.0100 mm)";
@@ -134,11 +136,14 @@ fn a_body_only_open_contact_holds_is_named_with_its_gap() {
     assert!(warning.contains(named), "{warning}");
     let error = err.lines().find(|l| l.starts_with("error:")).unwrap_or_else(|| panic!("no error:\n{err}"));
     assert!(error.contains("at the last converged state the body containing node") && error.contains(named), "{error}");
-    // touching at the start, the contact holds it: no warning, and the seat carries the load
-    let run = run_deck(&stacked_rings(0.0), &[], 2, &[]);
-    run.assert_ok();
-    assert!(!run.stderr().contains("warning"), "{}", run.stderr());
-    let fz = Results::open(&run.h5).history("reaction_base_bottom_z");
-    let expected = 10.0 * (20.0f64.powi(2) - 10.0f64.powi(2)) / 2.0;
-    assert!((fz.last().unwrap() - expected).abs() < 1e-6 * expected, "F_z {fz:?} against {expected}");
+    // touching at the start, or with the gap closed in the mesh by the pair's adjust, the contact
+    // holds it: no warning, and the seat carries the load
+    for (gap, contact) in [(0.0, ""), (0.01, "adjust = 0.02")] {
+        let run = run_deck(&stacked_rings(gap, contact), &[], 2, &[]);
+        run.assert_ok();
+        assert!(!run.stderr().contains("warning"), "{}", run.stderr());
+        let fz = Results::open(&run.h5).history("reaction_base_bottom_z");
+        let expected = 10.0 * (20.0f64.powi(2) - 10.0f64.powi(2)) / 2.0;
+        assert!((fz.last().unwrap() - expected).abs() < 1e-6 * expected, "F_z {fz:?} against {expected}");
+    }
 }

@@ -116,3 +116,26 @@ fn an_unknown_parameter_is_refused_rather_than_ignored() {
     let run = run_inp("*NSET, NSET=X, UNSORTED\n1\n", "", &[]);
     assert_rejected(&run, &["model.inp:18", "UNSORTED"]);
 }
+
+/// The ring's bore and outside as contact surfaces, with `pairs` (*CONTACT PAIR cards) after.
+fn with_pairs(pairs: &str) -> String {
+    format!("*SURFACE, NAME=IN, TYPE=ELEMENT\n1, S4\n*SURFACE, NAME=OUT, TYPE=ELEMENT\n1, S2\n*SURFACE INTERACTION, NAME=I\n*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR\n1.e5\n{pairs}")
+}
+
+#[test]
+fn an_adjust_set_off_the_slave_surface_is_named() {
+    let run = run_inp(&with_pairs("*CONTACT PAIR, INTERACTION=I, ADJUST=TOP\nIN, OUT\n"), "", &[]);
+    assert_rejected(&run, &["contact 'IN-OUT'", "adjust set 'TOP'", "not on the slave surface 'IN'"]);
+}
+
+#[test]
+fn a_negative_adjust_is_refused_with_its_line() {
+    let run = run_inp(&with_pairs("*CONTACT PAIR, INTERACTION=I, ADJUST=-0.1\nIN, OUT\n"), "", &[]);
+    assert_rejected(&run, &["model.inp:", "ADJUST=-0.1", ">= 0"]);
+}
+
+#[test]
+fn adjust_on_the_reversed_listing_of_a_two_pass_pair_is_refused() {
+    let run = run_inp(&with_pairs("*CONTACT PAIR, INTERACTION=I\nIN, OUT\n*CONTACT PAIR, INTERACTION=I, ADJUST=0.1\nOUT, IN\n"), "", &[]);
+    assert_rejected(&run, &["model.inp:", "give ADJUST on the first listing"]);
+}

@@ -2,9 +2,20 @@
 //! seed paper (Wriggers), contact surfaces as polylines with consistent axisymmetric
 //! tributary areas, and the closest-segment search. Pure: no PETSc, no MPI.
 
+pub mod adjust;
 pub mod friction;
 pub mod integrated;
 pub mod node_to_edge;
 pub mod search;
 pub mod slideline;
 pub mod surface;
+
+/// A gap or a distance for a message, in mm: four decimals from a micrometre up, else three
+/// significant digits.
+pub fn format_mm(v: f64) -> String {
+    if v.abs() >= 1e-3 {
+        format!("{v:.4} mm")
+    } else {
+        format!("{v:.3e} mm")
+    }
+}

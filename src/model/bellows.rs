@@ -337,6 +337,7 @@ pub fn model(p: &BellowsParams) -> Result<Model> {
         augmented_lagrangian: None::<AugmentedLagrangian>,
         exclude_neighbours: 4,
         friction: (mu > 0.0).then_some(Friction { coefficient: mu, tangential_penalty: Some(p.tangential_penalty) }),
+        adjust: None,
     };
     let mut contacts = Vec::new();
     for k in 1..p.plies {

@@ -54,6 +54,9 @@
 //! exclude_neighbours = 2            # self-contact: segments this close along the surface
 //! friction = 0.2                    # Coulomb's mu (optional; node-to-segment pairs)
 //! tangential_penalty = 1.0e5        # MPa/mm of slip in stick (default: the normal penalty)
+//! adjust = 0.01                     # optional: before the analysis, move the slave nodes within
+//!                                   # 0.01 mm of the master (and all penetrating) onto it, or
+//!                                   # adjust = "node_set": those of a set (CalculiX's ADJUST)
 //!
 //! [[step]]
 //! name = "load"
@@ -65,8 +68,8 @@
 
 use super::mesh::{blocks, rectangle, Block, MeshSets};
 use super::{
-    default_capture_distance, gmsh, AugmentedLagrangian, Component, ContactIntegration, ContactPair, Convergence, Friction, Kinematics, Material, Model,
-    OutputControls, OutputFields, Penalty, Plasticity, PrescribedDisplacement, Pressure, Step, SteppingControls,
+    default_capture_distance, gmsh, Adjust, AugmentedLagrangian, Component, ContactIntegration, ContactPair, Convergence, Friction, Kinematics, Material,
+    Model, OutputControls, OutputFields, Penalty, Plasticity, PrescribedDisplacement, Pressure, Step, SteppingControls,
 };
 use crate::error::{Error, Result};
 use serde::Deserialize;
@@ -121,6 +124,15 @@ struct ContactSpec {
     exclude_neighbours: usize,
     friction: Option<f64>,
     tangential_penalty: Option<f64>,
+    adjust: Option<AdjustSpec>,
+}
+
+/// `adjust = 0.01` (a clearance, mm) or `adjust = "node_set"`.
+#[derive(Deserialize)]
+#[serde(untagged)]
+enum AdjustSpec {
+    Clearance(f64),
+    NodeSet(String),
 }
 
 #[derive(Deserialize, Default, Clone, Copy)]
@@ -398,6 +410,10 @@ pub fn parse(text: &str, path: &Path) -> Result<Model> {
             augmented_lagrangian,
             exclude_neighbours: c.exclude_neighbours,
             friction,
+            adjust: c.adjust.as_ref().map(|a| match a {
+                AdjustSpec::Clearance(v) => Adjust::Clearance(*v),
+                AdjustSpec::NodeSet(s) => Adjust::NodeSet(s.clone()),
+            }),
         });
     }
     let kinematics = if deck.nlgeom { Kinematics::Finite } else { Kinematics::Small };

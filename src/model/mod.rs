@@ -18,14 +18,17 @@ use std::collections::BTreeMap;
 use std::path::Path;
 
 /// Reads an input deck by its extension: an Abaqus/CalculiX deck (.inp), with the notes on
-/// how it was read (formulations, conventions), or a TOML deck (no notes).
+/// how it was read (formulations, conventions), or a TOML deck; then the contact pairs'
+/// adjustments are made (with a note each).
 pub fn read_deck(path: &Path) -> Result<(Model, Vec<String>)> {
-    if path.extension().is_some_and(|e| e.eq_ignore_ascii_case("inp")) {
+    let (mut model, mut notes) = if path.extension().is_some_and(|e| e.eq_ignore_ascii_case("inp")) {
         let read = inp::read(path)?;
-        Ok((read.model, read.notes))
+        (read.model, read.notes)
     } else {
-        Ok((deck::read(path)?, Vec::new()))
-    }
+        (deck::read(path)?, Vec::new())
+    };
+    notes.extend(crate::contact::adjust::adjust_slave_nodes(&mut model)?);
+    Ok((model, notes))
 }
 
 /// A contact pair's default capture distance: twice the longest edge a slave node may meet
@@ -119,6 +122,17 @@ pub struct ContactPair {
     pub exclude_neighbours: usize,
     /// Coulomb friction; None: frictionless.
     pub friction: Option<Friction>,
+    /// Slave nodes moved onto the master before the analysis (see `contact::adjust`).
+    pub adjust: Option<Adjust>,
+}
+
+/// Which slave nodes a pair's ADJUST moves onto its master.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Adjust {
+    /// Those within this clearance (mm), and every penetrating one.
+    Clearance(f64),
+    /// Those of this node set.
+    NodeSet(String),
 }
 
 /// Coulomb friction of a contact pair, regularised by a tangential penalty.

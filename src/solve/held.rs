@@ -4,6 +4,7 @@
 //! when a step gives up, so the user learns why instead of reading a cutback cascade.
 
 use super::problem::Problem;
+use crate::contact::format_mm;
 use crate::model::Model;
 use mpi::collective::SystemOperation;
 use mpi::traits::*;
@@ -29,7 +30,7 @@ pub fn open_holds(world: &impl Communicator, model: &Model, problem: &Problem<'_
                 .map(|&p| {
                     let gap = all_gaps[p];
                     let how = if gap.is_finite() {
-                        if gap >= 1e-3 { format!("smallest gap {gap:.4} mm") } else { format!("smallest gap {gap:.3e} mm") }
+                        format!("smallest gap {}", format_mm(gap))
                     } else {
                         format!("no slave node within its capture distance of {} mm", model.contacts[p].capture_distance)
                     };

@@ -137,7 +137,10 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
                 audit.starts_overlapping = total > 0.0;
             }
             for hold in held::open_holds(&world, model, &problem, &prescribed) {
-                let text = format!("warning: step '{}': {hold}; close the gap in the mesh, or prescribe its uz in an earlier step", step.name);
+                let text = format!(
+                    "warning: step '{}': {hold}; close the gap in the mesh or with the pair's adjust, or prescribe its uz in an earlier step",
+                    step.name
+                );
                 if root {
                     eprintln!("{text}");
                 }

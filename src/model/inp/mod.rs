@@ -8,7 +8,7 @@
 //! *SURFACE (element faces S1..S4, or nodes), *MATERIAL with *ELASTIC, *PLASTIC, *EXPANSION
 //! (ZERO), *DENSITY, *SOLID SECTION, *BOUNDARY, *DLOAD (P1..P4), *INITIAL CONDITIONS
 //! (TEMPERATURE), *TEMPERATURE, *AMPLITUDE, *SURFACE INTERACTION, *SURFACE BEHAVIOR
-//! (PRESSURE-OVERCLOSURE=LINEAR), *FRICTION (0 only), *CONTACT PAIR, *STEP (NLGEOM), *STATIC,
+//! (PRESSURE-OVERCLOSURE=LINEAR), *FRICTION, *CONTACT PAIR (ADJUST), *STEP (NLGEOM), *STATIC,
 //! *END STEP, *INCLUDE, and the output requests (*NODE PRINT, *EL FILE, ...), which slideline
 //! answers by writing every field at every increment.
 //!
@@ -25,9 +25,10 @@ mod write;
 pub use write::{to_inp, write};
 
 use super::mesh::{Edge, Mesh};
-use super::{Component, ContactIntegration, Kinematics, Material, Model, Plasticity, SteppingControls};
+use super::{Component, Kinematics, Material, Model, Plasticity, SteppingControls};
 use crate::error::{Error, Result};
 use cards::{error_at, Card, DataLine, Location};
+use properties::ListedPair;
 use std::collections::{BTreeMap, BTreeSet, HashMap};
 use std::path::Path;
 
@@ -133,7 +134,7 @@ struct Builder {
     sections: Vec<(String, String, Location)>,
     interactions: BTreeMap<String, Interaction>,
     current_interaction: Option<String>,
-    contacts: Vec<(String, String, String, ContactIntegration, Location)>,
+    contacts: Vec<ListedPair>,
     amplitudes: BTreeMap<String, Vec<(f64, f64)>>,
     initial_temperature: Option<f64>,
     fixed: Vec<(String, Component)>,

@@ -1,10 +1,20 @@
 //! Material and contact cards: *ELASTIC, *PLASTIC, *EXPANSION and *DENSITY under
 //! *MATERIAL, the *SURFACE INTERACTION properties, *CONTACT PAIR.
 
-use super::cards::{error_at, normalise, Card};
+use super::cards::{error_at, normalise, Card, Location};
 use super::{single, Builder};
 use crate::error::Result;
-use crate::model::{default_capture_distance, ContactIntegration, ContactPair, Friction, Penalty};
+use crate::model::{default_capture_distance, Adjust, ContactIntegration, ContactPair, Friction, Penalty};
+
+/// One data line of a *CONTACT PAIR card, as listed.
+pub(super) struct ListedPair {
+    pub slave: String,
+    pub master: String,
+    pub interaction: String,
+    pub integration: ContactIntegration,
+    pub adjust: Option<Adjust>,
+    pub at: Location,
+}
 
 impl Builder {
     pub(super) fn material_property(&mut self, card: &Card) -> Result<()> {
@@ -89,13 +99,23 @@ impl Builder {
     }
 
     pub(super) fn contact_pair(&mut self, card: &Card) -> Result<()> {
-        card.only(&["INTERACTION", "TYPE", "SMALL SLIDING"])?;
+        card.only(&["INTERACTION", "TYPE", "SMALL SLIDING", "ADJUST"])?;
         // the interaction may be defined after the pair (CalculiX reads the deck whole)
         let interaction = card.required("INTERACTION")?.to_uppercase();
         let integration = match card.param("TYPE").map(normalise).as_deref() {
             None | Some("NODE TO SURFACE") => ContactIntegration::NodeToSegment,
             Some("SURFACE TO SURFACE") => ContactIntegration::Segment,
             Some(other) => return Err(card.error(format!("TYPE={other} is not supported (NODE TO SURFACE or SURFACE TO SURFACE)"))),
+        };
+        // ADJUST=clearance (mm) or ADJUST=node set
+        let adjust = match card.param("ADJUST") {
+            None => None,
+            Some("") => return Err(card.error("ADJUST needs a value: a clearance (mm) or a node set")),
+            Some(v) => Some(match v.parse::<f64>() {
+                Ok(c) if c >= 0.0 && c.is_finite() => Adjust::Clearance(c),
+                Ok(c) => return Err(card.error(format!("ADJUST={c}: a clearance must be >= 0"))),
+                Err(_) => Adjust::NodeSet(v.to_uppercase()),
+            }),
         };
         if card.has("SMALL SLIDING") {
             self.notes.push(format!("*CONTACT PAIR ({}): SMALL SLIDING ignored, slideline searches for the closest segment at every iteration", card.at));
@@ -109,7 +129,14 @@ impl Builder {
                     Err(error_at(&d.at, "CONTACT PAIR", format!("surface '{s}' is not defined (define it before its use)")))
                 }
             };
-            self.contacts.push((name(0)?, name(1)?, interaction.clone(), integration, d.at.clone()));
+            self.contacts.push(ListedPair {
+                slave: name(0)?,
+                master: name(1)?,
+                interaction: interaction.clone(),
+                integration,
+                adjust: adjust.clone(),
+                at: d.at.clone(),
+            });
         }
         Ok(())
     }
@@ -120,28 +147,38 @@ impl Builder {
     pub(super) fn contact_pairs(&mut self) -> Result<Vec<ContactPair>> {
         let mut contacts: Vec<ContactPair> = Vec::new();
         let mut merged = vec![false; self.contacts.len()];
-        for (i, (slave, master, interaction, integration, at)) in self.contacts.iter().enumerate() {
+        for (i, listed) in self.contacts.iter().enumerate() {
             if merged[i] {
                 continue;
             }
+            let ListedPair { slave, master, interaction, integration, adjust, at } = listed;
             let found =
                 self.interactions.get(interaction).ok_or_else(|| error_at(at, "CONTACT PAIR", format!("surface interaction {interaction} is not defined")))?;
             let slope = found.slope.ok_or_else(|| error_at(at, "CONTACT PAIR", format!("interaction {interaction} has no *SURFACE BEHAVIOR")))?;
             let friction = found.friction;
-            if let Some((_, _, _, _, first)) = self.contacts[..i].iter().find(|c| &c.0 == slave && &c.1 == master) {
-                return Err(error_at(at, "CONTACT PAIR", format!("the pair {slave}, {master} is already defined at {first}")));
+            if let Some(first) = self.contacts[..i].iter().find(|c| &c.slave == slave && &c.master == master) {
+                return Err(error_at(at, "CONTACT PAIR", format!("the pair {slave}, {master} is already defined at {}", first.at)));
             }
             let reverse = (slave != master)
-                .then(|| (i + 1..self.contacts.len()).find(|&j| !merged[j] && self.contacts[j].0 == *master && self.contacts[j].1 == *slave))
+                .then(|| (i + 1..self.contacts.len()).find(|&j| !merged[j] && self.contacts[j].slave == *master && self.contacts[j].master == *slave))
                 .flatten();
-            let two_pass = match reverse {
-                Some(j) if self.contacts[j].2 == *interaction && self.contacts[j].3 == *integration => {
+            let two_pass = match reverse.map(|j| (j, &self.contacts[j])) {
+                // the first listing's slave is the one adjusted; CalculiX adjusting the reverse
+                // listing's too would find nothing left to move
+                Some((_, r)) if r.adjust.is_some() => {
+                    return Err(error_at(
+                        &r.at,
+                        "CONTACT PAIR",
+                        format!("{master}, {slave} reverses the pair at {at}: give ADJUST on the first listing of a pair listed both ways"),
+                    ))
+                }
+                Some((j, r)) if r.interaction == *interaction && r.integration == *integration => {
                     merged[j] = true;
                     true
                 }
-                Some(j) => {
+                Some((_, r)) => {
                     return Err(error_at(
-                        &self.contacts[j].4,
+                        &r.at,
                         "CONTACT PAIR",
                         format!("{master}, {slave} reverses the pair at {at} with another interaction or type: slideline's two-pass pair takes one"),
                     ))
@@ -179,6 +216,7 @@ impl Builder {
                 augmented_lagrangian: None,
                 exclude_neighbours: 2,
                 friction,
+                adjust: adjust.clone(),
             });
         }
         Ok(contacts)

@@ -12,6 +12,10 @@ push_out.inp      a ring r 60..80 shrunk on a rigid shaft (0.05 mm interference)
 shrink_fit.inp    tube r 50..60.05 shrunk into a ring r 60..80 (0.05 mm radial interference),
                   face-to-face penalty contact; step 2 adds 50 MPa in the bore through an
                   *AMPLITUDE (full at half the step, then held). Elastic, small strain.
+adjusted_fit.inp  a tapered tube (outer r 59.97 at z = 0 to 60.03 at z = 10) in a ring r 60..80:
+                  ADJUST=0.01 moves the tube's outer nodes within 0.01 mm of the ring's bore,
+                  and the overclosed ones, onto it; the rest keep their gaps. Then 50 MPa in
+                  the bore. Face-to-face penalty contact, elastic, small strain.
 hertz.inp         the tip of a sphere R = 50 pushed 0.05 mm into a block, both elastic steel,
                   face-to-face penalty contact, small strain.
 small_bellows.inp one smooth convolution of two 0.5 mm plies (r 50..58, 2 x 80 elements each), J2 plasticity with a
@@ -191,6 +195,38 @@ def shrink_fit():
     write("shrink_fit.inp", deck)
 
 
+def adjusted_fit():
+    m = Mesh()
+    h, nj = 10.0, 4
+    outer = lambda z: 59.97 + 0.06 * z / h
+    gi, ri = m.block(4, nj, lambda I, J: (50.0 + (outer(h * J / (2 * nj)) - 50.0) * I / 8, h * J / (2 * nj)))
+    go, ro = m.block(6, nj, lambda I, J: (60.0 + 20.0 * I / 12, h * J / (2 * nj)))
+    deck = ["*HEADING", "Adjusted fit: tapered tube (outer r 59.97..60.03) in ring r 60..80, ADJUST=0.01, then 50 MPa"]
+    deck += m.node_lines()
+    deck += m.element_lines([e for r in ri for e in r], "TUBE")
+    deck += m.element_lines([e for r in ro for e in r], "RING")
+    deck += ["*ELSET, ELSET=ALL", "TUBE, RING"]
+    deck += listing("*NSET, NSET=BOTTOM", side(gi, 4, nj, "bottom") + side(go, 6, nj, "bottom"))
+    deck += listing("*NSET, NSET=TOP", side(gi, 4, nj, "top") + side(go, 6, nj, "top"))
+    deck += ["*NSET, NSET=PROBE", f"{gi[0, 0]}, {gi[8, 0]}, {gi[8, 4]}, {gi[8, 8]}, {go[0, 0]}, {go[0, 8]}, {go[12, 0]}"]
+    deck += surface("TUBE_OUT", [(r[-1], 2) for r in ri])
+    deck += surface("RING_IN", [(r[0], 4) for r in ro])
+    deck += listing("*ELSET, ELSET=TUBE_INNER", [r[0] for r in ri])
+    deck += STEEL + ["*SOLID SECTION, ELSET=ALL, MATERIAL=STEEL",
+                     "*SURFACE INTERACTION, NAME=FIT",
+                     "*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR", "1.e6",
+                     "*CONTACT PAIR, INTERACTION=FIT, TYPE=SURFACE TO SURFACE, ADJUST=0.01", "TUBE_OUT, RING_IN",
+                     "*BOUNDARY", "BOTTOM, 2, 2",
+                     "*STEP", "*STATIC, DIRECT", "0.25, 1.",
+                     "*BOUNDARY", "TOP, 2, 2, 0.",
+                     "*DLOAD", "TUBE_INNER, P4, 50.",
+                     "*NODE PRINT, NSET=TOP, TOTALS=ONLY", "RF",
+                     "*NODE PRINT, NSET=PROBE", "U",
+                     "*NODE FILE", "U", "*EL FILE", "S",
+                     "*END STEP"]
+    write("adjusted_fit.inp", deck)
+
+
 def push_out():
     """A ring r 60..80 shrunk on a rigid shaft (the tube r 50..60.05, every node held: 0.05 mm
     radial interference), both 10 mm long; step 1 makes the fit with the ring's faces held
@@ -368,6 +404,7 @@ def small_bellows():
 if __name__ == "__main__":
     lame()
     shrink_fit()
+    adjusted_fit()
     push_out()
     hertz()
     small_bellows()
