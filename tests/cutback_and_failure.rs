@@ -147,3 +147,28 @@ fn a_body_only_open_contact_holds_is_named_with_its_gap() {
         assert!((fz.last().unwrap() - expected).abs() < 1e-6 * expected, "F_z {fz:?} against {expected}");
     }
 }
+
+#[test]
+fn a_failed_factorisation_says_what_mumps_reported() {
+    // 4800 elements, whose factors need several MB, against MUMPS's workspace capped at 1 MB
+    // per rank: every factorisation fails, and the error gives MUMPS's code and the remedy
+    // instead of a bare DIVERGED_LINEAR_SOLVE.
+    let deck = r#"nlgeom = false
+[mesh]
+rectangle = { r = [100.0, 130.0], z = [0.0, 10.0], divisions = [80, 60] }
+[[material]]
+name = "steel"
+youngs_modulus = 200000.0
+poissons_ratio = 0.3
+[[step]]
+increments = 1
+boundary = [ { set = "bottom", uz = 0.0 }, { set = "top", uz = 0.0 } ]
+pressure = [ { surface = "inner", value = 50.0 } ]
+"#;
+    let run = run_deck(deck, &[], 2, &["--", "-mat_mumps_icntl_23", "1"]);
+    assert_eq!(run.code(), 3, "stderr:\n{}", run.stderr());
+    let err = run.stderr();
+    let error = err.lines().find(|l| l.starts_with("error:")).unwrap_or_else(|| panic!("no error:\n{err}"));
+    assert!(error.contains("DIVERGED_LINEAR_SOLVE (MUMPS reports INFOG(1) = -19") && error.contains("-mat_mumps_icntl_23"), "{error}");
+    assert!(!err.contains("PETSC ERROR") && !err.contains("panicked"), "{err}");
+}

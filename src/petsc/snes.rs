@@ -7,6 +7,7 @@
 //! failure on one rank makes all ranks take the same path instead of deadlocking.
 
 mod callbacks;
+mod factor_failure;
 mod field_test;
 
 use super::{check, linesearch, sys, Comm, MatOps, Matrix, MatrixView, PetscSession, SessionBorrow, VecOps, Vector, VectorView};
@@ -55,11 +56,21 @@ pub struct SolveReport {
     pub linear_iterations: usize,
     /// ||F|| at each Newton iterate, starting with the initial one.
     pub residual_norms: Vec<f64>,
+    /// Why the linear solve failed (DIVERGED_LINEAR_SOLVE), where the solver says.
+    pub linear_failure: Option<String>,
 }
 
 impl SolveReport {
     pub fn converged(&self) -> bool {
         self.reason > 0
+    }
+
+    /// The reason's name, with the linear solver's diagnosis where it failed.
+    pub fn describe(&self) -> String {
+        match &self.linear_failure {
+            Some(why) => format!("{} ({why})", self.reason_name()),
+            None => self.reason_name().to_string(),
+        }
     }
 
     /// PETSc's name for the converged reason.
@@ -271,6 +282,16 @@ impl<'s> Snes<'s> {
         Ok(reason > 0)
     }
 
+    /// MUMPS's diagnosis of the last failed factorisation (None for another solver or none).
+    fn linear_failure(&self) -> Result<Option<String>> {
+        let mut ksp = std::ptr::null_mut();
+        // SAFETY: valid SNES handle; the KSP is borrowed from it.
+        unsafe {
+            check(sys::SNESGetKSP(self.raw, &mut ksp), "SNESGetKSP")?;
+            factor_failure::mumps_failure(ksp)
+        }
+    }
+
     /// Collective: drops the linear solver's factorisation, so the next solve analyses the
     /// matrix's structure afresh (after it was replaced in place).
     pub fn reset_factorisation(&mut self) -> Result<()> {
@@ -354,7 +375,14 @@ impl<'s> Snes<'s> {
             check(sys::SNESGetConvergenceHistory(self.raw, &mut hist, &mut hist_its, &mut nhist), "SNESGetConvergenceHistory")?;
         }
         let n = (nhist.max(0) as usize).min(HISTORY_LEN);
-        Ok(SolveReport { reason: reason as i32, newton_iterations: its as usize, linear_iterations: lits as usize, residual_norms: self.history[..n].to_vec() })
+        let linear_failure = if reason == sys::SNESConvergedReason_SNES_DIVERGED_LINEAR_SOLVE { self.linear_failure()? } else { None };
+        Ok(SolveReport {
+            reason: reason as i32,
+            newton_iterations: its as usize,
+            linear_iterations: lits as usize,
+            residual_norms: self.history[..n].to_vec(),
+            linear_failure,
+        })
     }
 }
 

@@ -178,14 +178,14 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
                     s + 1,
                     model.steps.len(),
                     step.name,
-                    report.reason_name(),
+                    report.describe(),
                     report.newton_iterations
                 ));
                 if let Some(status) = status.as_mut() {
                     status.note(&format!(
                         "step {} cutback at lambda {target:.6} ({} after {} Newton iterations)",
                         s + 1,
-                        report.reason_name(),
+                        report.describe(),
                         report.newton_iterations
                     ));
                 }
@@ -204,7 +204,7 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
                         load_factor: target,
                         reason: format!(
                             "{} after {} Newton iterations, and the increment would fall below min_increment = {:e}{why}; the {} converged increments before are in {}",
-                            report.reason_name(),
+                            report.describe(),
                             report.newton_iterations,
                             controls.min_increment,
                             results.increments_written(),

@@ -1,0 +1,63 @@
+//! Why a linear solve failed, in words: MUMPS's INFOG(1) and INFOG(2) after a failed
+//! factorisation (MUMPS 5.5 users' guide, section "Error diagnostics"), with what to do.
+
+use crate::error::Result;
+use crate::petsc::{check, sys};
+use std::ffi::CStr;
+
+/// The sentence for MUMPS's error `infog1` (negative) with its detail `infog2`.
+pub fn mumps_error(infog1: i64, infog2: i64) -> String {
+    let what = match infog1 {
+        -6 | -10 => {
+            "the tangent matrix is singular: something is free to move (a missing boundary condition, a body only open contact holds) or has lost its stiffness"
+        }
+        -5 | -7 | -13 => "MUMPS could not allocate its workspace (the machine's memory)",
+        -8 | -9 | -11 | -12 | -14 | -15 | -17 | -20 => {
+            "MUMPS's workspace was too small: raise its relaxation, e.g. -mat_mumps_icntl_14 50 (per cent; default 20)"
+        }
+        -19 => "MUMPS's workspace exceeds the memory allowed by -mat_mumps_icntl_23",
+        _ => "see the MUMPS users' guide, \"Error diagnostics\"",
+    };
+    format!("MUMPS reports INFOG(1) = {infog1}, INFOG(2) = {infog2}: {what}")
+}
+
+/// Collective on the KSP's matrix: MUMPS's diagnosis of the last factorisation of `ksp`'s
+/// preconditioner, when that is MUMPS's LU or Cholesky and it failed; None otherwise (another
+/// solver, or a Krylov method that did not converge).
+///
+/// # Safety
+/// `ksp` must be a valid KSP handle.
+pub unsafe fn mumps_failure(ksp: sys::KSP) -> Result<Option<String>> {
+    let mut pc = std::ptr::null_mut();
+    check(sys::KSPGetPC(ksp, &mut pc), "KSPGetPC")?;
+    let mut pc_type: sys::PCType = std::ptr::null();
+    check(sys::PCGetType(pc, &mut pc_type), "PCGetType")?;
+    let is = |p: *const std::ffi::c_char, name: &str| !p.is_null() && CStr::from_ptr(p).to_str().is_ok_and(|s| s == name);
+    if !(is(pc_type, "lu") || is(pc_type, "cholesky")) {
+        return Ok(None);
+    }
+    let mut solver: sys::MatSolverType = std::ptr::null();
+    check(sys::PCFactorGetMatSolverType(pc, &mut solver), "PCFactorGetMatSolverType")?;
+    if !is(solver, "mumps") {
+        return Ok(None);
+    }
+    let mut factor = std::ptr::null_mut();
+    check(sys::PCFactorGetMatrix(pc, &mut factor), "PCFactorGetMatrix")?;
+    let (mut infog1, mut infog2): (sys::PetscInt, sys::PetscInt) = (0, 0);
+    check(sys::MatMumpsGetInfog(factor, 1, &mut infog1), "MatMumpsGetInfog")?;
+    check(sys::MatMumpsGetInfog(factor, 2, &mut infog2), "MatMumpsGetInfog")?;
+    Ok((infog1 < 0).then(|| mumps_error(infog1 as i64, infog2 as i64)))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::mumps_error;
+
+    #[test]
+    fn each_error_class_says_what_to_do() {
+        assert!(mumps_error(-10, 0).contains("singular"));
+        assert!(mumps_error(-9, 1234).contains("-mat_mumps_icntl_14") && mumps_error(-9, 1234).contains("INFOG(2) = 1234"));
+        assert!(mumps_error(-19, 5).contains("-mat_mumps_icntl_23"));
+        assert!(mumps_error(-99, 0).contains("Error diagnostics"));
+    }
+}
