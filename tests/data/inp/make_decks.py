@@ -157,6 +157,21 @@ def lame():
     write("lame.inp", deck)
 
 
+def fit_surfaces(ri, ro):
+    """The fit decks' contact surfaces (the tube's outside, the ring's bore) and the tube's bore."""
+    return (surface("TUBE_OUT", [(r[-1], 2) for r in ri]) + surface("RING_IN", [(r[0], 4) for r in ro])
+            + listing("*ELSET, ELSET=TUBE_INNER", [r[0] for r in ri]))
+
+
+def fit_contact(parameters):
+    """Steel for all, and face-to-face penalty contact of the tube's outside on the ring's bore
+    (extra *CONTACT PAIR `parameters`)."""
+    return STEEL + ["*SOLID SECTION, ELSET=ALL, MATERIAL=STEEL",
+                    "*SURFACE INTERACTION, NAME=FIT",
+                    "*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR", "1.e6",
+                    f"*CONTACT PAIR, INTERACTION=FIT, TYPE=SURFACE TO SURFACE{parameters}", "TUBE_OUT, RING_IN"]
+
+
 def shrink_fit():
     m = Mesh()
     h, nj = 10.0, 2
@@ -171,14 +186,8 @@ def shrink_fit():
     deck += listing("*NSET, NSET=TUBE_TOP", side(gi, 4, nj, "top"))
     deck += listing("*NSET, NSET=RING_TOP", side(go, 6, nj, "top"))
     deck += ["*NSET, NSET=PROBE", f"{gi[0, 0]}, {go[0, 0]}, {go[12, 0]}"]
-    deck += surface("TUBE_OUT", [(r[-1], 2) for r in ri])
-    deck += surface("RING_IN", [(r[0], 4) for r in ro])
-    deck += listing("*ELSET, ELSET=TUBE_INNER", [r[0] for r in ri])
-    deck += STEEL + ["*SOLID SECTION, ELSET=ALL, MATERIAL=STEEL",
-                     "*SURFACE INTERACTION, NAME=FIT",
-                     "*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR", "1.e6",
-                     "*CONTACT PAIR, INTERACTION=FIT, TYPE=SURFACE TO SURFACE", "TUBE_OUT, RING_IN",
-                     "*AMPLITUDE, NAME=UP_AND_HOLD", "0., 0., 0.5, 1., 1., 1.",
+    deck += fit_surfaces(ri, ro)
+    deck += fit_contact("") + ["*AMPLITUDE, NAME=UP_AND_HOLD", "0., 0., 0.5, 1., 1., 1.",
                      "*BOUNDARY", "BOTTOM, 2, 2",
                      "*STEP", "*STATIC, DIRECT", "1., 1.",
                      "*BOUNDARY", "TUBE_TOP, 2, 2, 0.", "RING_TOP, 2, 2, 0.",
@@ -209,14 +218,8 @@ def adjusted_fit():
     deck += listing("*NSET, NSET=BOTTOM", side(gi, 4, nj, "bottom") + side(go, 6, nj, "bottom"))
     deck += listing("*NSET, NSET=TOP", side(gi, 4, nj, "top") + side(go, 6, nj, "top"))
     deck += ["*NSET, NSET=PROBE", f"{gi[0, 0]}, {gi[8, 0]}, {gi[8, 4]}, {gi[8, 8]}, {go[0, 0]}, {go[0, 8]}, {go[12, 0]}"]
-    deck += surface("TUBE_OUT", [(r[-1], 2) for r in ri])
-    deck += surface("RING_IN", [(r[0], 4) for r in ro])
-    deck += listing("*ELSET, ELSET=TUBE_INNER", [r[0] for r in ri])
-    deck += STEEL + ["*SOLID SECTION, ELSET=ALL, MATERIAL=STEEL",
-                     "*SURFACE INTERACTION, NAME=FIT",
-                     "*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR", "1.e6",
-                     "*CONTACT PAIR, INTERACTION=FIT, TYPE=SURFACE TO SURFACE, ADJUST=0.01", "TUBE_OUT, RING_IN",
-                     "*BOUNDARY", "BOTTOM, 2, 2",
+    deck += fit_surfaces(ri, ro)
+    deck += fit_contact(", ADJUST=0.01") + ["*BOUNDARY", "BOTTOM, 2, 2",
                      "*STEP", "*STATIC, DIRECT", "0.25, 1.",
                      "*BOUNDARY", "TOP, 2, 2, 0.",
                      "*DLOAD", "TUBE_INNER, P4, 50.",
