@@ -151,7 +151,7 @@ fn a_body_only_open_contact_holds_is_named_with_its_gap() {
 #[test]
 fn a_failed_factorisation_says_what_mumps_reported() {
     // 4800 elements, whose factors need several MB, against MUMPS's workspace capped at 1 MB
-    // per rank: every factorisation fails, and the error gives MUMPS's code and the remedy
+    // per rank: the factorisation fails, and the error gives MUMPS's code and the remedy
     // instead of a bare DIVERGED_LINEAR_SOLVE.
     let deck = r#"nlgeom = false
 [mesh]
@@ -170,5 +170,10 @@ pressure = [ { surface = "inner", value = 50.0 } ]
     let err = run.stderr();
     let error = err.lines().find(|l| l.starts_with("error:")).unwrap_or_else(|| panic!("no error:\n{err}"));
     assert!(error.contains("DIVERGED_LINEAR_SOLVE (MUMPS reports INFOG(1) = -19") && error.contains("-mat_mumps_icntl_23"), "{error}");
+    // the matrix is as large at any increment: the run stops at the first failure
+    assert!(error.contains("a smaller increment cannot help"), "{error}");
+    let sta = std::fs::read_to_string(run.h5.with_extension("sta")).expect("out.sta beside the results");
+    assert_eq!(sta.matches("cutback at lambda").count(), 1, "{sta}");
+    assert!(sta.trim_end().ends_with("stopped: a smaller increment cannot help"), "{sta}");
     assert!(!err.contains("PETSC ERROR") && !err.contains("panicked"), "{err}");
 }

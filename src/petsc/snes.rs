@@ -8,6 +8,7 @@
 
 mod callbacks;
 mod factor_failure;
+pub use factor_failure::FactorFailure;
 mod field_test;
 
 use super::{check, linesearch, sys, Comm, MatOps, Matrix, MatrixView, PetscSession, SessionBorrow, VecOps, Vector, VectorView};
@@ -57,7 +58,7 @@ pub struct SolveReport {
     /// ||F|| at each Newton iterate, starting with the initial one.
     pub residual_norms: Vec<f64>,
     /// Why the linear solve failed (DIVERGED_LINEAR_SOLVE), where the solver says.
-    pub linear_failure: Option<String>,
+    pub linear_failure: Option<FactorFailure>,
 }
 
 impl SolveReport {
@@ -68,9 +69,14 @@ impl SolveReport {
     /// The reason's name, with the linear solver's diagnosis where it failed.
     pub fn describe(&self) -> String {
         match &self.linear_failure {
-            Some(why) => format!("{} ({why})", self.reason_name()),
+            Some(why) => format!("{} ({})", self.reason_name(), why.text),
             None => self.reason_name().to_string(),
         }
+    }
+
+    /// Whether a smaller increment may converge: not after the linear solver ran out of memory.
+    pub fn retry_may_help(&self) -> bool {
+        self.linear_failure.as_ref().is_none_or(|f| f.retry_may_help)
     }
 
     /// PETSc's name for the converged reason.
@@ -283,7 +289,7 @@ impl<'s> Snes<'s> {
     }
 
     /// MUMPS's diagnosis of the last failed factorisation (None for another solver or none).
-    fn linear_failure(&self) -> Result<Option<String>> {
+    fn linear_failure(&self) -> Result<Option<FactorFailure>> {
         let mut ksp = std::ptr::null_mut();
         // SAFETY: valid SNES handle; the KSP is borrowed from it.
         unsafe {

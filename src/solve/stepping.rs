@@ -189,10 +189,12 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
                         report.newton_iterations
                     ));
                 }
-                if size < controls.min_increment {
+                if size < controls.min_increment || !report.retry_may_help() {
+                    let stop = if report.retry_may_help() { "the increment would fall below min_increment" } else { "a smaller increment cannot help" };
                     if let Some(status) = status.as_mut() {
-                        status.note("stopped: the increment would fall below min_increment");
+                        status.note(&format!("stopped: {stop}"));
                     }
+                    let stop = if report.retry_may_help() { format!("{stop} = {:e}", controls.min_increment) } else { stop.to_string() };
                     // why, where it is a body nothing holds at the last converged state
                     problem.set_load(loads.at(model, lambda));
                     set_free_values(&mut x, &dofs, &partition, &displacement)?;
@@ -203,10 +205,9 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
                         step: step.name.clone(),
                         load_factor: target,
                         reason: format!(
-                            "{} after {} Newton iterations, and the increment would fall below min_increment = {:e}{why}; the {} converged increments before are in {}",
+                            "{} after {} Newton iterations, and {stop}{why}; the {} converged increments before are in {}",
                             report.describe(),
                             report.newton_iterations,
-                            controls.min_increment,
                             results.increments_written(),
                             options.output.display()
                         ),

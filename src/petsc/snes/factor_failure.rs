@@ -5,6 +5,19 @@ use crate::error::Result;
 use crate::petsc::{check, sys};
 use std::ffi::CStr;
 
+/// A failed factorisation: what MUMPS said, and whether a smaller increment can help (a
+/// singular tangent may become regular; a matrix too large for the memory stays as large).
+#[derive(Clone, Debug, PartialEq)]
+pub struct FactorFailure {
+    pub text: String,
+    pub retry_may_help: bool,
+}
+
+/// MUMPS's errors about memory, not about the matrix's values.
+fn memory_error(infog1: i64) -> bool {
+    matches!(infog1, -5 | -7 | -8 | -9 | -11 | -12 | -13 | -14 | -15 | -17 | -19 | -20)
+}
+
 /// The sentence for MUMPS's error `infog1` (negative) with its detail `infog2`.
 pub fn mumps_error(infog1: i64, infog2: i64) -> String {
     let what = match infog1 {
@@ -27,7 +40,7 @@ pub fn mumps_error(infog1: i64, infog2: i64) -> String {
 ///
 /// # Safety
 /// `ksp` must be a valid KSP handle.
-pub unsafe fn mumps_failure(ksp: sys::KSP) -> Result<Option<String>> {
+pub unsafe fn mumps_failure(ksp: sys::KSP) -> Result<Option<FactorFailure>> {
     let mut pc = std::ptr::null_mut();
     check(sys::KSPGetPC(ksp, &mut pc), "KSPGetPC")?;
     let mut pc_type: sys::PCType = std::ptr::null();
@@ -46,7 +59,8 @@ pub unsafe fn mumps_failure(ksp: sys::KSP) -> Result<Option<String>> {
     let (mut infog1, mut infog2): (sys::PetscInt, sys::PetscInt) = (0, 0);
     check(sys::MatMumpsGetInfog(factor, 1, &mut infog1), "MatMumpsGetInfog")?;
     check(sys::MatMumpsGetInfog(factor, 2, &mut infog2), "MatMumpsGetInfog")?;
-    Ok((infog1 < 0).then(|| mumps_error(infog1 as i64, infog2 as i64)))
+    let (infog1, infog2) = (infog1 as i64, infog2 as i64);
+    Ok((infog1 < 0).then(|| FactorFailure { text: mumps_error(infog1, infog2), retry_may_help: !memory_error(infog1) }))
 }
 
 #[cfg(test)]
@@ -59,5 +73,6 @@ mod tests {
         assert!(mumps_error(-9, 1234).contains("-mat_mumps_icntl_14") && mumps_error(-9, 1234).contains("INFOG(2) = 1234"));
         assert!(mumps_error(-19, 5).contains("-mat_mumps_icntl_23"));
         assert!(mumps_error(-99, 0).contains("Error diagnostics"));
+        assert!(super::memory_error(-9) && super::memory_error(-19) && !super::memory_error(-10) && !super::memory_error(-6));
     }
 }
