@@ -139,6 +139,25 @@ fn duplicate_contact_pair_names_are_refused_when_read() {
 }
 
 #[test]
+fn a_bad_adjust_is_named_with_its_pair() {
+    let blocks = "[[mesh.block]]\nname = \"a\"\nr = [1.0, 2.0]\nz = [0.0, 1.0]\ndivisions = [1, 1]\n[[mesh.block]]\nname = \"b\"\nr = [2.0, 3.0]\nz = [0.0, 1.0]\ndivisions = [1, 1]\n";
+    let step = "[[step]]\nboundary = [ { set = \"a_bottom\", uz = 0.0 }, { set = \"b_bottom\", uz = 0.0 } ]\n";
+    for (pair, needles) in [
+        ("slave = \"b_inner\"\nmaster = \"a_outer\"\nadjust = -0.1", &["contact 'fit'", "clearance >= 0", "-0.1"][..]),
+        ("slave = \"b_inner\"\nmaster = \"a_outer\"\nadjust = \"nowhere\"", &["contact 'fit'", "unknown node set 'nowhere'"][..]),
+        (
+            "slave = \"b_inner\"\nmaster = \"a_outer\"\nadjust = \"a_bottom\"",
+            &["contact 'fit'", "adjust set 'a_bottom'", "not on the slave surface 'b_inner'"][..],
+        ),
+        ("slave = \"b_inner\"\nmaster = \"b_inner\"\nadjust = 0.1", &["contact 'fit'", "not self-contact"][..]),
+    ] {
+        let contact = format!("[[contact]]\nname = \"fit\"\n{pair}\npenalty = 1e4\n");
+        let run = run_deck(&format!("{blocks}{MATERIAL}{contact}{step}"), &[], 1, &[]);
+        assert_rejected(&run, needles);
+    }
+}
+
+#[test]
 fn an_output_path_that_cannot_be_written_is_refused_before_the_solve() {
     let deck = format!("{RECT}{MATERIAL}{STEP}");
     let dir = tempfile::tempdir().unwrap();
