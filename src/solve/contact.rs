@@ -10,19 +10,17 @@
 pub use super::contact_surfaces::contact_nodes;
 use super::contact_surfaces::{edge_neighbourhood, surfaces_and_directions};
 pub use super::engagement::Engagement;
-use super::engagement::{Engagements, FrictionRecipe, PointHessians};
+use super::engagement::{Engagements, PointHessians};
 use super::pattern::ContactPattern;
-use super::problem::ROUNDOFF_ULPS;
-use crate::contact::friction::{FrictionLaw, SlipReference};
-use crate::contact::integrated::{weighted_gaps_into, WeightedGap};
-use crate::contact::node_to_edge::{edge_residual, ContactLaw};
+use crate::contact::integrated::WeightedGap;
 use crate::contact::search::EdgeGrid;
 use crate::contact::surface::ContactSurface;
 use crate::dist::{DofMap, Partition};
-use crate::model::{ContactIntegration, ContactPair, Model, Penalty};
+use crate::model::{ContactIntegration, Model};
 use crate::petsc::sys::PetscInt;
 
 mod output;
+mod slave_nodes;
 pub use output::PassOutput;
 
 /// One direction of a pair: slave nodes of one surface against the segments of another.
@@ -113,30 +111,6 @@ fn initial_slip_references(model: &Model, surfaces: &[ContactSurface], passes: &
                 .collect()
         })
         .collect()
-}
-
-/// The friction kernel's arguments for a slave node at `xs` projecting at `xi` on master edge
-/// `edge`, its slip measured from `reference`.
-#[allow(clippy::too_many_arguments)]
-fn friction_recipe(
-    master: &ContactSurface,
-    x: &impl Fn(usize) -> [f64; 2],
-    xs: [f64; 2],
-    edge: usize,
-    xi: f64,
-    reference: SlipPoint,
-    law: ContactLaw,
-    friction: FrictionLaw,
-) -> FrictionRecipe {
-    FrictionRecipe {
-        xs,
-        master: master.edges[edge].map(x),
-        reference: master.edges[reference.edge].map(x),
-        xi,
-        from: SlipReference { xi: reference.xi, traction: reference.traction },
-        law,
-        friction,
-    }
 }
 
 /// Per pass, per owned slave node: its slip reference (None where no master edge was within
@@ -370,151 +344,6 @@ impl ContactAssembly {
     /// The active slave nodes' contributions from the last `evaluate`.
     pub fn engagements(&self) -> &[Engagement] {
         self.engagements.as_slice()
-    }
-
-    fn penalty(model: &Model, pair: &ContactPair, master: &ContactSurface, edge: usize) -> f64 {
-        match pair.penalty {
-            Penalty::Stiffness(v) => v,
-            Penalty::Factor(kappa) => kappa * model.materials[model.element_material[master.element[edge]]].youngs_modulus / master.edge_length[edge],
-        }
-    }
-
-    /// Node-to-segment: the gap at each slave node, on the master edge it projects to.
-    fn evaluate_nodal(&mut self, model: &Model, pair: &ContactPair, p: usize, out: &mut Engagements) {
-        let pass = &self.passes[p];
-        let (slot, positions) = (&self.slot, &self.positions);
-        let x = |n: usize| positions[slot[n]];
-        let (slave, master) = (&self.surfaces[pass.slave], &self.surfaces[pass.master]);
-        let capture = pair.capture_distance;
-        let grid = EdgeGrid::new(master, &x, capture);
-        // the previous node's master edge: a good first guess where owned nodes are numbered
-        // along the surface, harmless where not
-        let mut hint = None;
-        for (k, &i) in pass.owned.iter().enumerate() {
-            let node = slave.nodes[i];
-            let xs = x(node);
-            let excluded = pass.excluded.get(k).map_or(&[][..], |v| v.as_slice());
-            let found = grid.closest_edge(master, &x, xs, excluded, capture, hint);
-            hint = found.as_ref().map(|(e, _)| *e).or(hint);
-            let found = found.filter(|(_, proj)| {
-                // surfaces in contact face each other: never the back of a thin master
-                let ns = slave.node_normal(node, x);
-                ns[0] * proj.normal[0] + ns[1] * proj.normal[1] < 0.0 && proj.gap > -capture
-            });
-            let Some((edge, proj)) = found else {
-                self.states[p][k] = SlaveState { gap: f64::NAN, ..SlaveState::default() };
-                self.slip_trial[p][k] = None;
-                continue;
-            };
-            let eps = Self::penalty(model, pair, master, edge);
-            let area = slave.areas[i] * pass.weight;
-            let en = master.edges[edge];
-            let free_ends = master.neighbours[edge].map(|n| n.is_none());
-            let multiplier = self.current[p][k];
-            let law = ContactLaw { area, penalty: eps, multiplier, free_ends };
-            let (residual, pressure) = edge_residual(xs, &en.map(x), &proj, &law);
-            let mut state = SlaveState { gap: proj.gap, pressure, force: pressure * area, ..SlaveState::default() };
-            // an open node's slip is measured, once it closes, from where it is now
-            self.slip_trial[p][k] = Some(SlipPoint { edge, xi: proj.xi, traction: 0.0 });
-            let closed = multiplier - eps * proj.gap >= 0.0;
-            if closed {
-                self.roundoff += (ROUNDOFF_ULPS * f64::EPSILON * eps * area * xs[0].hypot(xs[1])).powi(2);
-                out.next_slot().set_nodal(node, en, residual.as_slice(), xs, en.map(x), proj, law);
-                // eps g^2 A / 2 = -g F / 2 (a penalty: the multiplier's part is left out)
-                state.normal_energy = -0.5 * proj.gap * state.force;
-            }
-            // a node without a reference (beyond reach when the increment started) slides freely
-            // in this increment and has one from the next on
-            if let (Some(f), true, Some(reference)) = (pair.friction, closed, self.slip_committed[p][k]) {
-                let friction = FrictionLaw { coefficient: f.coefficient, penalty: f.tangential_penalty.unwrap_or(eps) };
-                let recipe = friction_recipe(master, &x, xs, edge, proj.xi, reference, law, friction);
-                let (residual, slip) = recipe.residual();
-                self.roundoff += (ROUNDOFF_ULPS * f64::EPSILON * friction.penalty * area * xs[0].hypot(xs[1])).powi(2);
-                out.next_slot().set_friction(node, en, master.edges[reference.edge], residual.as_slice(), recipe);
-                self.slip_trial[p][k] = Some(SlipPoint { edge, xi: proj.xi, traction: slip.traction });
-                (state.shear, state.sliding) = (slip.traction, slip.slipping);
-                (state.friction_stored, state.friction_dissipated) = (slip.stored, slip.dissipated);
-            }
-            self.states[p][k] = state;
-        }
-    }
-
-    /// Segment integration: weighted gaps g_a = integral N_a g r ds and nodal pressures; with
-    /// friction, each slave node's slip is measured at its own projection on the master (as
-    /// node-to-segment), the Coulomb limit set by its integrated pressure.
-    fn evaluate_integrated(&mut self, model: &Model, pair: &ContactPair, p: usize, out: &mut Engagements) {
-        let pass = &self.passes[p];
-        let (slot, positions) = (&self.slot, &self.positions);
-        let x = |n: usize| positions[slot[n]];
-        let x0 = |n: usize| model.mesh.coords[n];
-        let (slave, master) = (&self.surfaces[pass.slave], &self.surfaces[pass.master]);
-        let gaps = &mut self.gaps[p];
-        weighted_gaps_into(slave, master, &x, &x0, &pass.owned, &pass.excluded, pair.capture_distance, gaps);
-        // number the points across passes
-        let first = self.points;
-        for s in gaps.iter_mut().flat_map(|g| g.samples.iter_mut()) {
-            s.point += first;
-            self.points = self.points.max(s.point + 1);
-        }
-        let grid = pair.friction.map(|_| EdgeGrid::new(master, &x, pair.capture_distance));
-        // gaps[k] is owned slave node k's
-        for (k, g) in gaps.iter().enumerate() {
-            if g.samples.is_empty() {
-                self.states[p][k] = SlaveState { gap: f64::NAN, ..SlaveState::default() };
-                continue;
-            }
-            let area = slave.hat_areas[g.index];
-            let eps = Self::penalty(model, pair, master, g.master_edge);
-            let lambda = self.current[p][k];
-            let trial = lambda - eps * g.gap / area;
-            let pressure = trial.max(0.0);
-            self.states[p][k] = SlaveState {
-                gap: g.gap / area,
-                pressure,
-                force: pressure * area * pass.weight,
-                normal_energy: if trial >= 0.0 { -0.5 * (g.gap / area) * pressure * area * pass.weight } else { 0.0 },
-                ..SlaveState::default()
-            };
-            let node = slave.nodes[g.index];
-            let xs = x(node);
-            if trial >= 0.0 {
-                self.roundoff += (ROUNDOFF_ULPS * f64::EPSILON * pass.weight * eps * area * xs[0].hypot(xs[1])).powi(2);
-                out.next_slot().set_integrated(node, &g.samples, pass.weight * eps / area, pass.weight * pressure);
-            }
-            let (Some(f), Some(grid)) = (pair.friction, grid.as_ref()) else { continue };
-            // the node's own projection: where its slip is measured and its friction acts
-            let excluded = if pass.slave == pass.master { slave.neighbourhood(node, pair.exclude_neighbours) } else { Vec::new() };
-            let found = grid.closest_edge(master, &x, xs, &excluded, pair.capture_distance, None).filter(|(_, proj)| {
-                let ns = slave.node_normal(node, x);
-                ns[0] * proj.normal[0] + ns[1] * proj.normal[1] < 0.0
-            });
-            let Some((edge, proj)) = found else {
-                self.slip_trial[p][k] = None;
-                continue;
-            };
-            self.slip_trial[p][k] = Some(SlipPoint { edge, xi: proj.xi, traction: 0.0 });
-            let Some(reference) = self.slip_committed[p][k].filter(|_| trial >= 0.0) else { continue };
-            // the pressure is given (the integrated one): a law of penalty 0 and multiplier p
-            let law = ContactLaw { area: area * pass.weight, penalty: 0.0, multiplier: pressure, free_ends: [false; 2] };
-            let friction = FrictionLaw { coefficient: f.coefficient, penalty: f.tangential_penalty.unwrap_or(eps) };
-            let recipe = friction_recipe(master, &x, xs, edge, proj.xi, reference, law, friction);
-            let (residual, slip) = recipe.residual();
-            self.roundoff += (ROUNDOFF_ULPS * f64::EPSILON * friction.penalty * law.area * xs[0].hypot(xs[1])).powi(2);
-            let slot = out.next_slot();
-            slot.set_friction_integrated(
-                node,
-                master.edges[edge],
-                master.edges[reference.edge],
-                residual.as_slice(),
-                recipe,
-                &g.samples,
-                pressure,
-                -eps / area,
-            );
-            self.slip_trial[p][k] = Some(SlipPoint { edge, xi: proj.xi, traction: slip.traction });
-            let state = &mut self.states[p][k];
-            (state.shear, state.sliding, state.friction_stored, state.friction_dissipated) = (slip.traction, slip.slipping, slip.stored, slip.dissipated);
-        }
     }
 
     /// Round-off floor (squared) of this rank's last evaluation.

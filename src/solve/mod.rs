@@ -1,6 +1,7 @@
 //! Parallel drivers: the discrete problem for SNES and the load-stepping loop.
 
 pub mod affinity;
+mod attempt;
 pub mod contact;
 mod contact_surfaces;
 pub mod energy;
@@ -10,6 +11,7 @@ mod kept;
 pub mod layout;
 pub mod pattern;
 pub mod problem;
+mod resume;
 pub mod schedule;
 pub mod stepping;
 mod storage;

@@ -8,23 +8,23 @@
 //! the requested size. Below `min_increment` the run stops with every converged increment in
 //! the results file.
 
-use super::contact::{CarriedMultipliers, CarriedSlip, ContactCarry};
+use super::attempt::{predict, solve_increment};
 use super::energy::{Energies, EnergyAudit};
 use super::held;
-use super::pattern::ContactPattern;
-use super::problem::{initial_history, History, LoadState, Problem};
+use super::problem::{LoadState, Problem};
+use super::resume::{restart_point, Carried};
 use super::schedule::StepLoads;
 use crate::dist::{DofMap, Partition};
 use crate::element::solid::ElementEnergy;
 use crate::error::{Error, Result};
 use crate::io::lock::ResultsLock;
 use crate::io::progress::Progress;
-use crate::io::restart::{CommittedState, RestartFrom, RestartPoint};
+use crate::io::restart::{CommittedState, RestartFrom};
 use crate::io::status::StatusFile;
 use crate::io::{ContactSummary, HistoryRow, IncrementFields, ResultsFile};
-use crate::material::{PointState, SurfaceBranch};
+use crate::material::PointState;
 use crate::model::{Convergence, Model};
-use crate::petsc::{FieldRatios, Matrix, NonlinearProblem, PetscSession, Snes, SolveReport, VecOps, Vector};
+use crate::petsc::{FieldRatios, PetscSession, Snes, VecOps, Vector};
 use mpi::collective::SystemOperation;
 use mpi::datatype::PartitionMut;
 use mpi::traits::*;
@@ -344,198 +344,6 @@ fn audit_increment(
     let elements = ElementEnergy { elastic: total[0], plastic_work: total[1], thermal_power: total[2] };
     let temperature = model.reference_temperature + load.temperature_change;
     audit.record(residual, prescribed, &pressure, displacement, elements, [total[3], total[4], total[5]], temperature)
-}
-
-/// What the run carries from one step to the next: the displacement of every node, this rank's
-/// elements' history, contact's committed state and pattern, the history rows, the last step's
-/// loads, the energy audit, and the wall time of the run it continues.
-struct Carried {
-    displacement: Vec<[f64; 2]>,
-    history: History,
-    carry: Option<ContactCarry>,
-    rows: Vec<HistoryRow>,
-    previous: Option<StepLoads>,
-    audit: EnergyAudit,
-    wall_before: f64,
-}
-
-/// Where a restart puts the stepping: the step (0-based), the displacement at its start (its
-/// newly prescribed values ramp from there), the load factor reached, the next increment's size
-/// and the increments the step has taken.
-struct ResumeAt {
-    step: usize,
-    step_start: Vec<[f64; 2]>,
-    load_factor: f64,
-    size: f64,
-    increment: usize,
-}
-
-impl Carried {
-    fn fresh(model: &Model, partition: &Partition) -> Self {
-        let nodes = model.mesh.coords.len();
-        Carried {
-            displacement: vec![[0.0; 2]; nodes],
-            history: initial_history(model, partition),
-            carry: None,
-            rows: Vec::new(),
-            previous: None,
-            audit: EnergyAudit::new(nodes, model.reference_temperature),
-            wall_before: 0.0,
-        }
-    }
-
-    /// The state at a restart point, its history rows copied into `results`.
-    fn restored(model: &Model, partition: &Partition, point: RestartPoint, results: &mut ResultsFile) -> Result<(Self, ResumeAt)> {
-        let nodes = model.mesh.coords.len();
-        results.continue_history(&point.file, &point.rows)?;
-        let zeros = vec![[0.0; 2]; nodes];
-        let mut previous = None;
-        for k in 0..point.step {
-            previous = Some(StepLoads::new(model, k, previous.as_ref(), if k == 0 { &zeros } else { &point.step_ends[k - 1] }));
-        }
-        let mut audit = EnergyAudit::new(nodes, model.reference_temperature);
-        if let Some(energy) = point.rows.last().and_then(|(_, r)| r.energy) {
-            audit = EnergyAudit { totals: energy, last: point.audit.clone(), starts_overlapping: false };
-        }
-        let carry = (!model.contacts.is_empty()).then(|| {
-            // each rank its own couplings on as many ranks as wrote them, shared out otherwise
-            let mine = |r: usize| if point.ranks == partition.size { r == partition.rank } else { r % partition.size == partition.rank };
-            ContactCarry {
-                multipliers: CarriedMultipliers::ByNode(point.multipliers.clone()),
-                pattern: ContactPattern::restored(point.pattern.iter().filter(|p| mine(p.0)).map(|p| (p.1, p.2)), point.refits),
-                slip: CarriedSlip::ByNode(point.slip.clone()),
-            }
-        });
-        let at = ResumeAt {
-            step: point.step,
-            step_start: if point.step == 0 { zeros } else { point.step_ends[point.step - 1].clone() },
-            load_factor: point.load_factor,
-            size: point.next_size,
-            increment: point.increment,
-        };
-        let carried = Carried {
-            history: restored_history(model, partition, &point),
-            carry,
-            rows: point.rows.iter().map(|(_, r)| r.clone()).collect(),
-            previous,
-            audit,
-            wall_before: point.rows.last().map_or(0.0, |(_, r)| r.wall_time),
-            displacement: point.displacement,
-        };
-        Ok((carried, at))
-    }
-}
-
-/// Reads the restart point (every rank, serially), refusing to overwrite the file it reads.
-fn restart_point(from: &RestartFrom, output: &std::path::Path, model: &Model) -> Result<RestartPoint> {
-    let same = match (std::fs::canonicalize(&from.file), std::fs::canonicalize(output)) {
-        (Ok(a), Ok(b)) => a == b,
-        _ => false,
-    };
-    if same {
-        return Err(Error::input(format!(
-            "cannot restart from {} into itself: write the continued run to another file (--output NAME.h5); it holds the history from the start and the fields from the restart on",
-            from.file.display()
-        )));
-    }
-    RestartPoint::read(from, model)
-}
-
-/// This rank's elements' history at a restart point.
-fn restored_history(model: &Model, partition: &Partition, point: &RestartPoint) -> History {
-    let mut history = initial_history(model, partition);
-    let mut local = vec![usize::MAX; model.mesh.elements.len()];
-    for (k, &e) in partition.local_elements().iter().enumerate() {
-        local[e] = k;
-    }
-    for &(e, q, state) in &point.plastic {
-        if let Some(point) = history.get_mut(local[e]).and_then(|h| h.get_mut(q)) {
-            *point = state;
-        }
-    }
-    history
-}
-
-/// One attempt at an increment: a Newton solve and, for augmented-Lagrangian pairs, Uzawa
-/// updates of the contact pressures followed by further solves until the penetration is
-/// within tolerance (or the pair's update budget is spent). Returns the last solve's report
-/// with the Newton and linear iterations of all solves, and the number of updates.
-#[allow(clippy::too_many_arguments)]
-fn solve_increment(
-    world: &impl Communicator,
-    model: &Model,
-    snes: &mut Snes<'_>,
-    problem: &mut Problem<'_, '_>,
-    x: &mut Vector<'_>,
-    residual: &mut Vector<'_>,
-    jacobian: &mut Matrix<'_>,
-) -> Result<(SolveReport, usize)> {
-    let mut report = snes.solve(problem, x, residual, jacobian)?;
-    let budget = model.contacts.iter().filter_map(|c| c.augmented_lagrangian).map(|a| a.max_augmentations).max().unwrap_or(0);
-    let mut augmentations = 0;
-    while report.converged() && augmentations < budget {
-        problem.evaluate_fields(x)?; // contact states at the converged iterate
-        let contact = problem.contact.as_mut().expect("augmented pairs imply contact");
-        let local = contact.needs_augmentation(model) as i32;
-        let mut global = 0;
-        world.all_reduce_into(&local, &mut global, SystemOperation::max());
-        if global == 0 {
-            break;
-        }
-        contact.augment(model);
-        augmentations += 1;
-        let next = snes.solve(problem, x, residual, jacobian)?;
-        report = SolveReport {
-            newton_iterations: report.newton_iterations + next.newton_iterations,
-            linear_iterations: report.linear_iterations + next.linear_iterations,
-            ..next
-        };
-    }
-    Ok((report, augmentations))
-}
-
-/// Load predictor for an increment whose prescribed displacements change (from `start`, the
-/// converged state's loads, to the problem's current ones): the free DOFs move by the linear
-/// response du = -K_ff^-1 K_fp delta, with the tangent at the converged state. Without it
-/// Newton starts with the whole increment of a moved end in the row of elements next to it:
-/// on the bellows a 0.2 mm step of tube B's end strains those 8 mm elements by 2.5 %, far past
-/// yield, and Newton wanders between loading and unloading there. Collective; where anything
-/// fails on any rank the predictor is skipped (Newton then starts from the converged state).
-#[allow(clippy::too_many_arguments)]
-fn predict(
-    world: &impl Communicator,
-    snes: &mut Snes<'_>,
-    problem: &mut Problem<'_, '_>,
-    start: LoadState,
-    x: &mut Vector<'_>,
-    work: &mut Vector<'_>,
-    jacobian: &mut Matrix<'_>,
-    correction: &mut Vector<'_>,
-) -> Result<()> {
-    let delta: Vec<[f64; 2]> = problem.load().prescribed.iter().zip(&start.prescribed).map(|(e, s)| [e[0] - s[0], e[1] - s[1]]).collect();
-    // prescribed values are replicated: every rank takes the same branch
-    if delta.iter().flatten().all(|&d| d == 0.0) {
-        return Ok(());
-    }
-    let end = problem.set_load(start);
-    // points that flowed keep flowing under a monotonic load: their elasto-plastic tangent
-    // predicts the increment (the elastic one, too stiff, doubled the bellows' Newton iterations)
-    let elastic = problem.set_surface_branch(SurfaceBranch::Flowing);
-    let coupling = problem.prescribed_coupling(x, &delta, work);
-    let tangent = problem.assemble_jacobian(x, jacobian);
-    problem.set_surface_branch(elastic);
-    problem.set_load(end);
-    // the refit is collective, so every rank resets
-    if problem.take_structure_change() {
-        snes.reset_factorisation()?;
-    }
-    let local = i32::from(coupling.is_ok() && tangent.is_ok());
-    let mut everywhere = 0;
-    world.all_reduce_into(&local, &mut everywhere, SystemOperation::min());
-    if everywhere == 1 && snes.linear_solve(jacobian, work, correction)? {
-        x.axpy(-1.0, correction)?;
-    }
-    Ok(())
 }
 
 /// Per pair, over all ranks: active slave nodes, largest penetration, total normal force.

@@ -1,0 +1,186 @@
+//! The model's one check before anything runs: the mesh, the materials, the sets, surfaces and
+//! loads the steps name, the contact pairs, and the constraints (one value per degree of
+//! freedom; no body free to move along the axis).
+
+use super::{Component, Model, Penalty, Plasticity, MAX_INCREMENTS, MIN_YOUNGS_MODULUS};
+use crate::error::{Error, Result};
+use std::collections::BTreeMap;
+
+impl Model {
+    /// Checks everything the solver relies on; the first problem found is reported by name.
+    pub fn validate(&self) -> Result<()> {
+        self.mesh.validate()?;
+        for m in &self.materials {
+            if !(m.youngs_modulus > 0.0 && m.youngs_modulus.is_finite()) {
+                return Err(Error::input(format!("material '{}': Young's modulus must be > 0, got {}", m.name, m.youngs_modulus)));
+            }
+            if m.youngs_modulus < MIN_YOUNGS_MODULUS {
+                return Err(Error::input(format!(
+                    "material '{}': Young's modulus {} MPa is below {MIN_YOUNGS_MODULUS} MPa (units are mm, N, MPa: steel is 2e5)",
+                    m.name, m.youngs_modulus
+                )));
+            }
+            if !(m.poissons_ratio > -1.0 && m.poissons_ratio < 0.5) {
+                return Err(Error::input(format!("material '{}': Poisson's ratio must lie in (-1, 0.5), got {}", m.name, m.poissons_ratio)));
+            }
+            if !m.thermal_expansion.is_finite() {
+                return Err(Error::input(format!("material '{}': thermal expansion must be finite", m.name)));
+            }
+            if let Some(Plasticity::Linear { yield_stress, modulus }) = m.plasticity {
+                if !(yield_stress > 0.0 && yield_stress.is_finite()) {
+                    return Err(Error::input(format!("material '{}': yield stress must be > 0, got {yield_stress}", m.name)));
+                }
+                if !(modulus >= 0.0 && modulus.is_finite()) {
+                    return Err(Error::input(format!("material '{}': hardening modulus must be >= 0, got {modulus}", m.name)));
+                }
+            }
+        }
+        if self.output.every == 0 {
+            return Err(Error::input("[output]: every must be at least 1 (fields of every increment)"));
+        }
+        let c = &self.stepping;
+        let sane = c.cutback_factor > 0.0 && c.cutback_factor < 1.0 && c.growth_factor >= 1.0 && c.min_increment > 0.0 && c.min_increment <= 1.0;
+        if !sane || c.max_newton_iterations == 0 {
+            return Err(Error::input(format!(
+                "[stepping]: need 0 < cutback_factor < 1, growth_factor >= 1, 0 < min_increment <= 1, max_newton_iterations >= 1; got {c:?}"
+            )));
+        }
+        if self.element_material.len() != self.mesh.elements.len() {
+            return Err(Error::input("internal: element_material does not match the element count"));
+        }
+        for c in &self.contacts {
+            for surface in [&c.slave, &c.master] {
+                self.surface(surface).map_err(|e| Error::input(format!("contact '{}': {e}", c.name)))?;
+            }
+            let eps = match c.penalty {
+                Penalty::Stiffness(v) | Penalty::Factor(v) => v,
+            };
+            if !(eps > 0.0 && eps.is_finite()) {
+                return Err(Error::input(format!("contact '{}': the penalty must be > 0, got {eps}", c.name)));
+            }
+            if !(c.capture_distance > 0.0 && c.capture_distance.is_finite()) {
+                return Err(Error::input(format!("contact '{}': capture_distance must be > 0, got {}", c.name, c.capture_distance)));
+            }
+            if let Some(al) = c.augmented_lagrangian {
+                if al.penetration_tolerance.is_nan() || al.penetration_tolerance <= 0.0 || al.max_augmentations == 0 {
+                    return Err(Error::input(format!("contact '{}': augmented_lagrangian needs penetration_tolerance > 0 and max_augmentations >= 1", c.name)));
+                }
+            }
+        }
+        let mut names: Vec<&str> = self.contacts.iter().map(|c| c.name.as_str()).collect();
+        names.sort_unstable();
+        if let Some(w) = names.windows(2).find(|w| w[0] == w[1]) {
+            return Err(Error::input(format!("contact pair name '{}' is used twice: give each pair its own name", w[0])));
+        }
+        if !self.reference_temperature.is_finite() {
+            return Err(Error::input(format!("the reference temperature must be finite, got {}", self.reference_temperature)));
+        }
+        if self.steps.is_empty() {
+            return Err(Error::input("the model has no steps: add a [[step]]"));
+        }
+        for step in &self.steps {
+            if step.increments == 0 || step.increments > MAX_INCREMENTS {
+                return Err(Error::input(format!("step '{}': increments must lie in 1..={MAX_INCREMENTS}, got {}", step.name, step.increments)));
+            }
+            if let Some(t) = step.temperature.filter(|t| !t.is_finite()) {
+                return Err(Error::input(format!("step '{}': temperature must be finite, got {t}", step.name)));
+            }
+            for d in &step.displacements {
+                self.node_set(&d.node_set).map_err(|e| Error::input(format!("step '{}': {e}", step.name)))?;
+                if !d.value.is_finite() {
+                    return Err(Error::input(format!("step '{}': displacement on '{}' is not finite", step.name, d.node_set)));
+                }
+            }
+            for (k, p) in step.pressures.iter().enumerate() {
+                self.surface(&p.surface).map_err(|e| Error::input(format!("step '{}': {e}", step.name)))?;
+                if !p.value.is_finite() {
+                    return Err(Error::input(format!("step '{}': pressure on '{}' must be finite, got {}", step.name, p.surface, p.value)));
+                }
+                if step.pressures[..k].iter().any(|q| q.surface == p.surface) {
+                    return Err(Error::input(format!(
+                        "step '{}': surface '{}' is given two pressures: give one (their sum, if both act)",
+                        step.name, p.surface
+                    )));
+                }
+            }
+        }
+        self.check_constraints()?;
+        Ok(())
+    }
+
+    /// Refuses two different values prescribed on one degree of freedom (by two entries of
+    /// the constraints in force in a step: a step's own and those kept from earlier steps),
+    /// and a body that no constraint holds axially (a rigid-body motion along z, which the
+    /// solver would answer with an arbitrary offset). A body touching a contact surface is
+    /// left to the contact to hold.
+    fn check_constraints(&self) -> Result<()> {
+        let mut in_force: BTreeMap<(String, Component), f64> = BTreeMap::new();
+        let mut held_z = vec![false; self.mesh.coords.len()];
+        for step in &self.steps {
+            for (k, d) in step.displacements.iter().enumerate() {
+                if let Some(e) = step.displacements[..k].iter().find(|e| e.node_set == d.node_set && e.component == d.component && e.value != d.value) {
+                    return Err(Error::input(format!(
+                        "step '{}': set '{}' is given {} = {} and {} = {}: one degree of freedom takes one value",
+                        step.name,
+                        d.node_set,
+                        d.component.name(),
+                        e.value,
+                        d.component.name(),
+                        d.value
+                    )));
+                }
+                in_force.insert((d.node_set.clone(), d.component), d.value);
+            }
+            let mut by_dof: std::collections::HashMap<(usize, Component), (&str, f64)> = std::collections::HashMap::new();
+            for ((set, component), value) in &in_force {
+                for &n in self.node_set(set)? {
+                    if *component == Component::Z {
+                        held_z[n] = true;
+                    }
+                    match by_dof.insert((n, *component), (set.as_str(), *value)) {
+                        Some((other, v)) if v != *value => {
+                            return Err(Error::input(format!(
+                                "step '{}': node {} has {} = {v} from set '{other}' and {} = {value} from set '{set}': one degree of freedom takes one value",
+                                step.name,
+                                self.mesh.node_ids[n],
+                                component.name(),
+                                component.name()
+                            )))
+                        }
+                        _ => {}
+                    }
+                }
+            }
+        }
+        if let Some((n, _)) = self.axially_free_bodies(&held_z).into_iter().find(|(_, pairs)| pairs.is_empty()) {
+            return Err(Error::input(format!(
+                "the body containing node {} (at r = {}, z = {}) has no prescribed uz and no contact: it is free to move along the axis; prescribe uz on one of its nodes",
+                self.mesh.node_ids[n], self.mesh.coords[n][0], self.mesh.coords[n][1]
+            )));
+        }
+        Ok(())
+    }
+
+    /// The bodies no node of which has a prescribed uz (`held_z` per node): per body, its first
+    /// node and the contact pairs whose surfaces it lies on, the only things that can hold it
+    /// along the axis (none: nothing does).
+    pub fn axially_free_bodies(&self, held_z: &[bool]) -> Vec<(usize, Vec<usize>)> {
+        let pair_nodes: Vec<std::collections::HashSet<usize>> = self
+            .contacts
+            .iter()
+            .map(|c| {
+                [&c.slave, &c.master]
+                    .into_iter()
+                    .filter_map(|s| self.surfaces.get(s))
+                    .flat_map(|edges| edges.iter().flat_map(|&e| self.mesh.edge_nodes(e)))
+                    .collect()
+            })
+            .collect();
+        self.mesh
+            .bodies()
+            .into_iter()
+            .filter(|body| !body.iter().any(|&n| held_z[n]))
+            .map(|body| (body[0], (0..pair_nodes.len()).filter(|&p| body.iter().any(|n| pair_nodes[p].contains(n))).collect()))
+            .collect()
+    }
+}
