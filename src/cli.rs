@@ -203,6 +203,10 @@ pub struct BellowsArgs {
     /// Tangential penalty of the friction, MPa/mm of elastic slip.
     #[arg(long, default_value_t = 300.0, value_name = "MPA_PER_MM")]
     pub tangential_penalty: f64,
+    /// Instead of --tangential-penalty, the elastic slip at the Coulomb limit (mm): the
+    /// stiffness follows the pressure, eps_T = mu p / slip (Abaqus's form).
+    #[arg(long, value_name = "MM")]
+    pub elastic_slip: Option<f64>,
     /// A load cycle: after the compression, a further step takes tube B's end back to where it
     /// started (the force-displacement picture then shows the loop).
     #[arg(long)]
@@ -285,6 +289,7 @@ impl BellowsArgs {
         take("friction_sleeve", &mut |p| p.friction_sleeve = self.friction_sleeve);
         take("cycle", &mut |p| p.cycle = self.cycle);
         take("tangential_penalty", &mut |p| p.tangential_penalty = self.tangential_penalty);
+        take("elastic_slip", &mut |p| p.elastic_slip = self.elastic_slip);
         take("convergence", &mut |p| p.convergence = self.convergence.into());
         Ok(p)
     }

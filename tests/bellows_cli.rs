@@ -20,6 +20,7 @@ fn bad_flags_are_refused_before_any_solve() {
         (vec!["--height", "8"], "height"),
         (vec!["--friction-plies", "-0.1"], "friction between the plies"),
         (vec!["--tangential-penalty", "0"], "tangential penalty"),
+        (vec!["--elastic-slip", "-0.01"], "elastic slip"),
     ] {
         let out = bellows(dir.path(), &args);
         let err = String::from_utf8_lossy(&out.stderr);

@@ -36,16 +36,25 @@ fn push_history(r: &Results) -> Vec<(f64, f64, usize)> {
 #[test]
 fn a_pushed_shrink_fit_sticks_below_mu_n_and_slides_at_mu_n() {
     for integration in ["node-to-segment", "segment"] {
-        pushed_fit(integration);
+        pushed_fit(integration, &format!("friction = {MU}"));
     }
 }
 
-fn pushed_fit(integration: &str) {
+/// The same with the stick stiffness from an elastic slip (eps_T = mu p / gamma, gamma = 50
+/// nm: the push of 20 nm an increment sticks for two increments, then slides).
+#[test]
+fn with_an_elastic_slip_the_pushed_fit_also_sticks_below_mu_n_and_slides_at_mu_n() {
+    for integration in ["node-to-segment", "segment"] {
+        pushed_fit(integration, &format!("friction = {MU}\nelastic_slip = 5.0e-5"));
+    }
+}
+
+fn pushed_fit(integration: &str, friction: &str) {
     let with = |text: String| text.replace("integration = \"node-to-segment\"", &format!("integration = \"{integration}\""));
     // on a rigid tube the contact normal stays radial, so the push force is the friction force
     // alone (on an elastic tube its surface tilts by ~1e-6 under the shear and the normal force
     // adds 1e-5 of mu N)
-    let run = run_deck(&with(deck_with(2.0e-4, 10, &format!("friction = {MU}"), RIGID_TUBE)), &[], 1, TIGHT);
+    let run = run_deck(&with(deck_with(2.0e-4, 10, friction, RIGID_TUBE)), &[], 1, TIGHT);
     run.assert_ok();
     let r = Results::open(&run.h5);
     let rows = push_history(&r);
@@ -99,6 +108,9 @@ fn bad_friction_input_is_refused() {
         ("friction = -0.1", "friction coefficient -0.1"),
         ("tangential_penalty = 1.0e4", "tangential_penalty without friction"),
         ("friction = 0.2\ntangential_penalty = 0.0", "tangential_penalty 0"),
+        ("elastic_slip = 0.001", "elastic_slip without friction"),
+        ("friction = 0.2\nelastic_slip = -0.001", "elastic_slip -0.001"),
+        ("friction = 0.2\ntangential_penalty = 1.0e4\nelastic_slip = 0.001", "not both"),
     ] {
         let run = run_deck(&deck(1e-4, 1, friction), &[], 1, &[]);
         assert_eq!(run.code(), 2, "{friction}: {}", run.stderr());
@@ -144,6 +156,25 @@ fn assembled_jacobian_with_friction_matches_finite_differences_for_both_integrat
         let worst = ratios.iter().copied().fold(0.0, f64::max);
         let push_worst = ratios[1..].iter().copied().fold(0.0, f64::max);
         println!("{integration}: {} Jacobian tests, worst ||J - Jfd|| / ||J|| = {worst:e}, from the third on {push_worst:e}", ratios.len());
+        assert!(worst < 2e-6 && push_worst < 1e-7, "{integration}: {ratios:?}");
+    }
+}
+
+#[test]
+fn assembled_jacobian_with_an_elastic_slip_matches_finite_differences_for_both_integrations() {
+    // as above, with eps_T = mu p / gamma: the tangent carries the stiffness's dependence on
+    // the pressure (through the integrated pressure's gap gradient for segment integration)
+    for integration in ["node-to-segment", "segment"] {
+        let text = deck(1.2e-4, 4, &format!("friction = {MU}\nelastic_slip = 2.0e-5"))
+            .replace("integration = \"node-to-segment\"", &format!("integration = \"{integration}\""));
+        let run = run_deck(&text, &[], 2, &["--", "-snes_test_jacobian"]);
+        run.assert_ok();
+        let all = common::jacobian_test_ratios(&run.stdout());
+        assert!(all.len() >= 4, "{integration}: PETSc printed no Jacobian test");
+        let ratios = &all[1..];
+        let worst = ratios.iter().copied().fold(0.0, f64::max);
+        let push_worst = ratios[1..].iter().copied().fold(0.0, f64::max);
+        println!("{integration}, elastic slip: {} Jacobian tests, worst {worst:e}, from the third on {push_worst:e}", ratios.len());
         assert!(worst < 2e-6 && push_worst < 1e-7, "{integration}: {ratios:?}");
     }
 }

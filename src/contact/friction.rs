@@ -33,6 +33,19 @@ pub struct FrictionLaw {
     pub coefficient: f64,
     /// Tangential penalty eps_T: traction per unit slip in stick, MPa/mm.
     pub penalty: f64,
+    /// Instead of `penalty`, the elastic slip gamma (mm) at the Coulomb limit: eps_T = mu p /
+    /// gamma, a function of the pressure (its derivative is in the tangent).
+    pub elastic_slip: Option<f64>,
+}
+
+impl FrictionLaw {
+    /// eps_T at contact pressure `pressure`.
+    fn stiffness<T: Scalar>(&self, pressure: T) -> T {
+        match self.elastic_slip {
+            Some(gamma) => pressure * (self.coefficient / gamma),
+            None => T::from_f64(self.penalty),
+        }
+    }
 }
 
 /// Where a slave node's slip is measured from: the master edge's material point it was at
@@ -74,7 +87,8 @@ fn residual<T: Scalar>(
     let material: [T; 2] = std::array::from_fn(|c| reference[0][c] * n_ref[0] + reference[1][c] * n_ref[1] + reference[2][c] * n_ref[2]);
     let t = point.tangent;
     let slip = (xs[0] - material[0]) * t[0] + (xs[1] - material[1]) * t[1];
-    let trial = slip * friction.penalty + from.traction;
+    let stiffness = friction.stiffness(point.pressure);
+    let trial = slip * stiffness + from.traction;
     let limit = point.pressure * friction.coefficient;
     let slipping = trial.re().abs() > limit.re();
     let tau = if slipping { limit * trial.re().signum() } else { trial };
@@ -86,8 +100,10 @@ fn residual<T: Scalar>(
             f[2 + 2 * a + k] = -(point.shape[a] * t[k] * c);
         }
     }
-    let (t, a, k) = (tau.re(), law.area, friction.penalty);
-    (f, FrictionState { traction: t, slipping, stored: a * t * t / (2.0 * k), dissipated: a * t * (trial.re() - t) / k })
+    let (t, a, k) = (tau.re(), law.area, stiffness.re());
+    // no stiffness (elastic slip at zero pressure): no traction, nothing stored or dissipated
+    let per_stiffness = if k > 0.0 { a / k } else { 0.0 };
+    (f, FrictionState { traction: t, slipping, stored: per_stiffness * t * t / 2.0, dissipated: per_stiffness * t * (trial.re() - t) })
 }
 
 /// The friction residual of a slave node at `xs` projecting at `xi` on the edge `x`, measured
@@ -185,14 +201,19 @@ mod tests {
             let v = configuration(reference);
             // stick: a soft tangential penalty well inside the cone (p = 400 MPa, mu p the same);
             // slip: mu small
-            let stick = FrictionLaw { coefficient: 1.0, penalty: 5.0 };
-            let slip = FrictionLaw { coefficient: 0.1, penalty: 1e4 };
+            let stick = FrictionLaw { coefficient: 1.0, penalty: 5.0, elastic_slip: None };
+            let slip = FrictionLaw { coefficient: 0.1, penalty: 1e4, elastic_slip: None };
             for traction in [0.0, 30.0] {
                 let from = SlipReference { xi: xi_ref, traction };
                 let e = fd_error(v, &from, &stick, false);
                 assert!(e <= 1e-6, "stick {what}, tau_n {traction}: {e:e}");
                 let e = fd_error(v, &from, &slip, true);
                 assert!(e <= 1e-6, "slip {what}, tau_n {traction}: {e:e}");
+                // eps_T = mu p / gamma: its derivative through the pressure, in stick and slip
+                let e = fd_error(v, &from, &FrictionLaw { elastic_slip: Some(20.0), ..stick }, false);
+                assert!(e <= 1e-6, "stick with an elastic slip {what}, tau_n {traction}: {e:e}");
+                let e = fd_error(v, &from, &FrictionLaw { elastic_slip: Some(1e-4), ..slip }, true);
+                assert!(e <= 1e-6, "slip with an elastic slip {what}, tau_n {traction}: {e:e}");
             }
         }
     }
@@ -206,7 +227,7 @@ mod tests {
         let law = ContactLaw { area: 1.0, penalty: 2e4, multiplier: 0.0, free_ends: FREE };
         let xi = project_on_edge(xs, &x).unwrap().xi;
         assert!((xi - 0.3).abs() < 1e-12);
-        let friction = FrictionLaw { coefficient: 0.3, penalty: 1e3 };
+        let friction = FrictionLaw { coefficient: 0.3, penalty: 1e3, elastic_slip: None };
         // reference material point at r = 1.25: slip 0.05, trial 50 MPa < mu p = 60: stick
         let from = SlipReference { xi: 0.25, traction: 0.0 };
         let (f, state) = friction_residual(xs, &x, &x, xi, &from, &law, &friction);
@@ -218,5 +239,12 @@ mod tests {
         assert!(state.slipping && (state.traction - 60.0).abs() < 1e-9, "{state:?}");
         let (_, state) = friction_residual(xs, &x, &x, xi, &SlipReference { xi: 0.4, traction: 0.0 }, &law, &friction);
         assert!(state.slipping && (state.traction + 60.0).abs() < 1e-9, "{state:?}");
+        // an elastic slip of 0.1: eps_T = mu p / 0.1 = 600 MPa/mm, so a slip of 0.05 sticks at
+        // 30 MPa, half the limit, and one of 0.15 goes past it
+        let elastic = FrictionLaw { elastic_slip: Some(0.1), ..friction };
+        let (_, state) = friction_residual(xs, &x, &x, xi, &from, &law, &elastic);
+        assert!(!state.slipping && (state.traction - 30.0).abs() < 1e-9, "{state:?}");
+        let (_, state) = friction_residual(xs, &x, &x, xi, &SlipReference { xi: 0.15, traction: 0.0 }, &law, &elastic);
+        assert!(state.slipping && (state.traction - 60.0).abs() < 1e-9, "{state:?}");
     }
 }

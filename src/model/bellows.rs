@@ -336,7 +336,11 @@ pub fn model(p: &BellowsParams) -> Result<Model> {
         capture_distance: (2.0 * p.ply_thickness).max(2.0 * p.ply_element_length),
         augmented_lagrangian: None::<AugmentedLagrangian>,
         exclude_neighbours: 4,
-        friction: (mu > 0.0).then_some(Friction { coefficient: mu, tangential_penalty: Some(p.tangential_penalty) }),
+        friction: (mu > 0.0).then_some(Friction {
+            coefficient: mu,
+            tangential_penalty: p.elastic_slip.is_none().then_some(p.tangential_penalty),
+            elastic_slip: p.elastic_slip,
+        }),
         adjust: None,
     };
     let mut contacts = Vec::new();

@@ -54,6 +54,7 @@
 //! exclude_neighbours = 2            # self-contact: segments this close along the surface
 //! friction = 0.2                    # Coulomb's mu (optional; node-to-segment pairs)
 //! tangential_penalty = 1.0e5        # MPa/mm of slip in stick (default: the normal penalty)
+//! # elastic_slip = 0.005            # or: mm of slip at the Coulomb limit, eps_T = mu p / gamma
 //! adjust = 0.01                     # optional: before the analysis, move the slave nodes within
 //!                                   # 0.01 mm of the master (and all penetrating) onto it, or
 //!                                   # adjust = "node_set": those of a set (CalculiX's ADJUST)
@@ -124,6 +125,7 @@ struct ContactSpec {
     exclude_neighbours: usize,
     friction: Option<f64>,
     tangential_penalty: Option<f64>,
+    elastic_slip: Option<f64>,
     adjust: Option<AdjustSpec>,
 }
 
@@ -395,7 +397,7 @@ pub fn parse(text: &str, path: &Path) -> Result<Model> {
             .augmented_lagrangian
             .as_ref()
             .map(|a| AugmentedLagrangian { penetration_tolerance: a.penetration_tolerance, max_augmentations: a.max_augmentations });
-        let friction = Friction::from_values(&name, c.friction, c.tangential_penalty)?;
+        let friction = Friction::from_values(&name, c.friction, c.tangential_penalty, c.elastic_slip)?;
         contacts.push(ContactPair {
             name,
             slave: c.slave.clone(),

@@ -143,20 +143,33 @@ pub struct Friction {
     pub coefficient: f64,
     /// Tangential traction per unit slip in stick, MPa/mm; None: the pair's normal penalty.
     pub tangential_penalty: Option<f64>,
+    /// Instead of a fixed penalty, the elastic slip gamma (mm) at which a node reaches the
+    /// Coulomb limit: eps_T = mu p / gamma, Abaqus's default form (its slip tolerance times the
+    /// element length): the stiffness follows the pressure, and no stiffness needs choosing.
+    pub elastic_slip: Option<f64>,
 }
 
 impl Friction {
-    /// The friction of a deck's `friction` and `tangential_penalty` values (pair `name`):
-    /// None for mu = 0; bad input for a negative or non-finite mu or penalty.
-    pub fn from_values(name: &str, coefficient: Option<f64>, tangential_penalty: Option<f64>) -> crate::error::Result<Option<Friction>> {
+    /// The friction of a deck's `friction`, `tangential_penalty` and `elastic_slip` values
+    /// (pair `name`): None for mu = 0; bad input for a negative or non-finite mu, a stiffness
+    /// or slip that is not positive, or both of these given.
+    pub fn from_values(
+        name: &str,
+        coefficient: Option<f64>,
+        tangential_penalty: Option<f64>,
+        elastic_slip: Option<f64>,
+    ) -> crate::error::Result<Option<Friction>> {
         let bad = |m: String| crate::error::Error::input(format!("contact '{name}': {m}"));
-        match (coefficient, tangential_penalty) {
-            (None, Some(_)) => Err(bad("tangential_penalty without friction (give friction = mu)".into())),
-            (None, None) => Ok(None),
-            (Some(mu), _) if !mu.is_finite() || mu < 0.0 => Err(bad(format!("friction coefficient {mu}: give mu >= 0"))),
-            (Some(_), Some(k)) if !k.is_finite() || k <= 0.0 => Err(bad(format!("tangential_penalty {k}: give a positive stiffness (MPa/mm)"))),
+        match (coefficient, tangential_penalty, elastic_slip) {
+            (None, Some(_), _) => Err(bad("tangential_penalty without friction (give friction = mu)".into())),
+            (None, _, Some(_)) => Err(bad("elastic_slip without friction (give friction = mu)".into())),
+            (None, None, None) => Ok(None),
+            (Some(mu), _, _) if !mu.is_finite() || mu < 0.0 => Err(bad(format!("friction coefficient {mu}: give mu >= 0"))),
+            (Some(_), Some(_), Some(_)) => Err(bad("give tangential_penalty (MPa/mm) or elastic_slip (mm), not both".into())),
+            (Some(_), Some(k), _) if !k.is_finite() || k <= 0.0 => Err(bad(format!("tangential_penalty {k}: give a positive stiffness (MPa/mm)"))),
+            (Some(_), _, Some(g)) if !g.is_finite() || g <= 0.0 => Err(bad(format!("elastic_slip {g}: give a positive slip (mm)"))),
             // mu = 0: frictionless
-            (Some(mu), k) => Ok((mu > 0.0).then_some(Friction { coefficient: mu, tangential_penalty: k })),
+            (Some(mu), k, g) => Ok((mu > 0.0).then_some(Friction { coefficient: mu, tangential_penalty: k, elastic_slip: g })),
         }
     }
 }

@@ -191,11 +191,21 @@ impl Engagement {
                         self.tangent[at(i) * m + at(j)] += k[(i, j)];
                     }
                 }
-                // slip on a segment-integrated node: tau = mu p sign, so d residual = residual / p dp
-                if let (TangentRecipe::FrictionIntegrated { pressure, .. }, true) = (&self.recipe, state.slipping) {
-                    if *pressure > 0.0 {
+                // a segment-integrated node's pressure p is the integrated one (given to the
+                // kernel as a constant): the residual, proportional to tau, varies with it as
+                // d residual = residual / tau dtau/dp dp, with dtau/dp = tau / p in slip
+                // (tau = mu p sign), (tau - tau_n) / p in stick with an elastic slip (eps_T =
+                // mu p / gamma), and 0 in stick with a fixed penalty
+                if let TangentRecipe::FrictionIntegrated { pressure, .. } = &self.recipe {
+                    let tau = state.traction;
+                    let dtau_dp = match (state.slipping, r.friction.elastic_slip) {
+                        (true, _) => tau / pressure,
+                        (false, Some(_)) => (tau - r.from.traction) / pressure,
+                        (false, None) => 0.0,
+                    };
+                    if *pressure > 0.0 && tau != 0.0 && dtau_dp != 0.0 {
                         for i in 0..m {
-                            let f = self.residual[i] / pressure;
+                            let f = self.residual[i] / tau * dtau_dp;
                             for j in 0..m {
                                 self.tangent[i * m + j] += f * self.gradient[j];
                             }

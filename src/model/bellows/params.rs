@@ -49,6 +49,10 @@ pub struct BellowsParams {
     pub friction_sleeve: f64,
     /// Tangential penalty of the friction, MPa/mm of elastic slip.
     pub tangential_penalty: f64,
+    /// Instead of the tangential penalty, the elastic slip (mm) at the Coulomb limit: eps_T =
+    /// mu p / elastic_slip.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub elastic_slip: Option<f64>,
     /// After the compression, a further step takes tube B's end back to where it started.
     pub cycle: bool,
     /// How Newton's convergence is judged.
@@ -102,6 +106,7 @@ impl Default for BellowsParams {
             // limit, mu p / eps_T, is 0.7 % of the quick mesh's 2 mm ply elements at p = 10 MPa,
             // about Abaqus' default allowance (0.5 % of the element length)
             tangential_penalty: 300.0,
+            elastic_slip: None,
             convergence: crate::model::Convergence::default(),
             cycle: false,
             ply_elements: 2,
@@ -176,6 +181,7 @@ impl BellowsParams {
             ("Young's modulus", self.youngs_modulus),
             ("yield stress", self.yield_stress),
         ];
+        let positive = positive.into_iter().chain(self.elastic_slip.map(|g| ("elastic slip", g)));
         for (name, v) in positive {
             if !(v > 0.0 && v.is_finite()) {
                 return Err(Error::input(format!("bellows: {name} must be > 0, got {v}")));

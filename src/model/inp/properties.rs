@@ -188,7 +188,7 @@ impl Builder {
             let name = if slave == master { slave.clone() } else { format!("{slave}-{master}") };
             // two-pass: each direction carries half the force, so its stiffnesses are doubled
             let passes = if two_pass { 2.0 } else { 1.0 };
-            let friction = friction.map(|(mu, stick)| Friction { coefficient: mu, tangential_penalty: stick.map(|k| passes * k) });
+            let friction = friction.map(|(mu, stick)| Friction { coefficient: mu, tangential_penalty: stick.map(|k| passes * k), elastic_slip: None });
             self.notes.push(format!(
                 "contact {name}: {} penalty {slope} N/mm^3 (the LINEAR slope), {}{}",
                 match friction {

@@ -91,7 +91,7 @@ impl ContactAssembly {
             // a node without a reference (beyond reach when the increment started) slides freely
             // in this increment and has one from the next on
             if let (Some(f), true, Some(reference)) = (pair.friction, closed, self.slip_committed[p][k]) {
-                let friction = FrictionLaw { coefficient: f.coefficient, penalty: f.tangential_penalty.unwrap_or(eps) };
+                let friction = FrictionLaw { coefficient: f.coefficient, penalty: f.tangential_penalty.unwrap_or(eps), elastic_slip: f.elastic_slip };
                 let recipe = friction_recipe(master, &x, xs, edge, proj.xi, reference, law, friction);
                 let (residual, slip) = recipe.residual();
                 self.roundoff += (ROUNDOFF_ULPS * f64::EPSILON * friction.penalty * area * xs[0].hypot(xs[1])).powi(2);
@@ -161,7 +161,7 @@ impl ContactAssembly {
             let Some(reference) = self.slip_committed[p][k].filter(|_| trial >= 0.0) else { continue };
             // the pressure is given (the integrated one): a law of penalty 0 and multiplier p
             let law = ContactLaw { area: area * pass.weight, penalty: 0.0, multiplier: pressure, free_ends: [false; 2] };
-            let friction = FrictionLaw { coefficient: f.coefficient, penalty: f.tangential_penalty.unwrap_or(eps) };
+            let friction = FrictionLaw { coefficient: f.coefficient, penalty: f.tangential_penalty.unwrap_or(eps), elastic_slip: f.elastic_slip };
             let recipe = friction_recipe(master, &x, xs, edge, proj.xi, reference, law, friction);
             let (residual, slip) = recipe.residual();
             self.roundoff += (ROUNDOFF_ULPS * f64::EPSILON * friction.penalty * law.area * xs[0].hypot(xs[1])).powi(2);
