@@ -41,7 +41,7 @@
 //! elements = "all"
 //! material = "steel"
 //!
-//! [[contact]]                       # frictionless node-to-segment, optional
+//! [[contact]]                       # a penalty contact pair, optional
 //! slave = "inner_tube_outside"      # surfaces (physical curves); slave == master: self-contact
 //! master = "outer_tube_bore"
 //! two_pass = false                  # true: symmetric, each surface also slave of the other
@@ -52,7 +52,7 @@
 //! capture_distance = 1.0            # mm (default: twice the longest edge a slave node may meet)
 //! augmented_lagrangian = { penetration_tolerance = 1e-4, max_augmentations = 10 }  # optional
 //! exclude_neighbours = 2            # self-contact: segments this close along the surface
-//! friction = 0.2                    # Coulomb's mu (optional; node-to-segment pairs)
+//! friction = 0.2                    # Coulomb's mu (optional; default frictionless)
 //! tangential_penalty = 1.0e5        # MPa/mm of slip in stick (default: the normal penalty)
 //! # elastic_slip = 0.005            # or: mm of slip at the Coulomb limit, eps_T = mu p / gamma
 //! adjust = 0.01                     # optional: before the analysis, move the slave nodes within
