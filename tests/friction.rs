@@ -141,22 +141,7 @@ fn assembled_jacobian_with_friction_matches_finite_differences_for_both_integrat
     // PETSc's -snes_test_jacobian at every Newton iterate, on 2 ranks: the pushed fit on an
     // elastic tube, through stick and slip
     for (integration, two_pass) in [("node-to-segment", false), ("segment", false), ("node-to-segment", true), ("segment", true)] {
-        let integration_line = format!("integration = \"{integration}\"\ntwo_pass = {two_pass}");
-        let text = deck(1.2e-4, 4, &format!("friction = {MU}")).replace("integration = \"node-to-segment\"", &integration_line);
-        let integration = format!("{integration}{}", if two_pass { ", two-pass" } else { "" });
-        let run = run_deck(&text, &[], 2, &["--", "-snes_test_jacobian"]);
-        run.assert_ok();
-        let all = common::jacobian_test_ratios(&run.stdout());
-        assert!(all.len() >= 4, "{integration}: PETSc printed no Jacobian test");
-        // the first iterate (u = 0, the fit's 0.05 mm interference at once) is left out: there
-        // the frictionless deck's Jacobian differs from the differences by 1.4e-3 as well, and
-        // by 1.5e-6 at the second (the fit's large first correction); the push's iterates are
-        // at 2e-8
-        let ratios = &all[1..];
-        let worst = ratios.iter().copied().fold(0.0, f64::max);
-        let push_worst = ratios[1..].iter().copied().fold(0.0, f64::max);
-        println!("{integration}: {} Jacobian tests, worst ||J - Jfd|| / ||J|| = {worst:e}, from the third on {push_worst:e}", ratios.len());
-        assert!(worst < 2e-6 && push_worst < 1e-7, "{integration}: {ratios:?}");
+        assert_jacobian_matches(integration, two_pass, &format!("friction = {MU}"));
     }
 }
 
@@ -165,18 +150,29 @@ fn assembled_jacobian_with_an_elastic_slip_matches_finite_differences_for_both_i
     // as above, with eps_T = mu p / gamma: the tangent carries the stiffness's dependence on
     // the pressure (through the integrated pressure's gap gradient for segment integration)
     for integration in ["node-to-segment", "segment"] {
-        let text = deck(1.2e-4, 4, &format!("friction = {MU}\nelastic_slip = 2.0e-5"))
-            .replace("integration = \"node-to-segment\"", &format!("integration = \"{integration}\""));
-        let run = run_deck(&text, &[], 2, &["--", "-snes_test_jacobian"]);
-        run.assert_ok();
-        let all = common::jacobian_test_ratios(&run.stdout());
-        assert!(all.len() >= 4, "{integration}: PETSc printed no Jacobian test");
-        let ratios = &all[1..];
-        let worst = ratios.iter().copied().fold(0.0, f64::max);
-        let push_worst = ratios[1..].iter().copied().fold(0.0, f64::max);
-        println!("{integration}, elastic slip: {} Jacobian tests, worst {worst:e}, from the third on {push_worst:e}", ratios.len());
-        assert!(worst < 2e-6 && push_worst < 1e-7, "{integration}: {ratios:?}");
+        assert_jacobian_matches(integration, false, &format!("friction = {MU}\nelastic_slip = 2.0e-5"));
     }
+}
+
+/// Runs the pushed fit (`friction` lines) with -snes_test_jacobian on 2 ranks and checks the
+/// assembled Jacobian against PETSc's finite differences.
+fn assert_jacobian_matches(integration: &str, two_pass: bool, friction: &str) {
+    let integration_line = format!("integration = \"{integration}\"\ntwo_pass = {two_pass}");
+    let text = deck(1.2e-4, 4, friction).replace("integration = \"node-to-segment\"", &integration_line);
+    let what = format!("{integration}{}, {}", if two_pass { ", two-pass" } else { "" }, friction.replace('\n', ", "));
+    let run = run_deck(&text, &[], 2, &["--", "-snes_test_jacobian"]);
+    run.assert_ok();
+    let all = common::jacobian_test_ratios(&run.stdout());
+    assert!(all.len() >= 4, "{what}: PETSc printed no Jacobian test");
+    // the first iterate (u = 0, the fit's 0.05 mm interference at once) is left out: there
+    // the frictionless deck's Jacobian differs from the differences by 1.4e-3 as well, and
+    // by 1.5e-6 at the second (the fit's large first correction); the push's iterates are
+    // at 2e-8
+    let ratios = &all[1..];
+    let worst = ratios.iter().copied().fold(0.0, f64::max);
+    let push_worst = ratios[1..].iter().copied().fold(0.0, f64::max);
+    println!("{what}: {} Jacobian tests, worst ||J - Jfd|| / ||J|| = {worst:e}, from the third on {push_worst:e}", ratios.len());
+    assert!(worst < 2e-6 && push_worst < 1e-7, "{what}: {ratios:?}");
 }
 
 /// Newton with friction converges quadratically once the stick/slip states have settled:

@@ -157,6 +157,14 @@ def lame():
     write("lame.inp", deck)
 
 
+def fit_mesh(m, gi, ri, go, ro, nj):
+    """The fit decks' nodes, the tube's (4 across) and the ring's (6 across) elements, ALL and
+    the common bottom face BOTTOM."""
+    return (m.node_lines() + m.element_lines([e for r in ri for e in r], "TUBE")
+            + m.element_lines([e for r in ro for e in r], "RING") + ["*ELSET, ELSET=ALL", "TUBE, RING"]
+            + listing("*NSET, NSET=BOTTOM", side(gi, 4, nj, "bottom") + side(go, 6, nj, "bottom")))
+
+
 def fit_surfaces(ri, ro):
     """The fit decks' contact surfaces (the tube's outside, the ring's bore) and the tube's bore."""
     return (surface("TUBE_OUT", [(r[-1], 2) for r in ri]) + surface("RING_IN", [(r[0], 4) for r in ro])
@@ -178,11 +186,7 @@ def shrink_fit():
     gi, ri = m.block(4, nj, lambda I, J: (50.0 + 10.05 * I / 8, h * J / (2 * nj)))
     go, ro = m.block(6, nj, lambda I, J: (60.0 + 20.0 * I / 12, h * J / (2 * nj)))
     deck = ["*HEADING", "Shrink fit: tube r 50..60.05 in ring r 60..80, then 50 MPa in the bore"]
-    deck += m.node_lines()
-    deck += m.element_lines([e for r in ri for e in r], "TUBE")
-    deck += m.element_lines([e for r in ro for e in r], "RING")
-    deck += ["*ELSET, ELSET=ALL", "TUBE, RING"]
-    deck += listing("*NSET, NSET=BOTTOM", side(gi, 4, nj, "bottom") + side(go, 6, nj, "bottom"))
+    deck += fit_mesh(m, gi, ri, go, ro, nj)
     deck += listing("*NSET, NSET=TUBE_TOP", side(gi, 4, nj, "top"))
     deck += listing("*NSET, NSET=RING_TOP", side(go, 6, nj, "top"))
     deck += ["*NSET, NSET=PROBE", f"{gi[0, 0]}, {go[0, 0]}, {go[12, 0]}"]
@@ -211,11 +215,7 @@ def adjusted_fit():
     gi, ri = m.block(4, nj, lambda I, J: (50.0 + (outer(h * J / (2 * nj)) - 50.0) * I / 8, h * J / (2 * nj)))
     go, ro = m.block(6, nj, lambda I, J: (60.0 + 20.0 * I / 12, h * J / (2 * nj)))
     deck = ["*HEADING", "Adjusted fit: tapered tube (outer r 59.97..60.03) in ring r 60..80, ADJUST=0.01, then 50 MPa"]
-    deck += m.node_lines()
-    deck += m.element_lines([e for r in ri for e in r], "TUBE")
-    deck += m.element_lines([e for r in ro for e in r], "RING")
-    deck += ["*ELSET, ELSET=ALL", "TUBE, RING"]
-    deck += listing("*NSET, NSET=BOTTOM", side(gi, 4, nj, "bottom") + side(go, 6, nj, "bottom"))
+    deck += fit_mesh(m, gi, ri, go, ro, nj)
     deck += listing("*NSET, NSET=TOP", side(gi, 4, nj, "top") + side(go, 6, nj, "top"))
     deck += ["*NSET, NSET=PROBE", f"{gi[0, 0]}, {gi[8, 0]}, {gi[8, 4]}, {gi[8, 8]}, {go[0, 0]}, {go[0, 8]}, {go[12, 0]}"]
     deck += fit_surfaces(ri, ro)
