@@ -13,10 +13,14 @@ export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OPENBLAS_NUM_TH
 export OMPI_MCA_rmaps_base_oversubscribe=1
 
 PACKAGES=(petsc-dev libopenmpi-dev openmpi-bin libhdf5-openmpi-dev hdf5-tools libclang-dev pkg-config libopenblas0-pthread)
+# the tests read results as users do, with meshio and h5py: Debian's own, for Debian's python3
+# (which refuses pip installs), called by its path whatever python3 comes first on PATH
+TEST_PACKAGES=(python3-meshio python3-h5py python3-numpy)
+export SLIDELINE_PYTHON=/usr/bin/python3
 
 install_missing() {
     local missing=()
-    for p in "${PACKAGES[@]}"; do
+    for p in "${PACKAGES[@]}" "$@"; do
         dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
     done
     if [ ${#missing[@]} -gt 0 ]; then
@@ -32,7 +36,7 @@ install_missing() {
     fi
 }
 
-install_missing
+if [ "${1:-}" = test ]; then install_missing "${TEST_PACKAGES[@]}"; else install_missing; fi
 # ./run.sh --quick (or any other bellows flag) is the main job with that flag
 if [ "${1:-main}" != "main" ] && [ "${1#-}" != "${1:-}" ]; then set -- main "$@"; fi
 case "${1:-main}" in
@@ -43,8 +47,6 @@ case "${1:-main}" in
         exec mpirun -n 2 target/release/slideline bellows --output out/bellows.h5 "${@:2}"
         ;;
     test)
-        # the XDMF test reads results as users do, with meshio (PyPI)
-        python3 -c "import meshio, h5py, numpy" 2>/dev/null || python3 -m pip install --quiet meshio h5py numpy
         cargo build --release --all-targets
         exec cargo test --release "${@:2}"
         ;;

@@ -1,12 +1,16 @@
 #!/usr/bin/env python3
 """Reads a slideline results file's XDMF sidecar with meshio, as a user would, and checks it
 against the HDF5 file read with h5py: every increment is a step at the history's time, the
-points and Q8 cells are the mesh, the displacement is (u_r, u_z, 0) of the increment, the
-element fields are the stored ones, and the nodal stresses are the Gauss-point stresses carried
-to the nodes (biquadratic fit through the 3 x 3 points, averaged over the elements at a node),
-computed here independently. Prints one line per check; exits 1 on the first failure.
+points and Q8 cells are the mesh, the first step is the undeformed state at t = 0, the
+displacement is (u_r, u_z, 0) of the increment, the element fields are the stored ones, and the
+nodal stresses are the Gauss-point stresses carried to the nodes, computed here independently:
+the biquadratic fit through the 3 x 3 points in elements where no point has yielded, the
+nearest Gauss point's value in the others (ANSYS's ERESX default), averaged over the elements at
+a node; von Mises from the averaged components (never negative), the equivalent plastic strain
+copied (within the Gauss values' range). Prints one line per check; exits 1 on the first
+failure.
 
-usage: check_xdmf.py RESULTS.xmf   (needs: pip install meshio h5py numpy)
+usage: check_xdmf.py RESULTS.xmf   (needs Debian's python3-meshio, python3-h5py, python3-numpy)
 """
 import os
 import sys
@@ -21,8 +25,9 @@ def fail(message):
     sys.exit(1)
 
 
-def nodal_from_gauss(conn, gauss, nodes):
-    """Mean over elements of the biquadratic fit through the 3 x 3 Gauss values, at the nodes."""
+def nodal_from_gauss(conn, gauss, nodes, copied):
+    """Mean over elements of each element's nodal values: the biquadratic fit through the 3 x 3
+    Gauss values at the nodes, or (elements where `copied`) the nearest Gauss point's value."""
     g = np.sqrt(0.6)
     pts = np.array([-g, 0.0, g])
     natural = [(-1, -1), (1, -1), (1, 1), (-1, 1), (0, -1), (1, 0), (0, 1), (-1, 0)]
@@ -31,11 +36,14 @@ def nodal_from_gauss(conn, gauss, nodes):
         return np.prod([(x - pts[m]) / (pts[k] - pts[m]) for m in range(3) if m != k])
 
     # Gauss point q = 3 * j + i at (xi_i, eta_j)
-    w = np.array([[lag(q % 3, xi) * lag(q // 3, eta) for q in range(9)] for xi, eta in natural])
+    fit = np.array([[lag(q % 3, xi) * lag(q // 3, eta) for q in range(9)] for xi, eta in natural])
+    nearest = np.zeros((8, 9))
+    for a, (xi, eta) in enumerate(natural):
+        nearest[a, 3 * (int(np.sign(eta)) + 1) + int(np.sign(xi)) + 1] = 1.0
     sums = np.zeros(nodes)
     counts = np.zeros(nodes)
     for e in range(conn.shape[0]):
-        values = w @ gauss[e]
+        values = (nearest if copied[e] else fit) @ gauss[e]
         np.add.at(sums, conn[e], values)
         np.add.at(counts, conn[e], 1.0)
     return sums / counts
@@ -53,10 +61,13 @@ def main():
     print(f"mesh: {points.shape[0]} points, {cells[0].data.shape[0]} quad8 cells")
     increments = sorted(h5["increments"].keys())
     rows = len(h5["history/time"])
-    if reader.num_steps != len(increments):
-        fail(f"{reader.num_steps} steps for {len(increments)} increments")
+    if reader.num_steps != len(increments) + 1:
+        fail(f"{reader.num_steps} steps for {len(increments)} increments and the t = 0 frame")
+    t, point_data, _ = reader.read_data(0)
+    if t != 0.0 or np.any(point_data["displacement"] != 0.0):
+        fail("the first step is not the undeformed state at t = 0")
     for k, name in enumerate(increments):
-        t, point_data, cell_data = reader.read_data(k)
+        t, point_data, cell_data = reader.read_data(k + 1)
         inc = h5["increments"][name]
         if abs(t - inc.attrs["time"]) > 1e-12 or abs(t - h5["history/time"][int(name) - 1]) > 1e-12:
             fail(f"step {k}: time {t} against the increment's {inc.attrs['time']}")
@@ -69,12 +80,28 @@ def main():
             if field in inc and not np.array_equal(cell_data[field][0], inc[field][:]):
                 fail(f"step {k}: {field} differs")
     stress = inc["stress"][:] if "stress" in inc else np.zeros((0, 9, 4))
+    ep = inc["equivalent_plastic_strain"][:] if "equivalent_plastic_strain" in inc else np.zeros((conn.shape[0], 9))
+    copied = np.any(ep > 0.0, axis=1)
+    nodal = {}
     for c, field in enumerate(("stress_rr", "stress_zz", "stress_tt", "stress_rz") if "stress" in inc else ()):
-        expected = nodal_from_gauss(conn, stress[:, :, c], points.shape[0])
+        nodal[field] = expected = nodal_from_gauss(conn, stress[:, :, c], points.shape[0], copied)
         scale = np.abs(stress[:, :, c]).max() or 1.0
         worst = np.abs(point_data[field] - expected).max() / scale
         if worst > 1e-12:
             fail(f"last step: nodal {field} differs from the Gauss points carried to the nodes by {worst:.2e}")
+    if nodal:
+        a, b, c, t = (nodal[f] for f in ("stress_rr", "stress_zz", "stress_tt", "stress_rz"))
+        mises = np.sqrt(0.5 * ((a - b) ** 2 + (b - c) ** 2 + (c - a) ** 2) + 3.0 * t * t)
+        vm = point_data["von_mises"]
+        if np.abs(vm - mises).max() > 1e-9 * mises.max() or vm.min() < 0.0:
+            fail("last step: nodal von_mises is not the von Mises stress of the nodal components")
+        gauss_max = inc["von_mises"][:].max()
+        print(f"nodal von Mises {vm.min():.3f} .. {vm.max():.3f} MPa, Gauss points' maximum {gauss_max:.3f} MPa")
+    if "equivalent_plastic_strain" in inc:
+        ep_nodal = point_data["equivalent_plastic_strain"]
+        expected = nodal_from_gauss(conn, ep, points.shape[0], np.ones(conn.shape[0], dtype=bool))
+        if np.abs(ep_nodal - expected).max() > 1e-12 or ep_nodal.min() < 0.0 or ep_nodal.max() > ep.max():
+            fail("last step: nodal equivalent_plastic_strain is not the nearest Gauss values averaged")
     if "contact" in inc:
         expected = np.zeros(points.shape[0])
         for pair in inc["contact"]:
@@ -84,7 +111,7 @@ def main():
         if not np.array_equal(point_data["contact_pressure"], expected):
             fail("last step: nodal contact_pressure differs from the largest pass pressure at each slave node")
         print(f"contact pressure at the nodes equals the passes' (max {expected.max():.3f} MPa, {int(point_data['contact_status'].sum())} nodes in contact)")
-    print(f"{reader.num_steps} steps (of {rows} history rows) at the history's times; displacement and element fields equal the HDF5 file's;")
+    print(f"{len(increments)} increment steps after the t = 0 frame (of {rows} history rows) at the history's times; displacement and element fields equal the HDF5 file's;")
     if "stress" in inc:
         print(f"nodal stresses at the last step equal the Gauss-point stresses carried to the nodes (max |s_rr| {np.abs(point_data['stress_rr']).max():.3f} MPa)")
     print(f"fields: {sorted(point_data)} at the nodes, {sorted(cell_data)} per element")

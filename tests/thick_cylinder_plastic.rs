@@ -164,4 +164,19 @@ fn no_volumetric_locking_limit_pressure_plateau_and_smooth_pressure_field() {
     }
     eprintln!("max deviation of the mean stress from the fully plastic solution: {worst:.3} MPa");
     assert!(worst <= 0.01 * SY, "mean stress deviates by {worst} MPa: checkerboard or locking");
+    // The nodal fields a ParaView user sees (every element has yielded: each node takes its
+    // nearest Gauss point's value, averaged) against the fully plastic solution at every node:
+    // sigma_rr and the von Mises stress (the yield stress, H = 0) within 1 % of the limit
+    // pressure, the equivalent plastic strain never below zero.
+    let inc = res.last_increment();
+    let nodal = |name: &str| res.f64s(&format!("{inc}/nodal/{name}"));
+    let (rr, vm, ep) = (nodal("stress_rr"), nodal("von_mises"), nodal("equivalent_plastic_strain"));
+    let mut worst = 0.0f64;
+    for (k, (x, _)) in res.nodes().iter().enumerate() {
+        let sr = -last + 2.0 / 3f64.sqrt() * SY * (x[0] / A).ln();
+        worst = worst.max((rr[k] - sr).abs()).max((vm[k] - SY).abs());
+    }
+    eprintln!("largest nodal deviation from the fully plastic solution: {worst:.3} MPa ({:.2} % of the limit pressure)", 100.0 * worst / limit);
+    assert!(worst <= 0.01 * limit, "nodal stresses off the fully plastic solution by {worst} MPa");
+    assert!(ep.iter().all(|&e| e >= 0.0), "negative nodal plastic strain");
 }

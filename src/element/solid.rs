@@ -29,6 +29,7 @@
 use crate::ad::Dual;
 use crate::fe::axisymmetric::{map_point, PointGeometry};
 use crate::fe::quadrature::square_3x3;
+use crate::material::log_exp::log_sym2;
 use crate::material::{Kinematics, PointState, SurfaceBranch, J2};
 use nalgebra::{Matrix3, SMatrix, SVector, Vector3};
 
@@ -132,6 +133,23 @@ impl ElementGeometry {
     pub fn mean_radius(&self) -> f64 {
         let area: f64 = (0..QUADRATURE_POINTS).map(|q| self.weights[q] / self.points[q].r).sum();
         self.weights.iter().sum::<f64>() / area
+    }
+
+    /// The total strain [rr, zz, tt, rz] (tensor shear) at every Gauss point for nodal
+    /// displacements `u`, for output: sym grad u in small strain; in finite strain the
+    /// logarithmic (Hencky) strain of the current configuration, ln(F F^T) / 2, Abaqus's LE.
+    pub fn total_strain(&self, kinematics: Kinematics, u: &[[f64; 2]; NODES]) -> [[f64; 4]; QUADRATURE_POINTS] {
+        std::array::from_fn(|q| {
+            let f = self.deformation_gradient(q, u);
+            match kinematics {
+                Kinematics::Small => [f[0] - 1.0, f[3] - 1.0, f[4] - 1.0, 0.5 * (f[1] + f[2])],
+                Kinematics::Finite => {
+                    let b = [f[0] * f[0] + f[1] * f[1], f[2] * f[2] + f[3] * f[3], f[0] * f[2] + f[1] * f[3]];
+                    let [rr, zz, rz] = log_sym2(&b);
+                    [0.5 * rr, 0.5 * zz, f[4].ln(), 0.5 * rz]
+                }
+            }
+        })
     }
 
     /// Deformation gradient at Gauss point q for nodal displacements u.

@@ -93,9 +93,29 @@ pub fn von_mises(s: &[f64; 4]) -> f64 {
     (0.5 * ((a - b).powi(2) + (b - c).powi(2) + (c - a).powi(2)) + 3.0 * t * t).sqrt()
 }
 
+/// Principal stresses of `[s_rr, s_zz, s_tt, s_rz]`, largest first: the two of the (r, z)
+/// plane and the hoop stress, which is principal by symmetry.
+pub fn principal_stresses(s: &[f64; 4]) -> [f64; 3] {
+    let [a, b, c, t] = *s;
+    let (mean, radius) = (0.5 * (a + b), (0.5 * (a - b)).hypot(t));
+    let mut p = [mean + radius, mean - radius, c];
+    p.sort_by(|x, y| y.total_cmp(x));
+    p
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn principal_stresses_of_a_rotated_tensor() {
+        // diag(200, -50) rotated by 30 degrees in (r, z), hoop 75
+        let (c, s) = (30f64.to_radians().cos(), 30f64.to_radians().sin());
+        let (p1, p2) = (200.0, -50.0);
+        let t = [p1 * c * c + p2 * s * s, p1 * s * s + p2 * c * c, 75.0, (p1 - p2) * s * c];
+        let p = principal_stresses(&t);
+        assert!((p[0] - 200.0).abs() < 1e-12 && (p[1] - 75.0).abs() < 1e-12 && (p[2] + 50.0).abs() < 1e-12, "{p:?}");
+    }
 
     fn ring_element() -> [[f64; 2]; 8] {
         // a distorted quadrilateral away from the axis with straight edges

@@ -10,7 +10,7 @@
 //! for thick axisymmetric sections is not used.
 
 use super::axisymmetric::von_mises;
-use super::extrapolate::gauss_to_nodes;
+use super::recover::gauss_to_nodes;
 use super::shape::q8;
 
 /// A stress tensor in the section's axes: [normal, meridional, hoop, shear].

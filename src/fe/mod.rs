@@ -2,7 +2,7 @@
 //! Pure functions over small fixed-size types; no PETSc, MPI or I/O.
 
 pub mod axisymmetric;
-pub mod extrapolate;
 pub mod linearize;
 pub mod quadrature;
+pub mod recover;
 pub mod shape;

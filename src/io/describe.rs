@@ -37,14 +37,35 @@ pub fn describe(group: &str, name: &str) -> (&'static str, String) {
         ("mesh", "element_rank") => ("-", "MPI rank that assembled the element".into()),
         ("mesh", "nodes") => ("-", "slave nodes of the contact pass (rows of /mesh/coordinates)".into()),
         ("mesh", "areas") => ("mm^2 per radian", "tributary area of each slave node of the contact pass".into()),
+        ("initial", "vector") => ("mm", "zero vectors at the nodes: the t = 0 frame's displacement and reaction force".into()),
+        ("initial", "scalar") => ("-", "zeros at the nodes: the t = 0 frame's stresses and strains".into()),
+        ("initial", "temperature") => ("degC", "the reference temperature at the nodes (the t = 0 frame)".into()),
+        (_, "reaction_force") => ("N per radian", "reaction force r, z, 0 at the nodes with a prescribed displacement, 0 elsewhere".into()),
+        (_, "pressure") if g.ends_with("nodal") => ("MPa", "hydrostatic pressure -(s_rr + s_zz + s_tt) / 3 of the nodal stress".into()),
+        (_, "principal_stress_max") => ("MPa", "largest principal stress of the nodal stress (the hoop stress is principal)".into()),
+        (_, "principal_stress_min") => ("MPa", "smallest principal stress of the nodal stress".into()),
+        (_, n) if n.starts_with("strain_") => {
+            ("-", format!("total strain {} at the nodes: logarithmic (finite strain) or small strain, tensor shear", n.trim_start_matches("strain_")))
+        }
+        (_, n) if n.starts_with("plastic_strain_") => (
+            "-",
+            format!(
+                "plastic strain {} at the nodes: ln(C_p) / 2 (finite strain) or eps_p (small strain), tensor shear, copied from the nearest Gauss point",
+                n.trim_start_matches("plastic_strain_")
+            ),
+        ),
+        (_, "friction_shear") => ("MPa", "frictional shear traction at the slave nodes (the largest in magnitude over their pairs), 0 elsewhere".into()),
+        (_, "contact_sliding") => ("-", "1 where a slave node slides (friction at its Coulomb limit), 0 where it sticks, is open, or is no slave".into()),
         (_, "displacement") if g.ends_with("nodal") => ("mm", "u_r, u_z, 0 at each node (a 3-vector for ParaView)".into()),
         (_, "displacement") => ("mm", "u_r, u_z at each node".into()),
         (_, "stress") => ("MPa", "Cauchy stress [s_rr, s_zz, s_tt, s_rz] at the 3 x 3 Gauss points of each element (xi fastest)".into()),
-        (_, "von_mises") if g.ends_with("nodal") => ("MPa", "von Mises stress at the nodes (Gauss values carried to the nodes, averaged)".into()),
+        (_, "von_mises") if g.ends_with("nodal") => {
+            ("MPa", "von Mises stress of the nodal stress components (Gauss values carried to the nodes and averaged; see the README)".into())
+        }
         (_, "von_mises") => ("MPa", "von Mises stress at the 3 x 3 Gauss points".into()),
         (_, "von_mises_mean") => ("MPa", "element mean of the von Mises stress".into()),
         (_, "equivalent_plastic_strain") if g.ends_with("nodal") => {
-            ("-", "equivalent plastic strain at the nodes (carried from the Gauss points, averaged)".into())
+            ("-", "equivalent plastic strain at the nodes (copied from each element's nearest Gauss point, averaged)".into())
         }
         (_, "equivalent_plastic_strain") => ("-", "equivalent plastic strain at the 3 x 3 Gauss points".into()),
         (_, "equivalent_plastic_strain_max") => ("-", "largest equivalent plastic strain of each element".into()),

@@ -1,16 +1,19 @@
-//! The fields ParaView and meshio read at the nodes, as CalculiX and Abaqus write them for
-//! plots: Gauss-point stresses, von Mises stress and equivalent plastic strain carried to the
-//! nodes and averaged over the elements around each node ([`crate::fe::extrapolate`]), the
-//! displacement as a 3-component vector (u_r, u_z, 0) for Warp By Vector, and the (uniform)
-//! temperature. Written per increment under `/increments/NNNNNN/nodal/`, one dataset per
+//! The fields ParaView and meshio read at the nodes. Tensor components (stress, total and
+//! plastic strain) are carried from the Gauss points to each element's nodes by
+//! [`crate::fe::recover`] (extrapolated in elastic elements, copied from the nearest Gauss point
+//! in yielded ones, the rule of ANSYS's ERESX default) and averaged over the elements around each
+//! node; the invariants (von Mises, pressure, principal stresses) are then computed from the
+//! averaged components, so von Mises is never negative. The equivalent plastic strain is copied,
+//! never extrapolated, so it is never below zero. Also: the displacement and the reaction force
+//! as 3-component vectors (r, z, 0) for Warp By Vector and glyphs, the temperature, and the
+//! contact state. Written per increment under `/increments/NNNNNN/nodal/`, one dataset per
 //! scalar so that every reader names it.
 
-use super::results::write_rows;
+use super::results::{write_rows, IncrementFields};
 use crate::dist::Partition;
-use crate::element::solid::QUADRATURE_POINTS as QP;
 use crate::error::Result;
-use crate::fe::axisymmetric::von_mises;
-use crate::fe::extrapolate::{accumulate_nodal, gauss_to_nodes};
+use crate::fe::axisymmetric::{principal_stresses, von_mises};
+use crate::fe::recover::{Recovery, Rule};
 use crate::model::{Mesh, OutputFields};
 use crate::solve::contact::PassOutput;
 use mpi::collective::SystemOperation;
@@ -18,17 +21,54 @@ use mpi::topology::SimpleCommunicator;
 use mpi::traits::*;
 use std::path::Path;
 
-/// The nodal scalars, in dataset order: the four stress components, von Mises, equivalent
-/// plastic strain.
-pub const NODAL_SCALARS: [&str; 6] = ["stress_rr", "stress_zz", "stress_tt", "stress_rz", "von_mises", "equivalent_plastic_strain"];
+/// The quantities averaged at the nodes, per node in this order: stress [rr, zz, tt, rz],
+/// total strain (4), plastic strain tensor (4), equivalent plastic strain.
+const AVERAGED: usize = 13;
 
-/// Whether nodal scalar `name` (one of [`NODAL_SCALARS`]) belongs to the fields kept.
+/// The nodal scalars, in dataset order.
+pub const NODAL_SCALARS: [&str; 16] = [
+    "stress_rr",
+    "stress_zz",
+    "stress_tt",
+    "stress_rz",
+    "pressure",
+    "principal_stress_max",
+    "principal_stress_min",
+    "von_mises",
+    "strain_rr",
+    "strain_zz",
+    "strain_tt",
+    "strain_rz",
+    "plastic_strain_rr",
+    "plastic_strain_zz",
+    "plastic_strain_tt",
+    "plastic_strain_rz",
+];
+
+/// The nodal scalars after [`NODAL_SCALARS`]: the equivalent plastic strain and temperature.
+pub const NODAL_TAIL: [&str; 2] = ["equivalent_plastic_strain", "temperature"];
+
+/// The contact scalars at the nodes, the last two only for pairs with friction.
+pub const CONTACT_SCALARS: [&str; 5] = ["contact_pressure", "contact_status", "contact_gap", "friction_shear", "contact_sliding"];
+
+/// Whether nodal scalar `name` (of [`NODAL_SCALARS`] or [`NODAL_TAIL`]) belongs to the fields kept.
 pub fn nodal_scalar_kept(name: &str, fields: OutputFields) -> bool {
     match name {
         "von_mises" => fields.von_mises,
         "equivalent_plastic_strain" => fields.plastic_strain,
+        "temperature" => fields.temperature,
+        n if n.starts_with("strain_") || n.starts_with("plastic_strain_") => fields.strain,
         _ => fields.stress,
     }
+}
+
+/// The scalars of one node from its averaged quantities `a` (the order of [`AVERAGED`]), in
+/// the order of [`NODAL_SCALARS`].
+fn node_scalars(a: &[f64]) -> [f64; 16] {
+    let s = [a[0], a[1], a[2], a[3]];
+    let principal = principal_stresses(&s);
+    let pressure = -(s[0] + s[1] + s[2]) / 3.0;
+    [s[0], s[1], s[2], s[3], pressure, principal[0], principal[2], von_mises(&s), a[4], a[5], a[6], a[7], a[8], a[9], a[10], a[11]]
 }
 
 /// What a rank needs to write the nodal fields: its elements' nodes as file rows.
@@ -38,7 +78,7 @@ pub struct NodalWriter {
     connectivity: Vec<[usize; 8]>,
     nodes: usize,
     node_slab: (usize, usize),
-    matrix: [[f64; 9]; 8],
+    recovery: Recovery,
     /// File row of each mesh node (contact slave nodes come by mesh index).
     node_position: Vec<usize>,
     fields: OutputFields,
@@ -53,76 +93,117 @@ impl NodalWriter {
             connectivity,
             nodes: mesh.coords.len(),
             node_slab: (partition.node_offsets[rank], partition.node_offsets[rank + 1]),
-            matrix: gauss_to_nodes(),
+            recovery: Recovery::default(),
             node_position: partition.node_position.clone(),
             fields,
         }
     }
 
     /// Writes the nodal group of one increment (collective) from this rank's owned
-    /// displacements and its elements' Gauss-point stress and plastic strain.
-    #[allow(clippy::too_many_arguments)]
-    pub fn write(
-        &self,
-        increment: &hdf5::Group,
-        displacement: &[[f64; 2]],
-        stress: &[[[f64; 4]; QP]],
-        plastic_strain: &[[f64; QP]],
-        temperature: f64,
-        contact: &[PassOutput<'_>],
-        path: &Path,
-    ) -> Result<()> {
+    /// displacements and reactions and its elements' Gauss-point fields.
+    pub fn write(&self, increment: &hdf5::Group, f: &IncrementFields<'_>, path: &Path) -> Result<()> {
         let g = increment.create_group("nodal").map_err(|e| crate::error::Error::Output { path: path.to_path_buf(), message: e.to_string() })?;
-        let u: Vec<f64> = displacement.iter().flat_map(|u| [u[0], u[1], 0.0]).collect();
-        write_rows(&g, "displacement", &[self.nodes, 3], self.node_slab, &u, path)?;
+        let as_vector = |v: &[[f64; 2]]| -> Vec<f64> { v.iter().flat_map(|u| [u[0], u[1], 0.0]).collect() };
+        write_rows(&g, "displacement", &[self.nodes, 3], self.node_slab, &as_vector(f.displacement), path)?;
+        write_rows(&g, "reaction_force", &[self.nodes, 3], self.node_slab, &as_vector(f.reaction), path)?;
         // every rank adds its elements' share to every node; the sums meet in one reduction
-        const C: usize = NODAL_SCALARS.len();
-        let gauss: Vec<[[f64; C]; QP]> =
-            stress.iter().zip(plastic_strain).map(|(s, ep)| std::array::from_fn(|q| [s[q][0], s[q][1], s[q][2], s[q][3], von_mises(&s[q]), ep[q]])).collect();
-        let mut local = vec![0.0f64; self.nodes * (C + 1)];
-        let (sums, counts) = local.split_at_mut(self.nodes * C);
-        accumulate_nodal(&self.matrix, &self.connectivity, &gauss, sums, counts);
+        let mut local = vec![0.0f64; self.nodes * (AVERAGED + 1)];
+        let (sums, counts) = local.split_at_mut(self.nodes * AVERAGED);
+        for (k, nodes) in self.connectivity.iter().enumerate() {
+            let ep = &f.plastic_strain[k];
+            let rule = Rule::for_element(ep);
+            let gauss: [[f64; 8]; 9] = std::array::from_fn(|q| {
+                let (s, e) = (f.stress[k][q], f.strain[k][q]);
+                [s[0], s[1], s[2], s[3], e[0], e[1], e[2], e[3]]
+            });
+            let plastic: [[f64; 5]; 9] = std::array::from_fn(|q| {
+                let p = f.plastic_strain_tensor[k][q];
+                [p[0], p[1], p[2], p[3], ep[q]]
+            });
+            let (elastic_part, plastic_part) = (self.recovery.element_nodal(rule, &gauss), self.recovery.element_nodal(Rule::Copy, &plastic));
+            let nodal: [[f64; AVERAGED]; 8] = std::array::from_fn(|a| std::array::from_fn(|c| if c < 8 { elastic_part[a][c] } else { plastic_part[a][c - 8] }));
+            Recovery::accumulate(nodes, &nodal, sums, counts);
+        }
         let mut total = vec![0.0f64; local.len()];
         self.world.all_reduce_into(&local[..], &mut total[..], SystemOperation::sum());
-        let (sums, counts) = total.split_at(self.nodes * C);
+        let (sums, counts) = total.split_at(self.nodes * AVERAGED);
+        let owned = self.node_slab.0..self.node_slab.1;
+        let mean = |n: usize| -> Vec<f64> { (0..AVERAGED).map(|c| sums[n * AVERAGED + c] / counts[n].max(1.0)).collect() };
+        let scalars: Vec<[f64; 16]> = owned.clone().map(|n| node_scalars(&mean(n))).collect();
         for (c, name) in NODAL_SCALARS.iter().enumerate().filter(|(_, name)| nodal_scalar_kept(name, self.fields)) {
-            let owned: Vec<f64> = (self.node_slab.0..self.node_slab.1).map(|n| sums[n * C + c] / counts[n].max(1.0)).collect();
-            write_rows(&g, name, &[self.nodes], self.node_slab, &owned, path)?;
+            let column: Vec<f64> = scalars.iter().map(|s| s[c]).collect();
+            write_rows(&g, name, &[self.nodes], self.node_slab, &column, path)?;
+        }
+        if self.fields.plastic_strain {
+            let ep: Vec<f64> = owned.clone().map(|n| sums[n * AVERAGED + 12] / counts[n].max(1.0)).collect();
+            write_rows(&g, "equivalent_plastic_strain", &[self.nodes], self.node_slab, &ep, path)?;
         }
         if self.fields.temperature {
-            let t = vec![temperature; self.node_slab.1 - self.node_slab.0];
+            let t = vec![f.temperature; owned.len()];
             write_rows(&g, "temperature", &[self.nodes], self.node_slab, &t, path)?;
         }
-        if !contact.is_empty() && self.fields.contact {
-            self.write_contact(&g, contact, path)?;
+        if !f.contact.is_empty() && self.fields.contact {
+            self.write_contact(&g, f.contact, path)?;
         }
         Ok(())
     }
 
     /// The contact state at the nodes: pressure (MPa, the largest over the pairs and passes
     /// a node is a slave of, 0 elsewhere), status (1 in contact), gap (mm, the smallest; NaN
-    /// off the slave surfaces).
+    /// off the slave surfaces); with friction, the frictional shear (MPa, the largest in
+    /// magnitude, signed) and sliding (1 slipping, 0 sticking or open).
     fn write_contact(&self, g: &hdf5::Group, contact: &[PassOutput<'_>], path: &Path) -> Result<()> {
         let n = self.nodes;
-        let mut most = vec![0.0f64; 2 * n];
+        // [pressure, status, |shear|, sliding] by max; [gap] by min; shear's sign by sum
+        let mut most = vec![0.0f64; 4 * n];
         let mut least = vec![f64::INFINITY; n];
+        let mut shear = vec![0.0f64; n];
         for p in contact {
             for (&node, state) in p.nodes.iter().zip(p.states) {
                 let row = self.node_position[node];
                 most[row] = most[row].max(state.pressure);
                 most[n + row] = most[n + row].max(f64::from(u8::from(state.pressure > 0.0)));
                 least[row] = least[row].min(state.gap);
+                if p.friction && state.shear.abs() > most[2 * n + row] {
+                    most[2 * n + row] = state.shear.abs();
+                    shear[row] = state.shear;
+                    most[3 * n + row] = most[3 * n + row].max(f64::from(u8::from(state.sliding)));
+                }
             }
         }
-        let (mut most_all, mut least_all) = (vec![0.0f64; 2 * n], vec![0.0f64; n]);
+        let friction = u8::from(contact.iter().any(|p| p.friction));
+        let mut any_friction = 0u8;
+        self.world.all_reduce_into(&friction, &mut any_friction, SystemOperation::max());
+        let (mut most_all, mut least_all) = (vec![0.0f64; 4 * n], vec![0.0f64; n]);
         self.world.all_reduce_into(&most[..], &mut most_all[..], SystemOperation::max());
         self.world.all_reduce_into(&least[..], &mut least_all[..], SystemOperation::min());
         let owned = self.node_slab.0..self.node_slab.1;
-        let pressure: Vec<f64> = owned.clone().map(|r| most_all[r]).collect();
-        let status: Vec<f64> = owned.clone().map(|r| most_all[n + r]).collect();
-        let gap: Vec<f64> = owned.map(|r| if least_all[r].is_finite() { least_all[r] } else { f64::NAN }).collect();
-        write_rows(g, "contact_pressure", &[n], self.node_slab, &pressure, path)?;
-        write_rows(g, "contact_status", &[n], self.node_slab, &status, path)?;
-        write_rows(g, "contact_gap", &[n], self.node_slab, &gap, path)
+        let column = |k: usize| -> Vec<f64> { owned.clone().map(|r| most_all[k * n + r]).collect() };
+        let gap: Vec<f64> = owned.clone().map(|r| if least_all[r].is_finite() { least_all[r] } else { f64::NAN }).collect();
+        write_rows(g, "contact_pressure", &[n], self.node_slab, &column(0), path)?;
+        write_rows(g, "contact_status", &[n], self.node_slab, &column(1), path)?;
+        write_rows(g, "contact_gap", &[n], self.node_slab, &gap, path)?;
+        if any_friction == 1 {
+            // a node is a slave on one rank only: the signed shear of the rank that has it
+            let mut shear_all = vec![0.0f64; n];
+            self.world.all_reduce_into(&shear[..], &mut shear_all[..], SystemOperation::sum());
+            let signed: Vec<f64> = owned.clone().map(|r| shear_all[r]).collect();
+            write_rows(g, "friction_shear", &[n], self.node_slab, &signed, path)?;
+            write_rows(g, "contact_sliding", &[n], self.node_slab, &column(3), path)?;
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn invariants_come_from_the_averaged_components() {
+        // uniaxial 300 along r with hoop -60: principal max 300, min -60, pressure -80
+        let s = node_scalars(&[300.0, 0.0, -60.0, 0.0, 1e-3, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]);
+        assert!((s[5] - 300.0).abs() < 1e-12 && (s[6] + 60.0).abs() < 1e-12 && (s[4] + 80.0).abs() < 1e-12);
+        assert!((s[7] - von_mises(&[300.0, 0.0, -60.0, 0.0])).abs() < 1e-12 && s[8] == 1e-3);
     }
 }

@@ -37,7 +37,7 @@ use crate::petsc::PetscSession;
 use crate::solve::contact::PassOutput;
 use crate::solve::energy::Energies;
 use hdf5::types::VarLenUnicode;
-use mpi::traits::AsRaw;
+use mpi::traits::{AsRaw, CommunicatorCollectives};
 use ndarray::{ArrayView1, ArrayView2, ArrayView3};
 use std::path::{Path, PathBuf};
 
@@ -49,6 +49,12 @@ pub struct IncrementFields<'a> {
     /// Cauchy stress at the Gauss points of the local elements.
     pub stress: &'a [[[f64; 4]; QUADRATURE_POINTS]],
     pub plastic_strain: &'a [[f64; QUADRATURE_POINTS]],
+    /// Total strain [rr, zz, tt, rz] (tensor shear) at the Gauss points of the local elements.
+    pub strain: &'a [[[f64; 4]; QUADRATURE_POINTS]],
+    /// Plastic strain tensor at the Gauss points of the local elements.
+    pub plastic_strain_tensor: &'a [[[f64; 4]; QUADRATURE_POINTS]],
+    /// Reaction force (r, z) of the owned nodes, per radian: zero on the free DOFs.
+    pub reaction: &'a [[f64; 2]],
     /// The uniform temperature, degC.
     pub temperature: f64,
     /// Contact slave nodes of the passes this rank owns.
@@ -239,9 +245,31 @@ impl ResultsFile {
                 write_rows(&sg, name, &[pos.len()], slab, if rank == 0 { &pos } else { &[] }, path)?;
             }
         }
+        // the t = 0 frame of the sidecar: zero vectors and scalars, the reference temperature
+        let initial = file.create_group(xdmf::INITIAL.trim_start_matches('/')).map_err(&err)?;
+        let owned_count = node_slab.1 - node_slab.0;
+        write_rows(&initial, "vector", &[nn, 3], node_slab, &vec![0.0f64; 3 * owned_count], path)?;
+        write_rows(&initial, "scalar", &[nn], node_slab, &vec![0.0f64; owned_count], path)?;
+        write_rows(&initial, "temperature", &[nn], node_slab, &vec![model.reference_temperature; owned_count], path)?;
         file.create_group("increments").map_err(&err)?;
         file.create_group("history").map_err(&err)?;
         file.flush().map_err(&err)?;
+        let what = xdmf::GridFields {
+            fields: model.output.fields,
+            contact: !model.contacts.is_empty(),
+            friction: model.contacts.iter().any(|c| c.friction.is_some()),
+        };
+        let sidecar = (rank == 0).then(|| xdmf::Sidecar::new(path, nn, ne, what)).transpose();
+        // rank 0 alone writes the sidecar: every rank learns whether it could
+        let mut failed = 0u8;
+        world.all_reduce_into(&u8::from(sidecar.is_err()), &mut failed, mpi::collective::SystemOperation::max());
+        let sidecar = match (sidecar, failed) {
+            (Ok(s), 0) => s,
+            (Err(e), _) => return Err(e),
+            (Ok(_), _) => {
+                return Err(Error::Output { path: xdmf::sidecar_path(path), message: "rank 0 could not write the XDMF sidecar".into() });
+            }
+        };
         Ok(ResultsFile {
             file,
             path: path.to_path_buf(),
@@ -251,7 +279,7 @@ impl ResultsFile {
             node_slab,
             element_slab,
             increments: 0,
-            sidecar: (rank == 0).then(|| xdmf::Sidecar::new(path, nn, ne, model.output.fields, !model.contacts.is_empty())),
+            sidecar,
             contact_mesh_written: false,
             reaction_segment_degrees: model.reaction_segment_degrees,
             nodal: NodalWriter::new(world, mesh, partition, model.output.fields),
@@ -319,7 +347,7 @@ impl ResultsFile {
 
     /// The fields of one increment in a new group `name` (collective).
     fn write_fields(&mut self, name: &str, step_name: &str, row: &HistoryRow, fields: &IncrementFields<'_>, partition: &Partition) -> Result<hdf5::Group> {
-        let IncrementFields { displacement: owned_displacement, stress: local_stress, plastic_strain: local_plastic_strain, temperature, contact } = *fields;
+        let IncrementFields { displacement: owned_displacement, stress: local_stress, plastic_strain: local_plastic_strain, contact, .. } = *fields;
         let err = h5err(&self.path);
         let g = self.file.group("increments").map_err(&err)?.create_group(name).map_err(&err)?;
         for (attr, value) in [("step", row.step as f64), ("increment", row.increment as f64), ("load_factor", row.load_factor), ("time", row.time)] {
@@ -346,7 +374,7 @@ impl ResultsFile {
             let ep_max: Vec<f64> = local_plastic_strain.iter().map(|c| c.iter().fold(0.0f64, |m, &v| m.max(v))).collect();
             write_rows(&g, "equivalent_plastic_strain_max", &[self.elements], self.element_slab, &ep_max, &self.path)?;
         }
-        self.nodal.write(&g, owned_displacement, local_stress, local_plastic_strain, temperature, contact, &self.path)?;
+        self.nodal.write(&g, fields, &self.path)?;
         // Newton history of the increment: identical on all ranks, written by rank 0.
         let norms = &row.residual_norms;
         let (slab, data): ((usize, usize), &[f64]) = if self.rank == 0 { ((0, norms.len()), norms) } else { ((0, 0), &[]) };

@@ -1,12 +1,17 @@
 //! XDMF 3 sidecar describing the HDF5 results as a time series of Q8 meshes, so that ParaView
 //! (its default Xdmf3 reader and the legacy one) and meshio open `results.xmf` directly. Every
 //! data item is a plain HDF5 dataset (no functions or hyperslabs, which Xdmf3 and meshio skip):
-//! the displacement as a 3-component vector (u_r, u_z, 0) for Warp By Vector, the stress
-//! components, von Mises stress, equivalent plastic strain and temperature at the nodes
-//! (carried there from the Gauss points, see `io::nodal`), and per element the mean von Mises
-//! stress, the largest plastic strain and the rank.
+//! the displacement and reaction force as 3-component vectors (r, z, 0) for Warp By Vector and
+//! glyphs, the stress and strain components, their invariants, equivalent plastic strain,
+//! temperature and contact state at the nodes (carried there from the Gauss points, see
+//! `io::nodal`), and per element the mean von Mises stress, the largest plastic strain and the
+//! rank. An `Information` element names each attribute's units (ParaView shows the names; the
+//! units are also the datasets' `units` attributes). The first grid is the undeformed,
+//! unloaded state at t = 0 (`/initial`), so that a reader opened at its default time shows the
+//! mesh.
 
-use super::nodal::{nodal_scalar_kept, NODAL_SCALARS};
+use super::describe::describe;
+use super::nodal::{nodal_scalar_kept, CONTACT_SCALARS, NODAL_SCALARS, NODAL_TAIL};
 use crate::error::{Error, Result};
 use crate::model::OutputFields;
 use std::fmt::Write as _;
@@ -18,11 +23,25 @@ pub fn sidecar_path(h5: &Path) -> PathBuf {
     h5.with_extension("xmf")
 }
 
+/// The group holding the t = 0 frame's data: zero vectors and scalars, the reference
+/// temperature.
+pub const INITIAL: &str = "/initial";
+
+/// What the sidecar's grids hold beside the displacement.
+#[derive(Clone, Copy, Debug)]
+pub struct GridFields {
+    pub fields: OutputFields,
+    /// The model has contact pairs: the nodal contact fields are written.
+    pub contact: bool,
+    /// Some pair has friction: the nodal shear and sliding are written.
+    pub friction: bool,
+}
+
 /// The sidecar of one results file, grown by one grid per converged increment. Each grid is
 /// formatted once and kept: formatting every increment's grid again at each write made the
 /// sidecar quadratic in the number of increments (a 2400-increment run formatted 2.9 million
 /// grids). The file itself is still written whole each time, so that a reader never finds it
-/// half-written (about 1.4 kB a grid).
+/// half-written (about 2 kB a grid).
 pub struct Sidecar {
     target: PathBuf,
     /// The results file's name, as the data items reference it (relative: the two files move
@@ -30,81 +49,105 @@ pub struct Sidecar {
     file: String,
     nodes: usize,
     elements: usize,
-    /// The grids written so far, one per increment.
+    /// The grids written so far: the t = 0 frame, then one per increment.
     grids: String,
-    /// The fields written beside the displacement.
-    fields: OutputFields,
-    /// The model has contact pairs: the nodal contact fields are written.
-    contact: bool,
+    what: GridFields,
+    /// Each attribute's units, for the document's `Information` element.
+    units: Vec<(String, &'static str)>,
 }
 
 impl Sidecar {
-    pub fn new(h5: &Path, nodes: usize, elements: usize, fields: OutputFields, contact: bool) -> Self {
+    /// The sidecar of `h5`, written at once with its t = 0 frame.
+    pub fn new(h5: &Path, nodes: usize, elements: usize, what: GridFields) -> Result<Self> {
         let file = h5.file_name().map(|f| f.to_string_lossy().into_owned()).unwrap_or_default();
-        Sidecar { target: sidecar_path(h5), file, nodes, elements, grids: String::new(), fields, contact }
+        let mut sidecar = Sidecar { target: sidecar_path(h5), file, nodes, elements, grids: String::new(), what, units: Vec::new() };
+        sidecar.push_grid("000000", 0.0, None);
+        sidecar.write()?;
+        Ok(sidecar)
     }
 
     /// Adds the grid of the increment stored in group `/increments/{group}` at `time`, and
-    /// rewrites the sidecar (atomically: temporary file, then rename).
+    /// rewrites the sidecar.
     pub fn add_increment(&mut self, group: &str, time: f64) -> Result<()> {
-        self.push_grid(group, time);
-        const HEADER: &str =
-            "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\"><Domain><Grid Name=\"slideline\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+        self.push_grid(group, time, Some(&format!("/increments/{group}")));
+        self.write()
+    }
+
+    /// Writes the whole sidecar atomically: temporary file, then rename.
+    fn write(&self) -> Result<()> {
+        // the units beside the collection (inside it, meshio would count them as a time step;
+        // inside an Attribute, meshio refuses it)
+        let units: Vec<String> = self.units.iter().map(|(name, units)| format!("{name}: {units}")).collect();
+        let header = format!(
+            "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\"><Domain><Information Name=\"units\" Value=\"{}\"/>\n<Grid Name=\"slideline\" GridType=\"Collection\" CollectionType=\"Temporal\">\n",
+            units.join("; ")
+        );
         const FOOTER: &str = "</Grid></Domain></Xdmf>\n";
         let tmp = self.target.with_extension("xmf.tmp");
         let io = |source| Error::Output { path: self.target.clone(), message: format!("{source}") };
         let mut out = std::fs::File::create(&tmp).map_err(io)?;
-        for part in [HEADER, &self.grids, FOOTER] {
+        for part in [header.as_str(), &self.grids, FOOTER] {
             out.write_all(part.as_bytes()).map_err(io)?;
         }
         std::fs::rename(&tmp, &self.target).map_err(io)
     }
 
-    fn push_grid(&mut self, group: &str, time: f64) {
+    /// One grid: an increment's (`group` its HDF5 group) or, with None, the t = 0 frame.
+    fn push_grid(&mut self, name: &str, time: f64, group: Option<&str>) {
         let (nodes, elements, file) = (self.nodes, self.elements, &self.file);
+        let mut names = Vec::new();
+        let self_units = &mut names;
         let item = |path: &str, dims: &str, ty: &str, precision: u32| {
             format!(r#"<DataItem Dimensions="{dims}" NumberType="{ty}" Precision="{precision}" Format="HDF">{file}:{path}</DataItem>"#)
         };
-        let g = format!("/increments/{group}");
+        let mut attribute = |name: &str, kind: &str, center: &str, data: String| {
+            self_units.push(name.to_string());
+            format!(r#"<Attribute Name="{name}" AttributeType="{kind}" Center="{center}">{data}</Attribute>"#)
+        };
         let x = &mut self.grids;
-        let _ = writeln!(x, r#"<Grid Name="increment {group}" GridType="Uniform"><Time Value="{time}"/>"#);
+        let label = if group.is_some() { format!("increment {name}") } else { "initial state".to_string() };
+        let _ = writeln!(x, r#"<Grid Name="{label}" GridType="Uniform"><Time Value="{time}"/>"#);
         let _ = writeln!(
             x,
             r#"<Topology TopologyType="Quadrilateral_8" NumberOfElements="{elements}">{}</Topology>"#,
             item("/mesh/connectivity", &format!("{elements} 8"), "Int", 8)
         );
         let _ = writeln!(x, r#"<Geometry GeometryType="XY">{}</Geometry>"#, item("/mesh/coordinates", &format!("{nodes} 2"), "Float", 8));
-        let _ = writeln!(
-            x,
-            r#"<Attribute Name="displacement" AttributeType="Vector" Center="Node">{}</Attribute>"#,
-            item(&format!("{g}/nodal/displacement"), &format!("{nodes} 3"), "Float", 8)
-        );
-        let f = self.fields;
-        let contact: &[&str] = if self.contact && f.contact { &["contact_pressure", "contact_status", "contact_gap"] } else { &[] };
-        let temperature: &[&str] = if f.temperature { &["temperature"] } else { &[] };
-        let scalars = NODAL_SCALARS.iter().filter(|name| nodal_scalar_kept(name, f));
-        for name in scalars.chain(temperature).chain(contact) {
-            let _ = writeln!(
-                x,
-                r#"<Attribute Name="{name}" AttributeType="Scalar" Center="Node">{}</Attribute>"#,
-                item(&format!("{g}/nodal/{name}"), &nodes.to_string(), "Float", 8)
-            );
+        let vector_path = |name: &str| group.map_or(format!("{INITIAL}/vector"), |g| format!("{g}/nodal/{name}"));
+        let scalar_path = |name: &str| match (group, name) {
+            (Some(g), _) => format!("{g}/nodal/{name}"),
+            (None, "temperature") => format!("{INITIAL}/temperature"),
+            (None, _) => format!("{INITIAL}/scalar"),
+        };
+        for name in ["displacement", "reaction_force"] {
+            let _ = writeln!(x, "{}", attribute(name, "Vector", "Node", item(&vector_path(name), &format!("{nodes} 3"), "Float", 8)));
         }
-        let element: Vec<&str> =
-            [("von_mises_mean", f.von_mises), ("equivalent_plastic_strain_max", f.plastic_strain)].into_iter().filter(|e| e.1).map(|e| e.0).collect();
-        for name in element {
-            let _ = writeln!(
-                x,
-                r#"<Attribute Name="{name}" AttributeType="Scalar" Center="Cell">{}</Attribute>"#,
-                item(&format!("{g}/{name}"), &elements.to_string(), "Float", 8)
-            );
+        let GridFields { fields: f, contact, friction } = self.what;
+        // contact fields only once there is contact state (not at t = 0)
+        let contact_count = match (contact && f.contact && group.is_some(), friction) {
+            (false, _) => 0,
+            (true, false) => 3,
+            (true, true) => 5,
+        };
+        let scalars = NODAL_SCALARS.iter().chain(&NODAL_TAIL).filter(|name| nodal_scalar_kept(name, f));
+        for name in scalars.chain(&CONTACT_SCALARS[..contact_count]) {
+            let _ = writeln!(x, "{}", attribute(name, "Scalar", "Node", item(&scalar_path(name), &nodes.to_string(), "Float", 8)));
         }
-        let _ = writeln!(
-            x,
-            r#"<Attribute Name="rank" AttributeType="Scalar" Center="Cell">{}</Attribute>"#,
-            item("/mesh/element_rank", &elements.to_string(), "UInt", 4)
-        );
+        if let Some(g) = group {
+            let element: Vec<&str> =
+                [("von_mises_mean", f.von_mises), ("equivalent_plastic_strain_max", f.plastic_strain)].into_iter().filter(|e| e.1).map(|e| e.0).collect();
+            for name in element {
+                let _ = writeln!(x, "{}", attribute(name, "Scalar", "Cell", item(&format!("{g}/{name}"), &elements.to_string(), "Float", 8)));
+            }
+        }
+        let _ = writeln!(x, "{}", attribute("rank", "Scalar", "Cell", item("/mesh/element_rank", &elements.to_string(), "UInt", 4)));
         let _ = writeln!(x, "</Grid>");
+        for name in names {
+            if !self.units.iter().any(|(n, _)| *n == name) {
+                let (units, _) = describe("/increments/000001/nodal", &name);
+                self.units.push((name, units));
+            }
+        }
     }
 }
 
@@ -117,11 +160,14 @@ mod tests {
         let dir = std::env::temp_dir().join(format!("slideline-xdmf-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
         let h5 = dir.join("run.h5");
-        let mut sidecar = Sidecar::new(&h5, 10, 2, OutputFields::ALL, false);
+        let mut sidecar = Sidecar::new(&h5, 10, 2, GridFields { fields: OutputFields::ALL, contact: false, friction: false }).unwrap();
+        let text = std::fs::read_to_string(sidecar_path(&h5)).unwrap();
+        assert!(text.contains("<Time Value=\"0\"/>") && text.contains("run.h5:/initial/vector"), "the t = 0 frame is there from the start");
         for (k, time) in [0.5, 1.0, 1.25].into_iter().enumerate() {
             sidecar.add_increment(&format!("{:06}", k + 1), time).unwrap();
             let text = std::fs::read_to_string(sidecar_path(&h5)).unwrap();
             assert_eq!(text.matches("<Grid Name=\"increment").count(), k + 1);
+            assert_eq!(text.matches("<Grid Name=\"initial state").count(), 1);
             assert!(text.contains(&format!("<Time Value=\"{time}\"/>")) && text.contains(&format!("run.h5:/increments/{:06}/nodal/displacement", k + 1)));
             assert_eq!(text.matches("<Grid").count(), text.matches("</Grid>").count(), "every grid closed, the collection too");
             assert!(text.trim_end().ends_with("</Grid></Domain></Xdmf>"));

@@ -70,6 +70,20 @@ impl PointState {
             Kinematics::Small => PointState { plastic: [0.0; 4], ep: 0.0 },
         }
     }
+
+    /// The plastic strain tensor [rr, zz, tt, rz] (tensor shear): eps_p in small strain; in
+    /// finite strain the logarithmic plastic strain of the reference configuration,
+    /// ln(C_p) / 2 = -ln(C_p^-1) / 2.
+    pub fn plastic_strain_tensor(&self, kinematics: Kinematics) -> [f64; 4] {
+        match kinematics {
+            Kinematics::Small => self.plastic,
+            Kinematics::Finite => {
+                let c = self.plastic;
+                let [rr, zz, rz] = log_sym2(&[c[0], c[1], c[3]]);
+                [-0.5 * rr, -0.5 * zz, -0.5 * c[2].ln(), -0.5 * rz]
+            }
+        }
+    }
 }
 
 /// Result of one update.

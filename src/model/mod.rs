@@ -244,23 +244,26 @@ pub struct OutputFields {
     pub von_mises: bool,
     /// Equivalent plastic strain at the Gauss points, its element maximum, at the nodes.
     pub plastic_strain: bool,
+    /// Total and plastic strain tensors at the nodes.
+    pub strain: bool,
     pub temperature: bool,
     /// Contact gap, pressure, traction and status per pass and at the nodes.
     pub contact: bool,
 }
 
 impl OutputFields {
-    pub const NAMES: [&'static str; 5] = ["stress", "von_mises", "plastic_strain", "temperature", "contact"];
-    pub const ALL: OutputFields = OutputFields { stress: true, von_mises: true, plastic_strain: true, temperature: true, contact: true };
+    pub const NAMES: [&'static str; 6] = ["stress", "von_mises", "plastic_strain", "strain", "temperature", "contact"];
+    pub const ALL: OutputFields = OutputFields { stress: true, von_mises: true, plastic_strain: true, strain: true, temperature: true, contact: true };
 
     /// The fields named in `names` (each one of [`Self::NAMES`]).
     pub fn from_names(names: &[String]) -> Result<Self> {
-        let mut f = OutputFields { stress: false, von_mises: false, plastic_strain: false, temperature: false, contact: false };
+        let mut f = OutputFields { stress: false, von_mises: false, plastic_strain: false, strain: false, temperature: false, contact: false };
         for name in names {
             match name.as_str() {
                 "stress" => f.stress = true,
                 "von_mises" => f.von_mises = true,
                 "plastic_strain" => f.plastic_strain = true,
+                "strain" => f.strain = true,
                 "temperature" => f.temperature = true,
                 "contact" => f.contact = true,
                 "displacement" => {}

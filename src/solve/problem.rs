@@ -64,6 +64,9 @@ impl Stages {
 /// History of every Gauss point of this rank's elements (in local element order).
 pub type History = Vec<[PointState; QUADRATURE_POINTS]>;
 
+/// A tensor [rr, zz, tt, rz] at each Gauss point of an element.
+pub type PointTensors = [[f64; 4]; QUADRATURE_POINTS];
+
 /// One element this rank assembles, with everything the loops need precomputed.
 struct LocalElement {
     element: usize,
@@ -283,6 +286,16 @@ impl<'s, 'm> Problem<'s, 'm> {
     /// The committed history of this rank's elements.
     pub fn committed_history(&self) -> &History {
         &self.committed
+    }
+
+    /// For output, at the Gauss points of this rank's elements: the total strain at the whole
+    /// mesh's `displacement`, and the plastic strain tensor of the committed history.
+    pub fn strain_fields(&self, displacement: &[[f64; 2]]) -> (Vec<PointTensors>, Vec<PointTensors>) {
+        let kinematics = self.model.kinematics;
+        let total =
+            self.elements.iter().map(|el| el.geometry.total_strain(kinematics, &self.model.mesh.elements[el.element].map(|n| displacement[n]))).collect();
+        let plastic = self.committed.iter().map(|points| points.map(|p| p.plastic_strain_tensor(kinematics))).collect();
+        (total, plastic)
     }
 
     /// The committed history and what contact carries, for the next step's problem.

@@ -272,10 +272,16 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
                 _ => Vec::new(),
             };
             let contact_output = problem.contact.as_ref().map(|c| c.pass_outputs()).unwrap_or_default();
+            let (strain, plastic_strain_tensor) = if with_fields { problem.strain_fields(&displacement) } else { Default::default() };
+            let reaction: Vec<[f64; 2]> =
+                partition.owned_nodes().iter().map(|&n| std::array::from_fn(|c| if prescribed[n][c] { force[2 * n + c] } else { 0.0 })).collect();
             let increment_fields = IncrementFields {
                 displacement: &owned,
                 stress: &fields.stress,
                 plastic_strain: &fields.plastic_strain,
+                strain: &strain,
+                plastic_strain_tensor: &plastic_strain_tensor,
+                reaction: &reaction,
                 temperature: model.reference_temperature + loads.at(model, lambda).temperature_change,
                 contact: &contact_output,
             };

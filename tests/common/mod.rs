@@ -52,6 +52,12 @@ pub const TIGHT: &[&str] = &["--convergence", "residual"];
 /// The slideline binary under `mpirun -n ranks` (or alone for one rank), with OpenMPI's session
 /// directory under `dir`: concurrently starting OpenMPI 4.1 singletons race to create the
 /// shared one in /tmp and fail with "mkdir ... File exists".
+/// The Python that has meshio, h5py and numpy: `SLIDELINE_PYTHON` (run.sh sets Debian's
+/// /usr/bin/python3, where its packages are installed), else `python3` from PATH.
+pub fn python() -> Command {
+    Command::new(std::env::var_os("SLIDELINE_PYTHON").unwrap_or_else(|| "python3".into()))
+}
+
 pub fn command_in(dir: &Path, ranks: usize) -> Command {
     let mut cmd = command(ranks);
     cmd.env("OMPI_MCA_orte_tmpdir_base", dir);
