@@ -113,9 +113,10 @@ pub struct PostArgs {
     /// equivalent_plastic_strain, equivalent_plastic_strain_max): min/max and where.
     #[arg(long)]
     pub field: Option<String>,
-    /// Increment for --field: its number (the run's #N, the file's /increments/NNNNNN) or `last`.
-    #[arg(long, default_value = "last")]
-    pub increment: String,
+    /// Increment for --field and --linearize: its number (the run's #N, the file's
+    /// /increments/NNNNNN) or `last` (the default).
+    #[arg(long)]
+    pub increment: Option<String>,
     /// Time series of the node with this external number.
     #[arg(long)]
     pub node: Option<u64>,
@@ -129,8 +130,8 @@ pub struct PostArgs {
     #[arg(long)]
     pub force: bool,
     /// Draw the axial reactions against the prescribed displacement (PNG; default FILE_force.png).
-    #[arg(long, value_name = "PNG", num_args = 0..=1, default_missing_value = "")]
-    pub plot: Option<PathBuf>,
+    #[arg(long, value_name = "PNG", num_args = 0..=1)]
+    pub plot: Option<Option<PathBuf>>,
     /// Print the deck text stored in the file.
     #[arg(long)]
     pub deck: bool,

@@ -55,48 +55,71 @@ fn penalty_study(session: &PetscSession, args: &StudyArgs) -> Result<(), Error> 
 }
 
 /// `slideline post`: without options the summary and the history; each option adds its report.
+/// Everything is checked before anything is written, and the text goes out at the end, once:
+/// a reader that closes the pipe early (`| head`) ends it quietly, as `cat` does.
 fn post(args: &PostArgs) -> Result<(), Error> {
     use slideline::post;
     let r = ResultsReader::open(&args.file)?;
     r.notes()?.iter().for_each(|note| eprintln!("note: {note}"));
+    if args.increment.is_some() && args.field.is_none() && args.linearize.is_empty() {
+        return Err(Error::input("--increment goes with --field or --linearize (the other reports cover every increment)"));
+    }
+    if args.force && args.compare.is_none() {
+        return Err(Error::input("--force goes with --compare"));
+    }
+    let plot = args.plot.as_ref().map(|p| p.clone().unwrap_or_else(|| post::default_plot_path(&r)));
+    for path in args.csv.iter().chain(&plot) {
+        slideline::io::check_output_path(path, Some(&args.file))?;
+    }
+    let increment = args.increment.as_deref().unwrap_or("last");
     let detail = args.field.is_some()
         || args.node.is_some()
         || args.set.is_some()
         || args.compare.is_some()
         || args.csv.is_some()
-        || args.plot.is_some()
+        || plot.is_some()
         || args.deck
         || !args.linearize.is_empty();
+    let mut out = String::new();
     if !detail {
-        print!("{}\n{}", post::summary(&r)?, post::history_table(&r)?);
+        out += &format!("{}\n{}", post::summary(&r)?, post::history_table(&r)?);
     }
     if args.deck {
-        println!("{}", r.text_attr("deck")?);
+        out += &format!("{}\n", r.text_attr("deck")?);
     }
     if let Some(path) = &args.csv {
         std::fs::write(path, post::history_csv(&r)?).map_err(|e| Error::Output { path: path.clone(), message: e.to_string() })?;
-        println!("history written to {}", path.display());
+        out += &format!("history written to {}\n", path.display());
     }
     if let Some(name) = &args.field {
-        print!("{}", post::field(&r, name, post::increment_number(&r, &args.increment)?)?);
+        out += &post::field(&r, name, post::increment_number(&r, increment)?)?;
     }
     if let Some(id) = args.node {
-        print!("{}", post::node_series(&r, id)?);
+        out += &post::node_series(&r, id)?;
     }
     if let Some(set) = &args.set {
-        print!("{}", post::set_series(&r, set)?);
+        out += &post::set_series(&r, set)?;
     }
     if let Some(other) = &args.compare {
-        print!("{}", post::compare(&r, &ResultsReader::open(other)?, args.force)?);
+        out += &post::compare(&r, &ResultsReader::open(other)?, args.force)?;
     }
-    if let Some(path) = &args.plot {
-        let path = (!path.as_os_str().is_empty()).then_some(path.as_path());
-        println!("picture: {}", post::plot(&r, path)?.display());
+    if let Some(path) = &plot {
+        out += &format!("picture: {}\n", post::plot(&r, path)?.display());
     }
     if !args.linearize.is_empty() {
-        print!("{}", post::linearize(&r, &args.linearize, post::increment_number(&r, &args.increment)?)?);
+        out += &post::linearize(&r, &args.linearize, post::increment_number(&r, increment)?)?;
     }
-    Ok(())
+    print_quietly_on_closed_pipe(&out)
+}
+
+/// Writes `text` to standard output; a closed pipe (the reader has what it wanted) is no error.
+fn print_quietly_on_closed_pipe(text: &str) -> Result<(), Error> {
+    use std::io::Write as _;
+    let mut stdout = std::io::stdout().lock();
+    match stdout.write_all(text.as_bytes()).and_then(|_| stdout.flush()) {
+        Err(e) if e.kind() != std::io::ErrorKind::BrokenPipe => Err(Error::Output { path: "standard output".into(), message: e.to_string() }),
+        _ => Ok(()),
+    }
 }
 
 fn main() -> ExitCode {

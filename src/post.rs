@@ -177,6 +177,7 @@ pub fn node_series(r: &ResultsReader, id: u64) -> Result<String> {
 /// Time series of a node set: its reaction where it is constrained (the history columns),
 /// else the mean displacement of its nodes.
 pub fn set_series(r: &ResultsReader, set: &str) -> Result<String> {
+    let set = &r.node_set_name(set)?;
     let columns = r.history_columns()?;
     let time = r.history("time")?;
     let reaction = format!("reaction_{set}_z");
@@ -223,30 +224,38 @@ pub fn compare(a: &ResultsReader, b: &ResultsReader, force: bool) -> Result<Stri
     let (na, nb) = (a.history("newton_iterations")?, b.history("newton_iterations")?);
     let va: Vec<Vec<f64>> = shared.iter().map(|c| a.history(c)).collect::<Result<_>>()?;
     let vb: Vec<Vec<f64>> = shared.iter().map(|c| b.history(c)).collect::<Result<_>>()?;
-    let mut s = format!("A = {}\nB = {}\n{:>10} {:>6} {:>6}", a.path().display(), b.path().display(), "time", "its A", "its B");
-    for c in &shared {
-        let _ = write!(s, " {:>28} {:>14} {:>10}", format!("{c} A"), "B", "B-A rel");
-    }
-    s.push('\n');
-    let mut matched = 0;
-    for (i, &t) in ta.iter().enumerate() {
-        let Some(j) = tb.iter().position(|&u| (u - t).abs() <= 1e-9 * t.abs().max(1.0)) else { continue };
-        matched += 1;
-        let _ = write!(s, "{t:>10.4} {:>6} {:>6}", na[i], nb[j]);
-        for k in 0..shared.len() {
+    // increments at common times: (row in A, row in B)
+    let matched: Vec<(usize, usize)> =
+        ta.iter().enumerate().filter_map(|(i, &t)| tb.iter().position(|&u| (u - t).abs() <= 1e-9 * t.abs().max(1.0)).map(|j| (i, j))).collect();
+    let mut s = format!("A = {}\nB = {}\n", a.path().display(), b.path().display());
+    // the largest difference over every column: (|B - A|, column, time, relative)
+    let mut largest: Option<(f64, &str, f64, f64)> = None;
+    for (k, column) in shared.iter().enumerate() {
+        // relative to |A|, but never to less than a thousandth of the column's largest |A|: a
+        // reaction that is zero to round-off has no meaningful relative difference
+        let floor = 1e-3 * va[k].iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        let _ = writeln!(s, "\n{column} (N per radian)");
+        let _ = writeln!(s, "{:>10} {:>6} {:>6} {:>16} {:>16} {:>12} {:>10}", "time", "its A", "its B", "A", "B", "B - A", "rel");
+        for &(i, j) in &matched {
             let (x, y) = (va[k][i], vb[k][j]);
-            let rel = if x != 0.0 { (y - x) / x.abs() } else { 0.0 };
-            let _ = write!(s, " {x:>28.8e} {y:>14.8e} {rel:>10.2e}");
+            let rel = if floor > 0.0 { (y - x) / x.abs().max(floor) } else { 0.0 };
+            let _ = writeln!(s, "{:>10.4} {:>6} {:>6} {x:>16.8e} {y:>16.8e} {:>12.4e} {rel:>10.2e}", ta[i], na[i], nb[j], y - x);
+            if largest.is_none_or(|l| (y - x).abs() > l.0) {
+                largest = Some(((y - x).abs(), column.as_str(), ta[i], rel));
+            }
         }
-        s.push('\n');
     }
-    let _ = writeln!(s, "{matched} increments at common times ({} in A, {} in B)", ta.len(), tb.len());
+    let _ = writeln!(s, "\n{} increments at common times ({} in A, {} in B)", matched.len(), ta.len(), tb.len());
+    if let Some((diff, column, time, rel)) = largest {
+        let _ = writeln!(s, "largest difference: {column}, {diff:.4e} N per radian ({:.2e} relative) at time {time:.4}", rel.abs());
+    }
+    let _ = writeln!(s, "rel: (B - A) / |A|, |A| taken as at least a thousandth of the column's largest |A|");
     Ok(s)
 }
 
 /// Force-displacement picture next to the file: every constrained set's axial reaction (full
 /// ring) against the total time (step - 1 + load factor). Returns its path.
-pub fn plot(r: &ResultsReader, path: Option<&Path>) -> Result<PathBuf> {
+pub fn plot(r: &ResultsReader, path: &Path) -> Result<PathBuf> {
     let columns = r.history_columns()?;
     let sets: Vec<&str> = columns.iter().filter_map(|c| c.strip_prefix("reaction_")?.strip_suffix("_z_ring")).collect();
     // the prescribed displacement: the constrained set that moves the most along z (its mean
@@ -285,9 +294,13 @@ pub fn plot(r: &ResultsReader, path: Option<&Path>) -> Result<PathBuf> {
             Ok(Curve { label: format!("{set}: F_z (full ring)"), points: x.iter().zip(&f).filter(|(_, v)| v.is_finite()).map(|(&u, &v)| (u, v)).collect() })
         })
         .collect::<Result<_>>()?;
-    let path = path.map(Path::to_path_buf).unwrap_or_else(|| Path::new(&format!("{}_force.png", r.path().with_extension("").display())).to_path_buf());
-    line_plot(&path, "Axial reactions", &x_label, "F_z (N, full ring; each signed so its largest is positive)", &curves, &[], Axes::FromOrigin)?;
-    Ok(path)
+    line_plot(path, "Axial reactions", &x_label, "F_z (N, full ring; each signed so its largest is positive)", &curves, &[], Axes::FromOrigin)?;
+    Ok(path.to_path_buf())
+}
+
+/// The picture's default name: FILE_force.png beside the results file.
+pub fn default_plot_path(r: &ResultsReader) -> PathBuf {
+    PathBuf::from(format!("{}_force.png", r.path().with_extension("").display()))
 }
 
 /// A section `R1,Z1:R2,Z2` (mm) as its two ends; bad input naming it otherwise.

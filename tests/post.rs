@@ -119,7 +119,7 @@ fn post_reproduces_the_run_and_reports_fields() {
     let empty = dir.path().join("empty.h5");
     hdf5::File::create(&empty).unwrap();
     for (args, needle) in [
-        (vec![not_h5.to_str().unwrap()], "not an HDF5 file"),
+        (vec![not_h5.to_str().unwrap()], "not a slideline results file (not HDF5)"),
         (vec![empty.to_str().unwrap()], "no /mesh group"),
         (vec![h5s, "--field", "von_mises", "--increment", "6"], "increment 6 out of range"),
         (vec![h5s, "--field", "strain", "--increment", "1"], "unknown field"),
@@ -234,4 +234,67 @@ fn post_waits_for_a_locked_file_then_names_the_lock() {
     let err = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(2), "{err}");
     assert!(err.contains("locked by another process") && !err.contains("not an HDF5 file"), "{err}");
+}
+
+/// post as the README documents it, each point seen failing before: `--plot` without a name
+/// writes FILE_force.png; a reader closing the pipe early ends post quietly with exit 0; output
+/// paths are checked before any work (a missing directory, the results file itself under
+/// another name: exit 2, "cannot write"); `--increment` and `--force` where they mean nothing
+/// are refused; set names are matched without regard to case, as .inp set names are; the
+/// `--compare` table fits in 120 columns and names the largest difference; a directory or a
+/// FIFO is refused at once (a FIFO's read would block).
+#[test]
+fn post_commands_work_as_documented() {
+    let dir = tempfile::tempdir().unwrap();
+    let (h5, run) = run_fit(dir.path(), 1, &["--quiet"]);
+    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+    let h5s = h5.to_str().unwrap();
+    let out = post(dir.path(), &[h5s, "--plot"]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(dir.path().join("fit_force.png").exists(), "{}", String::from_utf8_lossy(&out.stdout));
+
+    // | head: the reader closes the pipe after a line; post must not panic (exit 101)
+    for _ in 0..5 {
+        let mut child =
+            command_in(dir.path(), 1).arg("post").arg(&h5).stdout(std::process::Stdio::piped()).stderr(std::process::Stdio::piped()).spawn().unwrap();
+        drop(child.stdout.take());
+        let out = child.wait_with_output().unwrap();
+        assert_eq!(out.status.code(), Some(0), "{}", String::from_utf8_lossy(&out.stderr));
+    }
+
+    let link = dir.path().join("alias.h5");
+    std::fs::hard_link(&h5, &link).unwrap();
+    let before = std::fs::read(&h5).unwrap();
+    for (args, needle) in [
+        (vec![h5s, "--plot", "/nonexistent/dir/p.png"], "cannot write /nonexistent/dir/p.png"),
+        (vec![h5s, "--csv", link.to_str().unwrap()], "which this command reads"),
+        (vec![h5s, "--plot", h5s], "which this command reads"),
+        (vec![h5s, "--node", "1", "--increment", "2"], "--increment goes with --field or --linearize"),
+        (vec![h5s, "--force"], "--force goes with --compare"),
+        (vec![dir.path().to_str().unwrap()], "a directory"),
+    ] {
+        let out = post(dir.path(), &args);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+        assert!(err.contains(needle) && err.lines().count() == 1, "{args:?}: {err}");
+    }
+    assert_eq!(std::fs::read(&h5).unwrap(), before, "the results file is untouched");
+    let fifo = dir.path().join("fifo");
+    if std::process::Command::new("mkfifo").arg(&fifo).status().is_ok_and(|s| s.success()) {
+        let out = post(dir.path(), &[fifo.to_str().unwrap()]);
+        assert!(out.status.code() == Some(2) && String::from_utf8_lossy(&out.stderr).contains("not a regular file"));
+    }
+
+    // set names without regard to case
+    let upper = post(dir.path(), &[h5s, "--set", "OUTER_TOP"]);
+    let lower = post(dir.path(), &[h5s, "--set", "outer_top"]);
+    assert!(upper.status.success() && upper.stdout == lower.stdout, "{}", String::from_utf8_lossy(&upper.stderr));
+
+    // --compare: 120 columns at most (the file names aside), the largest difference named
+    let out = post(dir.path(), &[h5s, "--compare", link.to_str().unwrap()]);
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{text}");
+    let widest = text.lines().filter(|l| !l.starts_with("A = ") && !l.starts_with("B = ")).map(str::len).max().unwrap();
+    assert!(widest <= 120, "a {widest}-character line:\n{text}");
+    assert!(text.contains("largest difference: reaction_") && text.contains("0.0000e0 N per radian"), "{text}");
 }

@@ -17,8 +17,8 @@ pub mod reader;
 use crate::error::{Error, Result};
 use std::path::Path;
 
-/// Checks before any solve that a results file can be written at `path` (and does not
-/// overwrite `input`, the deck it comes from): bad input, exit 2, "cannot write FILE: reason".
+/// Checks before any work that a file can be written at `path` (and is not `input`, the file
+/// the command reads, under any name): bad input, exit 2, "cannot write FILE: reason".
 pub fn check_output_path(path: &Path, input: Option<&Path>) -> Result<()> {
     let refuse = |reason: String| Err(Error::input(format!("cannot write {}: {reason}", path.display())));
     if path.is_dir() {
@@ -31,9 +31,16 @@ pub fn check_output_path(path: &Path, input: Option<&Path>) -> Result<()> {
     if !parent.is_dir() {
         return refuse(format!("the directory {} does not exist", parent.display()));
     }
-    if let (Some(input), Ok(out)) = (input, path.canonicalize()) {
-        if input.canonicalize().is_ok_and(|i| i == out) {
-            return refuse("it is the input deck; give the results another name".into());
+    // the same file by device and inode, so a hard link or a symlink to the input is caught
+    if let (Some(input), Ok(out)) = (input, std::fs::metadata(path)) {
+        use std::os::unix::fs::MetadataExt;
+        if std::fs::metadata(input).is_ok_and(|i| (i.dev(), i.ino()) == (out.dev(), out.ino())) {
+            return refuse(format!("it is {}, which this command reads; give the output another name", input.display()));
+        }
+    }
+    if path.exists() {
+        if let Err(e) = std::fs::OpenOptions::new().write(true).open(path) {
+            return refuse(e.to_string());
         }
     }
     // a probe file shows the directory takes new files (permissions, read-only mounts)

@@ -38,7 +38,29 @@ fn open_waiting_for_lock(path: &Path) -> Result<hdf5::File> {
         }
         // the probe's shared lock goes with it; HDF5 takes its own
     }
-    hdf5::File::open(path).map_err(|e| Error::input(format!("{}: not an HDF5 file ({e})", path.display())))
+    hdf5::File::open(path).map_err(|e| {
+        let first = e.to_string().lines().next().unwrap_or_default().to_string();
+        Error::input(format!("{}: an HDF5 file that does not open (truncated, or left open by a run that was killed?): {first}", path.display()))
+    })
+}
+
+/// HDF5's signature, at the start of every file slideline writes.
+const HDF5_SIGNATURE: [u8; 8] = *b"\x89HDF\r\n\x1a\n";
+
+/// Refuses, naming it, what is not a regular file starting with HDF5's signature: a directory,
+/// a FIFO (whose read would block), a CSV or a deck given by mistake.
+fn check_is_hdf5(path: &Path) -> Result<()> {
+    let meta = std::fs::metadata(path).map_err(|e| Error::input(format!("{}: {e}", path.display())))?;
+    if !meta.is_file() {
+        let kind = if meta.is_dir() { "a directory" } else { "not a regular file" };
+        return Err(Error::input(format!("{}: {kind}, not a slideline results file", path.display())));
+    }
+    let mut head = [0u8; 8];
+    let read = std::fs::File::open(path).and_then(|mut f| std::io::Read::read_exact(&mut f, &mut head));
+    if read.is_err() || head != HDF5_SIGNATURE {
+        return Err(Error::input(format!("{}: not a slideline results file (not HDF5)", path.display())));
+    }
+    Ok(())
 }
 
 impl ResultsReader {
@@ -46,6 +68,7 @@ impl ResultsReader {
         if !path.exists() {
             return Err(Error::input(format!("{}: no such file", path.display())));
         }
+        check_is_hdf5(path)?;
         let file = open_waiting_for_lock(path)?;
         let reader = ResultsReader { file, path: path.to_path_buf() };
         for group in ["mesh", "increments", "history"] {
@@ -98,6 +121,18 @@ impl ResultsReader {
     }
 
     /// Rows of `coordinates` of a node set's members.
+    /// The node set `name` names, as .inp set names are read: without regard to case (an
+    /// exact match first).
+    pub fn node_set_name(&self, name: &str) -> Result<String> {
+        let known = self.file.group("mesh/node_sets").and_then(|g| g.member_names()).unwrap_or_default();
+        known
+            .iter()
+            .find(|k| *k == name)
+            .or_else(|| known.iter().find(|k| k.eq_ignore_ascii_case(name)))
+            .cloned()
+            .ok_or_else(|| Error::input(format!("{}: no node set {name:?} (the sets are {})", self.path.display(), known.join(", "))))
+    }
+
     pub fn node_set(&self, name: &str) -> Result<Vec<usize>> {
         let path = format!("mesh/node_sets/{name}");
         let ds = self.file.dataset(&path).map_err(|_| {
