@@ -97,22 +97,48 @@ fn increment_name(r: &ResultsReader, number: usize) -> Result<String> {
     )))
 }
 
+/// The fields at the Gauss points (or per element) that `--field` reports.
+const ELEMENT_FIELDS: [&str; 5] = ["stress", "von_mises", "von_mises_mean", "equivalent_plastic_strain", "equivalent_plastic_strain_max"];
+
 /// Min and max of a field at an increment, per component, with where they are: nodal fields
-/// (displacement) by node, element fields (stress, von_mises, ...) by element and Gauss point.
+/// (displacement, and every field ParaView shows at the nodes: `stress_rr`, `strain_zz`,
+/// `reaction_force`, `contact_pressure`, ...; `nodal_von_mises` and
+/// `nodal_equivalent_plastic_strain` for the nodal values of the Gauss-point fields of those
+/// names) by node, element fields (stress, von_mises, ...) by element and Gauss point.
 pub fn field(r: &ResultsReader, name: &str, number: usize) -> Result<String> {
     let inc = increment_name(r, number)?;
-    let fields = ["displacement", "stress", "von_mises", "von_mises_mean", "equivalent_plastic_strain", "equivalent_plastic_strain_max"];
-    if !fields.contains(&name) {
-        return Err(Error::input(format!("unknown field {name:?}: the fields are {}", fields.join(", "))));
-    }
-    let values = r.field(&inc, name)?;
+    let nodal_names = r.nodal_fields(&inc)?;
+    let nodal_name = name.strip_prefix("nodal_").filter(|n| ELEMENT_FIELDS.contains(n)).unwrap_or(name);
+    let (path, nodal) = if ELEMENT_FIELDS.contains(&name) {
+        (name.to_string(), false)
+    } else if name == "displacement" {
+        (name.to_string(), true)
+    } else if nodal_names.iter().any(|n| n == nodal_name) {
+        (format!("nodal/{nodal_name}"), true)
+    } else {
+        let nodal_listed: Vec<String> = nodal_names
+            .iter()
+            .filter(|n| *n != "displacement")
+            .map(|n| if ELEMENT_FIELDS.contains(&n.as_str()) { format!("nodal_{n}") } else { n.clone() })
+            .collect();
+        return Err(Error::input(format!(
+            "unknown field {name:?}: the fields are displacement, {} (Gauss points) and {} (nodes)",
+            ELEMENT_FIELDS.join(", "),
+            nodal_listed.join(", ")
+        )));
+    };
+    let mut values = r.field(&inc, &path)?;
     let (x0, conn) = (r.coordinates()?, r.connectivity()?);
     let u = r.displacement(&inc)?;
-    let nodal = name == "displacement";
     let count = if nodal { x0.len() } else { conn.len() };
+    if name == "reaction_force" {
+        // (r, z, 0) for ParaView: the two components
+        values = values.chunks(3).flat_map(|v| [v[0], v[1]]).collect();
+    }
     let per = values.len() / count.max(1);
     let components: Vec<String> = match name {
         "displacement" => vec!["u_r".into(), "u_z".into()],
+        "reaction_force" => vec!["F_r".into(), "F_z".into()],
         "stress" => ["s_rr", "s_zz", "s_tt", "s_rz"].iter().map(|s| s.to_string()).collect(),
         _ => vec![name.to_string()],
     };
@@ -121,13 +147,7 @@ pub fn field(r: &ResultsReader, name: &str, number: usize) -> Result<String> {
         "{name} at increment {number} (step {}, load factor {:.4}), {} per {}{}\n",
         r.increment_attr(&inc, "step")? as usize,
         r.increment_attr(&inc, "load_factor")?,
-        if name == "displacement" {
-            "mm"
-        } else if name.contains("strain") {
-            "-"
-        } else {
-            "MPa"
-        },
+        r.units(&format!("increments/{inc}/{path}")),
         if nodal { "node" } else { "element" },
         if points > 1 { format!(" ({points} Gauss points each)") } else { String::new() }
     );

@@ -285,6 +285,16 @@ fn post_commands_work_as_documented() {
         assert!(out.status.code() == Some(2) && String::from_utf8_lossy(&out.stderr).contains("not a regular file"));
     }
 
+    // --field knows the nodal fields ParaView shows: the maximum it names is the dataset's
+    let file = hdf5::File::open(&h5).unwrap();
+    for (field, dataset) in [("nodal_von_mises", "von_mises"), ("strain_zz", "strain_zz"), ("contact_pressure", "contact_pressure")] {
+        let out = post(dir.path(), &[h5s, "--field", field]);
+        let text = String::from_utf8_lossy(&out.stdout);
+        assert!(out.status.success(), "{field}: {}", String::from_utf8_lossy(&out.stderr));
+        let max = file.dataset(&format!("increments/000005/nodal/{dataset}")).unwrap().read_raw::<f64>().unwrap().into_iter().fold(f64::MIN, f64::max);
+        assert!(text.contains(&format!("max {:>14.6e}", max)) && text.contains("per node"), "{field}: {text}");
+    }
+
     // set names without regard to case
     let upper = post(dir.path(), &[h5s, "--set", "OUTER_TOP"]);
     let lower = post(dir.path(), &[h5s, "--set", "outer_top"]);

@@ -212,6 +212,20 @@ impl ResultsReader {
         self.read_f64(&format!("increments/{increment}/{name}"))
     }
 
+    /// The datasets of an increment's nodal group (none in files written before it existed).
+    pub fn nodal_fields(&self, increment: &str) -> Result<Vec<String>> {
+        Ok(self.file.group(&format!("increments/{increment}/nodal")).and_then(|g| g.member_names()).unwrap_or_default())
+    }
+
+    /// The `units` attribute of a dataset ("-" where it has none).
+    pub fn units(&self, dataset: &str) -> String {
+        self.file
+            .dataset(dataset)
+            .and_then(|d| d.attr("units"))
+            .and_then(|a| a.read_scalar::<hdf5::types::VarLenUnicode>())
+            .map_or_else(|_| "-".to_string(), |u| u.to_string())
+    }
+
     /// A numeric attribute of an increment (step, increment, load_factor, time).
     pub fn increment_attr(&self, increment: &str, name: &str) -> Result<f64> {
         let what = format!("increments/{increment} attribute {name}");
