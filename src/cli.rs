@@ -37,6 +37,13 @@ pub enum Command {
         /// No progress lines.
         #[arg(short, long)]
         quiet: bool,
+        /// The long progress line: every reaction, the contact, the residual norm.
+        #[arg(long, conflicts_with = "quiet")]
+        verbose: bool,
+        /// A line per Newton iteration: the convergence test's largest residual force and
+        /// correction against their bounds.
+        #[arg(long)]
+        monitor: bool,
         /// Continue the run that wrote this results file (from its last complete increment, or
         /// --increment), with this deck: the same model, possibly more increments or further steps.
         #[arg(long, value_name = "FILE.h5")]
@@ -135,6 +142,9 @@ pub struct PostArgs {
     /// Print the deck text stored in the file.
     #[arg(long)]
     pub deck: bool,
+    /// The history's long lines (every reaction, the contact, the residual norm).
+    #[arg(long)]
+    pub verbose: bool,
     /// Linearise the stress along straight sections through a wall (ASME VIII-2 Annex 5-A):
     /// membrane and bending parts in the section's axes, at --increment; each section
     /// R1,Z1:R2,Z2 in mm (reference coordinates); repeat for more sections.
@@ -243,6 +253,13 @@ pub struct BellowsArgs {
     /// No progress lines.
     #[arg(short, long)]
     pub quiet: bool,
+    /// The long progress line: every reaction, the contact, the residual norm.
+    #[arg(long, conflicts_with = "quiet")]
+    pub verbose: bool,
+    /// A line per Newton iteration: the convergence test's largest residual force and
+    /// correction against their bounds.
+    #[arg(long)]
+    pub monitor: bool,
     /// PETSc options (after `--`).
     #[arg(last = true, allow_hyphen_values = true)]
     pub petsc: Vec<String>,

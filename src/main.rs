@@ -82,7 +82,7 @@ fn post(args: &PostArgs) -> Result<(), Error> {
         || !args.linearize.is_empty();
     let mut out = String::new();
     if !detail {
-        out += &format!("{}\n{}", post::summary(&r)?, post::history_table(&r)?);
+        out += &format!("{}\n{}", post::summary(&r)?, post::history_table(&r, args.verbose)?);
     }
     if args.deck {
         out += &format!("{}\n", r.text_attr("deck")?);
@@ -172,7 +172,17 @@ fn main() -> ExitCode {
                 println!("bellows: {} plies x {} mm, {} convolutions, pitch {}, height {}; EJMA axial rate {:.1} N/mm full ring, {:.2} N/mm per 2.5-degree sector (Cf = {EJMA_CF})", params.plies, params.ply_thickness, params.convolutions, params.pitch, params.height, ejma, ejma * 2.5 / 360.0);
             }
             let result = model::bellows::model(&params).and_then(|m| {
-                run(&session, &m, &RunOptions { output: args.output.clone(), progress: !args.quiet, restart: restart_from(&args.restart, args.increment) })
+                run(
+                    &session,
+                    &m,
+                    &RunOptions {
+                        output: args.output.clone(),
+                        progress: !args.quiet,
+                        verbose: args.verbose,
+                        monitor: args.monitor,
+                        restart: restart_from(&args.restart, args.increment),
+                    },
+                )
             });
             warn_unused_options(&session, root);
             finish(result, root, |summary| report(&params, summary, &args.output))
@@ -194,7 +204,7 @@ fn main() -> ExitCode {
             Ok(()) => ExitCode::SUCCESS,
             Err(e) => fail(&e, true),
         },
-        Command::Run { deck, output, quiet, restart, increment, convergence, petsc } => {
+        Command::Run { deck, output, quiet, verbose, monitor, restart, increment, convergence, petsc } => {
             let output = output.unwrap_or_else(|| PathBuf::from(deck.file_stem().unwrap_or_default()).with_extension("h5"));
             if let Err(e) = slideline::io::check_output_path(&output, Some(&deck)) {
                 return fail(&e, launched_as_rank_zero());
@@ -215,7 +225,8 @@ fn main() -> ExitCode {
                 m
             });
             let segment = model.as_ref().ok().and_then(|m| m.reaction_segment_degrees);
-            let result = model.and_then(|m| run(&session, &m, &RunOptions { output, progress: !quiet, restart: restart_from(&restart, increment) }));
+            let result =
+                model.and_then(|m| run(&session, &m, &RunOptions { output, progress: !quiet, verbose, monitor, restart: restart_from(&restart, increment) }));
             warn_unused_options(&session, root);
             finish(result, root, |summary| {
                 if let (Some(degrees), Some(last)) = (segment, summary.history.last()) {

@@ -36,10 +36,12 @@ pub fn summary(r: &ResultsReader) -> Result<String> {
     Ok(s)
 }
 
-/// The history as the run printed it, one line per converged increment.
-pub fn history_table(r: &ResultsReader) -> Result<String> {
+/// The history as the run printed it, one line per converged increment (the long lines of
+/// `--verbose` when `verbose`).
+pub fn history_table(r: &ResultsReader, verbose: bool) -> Result<String> {
     let steps = r.count_attr("steps")?;
-    Ok(r.history_rows()?.iter().map(|(name, row)| row.progress_line(name, steps) + "\n").collect())
+    let line = |name: &str, row: &crate::io::HistoryRow| if verbose { row.progress_line(name, steps) } else { row.short_line(name, steps) };
+    Ok(r.history_rows()?.iter().map(|(name, row)| line(name, row) + "\n").collect())
 }
 
 /// Whether a history column counts things (written as integers in the CSV).

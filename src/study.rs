@@ -128,7 +128,7 @@ pub fn penalty_study(session: &PetscSession, spec: &StudySpec) -> Result<Vec<Stu
             );
         }
         let start = Instant::now();
-        let outcome = run(session, &model, &RunOptions { output: results.clone(), progress: false, restart: None });
+        let outcome = run(session, &model, &RunOptions { output: results.clone(), progress: false, verbose: false, monitor: false, restart: None });
         let converged = match outcome {
             Ok(summary) => {
                 // every rank has the history (its contact summaries are reduced)

@@ -1,6 +1,7 @@
 //! What a run says while it runs (rank 0): on a terminal a progress bar with the step, the
 //! increment, the load factor, the elapsed time and an estimate of the rest; otherwise (a pipe,
-//! a file) the plain line per increment. Under mpirun the plain lines too: OpenMPI hands its
+//! a file) a short line per increment (at most 100 characters), or with `--verbose` the long one
+//! with every reaction and the contact. Under mpirun the plain lines too: OpenMPI hands its
 //! ranks a pseudo-terminal whatever mpirun's own output is, so a rank cannot tell whether a
 //! person is watching. Cutbacks and notes go above the bar or between the lines.
 
@@ -13,20 +14,22 @@ const TICKS_PER_STEP: u64 = 1000;
 
 pub enum Progress {
     Bar(ProgressBar),
-    Lines,
+    /// A line per increment: the long one when true.
+    Lines(bool),
     Quiet,
 }
 
 impl Progress {
-    /// A bar when `show` and stdout is a terminal, plain lines when only `show`.
-    pub fn new(show: bool, steps: usize) -> Self {
+    /// A bar when `show` and stdout is a terminal, plain lines (long ones when `verbose`)
+    /// when only `show`.
+    pub fn new(show: bool, verbose: bool, steps: usize) -> Self {
         if !show {
             return Progress::Quiet;
         }
         // set by mpirun (OpenMPI) or a PMI launcher (MPICH), not in a singleton run
         let launched = ["OMPI_COMMAND", "PMI_RANK"].iter().any(|v| std::env::var_os(v).is_some());
         if launched || !std::io::stdout().is_terminal() {
-            return Progress::Lines;
+            return Progress::Lines(verbose);
         }
         let bar = ProgressBar::new(steps as u64 * TICKS_PER_STEP);
         let style = ProgressStyle::with_template("{elapsed_precise} [{bar:30}] {percent:>3}% ETA {eta:>4} {msg}").map(|s| s.progress_chars("=> "));
@@ -40,7 +43,7 @@ impl Progress {
     pub fn note(&self, text: &str) {
         match self {
             Progress::Bar(bar) => bar.println(text),
-            Progress::Lines => println!("{text}"),
+            Progress::Lines(_) => println!("{text}"),
             Progress::Quiet => {}
         }
     }
@@ -56,7 +59,8 @@ impl Progress {
                     row.step, row.number, row.load_factor, row.newton_iterations, row.max_plastic_strain, penetration
                 ));
             }
-            Progress::Lines => println!("{}", row.progress_line(step_name, steps)),
+            Progress::Lines(false) => println!("{}", row.short_line(step_name, steps)),
+            Progress::Lines(true) => println!("{}", row.progress_line(step_name, steps)),
             Progress::Quiet => {}
         }
     }

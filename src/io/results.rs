@@ -111,7 +111,20 @@ pub struct HistoryRow {
 }
 
 impl HistoryRow {
-    /// The progress line the run prints for this row (and `slideline post` prints again):
+    /// The short line the run prints for this row (and `slideline post` prints again), at most
+    /// 100 characters: the step, the run-wide increment number (#N) and the step's own, the
+    /// load factor, the Newton iterations, the largest axial reaction and the wall time.
+    pub fn short_line(&self, step_name: &str, steps: usize) -> String {
+        let name: String = step_name.chars().take(10).collect();
+        let reaction = self.reactions.iter().max_by(|a, b| a.1[1].abs().total_cmp(&b.1[1].abs()));
+        let force = reaction.map_or(String::new(), |(set, f)| format!(" F_z {:<10} {:>10.3e} N/rad", set.chars().take(10).collect::<String>(), f[1]));
+        format!(
+            "step {}/{} {name:<10} #{:<4} inc {:>4} lambda {:.4} newton {:>2}{force} {:>6.1} s",
+            self.step, steps, self.number, self.increment, self.load_factor, self.newton_iterations, self.wall_time
+        )
+    }
+
+    /// The long line (`--verbose`) the run prints for this row (and `slideline post --verbose`):
     /// the run-wide increment number (#N), then the step's own; the reactions; the contact
     /// pairs summed in one field (active nodes, largest penetration).
     pub fn progress_line(&self, step_name: &str, steps: usize) -> String {

@@ -121,6 +121,8 @@ pub struct Snes<'s> {
     last_average_force: f64,
     /// The unknowns at the start of the increment (the field test's Delta u).
     increment_start: Option<Vector<'s>>,
+    /// A line per Newton iteration on rank 0: the convergence test's measures and bounds.
+    monitor: bool,
     /// Whether the line search is PETSc's `l2`, as after a failed attempt (else slideline's
     /// shell); None when `-snes_linesearch_type` chose it.
     after_failure: Option<bool>,
@@ -158,6 +160,7 @@ impl<'s> Snes<'s> {
             last_average_force: 0.0,
             increment_start: None,
             after_failure: (!session.has_option("-snes_linesearch_type")).then_some(false),
+            monitor: false,
             _session: PhantomData,
         };
         snes.configure_defaults(session)?;
@@ -246,6 +249,12 @@ impl<'s> Snes<'s> {
     /// passes); `None` leaves the residual test alone.
     pub fn set_field_test(&mut self, ratios: Option<FieldRatios>) {
         self.field = ratios;
+    }
+
+    /// Prints a line per Newton iteration on rank 0: the convergence test's measures against
+    /// their bounds.
+    pub fn set_monitor(&mut self, on: bool) {
+        self.monitor = on;
     }
 
     /// Takes the last converged solve's average force into the step's time average (call once
@@ -338,7 +347,7 @@ impl<'s> Snes<'s> {
             }),
             _ => None,
         };
-        let mut ctx = CallbackContext { problem, world: &self.world, failure: None, first_norm: 0.0, previous_norm: 0.0, field };
+        let mut ctx = CallbackContext { problem, world: &self.world, failure: None, first_norm: 0.0, previous_norm: 0.0, field, monitor: self.monitor };
         let ctx_ptr = &mut ctx as *mut CallbackContext<'_, P> as *mut c_void;
         // SAFETY: ctx outlives SNESSolve; the callbacks are cleared again (context NULL) below
         // so PETSc never holds a dangling pointer after this function returns.

@@ -36,6 +36,10 @@ pub struct RunOptions {
     pub output: PathBuf,
     /// Print a line per increment (rank 0).
     pub progress: bool,
+    /// The long line per increment, with every reaction and the contact.
+    pub verbose: bool,
+    /// A line per Newton iteration: the convergence test's measures against their bounds.
+    pub monitor: bool,
     /// Continue the run that wrote this file from one of its increments.
     pub restart: Option<RestartFrom>,
 }
@@ -71,7 +75,7 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
     let mut results = ResultsFile::create(&options.output, session, model, &partition)?;
     let title = format!("{} nodes, {} elements on {} rank(s); results {}", nodes, model.mesh.elements.len(), partition.size, options.output.display());
     let mut status = if root { Some(StatusFile::create(&options.output, &title)?) } else { None };
-    let progress = Progress::new(root && options.progress, model.steps.len());
+    let progress = Progress::new(root && options.progress, options.verbose, model.steps.len());
     progress.note(&format!(
         "slideline: {} nodes, {} elements on {} rank(s); results -> {}",
         nodes,
@@ -110,6 +114,7 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
         let mut jacobian = problem.jacobian_matrix()?;
         let mut snes = Snes::new(session)?;
         snes.set_field_test((controls.convergence == Convergence::Field).then(FieldRatios::default));
+        snes.set_monitor(options.monitor);
         if resumed_here.is_some() {
             // the field test's time average over the step's increments before the restart
             snes.restore_force_average(rows.iter().filter(|r| r.step == s + 1).map(|r| r.average_force));
@@ -174,7 +179,7 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
                 cutbacks += 1;
                 size = (target - lambda) * controls.cutback_factor;
                 progress.note(&format!(
-                    "step {}/{} {:<10} cutback at lambda {target:.6} ({} after {} Newton iterations); retrying with {size:.3e}",
+                    "step {}/{} {:<10} cutback at lambda {target:.6}: {}, {} Newton its; retry {size:.3e}",
                     s + 1,
                     model.steps.len(),
                     step.name,

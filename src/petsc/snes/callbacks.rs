@@ -2,7 +2,7 @@
 //! trampoline over the caller's problem (the context [`Snes::solve`](super::Snes::solve) sets),
 //! run under `catch_unwind` with the outcome agreed across ranks.
 
-use super::field_test::{field_converged, FieldRatios, ForceAverage, IterateMeasures};
+use super::field_test::{field_bounds, field_converged, FieldRatios, ForceAverage, IterateMeasures};
 use super::NonlinearProblem;
 use crate::error::{Error, Result};
 use crate::petsc::{check, sys, MatrixView, VecOps, VectorView};
@@ -21,6 +21,8 @@ pub(super) struct CallbackContext<'p, P> {
     pub previous_norm: f64,
     /// The field test's state, when it judges this solve.
     pub field: Option<FieldContext>,
+    /// Print a line per iteration (rank 0): the test's measures against their bounds.
+    pub monitor: bool,
 }
 
 /// What the field test keeps through a solve; the vectors are owned by `Snes::solve`.
@@ -38,7 +40,7 @@ pub(super) struct FieldContext {
 
 impl FieldContext {
     /// Judges iterate `it` (collective: norms and the force average are global).
-    fn judge<P: NonlinearProblem>(&mut self, snes: sys::SNES, it: usize, problem: &P, world: &SimpleCommunicator) -> Result<bool> {
+    fn judge<P: NonlinearProblem>(&mut self, snes: sys::SNES, it: usize, problem: &P, world: &SimpleCommunicator, monitor: bool) -> Result<bool> {
         let (mut x, mut f) = (std::ptr::null_mut(), std::ptr::null_mut());
         // SAFETY: valid SNES inside its solve; the vectors are borrowed from it.
         unsafe {
@@ -48,7 +50,11 @@ impl FieldContext {
         let (x, f) = (VectorView::from_raw(x), VectorView::from_raw(f));
         let (mut previous, mut work, start) = (VectorView::from_raw(self.previous), VectorView::from_raw(self.work), VectorView::from_raw(self.start));
         let residual_max = f.norm_max()?;
+        let say = monitor && world.rank() == 0;
         let verdict = if it == 0 {
+            if say {
+                println!("    newton {it:>2}  r_max {residual_max:.3e} N/rad");
+            }
             false
         } else {
             work.difference(&x, &previous)?;
@@ -61,7 +67,15 @@ impl FieldContext {
             let average_force = if global[1] > 0.0 { global[0] / global[1] } else { 0.0 };
             self.last_average_force = average_force;
             let m = IterateMeasures { residual_max, correction_max, increment_max, average_force };
-            field_converged(&self.ratios, it, &m, self.average.with(average_force), &self.residuals)
+            let verdict = field_converged(&self.ratios, it, &m, self.average.with(average_force), &self.residuals);
+            if say {
+                let (residual_bound, correction_bound, _) = field_bounds(&self.ratios, it, &m, self.average.with(average_force));
+                println!(
+                    "    newton {it:>2}  r_max {residual_max:.3e} N/rad (bound {residual_bound:.3e})  c_max {correction_max:.3e} mm (bound {correction_bound:.3e}){}",
+                    if verdict { "  converged" } else { "" }
+                );
+            }
+            verdict
         };
         self.residuals.push(residual_max);
         previous.copy_from(&x)?;
@@ -163,7 +177,8 @@ pub(super) unsafe extern "C" fn convergence_trampoline<P: NonlinearProblem>(
         // SAFETY: PETSc passes a valid reason pointer for the duration of the call.
         let open = unsafe { *reason == sys::SNESConvergedReason_SNES_CONVERGED_ITERATING || *reason == sys::SNESConvergedReason_SNES_DIVERGED_MAX_IT };
         let problem = &*ctx.problem;
-        match catch_unwind(AssertUnwindSafe(|| field.judge(snes, it as usize, problem, ctx.world))) {
+        let monitor = ctx.monitor;
+        match catch_unwind(AssertUnwindSafe(|| field.judge(snes, it as usize, problem, ctx.world, monitor))) {
             Ok(Ok(true)) if open => {
                 // SAFETY: as above.
                 unsafe { *reason = sys::SNESConvergedReason_SNES_CONVERGED_FNORM_ABS };
@@ -202,6 +217,10 @@ pub(super) unsafe extern "C" fn convergence_trampoline<P: NonlinearProblem>(
                 *reason = sys::SNESConvergedReason_SNES_CONVERGED_FNORM_ABS;
             }
         }
+    }
+    if ctx.monitor && ctx.field.is_none() && ctx.world.rank() == 0 {
+        // the residual test: ||F|| against the start's, and the round-off floor
+        println!("    newton {it:>2}  ||F|| {fnorm:.3e} N/rad ({:.2e} of the start's; round-off floor {:.2e})", fnorm / ctx.first_norm, global.sqrt());
     }
     ctx.previous_norm = fnorm;
     0

@@ -66,12 +66,9 @@ impl ForceAverage {
     }
 }
 
-/// Whether iteration `iteration` (1 for the first Newton step) has converged; `earlier` holds
-/// r_max of the iterates before it in this solve (the initial one first).
-pub fn field_converged(ratios: &FieldRatios, iteration: usize, m: &IterateMeasures, time_average: f64, earlier: &[f64]) -> bool {
-    if iteration == 0 {
-        return false;
-    }
+/// The bounds iteration `iteration` is held to: (largest residual force, largest correction),
+/// and whether the iterate has zero flux.
+pub fn field_bounds(ratios: &FieldRatios, iteration: usize, m: &IterateMeasures, time_average: f64) -> (f64, f64, bool) {
     let zero_flux = m.average_force <= ratios.zero_flux * time_average;
     let (c1, c2) = if zero_flux {
         (ratios.zero_flux, ratios.zero_flux_correction)
@@ -80,14 +77,24 @@ pub fn field_converged(ratios: &FieldRatios, iteration: usize, m: &IterateMeasur
     } else {
         (ratios.residual_late, ratios.correction)
     };
-    if m.residual_max > c1 * time_average {
+    (c1 * time_average, c2 * m.increment_max, zero_flux)
+}
+
+/// Whether iteration `iteration` (1 for the first Newton step) has converged; `earlier` holds
+/// r_max of the iterates before it in this solve (the initial one first).
+pub fn field_converged(ratios: &FieldRatios, iteration: usize, m: &IterateMeasures, time_average: f64, earlier: &[f64]) -> bool {
+    if iteration == 0 {
+        return false;
+    }
+    let (residual_bound, correction_bound, zero_flux) = field_bounds(ratios, iteration, m, time_average);
+    if m.residual_max > residual_bound {
         return false;
     }
     // the next correction, estimated from the residual's rate of decrease
     let previous = earlier.iter().rev().take(2).copied().fold(f64::INFINITY, f64::min);
     let estimate = if previous.is_finite() && previous > 0.0 { m.residual_max * m.correction_max / previous } else { f64::INFINITY };
-    m.correction_max <= c2 * m.increment_max
-        || estimate < c2 * m.increment_max
+    m.correction_max <= correction_bound
+        || estimate < correction_bound
         || m.residual_max <= ratios.linear * time_average
         || zero_flux
         || m.correction_max < 1e-8
