@@ -284,7 +284,7 @@ fn write_mesh(session: &PetscSession, params: &model::bellows::BellowsParams, ou
 fn report(params: &model::bellows::BellowsParams, summary: &RunSummary, output: &std::path::Path) -> Result<(), Error> {
     let reader = ResultsReader::open(output)?;
     let ejma = model::bellows::ejma_axial_rate(params, EJMA_CF) * SECTOR_RADIANS / (2.0 * std::f64::consts::PI);
-    let report = BellowsReport::new(params, ejma, EJMA_CF, &summary.history, summary.wall_time, summary.ranks, &reader)?;
+    let report = BellowsReport::new(params, ejma, EJMA_CF, summary, &reader)?;
     println!("\n{}", report.table());
     for path in report.pictures(output, &reader)? {
         println!("picture: {}", path.display());
@@ -339,7 +339,7 @@ fn print_summary(summary: &RunSummary) {
     let Some(last) = summary.history.last() else {
         return;
     };
-    println!("done: {} increments in {:.2} s on {} rank(s)", summary.history.len(), summary.wall_time, summary.ranks);
+    println!("{}", summary.done_line());
     if summary.reserved_couplings > 0 {
         println!(
             "Jacobian pattern: {} contact couplings (node pairs, counted on each rank that needs them) reserved by the end; matrix refitted in place {} time(s)",

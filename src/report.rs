@@ -10,6 +10,7 @@ use crate::io::reader::ResultsReader;
 use crate::io::HistoryRow;
 use crate::model::bellows::BellowsParams;
 use crate::solve::energy::Energies;
+use crate::solve::RunSummary;
 use std::f64::consts::PI;
 use std::path::{Path, PathBuf};
 
@@ -54,7 +55,12 @@ pub struct BellowsReport {
     pub increments: usize,
     pub cutbacks: usize,
     pub newton_iterations: usize,
+    /// Wall time of the whole history (a restart's clock goes on from its file's), s.
     pub wall_time: f64,
+    /// Wall time of this run alone, s.
+    pub run_wall_time: f64,
+    /// Increments a restart took over from its file (0 for a fresh run).
+    pub continued: usize,
     pub ranks: usize,
     /// (applied displacement mm, reaction N per sector) at every converged increment.
     pub curve: Vec<(f64, f64)>,
@@ -114,15 +120,8 @@ fn extreme(reader: &ResultsReader, increment: &str, field: &str) -> Result<Extre
 }
 
 impl BellowsReport {
-    pub fn new(
-        p: &BellowsParams,
-        ejma_stiffness: f64,
-        ejma_cf: f64,
-        history: &[HistoryRow],
-        wall_time: f64,
-        ranks: usize,
-        reader: &ResultsReader,
-    ) -> Result<Self> {
+    pub fn new(p: &BellowsParams, ejma_stiffness: f64, ejma_cf: f64, run: &RunSummary, reader: &ResultsReader) -> Result<Self> {
+        let history = &run.history;
         let curve: Vec<(f64, f64)> = history.iter().map(|r| (applied(r, p), end_reaction(r))).collect();
         let heated = history.iter().rposition(|r| r.step == 1);
         let preload = heated.map(|k| curve[k].1).unwrap_or(0.0);
@@ -155,8 +154,10 @@ impl BellowsReport {
             increments: history.len(),
             cutbacks: history.iter().map(|r| r.cutbacks).sum(),
             newton_iterations: history.iter().map(|r| r.newton_iterations).sum(),
-            wall_time,
-            ranks,
+            wall_time: history.last().map_or(run.wall_time, |r| r.wall_time),
+            run_wall_time: run.wall_time,
+            continued: run.continued,
+            ranks: run.ranks,
             curve,
             cycle,
             friction: (p.friction_plies, p.friction_sleeve),
@@ -212,6 +213,10 @@ impl BellowsReport {
         line("increments / cutbacks", format!("{} / {}", self.increments, self.cutbacks), "240");
         line("Newton iterations", format!("{}", self.newton_iterations), "-");
         line(&format!("wall time on {} rank(s), s", self.ranks), format!("{:.1}", self.wall_time), "-");
+        if self.continued > 0 {
+            let added = self.increments - self.continued;
+            line(&format!("  a restart from #{}: this run's increments, s", self.continued), format!("{added} in {:.1}", self.run_wall_time), "-");
+        }
         t.push_str(
             "  why they differ: slideline follows the plies past yield (sigma_y 300 MPa, H 1000 MPa) from a few mm of\n  \
              compression on, so the force levels off near the collapse load; the paper's 103 MPa and its linear\n  \

@@ -52,7 +52,16 @@ fn bit_identical_continuation(ranks: usize) {
         let name = format!("from{from}.h5");
         let increment = from.to_string();
         let out = ok(bellows_restart(dir.path(), ranks, "full.h5", &[&["--increment", increment.as_str(), "-o", &name][..], &solver].concat()));
-        assert!(String::from_utf8_lossy(&out.stdout).contains("end reaction"), "the continued run reports as the full one");
+        let text = String::from_utf8_lossy(&out.stdout);
+        assert!(text.contains("end reaction"), "the continued run reports as the full one");
+        // the report counts the whole file and says what this run added (it said "12
+        // increments in 0.9 s", the restart's time beside the whole history's count)
+        let added = 12 - from;
+        assert!(text.contains(&format!("done: 12 increments, {added} of them in this run")) && text.contains(&format!("continuing #{from}")), "{text}");
+        assert!(text.contains(&format!("a restart from #{from}: this run's increments, s")) && text.contains(&format!("{added} in ")), "{text}");
+        let wall = Results::open(&dir.path().join(&name)).history("wall_time");
+        let full_wall = Results::open(&dir.path().join("full.h5")).history("wall_time");
+        assert!(wall[from] >= full_wall[from - 1], "the increments' clock goes on from the file's: {wall:?}");
         assert_continues(&dir.path().join("full.h5"), &dir.path().join(&name), from);
     }
 }

@@ -56,6 +56,29 @@ pub struct RunSummary {
     pub reserved_couplings: usize,
     /// How many times a step's matrix was given room for new contact couplings in place.
     pub pattern_refits: usize,
+    /// The increments a restart took over from the file it continues (0 for a fresh run):
+    /// `history` holds them first, then this run's.
+    pub continued: usize,
+}
+
+impl RunSummary {
+    /// The closing line: the whole history's increments, and for a restart how many of them
+    /// this run added and how long the whole history took (its clock goes on from the file's).
+    pub fn done_line(&self) -> String {
+        let n = self.history.len();
+        if self.continued == 0 {
+            return format!("done: {n} increments in {:.2} s on {} rank(s)", self.wall_time, self.ranks);
+        }
+        let whole = self.history.last().map_or(self.wall_time, |r| r.wall_time);
+        format!(
+            "done: {n} increments, {} of them in this run ({:.2} s on {} rank(s)), continuing #{}; the whole history {:.2} s",
+            n - self.continued,
+            self.wall_time,
+            self.ranks,
+            self.continued,
+            whole
+        )
+    }
 }
 
 /// Runs every step of `model` on the session's ranks, writing `options.output` as it goes.
@@ -98,6 +121,7 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
         }
     };
     let Carried { mut displacement, mut history, mut carry, mut rows, mut previous, mut audit, wall_before } = carried;
+    let continued = rows.len();
     let (mut reserved_couplings, mut pattern_refits) = (0usize, 0usize);
     let first_step = resumed.as_ref().map_or(0, |r| r.step);
     for (s, step) in model.steps.iter().enumerate().skip(first_step) {
@@ -325,9 +349,17 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
     }
     progress.finish();
     if let Some(status) = status.as_mut() {
-        status.note(&format!("completed: {} increments in {:.1} s", rows.len(), start.elapsed().as_secs_f64()));
+        status.note(&format!("completed: {} increments ({} in this run) in {:.1} s", rows.len(), rows.len() - continued, start.elapsed().as_secs_f64()));
     }
-    Ok(RunSummary { history: rows, wall_time: start.elapsed().as_secs_f64(), ranks: partition.size, displacement, reserved_couplings, pattern_refits })
+    Ok(RunSummary {
+        history: rows,
+        wall_time: start.elapsed().as_secs_f64(),
+        ranks: partition.size,
+        displacement,
+        reserved_couplings,
+        pattern_refits,
+        continued,
+    })
 }
 
 /// The energy audit's record of a converged increment (collective: the element and contact
