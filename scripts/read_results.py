@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Reads a slideline results file with plain h5py: the layout is documented in the README.
+"""Reads a slideline results file with plain h5py: the layout is documented in docs/results.md.
 
     python3 scripts/read_results.py out/lame.h5
 """

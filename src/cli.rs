@@ -28,8 +28,8 @@ pub enum Command {
     /// `slideline run cylinder.toml -- -snes_monitor -ksp_type gmres -pc_type gamg -log_view`.
     /// The PETSC_OPTIONS environment variable is honoured too.
     Run {
-        /// The input deck: TOML (see README), or an Abaqus/CalculiX deck (.inp; the subset in the
-        /// README's "Abaqus/CalculiX input" section).
+        /// The input deck: TOML (docs/deck.md), or an Abaqus/CalculiX deck (.inp; the subset in
+        /// docs/inp.md).
         deck: PathBuf,
         /// Results file (HDF5). Default: the deck's name with extension .h5, in the current directory.
         #[arg(short, long)]

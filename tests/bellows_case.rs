@@ -5,7 +5,7 @@
 //! - no ply penetrates the other by more than 1 % of the ply thickness at any increment, and
 //!   the sleeve slides in tube B's bore without penetrating it (0.001 mm, 0.01 % of its wall);
 //! - the end reaction is within 10 % of the default (fine) case's 254.2 N per 2.5-degree
-//!   sector (measured: 241.5 N, -5 %; README "Bellows" has the mesh study);
+//!   sector (measured: 241.5 N, -5 %; docs/bellows.md has the mesh study);
 //! - the initial elastic stiffness is within 35 % of the EJMA rate (16.03 N/mm per sector
 //!   with Cf = 1.9; measured 20.0, +25 %); both are printed, neither is tuned to the other;
 //! - the report's pictures are written as PNG files.

@@ -236,7 +236,7 @@ fn post_waits_for_a_locked_file_then_names_the_lock() {
     assert!(err.contains("locked by another process") && !err.contains("not an HDF5 file"), "{err}");
 }
 
-/// post as the README documents it, each point seen failing before: `--plot` without a name
+/// post as docs/results.md documents it, each point seen failing before: `--plot` without a name
 /// writes FILE_force.png; a reader closing the pipe early ends post quietly with exit 0; output
 /// paths are checked before any work (a missing directory, the results file itself under
 /// another name: exit 2, "cannot write"); `--increment` and `--force` where they mean nothing

@@ -3,7 +3,7 @@
 //! quick bellows joint compressed 20 mm in 10 increments, twice on 2 ranks, its linear solves
 //! by PETSc's redundant LU. (With the default MUMPS they are not always: its parallel
 //! factorisation adds the ranks' contributions in message arrival order, and the quick joint at
-//! 70 mm differs from run to run by 1e-11 from increment #42 on; see the README's "Running".)
+//! 70 mm differs from run to run by 1e-11 from increment #42 on; see docs/running.md.)
 
 mod common;
 use common::{command_in, Results};

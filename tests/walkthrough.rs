@@ -29,7 +29,7 @@ fn the_readme_walk_through_runs_as_written() {
         assert!(out.status.success(), "{command}:\n{}{}", String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr));
         commands += 1;
     }
-    assert_eq!(commands, 6, "{block}");
+    assert_eq!(commands, 8, "{block}");
     for file in ["fit.h5", "fit.xmf", "fit.sta", "fit.csv", "fit_force.png"] {
         assert!(dir.path().join(file).exists(), "{file} was not written");
     }

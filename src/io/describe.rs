@@ -60,7 +60,7 @@ pub fn describe(group: &str, name: &str) -> (&'static str, String) {
         (_, "displacement") => ("mm", "u_r, u_z at each node".into()),
         (_, "stress") => ("MPa", "Cauchy stress [s_rr, s_zz, s_tt, s_rz] at the 3 x 3 Gauss points of each element (xi fastest)".into()),
         (_, "von_mises") if g.ends_with("nodal") => {
-            ("MPa", "von Mises stress of the nodal stress components (Gauss values carried to the nodes and averaged; see the README)".into())
+            ("MPa", "von Mises stress of the nodal stress components (Gauss values carried to the nodes and averaged; see docs/results.md)".into())
         }
         (_, "von_mises") => ("MPa", "von Mises stress at the 3 x 3 Gauss points".into()),
         (_, "von_mises_mean") => ("MPa", "element mean of the von Mises stress".into()),

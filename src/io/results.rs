@@ -1,26 +1,8 @@
-//! The HDF5 results file. Layout (documented in the README):
+//! The HDF5 results file: the deck, the mesh and its sets, the fields of each converged
+//! increment (`nodal/` by `io::nodal`), the restart state (`io::restart`) and the history. Its
+//! layout, dataset by dataset, is in docs/results.md; every dataset carries its units and a
+//! description (`io::describe`).
 //!
-//! ```text
-//! /                      attrs: deck, units, ranks, petsc_options, slideline_version
-//! /mesh/coordinates      (nodes, 2) f64   r, z in mm, nodes in partition order
-//! /mesh/connectivity     (elements, 8) i64  Q8 node positions (0-based rows of coordinates)
-//! /mesh/node_ids, /mesh/element_ids   external numbers (Gmsh tags)
-//! /mesh/element_rank     rank that assembled each element
-//! /mesh/node_sets/NAME, /mesh/element_sets/NAME   positions of members
-//! /increments/NNNNNN/    attrs: step, step_name, increment, load_factor, time
-//!     displacement       (nodes, 2)        u_r, u_z in mm
-//!     stress             (elements, 9, 4)  [rr, zz, tt, rz] at the 3x3 Gauss points, MPa
-//!     von_mises          (elements, 9)     MPa
-//!     von_mises_mean     (elements)        MPa, element average (for cell plots)
-//!     equivalent_plastic_strain      (elements, 9)
-//!     equivalent_plastic_strain_max  (elements)    element maximum (for cell plots)
-//!     residual_norms     (iterations + 1)  ||F|| at each Newton iterate
-//!     contact/PAIR/passK/{gap, pressure, traction, active}   per slave node of the pass:
-//!                        gap (mm), constitutive pressure max(0, lambda - eps g) (MPa), traction
-//!                        recovered from the total contact forces (MPa), active flag (0/1)
-//! /mesh/contact/PAIR/passK/{nodes, areas}         slave node rows and tributary areas
-//! /history/COLUMN        one row per converged increment (see HistoryRow)
-//! ```
 //! Metadata operations are collective (every rank calls them with the same arguments); bulk
 //! data is written by each rank for its own contiguous slab. The file is flushed after every
 //! converged increment, so a run that dies keeps everything converged before.

@@ -328,7 +328,7 @@ pub fn model(p: &BellowsParams) -> Result<Model> {
         slave: slave.to_string(),
         master: master.to_string(),
         two_pass,
-        // Not yet converging on this case with either collocation (see README, "Bellows"):
+        // Not yet converging on this case with either collocation (see docs/bellows.md):
         // the plies' meshes match, so slave corner nodes sit on master corners where curved
         // quadratic edges meet with different normals.
         integration: ContactIntegration::Segment,

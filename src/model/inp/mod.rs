@@ -252,11 +252,7 @@ fn build(cards: &[Card], source_text: String) -> Result<InpModel> {
                     }
                 }
             }
-            other => {
-                return Err(card.error(format!(
-                    "keyword *{other} is outside the subset slideline reads (see `slideline run --help` or the README's \"Abaqus/CalculiX input\" section)"
-                )))
-            }
+            other => return Err(card.error(format!("keyword *{other} is outside the subset slideline reads (docs/inp.md lists it)"))),
         }
     }
     b.finish(source_text)
