@@ -69,7 +69,7 @@ fn post(args: &PostArgs) -> Result<(), Error> {
     }
     let plot = args.plot.as_ref().map(|p| p.clone().unwrap_or_else(|| post::default_plot_path(&r)));
     for path in args.csv.iter().chain(&plot) {
-        slideline::io::check_output_path(path, Some(&args.file))?;
+        slideline::io::check_output_path(path, Some((&args.file, "the results file")))?;
     }
     let increment = args.increment.as_deref().unwrap_or("last");
     let detail = args.field.is_some()
@@ -206,7 +206,7 @@ fn main() -> ExitCode {
         },
         Command::Run { deck, output, quiet, verbose, monitor, restart, increment, convergence, petsc } => {
             let output = output.unwrap_or_else(|| PathBuf::from(deck.file_stem().unwrap_or_default()).with_extension("h5"));
-            if let Err(e) = slideline::io::check_output_path(&output, Some(&deck)) {
+            if let Err(e) = slideline::io::check_output_path(&output, Some((&deck, "the input deck"))) {
                 return fail(&e, launched_as_rank_zero());
             }
             let session = match PetscSession::initialize(&petsc) {

@@ -18,8 +18,9 @@ use crate::error::{Error, Result};
 use std::path::Path;
 
 /// Checks before any work that a file can be written at `path` (and is not `input`, the file
-/// the command reads, under any name): bad input, exit 2, "cannot write FILE: reason".
-pub fn check_output_path(path: &Path, input: Option<&Path>) -> Result<()> {
+/// the command reads, under any name; `what` names it, such as "the input deck"): bad input,
+/// exit 2, "cannot write FILE: reason".
+pub fn check_output_path(path: &Path, input: Option<(&Path, &str)>) -> Result<()> {
     let refuse = |reason: String| Err(Error::input(format!("cannot write {}: {reason}", path.display())));
     if path.is_dir() {
         return refuse("it is a directory; give a file name such as results.h5".into());
@@ -32,10 +33,10 @@ pub fn check_output_path(path: &Path, input: Option<&Path>) -> Result<()> {
         return refuse(format!("the directory {} does not exist", parent.display()));
     }
     // the same file by device and inode, so a hard link or a symlink to the input is caught
-    if let (Some(input), Ok(out)) = (input, std::fs::metadata(path)) {
+    if let (Some((input, what)), Ok(out)) = (input, std::fs::metadata(path)) {
         use std::os::unix::fs::MetadataExt;
         if std::fs::metadata(input).is_ok_and(|i| (i.dev(), i.ino()) == (out.dev(), out.ino())) {
-            return refuse(format!("it is {}, which this command reads; give the output another name", input.display()));
+            return refuse(format!("it is {what} ({}), which this command reads; give the output another name", input.display()));
         }
     }
     if path.exists() {
