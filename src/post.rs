@@ -100,7 +100,8 @@ fn increment_name(r: &ResultsReader, number: usize) -> Result<String> {
 }
 
 /// The fields at the Gauss points (or per element) that `--field` reports.
-const ELEMENT_FIELDS: [&str; 5] = ["stress", "von_mises", "von_mises_mean", "equivalent_plastic_strain", "equivalent_plastic_strain_max"];
+const ELEMENT_FIELDS: [&str; 6] =
+    ["stress", "von_mises", "von_mises_mean", "equivalent_plastic_strain", "equivalent_plastic_strain_max", "element_nodal_stress"];
 
 /// Min and max of a field at an increment, per component, with where they are: nodal fields
 /// (displacement, and every field ParaView shows at the nodes: `stress_rr`, `strain_zz`,
@@ -141,7 +142,7 @@ pub fn field(r: &ResultsReader, name: &str, number: usize) -> Result<String> {
     let components: Vec<String> = match name {
         "displacement" => vec!["u_r".into(), "u_z".into()],
         "reaction_force" => vec!["F_r".into(), "F_z".into()],
-        "stress" => ["s_rr", "s_zz", "s_tt", "s_rz"].iter().map(|s| s.to_string()).collect(),
+        "stress" | "element_nodal_stress" => ["s_rr", "s_zz", "s_tt", "s_rz"].iter().map(|s| s.to_string()).collect(),
         _ => vec![name.to_string()],
     };
     let points = per / components.len();
@@ -151,7 +152,11 @@ pub fn field(r: &ResultsReader, name: &str, number: usize) -> Result<String> {
         r.increment_attr(&inc, "load_factor")?,
         r.units(&format!("increments/{inc}/{path}")),
         if nodal { "node" } else { "element" },
-        if points > 1 { format!(" ({points} Gauss points each)") } else { String::new() }
+        match (points, name) {
+            (1, _) => String::new(),
+            (_, "element_nodal_stress") => format!(" ({points} nodes each)"),
+            _ => format!(" ({points} Gauss points each)"),
+        }
     );
     let ids = if nodal { r.node_ids()? } else { r.element_ids()? };
     let place = |entity: usize| -> [f64; 2] {

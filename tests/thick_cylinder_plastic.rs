@@ -180,3 +180,47 @@ fn no_volumetric_locking_limit_pressure_plateau_and_smooth_pressure_field() {
     assert!(worst <= 0.01 * limit, "nodal stresses off the fully plastic solution by {worst} MPa");
     assert!(ep.iter().all(|&e| e >= 0.0), "negative nodal plastic strain");
 }
+
+/// `[output] fields = [..., "element_nodal"]` keeps each element's own nodal stresses before
+/// averaging (for the jumps between elements): loaded past first yield (the bore's elements
+/// yield, the outer ones stay elastic), the mean over the elements at each node of
+/// `element_nodal_stress` is the averaged nodal stress ParaView shows, to round-off; a yielded
+/// element's nodal values are its nearest Gauss points' (copied), and not written by default.
+#[test]
+fn element_nodal_stresses_are_kept_on_request_and_average_to_the_nodal_ones() {
+    let steps = format!("[output]\nfields = [\"stress\", \"plastic_strain\", \"element_nodal\"]\n[[step]]\nincrements = 4\n{HOLD}\npressure = [ {{ surface = \"inner\", value = 80.0 }} ]\n");
+    let run = run_deck(&deck(false, 12, 1000.0, &steps), &[], 2, &[]);
+    run.assert_ok();
+    let res = Results::open(&run.h5);
+    let inc = res.last_increment();
+    let element_nodal = res.f64s(&format!("{inc}/element_nodal_stress"));
+    let gauss = res.f64s(&format!("{inc}/stress"));
+    let ep = res.f64s(&format!("{inc}/equivalent_plastic_strain"));
+    let conn = res.i64s("mesh/connectivity");
+    let nodal = res.f64s(&format!("{inc}/nodal/stress_tt"));
+    let nodes = nodal.len();
+    let (mut sums, mut counts) = (vec![0.0; nodes], vec![0.0; nodes]);
+    let (mut copied, mut extrapolated) = (0, 0);
+    for e in 0..conn.len() / 8 {
+        for a in 0..8 {
+            sums[conn[8 * e + a] as usize] += element_nodal[(8 * e + a) * 4 + 2];
+            counts[conn[8 * e + a] as usize] += 1.0;
+        }
+        if ep[9 * e..9 * e + 9].iter().any(|&v| v > 0.0) {
+            // corner 1 (xi = -1, eta = -1) takes Gauss point 1 (the first)
+            assert_eq!(element_nodal[8 * e * 4 + 2], gauss[9 * e * 4 + 2], "a yielded element copies its nearest Gauss point");
+            copied += 1;
+        } else {
+            extrapolated += 1;
+        }
+    }
+    assert!(copied > 0 && extrapolated > 0, "{copied} yielded and {extrapolated} elastic elements");
+    for n in 0..nodes {
+        let mean = sums[n] / counts[n];
+        assert!((mean - nodal[n]).abs() <= 1e-12 * nodal[n].abs().max(1.0), "node {n}: {mean} against {}", nodal[n]);
+    }
+    let default = run_deck(&deck(false, 2, 1000.0, &format!("[[step]]\n{HOLD}\npressure = [ {{ surface = \"inner\", value = 10.0 }} ]\n")), &[], 1, &[]);
+    default.assert_ok();
+    let file = Results::open(&default.h5);
+    assert!(file.file.dataset(&format!("{}/element_nodal_stress", file.last_increment())).is_err(), "not written by default");
+}

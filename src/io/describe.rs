@@ -40,6 +40,9 @@ pub fn describe(group: &str, name: &str) -> (&'static str, String) {
         ("initial", "vector") => ("mm", "zero vectors at the nodes: the t = 0 frame's displacement and reaction force".into()),
         ("initial", "scalar") => ("-", "zeros at the nodes: the t = 0 frame's stresses and strains".into()),
         ("initial", "temperature") => ("degC", "the reference temperature at the nodes (the t = 0 frame)".into()),
+        (_, "element_nodal_stress") => {
+            ("MPa", "Cauchy stress [s_rr, s_zz, s_tt, s_rz] at each element's 8 nodes before averaging (extrapolated or copied as for the nodal fields)".into())
+        }
         (_, "reaction_force") => ("N per radian", "reaction force r, z, 0 at the nodes with a prescribed displacement, 0 elsewhere".into()),
         (_, "pressure") if g.ends_with("nodal") => ("MPa", "hydrostatic pressure -(s_rr + s_zz + s_tt) / 3 of the nodal stress".into()),
         (_, "principal_stress_max") => ("MPa", "largest principal stress of the nodal stress (the hoop stress is principal)".into()),

@@ -7,7 +7,8 @@
 //! never extrapolated, so it is never below zero. Also: the displacement and the reaction force
 //! as 3-component vectors (r, z, 0) for Warp By Vector and glyphs, the temperature, and the
 //! contact state. Written per increment under `/increments/NNNNNN/nodal/`, one dataset per
-//! scalar so that every reader names it.
+//! scalar so that every reader names it; on request (`element_nodal`) also each element's own
+//! nodal stresses before averaging, `/increments/NNNNNN/element_nodal_stress`.
 
 use super::results::{write_rows, IncrementFields};
 use crate::dist::Partition;
@@ -78,6 +79,8 @@ pub struct NodalWriter {
     connectivity: Vec<[usize; 8]>,
     nodes: usize,
     node_slab: (usize, usize),
+    elements: usize,
+    element_slab: (usize, usize),
     recovery: Recovery,
     /// File row of each mesh node (contact slave nodes come by mesh index).
     node_position: Vec<usize>,
@@ -93,6 +96,8 @@ impl NodalWriter {
             connectivity,
             nodes: mesh.coords.len(),
             node_slab: (partition.node_offsets[rank], partition.node_offsets[rank + 1]),
+            elements: mesh.elements.len(),
+            element_slab: (partition.element_offsets[rank], partition.element_offsets[rank + 1]),
             recovery: Recovery::default(),
             node_position: partition.node_position.clone(),
             fields,
@@ -144,6 +149,11 @@ impl NodalWriter {
         }
         if !f.contact.is_empty() && self.fields.contact {
             self.write_contact(&g, f.contact, path)?;
+        }
+        if self.fields.element_nodal {
+            let stress: Vec<f64> =
+                f.stress.iter().zip(f.plastic_strain).flat_map(|(s, ep)| self.recovery.element_nodal(Rule::for_element(ep), s)).flatten().collect();
+            write_rows(increment, "element_nodal_stress", &[self.elements, 8, 4], self.element_slab, &stress, path)?;
         }
         Ok(())
     }

@@ -160,7 +160,7 @@ mod tests {
         let dir = std::env::temp_dir().join(format!("slideline-xdmf-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
         let h5 = dir.join("run.h5");
-        let mut sidecar = Sidecar::new(&h5, 10, 2, GridFields { fields: OutputFields::ALL, contact: false, friction: false }).unwrap();
+        let mut sidecar = Sidecar::new(&h5, 10, 2, GridFields { fields: OutputFields::DEFAULT, contact: false, friction: false }).unwrap();
         let text = std::fs::read_to_string(sidecar_path(&h5)).unwrap();
         assert!(text.contains("<Time Value=\"0\"/>") && text.contains("run.h5:/initial/vector"), "the t = 0 frame is there from the start");
         for (k, time) in [0.5, 1.0, 1.25].into_iter().enumerate() {

@@ -431,7 +431,7 @@ pub fn parse(text: &str, path: &Path) -> Result<Model> {
         stepping: deck.stepping.controls(),
         output: OutputControls {
             every: deck.output.every.unwrap_or(1),
-            fields: deck.output.fields.as_deref().map(OutputFields::from_names).transpose()?.unwrap_or(OutputFields::ALL),
+            fields: deck.output.fields.as_deref().map(OutputFields::from_names).transpose()?.unwrap_or(OutputFields::DEFAULT),
         },
         contacts,
         steps,

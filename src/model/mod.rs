@@ -249,15 +249,22 @@ pub struct OutputFields {
     pub temperature: bool,
     /// Contact gap, pressure, traction and status per pass and at the nodes.
     pub contact: bool,
+    /// The stress at each element's nodes before averaging (not written by default).
+    pub element_nodal: bool,
 }
 
 impl OutputFields {
-    pub const NAMES: [&'static str; 6] = ["stress", "von_mises", "plastic_strain", "strain", "temperature", "contact"];
-    pub const ALL: OutputFields = OutputFields { stress: true, von_mises: true, plastic_strain: true, strain: true, temperature: true, contact: true };
+    pub const NAMES: [&'static str; 7] = ["stress", "von_mises", "plastic_strain", "strain", "temperature", "contact", "element_nodal"];
+    /// What a run writes unless its deck says otherwise: everything but the element-nodal
+    /// stress (as large as the Gauss-point stress, and wanted only to see the jumps between
+    /// elements).
+    pub const DEFAULT: OutputFields =
+        OutputFields { stress: true, von_mises: true, plastic_strain: true, strain: true, temperature: true, contact: true, element_nodal: false };
 
     /// The fields named in `names` (each one of [`Self::NAMES`]).
     pub fn from_names(names: &[String]) -> Result<Self> {
-        let mut f = OutputFields { stress: false, von_mises: false, plastic_strain: false, strain: false, temperature: false, contact: false };
+        let mut f =
+            OutputFields { stress: false, von_mises: false, plastic_strain: false, strain: false, temperature: false, contact: false, element_nodal: false };
         for name in names {
             match name.as_str() {
                 "stress" => f.stress = true,
@@ -266,6 +273,7 @@ impl OutputFields {
                 "strain" => f.strain = true,
                 "temperature" => f.temperature = true,
                 "contact" => f.contact = true,
+                "element_nodal" => f.element_nodal = true,
                 "displacement" => {}
                 other => {
                     return Err(Error::input(format!(
@@ -281,7 +289,7 @@ impl OutputFields {
 
 impl Default for OutputControls {
     fn default() -> Self {
-        OutputControls { every: 1, fields: OutputFields::ALL }
+        OutputControls { every: 1, fields: OutputFields::DEFAULT }
     }
 }
 
