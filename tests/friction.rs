@@ -206,3 +206,29 @@ fn newton_converges_quadratically_while_the_fit_slides() {
         assert!(checked >= 2, "{integration}: too few asymptotic iterations to judge");
     }
 }
+
+/// What ParaView shows of friction (2 ranks, the slave nodes split between them): at the nodes,
+/// `friction_shear` and `contact_sliding` are each slave node's shear and sliding flag of its
+/// pass, 0 at every other node, in every increment.
+#[test]
+fn friction_shear_and_sliding_are_at_the_nodes_for_paraview() {
+    let text = deck(2.0e-4, 10, &format!("friction = {MU}\ntangential_penalty = 5.0e4"));
+    let run = run_deck(&text, &[], 2, &[]);
+    run.assert_ok();
+    let r = Results::open(&run.h5);
+    let nodes = r.u64s("mesh/contact/fit/pass0/nodes");
+    let (mut slid, mut stuck) = (0, 0);
+    for inc in r.increments() {
+        let (shear, sliding) = (r.f64s(&format!("{inc}/contact/fit/pass0/shear")), r.u8s(&format!("{inc}/contact/fit/pass0/sliding")));
+        let (nodal_shear, nodal_sliding) = (r.f64s(&format!("{inc}/nodal/friction_shear")), r.f64s(&format!("{inc}/nodal/contact_sliding")));
+        let mut expected = (vec![0.0; nodal_shear.len()], vec![0.0; nodal_shear.len()]);
+        for (k, &n) in nodes.iter().enumerate() {
+            expected.0[n as usize] = shear[k];
+            expected.1[n as usize] = f64::from(sliding[k]);
+        }
+        assert_eq!((nodal_shear, nodal_sliding), expected, "{inc}");
+        slid += sliding.iter().filter(|&&s| s == 1).count();
+        stuck += sliding.iter().filter(|&&s| s == 0).count();
+    }
+    assert!(slid > 0 && stuck > 0, "both sticking and sliding nodes were checked ({stuck}, {slid})");
+}
