@@ -97,6 +97,7 @@ const FUNCTIONS: &[&str] = &[
     "SNESSetFunction",
     "SNESSetJacobian",
     "SNESGetKSP",
+    "SNESGetType",
     "SNESGetLineSearch",
     "SNESLineSearchSetType",
     "SNESLineSearchShellSetUserFunc",

@@ -184,7 +184,7 @@ fn main() -> ExitCode {
                     },
                 )
             });
-            warn_unused_options(&session, root);
+            warn_unused_options(&session, root && !is_bad_input(&result));
             finish(result, root, |summary| report(&params, summary, &args.output))
         }
         Command::PenaltyStudy(args) => {
@@ -194,7 +194,7 @@ fn main() -> ExitCode {
             };
             let root = session.world().rank() == 0;
             let result = penalty_study(&session, &args);
-            warn_unused_options(&session, root);
+            warn_unused_options(&session, root && !is_bad_input(&result));
             match result {
                 Ok(()) => ExitCode::SUCCESS,
                 Err(e) => fail(&e, root),
@@ -227,7 +227,7 @@ fn main() -> ExitCode {
             let segment = model.as_ref().ok().and_then(|m| m.reaction_segment_degrees);
             let result =
                 model.and_then(|m| run(&session, &m, &RunOptions { output, progress: !quiet, verbose, monitor, restart: restart_from(&restart, increment) }));
-            warn_unused_options(&session, root);
+            warn_unused_options(&session, root && !is_bad_input(&result));
             finish(result, root, |summary| {
                 if let (Some(degrees), Some(last)) = (segment, summary.history.last()) {
                     // CalculiX's convention, for reading beside its .dat file
@@ -310,6 +310,11 @@ fn finish(result: Result<RunSummary, Error>, root: bool, then: impl FnOnce(&RunS
         }
         Err(e) => fail(&e, root),
     }
+}
+
+/// Whether a run ended on bad input (then options left unread say nothing more).
+fn is_bad_input<T>(result: &Result<T, Error>) -> bool {
+    result.as_ref().is_err_and(|e| e.exit_code() == 2)
 }
 
 /// Rank 0 names the PETSc options nothing read (a misspelt option is otherwise silently

@@ -223,3 +223,41 @@ fn a_geometry_or_a_binary_file_given_as_the_mesh_is_named() {
     let run = run_deck(&format!("[mesh]\nfile = \"b.msh\"\n{MATERIAL}{STEP}"), &[("b.msh", &bin)], 1, &[]);
     assert_rejected(&run, &["b.msh", "binary"]);
 }
+
+/// PETSc options that cannot work or would make the answers wrong are refused on 2 ranks with
+/// exit 2 and one line naming the option, before anything is written: a rerun with any of them
+/// leaves the good results file it would replace as it was. Seen failing before: `-snes_type
+/// bogus` and `-snes_max_it abc` exit 1 with PETSc's internals named, after the results file
+/// was truncated; `-snes_max_it 0`, `-snes_mf`, `-ksp_type preonly -pc_type jacobi` exit 3;
+/// `-snes_rtol -1`, `-snes_atol nan` and `-snes_type ksponly` ran (ksponly reporting success for
+/// increments out of equilibrium); `-options_file` naming a missing file exit 1.
+#[test]
+fn bad_petsc_options_are_refused_before_anything_is_written() {
+    let dir = tempfile::tempdir().unwrap();
+    let deck = dir.path().join("deck.toml");
+    std::fs::write(&deck, format!("{RECT}{MATERIAL}{STEP}")).unwrap();
+    let h5 = dir.path().join("out.h5");
+    let good = command_in(dir.path(), 2).arg("run").arg(&deck).arg("-o").arg(&h5).arg("-q").output().unwrap();
+    assert!(good.status.success(), "{}", String::from_utf8_lossy(&good.stderr));
+    let before = std::fs::read(&h5).unwrap();
+    for (options, needle) in [
+        (&["-snes_type", "bogus"][..], "-snes_type bogus: unknown SNES type"),
+        (&["-snes_type", "ksponly"], "-snes_type ksponly"),
+        (&["-snes_max_it", "abc"], "-snes_max_it \"abc\""),
+        (&["-snes_max_it", "0"], "-snes_max_it \"0\""),
+        (&["-snes_rtol", "-1"], "-snes_rtol \"-1\""),
+        (&["-snes_atol", "nan"], "-snes_atol \"nan\""),
+        (&["-snes_mf"], "-snes_mf"),
+        (&["-ksp_type", "preonly", "-pc_type", "jacobi"], "-pc_type jacobi"),
+        (&["-ksp_type", "gmres", "-pc_type", "bogus"], "PC type bogus"),
+        (&["-options_file", "/nonexistent/options"], "-options_file /nonexistent/options"),
+    ] {
+        let out = command_in(dir.path(), 2).arg("run").arg(&deck).arg("-o").arg(&h5).arg("-q").arg("--").args(options).output().unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        let errors: Vec<&str> = err.lines().filter(|l| l.starts_with("error:")).collect();
+        assert_eq!(out.status.code(), Some(2), "{options:?}: {err}");
+        assert!(errors.len() == 1 && errors[0].contains(needle) && !err.contains("error code"), "{options:?}: {err}");
+        assert!(!err.contains("warning: PETSc option"), "{options:?}: no warning beside the error: {err}");
+        assert_eq!(std::fs::read(&h5).unwrap(), before, "{options:?}: the good results file was touched");
+    }
+}

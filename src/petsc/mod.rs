@@ -14,6 +14,7 @@ pub mod sys;
 mod linesearch;
 mod log;
 mod matrix;
+pub mod options;
 mod partition;
 mod snes;
 mod vector;
@@ -68,6 +69,7 @@ impl PetscSession {
     /// `-snes_monitor -pc_type gamg`) put in the options database as if given on the command line.
     /// The PETSC_OPTIONS environment variable is honoured as well, as PETSc always does.
     pub fn initialize(petsc_options: &[String]) -> Result<Self> {
+        options::check(petsc_options)?;
         // Scotch (the partitioner under ptscotch) runs several threads whose interleaving
         // changes the partition from run to run; with one thread repeated runs are identical.
         // Set before MPI and PETSc start any thread; a user's own setting is kept.

@@ -18,7 +18,7 @@ pub use field_test::FieldRatios;
 use field_test::ForceAverage;
 use mpi::topology::SimpleCommunicator;
 use mpi::traits::*;
-use std::ffi::c_void;
+use std::ffi::{c_void, CStr};
 use std::marker::PhantomData;
 
 /// What a nonlinear problem provides to SNES. Implementations must be collective-safe:
@@ -104,6 +104,15 @@ impl SolveReport {
 
 const HISTORY_LEN: usize = 1000;
 
+/// What the options database refused (an unknown type, a value that is no number) is bad
+/// input, named in PETSc's own words.
+fn option_error(e: Error) -> Error {
+    match e {
+        Error::Petsc { message, .. } => Error::input(format!("PETSc options: {message} (`-- -help` lists what each option takes)")),
+        e => e,
+    }
+}
+
 /// An owned SNES configured as Newton + line search (cp) + preonly/LU(MUMPS); every choice
 /// can be overridden from the options database (`-snes_*`, `-ksp_*`, `-pc_*`).
 pub struct Snes<'s> {
@@ -133,9 +142,10 @@ pub struct Snes<'s> {
 /// would be applied once instead of solving: on one rank Newton then fails to converge, on
 /// two PETSc may refuse the type. Refused up front, the same on any number of ranks.
 fn check_preconditioner_alone(options: &[String]) -> Result<()> {
-    let value = |name: &str| options.iter().position(|o| o == name).and_then(|k| options.get(k + 1));
+    let value = |name: &str| options.iter().rposition(|o| o == name).and_then(|k| options.get(k + 1));
+    let preonly = value("-ksp_type").is_none_or(|k| k == "preonly");
     match value("-pc_type") {
-        Some(pc) if !["lu", "cholesky"].contains(&pc.as_str()) && value("-ksp_type").is_none() => Err(Error::input(format!(
+        Some(pc) if !["lu", "cholesky", "redundant"].contains(&pc.as_str()) && preonly => Err(Error::input(format!(
             "-pc_type {pc} with slideline's default -ksp_type preonly applies the preconditioner once instead of solving: add a Krylov method (e.g. -ksp_type gmres), or use -pc_type lu"
         ))),
         _ => Ok(()),
@@ -202,7 +212,16 @@ impl<'s> Snes<'s> {
                 ),
                 "SNESSetConvergenceHistory",
             )?;
-            check(sys::SNESSetFromOptions(self.raw), "SNESSetFromOptions")
+            check(sys::SNESSetFromOptions(self.raw), "SNESSetFromOptions").map_err(option_error)?;
+            // the type may come from an options file or PETSC_OPTIONS too
+            let mut kind: sys::SNESType = std::ptr::null();
+            check(sys::SNESGetType(self.raw, &mut kind), "SNESGetType")?;
+            // SAFETY: SNESGetType points at the type's NUL-terminated name, owned by the SNES.
+            let kind = if kind.is_null() { String::new() } else { CStr::from_ptr(kind).to_string_lossy().into_owned() };
+            if !super::options::JUDGED_SNES_TYPES.contains(&kind.as_str()) {
+                return Err(super::options::snes_type_refused(&kind));
+            }
+            Ok(())
         }
     }
 
@@ -217,7 +236,16 @@ impl<'s> Snes<'s> {
         // SAFETY: valid handle.
         unsafe {
             check(sys::SNESSetTolerances(self.raw, atol.unwrap_or(DEFAULT), rtol.unwrap_or(DEFAULT), 0.0, maxit, -2), "SNESSetTolerances")?;
-            check(sys::SNESSetFromOptions(self.raw), "SNESSetFromOptions")
+            check(sys::SNESSetFromOptions(self.raw), "SNESSetFromOptions").map_err(option_error).map_err(option_error)?;
+            // the type may come from an options file or PETSC_OPTIONS too
+            let mut kind: sys::SNESType = std::ptr::null();
+            check(sys::SNESGetType(self.raw, &mut kind), "SNESGetType")?;
+            // SAFETY: SNESGetType points at the type's NUL-terminated name, owned by the SNES.
+            let kind = if kind.is_null() { String::new() } else { CStr::from_ptr(kind).to_string_lossy().into_owned() };
+            if !super::options::JUDGED_SNES_TYPES.contains(&kind.as_str()) {
+                return Err(super::options::snes_type_refused(&kind));
+            }
+            Ok(())
         }
     }
 

@@ -91,6 +91,9 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
     let controls = model.stepping;
     let partition = Partition::new(session, &model.mesh, &super::affinity::partition_affinity(model))?;
     let resume = options.restart.as_ref().map(|from| restart_point(from, &options.output, model)).transpose()?;
+    // PETSc's options are read (and a bad one refused) before anything is written: a rerun
+    // with a misspelt type must not destroy the results file it would replace
+    drop(Snes::new(session)?);
     let (_lock, note) = ResultsLock::acquire(&options.output, &world)?;
     if let (true, Some(note)) = (root, note) {
         println!("note: {note}");
