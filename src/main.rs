@@ -144,6 +144,10 @@ fn main() -> ExitCode {
                 Err(e) => return fail(&e, launched_as_rank_zero()),
             };
             if let Some(path) = &args.export_inp {
+                // checked before any work; never the --params file it may come from
+                if let Err(e) = slideline::io::check_output_path(path, args.params.as_deref().map(|p| (p, "the --params file"))) {
+                    return fail(&e, launched_as_rank_zero());
+                }
                 // no MPI needed: every rank would write the same file
                 return match model::bellows::model(&params).and_then(|m| model::inp::write(&m, &params.title(), path)) {
                     Ok(()) => {
@@ -153,7 +157,7 @@ fn main() -> ExitCode {
                     Err(e) => fail(&e, launched_as_rank_zero()),
                 };
             }
-            if let Err(e) = slideline::io::check_output_path(&args.output, None) {
+            if let Err(e) = slideline::io::check_output_path(&args.output, args.params.as_deref().map(|p| (p, "the --params file"))) {
                 return fail(&e, launched_as_rank_zero());
             }
             let session = match PetscSession::initialize(&args.petsc) {

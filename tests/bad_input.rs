@@ -177,15 +177,24 @@ fn a_results_file_in_use_is_refused_and_a_stale_lock_replaced() {
     let deck = format!("{RECT}{MATERIAL}{STEP}");
     let dir = tempfile::tempdir().unwrap();
     std::fs::write(dir.path().join("deck.toml"), &deck).unwrap();
-    let lock = dir.path().join("out.h5.lock");
+    let lock = dir.path().join("out.lock");
     let host = std::fs::read_to_string("/proc/sys/kernel/hostname").unwrap();
-    let run = || command_in(dir.path(), 1).current_dir(dir.path()).args(["run", "deck.toml", "-o", "out.h5"]).output().unwrap();
+    let run_to = |output: &str| command_in(dir.path(), 1).current_dir(dir.path()).args(["run", "deck.toml", "-o", output]).output().unwrap();
+    let run = || run_to("out.h5");
     // held by this test process: alive
     std::fs::write(&lock, format!("host {} pid {}\n", host.trim(), std::process::id())).unwrap();
     let out = run();
     let held = Run { h5: dir.path().join("out.h5"), dir: tempfile::tempdir().unwrap(), output: out };
-    assert_rejected(&held, &["out.h5", "another run is writing it", "out.h5.lock"]);
+    assert_rejected(&held, &["out.h5", "another run is writing it", "out.lock"]);
     assert!(!dir.path().join("out.h5").exists(), "nothing written");
+    // the same files under other names: out.hdf5 would write the same out.xmf and out.sta, a
+    // link leads to the same file (seen failing before: both ran, into the running run's files)
+    std::os::unix::fs::symlink(dir.path().join("out.h5"), dir.path().join("link.h5")).unwrap();
+    for other in ["out.hdf5", "link.h5"] {
+        let held = Run { h5: dir.path().join(other), dir: tempfile::tempdir().unwrap(), output: run_to(other) };
+        assert_rejected(&held, &["another run is writing it", "out.lock"]);
+    }
+    assert!(!dir.path().join("out.h5").exists() && !dir.path().join("out.xmf").exists(), "nothing written");
     // held by a process that is gone (pids stay below 2^22 on Linux)
     std::fs::write(&lock, format!("host {} pid 4194304\n", host.trim())).unwrap();
     let out = run();
@@ -259,5 +268,38 @@ fn bad_petsc_options_are_refused_before_anything_is_written() {
         assert!(errors.len() == 1 && errors[0].contains(needle) && !err.contains("error code"), "{options:?}: {err}");
         assert!(!err.contains("warning: PETSc option"), "{options:?}: no warning beside the error: {err}");
         assert_eq!(std::fs::read(&h5).unwrap(), before, "{options:?}: the good results file was touched");
+    }
+}
+
+/// A run never writes over what it reads, under whatever name: a TOML deck's mesh file, an .inp
+/// deck's include, a hard link to the deck, and `bellows --export-inp` onto its `--params` file
+/// are refused with exit 2 naming the input, and the input stays as it was. Seen failing
+/// before: each of them was overwritten.
+#[test]
+fn outputs_never_overwrite_an_input_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let root = dir.path();
+    std::fs::copy(data("patch5.msh"), root.join("m.msh")).unwrap();
+    let step = "[[step]]\nboundary = [ { set = \"b1\", ur = 0.0, uz = 0.0 }, { set = \"b2\", uz = 0.0 } ]\n";
+    std::fs::write(root.join("deck.toml"), format!("[mesh]\nfile = \"m.msh\"\n{MATERIAL}{step}")).unwrap();
+    std::fs::hard_link(root.join("deck.toml"), root.join("alias.h5")).unwrap();
+    for name in ["lame.inp", "lame_mesh.inc"] {
+        std::fs::copy(data(&format!("inp/{name}")), root.join(name)).unwrap();
+    }
+    std::fs::write(root.join("joint.toml"), "plies = 2\n").unwrap();
+    let inputs = ["m.msh", "deck.toml", "lame.inp", "lame_mesh.inc", "joint.toml"].map(|f| (f, std::fs::read(root.join(f)).unwrap()));
+    for (args, needle) in [
+        (&["run", "deck.toml", "-o", "m.msh"][..], "an input file of the model"),
+        (&["run", "deck.toml", "-o", "alias.h5"], "the input deck"),
+        (&["run", "lame.inp", "-o", "lame_mesh.inc"], "an input file of the model"),
+        (&["bellows", "--params", "joint.toml", "--export-inp", "joint.toml"], "the --params file"),
+        (&["bellows", "--params", "joint.toml", "-o", "joint.toml"], "the --params file"),
+    ] {
+        let out = command_in(root, 1).current_dir(root).args(args).output().unwrap();
+        let run = Run { h5: root.join("none.h5"), dir: tempfile::tempdir().unwrap(), output: out };
+        assert_rejected(&run, &["cannot write", needle]);
+    }
+    for (name, bytes) in inputs {
+        assert_eq!(std::fs::read(root.join(name)).unwrap(), bytes, "{name} was written over");
     }
 }

@@ -1,5 +1,6 @@
-//! A lock file beside a results file (`FILE.lock`, created exclusively by rank 0, holding the
-//! host and process id), so that two runs writing the same results never mix their data. A
+//! A lock file beside a results file (`STEM.lock`, created exclusively by rank 0, holding the
+//! host and process id), so that two runs writing the same results (or the same sidecar and
+//! status files) never mix their data. A
 //! lock left by a process of this host that is gone is replaced, with a note.
 
 use crate::error::{Error, Result};
@@ -18,11 +19,24 @@ fn host() -> String {
     std::fs::read_to_string("/proc/sys/kernel/hostname").map(|h| h.trim().to_string()).unwrap_or_else(|_| "unknown".into())
 }
 
-/// The lock's path for results file `results`.
+/// The lock's path for results file `results`: beside the file a link names (the file itself
+/// is what two runs must not share), named by its stem, as the sidecar and status files are
+/// (`out.h5` and `out.hdf5` would write one `out.xmf` and `out.sta`): `DIR/out.lock`.
 pub fn lock_path(results: &Path) -> PathBuf {
-    let mut name = results.file_name().unwrap_or_default().to_os_string();
-    name.push(".lock");
-    results.with_file_name(name)
+    resolve(results, 0).with_extension("lock")
+}
+
+/// The file `path` leads to through links, whether or not it exists yet.
+fn resolve(path: &Path, depth: usize) -> PathBuf {
+    let parent = path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
+    let dir = std::fs::canonicalize(parent).unwrap_or_else(|_| parent.to_path_buf());
+    let here = dir.join(path.file_name().unwrap_or_default());
+    match std::fs::read_link(&here) {
+        // a link (dangling too: the run would create its target) leads on, relative to its own
+        // directory; 40 links deep is where the kernel stops as well
+        Ok(target) if depth < 40 => resolve(&dir.join(target), depth + 1),
+        _ => here,
+    }
 }
 
 impl ResultsLock {

@@ -326,7 +326,10 @@ impl ResultsFile {
         }
         self.append_history(row)?;
         if let Some(g) = &group {
-            // last: the mark that every dataset and the history row of the increment are written
+            // last: the mark that every dataset and the history row of the increment are on
+            // disk, from every rank (flushed first, so a rank killed before the mark is
+            // written never leaves a mark over data that is not there)
+            self.file.flush().map_err(h5err(&self.path))?;
             g.new_attr::<u8>().create(COMPLETE).map_err(h5err(&self.path))?.write_scalar(&1u8).map_err(h5err(&self.path))?;
         }
         self.file.flush().map_err(h5err(&self.path))?;

@@ -398,6 +398,7 @@ pub fn model(p: &BellowsParams) -> Result<Model> {
         contacts,
         steps,
         source_text,
+        source_files: Vec::new(),
         reaction_segment_degrees: None,
     };
     model.validate()?;

@@ -301,9 +301,11 @@ pub fn read(path: &Path) -> Result<Model> {
 /// Parses deck `text`; `path` names it in messages and anchors relative mesh paths.
 pub fn parse(text: &str, path: &Path) -> Result<Model> {
     let deck: DeckFile = toml::from_str(text).map_err(|e| Error::input(format!("{}: {}", path.display(), e.to_string().trim_end())))?;
+    let mut source_files = vec![path.to_path_buf()];
     let (mesh, sets) = match (&deck.mesh.file, &deck.mesh.rectangle, deck.mesh.block.is_empty()) {
         (Some(file), None, true) => {
             let full = path.parent().unwrap_or(Path::new(".")).join(file);
+            source_files.push(full.clone());
             gmsh::read(&full)?
         }
         (None, Some(r), true) => rectangle(r.r, r.z, r.divisions)?,
@@ -436,6 +438,7 @@ pub fn parse(text: &str, path: &Path) -> Result<Model> {
         contacts,
         steps,
         source_text: text.to_string(),
+        source_files,
         reaction_segment_degrees: None,
     };
     model.validate()?;

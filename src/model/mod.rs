@@ -353,6 +353,9 @@ pub struct Model {
     pub steps: Vec<Step>,
     /// The text the model was read from, kept for the output file.
     pub source_text: String,
+    /// The files it was read from (the deck, its mesh, its includes): a run never writes over
+    /// them.
+    pub source_files: Vec<std::path::PathBuf>,
     /// Also write reactions per segment of this angle (degrees): 2 for CalculiX/Abaqus decks,
     /// whose axisymmetric reactions are per 2-degree segment.
     pub reaction_segment_degrees: Option<f64>,

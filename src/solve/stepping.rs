@@ -90,6 +90,11 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
     let nodes = model.mesh.coords.len();
     let controls = model.stepping;
     let partition = Partition::new(session, &model.mesh, &super::affinity::partition_affinity(model))?;
+    // the deck, its mesh and its includes are never written over, whatever name leads to them
+    let written = [options.output.clone(), crate::io::xdmf::sidecar_path(&options.output), crate::io::status::status_path(&options.output)];
+    for (output, input) in written.iter().flat_map(|w| model.source_files.iter().map(move |i| (w, i))) {
+        crate::io::check_output_path(output, Some((input, "an input file of the model")))?;
+    }
     let resume = options.restart.as_ref().map(|from| restart_point(from, &options.output, model)).transpose()?;
     // PETSc's options are read (and a bad one refused) before anything is written: a rerun
     // with a misspelt type must not destroy the results file it would replace

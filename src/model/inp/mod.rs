@@ -255,11 +255,17 @@ fn build(cards: &[Card], source_text: String) -> Result<InpModel> {
             other => return Err(card.error(format!("keyword *{other} is outside the subset slideline reads (docs/inp.md lists it)"))),
         }
     }
-    b.finish(source_text)
+    let mut files: Vec<std::path::PathBuf> = Vec::new();
+    for card in cards {
+        if !files.iter().any(|f| f == card.at.file.as_ref()) {
+            files.push(card.at.file.as_ref().clone());
+        }
+    }
+    b.finish(source_text, files)
 }
 
 impl Builder {
-    fn finish(mut self, source_text: String) -> Result<InpModel> {
+    fn finish(mut self, source_text: String, source_files: Vec<std::path::PathBuf>) -> Result<InpModel> {
         if self.in_step {
             let at = &self.steps.last().expect("in a step").at;
             return Err(error_at(at, "STEP", "has no *END STEP"));
@@ -347,6 +353,7 @@ impl Builder {
             contacts,
             steps,
             source_text,
+            source_files,
             reaction_segment_degrees: Some(CALCULIX_SEGMENT_DEGREES),
         };
         model.validate()?;
