@@ -308,3 +308,28 @@ fn post_commands_work_as_documented() {
     assert!(widest <= 120, "a {widest}-character line:\n{text}");
     assert!(text.contains("largest difference: reaction_") && text.contains("0.0000e0 N per radian"), "{text}");
 }
+
+/// A file that lost an increment's group says so (it said nothing), and a connectivity row that
+/// names a node the mesh has not is refused by name (`post --linearize` panicked on it).
+#[test]
+fn post_names_a_missing_increment_and_a_corrupt_connectivity() {
+    let dir = tempfile::tempdir().unwrap();
+    let (h5, run) = run_fit(dir.path(), 1, &["--quiet"]);
+    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+    let h5s = h5.to_str().unwrap();
+    hdf5::File::open_rw(&h5).unwrap().group("increments").unwrap().unlink("000003").unwrap();
+    let out = post(dir.path(), &[h5s]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success() && err.contains("increment(s) 3 should be in the file and are not"), "{err}");
+    {
+        let file = hdf5::File::open_rw(&h5).unwrap();
+        let ds = file.dataset("mesh/connectivity").unwrap();
+        let mut conn = ds.read_raw::<i64>().unwrap();
+        conn[9] = 1_000_000;
+        ds.write_raw(&conn).unwrap();
+    }
+    let out = post(dir.path(), &[h5s, "--linearize", "100,2:110,2"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(err.contains("mesh/connectivity names node row 1000000 in element row 1") && !err.contains("panicked"), "{err}");
+}

@@ -191,3 +191,79 @@ fn a_finished_compression_carried_on_with_a_cycle_equals_the_cycle_run() {
     let held = Results::open(&dir.path().join("compressed.h5")).history("step").len();
     assert_continues(&dir.path().join("cycle.h5"), &dir.path().join("carried.h5"), held);
 }
+
+/// A restart reads nothing it has not checked: a state corrupted in any of these ways is refused
+/// with exit 2 and one line naming the dataset, never a panic, a loop or a run from a wrong
+/// state. Seen failing before: a slip reference on an edge that does not exist panicked (in
+/// the contact evaluation), a displacement with rows missing panicked or was read as valid, a
+/// Gauss point index out of range was read, NaN displacements and a negative next increment
+/// exit 3 after the first attempt, a next increment of 0 looped forever.
+#[test]
+fn a_corrupt_restart_state_is_refused_by_name() {
+    let dir = tempfile::tempdir().unwrap();
+    let deck = common::pushed_fit_deck(2.0e-4, 4, "friction = 0.2", r#"{ set = "tube_bottom", uz = 0.0 }, { set = "tube_top", uz = 0.0 }"#)
+        .replace("poissons_ratio = 0.3\n", "poissons_ratio = 0.3\nmodel = \"j2\"\nyield_stress = 20.0\nhardening_modulus = 1000.0\n");
+    std::fs::write(dir.path().join("fit.toml"), &deck).unwrap();
+    let run = |args: &[&str]| command_in(dir.path(), 1).current_dir(dir.path()).arg("run").arg("fit.toml").args(args).output().unwrap();
+    ok(run(&["-o", "good.h5", "-q"]));
+    type Corruption = fn(&hdf5::Group);
+    let cases: [(&str, Corruption, &str); 6] = [
+        (
+            "slip edge",
+            |g| {
+                let ds = g.dataset("state/slip_pass0").unwrap();
+                let mut v = ds.read_raw::<f64>().unwrap();
+                v[0] = 1.0e6;
+                ds.write_raw(&v).unwrap();
+            },
+            "slip_pass0",
+        ),
+        (
+            "rows missing",
+            |g| {
+                let u = g.dataset("displacement").unwrap().read_raw::<f64>().unwrap();
+                g.unlink("displacement").unwrap();
+                g.new_dataset::<f64>().shape([u.len() / 2 - 3, 2]).create("displacement").unwrap().write_raw(&u[..u.len() - 6]).unwrap();
+            },
+            "displacement has",
+        ),
+        (
+            "NaN displacement",
+            |g| {
+                let ds = g.dataset("displacement").unwrap();
+                let mut v = ds.read_raw::<f64>().unwrap();
+                v[3] = f64::NAN;
+                ds.write_raw(&v).unwrap();
+            },
+            "displacement is not finite",
+        ),
+        (
+            "Gauss point index",
+            |g| {
+                let ds = g.dataset("state/plastic_points").unwrap();
+                let mut v = ds.read_raw::<u64>().unwrap();
+                v[1] = 12;
+                ds.write_raw(&v).unwrap();
+            },
+            "plastic_points",
+        ),
+        ("zero next increment", |g| g.group("state").unwrap().attr("next_increment_size").unwrap().write_scalar(&0.0f64).unwrap(), "next_increment_size is 0"),
+        (
+            "negative next increment",
+            |g| g.group("state").unwrap().attr("next_increment_size").unwrap().write_scalar(&-0.25f64).unwrap(),
+            "next_increment_size is -0.25",
+        ),
+    ];
+    for (what, corrupt, needle) in cases {
+        std::fs::copy(dir.path().join("good.h5"), dir.path().join("bad.h5")).unwrap();
+        {
+            let file = hdf5::File::open_rw(dir.path().join("bad.h5")).unwrap();
+            corrupt(&file.group("increments/000005").unwrap());
+        }
+        let out = run(&["--restart", "bad.h5", "-o", "again.h5", "-q"]);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{what}: {err}");
+        assert!(err.contains(needle) && err.contains("cannot restart from") && err.lines().filter(|l| l.starts_with("error:")).count() == 1, "{what}: {err}");
+        assert!(!err.contains("panicked"), "{what}: {err}");
+    }
+}

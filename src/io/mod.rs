@@ -39,7 +39,11 @@ pub fn check_output_path(path: &Path, input: Option<(&Path, &str)>) -> Result<()
             return refuse(format!("it is {what} ({}), which this command reads; give the output another name", input.display()));
         }
     }
-    if path.exists() {
+    if let Ok(meta) = std::fs::metadata(path) {
+        // a device (/dev/full, /dev/null), a FIFO or a socket is no place for a file
+        if !meta.is_file() {
+            return refuse("it is not a regular file; give a file name".into());
+        }
         if let Err(e) = std::fs::OpenOptions::new().write(true).open(path) {
             return refuse(e.to_string());
         }

@@ -103,9 +103,22 @@ impl ResultsReader {
         Ok(self.read_f64("mesh/coordinates")?.chunks_exact(2).map(|c| [c[0], c[1]]).collect())
     }
 
-    /// Q8 connectivity as rows of `coordinates`.
+    /// Q8 connectivity as rows of `coordinates` (checked: a row that names no node is refused).
     pub fn connectivity(&self) -> Result<Vec<[usize; 8]>> {
-        Ok(self.read_i64("mesh/connectivity")?.chunks_exact(8).map(|c| std::array::from_fn(|k| c[k] as usize)).collect())
+        let flat = self.read_i64("mesh/connectivity")?;
+        let nodes = self.file.dataset("mesh/coordinates").map(|d| d.shape().first().copied().unwrap_or(0)).unwrap_or(0) as i64;
+        if flat.len() % 8 != 0 {
+            return Err(Error::input(format!("{}: mesh/connectivity holds {} values, not 8 per element", self.path.display(), flat.len())));
+        }
+        if let Some(k) = flat.iter().position(|&n| n < 0 || n >= nodes) {
+            return Err(Error::input(format!(
+                "{}: mesh/connectivity names node row {} in element row {}, and the mesh has {nodes} nodes",
+                self.path.display(),
+                flat[k],
+                k / 8
+            )));
+        }
+        Ok(flat.chunks_exact(8).map(|c| std::array::from_fn(|k| c[k] as usize)).collect())
     }
 
     /// External node numbers (Gmsh tags), in file order.
@@ -191,6 +204,16 @@ impl ResultsReader {
         let lengths: Vec<(String, usize)> =
             self.history_columns()?.into_iter().map(|c| Ok((c.clone(), self.read_f64(&format!("history/{c}"))?.len()))).collect::<Result<_>>()?;
         let held = self.rows_held()?;
+        let missing = self.missing_increments(held)?;
+        if !missing.is_empty() {
+            let shown: Vec<String> = missing.iter().take(10).map(usize::to_string).collect();
+            notes.push(format!(
+                "{}: the fields of increment(s) {}{} should be in the file and are not (their history rows are)",
+                self.path.display(),
+                shown.join(", "),
+                if missing.len() > 10 { format!(" and {} more", missing.len() - 10) } else { String::new() }
+            ));
+        }
         if lengths.iter().any(|(_, n)| *n != held) {
             let (shortest, n) = lengths.iter().min_by_key(|c| c.1).cloned().unwrap_or_default();
             notes.push(format!(
@@ -200,6 +223,24 @@ impl ResultsReader {
             ));
         }
         Ok(notes)
+    }
+
+    /// The increments among the first `rows` whose fields the run wrote (by its `output_every`
+    /// and the last of each step) that have no group (none for files without the attribute).
+    fn missing_increments(&self, rows: usize) -> Result<Vec<usize>> {
+        let Ok(every) = self.file.attr(super::results::OUTPUT_EVERY).and_then(|a| a.read_scalar::<u32>()) else {
+            return Ok(Vec::new());
+        };
+        let (step, load_factor) = (self.read_f64("history/step")?, self.read_f64("history/load_factor")?);
+        let groups = self.file.group("increments").and_then(|g| g.member_names()).unwrap_or_default();
+        let last_of_step = |k: usize| load_factor.get(k).is_some_and(|&l| l >= 1.0) || (k + 1 < step.len() && step[k + 1] != step[k]);
+        // a restart's file holds the rows before it without their fields
+        let restarted: usize = self.text_attr("restarted_from").ok().and_then(|t| t.rsplit(' ').next()?.parse().ok()).unwrap_or(0);
+        Ok((restarted..rows.min(step.len()))
+            .filter(|&k| last_of_step(k) || (k + 1).is_multiple_of(every.max(1) as usize))
+            .map(|k| k + 1)
+            .filter(|n| !groups.contains(&format!("{n:06}")))
+            .collect())
     }
 
     /// Nodal displacement (u_r, u_z) at an increment.

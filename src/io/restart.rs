@@ -229,7 +229,12 @@ impl RestartPoint {
             }
         };
         let number: usize = name.parse().map_err(|_| bad(format!("increment group {name}")))?;
-        let step = reader.increment_attr(&name, "step")? as usize - 1;
+        // every value read is checked before it is used: a corrupt file is refused by name
+        let step_attr = reader.increment_attr(&name, "step")?;
+        if !(step_attr >= 1.0 && step_attr.fract() == 0.0) {
+            return Err(bad(format!("increments/{name} attribute step is {step_attr}, not a step number")));
+        }
+        let step = step_attr as usize - 1;
         let names: Vec<String> = reader.text_attr("step_names")?.lines().map(str::to_string).collect();
         for (k, saved) in names.iter().enumerate().take(step + 1) {
             match model.steps.get(k) {
@@ -244,14 +249,21 @@ impl RestartPoint {
                 None => return Err(bad(format!("increment {number} is in step {} ({saved:?}), the deck has {} step(s)", k + 1, model.steps.len()))),
             }
         }
-        let to_model = |file_order: Vec<[f64; 2]>| {
+        let to_model = |group: &str, file_order: Vec<[f64; 2]>| -> Result<Vec<[f64; 2]>> {
+            let what = format!("increments/{group}/displacement");
+            if file_order.len() != nodes.len() {
+                return Err(bad(format!("{what} has {} rows, the mesh {} nodes", file_order.len(), nodes.len())));
+            }
+            if let Some(k) = file_order.iter().position(|u| !u.iter().all(|v| v.is_finite())) {
+                return Err(bad(format!("{what} is not finite at row {k}")));
+            }
             let mut out = vec![[0.0; 2]; nodes.len()];
             for (k, v) in file_order.into_iter().enumerate() {
                 out[nodes[k]] = v;
             }
-            out
+            Ok(out)
         };
-        let displacement = to_model(reader.displacement(&name)?);
+        let displacement = to_model(&name, reader.displacement(&name)?)?;
         // the last complete increment of each earlier step (always written) gives its end
         let mut step_ends = Vec::new();
         let all = reader.increments()?;
@@ -261,12 +273,15 @@ impl RestartPoint {
                 .rev()
                 .find(|g| reader.increment_attr(g, "step").ok() == Some((k + 1) as f64) && reader.increment_attr(g, "load_factor").ok() == Some(1.0));
             let end = end.ok_or_else(|| bad(format!("the end of step {} is not in the file", k + 1)))?;
-            step_ends.push(to_model(reader.displacement(end)?));
+            step_ends.push(to_model(end, reader.displacement(end)?)?);
         }
         let group = format!("increments/{name}/state");
         let file = reader.file();
         let sg = file.group(&group).map_err(|e| bad(format!("{group}: {e}")))?;
         let next_size = sg.attr("next_increment_size").and_then(|a| a.read_scalar::<f64>()).map_err(|e| bad(format!("{group}: {e}")))?;
+        if !(next_size > 0.0 && next_size <= 1.0) {
+            return Err(bad(format!("{group} attribute next_increment_size is {next_size}, not a load factor in (0, 1]")));
+        }
         let refits = sg.attr("pattern_refits").and_then(|a| a.read_scalar::<u64>()).map_err(|e| bad(format!("{group}: {e}")))? as usize;
         let read_u64 = |ds: &str| -> Result<Vec<u64>> {
             if !sg.link_exists(ds) {
@@ -284,28 +299,48 @@ impl RestartPoint {
         let node = |id: u64| node_index.get(&id).copied().ok_or_else(|| bad(format!("node {id} of its state is not in the mesh")));
         let points = read_u64("plastic_points")?;
         let states = read_f64("plastic_state")?;
+        if points.len() / 2 != states.len() / 5 || points.len() % 2 != 0 || states.len() % 5 != 0 {
+            return Err(bad(format!("{group}/plastic_points ({} values) and plastic_state ({} values) do not pair up", points.len(), states.len())));
+        }
         let mut plastic = Vec::with_capacity(points.len() / 2);
         for (p, s) in points.chunks_exact(2).zip(states.chunks_exact(5)) {
             let e = elements.get(&p[0]).copied().ok_or_else(|| bad(format!("element {} of its state is not in the mesh", p[0])))?;
+            if p[1] >= 9 || !s.iter().all(|v| v.is_finite()) || s[4] < 0.0 {
+                return Err(bad(format!("{group}/plastic_points, plastic_state: Gauss point {} of element {} ({s:?}) is no state", p[1], p[0])));
+            }
             plastic.push((e, p[1] as usize, PointState { plastic: [s[0], s[1], s[2], s[3]], ep: s[4] }));
         }
         let passes = sg.attr("contact_passes").and_then(|a| a.read_scalar::<u64>()).map_err(|e| bad(format!("{group}: {e}")))? as usize;
+        let master_edges = pass_master_edges(model);
+        if passes != master_edges.len() {
+            return Err(bad(format!("{group} holds {passes} contact passes, the model has {}", master_edges.len())));
+        }
         let mut multipliers = Vec::new();
         for p in 0..passes {
             let ids = read_u64(&format!("multiplier_nodes_pass{p}"))?;
             let values = read_f64(&format!("multipliers_pass{p}"))?;
+            if ids.len() != values.len() || !values.iter().all(|v| v.is_finite()) {
+                return Err(bad(format!("{group}/multipliers_pass{p}: {} values for {} nodes, or not finite", values.len(), ids.len())));
+            }
             multipliers.push(ids.into_iter().zip(values).map(|(id, v)| Ok((node(id)?, v))).collect::<Result<Vec<_>>>()?);
         }
         let mut slip = Vec::new();
-        for p in 0..passes {
+        for (p, &edges) in master_edges.iter().enumerate() {
             let ids = read_u64(&format!("slip_nodes_pass{p}"))?;
             let values = read_f64(&format!("slip_pass{p}"))?;
-            slip.push(
-                ids.into_iter()
-                    .zip(values.chunks_exact(3))
-                    .map(|(id, v)| Ok((node(id)?, SlipPoint { edge: v[0] as usize, xi: v[1], traction: v[2] })))
-                    .collect::<Result<Vec<_>>>()?,
-            );
+            let what = format!("{group}/slip_pass{p}");
+            if 3 * ids.len() != values.len() {
+                return Err(bad(format!("{what}: {} values for {} nodes", values.len(), ids.len())));
+            }
+            let point = |v: &[f64]| -> Result<SlipPoint> {
+                // an edge of the pass's master surface, a coordinate on it, a finite traction
+                let edge_ok = v[0] >= 0.0 && v[0].fract() == 0.0 && (v[0] as usize) < edges;
+                if !edge_ok || !(v[1].abs() <= 1.5) || !v[2].is_finite() {
+                    return Err(bad(format!("{what}: [{}, {}, {}] is no slip reference on the master's {edges} edges", v[0], v[1], v[2])));
+                }
+                Ok(SlipPoint { edge: v[0] as usize, xi: v[1], traction: v[2] })
+            };
+            slip.push(ids.into_iter().zip(values.chunks_exact(3)).map(|(id, v)| Ok((node(id)?, point(v)?))).collect::<Result<Vec<_>>>()?);
         }
         let attr = |name: &str| sg.attr(name).and_then(|a| a.read_scalar::<f64>()).map_err(|e| bad(format!("{group}: {e}")));
         let mut audit = AuditPoint {
@@ -324,6 +359,10 @@ impl RestartPoint {
                 pattern.push((r[1] as usize, node(r[2])?, node(r[3])?));
             }
         }
+        let load_factor = reader.increment_attr(&name, "load_factor")?;
+        if !(load_factor > 0.0 && load_factor <= 1.0) {
+            return Err(bad(format!("increments/{name} attribute load_factor is {load_factor}, not in (0, 1]")));
+        }
         let mut rows = reader.history_rows()?;
         if rows.len() < number {
             return Err(bad(format!("its history holds {} rows, fewer than the increment's number {number}", rows.len())));
@@ -334,7 +373,7 @@ impl RestartPoint {
             number,
             step,
             increment: reader.increment_attr(&name, "increment")? as usize,
-            load_factor: reader.increment_attr(&name, "load_factor")?,
+            load_factor,
             next_size,
             refits,
             displacement,
@@ -348,6 +387,20 @@ impl RestartPoint {
             rows,
         })
     }
+}
+
+/// The number of master edges of each contact pass, in the order of the passes: per pair, the
+/// slave against the master, then (two-pass) the master against the slave.
+fn pass_master_edges(model: &Model) -> Vec<usize> {
+    let edges = |name: &str| model.surfaces.get(name).map_or(0, Vec::len);
+    model
+        .contacts
+        .iter()
+        .flat_map(|c| {
+            let back = (c.two_pass && c.slave != c.master).then(|| edges(&c.slave));
+            std::iter::once(edges(&c.master)).chain(back)
+        })
+        .collect()
 }
 
 /// The file's node rows as mesh nodes and its element ids as mesh elements, after checking

@@ -182,6 +182,8 @@ pub struct ResultsFile {
 
 /// Attribute of an increment group written after everything else of the increment.
 pub const COMPLETE: &str = "complete";
+/// Root attribute: the fields of every N-th increment (and of each step's last) are written.
+pub const OUTPUT_EVERY: &str = "output_every";
 /// Root attribute of files whose increments carry [`COMPLETE`] (older files do not).
 pub const COMPLETION_MARKED: &str = "increments_marked_complete";
 
@@ -210,6 +212,8 @@ impl ResultsFile {
         // readers trust only increments marked complete (a run that dies mid-write leaves one unmarked)
         file.new_attr::<u8>().create(COMPLETION_MARKED).map_err(&err)?.write_scalar(&1u8).map_err(&err)?;
         file.new_attr::<u32>().create("steps").map_err(&err)?.write_scalar(&(model.steps.len() as u32)).map_err(&err)?;
+        // which increments have fields, so that a reader can tell one that went missing
+        file.new_attr::<u32>().create(OUTPUT_EVERY).map_err(&err)?.write_scalar(&(model.output.every as u32)).map_err(&err)?;
 
         let mesh = &model.mesh;
         let (nn, ne) = (mesh.coords.len(), mesh.elements.len());
