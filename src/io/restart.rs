@@ -335,7 +335,8 @@ impl RestartPoint {
             let point = |v: &[f64]| -> Result<SlipPoint> {
                 // an edge of the pass's master surface, a coordinate on it, a finite traction
                 let edge_ok = v[0] >= 0.0 && v[0].fract() == 0.0 && (v[0] as usize) < edges;
-                if !edge_ok || !(v[1].abs() <= 1.5) || !v[2].is_finite() {
+                let xi_ok = v[1].is_finite() && v[1].abs() <= 1.5;
+                if !edge_ok || !xi_ok || !v[2].is_finite() {
                     return Err(bad(format!("{what}: [{}, {}, {}] is no slip reference on the master's {edges} edges", v[0], v[1], v[2])));
                 }
                 Ok(SlipPoint { edge: v[0] as usize, xi: v[1], traction: v[2] })
