@@ -216,7 +216,7 @@ pub struct BellowsArgs {
     pub tangential_penalty: f64,
     /// Instead of --tangential-penalty, the elastic slip at the Coulomb limit (mm): the
     /// stiffness follows the pressure, eps_T = mu p / slip (Abaqus's form).
-    #[arg(long, value_name = "MM")]
+    #[arg(long, value_name = "MM", conflicts_with = "tangential_penalty")]
     pub elastic_slip: Option<f64>,
     /// A load cycle: after the compression, a further step takes tube B's end back to where it
     /// started (the force-displacement picture then shows the loop).

@@ -251,7 +251,29 @@ impl BellowsParams {
         if self.displacement.is_nan() || self.displacement.abs() >= convoluted {
             return Err(Error::input(format!("bellows: a displacement of {} mm exceeds the convoluted length {convoluted} mm", self.displacement)));
         }
+        if self.elastic_slip.is_some() && self.friction_plies == 0.0 && self.friction_sleeve == 0.0 {
+            return Err(Error::input(
+                "bellows: --elastic-slip sets friction's stick stiffness, and no pair has friction (give --friction-plies or --friction-sleeve)",
+            ));
+        }
+        // counted before anything is allocated: an absurd mesh is refused, not a memory failure
+        let elements = self.element_estimate();
+        if elements > crate::model::mesh::MAX_GENERATED_ELEMENTS as f64 {
+            return Err(Error::input(format!(
+                "bellows: the mesh would have about {elements:.3e} elements, more than {} (coarsen --ply-elements, --ply-element-length, --wall-elements or --wall-element-length)",
+                crate::model::mesh::MAX_GENERATED_ELEMENTS
+            )));
+        }
         Ok(())
+    }
+
+    /// About how many elements the joint's mesh has: the plies along their developed meridian
+    /// (tangents, tori and sidewalls) and the three walls (tubes and sleeve) along the joint.
+    fn element_estimate(&self) -> f64 {
+        let meridian = 2.0 * self.tangent_length + self.convolutions as f64 * (2.0 * std::f64::consts::PI * self.torus_radius + 2.0 * self.sidewall());
+        let plies = (self.plies * self.ply_elements) as f64 * (meridian / self.ply_element_length).ceil();
+        let walls = 3.0 * self.wall_elements as f64 * (self.length / self.wall_element_length).ceil();
+        plies + walls
     }
 
     pub(super) fn sidewall(&self) -> f64 {
