@@ -31,17 +31,37 @@ pub fn parse_penalties(spec: &str, per_decade: usize) -> Result<Vec<f64>> {
             Err(Error::input(format!("--penalties: {v} is not a positive penalty")))
         }
     };
-    if let Some((a, b)) = spec.split_once("..") {
+    let values: Vec<f64> = if let Some((a, b)) = spec.split_once("..") {
         let (a, b) = (number(a)?, number(b)?);
         if b <= a || per_decade == 0 {
             return Err(Error::input(format!("--penalties {spec}: need a..b with a < b and --per-decade >= 1")));
         }
-        let steps = ((b / a).log10() * per_decade as f64).round().max(1.0) as usize;
-        Ok((0..=steps).map(|k| a * (b / a).powf(k as f64 / steps as f64)).collect())
+        let steps = ((b / a).log10() * per_decade as f64).round().max(1.0);
+        if steps >= MAX_RUNS as f64 {
+            return Err(Error::input(format!(
+                "--penalties {spec} with --per-decade {per_decade} asks for {} runs, more than {MAX_RUNS}: fewer per decade",
+                steps + 1.0
+            )));
+        }
+        let steps = steps as usize;
+        (0..=steps).map(|k| a * (b / a).powf(k as f64 / steps as f64)).collect()
     } else {
-        spec.split(',').map(number).collect()
+        spec.split(',').map(number).collect::<Result<_>>()?
+    };
+    if values.len() > MAX_RUNS {
+        return Err(Error::input(format!("--penalties {spec}: {} runs, more than {MAX_RUNS}", values.len())));
     }
+    // each run is named by its penalty to four digits: two that share a name are one run
+    for (k, v) in values.iter().enumerate() {
+        if let Some(w) = values[..k].iter().find(|w| format!("{w:.3e}") == format!("{v:.3e}")) {
+            return Err(Error::input(format!("--penalties {spec}: {w:e} and {v:e} are the same run (penalties are told apart to four digits)")));
+        }
+    }
+    Ok(values)
 }
+
+/// The most runs a study makes: beyond it a mistyped --per-decade would start hours of runs.
+pub const MAX_RUNS: usize = 100;
 
 /// One run of the study.
 #[derive(Clone, Debug)]
@@ -93,12 +113,26 @@ fn penalty_of(value: f64, dimensionless: bool) -> Penalty {
 
 /// Runs the study; every rank returns the rows (rank 0 has written the file and pictures).
 pub fn penalty_study(session: &PetscSession, spec: &StudySpec) -> Result<Vec<StudyRow>> {
-    let root = session.world().rank() == 0;
-    let dir = PathBuf::from(format!("{}_runs", spec.output.with_extension("").display()));
-    if root {
-        std::fs::create_dir_all(&dir).map_err(|e| Error::Output { path: dir.clone(), message: e.to_string() })?;
+    let world = session.world();
+    let root = world.rank() == 0;
+    if !(spec.tolerance > 0.0 && spec.tolerance.is_finite()) {
+        return Err(Error::input(format!("--tolerance {}: give a relative tolerance > 0 (0.01 is 1 %)", spec.tolerance)));
     }
-    session.world().barrier();
+    crate::io::check_output_path(&spec.output, None)?;
+    // the study's file, and with it its runs directory, is one study's at a time
+    let (_lock, note) = crate::io::lock::ResultsLock::acquire(&spec.output, &world)?;
+    if let (true, Some(note)) = (root, note) {
+        println!("note: {note}");
+    }
+    let dir = PathBuf::from(format!("{}_runs", spec.output.with_extension("").display()));
+    let made = if root { std::fs::create_dir_all(&dir).map_err(|e| Error::input(format!("cannot write {}: {e}", dir.display()))) } else { Ok(()) };
+    // rank 0 made the directory: every rank learns whether it could
+    let mut failed = 0u8;
+    world.all_reduce_into(&u8::from(made.is_err()), &mut failed, mpi::collective::SystemOperation::max());
+    made?;
+    if failed != 0 {
+        return Err(Error::input(format!("cannot write {}: rank 0 could not make it", dir.display())));
+    }
     let mut runs: Vec<(String, f64, bool)> = spec.penalties.iter().map(|&p| (format!("{p:.3e}"), p, false)).collect();
     if spec.augmented {
         let middle = spec.penalties[spec.penalties.len() / 2];

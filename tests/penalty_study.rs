@@ -114,3 +114,48 @@ fn the_augmented_reference_augments_past_the_stiffest_penalty() {
     assert!(augmentations[2] > 0.0 && augmentations[..2].iter().all(|&a| a == 0.0), "{augmentations:?}");
     assert!(penetration[2] < 0.6 * penetration[1], "the reference penetrates least: {penetration:?}");
 }
+
+/// A study that cannot make sense is refused before any run, with exit 2 and one line, on 2
+/// ranks: an absurd count of runs (`--per-decade 100000` started 400 001), a penalty given
+/// twice (it ended with exit 1 on HDF5's "name already exists"), a tolerance that is no
+/// tolerance (accepted), an output in a directory that cannot be written (rank 1 waited
+/// forever), and a study file (with its runs directory) that another study is writing.
+#[test]
+fn a_study_that_cannot_make_sense_is_refused_before_any_run() {
+    let dir = tempfile::tempdir().unwrap();
+    let deck = fit_deck(dir.path());
+    let readonly = dir.path().join("readonly");
+    std::fs::create_dir(&readonly).unwrap();
+    let host = std::fs::read_to_string("/proc/sys/kernel/hostname").unwrap();
+    std::fs::write(dir.path().join("busy.lock"), format!("host {} pid {}\n", host.trim(), std::process::id())).unwrap();
+    let is_root = std::process::Command::new("id").arg("-u").output().is_ok_and(|o| String::from_utf8_lossy(&o.stdout).trim() == "0");
+    let mut cases = vec![
+        (vec!["--penalties", "1e2..1e6", "--per-decade", "100000", "-o", "s.h5"], "more than 100"),
+        (vec!["--penalties", "1e4,1e4", "-o", "s.h5"], "are the same run"),
+        (vec!["--penalties", "1e3,1e4", "--tolerance=-1", "-o", "s.h5"], "--tolerance -1"),
+        (vec!["--penalties", "1e3,1e4", "--tolerance", "nan", "-o", "s.h5"], "--tolerance NaN"),
+        (vec!["--penalties", "1e3,1e4", "-o", "busy.h5"], "another run is writing it"),
+    ];
+    // a directory without write permission stands for a read-only mount (root writes anyway)
+    let ro = readonly.join("s.h5");
+    let ro = ro.to_str().unwrap().to_string();
+    if !is_root {
+        use std::os::unix::fs::PermissionsExt;
+        std::fs::set_permissions(&readonly, std::fs::Permissions::from_mode(0o555)).unwrap();
+        cases.push((vec!["--penalties", "1e3,1e4", "-o", ro.as_str()], "cannot write"));
+    }
+    for (args, needle) in cases {
+        let out = command_in(dir.path(), 2)
+            .current_dir(dir.path())
+            .args(["penalty-study", "--deck"])
+            .arg(&deck)
+            .args(["--reaction", "outer_top"])
+            .args(&args)
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+        assert!(err.contains(needle) && err.lines().filter(|l| l.starts_with("error:")).count() == 1, "{args:?}: {err}");
+        assert!(!dir.path().join("s_runs").exists(), "{args:?}: no run started");
+    }
+}
