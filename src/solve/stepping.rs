@@ -339,7 +339,7 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
                 }
             });
             let written = state.as_ref().map(|state| (&increment_fields, state));
-            output.run(|| results.write_increment(&step.name, &row, written, &partition))??;
+            stop_all_on_write_error(&world, output.run(|| results.write_increment(&step.name, &row, written, &partition))?)?;
             if let Some(status) = status.as_mut() {
                 status.record(&row);
             }
@@ -426,6 +426,19 @@ fn set_free_values(x: &mut Vector<'_>, dofs: &DofMap, partition: &Partition, dis
         }
     }
     Ok(())
+}
+
+/// A write that failed on one rank (a full disk, a vanished directory) leaves the others
+/// waiting inside HDF5's collective calls: the rank that met it prints the error and stops every
+/// rank (MPI_Abort). The increments completed before are on disk, each flushed and marked.
+fn stop_all_on_write_error<T>(world: &impl Communicator, result: Result<T>) -> Result<T> {
+    match result {
+        Err(e @ Error::Output { .. }) if world.size() > 1 => {
+            eprintln!("error: {e}; every rank stops (the increments completed before are in the file)");
+            world.abort(1)
+        }
+        other => other,
+    }
 }
 
 /// Displacement of this rank's owned nodes (partition order): solved values and prescribed ones.
