@@ -303,3 +303,18 @@ fn outputs_never_overwrite_an_input_file() {
         assert_eq!(std::fs::read(root.join(name)).unwrap(), bytes, "{name} was written over");
     }
 }
+
+/// Rank 0 alone writes the XDMF sidecar and the status file; a directory where either goes is
+/// refused by every rank before the run, exit 2 (seen failing before: rank 0 stopped and rank
+/// 1 waited forever).
+#[test]
+fn a_directory_where_the_sidecar_or_status_file_goes_is_refused_on_two_ranks() {
+    for side in ["out.xmf", "out.sta"] {
+        let dir = tempfile::tempdir().unwrap();
+        std::fs::write(dir.path().join("deck.toml"), format!("{RECT}{MATERIAL}{STEP}")).unwrap();
+        std::fs::create_dir(dir.path().join(side)).unwrap();
+        let out = command_in(dir.path(), 2).current_dir(dir.path()).args(["run", "deck.toml", "-o", "out.h5"]).output().unwrap();
+        let run = Run { h5: dir.path().join("out.h5"), dir: tempfile::tempdir().unwrap(), output: out };
+        assert_rejected(&run, &["cannot write", side, "a directory"]);
+    }
+}

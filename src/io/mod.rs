@@ -23,7 +23,7 @@ use std::path::Path;
 pub fn check_output_path(path: &Path, input: Option<(&Path, &str)>) -> Result<()> {
     let refuse = |reason: String| Err(Error::input(format!("cannot write {}: {reason}", path.display())));
     if path.is_dir() {
-        return refuse("it is a directory; give a file name such as results.h5".into());
+        return refuse("it is a directory; give a file name".into());
     }
     let parent = match path.parent() {
         Some(p) if !p.as_os_str().is_empty() => p,

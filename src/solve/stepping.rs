@@ -95,6 +95,11 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
     for (output, input) in written.iter().flat_map(|w| model.source_files.iter().map(move |i| (w, i))) {
         crate::io::check_output_path(output, Some((input, "an input file of the model")))?;
     }
+    // every rank sees the same file system: the sidecar and the status file, which rank 0
+    // alone writes, are checked by all, so none waits for a rank that could not
+    for output in &written {
+        crate::io::check_output_path(output, None)?;
+    }
     let resume = options.restart.as_ref().map(|from| restart_point(from, &options.output, model)).transpose()?;
     // PETSc's options are read (and a bad one refused) before anything is written: a rerun
     // with a misspelt type must not destroy the results file it would replace
