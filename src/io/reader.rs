@@ -38,10 +38,37 @@ fn open_waiting_for_lock(path: &Path) -> Result<hdf5::File> {
         }
         // the probe's shared lock goes with it; HDF5 takes its own
     }
-    hdf5::File::open(path).map_err(|e| {
+    let failed = |e: hdf5::Error| {
         let first = e.to_string().lines().next().unwrap_or_default().to_string();
         Error::input(format!("{}: an HDF5 file that does not open (truncated, or left open by a run that was killed?): {first}", path.display()))
-    })
+    };
+    match hdf5::File::open(path) {
+        Ok(file) => Ok(file),
+        Err(e) => match repair(path, &e.to_string()) {
+            Some(note) => {
+                eprintln!("note: {note}");
+                hdf5::File::open(path).map_err(failed)
+            }
+            None => Err(failed(e)),
+        },
+    }
+}
+
+/// A file a killed writer left behind, repaired as HDF5's `h5clear` does (hdf5-tools, which
+/// slideline's set-up installs): a superblock whose end-of-file mark lies past the data that
+/// reached the disk ("truncated file") gets the file's own size, a superblock still marked open
+/// for writing gets its marks cleared. The increments the writer completed are all before that
+/// point (each is flushed before it is marked complete). The note to print, or None.
+fn repair(path: &Path, error: &str) -> Option<String> {
+    let (args, what): (&[&str], &str) = if error.contains("truncated file") {
+        (&["--increment=0"], "its end-of-file mark set to the data on disk")
+    } else if error.contains("status_flags") || error.contains("already open for write") {
+        (&["-s"], "its open-for-writing marks cleared")
+    } else {
+        return None;
+    };
+    let done = std::process::Command::new("h5clear").args(args).arg(path).output().ok()?;
+    done.status.success().then(|| format!("{}: left by a writer that was killed; repaired with h5clear ({what})", path.display()))
 }
 
 /// HDF5's signature, at the start of every file slideline writes.
