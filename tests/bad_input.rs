@@ -318,3 +318,32 @@ fn a_directory_where_the_sidecar_or_status_file_goes_is_refused_on_two_ranks() {
         assert_rejected(&run, &["cannot write", side, "a directory"]);
     }
 }
+
+/// A Gmsh file that contradicts itself is refused with exit 2 and the line named, never read
+/// as valid or allowed to exhaust memory. Seen failing before: each of these was accepted (a
+/// header of 2^62 nodes in one block reserved memory for them).
+#[test]
+fn a_gmsh_file_that_contradicts_itself_is_refused() {
+    let text = std::fs::read_to_string(data("patch5.msh")).unwrap();
+    let nodes = &text[text.find("$Nodes").unwrap()..text.find("$Elements").unwrap()];
+    let step = "[[step]]\nboundary = [ { set = \"b1\", ur = 0.0, uz = 0.0 }, { set = \"b2\", uz = 0.0 } ]\n";
+    let dir = tempfile::tempdir().unwrap();
+    for (what, bad, needle) in [
+        ("2^62 nodes in a block", text.replace("$Nodes\n1 20 1 111\n2 1 0 20\n", "$Nodes\n1 4611686018427387904 1 111\n2 1 0 4611686018427387904\n"), "m.msh:"),
+        (
+            "10^15 nodes in the header",
+            text.replace("$Nodes\n1 20 1 111\n", "$Nodes\n1 1000000000000000 1 111\n"),
+            "gives 1000000000000000 nodes, its blocks hold 20",
+        ),
+        ("two $Nodes sections", text.replace("$Elements", &format!("{nodes}$Elements")), "a second $Nodes section"),
+        ("a duplicate element id", text.replace("1001 1 2 6 5", "1000 1 2 6 5"), "element 1000 is given twice"),
+        ("a wrong element count", text.replace("9 13 1000 2007", "9 14 1000 2007"), "gives 14 elements, its blocks hold 13"),
+        ("a node tag twice, elsewhere", text.replace("8\n100\n101", "8\n1\n101"), "node 1 is given twice"),
+    ] {
+        std::fs::write(dir.path().join("m.msh"), &bad).unwrap();
+        let run = run_deck(&format!("[mesh]\nfile = \"m.msh\"\n{MATERIAL}{step}"), &[("m.msh", &dir.path().join("m.msh"))], 1, &[]);
+        assert_eq!(run.code(), 2, "{what}: {}", run.stderr());
+        assert!(run.stderr().contains(needle), "{what}: {}", run.stderr());
+        assert_rejected(&run, &[needle]);
+    }
+}

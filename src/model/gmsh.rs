@@ -99,6 +99,14 @@ impl<'a> Lines<'a> {
     }
 }
 
+/// Adds a node; a tag given again is accepted at the same place only.
+fn insert_node(node_coords: &mut HashMap<u64, [f64; 2]>, tag: u64, at: [f64; 2], lines: &Lines) -> Result<()> {
+    match node_coords.insert(tag, at) {
+        Some(before) if before != at => Err(lines.error(format!("node {tag} is given twice, at ({}, {}) and at ({}, {})", before[0], before[1], at[0], at[1]))),
+        _ => Ok(()),
+    }
+}
+
 fn need<T: Copy>(v: &[T], n: usize, lines: &Lines, what: &str) -> Result<()> {
     if v.len() < n {
         return Err(lines.error(format!("{what}: expected at least {n} values, found {}", v.len())));
@@ -129,7 +137,13 @@ fn parse_text(text: &str, name: &str) -> Result<RawMesh> {
     // format 2.2: each element names its physical group itself (its first tag)
     let mut legacy = false;
 
+    // a section given twice, a count its blocks do not hold, a tag given twice: refused by name
+    let (mut nodes_seen, mut elements_seen) = (false, false);
+    let mut element_tags: std::collections::HashSet<u64> = std::collections::HashSet::new();
     while let Ok(header) = lines.next() {
+        if header == "$Nodes" && std::mem::replace(&mut nodes_seen, true) || header == "$Elements" && std::mem::replace(&mut elements_seen, true) {
+            return Err(lines.error(format!("a second {header} section: a mesh has one")));
+        }
         match header {
             "$MeshFormat" => {
                 let l = lines.next()?;
@@ -190,7 +204,7 @@ fn parse_text(text: &str, name: &str) -> Result<RawMesh> {
                     if v[3] != 0.0 {
                         return Err(lines.error(format!("node {tag} has z = {}: the mesh must lie in the x-y plane (x = r, y = z)", v[3])));
                     }
-                    node_coords.insert(tag, [v[1], v[2]]);
+                    insert_node(node_coords, tag, [v[1], v[2]], &lines)?;
                 }
                 lines.expect("$EndNodes")?;
             }
@@ -209,6 +223,9 @@ fn parse_text(text: &str, name: &str) -> Result<RawMesh> {
                     if ntags > 0 {
                         entity_physicals.insert((dim, entity), vec![entity]);
                     }
+                    if !element_tags.insert(tag) {
+                        return Err(lines.error(format!("element {tag} is given twice")));
+                    }
                     elements.push(RawElement { dim, entity, ty, tag, nodes: v[3 + ntags..].to_vec(), at: format!("{name}:{}", lines.line) });
                 }
                 lines.expect("$EndElements")?;
@@ -216,14 +233,20 @@ fn parse_text(text: &str, name: &str) -> Result<RawMesh> {
             "$Nodes" => {
                 let h: Vec<u64> = lines.numbers("$Nodes header")?;
                 need(&h, 4, &lines, "$Nodes header")?;
+                let mut read = 0u64;
                 for _ in 0..h[0] {
                     let b: Vec<i64> = lines.numbers("node block header")?;
                     need(&b, 4, &lines, "node block header")?;
                     if b[2] != 0 {
                         return Err(lines.error("parametric node coordinates are not supported"));
                     }
+                    if b[3] < 0 || b[3] as u64 > h[1] - read.min(h[1]) {
+                        return Err(lines.error(format!("a node block of {} nodes, past the {} the $Nodes header gives", b[3], h[1])));
+                    }
                     let n = b[3] as usize;
-                    let mut tags = Vec::with_capacity(n);
+                    read += n as u64;
+                    // the count comes from the file: reserve no more than a line can hold
+                    let mut tags = Vec::with_capacity(n.min(1 << 16));
                     for _ in 0..n {
                         let t: Vec<u64> = lines.numbers("node tag")?;
                         need(&t, 1, &lines, "node tag")?;
@@ -235,23 +258,37 @@ fn parse_text(text: &str, name: &str) -> Result<RawMesh> {
                         if c[2] != 0.0 {
                             return Err(lines.error(format!("node {tag} has z = {}: the mesh must lie in the x-y plane (x = r, y = z)", c[2])));
                         }
-                        node_coords.insert(tag, [c[0], c[1]]);
+                        insert_node(node_coords, tag, [c[0], c[1]], &lines)?;
                     }
+                }
+                if read != h[1] {
+                    return Err(lines.error(format!("the $Nodes header gives {} nodes, its blocks hold {read}", h[1])));
                 }
                 lines.expect("$EndNodes")?;
             }
             "$Elements" => {
                 let h: Vec<u64> = lines.numbers("$Elements header")?;
                 need(&h, 4, &lines, "$Elements header")?;
+                let mut read = 0u64;
                 for _ in 0..h[0] {
                     let b: Vec<i64> = lines.numbers("element block header")?;
                     need(&b, 4, &lines, "element block header")?;
                     let (dim, entity, ty) = (b[0] as i32, b[1] as i32, b[2] as u32);
+                    if b[3] < 0 || b[3] as u64 > h[1] - read.min(h[1]) {
+                        return Err(lines.error(format!("an element block of {} elements, past the {} the $Elements header gives", b[3], h[1])));
+                    }
+                    read += b[3] as u64;
                     for _ in 0..b[3] {
                         let v: Vec<u64> = lines.numbers("element")?;
                         need(&v, 2, &lines, "element")?;
+                        if !element_tags.insert(v[0]) {
+                            return Err(lines.error(format!("element {} is given twice", v[0])));
+                        }
                         elements.push(RawElement { dim, entity, ty, tag: v[0], nodes: v[1..].to_vec(), at: format!("{name}:{}", lines.line) });
                     }
+                }
+                if read != h[1] {
+                    return Err(lines.error(format!("the $Elements header gives {} elements, its blocks hold {read}", h[1])));
                 }
                 lines.expect("$EndElements")?;
             }
