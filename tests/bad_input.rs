@@ -25,7 +25,7 @@ fn missing_mesh_file() {
 #[test]
 fn malformed_toml() {
     let run = run_deck(&format!("{RECT}{MATERIAL}[[step]\n"), &[], 1, &[]);
-    assert_rejected(&run, &["deck.toml", "line"]);
+    assert_rejected(&run, &["deck.toml:7:", "[[step]", "invalid table header"]);
 }
 
 #[test]
@@ -345,5 +345,37 @@ fn a_gmsh_file_that_contradicts_itself_is_refused() {
         assert_eq!(run.code(), 2, "{what}: {}", run.stderr());
         assert!(run.stderr().contains(needle), "{what}: {}", run.stderr());
         assert_rejected(&run, &[needle]);
+    }
+}
+
+/// Step names are how a restart finds the steps done: two steps of one name or an empty name
+/// are refused (both ran); a `[stepping]` value out of range is named with its key, not as a
+/// Rust structure.
+#[test]
+fn step_names_and_stepping_values_are_checked_by_name() {
+    let step = |name: &str| format!("[[step]]\nname = \"{name}\"\nboundary = [ {{ set = \"bottom\", uz = 0.0 }} ]\n");
+    let twice = run_deck(&format!("{RECT}{MATERIAL}{}{}", step("load"), step("load")), &[], 1, &[]);
+    assert_rejected(&twice, &["step 2", "\"load\" is used twice"]);
+    let empty = run_deck(&format!("{RECT}{MATERIAL}{}", step("")), &[], 1, &[]);
+    assert_rejected(&empty, &["step 1", "an empty name"]);
+    let growth = run_deck(&format!("[stepping]\ngrowth_factor = 0.5\n{RECT}{MATERIAL}{STEP}"), &[], 1, &[]);
+    assert_rejected(&growth, &["[stepping] growth_factor = 0.5", "growth_factor >= 1"]);
+    assert!(!growth.stderr().contains("SteppingControls"), "{}", growth.stderr());
+}
+
+/// A TOML error is one line naming the file, the line and the key with its table (it was a
+/// multi-line excerpt with a caret, and a missing [mesh] named no file section).
+#[test]
+fn toml_errors_name_the_line_and_the_key_on_one_line() {
+    let cases = [
+        (format!("nlgeo = true\n{RECT}{MATERIAL}{STEP}"), vec!["deck.toml:1: nlgeo: unknown field `nlgeo`"]),
+        (format!("[stepping]\ncutback_factor = \"half\"\n{RECT}{MATERIAL}{STEP}"), vec!["deck.toml:2: [stepping] cutback_factor: invalid type"]),
+        (format!("{RECT}{MATERIAL}{STEP}").replace("youngs_modulus", "youngs_modulu"), vec![":5: [[material]] youngs_modulu: unknown field"]),
+        (format!("{MATERIAL}{STEP}"), vec!["deck.toml: missing field `mesh`"]),
+    ];
+    for (deck, needles) in cases {
+        let run = run_deck(&deck, &[], 1, &[]);
+        assert_rejected(&run, &needles);
+        assert_eq!(run.stderr().trim_end().lines().count(), 1, "{}", run.stderr());
     }
 }

@@ -139,3 +139,13 @@ fn adjust_on_the_reversed_listing_of_a_two_pass_pair_is_refused() {
     let run = run_inp(&with_pairs("*CONTACT PAIR, INTERACTION=I\nIN, OUT\n*CONTACT PAIR, INTERACTION=I, ADJUST=0.1\nOUT, IN\n"), "", &[]);
     assert_rejected(&run, &["model.inp:", "give ADJUST on the first listing"]);
 }
+
+/// `*STEP, INC=0` allows no increment at all: refused with its line (it was accepted).
+#[test]
+fn a_step_allowed_no_increment_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("model.inp"), DECK.replace("{MODEL}", "").replace("{STEP}", "").replace("*STEP\n", "*STEP, INC=0\n")).unwrap();
+    let output = command_in(dir.path(), 1).current_dir(dir.path()).args(["run", "model.inp", "-o", "out.h5"]).output().unwrap();
+    let run = Run { h5: dir.path().join("out.h5"), dir, output };
+    assert_rejected(&run, &["model.inp:24", "*STEP", "INC=0", ">= 1"]);
+}

@@ -293,6 +293,22 @@ struct PressureSpec {
 }
 
 /// Reads and validates a deck file.
+/// A TOML error on one line, naming the line and the key (with its table) where there is one:
+/// `deck.toml:2: [stepping] cutback_factor: invalid type: string "half", expected f64`.
+fn toml_error(path: &Path, text: &str, e: &toml::de::Error) -> Error {
+    let message = e.message().trim().replace('\n', " ");
+    let Some(span) = e.span().filter(|s| s.start > 0 || !message.starts_with("missing field")) else {
+        return Error::input(format!("{}: {message} (see docs/deck.md)", path.display()));
+    };
+    let line_no = text[..span.start.min(text.len())].matches('\n').count() + 1;
+    let line = text.lines().nth(line_no - 1).unwrap_or("").trim();
+    let table = text.lines().take(line_no).filter(|l| l.trim_start().starts_with('[')).last().map(|l| format!("{} ", l.trim())).unwrap_or_default();
+    match line.split_once('=').map(|(key, _)| key.trim()).filter(|k| !k.is_empty() && !k.starts_with('[')) {
+        Some(key) => Error::input(format!("{}:{line_no}: {table}{key}: {message}", path.display())),
+        None => Error::input(format!("{}:{line_no}: {line}: {message}", path.display())),
+    }
+}
+
 pub fn read(path: &Path) -> Result<Model> {
     let text = std::fs::read_to_string(path).map_err(|source| Error::Read { path: path.to_path_buf(), source })?;
     parse(&text, path)
@@ -300,7 +316,7 @@ pub fn read(path: &Path) -> Result<Model> {
 
 /// Parses deck `text`; `path` names it in messages and anchors relative mesh paths.
 pub fn parse(text: &str, path: &Path) -> Result<Model> {
-    let deck: DeckFile = toml::from_str(text).map_err(|e| Error::input(format!("{}: {}", path.display(), e.to_string().trim_end())))?;
+    let deck: DeckFile = toml::from_str(text).map_err(|e| toml_error(path, text, &e))?;
     let mut source_files = vec![path.to_path_buf()];
     let (mesh, sets) = match (&deck.mesh.file, &deck.mesh.rectangle, deck.mesh.block.is_empty()) {
         (Some(file), None, true) => {

@@ -39,11 +39,24 @@ impl Model {
             return Err(Error::input("[output]: every must be at least 1 (fields of every increment)"));
         }
         let c = &self.stepping;
-        let sane = c.cutback_factor > 0.0 && c.cutback_factor < 1.0 && c.growth_factor >= 1.0 && c.min_increment > 0.0 && c.min_increment <= 1.0;
-        if !sane || c.max_newton_iterations == 0 {
-            return Err(Error::input(format!(
-                "[stepping]: need 0 < cutback_factor < 1, growth_factor >= 1, 0 < min_increment <= 1, max_newton_iterations >= 1; got {c:?}"
-            )));
+        let ranges = [
+            ("cutback_factor", c.cutback_factor, c.cutback_factor > 0.0 && c.cutback_factor < 1.0, "0 < cutback_factor < 1"),
+            ("growth_factor", c.growth_factor, c.growth_factor >= 1.0 && c.growth_factor.is_finite(), "growth_factor >= 1"),
+            ("min_increment", c.min_increment, c.min_increment > 0.0 && c.min_increment <= 1.0, "0 < min_increment <= 1"),
+            ("max_newton_iterations", c.max_newton_iterations as f64, c.max_newton_iterations >= 1, "max_newton_iterations >= 1"),
+        ];
+        if let Some((key, value, _, need)) = ranges.into_iter().find(|r| !r.2) {
+            return Err(Error::input(format!("[stepping] {key} = {value}: need {need}")));
+        }
+        let mut seen: Vec<&str> = Vec::new();
+        for (k, step) in self.steps.iter().enumerate() {
+            if step.name.trim().is_empty() {
+                return Err(Error::input(format!("step {}: an empty name (a restart finds steps by name)", k + 1)));
+            }
+            if seen.contains(&step.name.as_str()) {
+                return Err(Error::input(format!("step {}: the name {:?} is used twice (a restart finds steps by name)", k + 1, step.name)));
+            }
+            seen.push(&step.name);
         }
         if self.element_material.len() != self.mesh.elements.len() {
             return Err(Error::input("internal: element_material does not match the element count"));

@@ -82,6 +82,11 @@ impl Builder {
         if self.in_step {
             return Err(card.error("the previous *STEP has no *END STEP"));
         }
+        // INC is the most increments the step may take (slideline's cutbacks are bounded by
+        // the minimum increment instead): a count, at least 1
+        if let Some(inc) = card.param("INC").filter(|v| v.trim().parse::<u64>().map_or(true, |n| n == 0)) {
+            return Err(card.error(format!("INC={inc}: give the largest number of increments, a whole number >= 1")));
+        }
         if card.param("AMPLITUDE").is_some_and(|a| !a.eq_ignore_ascii_case("RAMP")) {
             return Err(card.error("only AMPLITUDE=RAMP (loads ramped over the step) is supported; use an *AMPLITUDE for other histories"));
         }
