@@ -379,3 +379,40 @@ fn toml_errors_name_the_line_and_the_key_on_one_line() {
         assert_eq!(run.stderr().trim_end().lines().count(), 1, "{}", run.stderr());
     }
 }
+
+/// A contact pair whose surfaces can never face each other (the ring's outside listed against
+/// the tube's outside) is named in a note before the run (it ran without a word, the fit never
+/// closing); the walk-through's correct pair is not.
+#[test]
+fn a_contact_pair_whose_surfaces_never_face_is_named() {
+    let fit = std::fs::read_to_string(std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/shrink_fit.toml")).unwrap();
+    let wrong = fit.replace("slave = \"ring_inner\"", "slave = \"ring_outer\"");
+    assert_ne!(wrong, fit);
+    let dir = tempfile::tempdir().unwrap();
+    for (deck, noted) in [(wrong, true), (fit, false)] {
+        std::fs::write(dir.path().join("fit.toml"), deck).unwrap();
+        let out = command_in(dir.path(), 1).current_dir(dir.path()).args(["run", "fit.toml", "-o", "fit.h5"]).output().unwrap();
+        let text = String::from_utf8_lossy(&out.stdout);
+        assert_eq!(text.contains("note: contact 'fit': its surfaces 'ring_outer' and 'tube_outer' never face each other"), noted, "{text}");
+    }
+}
+
+/// Output places that cannot take a file are refused before any work with exit 2 and "cannot
+/// write": a device (`-o /dev/full` crashed with SIGSEGV), the export of the bellows deck to a
+/// missing directory and a CSV into /proc (both exit 1 after the work).
+#[test]
+fn output_places_that_cannot_take_a_file_are_refused_first() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("deck.toml"), format!("{RECT}{MATERIAL}{STEP}")).unwrap();
+    let good = command_in(dir.path(), 1).current_dir(dir.path()).args(["run", "deck.toml", "-o", "good.h5", "-q"]).output().unwrap();
+    assert!(good.status.success());
+    for args in [
+        &["run", "deck.toml", "-o", "/dev/full"][..],
+        &["bellows", "--quick", "--export-inp", "/nonexistent/dir/joint.inp"],
+        &["post", "good.h5", "--csv", "/proc/history.csv"],
+    ] {
+        let out = command_in(dir.path(), 1).current_dir(dir.path()).args(args).output().unwrap();
+        let run = Run { h5: dir.path().join("x.h5"), dir: tempfile::tempdir().unwrap(), output: out };
+        assert_rejected(&run, &["cannot write"]);
+    }
+}

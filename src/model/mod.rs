@@ -29,6 +29,7 @@ pub fn read_deck(path: &Path) -> Result<(Model, Vec<String>)> {
         (deck::read(path)?, Vec::new())
     };
     notes.extend(crate::contact::adjust::adjust_slave_nodes(&mut model)?);
+    notes.extend(model.never_facing_pairs());
     Ok((model, notes))
 }
 

@@ -2,7 +2,7 @@
 //! loads the steps name, the contact pairs, and the constraints (one value per degree of
 //! freedom; no body free to move along the axis).
 
-use super::{Component, Model, Penalty, Plasticity, MAX_INCREMENTS, MIN_YOUNGS_MODULUS};
+use super::{Component, Edge, Model, Penalty, Plasticity, MAX_INCREMENTS, MIN_YOUNGS_MODULUS};
 use crate::error::{Error, Result};
 use std::collections::BTreeMap;
 
@@ -172,6 +172,34 @@ impl Model {
             )));
         }
         Ok(())
+    }
+
+    /// A note for each contact pair whose surfaces can never face each other: no slave edge's
+    /// outward normal is against any master edge's (a ring's outside listed against a tube's
+    /// outside, say). Such a pair never closes; the note names it, since the run itself cannot.
+    pub fn never_facing_pairs(&self) -> Vec<String> {
+        // the outward normal of a counter-clockwise element's side from its corner a to b
+        let normal = |e: Edge| {
+            let [a, b, _] = self.mesh.edge_nodes(e).map(|n| self.mesh.coords[n]);
+            let (tr, tz) = (b[0] - a[0], b[1] - a[1]);
+            let length = tr.hypot(tz).max(f64::MIN_POSITIVE);
+            [tz / length, -tr / length]
+        };
+        let normals = |name: &str| self.surfaces.get(name).map_or(Vec::new(), |edges| edges.iter().map(|&e| normal(e)).collect::<Vec<_>>());
+        self.contacts
+            .iter()
+            .filter(|c| c.slave != c.master)
+            .filter(|c| {
+                let (slave, master) = (normals(&c.slave), normals(&c.master));
+                !slave.is_empty() && !master.is_empty() && !slave.iter().any(|s| master.iter().any(|m| s[0] * m[0] + s[1] * m[1] < 0.0))
+            })
+            .map(|c| {
+                format!(
+                    "contact '{}': its surfaces '{}' and '{}' never face each other (their outward normals point the same way everywhere), so the pair can never close: is a surface the wrong face of its body?",
+                    c.name, c.slave, c.master
+                )
+            })
+            .collect()
     }
 
     /// The bodies no node of which has a prescribed uz (`held_z` per node): per body, its first
