@@ -135,6 +135,7 @@ fn a_study_that_cannot_make_sense_is_refused_before_any_run() {
         (vec!["--penalties", "1e3,1e4", "--tolerance=-1", "-o", "s.h5"], "--tolerance -1"),
         (vec!["--penalties", "1e3,1e4", "--tolerance", "nan", "-o", "s.h5"], "--tolerance NaN"),
         (vec!["--penalties", "1e3,1e4", "-o", "busy.h5"], "another run is writing it"),
+        (vec!["--penalties", "1e3,1e4", "-o", "fit.toml"], "an input file of the model"),
     ];
     // a directory without write permission stands for a read-only mount (root writes anyway)
     let ro = readonly.join("s.h5");
