@@ -144,6 +144,9 @@ struct Builder {
     output_requests: BTreeSet<String>,
     /// FREQUENCY= of the file output requests (the smallest given).
     output_every: Option<usize>,
+    /// *CONTROLS, PARAMETERS=TIME INCREMENTATION's I_G: the most iterations after which the
+    /// next increment grows (slideline's easy_iterations; CalculiX's default 4 is slideline's).
+    easy_iterations: Option<usize>,
     /// *TIME POINTS by name: (times, in total time).
     time_points: BTreeMap<String, (Vec<f64>, bool)>,
     notes: Vec<String>,
@@ -237,9 +240,7 @@ fn build(cards: &[Card], source_text: String) -> Result<InpModel> {
                 }
                 b.in_step = false;
             }
-            "CONTROLS" => {
-                b.notes.push(format!("*CONTROLS ({}) ignored: slideline judges convergence by CalculiX's field test with its default ratios", card.at));
-            }
+            "CONTROLS" => b.controls(card)?,
             "TIME POINTS" => b.time_points(card)?,
             kw if OUTPUT_REQUESTS.contains(&kw) => {
                 b.output_requests.insert(format!("*{kw}"));
@@ -265,6 +266,29 @@ fn build(cards: &[Card], source_text: String) -> Result<InpModel> {
 }
 
 impl Builder {
+    /// *CONTROLS: of CalculiX's time incrementation parameters, I_G (the sixth value: an
+    /// increment grows after increments that converged within it) is slideline's
+    /// easy_iterations; the rest, and the field test's ratios, are not used (a note says so).
+    fn controls(&mut self, card: &Card) -> Result<()> {
+        let time = card.param("PARAMETERS").is_some_and(|p| p.eq_ignore_ascii_case("TIME INCREMENTATION"));
+        let given = card.data.first().filter(|d| time && d.fields.get(5).is_some_and(|f| !f.is_empty()));
+        match given {
+            Some(d) => {
+                let i_g = d.number("CONTROLS", 5, "I_G", None)?;
+                if !(i_g >= 1.0 && i_g.fract() == 0.0) {
+                    return Err(card.error(format!("I_G = {i_g}: give a whole number of iterations >= 1")));
+                }
+                self.easy_iterations = Some(i_g as usize);
+                self.notes.push(format!(
+                    "*CONTROLS ({}): I_G = {i_g}: an increment grows after one that converged within {i_g} iterations; its other values are not used (slideline judges convergence by CalculiX's field test with its default ratios)",
+                    card.at
+                ));
+            }
+            None => self.notes.push(format!("*CONTROLS ({}) ignored: slideline judges convergence by CalculiX's field test with its default ratios", card.at)),
+        }
+        Ok(())
+    }
+
     fn finish(mut self, source_text: String, source_files: Vec<std::path::PathBuf>) -> Result<InpModel> {
         if self.in_step {
             let at = &self.steps.last().expect("in a step").at;
@@ -333,6 +357,7 @@ impl Builder {
 
         let contacts = self.contact_pairs()?;
         let mut stepping = SteppingControls::default();
+        stepping.easy_iterations = self.easy_iterations.unwrap_or(stepping.easy_iterations);
         if let Some(min) = self.steps.iter().filter_map(|s| s.minimum.map(|m| m / s.period)).reduce(f64::min) {
             stepping.min_increment = min.clamp(1e-12, 1.0);
         }
@@ -505,6 +530,10 @@ mod tests {
         let deck = "*TIME POINTS, NAME=T1\n0.3, 1.\n*STEP\n*STATIC\n0.25, 1.\n*CONTROLS, PARAMETERS=TIME INCREMENTATION\n4, 8\n*BOUNDARY\nBOTTOM, 2, 2\n*NODE PRINT, NSET=TOP, TIME POINTS=T1\nU\n*END STEP\n";
         let read = read(deck);
         assert!(read.notes.iter().any(|n| n.contains("*CONTROLS") && n.contains("ignored")), "{:?}", read.notes);
+        // I_G, the sixth value, is the iterations after which an increment grows
+        let controlled = self::read(&deck.replace("4, 8\n", "4, 8, 9, 16, 10, 12\n"));
+        assert_eq!(controlled.model.stepping.easy_iterations, 12);
+        assert_eq!(read.model.stepping.easy_iterations, 4, "CalculiX's default I_G is slideline's");
         // 4 increments of 0.25 and a time point at 0.3: sub-steps ending at 0.3 and 1
         let ends: Vec<f64> = read.model.steps.iter().map(|s| s.time_span.unwrap()[1]).collect();
         assert_eq!(ends, vec![0.3, 1.0]);

@@ -1,6 +1,7 @@
 //! A [`Model`] written as a CalculiX/Abaqus deck that both CalculiX and slideline's reader run:
 //! CAX8 mesh, node and element sets, element-face surfaces, materials (*PLASTIC as a table),
-//! one *SURFACE INTERACTION and *CONTACT PAIR per pair with its penalty as the LINEAR slope,
+//! one *SURFACE INTERACTION and *CONTACT PAIR per pair with its penalty as the LINEAR slope
+//! (and its *FRICTION: mu and the stick slope),
 //! *DLOAD per loaded face label, the steps with *STATIC (the requested increment, which both
 //! codes cut back when Newton fails and never exceed; the smallest is `min_increment`), and
 //! *NODE PRINT of every constrained set's reaction.
@@ -103,6 +104,25 @@ pub fn to_inp(model: &Model, title: &str) -> Result<String> {
         };
         let name = checked_name(&c.name)?;
         let _ = writeln!(w, "*SURFACE INTERACTION, NAME={name}\n*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR\n{}", num(slope));
+        if let Some(f) = &c.friction {
+            // CalculiX's *FRICTION: mu and the stick slope per listing, as the reader maps it
+            // back (a two-pass pair's directions each carry half, so each takes half the slope)
+            if f.elastic_slip.is_some() {
+                return Err(Error::input(format!(
+                    "contact '{}': friction with an elastic slip has no CalculiX form (its *FRICTION takes a stick slope): give --tangential-penalty for the export",
+                    c.name
+                )));
+            }
+            let passes = if two_pass { 2.0 } else { 1.0 };
+            match f.tangential_penalty {
+                Some(k) => {
+                    let _ = writeln!(w, "*FRICTION\n{}, {}", num(f.coefficient), num(k / passes));
+                }
+                None => {
+                    let _ = writeln!(w, "*FRICTION\n{}", num(f.coefficient));
+                }
+            }
+        }
         let _ = writeln!(w, "*CONTACT PAIR, INTERACTION={name}, TYPE={kind}\n{}, {}", c.slave, c.master);
         if two_pass {
             let _ = writeln!(w, "*CONTACT PAIR, INTERACTION={name}, TYPE={kind}\n{}, {}", c.master, c.slave);
@@ -125,6 +145,10 @@ pub fn to_inp(model: &Model, title: &str) -> Result<String> {
         let dt = period / step.increments as f64;
         let dt_min = model.stepping.min_increment * period;
         let _ = writeln!(w, "*STATIC\n{}, {}, {}, {}", num(dt), num(period), num(dt_min), num(dt));
+        if model.stepping.easy_iterations != crate::model::SteppingControls::default().easy_iterations {
+            // CalculiX's defaults but for I_G, the iterations after which an increment grows
+            let _ = writeln!(w, "*CONTROLS, PARAMETERS=TIME INCREMENTATION\n4, 8, 9, 16, 10, {}", model.stepping.easy_iterations);
+        }
         if !step.displacements.is_empty() {
             let _ = writeln!(w, "*BOUNDARY");
             for d in &step.displacements {
