@@ -212,17 +212,30 @@ impl<'s> Snes<'s> {
                 ),
                 "SNESSetConvergenceHistory",
             )?;
-            check(sys::SNESSetFromOptions(self.raw), "SNESSetFromOptions").map_err(option_error)?;
-            // the type may come from an options file or PETSC_OPTIONS too
-            let mut kind: sys::SNESType = std::ptr::null();
-            check(sys::SNESGetType(self.raw, &mut kind), "SNESGetType")?;
-            // SAFETY: SNESGetType points at the type's NUL-terminated name, owned by the SNES.
-            let kind = if kind.is_null() { String::new() } else { CStr::from_ptr(kind).to_string_lossy().into_owned() };
-            if !super::options::JUDGED_SNES_TYPES.contains(&kind.as_str()) {
-                return Err(super::options::snes_type_refused(&kind));
-            }
-            Ok(())
         }
+        self.apply_options()
+    }
+
+    /// Applies the options database (SNESSetFromOptions: what it refuses is bad input), and
+    /// refuses a nonlinear solver whose solves slideline's convergence test cannot judge (the
+    /// type may come from an options file or PETSC_OPTIONS as well as the command line).
+    fn apply_options(&mut self) -> Result<()> {
+        let mut kind: sys::SNESType = std::ptr::null();
+        // SAFETY: valid handle; SNESGetType points `kind` at the type's NUL-terminated name,
+        // owned by the SNES and read before any other call on it.
+        let kind = unsafe {
+            check(sys::SNESSetFromOptions(self.raw), "SNESSetFromOptions").map_err(option_error)?;
+            check(sys::SNESGetType(self.raw, &mut kind), "SNESGetType")?;
+            if kind.is_null() {
+                String::new()
+            } else {
+                CStr::from_ptr(kind).to_string_lossy().into_owned()
+            }
+        };
+        if !super::options::JUDGED_SNES_TYPES.contains(&kind.as_str()) {
+            return Err(super::options::snes_type_refused(&kind));
+        }
+        Ok(())
     }
 
     /// Sets the convergence tolerances, then applies the options database again so
@@ -236,17 +249,8 @@ impl<'s> Snes<'s> {
         // SAFETY: valid handle.
         unsafe {
             check(sys::SNESSetTolerances(self.raw, atol.unwrap_or(DEFAULT), rtol.unwrap_or(DEFAULT), 0.0, maxit, -2), "SNESSetTolerances")?;
-            check(sys::SNESSetFromOptions(self.raw), "SNESSetFromOptions").map_err(option_error).map_err(option_error)?;
-            // the type may come from an options file or PETSC_OPTIONS too
-            let mut kind: sys::SNESType = std::ptr::null();
-            check(sys::SNESGetType(self.raw, &mut kind), "SNESGetType")?;
-            // SAFETY: SNESGetType points at the type's NUL-terminated name, owned by the SNES.
-            let kind = if kind.is_null() { String::new() } else { CStr::from_ptr(kind).to_string_lossy().into_owned() };
-            if !super::options::JUDGED_SNES_TYPES.contains(&kind.as_str()) {
-                return Err(super::options::snes_type_refused(&kind));
-            }
-            Ok(())
         }
+        self.apply_options()
     }
 
     /// PETSc's `l2` line search (a secant minimisation of ||F||^2 along the Newton step) for
