@@ -274,6 +274,8 @@ pub struct Scatter<'s> {
 impl<'s> Scatter<'s> {
     /// Scatter from entries `from_global` of `from` into entries 0..n of the sequential `to`.
     pub fn gather(session: &'s PetscSession, from: &Vector<'s>, to: &Vector<'s>, from_global: &[sys::PetscInt]) -> Result<Self> {
+        // SAFETY: reads the MPI library's predefined MPI_COMM_SELF handle, a constant static the
+        // mpi crate exports once MPI is initialised (the session guarantees it is).
         let self_comm = unsafe { mpi::ffi::RSMPI_COMM_SELF };
         let is_from = IndexSet::general(session, self_comm, from_global)?;
         let mut raw = std::ptr::null_mut();
