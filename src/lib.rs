@@ -10,6 +10,7 @@ pub mod petsc;
 
 pub use error::{Error, Result};
 pub mod ad;
+pub mod assessment;
 pub mod contact;
 pub mod dist;
 pub mod element;

@@ -410,11 +410,21 @@ pub fn model(p: &BellowsParams) -> Result<Model> {
 /// with D_m = D_b + w + n t and t_p = t sqrt(D_b / D_m) (EJMA 10th ed., C-3.3). C_f from the
 /// EJMA chart is approximated here by its value for these proportions.
 pub fn ejma_axial_rate(p: &BellowsParams, cf: f64) -> f64 {
-    let db = 2.0 * p.tube_outer_radius();
-    let dm = db + p.height + p.pack_thickness();
-    let tp = p.ply_thickness * (db / dm).sqrt();
-    let per_convolution = 1.7 * dm * p.youngs_modulus * tp.powi(3) * p.plies as f64 / (p.height.powi(3) * cf);
-    per_convolution / p.convolutions as f64
+    code_geometry(p).axial_rate(p.youngs_modulus, cf)
+}
+
+/// The joint's bellows as the codes describe it: the pack's inside diameter is the tubes'
+/// outside.
+pub fn code_geometry(p: &BellowsParams) -> crate::assessment::formulas::UBellows {
+    crate::assessment::formulas::UBellows {
+        inside_diameter: 2.0 * p.tube_outer_radius(),
+        height: p.height,
+        pitch: p.pitch,
+        ply_thickness: p.ply_thickness,
+        plies: p.plies,
+        convolutions: p.convolutions,
+        torus_radius: p.torus_radius,
+    }
 }
 
 #[cfg(test)]

@@ -1,0 +1,212 @@
+//! The design formulas of the expansion joint codes for unreinforced U-shaped bellows (EJMA
+//! Standards; ASME VIII-1 Appendix 26 has the same forms), as pure functions in any consistent
+//! units. The equation numbers are EJMA's as the worked calculations print them (Eqs. 4-30 to
+//! 4-37); each function is tested against every printed number of those calculations that it
+//! reproduces (`../shared/bellows-code/worked-examples.md` transcribes them). The chart
+//! coefficients Cp, Cf, Cd are the caller's (read off the code's charts, or computed).
+//!
+//! Symbols: Db inside diameter, w convolution height, q pitch, t ply thickness, n plies, N
+//! convolutions, rm mean radius of the crest and root tori, Dm mean diameter, tp ply thickness
+//! after forming, P pressure, Eb elastic modulus, e axial movement per convolution.
+
+use std::f64::consts::PI;
+
+/// The geometry of a U-shaped bellows.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct UBellows {
+    pub inside_diameter: f64,
+    pub height: f64,
+    pub pitch: f64,
+    pub ply_thickness: f64,
+    pub plies: usize,
+    pub convolutions: usize,
+    pub torus_radius: f64,
+}
+
+impl UBellows {
+    /// Dm = Db + w + n t.
+    pub fn mean_diameter(&self) -> f64 {
+        self.inside_diameter + self.height + self.plies as f64 * self.ply_thickness
+    }
+
+    /// tp = t sqrt(Db / Dm): the ply thinned by forming.
+    pub fn formed_thickness(&self) -> f64 {
+        self.ply_thickness * (self.inside_diameter / self.mean_diameter()).sqrt()
+    }
+
+    /// C1 = 2 rm / w, the first coordinate of the coefficient charts.
+    pub fn c1(&self) -> f64 {
+        2.0 * self.torus_radius / self.height
+    }
+
+    /// C2 = 1.82 rm / sqrt(Dm tp), the second coordinate of the charts.
+    pub fn c2(&self) -> f64 {
+        1.82 * self.torus_radius / (self.mean_diameter() * self.formed_thickness()).sqrt()
+    }
+
+    /// C2 written with the pitch, q / (2.2 sqrt(Dm tp)), as some reports print it: within
+    /// 0.1 % of [`UBellows::c2`] when q = 4 rm (1.82 against 4 / 2.2 = 1.818).
+    pub fn c2_from_pitch(&self) -> f64 {
+        self.pitch / (2.2 * (self.mean_diameter() * self.formed_thickness()).sqrt())
+    }
+
+    fn n(&self) -> f64 {
+        self.plies as f64
+    }
+
+    /// S3, meridional membrane stress from pressure (Eq. 4-30): P w / (2 n tp).
+    pub fn s3(&self, pressure: f64) -> f64 {
+        pressure * self.height / (2.0 * self.n() * self.formed_thickness())
+    }
+
+    /// S4, meridional bending stress from pressure (Eq. 4-31): P / (2 n) (w / tp)^2 Cp.
+    pub fn s4(&self, pressure: f64, cp: f64) -> f64 {
+        pressure / (2.0 * self.n()) * (self.height / self.formed_thickness()).powi(2) * cp
+    }
+
+    /// S5, meridional membrane stress from an axial movement e per convolution (Eq. 4-32):
+    /// Eb tp^2 e / (2 w^3 Cf).
+    pub fn s5(&self, movement: f64, modulus: f64, cf: f64) -> f64 {
+        modulus * self.formed_thickness().powi(2) * movement / (2.0 * self.height.powi(3) * cf)
+    }
+
+    /// S6, meridional bending stress from an axial movement e per convolution (Eq. 4-33):
+    /// 5 Eb tp e / (3 w^2 Cd).
+    pub fn s6(&self, movement: f64, modulus: f64, cd: f64) -> f64 {
+        5.0 * modulus * self.formed_thickness() * movement / (3.0 * self.height.powi(2) * cd)
+    }
+
+    /// fiu, the axial spring rate of one convolution (Eq. 4-37): 1.7 Dm Eb tp^3 n / (w^3 Cf).
+    pub fn convolution_axial_rate(&self, modulus: f64, cf: f64) -> f64 {
+        1.7 * self.mean_diameter() * modulus * self.formed_thickness().powi(3) * self.n() / (self.height.powi(3) * cf)
+    }
+
+    /// Kb, the axial spring rate of the bellows: fiu / N.
+    pub fn axial_rate(&self, modulus: f64, cf: f64) -> f64 {
+        self.convolution_axial_rate(modulus, cf) / self.convolutions as f64
+    }
+
+    /// Psc, the column instability (squirm) pressure with both ends held: 0.34 pi Kb / (N q).
+    pub fn column_instability_pressure(&self, axial_rate: f64) -> f64 {
+        0.34 * PI * axial_rate / (self.convolutions as f64 * self.pitch)
+    }
+}
+
+/// St, the total meridional stress range of a cycle: 0.7 (S3 + S4) + (S5 + S6).
+pub fn stress_range(s3: f64, s4: f64, s5: f64, s6: f64) -> f64 {
+    0.7 * (s3 + s4) + (s5 + s6)
+}
+
+/// Pounds per square inch in one MPa.
+pub const PSI_PER_MPA: f64 = 145.037_737_73;
+
+/// The allowable cycles of as-formed austenitic stainless bellows (EJMA's curve): Nc =
+/// (1.86e6 / (St - 54 000))^3.4, St in psi; None at or below the endurance range 54 000 psi.
+pub fn cycles_as_formed_austenitic(stress_range_psi: f64) -> Option<f64> {
+    (stress_range_psi > 54_000.0).then(|| (1.86e6 / (stress_range_psi - 54_000.0)).powf(3.4))
+}
+
+/// The lateral spring rate of a bellows of axial rate K, mean diameter Dm and convolved length
+/// Lb, with both ends held parallel (the beam analogy): 3 K Dm^2 / (2 Lb^2).
+pub fn lateral_rate(axial_rate: f64, mean_diameter: f64, convolved_length: f64) -> f64 {
+    3.0 * axial_rate * mean_diameter.powi(2) / (2.0 * convolved_length.powi(2))
+}
+
+/// The angular spring rate per degree of a bellows of axial rate K (the beam analogy):
+/// K Dm^2 pi / 1440 (N/mm and mm give N mm per degree).
+pub fn angular_rate_per_degree(axial_rate: f64, mean_diameter: f64) -> f64 {
+    axial_rate * mean_diameter.powi(2) * PI / 1440.0
+}
+
+#[cfg(test)]
+mod tests {
+    //! Each test opens with its source (transcribed in ../shared/bellows-code/worked-examples.md)
+    //! and checks every printed number the formula reproduces, to the printed digits.
+    use super::*;
+
+    /// Within half a unit of the last printed digit (`printed` given as its text).
+    fn to_printed_digits(value: f64, printed: &str) {
+        let decimals = printed.split('.').nth(1).map_or(0, str::len) as i32;
+        let expected: f64 = printed.parse().unwrap();
+        assert!((value - expected).abs() <= 0.5 * 10f64.powi(-decimals) * (1.0 + 1e-9), "{value} against the printed {printed}");
+    }
+
+    /// "EJMA Bellows Calculator" worksheet (US units): Db 38 in, w 1.095, t 0.03, n 1, q 1.0,
+    /// rm 0.25, N 6, P 14.5 psi, Eb 29e6 psi, e = 0.315 / 6 in; charts Cp 0.68, Cf 1.65, Cd 1.63.
+    /// Printed: Dm 39.125, tp 0.0295655, C1 0.457, C2 0.423, S3 268.56 (268.51 from the unrounded
+    /// tp, which the sheet's other figures use), S4 6762.44, S5 307.17, S6 38386.29 psi,
+    /// fiu 23010.85 lb/in, the bellows 3835.14 lb/in, Sf 43615.15 psi.
+    #[test]
+    fn the_ejma_calculator_worksheet() {
+        let b = UBellows { inside_diameter: 38.0, height: 1.095, pitch: 1.0, ply_thickness: 0.03, plies: 1, convolutions: 6, torus_radius: 0.25 };
+        let (p, eb, e) = (14.5, 29.0e6, 0.315 / 6.0);
+        to_printed_digits(b.mean_diameter(), "39.125");
+        to_printed_digits(b.formed_thickness(), "0.0295655");
+        to_printed_digits(b.c1(), "0.457");
+        to_printed_digits(b.c2(), "0.423");
+        let (s3, s4, s5, s6) = (b.s3(p), b.s4(p, 0.68), b.s5(e, eb, 1.65), b.s6(e, eb, 1.63));
+        to_printed_digits(s3, "268.51");
+        to_printed_digits(s4, "6762.44");
+        to_printed_digits(s5, "307.17");
+        to_printed_digits(s6, "38386.29");
+        to_printed_digits(b.convolution_axial_rate(eb, 1.65), "23010.85");
+        to_printed_digits(b.axial_rate(eb, 1.65), "3835.14");
+        // the sheet sums its printed (rounded) S3
+        to_printed_digits(stress_range(268.56, s4, s5, s6), "43615.15");
+    }
+
+    /// Sample EJMA calculation report (SI units): 3 plies of 0.3 mm, w 9.1 mm, q 8, N 18,
+    /// P 0.3 MPa, Kb 159 N/mm. Printed: S3 1.6 MPa, column instability 1.18 MPa, and 19 905
+    /// allowed cycles, which the curve gives as 19 901 from the printed, rounded stresses (S3
+    /// 1.6, S4 33.4, S5 10.6, S6 1034.9 MPa): within 0.03 %.
+    #[test]
+    fn the_sample_ejma_report() {
+        let b = UBellows { inside_diameter: 130.0, height: 9.1, pitch: 8.0, ply_thickness: 0.3, plies: 3, convolutions: 18, torus_radius: 1.3 };
+        assert!((b.mean_diameter() - 140.0).abs() < 1e-12);
+        let tp = 0.29; // printed; tp = t sqrt(Db / Dm) = 0.289
+        assert!((b.formed_thickness() - tp).abs() < 0.005);
+        to_printed_digits(0.3 * 9.1 / (2.0 * 3.0 * tp), "1.6");
+        to_printed_digits(b.column_instability_pressure(159.0), "1.18");
+        let st = stress_range(1.6, 33.4, 10.6, 1034.9) * PSI_PER_MPA;
+        let cycles = cycles_as_formed_austenitic(st).unwrap();
+        assert!((cycles - 19_905.0).abs() <= 3e-4 * 19_905.0, "{cycles} cycles against the printed 19 905");
+        assert_eq!(cycles_as_formed_austenitic(50_000.0), None, "below the endurance range");
+    }
+
+    /// Commercial EJMA-style report, Inconel 625, DN 2320 (SI): Db 2320 mm, rm 12.5, w 50, q 50,
+    /// t 1.27, n 1, N 9, P 0.1 MPa, Eb 170 800 MPa at temperature (207 000 at room temperature),
+    /// axial 125 mm; Cp 0.6634, Cf 1.7033, Cd 1.7048. Printed: tp 1.2562 mm, S3 1.9901, S4
+    /// 52.5494 (52.5498 from the unrounded tp), the convolution's rate 6410.45 N/mm and the
+    /// bellows' 712.2796 (= 6410.45 / N; 712.2718, 1.1e-5 off), Psc 1.6907 MPa; S5 10.6543 and S6
+    /// 1412.3173 MPa reproduce with the room-temperature modulus (10.6542, 1412.311: the report's
+    /// tp is rounded).
+    #[test]
+    fn the_inconel_report() {
+        let b = UBellows { inside_diameter: 2320.0, height: 50.0, pitch: 50.0, ply_thickness: 1.27, plies: 1, convolutions: 9, torus_radius: 12.5 };
+        to_printed_digits(b.formed_thickness(), "1.2562");
+        to_printed_digits(b.c1(), "0.5");
+        to_printed_digits(b.c2_from_pitch(), "0.4164");
+        assert!((b.c2() - b.c2_from_pitch()).abs() < 1e-3 * b.c2());
+        to_printed_digits(b.s3(0.1), "1.9901");
+        to_printed_digits(b.s4(0.1, 0.6634), "52.5498");
+        let fiu = b.convolution_axial_rate(170_800.0, 1.7033);
+        to_printed_digits(fiu, "6410.45");
+        // 712.2718: 1.1e-5 below the printed figure, as S5 and S6 (the report's tp is rounded)
+        assert!((b.axial_rate(170_800.0, 1.7033) - 712.2796).abs() <= 2e-5 * 712.2796);
+        // the report writes the column formula with the convolution's rate and N^2
+        to_printed_digits(b.column_instability_pressure(b.axial_rate(170_800.0, 1.7033)), "1.6907");
+        let e = 125.0 / 9.0;
+        assert!((b.s5(e, 207_000.0, 1.7033) - 10.6543).abs() <= 2e-5 * 10.6543);
+        assert!((b.s6(e, 207_000.0, 1.7048) - 1412.3173).abs() <= 2e-5 * 1412.3173);
+    }
+
+    /// "EJMA 9th Edition Calculation Report", DN250: the working axial rate K 1166.9 N/mm, Dm
+    /// 296.4 mm, Lb 102 mm. Printed: lateral rate 14 780.4 N/mm (14 780.2 from the printed K),
+    /// angular rate 223.7 N m per degree.
+    #[test]
+    fn the_dn250_report_lateral_and_angular_rates() {
+        let (k, dm, lb) = (1166.9, 296.4, 102.0);
+        assert!((lateral_rate(k, dm, lb) - 14_780.4).abs() <= 0.5, "{}", lateral_rate(k, dm, lb));
+        to_printed_digits(angular_rate_per_degree(k, dm) / 1000.0, "223.7");
+    }
+}

@@ -1,0 +1,5 @@
+//! The bellows design assessment: the expansion joint codes' formulas beside the finite-element
+//! answers. So far the formulas themselves ([`formulas`]), pure functions tested against
+//! published worked calculations.
+
+pub mod formulas;
