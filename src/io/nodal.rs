@@ -210,7 +210,7 @@ mod tests {
     use super::*;
 
     #[test]
-    fn invariants_come_from_the_averaged_components() {
+    fn the_nodal_scalars_are_the_components_and_their_invariants() {
         // uniaxial 300 along r with hoop -60: principal max 300, min -60, pressure -80
         let s = node_scalars(&[300.0, 0.0, -60.0, 0.0, 1e-3, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]);
         assert!((s[5] - 300.0).abs() < 1e-12 && (s[6] + 60.0).abs() < 1e-12 && (s[4] + 80.0).abs() < 1e-12);
