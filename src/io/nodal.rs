@@ -133,14 +133,14 @@ impl NodalWriter {
         self.world.all_reduce_into(&local[..], &mut total[..], SystemOperation::sum());
         let (sums, counts) = total.split_at(self.nodes * AVERAGED);
         let owned = self.node_slab.0..self.node_slab.1;
-        let mean = |n: usize| -> Vec<f64> { (0..AVERAGED).map(|c| sums[n * AVERAGED + c] / counts[n].max(1.0)).collect() };
-        let scalars: Vec<[f64; 16]> = owned.clone().map(|n| node_scalars(&mean(n))).collect();
+        let means: Vec<[f64; AVERAGED]> = owned.clone().map(|n| std::array::from_fn(|c| sums[n * AVERAGED + c] / counts[n].max(1.0))).collect();
+        let scalars: Vec<[f64; 16]> = means.iter().map(|m| node_scalars(m)).collect();
         for (c, name) in NODAL_SCALARS.iter().enumerate().filter(|(_, name)| nodal_scalar_kept(name, self.fields)) {
             let column: Vec<f64> = scalars.iter().map(|s| s[c]).collect();
             write_rows(&g, name, &[self.nodes], self.node_slab, &column, path)?;
         }
         if self.fields.plastic_strain {
-            let ep: Vec<f64> = owned.clone().map(|n| sums[n * AVERAGED + 12] / counts[n].max(1.0)).collect();
+            let ep: Vec<f64> = means.iter().map(|m| m[AVERAGED - 1]).collect();
             write_rows(&g, "equivalent_plastic_strain", &[self.nodes], self.node_slab, &ep, path)?;
         }
         if self.fields.temperature {

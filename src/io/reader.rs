@@ -160,7 +160,6 @@ impl ResultsReader {
         ds.read_raw::<u64>().map_err(|e| missing(&self.path, "mesh/element_ids", e))
     }
 
-    /// Rows of `coordinates` of a node set's members.
     /// The node set `name` names, as .inp set names are read: without regard to case (an
     /// exact match first).
     pub fn node_set_name(&self, name: &str) -> Result<String> {
@@ -173,6 +172,7 @@ impl ResultsReader {
             .ok_or_else(|| Error::input(format!("{}: no node set {name:?} (the sets are {})", self.path.display(), known.join(", "))))
     }
 
+    /// Rows of `coordinates` of a node set's members.
     pub fn node_set(&self, name: &str) -> Result<Vec<usize>> {
         let path = format!("mesh/node_sets/{name}");
         let ds = self.file.dataset(&path).map_err(|_| {
