@@ -5,10 +5,12 @@
 # everything outside the linear solve to the linear solve, the MUMPS factorisations (symbolic
 # analyses reused while the Jacobian's pattern holds) and the 2-rank speed-up.
 #   scripts/profile-bellows.sh [bellows flags]     (default: the default case, ~6 min; --quick ~30 s)
+#   SLIDELINE=/path/to/other/slideline scripts/profile-bellows.sh    another build (before/after)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OPENBLAS_NUM_THREADS=1 OMPI_MCA_rmaps_base_oversubscribe=1
 cargo build --release --quiet
+bin=${SLIDELINE:-target/release/slideline}
 flags=("$@")
 out=out/profile
 mkdir -p "$out"
@@ -16,7 +18,7 @@ printf '%-6s %9s %9s %9s %9s %9s %9s %9s %14s %17s\n' ranks "wall s" "lin.solve"
 declare -A wall
 for n in 1 2; do
     log="$out/ranks$n.log"
-    mpirun -n "$n" target/release/slideline bellows ${flags[@]+"${flags[@]}"} -q -o "$out/ranks$n.h5" -- -log_view >"$log" 2>&1
+    mpirun -n "$n" "$bin" bellows ${flags[@]+"${flags[@]}"} -q -o "$out/ranks$n.h5" -- -log_view >"$log" 2>&1
     stage() { awk -v s="$1:" '/Summary of Stages/ {on=1} on && $2 == s {print $3; exit}' "$log"; }
     # the linear solve: MUMPS's factorisation (PCSetUp) and the triangular solves (KSPSolve)
     ksp=$(awk '/^(KSPSolve|PCSetUp) / {t += $4; n++} n == 2 {print t; exit}' "$log")

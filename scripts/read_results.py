@@ -19,7 +19,7 @@ with h5py.File(path, "r") as f:
         print("  step %d  increment %d  load factor %.4f  Newton %d" % (
             history["step"][row], history["increment"][row], history["load_factor"][row], history["newton_iterations"][row]))
     last = sorted(f["increments"])[-1]
-    u = f["increments"][last]["displacement"][:]
+    u = f["increments"][last]["nodal/displacement"][:, :2]  # (u_r, u_z, 0) for ParaView
     vm = f["increments"][last]["von_mises"][:]
     x = f["mesh/coordinates"][:]
     k = np.argmax(np.hypot(u[:, 0], u[:, 1]))

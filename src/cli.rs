@@ -55,6 +55,10 @@ pub enum Command {
         /// (CalculiX's and Abaqus's) or `residual` (||F|| down by 1e-10, or to round-off).
         #[arg(long, value_enum)]
         convergence: Option<ConvergenceArg>,
+        /// The visualisation fields as 64-bit (`double`) or 32-bit (`single`) floats, over the
+        /// deck's `[output] precision`; the displacement, restart state, history and mesh stay 64-bit.
+        #[arg(long, value_enum)]
+        output_precision: Option<PrecisionArg>,
         /// PETSc options (after `--`).
         #[arg(last = true, allow_hyphen_values = true)]
         petsc: Vec<String>,
@@ -231,6 +235,10 @@ pub struct BellowsArgs {
     /// keeps every increment.
     #[arg(long, default_value_t = 1, value_name = "N")]
     pub output_every: usize,
+    /// The visualisation fields as 64-bit (`double`) or 32-bit (`single`) floats; the
+    /// displacement, restart state, history and mesh stay 64-bit.
+    #[arg(long, value_enum, default_value_t = PrecisionArg::Double)]
+    pub output_precision: PrecisionArg,
     /// A coarse, quick version of the same case (about a minute).
     #[arg(long)]
     pub quick: bool,
@@ -303,6 +311,7 @@ impl BellowsArgs {
         take("ply_element_length", &mut |p| p.ply_element_length = self.ply_element_length);
         take("ply_elements", &mut |p| p.ply_elements = self.ply_elements);
         take("output_every", &mut |p| p.output_every = self.output_every);
+        take("output_precision", &mut |p| p.output_precision = self.output_precision.into());
         take("friction_plies", &mut |p| p.friction_plies = self.friction_plies);
         take("friction_sleeve", &mut |p| p.friction_sleeve = self.friction_sleeve);
         take("cycle", &mut |p| p.cycle = self.cycle);
@@ -310,6 +319,22 @@ impl BellowsArgs {
         take("elastic_slip", &mut |p| p.elastic_slip = self.elastic_slip);
         take("convergence", &mut |p| p.convergence = self.convergence.into());
         Ok(p)
+    }
+}
+
+/// The `--output-precision` choices.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum PrecisionArg {
+    Double,
+    Single,
+}
+
+impl From<PrecisionArg> for crate::model::Precision {
+    fn from(p: PrecisionArg) -> Self {
+        match p {
+            PrecisionArg::Double => crate::model::Precision::Double,
+            PrecisionArg::Single => crate::model::Precision::Single,
+        }
     }
 }
 

@@ -208,7 +208,7 @@ fn main() -> ExitCode {
             Ok(()) => ExitCode::SUCCESS,
             Err(e) => fail(&e, true),
         },
-        Command::Run { deck, output, quiet, verbose, monitor, restart, increment, convergence, petsc } => {
+        Command::Run { deck, output, quiet, verbose, monitor, restart, increment, convergence, output_precision, petsc } => {
             let output = output.unwrap_or_else(|| PathBuf::from(deck.file_stem().unwrap_or_default()).with_extension("h5"));
             if let Err(e) = slideline::io::check_output_path(&output, Some((&deck, "the input deck"))) {
                 return fail(&e, launched_as_rank_zero());
@@ -225,6 +225,9 @@ fn main() -> ExitCode {
                 let mut m = m;
                 if let Some(c) = convergence {
                     m.stepping.convergence = c.into();
+                }
+                if let Some(p) = output_precision {
+                    m.output.precision = p.into();
                 }
                 m
             });
@@ -339,7 +342,10 @@ fn launched_as_rank_zero() -> bool {
 
 fn fail(e: &Error, print: bool) -> ExitCode {
     if print {
-        eprintln!("error: {e}");
+        // one write: under mpirun, pieces of a line written apart can be split by mpirun's own
+        // messages about the exit
+        use std::io::Write as _;
+        let _ = std::io::stderr().write_all(format!("error: {e}\n").as_bytes());
     }
     ExitCode::from(e.exit_code() as u8)
 }

@@ -114,8 +114,8 @@ pub fn field(r: &ResultsReader, name: &str, number: usize) -> Result<String> {
     let nodal_name = name.strip_prefix("nodal_").filter(|n| ELEMENT_FIELDS.contains(n)).unwrap_or(name);
     let (path, nodal) = if ELEMENT_FIELDS.contains(&name) {
         (name.to_string(), false)
-    } else if name == "displacement" {
-        (name.to_string(), true)
+    } else if name == "displacement" && !nodal_names.iter().any(|n| n == "displacement") {
+        (name.to_string(), true) // a file from before the nodal 3-vector was the only one
     } else if nodal_names.iter().any(|n| n == nodal_name) {
         (format!("nodal/{nodal_name}"), true)
     } else {
@@ -134,7 +134,7 @@ pub fn field(r: &ResultsReader, name: &str, number: usize) -> Result<String> {
     let (x0, conn) = (r.coordinates()?, r.connectivity()?);
     let u = r.displacement(&inc)?;
     let count = if nodal { x0.len() } else { conn.len() };
-    if name == "reaction_force" {
+    if values.len() == 3 * x0.len() && (name == "reaction_force" || name == "displacement") {
         // (r, z, 0) for ParaView: the two components
         values = values.chunks(3).flat_map(|v| [v[0], v[1]]).collect();
     }

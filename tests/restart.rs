@@ -76,6 +76,26 @@ fn continuation_is_bit_identical_on_two_ranks() {
     bit_identical_continuation(2);
 }
 
+/// The extrapolation predictor starts each increment from the one before: a restart takes that
+/// one's displacement from the file, from the file a continued run continues (a restart of a
+/// restart), or, where the fields of every N-th increment only are written, from the state.
+#[test]
+fn a_restart_of_a_restart_and_one_from_sparse_output_are_bit_identical() {
+    let dir = tempfile::tempdir().unwrap();
+    ok(bellows(dir.path(), 1, &["-o", "full.h5"]));
+    ok(bellows_restart(dir.path(), 1, "full.h5", &["--increment", "6", "-o", "from6.h5"]));
+    // increment 7's predecessor, 6, is in full.h5 only
+    ok(bellows_restart(dir.path(), 1, "from6.h5", &["--increment", "7", "-o", "from7.h5"]));
+    assert_continues(&dir.path().join("full.h5"), &dir.path().join("from7.h5"), 7);
+    // fields of every 3rd increment: 9's predecessor is in no file, its state keeps the increment
+    ok(bellows(dir.path(), 1, &["--output-every", "3", "-o", "sparse.h5"]));
+    let f = hdf5::File::open(dir.path().join("sparse.h5")).unwrap();
+    assert!(f.link_exists("increments/000009/state/predictor_increment"), "the state keeps what the field of 8 would have given");
+    assert!(!f.link_exists("increments/000003/state/predictor_increment"), "not at a step's first increment (from the step's start)");
+    ok(bellows_restart(dir.path(), 1, "sparse.h5", &["--increment", "9", "-o", "from9.h5"]));
+    assert_continues(&dir.path().join("sparse.h5"), &dir.path().join("from9.h5"), 9);
+}
+
 #[test]
 fn a_killed_run_continues_from_its_last_complete_increment() {
     let dir = tempfile::tempdir().unwrap();
@@ -221,16 +241,16 @@ fn a_corrupt_restart_state_is_refused_by_name() {
         (
             "rows missing",
             |g| {
-                let u = g.dataset("displacement").unwrap().read_raw::<f64>().unwrap();
-                g.unlink("displacement").unwrap();
-                g.new_dataset::<f64>().shape([u.len() / 2 - 3, 2]).create("displacement").unwrap().write_raw(&u[..u.len() - 6]).unwrap();
+                let u = g.dataset("nodal/displacement").unwrap().read_raw::<f64>().unwrap();
+                g.unlink("nodal/displacement").unwrap();
+                g.new_dataset::<f64>().shape([u.len() / 3 - 3, 3]).create("nodal/displacement").unwrap().write_raw(&u[..u.len() - 9]).unwrap();
             },
             "displacement has",
         ),
         (
             "NaN displacement",
             |g| {
-                let ds = g.dataset("displacement").unwrap();
+                let ds = g.dataset("nodal/displacement").unwrap();
                 let mut v = ds.read_raw::<f64>().unwrap();
                 v[3] = f64::NAN;
                 ds.write_raw(&v).unwrap();

@@ -79,7 +79,7 @@ fn frictionless_sliding_needs_no_axial_force_and_keeps_every_node_in_contact() {
         }
         // the tube did slide by 20 mm (plus a few micrometres of Poisson shortening)
         let coords = res.f64s("mesh/coordinates");
-        let u = res.f64s(&format!("{inc}/displacement"));
+        let u = res.displacement(&inc);
         let top = (0..coords.len() / 2).find(|&n| coords[2 * n] == 95.0 && coords[2 * n + 1] == 40.0).unwrap();
         assert!((u[2 * top + 1] - 20.0).abs() < 0.01, "{}", u[2 * top + 1]);
     }

@@ -33,7 +33,7 @@ boundary = [ {{ set = "inner", ur = 0.0 }}, {{ set = "bottom", uz = 0.0 }}, {{ s
     let coords = res.f64s("mesh/coordinates");
     let corner = (0..coords.len() / 2).find(|&n| coords[2 * n] == R && coords[2 * n + 1] == L).unwrap();
     for inc in res.increments() {
-        let u = res.f64s(&format!("{inc}/displacement"));
+        let u = res.displacement(&inc);
         let (lr, lz) = (1.0 + u[2 * corner] / R, 1.0 + u[2 * corner + 1] / L);
         let eps = lz.ln();
         let j = lr * lr * lz;
@@ -46,6 +46,6 @@ boundary = [ {{ set = "inner", ur = 0.0 }}, {{ set = "bottom", uz = 0.0 }}, {{ s
             assert!(s[0].abs() < 1e-8 * expected && s[2].abs() < 1e-8 * expected && s[3].abs() < 1e-8 * expected, "not uniaxial: {s:?}");
         }
     }
-    let final_strain = (1.0 + res.f64s(&format!("{}/displacement", res.last_increment()))[2 * corner + 1] / L).ln();
+    let final_strain = (1.0 + res.displacement(&res.last_increment())[2 * corner + 1] / L).ln();
     assert!((final_strain - 0.5).abs() < 1e-12);
 }

@@ -3,23 +3,60 @@
 //! reads every increment of a 2-rank run of the quick bellows, from another working directory,
 //! and what it reads equals the HDF5 file: times, mesh, displacement, element fields, and the
 //! nodal stresses equal the Gauss-point stresses carried to the nodes, recomputed in Python
-//! (scripts/check_xdmf.py; `./run.sh test` installs Debian's meshio, h5py and numpy).
+//! (scripts/check_xdmf.py; `./run.sh test` installs Debian's meshio, h5py and numpy). The
+//! same holds for a file of 32-bit visualisation fields (`--output-precision single`), and
+//! the mostly-zero fields are stored deflated by the 2-rank collective write.
 
 mod common;
 use common::command_in;
+use hdf5::filters::Filter;
+use std::path::Path;
+
+/// The quick joint, 20 mm in 4 increments on 2 ranks, into `dir/name`, then the XDMF check.
+fn run_and_check(dir: &Path, name: &str, extra: &[&str]) {
+    let out = command_in(dir, 2)
+        .current_dir(dir)
+        .args(["bellows", "--quick", "--displacement", "20", "--increments", "4", "--quiet", "-o", name])
+        .args(extra)
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("scripts/check_xdmf.py");
+    let check = common::python().arg(&script).arg(dir.join(name).with_extension("xmf")).current_dir("/").output().expect("python3");
+    let text = format!("{}{}", String::from_utf8_lossy(&check.stdout), String::from_utf8_lossy(&check.stderr));
+    assert!(check.status.success() && text.trim_end().ends_with("ok"), "{text}");
+    assert!(text.contains("6 increment steps after the t = 0 frame"), "2 heat and 4 compression increments: {text}");
+}
 
 #[test]
 fn meshio_reads_every_increment_and_the_fields_equal_the_results_file() {
     let dir = tempfile::tempdir().unwrap();
-    let out = command_in(dir.path(), 2)
-        .current_dir(dir.path())
-        .args(["bellows", "--quick", "--displacement", "20", "--increments", "4", "--quiet", "-o", "joint.h5"])
-        .output()
-        .unwrap();
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
-    let script = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scripts/check_xdmf.py");
-    let check = common::python().arg(&script).arg(dir.path().join("joint.xmf")).current_dir("/").output().expect("python3");
-    let text = format!("{}{}", String::from_utf8_lossy(&check.stdout), String::from_utf8_lossy(&check.stderr));
-    assert!(check.status.success() && text.trim_end().ends_with("ok"), "{text}");
-    assert!(text.contains("6 increment steps after the t = 0 frame"), "2 heat and 4 compression increments: {text}");
+    run_and_check(dir.path(), "joint.h5", &[]);
+    run_and_check(dir.path(), "single.h5", &["--output-precision", "single"]);
+    let (double, single) = (hdf5::File::open(dir.path().join("joint.h5")).unwrap(), hdf5::File::open(dir.path().join("single.h5")).unwrap());
+    let width = |f: &hdf5::File, d: &str| f.dataset(&format!("increments/000006/{d}")).unwrap().dtype().unwrap().size();
+    for d in ["nodal/stress_rr", "nodal/von_mises", "stress", "nodal/reaction_force", "nodal/contact_pressure"] {
+        assert_eq!((width(&double, d), width(&single, d)), (8, 4), "{d}: 64-bit by default, 32-bit on request");
+    }
+    for d in ["nodal/displacement", "state/plastic_state"] {
+        assert_eq!(width(&single, d), 8, "{d}: the restart reads it, always 64-bit");
+    }
+    // the fields zero over most of the mesh are deflated; the noise-like stresses are not
+    let deflated = |d: &str| double.dataset(&format!("increments/000006/{d}")).unwrap().filters().iter().any(|f| matches!(f, Filter::Deflate(_)));
+    for d in ["nodal/reaction_force", "nodal/plastic_strain_rr", "nodal/contact_gap", "nodal/temperature", "equivalent_plastic_strain"] {
+        assert!(deflated(d), "{d} is stored deflated");
+    }
+    assert!(!deflated("stress"));
+    let stored = |f: &hdf5::File, d: &str| f.dataset(&format!("increments/000006/{d}")).unwrap().storage_size();
+    let raw = 8 * 3 * double.dataset("mesh/node_ids").unwrap().size() as u64;
+    assert!(
+        stored(&double, "nodal/reaction_force") * 20 < raw,
+        "reactions (nonzero at the supports only) shrink: {} of {raw} bytes",
+        stored(&double, "nodal/reaction_force")
+    );
+    // one number per increment for the uniform temperature
+    let t = double.group("increments/000006").unwrap().attr("temperature").unwrap().read_scalar::<f64>().unwrap();
+    assert_eq!(t, 200.0, "the bellows' operating temperature");
+    let size = |f: &str| std::fs::metadata(dir.path().join(f)).unwrap().len() as f64;
+    assert!(size("single.h5") < 0.75 * size("joint.h5"), "single precision: {} against {} bytes", size("single.h5"), size("joint.h5"));
 }

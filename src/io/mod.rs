@@ -2,6 +2,7 @@
 //! sidecar for ParaView.
 
 pub mod describe;
+mod h5ffi;
 pub mod lock;
 pub mod nodal;
 pub mod restart;

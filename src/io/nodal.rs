@@ -10,12 +10,12 @@
 //! scalar so that every reader names it; on request (`element_nodal`) also each element's own
 //! nodal stresses before averaging, `/increments/NNNNNN/element_nodal_stress`.
 
-use super::results::{write_rows, IncrementFields};
+use super::results::{write_field, write_rows, IncrementFields};
 use crate::dist::Partition;
 use crate::error::Result;
 use crate::fe::axisymmetric::{principal_stresses, von_mises};
 use crate::fe::recover::{Recovery, Rule};
-use crate::model::{Mesh, OutputFields};
+use crate::model::{Mesh, OutputControls, OutputFields, Precision};
 use crate::solve::contact::PassOutput;
 use mpi::collective::SystemOperation;
 use mpi::topology::SimpleCommunicator;
@@ -85,10 +85,11 @@ pub struct NodalWriter {
     /// File row of each mesh node (contact slave nodes come by mesh index).
     node_position: Vec<usize>,
     fields: OutputFields,
+    precision: Precision,
 }
 
 impl NodalWriter {
-    pub fn new(world: SimpleCommunicator, mesh: &Mesh, partition: &Partition, fields: OutputFields) -> Self {
+    pub fn new(world: SimpleCommunicator, mesh: &Mesh, partition: &Partition, output: OutputControls) -> Self {
         let connectivity = partition.local_elements().iter().map(|&e| mesh.elements[e].map(|n| partition.node_position[n])).collect();
         let rank = partition.rank;
         NodalWriter {
@@ -100,7 +101,8 @@ impl NodalWriter {
             element_slab: (partition.element_offsets[rank], partition.element_offsets[rank + 1]),
             recovery: Recovery::default(),
             node_position: partition.node_position.clone(),
-            fields,
+            fields: output.fields,
+            precision: output.precision,
         }
     }
 
@@ -110,7 +112,7 @@ impl NodalWriter {
         let g = increment.create_group("nodal").map_err(|e| crate::error::Error::Output { path: path.to_path_buf(), message: e.to_string() })?;
         let as_vector = |v: &[[f64; 2]]| -> Vec<f64> { v.iter().flat_map(|u| [u[0], u[1], 0.0]).collect() };
         write_rows(&g, "displacement", &[self.nodes, 3], self.node_slab, &as_vector(f.displacement), path)?;
-        write_rows(&g, "reaction_force", &[self.nodes, 3], self.node_slab, &as_vector(f.reaction), path)?;
+        write_field(&g, "reaction_force", &[self.nodes, 3], self.node_slab, &as_vector(f.reaction), self.precision, path)?;
         // every rank adds its elements' share to every node; the sums meet in one reduction
         let mut local = vec![0.0f64; self.nodes * (AVERAGED + 1)];
         let (sums, counts) = local.split_at_mut(self.nodes * AVERAGED);
@@ -137,15 +139,15 @@ impl NodalWriter {
         let scalars: Vec<[f64; 16]> = means.iter().map(|m| node_scalars(m)).collect();
         for (c, name) in NODAL_SCALARS.iter().enumerate().filter(|(_, name)| nodal_scalar_kept(name, self.fields)) {
             let column: Vec<f64> = scalars.iter().map(|s| s[c]).collect();
-            write_rows(&g, name, &[self.nodes], self.node_slab, &column, path)?;
+            write_field(&g, name, &[self.nodes], self.node_slab, &column, self.precision, path)?;
         }
         if self.fields.plastic_strain {
             let ep: Vec<f64> = means.iter().map(|m| m[AVERAGED - 1]).collect();
-            write_rows(&g, "equivalent_plastic_strain", &[self.nodes], self.node_slab, &ep, path)?;
+            write_field(&g, "equivalent_plastic_strain", &[self.nodes], self.node_slab, &ep, self.precision, path)?;
         }
         if self.fields.temperature {
             let t = vec![f.temperature; owned.len()];
-            write_rows(&g, "temperature", &[self.nodes], self.node_slab, &t, path)?;
+            write_field(&g, "temperature", &[self.nodes], self.node_slab, &t, self.precision, path)?;
         }
         if !f.contact.is_empty() && self.fields.contact {
             self.write_contact(&g, f.contact, path)?;
@@ -153,7 +155,7 @@ impl NodalWriter {
         if self.fields.element_nodal {
             let stress: Vec<f64> =
                 f.stress.iter().zip(f.plastic_strain).flat_map(|(s, ep)| self.recovery.element_nodal(Rule::for_element(ep), s)).flatten().collect();
-            write_rows(increment, "element_nodal_stress", &[self.elements, 8, 4], self.element_slab, &stress, path)?;
+            write_field(increment, "element_nodal_stress", &[self.elements, 8, 4], self.element_slab, &stress, self.precision, path)?;
         }
         Ok(())
     }
@@ -190,16 +192,16 @@ impl NodalWriter {
         let owned = self.node_slab.0..self.node_slab.1;
         let column = |k: usize| -> Vec<f64> { owned.clone().map(|r| most_all[k * n + r]).collect() };
         let gap: Vec<f64> = owned.clone().map(|r| if least_all[r].is_finite() { least_all[r] } else { f64::NAN }).collect();
-        write_rows(g, "contact_pressure", &[n], self.node_slab, &column(0), path)?;
-        write_rows(g, "contact_status", &[n], self.node_slab, &column(1), path)?;
-        write_rows(g, "contact_gap", &[n], self.node_slab, &gap, path)?;
+        write_field(g, "contact_pressure", &[n], self.node_slab, &column(0), self.precision, path)?;
+        write_field(g, "contact_status", &[n], self.node_slab, &column(1), self.precision, path)?;
+        write_field(g, "contact_gap", &[n], self.node_slab, &gap, self.precision, path)?;
         if any_friction == 1 {
             // a node is a slave on one rank only: the signed shear of the rank that has it
             let mut shear_all = vec![0.0f64; n];
             self.world.all_reduce_into(&shear[..], &mut shear_all[..], SystemOperation::sum());
             let signed: Vec<f64> = owned.clone().map(|r| shear_all[r]).collect();
-            write_rows(g, "friction_shear", &[n], self.node_slab, &signed, path)?;
-            write_rows(g, "contact_sliding", &[n], self.node_slab, &column(3), path)?;
+            write_field(g, "friction_shear", &[n], self.node_slab, &signed, self.precision, path)?;
+            write_field(g, "contact_sliding", &[n], self.node_slab, &column(3), self.precision, path)?;
         }
         Ok(())
     }

@@ -272,7 +272,17 @@ impl ResultsReader {
 
     /// Nodal displacement (u_r, u_z) at an increment.
     pub fn displacement(&self, increment: &str) -> Result<Vec<[f64; 2]>> {
-        Ok(self.read_f64(&format!("increments/{increment}/displacement"))?.chunks_exact(2).map(|c| [c[0], c[1]]).collect())
+        match self.file.link_exists(&format!("increments/{increment}/nodal/displacement")) {
+            // the (r, z, 0) vector ParaView warps by
+            true => Ok(self.read_f64(&format!("increments/{increment}/nodal/displacement"))?.chunks_exact(3).map(|c| [c[0], c[1]]).collect()),
+            // files of slideline 0.1 before it also kept an (r, z) copy, and older ones only it
+            false => Ok(self.read_f64(&format!("increments/{increment}/displacement"))?.chunks_exact(2).map(|c| [c[0], c[1]]).collect()),
+        }
+    }
+
+    /// Whether increment group `increment` holds the displacement (complete or not).
+    pub fn has_displacement(&self, increment: &str) -> bool {
+        ["nodal/displacement", "displacement"].iter().any(|d| self.file.link_exists(&format!("increments/{increment}/{d}")))
     }
 
     /// Any field of an increment, flattened (row-major).

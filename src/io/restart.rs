@@ -22,6 +22,7 @@ use crate::material::PointState;
 use crate::model::{Mesh, Model};
 use crate::solve::contact::SlipPoint;
 use crate::solve::energy::AuditPoint;
+use crate::solve::extrapolate::LastIncrement;
 use mpi::datatype::PartitionMut;
 use mpi::topology::SimpleCommunicator;
 use mpi::traits::*;
@@ -45,6 +46,9 @@ pub struct CommittedState<'a> {
     pub fresh_pattern: Vec<(usize, usize)>,
     /// Size of the next increment's first attempt (load factor).
     pub next_size: f64,
+    /// The extrapolation predictor's last displacement increment (every mesh node), where a
+    /// restart cannot take it from the previous increment's field in this file.
+    pub predictor_increment: Option<&'a [[f64; 2]]>,
     /// Where the energy audit's next trapezoids start (the same on every rank).
     pub audit: &'a AuditPoint,
     pub refits: usize,
@@ -90,6 +94,11 @@ pub(super) fn write_state(
         let values: Vec<f64> = pass.iter().flat_map(|(_, s)| [s.edge as f64, s.xi, s.traction]).collect();
         write_gathered(&sg, world, &format!("slip_nodes_pass{p}"), 1, &nodes, path)?;
         write_gathered(&sg, world, &format!("slip_pass{p}"), 3, &values, path)?;
+    }
+    // replicated, so rank 0 writes it, in the mesh's node order
+    if let Some(delta) = state.predictor_increment {
+        let local: Vec<f64> = if world.rank() == 0 { delta.iter().flatten().copied().collect() } else { Vec::new() };
+        write_gathered(&sg, world, PREDICTOR_INCREMENT, 2, &local, path)?;
     }
     // the audit's starting point: replicated, so rank 0 writes it (the nodes with a load)
     let a = state.audit;
@@ -158,6 +167,9 @@ fn write_gathered<T: hdf5::H5Type + Equivalence + Copy>(
     write_rows(g, name, &shape, (first, first + rows as usize), local, path)
 }
 
+/// State dataset: the extrapolation predictor's displacement increment, mesh node order.
+const PREDICTOR_INCREMENT: &str = "predictor_increment";
+
 /// Which increment to continue from.
 #[derive(Clone, Debug)]
 pub struct RestartFrom {
@@ -194,6 +206,8 @@ pub struct RestartPoint {
     pub pattern: Vec<(usize, usize, usize)>,
     /// Ranks of the run that wrote the file.
     pub ranks: usize,
+    /// The increment before, as the extrapolation predictor takes it (None at a step's end).
+    pub last_increment: Option<LastIncrement>,
     /// History rows up to and including the increment, with their step names.
     pub rows: Vec<(String, HistoryRow)>,
 }
@@ -249,31 +263,41 @@ impl RestartPoint {
                 None => return Err(bad(format!("increment {number} is in step {} ({saved:?}), the deck has {} step(s)", k + 1, model.steps.len()))),
             }
         }
-        let to_model = |group: &str, file_order: Vec<[f64; 2]>| -> Result<Vec<[f64; 2]>> {
-            let what = format!("increments/{group}/displacement");
-            if file_order.len() != nodes.len() {
-                return Err(bad(format!("{what} has {} rows, the mesh {} nodes", file_order.len(), nodes.len())));
+        // this file and those it continues (restarts of restarts), each with its node order
+        let mut chain = vec![(ResultsReader::open(&from.file)?, nodes.clone())];
+        while chain.len() < 64 {
+            let source = chain.last().and_then(|(r, _)| r.text_attr("restarted_from").ok()).and_then(|t| Some(PathBuf::from(t.rsplit_once(" increment ")?.0)));
+            let Some(earlier) = source.and_then(|p| ResultsReader::open(&p).ok()) else { break };
+            let (order, _) = check_mesh(&earlier, model).map_err(bad)?;
+            chain.push((earlier, order));
+        }
+        // the displacement of increment group `g` from the first file of the chain holding it
+        let field = |g: &str| -> Result<Option<Vec<[f64; 2]>>> {
+            let what = format!("increments/{g}/nodal/displacement");
+            let Some((r, order)) = chain.iter().find(|(r, _)| r.has_displacement(g)) else { return Ok(None) };
+            let file_order = r.displacement(g)?;
+            if file_order.len() != order.len() {
+                return Err(bad(format!("{what} has {} rows, the mesh {} nodes", file_order.len(), order.len())));
             }
             if let Some(k) = file_order.iter().position(|u| !u.iter().all(|v| v.is_finite())) {
                 return Err(bad(format!("{what} is not finite at row {k}")));
             }
-            let mut out = vec![[0.0; 2]; nodes.len()];
+            let mut out = vec![[0.0; 2]; order.len()];
             for (k, v) in file_order.into_iter().enumerate() {
-                out[nodes[k]] = v;
+                out[order[k]] = v;
             }
-            Ok(out)
+            Ok(Some(out))
         };
-        let displacement = to_model(&name, reader.displacement(&name)?)?;
+        let displacement = field(&name)?.ok_or_else(|| bad(format!("increments/{name} holds no displacement")))?;
         // the last complete increment of each earlier step (always written) gives its end
         let mut step_ends = Vec::new();
-        let all = reader.increments()?;
         for k in 0..step {
-            let end = all
-                .iter()
-                .rev()
-                .find(|g| reader.increment_attr(g, "step").ok() == Some((k + 1) as f64) && reader.increment_attr(g, "load_factor").ok() == Some(1.0));
-            let end = end.ok_or_else(|| bad(format!("the end of step {} is not in the file", k + 1)))?;
-            step_ends.push(to_model(end, reader.displacement(end)?)?);
+            let is_end = |r: &ResultsReader, g: &String| {
+                r.increment_attr(g, "step").ok() == Some((k + 1) as f64) && r.increment_attr(g, "load_factor").ok() == Some(1.0)
+            };
+            let end = chain.iter().find_map(|(r, _)| r.increments().ok()?.into_iter().rev().find(|g| is_end(r, g)));
+            let end = end.ok_or_else(|| bad(format!("the end of step {} is in neither the file nor those it continues", k + 1)))?;
+            step_ends.push(field(&end)?.ok_or_else(|| bad(format!("increments/{end} holds no displacement")))?);
         }
         let group = format!("increments/{name}/state");
         let file = reader.file();
@@ -353,11 +377,21 @@ impl RestartPoint {
         for (id, f) in read_u64("audit_nodes")?.into_iter().zip(read_f64("audit_forces")?.chunks_exact(4)) {
             audit.forces[node(id)?] = [f[0], f[1], f[2], f[3]];
         }
+        // the rows up to the increment: each continued file holds those after its restart point,
+        // the file it continues those before (oldest first, the order the run reserved them)
+        let mut limits = vec![number];
+        for (r, _) in &chain[..chain.len() - 1] {
+            let at = r.text_attr("restarted_from").ok().and_then(|t| t.rsplit(' ').next()?.parse::<usize>().ok()).unwrap_or(0);
+            limits.push(at.min(*limits.last().unwrap_or(&number)));
+        }
         let mut pattern = Vec::new();
-        if file.link_exists("restart/pattern") {
-            let rows = file.dataset("restart/pattern").and_then(|d| d.read_raw::<u64>()).map_err(|e| bad(format!("restart/pattern: {e}")))?;
-            for r in rows.chunks_exact(4).filter(|r| r[0] as usize <= number) {
-                pattern.push((r[1] as usize, node(r[2])?, node(r[3])?));
+        for ((r, _), &limit) in chain.iter().zip(&limits).rev() {
+            if !r.file().link_exists("restart/pattern") {
+                continue;
+            }
+            let rows = r.file().dataset("restart/pattern").and_then(|d| d.read_raw::<u64>()).map_err(|e| bad(format!("restart/pattern: {e}")))?;
+            for row in rows.chunks_exact(4).filter(|row| row[0] as usize <= limit) {
+                pattern.push((row[1] as usize, node(row[2])?, node(row[3])?));
             }
         }
         let load_factor = reader.increment_attr(&name, "load_factor")?;
@@ -369,11 +403,35 @@ impl RestartPoint {
             return Err(bad(format!("its history holds {} rows, fewer than the increment's number {number}", rows.len())));
         }
         rows.truncate(number);
+        let increment = reader.increment_attr(&name, "increment")? as usize;
+        let last_increment = if load_factor == 1.0 {
+            None // the next step starts with the tangent predictor
+        } else if increment == 1 {
+            let start = if step == 0 { vec![[0.0; 2]; nodes.len()] } else { step_ends[step - 1].clone() };
+            Some(LastIncrement::between(&start, &displacement, load_factor))
+        } else {
+            let before = &rows[number - 2].1;
+            let size = load_factor - before.load_factor;
+            let previous = format!("{:06}", number - 1);
+            // the field of the increment before, from this file or one it continues
+            let before = field(&previous)?;
+            if let Some(before) = before {
+                Some(LastIncrement::between(&before, &displacement, size))
+            } else if sg.link_exists(PREDICTOR_INCREMENT) {
+                let values = read_f64(PREDICTOR_INCREMENT)?;
+                if values.len() != 2 * nodes.len() || !values.iter().all(|v| v.is_finite()) {
+                    return Err(bad(format!("{group}/{PREDICTOR_INCREMENT}: {} values for {} nodes, or not finite", values.len(), nodes.len())));
+                }
+                Some(LastIncrement { displacement: values.chunks_exact(2).map(|c| [c[0], c[1]]).collect(), size })
+            } else {
+                None // an older file: the tangent predictor
+            }
+        };
         Ok(RestartPoint {
             file: from.file.clone(),
             number,
             step,
-            increment: reader.increment_attr(&name, "increment")? as usize,
+            increment,
             load_factor,
             next_size,
             refits,
@@ -386,6 +444,7 @@ impl RestartPoint {
             pattern,
             ranks: reader.count_attr("ranks")?,
             rows,
+            last_increment,
         })
     }
 }

@@ -14,7 +14,7 @@ use crate::dist::Partition;
 use crate::element::solid::QUADRATURE_POINTS;
 use crate::error::{Error, Result};
 use crate::fe::axisymmetric::von_mises;
-use crate::model::{Model, OutputFields};
+use crate::model::{Model, OutputFields, Precision};
 use crate::petsc::PetscSession;
 use crate::solve::contact::PassOutput;
 use crate::solve::energy::Energies;
@@ -163,9 +163,7 @@ pub struct ResultsFile {
     file: hdf5::File,
     path: PathBuf,
     rank: usize,
-    nodes: usize,
     elements: usize,
-    node_slab: (usize, usize),
     element_slab: (usize, usize),
     /// Converged increments written so far.
     increments: usize,
@@ -177,6 +175,7 @@ pub struct ResultsFile {
     nodal: NodalWriter,
     /// The fields written beside the displacement.
     fields: OutputFields,
+    precision: Precision,
     world: mpi::topology::SimpleCommunicator,
 }
 
@@ -255,6 +254,7 @@ impl ResultsFile {
         file.flush().map_err(&err)?;
         let what = xdmf::GridFields {
             fields: model.output.fields,
+            precision: model.output.precision,
             contact: !model.contacts.is_empty(),
             friction: model.contacts.iter().any(|c| c.friction.is_some()),
         };
@@ -273,16 +273,15 @@ impl ResultsFile {
             file,
             path: path.to_path_buf(),
             rank,
-            nodes: nn,
             elements: ne,
-            node_slab,
             element_slab,
             increments: 0,
             sidecar,
             contact_mesh_written: false,
             reaction_segment_degrees: model.reaction_segment_degrees,
-            nodal: NodalWriter::new(world, mesh, partition, model.output.fields),
+            nodal: NodalWriter::new(world, mesh, partition, model.output),
             fields: model.output.fields,
+            precision: model.output.precision,
             world: session.world(),
         })
     }
@@ -349,32 +348,33 @@ impl ResultsFile {
 
     /// The fields of one increment in a new group `name` (collective).
     fn write_fields(&mut self, name: &str, step_name: &str, row: &HistoryRow, fields: &IncrementFields<'_>, partition: &Partition) -> Result<hdf5::Group> {
-        let IncrementFields { displacement: owned_displacement, stress: local_stress, plastic_strain: local_plastic_strain, contact, .. } = *fields;
+        let IncrementFields { stress: local_stress, plastic_strain: local_plastic_strain, contact, .. } = *fields;
         let err = h5err(&self.path);
         let g = self.file.group("increments").map_err(&err)?.create_group(name).map_err(&err)?;
-        for (attr, value) in [("step", row.step as f64), ("increment", row.increment as f64), ("load_factor", row.load_factor), ("time", row.time)] {
+        // the temperature is uniform: one number (the nodal copy is for ParaView and meshio)
+        let temperature = ("temperature", fields.temperature);
+        for (attr, value) in [("step", row.step as f64), ("increment", row.increment as f64), ("load_factor", row.load_factor), ("time", row.time), temperature]
+        {
             g.new_attr::<f64>().create(attr).map_err(&err)?.write_scalar(&value).map_err(&err)?;
         }
         let step_name_v: VarLenUnicode = step_name.parse().map_err(|_| Error::Output { path: self.path.clone(), message: "step name".into() })?;
         g.new_attr::<VarLenUnicode>().create("step_name").map_err(&err)?.write_scalar(&step_name_v).map_err(&err)?;
-        let u: Vec<f64> = owned_displacement.iter().flatten().copied().collect();
-        write_rows(&g, "displacement", &[self.nodes, 2], self.node_slab, &u, &self.path)?;
         let f = self.fields;
         if f.stress {
             let s: Vec<f64> = local_stress.iter().flatten().flatten().copied().collect();
-            write_rows(&g, "stress", &[self.elements, QUADRATURE_POINTS, 4], self.element_slab, &s, &self.path)?;
+            write_field(&g, "stress", &[self.elements, QUADRATURE_POINTS, 4], self.element_slab, &s, self.precision, &self.path)?;
         }
         if f.von_mises {
             let vm: Vec<f64> = local_stress.iter().flatten().map(von_mises).collect();
-            write_rows(&g, "von_mises", &[self.elements, QUADRATURE_POINTS], self.element_slab, &vm, &self.path)?;
+            write_field(&g, "von_mises", &[self.elements, QUADRATURE_POINTS], self.element_slab, &vm, self.precision, &self.path)?;
             let mean: Vec<f64> = vm.chunks(QUADRATURE_POINTS).map(|c| c.iter().sum::<f64>() / QUADRATURE_POINTS as f64).collect();
-            write_rows(&g, "von_mises_mean", &[self.elements], self.element_slab, &mean, &self.path)?;
+            write_field(&g, "von_mises_mean", &[self.elements], self.element_slab, &mean, self.precision, &self.path)?;
         }
         if f.plastic_strain {
             let ep: Vec<f64> = local_plastic_strain.iter().flatten().copied().collect();
-            write_rows(&g, "equivalent_plastic_strain", &[self.elements, QUADRATURE_POINTS], self.element_slab, &ep, &self.path)?;
+            write_field(&g, "equivalent_plastic_strain", &[self.elements, QUADRATURE_POINTS], self.element_slab, &ep, self.precision, &self.path)?;
             let ep_max: Vec<f64> = local_plastic_strain.iter().map(|c| c.iter().fold(0.0f64, |m, &v| m.max(v))).collect();
-            write_rows(&g, "equivalent_plastic_strain_max", &[self.elements], self.element_slab, &ep_max, &self.path)?;
+            write_field(&g, "equivalent_plastic_strain_max", &[self.elements], self.element_slab, &ep_max, self.precision, &self.path)?;
         }
         self.nodal.write(&g, fields, &self.path)?;
         // Newton history of the increment: identical on all ranks, written by rank 0.
@@ -416,14 +416,14 @@ impl ResultsFile {
             let pressure: Vec<f64> = p.states.iter().map(|s| s.pressure).collect();
             let active: Vec<u8> = p.states.iter().map(|s| u8::from(s.pressure > 0.0)).collect();
             let traction: Vec<f64> = p.states.iter().map(|s| s.traction).collect();
-            write_rows(&pg, "traction", &[p.total], slab, &traction, &self.path)?;
-            write_rows(&pg, "gap", &[p.total], slab, &gap, &self.path)?;
-            write_rows(&pg, "pressure", &[p.total], slab, &pressure, &self.path)?;
+            write_field(&pg, "traction", &[p.total], slab, &traction, self.precision, &self.path)?;
+            write_field(&pg, "gap", &[p.total], slab, &gap, self.precision, &self.path)?;
+            write_field(&pg, "pressure", &[p.total], slab, &pressure, self.precision, &self.path)?;
             write_rows(&pg, "active", &[p.total], slab, &active, &self.path)?;
             if p.friction {
                 let shear: Vec<f64> = p.states.iter().map(|s| s.shear).collect();
                 let sliding: Vec<u8> = p.states.iter().map(|s| u8::from(s.sliding)).collect();
-                write_rows(&pg, "shear", &[p.total], slab, &shear, &self.path)?;
+                write_field(&pg, "shear", &[p.total], slab, &shear, self.precision, &self.path)?;
                 write_rows(&pg, "sliding", &[p.total], slab, &sliding, &self.path)?;
             }
         }
@@ -514,6 +514,46 @@ pub(super) fn describe_dataset(ds: &hdf5::Dataset, units: &str, description: &st
     Ok(())
 }
 
+/// A visualisation field (f64 as computed), stored at the run's `precision` (collective, as
+/// [`write_rows`]).
+pub(super) fn write_field(
+    group: &hdf5::Group,
+    name: &str,
+    shape: &[usize],
+    slab: (usize, usize),
+    data: &[f64],
+    precision: Precision,
+    path: &Path,
+) -> Result<()> {
+    match precision {
+        Precision::Double => write_rows(group, name, shape, slab, data, path),
+        Precision::Single => write_rows(group, name, shape, slab, &data.iter().map(|&v| v as f32).collect::<Vec<f32>>(), path),
+    }
+}
+
+/// Whether dataset `name` is stored chunked, shuffled and deflated: the fields that are zero
+/// or constant over most of the mesh (reactions off the supports, plastic strains off the
+/// yielded zones, contact state off the contact surfaces, a uniform temperature) shrink 3 to
+/// 200 times and cost little to compress. Stresses, strains and displacements, whose doubles'
+/// low bits are noise, shrink by a sixth at most for several times the write's cost, and stay
+/// contiguous (docs/performance.md).
+fn deflated(name: &str) -> bool {
+    name == "reaction_force"
+        || name == "temperature"
+        || name == "plastic_points"
+        || name.starts_with("plastic_strain_")
+        || name.starts_with("equivalent_plastic_strain")
+        || name.starts_with("contact_")
+        || name.starts_with("friction_")
+}
+
+/// Values of a deflated dataset's chunk, at most: whole fields of meshes up to some 100 000
+/// nodes in one chunk (a chunk is the unit HDF5 compresses and reads).
+const CHUNK_VALUES: usize = 1 << 20;
+
+/// Dataset `name` of `shape`, this rank's rows `slab` from `data` (collective: every rank
+/// calls it, those without rows with an empty slab). Deflated datasets (see [`deflated`]) are
+/// written through a collective transfer, as parallel HDF5 requires of filtered data.
 pub(super) fn write_rows<T: hdf5::H5Type + Copy>(
     group: &hdf5::Group,
     name: &str,
@@ -523,10 +563,25 @@ pub(super) fn write_rows<T: hdf5::H5Type + Copy>(
     path: &Path,
 ) -> Result<()> {
     let err = h5err(path);
-    let ds = group.new_dataset::<T>().shape(shape.to_vec()).create(name).map_err(&err)?;
+    let values: usize = shape.iter().product();
+    let compress = deflated(name) && values >= 256;
+    let builder = group.new_dataset::<T>().shape(shape.to_vec());
+    let ds = if compress {
+        let row: usize = shape[1..].iter().product();
+        let mut chunk = shape.to_vec();
+        chunk[0] = (CHUNK_VALUES / row.max(1)).clamp(1, shape[0]);
+        builder.chunk(chunk).shuffle().deflate(1).create(name)
+    } else {
+        builder.create(name)
+    }
+    .map_err(&err)?;
     let (units, description) = super::describe::describe(&group.name(), name);
     describe_dataset(&ds, units, &description, path)?;
     let rows = slab.1 - slab.0;
+    if compress {
+        return super::h5ffi::write_rows_collective(&ds, slab.0, rows, data)
+            .map_err(|message| Error::Output { path: path.to_path_buf(), message: format!("{}/{name}: {message}", group.name()) });
+    }
     if rows == 0 {
         return Ok(());
     }

@@ -13,7 +13,7 @@
 use super::describe::describe;
 use super::nodal::{nodal_scalar_kept, CONTACT_SCALARS, NODAL_SCALARS, NODAL_TAIL};
 use crate::error::{Error, Result};
-use crate::model::OutputFields;
+use crate::model::{OutputFields, Precision};
 use std::fmt::Write as _;
 use std::io::Write as _;
 use std::path::{Path, PathBuf};
@@ -31,6 +31,8 @@ pub const INITIAL: &str = "/initial";
 #[derive(Clone, Copy, Debug)]
 pub struct GridFields {
     pub fields: OutputFields,
+    /// The width of the fields' floats but the displacement's (always 64-bit).
+    pub precision: Precision,
     /// The model has contact pairs: the nodal contact fields are written.
     pub contact: bool,
     /// Some pair has friction: the nodal shear and sliding are written.
@@ -119,10 +121,12 @@ impl Sidecar {
             (None, "temperature") => format!("{INITIAL}/temperature"),
             (None, _) => format!("{INITIAL}/scalar"),
         };
-        for name in ["displacement", "reaction_force"] {
-            let _ = writeln!(x, "{}", attribute(name, "Vector", "Node", item(&vector_path(name), &format!("{nodes} 3"), "Float", 8)));
+        let GridFields { fields: f, precision, contact, friction } = self.what;
+        // the t = 0 frame's zeros are 64-bit
+        let width = if group.is_some() && precision == Precision::Single { 4 } else { 8 };
+        for (name, width) in [("displacement", 8), ("reaction_force", width)] {
+            let _ = writeln!(x, "{}", attribute(name, "Vector", "Node", item(&vector_path(name), &format!("{nodes} 3"), "Float", width)));
         }
-        let GridFields { fields: f, contact, friction } = self.what;
         // contact fields only once there is contact state (not at t = 0)
         let contact_count = match (contact && f.contact && group.is_some(), friction) {
             (false, _) => 0,
@@ -131,13 +135,13 @@ impl Sidecar {
         };
         let scalars = NODAL_SCALARS.iter().chain(&NODAL_TAIL).filter(|name| nodal_scalar_kept(name, f));
         for name in scalars.chain(&CONTACT_SCALARS[..contact_count]) {
-            let _ = writeln!(x, "{}", attribute(name, "Scalar", "Node", item(&scalar_path(name), &nodes.to_string(), "Float", 8)));
+            let _ = writeln!(x, "{}", attribute(name, "Scalar", "Node", item(&scalar_path(name), &nodes.to_string(), "Float", width)));
         }
         if let Some(g) = group {
             let element: Vec<&str> =
                 [("von_mises_mean", f.von_mises), ("equivalent_plastic_strain_max", f.plastic_strain)].into_iter().filter(|e| e.1).map(|e| e.0).collect();
             for name in element {
-                let _ = writeln!(x, "{}", attribute(name, "Scalar", "Cell", item(&format!("{g}/{name}"), &elements.to_string(), "Float", 8)));
+                let _ = writeln!(x, "{}", attribute(name, "Scalar", "Cell", item(&format!("{g}/{name}"), &elements.to_string(), "Float", width)));
             }
         }
         let _ = writeln!(x, "{}", attribute("rank", "Scalar", "Cell", item("/mesh/element_rank", &elements.to_string(), "UInt", 4)));
@@ -160,7 +164,8 @@ mod tests {
         let dir = std::env::temp_dir().join(format!("slideline-xdmf-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
         let h5 = dir.join("run.h5");
-        let mut sidecar = Sidecar::new(&h5, 10, 2, GridFields { fields: OutputFields::DEFAULT, contact: false, friction: false }).unwrap();
+        let mut sidecar =
+            Sidecar::new(&h5, 10, 2, GridFields { fields: OutputFields::DEFAULT, precision: Precision::Double, contact: false, friction: false }).unwrap();
         let text = std::fs::read_to_string(sidecar_path(&h5)).unwrap();
         assert!(text.contains("<Time Value=\"0\"/>") && text.contains("run.h5:/initial/vector"), "the t = 0 frame is there from the start");
         for (k, time) in [0.5, 1.0, 1.25].into_iter().enumerate() {

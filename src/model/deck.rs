@@ -10,7 +10,7 @@
 //! easy_iterations = 4               # "easy" = converged within this many Newton iterations
 //! min_increment = 1e-5              # fraction of the step; below it the run stops (exit 3)
 //! max_newton_iterations = 25
-//! predictor = true                  # start from the linear response to moved prescribed DOFs
+//! predictor = "extrapolate"         # the last increment scaled; "tangent"; "none"
 //! convergence = "field"            # CalculiX's / Abaqus's field test; "residual": ||F|| / ||F0|| <= 1e-10
 //!
 //! [output]                         # optional
@@ -70,7 +70,7 @@
 use super::mesh::{blocks, rectangle, Block, MeshSets};
 use super::{
     default_capture_distance, gmsh, Adjust, AugmentedLagrangian, Component, ContactIntegration, ContactPair, Convergence, Friction, Kinematics, Material,
-    Model, OutputControls, OutputFields, Penalty, Plasticity, PrescribedDisplacement, Pressure, Step, SteppingControls,
+    Model, OutputControls, OutputFields, Penalty, Plasticity, Precision, Predictor, PrescribedDisplacement, Pressure, Step, SteppingControls,
 };
 use crate::error::{Error, Result};
 use serde::Deserialize;
@@ -105,6 +105,8 @@ struct OutputSpec {
     every: Option<usize>,
     /// Which fields beside the displacement (default: all).
     fields: Option<Vec<String>>,
+    /// "double" (default) or "single" for the visualisation fields.
+    precision: Option<Precision>,
 }
 
 #[derive(Deserialize)]
@@ -177,7 +179,7 @@ struct SteppingSpec {
     easy_iterations: Option<usize>,
     min_increment: Option<f64>,
     max_newton_iterations: Option<usize>,
-    predictor: Option<bool>,
+    predictor: Option<Predictor>,
     convergence: Option<Convergence>,
 }
 
@@ -450,6 +452,7 @@ pub fn parse(text: &str, path: &Path) -> Result<Model> {
         output: OutputControls {
             every: deck.output.every.unwrap_or(1),
             fields: deck.output.fields.as_deref().map(OutputFields::from_names).transpose()?.unwrap_or(OutputFields::DEFAULT),
+            precision: deck.output.precision.unwrap_or_default(),
         },
         contacts,
         steps,

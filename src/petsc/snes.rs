@@ -379,7 +379,8 @@ impl<'s> Snes<'s> {
             }),
             _ => None,
         };
-        let mut ctx = CallbackContext { problem, world: &self.world, failure: None, first_norm: 0.0, previous_norm: 0.0, field, monitor: self.monitor };
+        let mut ctx =
+            CallbackContext { problem, world: &self.world, failure: None, first_norm: 0.0, first_floor: 0.0, previous_norm: 0.0, field, monitor: self.monitor };
         let ctx_ptr = &mut ctx as *mut CallbackContext<'_, P> as *mut c_void;
         // SAFETY: ctx outlives SNESSolve; the callbacks are cleared again (context NULL) below
         // so PETSc never holds a dangling pointer after this function returns.

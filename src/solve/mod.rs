@@ -6,6 +6,7 @@ pub mod contact;
 mod contact_surfaces;
 pub mod energy;
 mod engagement;
+pub mod extrapolate;
 mod held;
 mod kept;
 pub mod layout;

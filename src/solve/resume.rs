@@ -3,6 +3,7 @@
 
 use super::contact::{CarriedMultipliers, CarriedSlip, ContactCarry};
 use super::energy::EnergyAudit;
+use super::extrapolate::LastIncrement;
 use super::pattern::ContactPattern;
 use super::problem::{initial_history, History};
 use super::schedule::StepLoads;
@@ -34,6 +35,8 @@ pub(super) struct ResumeAt {
     pub load_factor: f64,
     pub size: f64,
     pub increment: usize,
+    /// The extrapolation predictor's last increment (None at a step's end, or from an older file).
+    pub last_increment: Option<LastIncrement>,
 }
 
 impl Carried {
@@ -78,6 +81,7 @@ impl Carried {
             load_factor: point.load_factor,
             size: point.next_size,
             increment: point.increment,
+            last_increment: point.last_increment.clone(),
         };
         let carried = Carried {
             history: restored_history(model, partition, &point),

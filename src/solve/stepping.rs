@@ -10,6 +10,7 @@
 
 use super::attempt::{predict, solve_increment};
 use super::energy::{Energies, EnergyAudit};
+use super::extrapolate::LastIncrement;
 use super::held;
 use super::problem::{LoadState, Problem};
 use super::resume::{restart_point, Carried};
@@ -23,7 +24,7 @@ use crate::io::restart::{CommittedState, RestartFrom};
 use crate::io::status::StatusFile;
 use crate::io::{ContactSummary, HistoryRow, IncrementFields, ResultsFile};
 use crate::material::PointState;
-use crate::model::{Convergence, Model};
+use crate::model::{Convergence, Model, Predictor};
 use crate::petsc::{FieldRatios, PetscSession, Snes, VecOps, Vector};
 use mpi::collective::SystemOperation;
 use mpi::datatype::PartitionMut;
@@ -194,14 +195,30 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
         // once an attempt has failed, the step's remaining solves search with `l2` (see
         // Snes::search_after_failure); a restart finds that in the step's history
         let mut failed_in_step = failed_before_restart;
+        // the step's last converged increment (the extrapolation's), and whether its
+        // displacement is in this file (a restart there reads it; otherwise the state keeps it)
+        let mut last = resumed_here.as_ref().and_then(|r| r.last_increment.clone());
+        // (a restart point always has its field: the restart reads it from the file continued)
+        let mut last_in_file = resumed_here.is_some();
         while lambda < 1.0 {
             // land exactly on 1 rather than leave a sliver
             let target = if lambda + size > 1.0 - 1e-9 * requested { 1.0 } else { lambda + size };
             problem.set_load(loads.at(model, target));
-            set_free_values(&mut x, &dofs, &partition, &displacement)?;
+            // only where prescribed DOFs move, as the tangent predictor: under a constant load
+            // the last increment's response need not go on (a shrink fit's is all in its first);
+            // and not in a step that has failed an attempt (the tangent predictor follows a
+            // changing contact better)
+            let start_load = loads.at(model, lambda);
+            let moving = problem.load().prescribed != start_load.prescribed;
+
+            let extrapolated = match (controls.predictor, &last) {
+                (Predictor::Extrapolate, Some(last)) if moving && !failed_in_step => Some(last.extrapolate(&displacement, target - lambda)),
+                _ => None,
+            };
+            set_free_values(&mut x, &dofs, &partition, extrapolated.as_deref().unwrap_or(&displacement))?;
             snes.mark_increment_start(&x)?;
-            if controls.predictor {
-                predict(&world, &mut snes, &mut problem, loads.at(model, lambda), &mut x, &mut residual, &mut jacobian, &mut correction)?;
+            if controls.predictor == Predictor::Tangent || (controls.predictor == Predictor::Extrapolate && extrapolated.is_none()) {
+                predict(&world, &mut snes, &mut problem, start_load, &mut x, &mut residual, &mut jacobian, &mut correction)?;
             }
             // rtol 1e-10: with quadratic convergence it costs at most one iteration more than
             // PETSc's 1e-8; where round-off stops the residual first (a small increment, large
@@ -264,7 +281,9 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
             let fields = output.run(|| problem.evaluate_fields(&x))??;
             problem.commit();
             let owned = owned_displacement(&x, &dofs, &partition, &problem.load().prescribed)?;
+            let before = displacement.clone();
             gather_displacement(&world, &partition, &owned, &mut displacement);
+            last = Some(LastIncrement::between(&before, &displacement, done));
             let mut force = vec![0.0; 2 * nodes];
             let local: Vec<f64> = fields.nodal_force.iter().flatten().copied().collect();
             world.all_reduce_into(&local[..], &mut force[..], SystemOperation::sum());
@@ -339,12 +358,15 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
                     slip,
                     fresh_pattern,
                     next_size: size,
+                    // the extrapolation's increment, unless the previous increment's field has it
+                    predictor_increment: (increment > 1 && !last_in_file).then(|| last.as_ref().map(|l| l.displacement.as_slice())).flatten(),
                     audit: &audit.last,
                     refits,
                 }
             });
             let written = state.as_ref().map(|state| (&increment_fields, state));
             stop_all_on_write_error(&world, output.run(|| results.write_increment(&step.name, &row, written, &partition))?)?;
+            last_in_file = with_fields;
             if let Some(status) = status.as_mut() {
                 status.record(&row);
             }

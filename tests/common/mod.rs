@@ -113,6 +113,10 @@ impl Results {
     pub fn i64s(&self, name: &str) -> Vec<i64> {
         self.file.dataset(name).unwrap_or_else(|e| panic!("{name}: {e}")).read_raw::<i64>().unwrap()
     }
+    /// (u_r, u_z) of every node at increment group `inc` ("increments/NNNNNN"), flattened.
+    pub fn displacement(&self, inc: &str) -> Vec<f64> {
+        self.f64s(&format!("{inc}/nodal/displacement")).chunks(3).flat_map(|u| [u[0], u[1]]).collect()
+    }
     pub fn last_increment(&self) -> String {
         let names = self.file.group("increments").unwrap().member_names().unwrap();
         format!("increments/{}", names.iter().max().expect("at least one increment"))
@@ -120,7 +124,7 @@ impl Results {
     /// (r, z) coordinates and (u_r, u_z) of every node at the last increment.
     pub fn nodes(&self) -> Vec<([f64; 2], [f64; 2])> {
         let x = self.f64s("mesh/coordinates");
-        let u = self.f64s(&format!("{}/displacement", self.last_increment()));
+        let u = self.displacement(&self.last_increment());
         x.chunks(2).zip(u.chunks(2)).map(|(x, u)| ([x[0], x[1]], [u[0], u[1]])).collect()
     }
 }

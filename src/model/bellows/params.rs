@@ -69,6 +69,8 @@ pub struct BellowsParams {
     // output
     /// Fields of every N-th increment in the results file (and of the last of each step).
     pub output_every: usize,
+    /// The width of the visualisation fields' floats.
+    pub output_precision: crate::model::Precision,
 }
 
 impl Default for BellowsParams {
@@ -111,6 +113,7 @@ impl Default for BellowsParams {
             cycle: false,
             ply_elements: 2,
             output_every: 1,
+            output_precision: crate::model::Precision::Double,
             ply_element_length: 1.0,
             wall_elements: 3,
             wall_element_length: 4.0,

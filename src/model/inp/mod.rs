@@ -25,7 +25,7 @@ mod write;
 pub use write::{to_inp, write};
 
 use super::mesh::{Edge, Mesh};
-use super::{Component, Kinematics, Material, Model, Plasticity, SteppingControls};
+use super::{Component, Kinematics, Material, Model, Plasticity, Predictor, SteppingControls};
 use crate::error::{Error, Result};
 use cards::{error_at, Card, DataLine, Location};
 use properties::ListedPair;
@@ -147,6 +147,9 @@ struct Builder {
     /// *CONTROLS, PARAMETERS=TIME INCREMENTATION's I_G: the most iterations after which the
     /// next increment grows (slideline's easy_iterations; CalculiX's default 4 is slideline's).
     easy_iterations: Option<usize>,
+    /// *STEP, EXTRAPOLATION= (Abaqus's; one for the whole deck): LINEAR the extrapolating
+    /// predictor, NO none; without it, slideline's tangent predictor.
+    predictor: Option<(Predictor, Location)>,
     /// *TIME POINTS by name: (times, in total time).
     time_points: BTreeMap<String, (Vec<f64>, bool)>,
     notes: Vec<String>,
@@ -358,6 +361,7 @@ impl Builder {
         let contacts = self.contact_pairs()?;
         let mut stepping = SteppingControls::default();
         stepping.easy_iterations = self.easy_iterations.unwrap_or(stepping.easy_iterations);
+        stepping.predictor = self.predictor.as_ref().map_or(stepping.predictor, |p| p.0);
         if let Some(min) = self.steps.iter().filter_map(|s| s.minimum.map(|m| m / s.period)).reduce(f64::min) {
             stepping.min_increment = min.clamp(1e-12, 1.0);
         }
@@ -543,6 +547,19 @@ mod tests {
         assert_eq!(ends, vec![0.5, 1.0]);
         let err = parse(&format!("{MESH}*STEP\n*BOUNDARY\nBOTTOM, 2, 2\n*END STEP\n"), Path::new("t.inp")).err().unwrap().to_string();
         assert!(err.contains("t.inp:24") && err.contains("no procedure card"), "{err}");
+    }
+
+    #[test]
+    fn extrapolation_chooses_the_predictor_once_for_the_deck() {
+        let step = |e: &str| format!("*STEP{e}\n*STATIC\n*BOUNDARY\nBOTTOM, 2, 2\n*END STEP\n");
+        assert_eq!(read(&step("")).model.stepping.predictor, Predictor::Tangent, "slideline's default");
+        assert_eq!(read(&step(", EXTRAPOLATION=LINEAR")).model.stepping.predictor, Predictor::Extrapolate);
+        assert_eq!(read(&step(", EXTRAPOLATION=no")).model.stepping.predictor, Predictor::None);
+        let err = parse(&format!("{MESH}{}", step(", EXTRAPOLATION=PARABOLIC")), Path::new("t.inp")).err().unwrap().to_string();
+        assert!(err.contains("t.inp:24") && err.contains("PARABOLIC is not supported"), "{err}");
+        let two = format!("{MESH}{}{}", step(", EXTRAPOLATION=LINEAR"), step(", EXTRAPOLATION=NO"));
+        let err = parse(&two, Path::new("t.inp")).err().unwrap().to_string();
+        assert!(err.contains("t.inp:29") && err.contains("t.inp:24") && err.contains("one predictor"), "{err}");
     }
 
     #[test]

@@ -5,7 +5,7 @@ use super::cards::{error_at, normalise, Card};
 use super::{face_side, Builder, StepDef, Target};
 use crate::error::Result;
 use crate::model::mesh::Edge;
-use crate::model::{Component, PrescribedDisplacement, Pressure, Step};
+use crate::model::{Component, Predictor, PrescribedDisplacement, Pressure, Step};
 use std::collections::{BTreeMap, BTreeSet};
 
 impl Builder {
@@ -78,7 +78,7 @@ impl Builder {
     }
 
     pub(super) fn step(&mut self, card: &Card) -> Result<()> {
-        card.only(&["NLGEOM", "INC", "NAME", "AMPLITUDE"])?;
+        card.only(&["NLGEOM", "INC", "NAME", "AMPLITUDE", "EXTRAPOLATION"])?;
         if self.in_step {
             return Err(card.error("the previous *STEP has no *END STEP"));
         }
@@ -96,6 +96,19 @@ impl Builder {
             Some(v) if v == "NO" => Some(false),
             Some(v) => return Err(card.error(format!("NLGEOM={v}: YES or NO"))),
         };
+        if let Some(e) = card.param("EXTRAPOLATION") {
+            let predictor = match e.trim().to_uppercase().as_str() {
+                "LINEAR" => Predictor::Extrapolate,
+                "NO" => Predictor::None,
+                other => return Err(card.error(format!("EXTRAPOLATION={other}: LINEAR or NO (PARABOLIC is not supported)"))),
+            };
+            match &self.predictor {
+                Some((p, at)) if *p != predictor => {
+                    return Err(card.error(format!("EXTRAPOLATION={e} differs from the EXTRAPOLATION of {at}: slideline takes one predictor for all steps")))
+                }
+                _ => self.predictor = Some((predictor, card.at.clone())),
+            }
+        }
         let name = card.param("NAME").map(|s| s.to_string()).unwrap_or_else(|| format!("step-{}", self.steps.len() + 1));
         self.steps.push(StepDef {
             name,

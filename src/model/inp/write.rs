@@ -11,7 +11,7 @@
 //! treat both surfaces alike.
 
 use crate::error::{Error, Result};
-use crate::model::{Component, ContactIntegration, Model, Penalty, Plasticity};
+use crate::model::{Component, ContactIntegration, Model, Penalty, Plasticity, Predictor};
 use std::collections::BTreeSet;
 use std::fmt::Write as _;
 use std::path::Path;
@@ -141,7 +141,13 @@ pub fn to_inp(model: &Model, title: &str) -> Result<String> {
         }
         time += period;
         let nlgeom = if model.kinematics == crate::model::Kinematics::Finite { ", NLGEOM" } else { "" };
-        let _ = writeln!(w, "** step {}\n*STEP{nlgeom}, INC=1000000", step.name);
+        // Abaqus's EXTRAPOLATION (CalculiX warns that it does not know it, and goes on)
+        let predictor = match model.stepping.predictor {
+            Predictor::Extrapolate => ", EXTRAPOLATION=LINEAR",
+            Predictor::None => ", EXTRAPOLATION=NO",
+            Predictor::Tangent => "",
+        };
+        let _ = writeln!(w, "** step {}\n*STEP{nlgeom}, INC=1000000{predictor}", step.name);
         let dt = period / step.increments as f64;
         let dt_min = model.stepping.min_increment * period;
         let _ = writeln!(w, "*STATIC\n{}, {}, {}, {}", num(dt), num(period), num(dt_min), num(dt));

@@ -18,6 +18,8 @@ pub(super) struct CallbackContext<'p, P> {
     pub failure: Option<Error>,
     /// ||F|| at the start and at the previous iterate (convergence test).
     pub first_norm: f64,
+    /// The round-off floor at the first iterate.
+    pub first_floor: f64,
     pub previous_norm: f64,
     /// The field test's state, when it judges this solve.
     pub field: Option<FieldContext>,
@@ -151,8 +153,10 @@ pub(super) unsafe extern "C" fn residual_trampoline<P: NonlinearProblem>(snes: s
 /// iteration has reached round-off (typically the linear solve's, with a stiff penalty).
 const STAGNATION_RTOL: f64 = 1e-7;
 
-/// The round-off floor is only accepted once ||F|| has dropped this far below ||F_0||.
+/// The round-off floor is only accepted once ||F|| has dropped this far below ||F_0||, or
+/// while the floor has grown less than this factor since the first iterate.
 const FLOOR_GUARD_RTOL: f64 = 1e-4;
+const FLOOR_GROWTH: f64 = 2.0;
 
 /// PETSc's default test, plus two ways to recognise that the residual cannot go lower:
 /// ||F|| at the round-off floor the problem reports (agreed across ranks: every rank runs the
@@ -202,6 +206,7 @@ pub(super) unsafe extern "C" fn convergence_trampoline<P: NonlinearProblem>(
     unsafe {
         if it == 0 {
             ctx.first_norm = fnorm;
+            ctx.first_floor = global.sqrt();
             // an increment that adds nothing above round-off (a load held, a step repeated)
             // starts converged; Newton from there only wanders in the round-off (the relative
             // guard below could never be met with F_0 itself at the floor)
@@ -210,8 +215,10 @@ pub(super) unsafe extern "C" fn convergence_trampoline<P: NonlinearProblem>(
             }
         } else if *reason == sys::SNESConvergedReason_SNES_CONVERGED_ITERATING {
             // the floor grows with the displacements: a runaway iterate must not pass for one
-            // at round-off, hence the relative guard
-            let at_floor = fnorm <= global.sqrt() && fnorm <= FLOOR_GUARD_RTOL * ctx.first_norm;
+            // at round-off, hence the relative guard; or a floor that has not grown, for a
+            // start already near it (an extrapolated increment of rigid sliding)
+            let floor = global.sqrt();
+            let at_floor = fnorm <= floor && (fnorm <= FLOOR_GUARD_RTOL * ctx.first_norm || floor <= FLOOR_GROWTH * ctx.first_floor);
             let stagnated = fnorm <= STAGNATION_RTOL * ctx.first_norm && fnorm > 0.5 * ctx.previous_norm;
             if at_floor || stagnated {
                 *reason = sys::SNESConvergedReason_SNES_CONVERGED_FNORM_ABS;
