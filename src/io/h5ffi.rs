@@ -44,11 +44,10 @@ pub fn write_rows_collective<T: H5Type>(dataset: &hdf5::Dataset, first: usize, r
     }
     let memory_type = hdf5::Datatype::from_type::<T>().map_err(|e| e.to_string())?;
     hdf5::sync::sync(|| {
-        // SAFETY: plain HDF5 calls on identifiers that are valid for the duration of the block
-        // (the dataset and datatype are held by their Rust owners, the others by `Id` guards);
-        // the hyperslab's start and count arrays have the dataset's rank; the buffer holds
-        // exactly the selected rows x row values of the memory type (checked above) and is
-        // only read.
+        // The identifiers are valid for the block (the dataset and datatype held by their Rust
+        // owners, the others by `Id` guards); start and count have the dataset's rank.
+        // SAFETY: the buffer holds exactly the selected rows x row values of the memory type
+        // (checked above) and is only read; the rest are plain calls on valid identifiers.
         unsafe {
             let transfer = Id(check(H5Pcreate(*hdf5::globals::H5P_DATASET_XFER), "H5Pcreate(dataset transfer)")?, H5Pclose);
             if H5Pset_dxpl_mpio(transfer.0, H5FD_mpio_xfer_t::H5FD_MPIO_COLLECTIVE) < 0 {
