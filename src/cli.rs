@@ -69,6 +69,24 @@ pub enum Command {
     /// Run one model for a range of penalty values (and with the augmented Lagrangian) and
     /// compare iterations, penetration and reaction: the bellows (default) or a deck.
     PenaltyStudy(StudyArgs),
+    /// The bellows codes' chart coefficients Cp, Cf, Cd (EJMA, ASME VIII-1 App. 26) computed
+    /// by elastic analyses of the idealised U-shaped convolution at each (C1, C2) given.
+    Coefficients {
+        /// C1 = 2 rm / w, one or more (comma-separated).
+        #[arg(long, value_delimiter = ',', required = true)]
+        c1: Vec<f64>,
+        /// C2 = 1.82 rm / sqrt(Dm tp), one or more (comma-separated); every C1 with every C2.
+        #[arg(long, value_delimiter = ',', required = true)]
+        c2: Vec<f64>,
+        /// Elements through the ply (4 by default) and per ply thickness along the meridian (4).
+        #[arg(long, default_value_t = 4)]
+        through: usize,
+        #[arg(long, default_value_t = 4.0)]
+        per_thickness: f64,
+        /// PETSc options (after `--`).
+        #[arg(last = true, allow_hyphen_values = true)]
+        petsc: Vec<String>,
+    },
 }
 
 #[derive(clap::Args)]

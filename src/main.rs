@@ -204,6 +204,27 @@ fn main() -> ExitCode {
                 Err(e) => fail(&e, root),
             }
         }
+        Command::Coefficients { c1, c2, through, per_thickness, petsc } => {
+            let session = match PetscSession::initialize(&petsc) {
+                Ok(s) => s,
+                Err(e) => return fail(&e, launched_as_rank_zero()),
+            };
+            let root = session.world().rank() == 0;
+            let fineness = slideline::assessment::convolution::Fineness { through, per_thickness };
+            if root {
+                println!("chart coefficients of the idealised U-shaped convolution (computed):\n      C1       C2       Cp       Cf       Cd");
+            }
+            for &a in &c1 {
+                for &b in &c2 {
+                    match slideline::assessment::convolution::compute(&session, a, b, fineness) {
+                        Ok(c) if root => println!("{a:>8.4} {b:>8.4} {:>8.4} {:>8.4} {:>8.4}", c.cp, c.cf, c.cd),
+                        Ok(_) => {}
+                        Err(e) => return fail(&e, root),
+                    }
+                }
+            }
+            ExitCode::SUCCESS
+        }
         Command::Post(args) => match post(&args) {
             Ok(()) => ExitCode::SUCCESS,
             Err(e) => fail(&e, true),

@@ -2,4 +2,5 @@
 //! answers. So far the formulas themselves ([`formulas`]), pure functions tested against
 //! published worked calculations.
 
+pub mod convolution;
 pub mod formulas;

@@ -27,7 +27,7 @@ pub use params::BellowsParams;
 
 /// A piece of the ply-pack mid-surface: a straight line or a circular arc.
 #[derive(Clone, Copy, Debug)]
-enum Piece {
+pub(crate) enum Piece {
     Line {
         from: [f64; 2],
         to: [f64; 2],
@@ -42,7 +42,7 @@ enum Piece {
 }
 
 impl Piece {
-    fn length(&self) -> f64 {
+    pub(crate) fn length(&self) -> f64 {
         match *self {
             Piece::Line { from, to } => (to[0] - from[0]).hypot(to[1] - from[1]),
             Piece::Arc { radius, a0, a1, .. } => radius * (a1 - a0).abs(),
@@ -50,7 +50,7 @@ impl Piece {
     }
 
     /// Point and unit tangent at fraction `s` in [0, 1].
-    fn at(&self, s: f64) -> ([f64; 2], [f64; 2]) {
+    pub(crate) fn at(&self, s: f64) -> ([f64; 2], [f64; 2]) {
         match *self {
             Piece::Line { from, to } => {
                 let l = self.length();
@@ -93,7 +93,7 @@ fn mid_surface(p: &BellowsParams) -> Vec<Piece> {
 }
 
 /// Stations (element boundaries and mid-side points) of `n` equal elements on [a, b].
-fn stations(a: f64, b: f64, n: usize) -> Vec<f64> {
+pub(crate) fn stations(a: f64, b: f64, n: usize) -> Vec<f64> {
     (0..=2 * n).map(|k| a + (b - a) * k as f64 / (2 * n) as f64).collect()
 }
 

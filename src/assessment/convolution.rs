@@ -1,0 +1,238 @@
+//! The chart coefficients Cp, Cf, Cd computed from the idealised convolution the codes' charts
+//! describe (EJMA; ASME VIII-1 App. 26): a U-shaped convolution of one ply, toroidal root and
+//! crest of mean radius rm joined by flat radial sidewalls, pitch q = 4 rm, cut at its symmetry
+//! planes through the root and the crest apex (half a convolution). Two elastic small-strain
+//! analyses with slideline's own elements:
+//! - the axial deflection: the crest plane moved e/2 against the root plane. Cf from the
+//!   axial rate (fiu = 1.7 Dm E tp^3 n / (w^3 Cf), Eq. 4-37) and Cd from the peak meridional
+//!   bending stress (S6 = 5 E tp e / (3 w^2 Cd), Eq. 4-33);
+//! - the pressure, both planes held: Cp from the peak meridional bending stress (S4 = P / (2 n)
+//!   (w / tp)^2 Cp, Eq. 4-31).
+//!
+//! The geometry is scaled to Dm = 1000 and tp = 1 (the coefficients depend on C1 = 2 rm / w and
+//! C2 = 1.82 rm / sqrt(Dm tp) only): rm = C2 sqrt(Dm tp) / 1.82, w = 2 rm / C1, the mid-surface
+//! running between the apexes w apart radially (the codes' w excludes the ply pack: a bellows'
+//! outside height is w + n t), Dm = Db + w + n t with Db the inside diameter at the root. The meridional bending stress is
+//! the bending part of the stress linearised across the wall (`fe::linearize`) at stations all
+//! along the meridian.
+
+use crate::error::{Error, Result};
+use crate::fe::linearize::{linearize, StressSampler};
+use crate::io::reader::ResultsReader;
+use crate::model::bellows::{stations, Piece};
+use crate::model::mesh::{mapped_block, Edge};
+use crate::model::{Component, Kinematics, Material, Model, OutputControls, OutputFields, PrescribedDisplacement, Pressure, Step, SteppingControls};
+use crate::petsc::PetscSession;
+use crate::solve::{run, RunOptions};
+use mpi::traits::*;
+use std::f64::consts::PI;
+use std::path::{Path, PathBuf};
+
+/// Scale of the idealised convolution: Dm and tp (mm), E (MPa), and the loads.
+const DM: f64 = 1000.0;
+const TP: f64 = 1.0;
+const E: f64 = 200_000.0;
+const NU: f64 = 0.3;
+const PRESSURE: f64 = 0.1;
+
+/// The three coefficients.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Coefficients {
+    pub cp: f64,
+    pub cf: f64,
+    pub cd: f64,
+}
+
+/// The mesh's fineness: elements through the ply and along the meridian per tp.
+#[derive(Clone, Copy, Debug)]
+pub struct Fineness {
+    pub through: usize,
+    pub per_thickness: f64,
+}
+
+impl Default for Fineness {
+    /// 4 elements through the ply, 0.25 tp long: the coefficients move by less than 0.5 % on
+    /// halving both (tests/bellows_coefficients.rs).
+    fn default() -> Self {
+        Fineness { through: 4, per_thickness: 4.0 }
+    }
+}
+
+/// The idealised half convolution at (C1, C2).
+struct Convolution {
+    rm: f64,
+    w: f64,
+    pieces: Vec<Piece>,
+}
+
+impl Convolution {
+    fn new(c1: f64, c2: f64) -> Result<Self> {
+        if !(c1 > 0.0 && c2 > 0.0 && c1.is_finite() && c2.is_finite()) {
+            return Err(Error::input(format!("the chart coordinates C1 = {c1}, C2 = {c2} must be positive")));
+        }
+        let rm = c2 * (DM * TP).sqrt() / 1.82;
+        let w = 2.0 * rm / c1;
+        // w spans the mid-surface between the apexes (the outside height is w + n t: example 2
+        // of the worked calculations, OD - ID = 2 (w + n t)); the flat sidewall is w - 2 rm
+        let flat = w - 2.0 * rm;
+        if flat < 0.0 || rm < TP {
+            return Err(Error::input(format!(
+                "C1 = {c1}, C2 = {c2}: no U-shaped convolution (torus radius {rm:.3} tp, sidewall {flat:.3} tp; the charts need C1 <= 1 and rm > tp)"
+            )));
+        }
+        let root_radius = (DM - w) / 2.0;
+        let (root_c, crest_c) = (root_radius + rm, root_radius + rm + flat);
+        let pieces = vec![
+            Piece::Arc { centre: [root_c, 0.0], radius: rm, a0: PI, a1: PI / 2.0 },
+            Piece::Line { from: [root_c, rm], to: [crest_c, rm] },
+            Piece::Arc { centre: [crest_c, 2.0 * rm], radius: rm, a0: -PI / 2.0, a1: 0.0 },
+        ];
+        Ok(Convolution { rm, w, pieces })
+    }
+
+    /// The half convolution loaded by `step`'s loads, one ply of `fineness`.
+    fn model(&self, fineness: Fineness, step: Step) -> Result<Model> {
+        let h = TP / fineness.per_thickness;
+        let along: Vec<(usize, f64)> = self
+            .pieces
+            .iter()
+            .enumerate()
+            .flat_map(|(k, piece)| {
+                let n = ((piece.length() / h).round() as usize).max(1);
+                stations(0.0, 1.0, n).into_iter().skip(usize::from(k > 0)).map(move |s| (k, s))
+            })
+            .collect();
+        let through = stations(-TP / 2.0, TP / 2.0, fineness.through);
+        let (mut mesh, mut sets) = mapped_block([(through.len() - 1) / 2, (along.len() - 1) / 2], |i, j| {
+            let (k, s) = along[j];
+            let (x, tan) = self.pieces[k].at(s);
+            let n = [-tan[1], tan[0]];
+            [x[0] - through[i] * n[0], x[1] - through[i] * n[1]]
+        });
+        mesh.node_ids = (1..=mesh.coords.len() as u64).collect();
+        mesh.element_ids = (1..=mesh.elements.len() as u64).collect();
+        // the cut faces: the block's ends along the meridian (z = 0 at the root, 2 rm at the crest)
+        let nodes_on = |edges: &[Edge]| -> Vec<usize> {
+            let mut n: Vec<usize> = edges.iter().flat_map(|&e| mesh.edge_nodes(e)).collect();
+            n.sort_unstable();
+            n.dedup();
+            n
+        };
+        let root = nodes_on(&sets.surfaces["bottom"]);
+        let crest = nodes_on(&sets.surfaces["top"]);
+        sets.node_sets.insert("root".into(), root);
+        sets.node_sets.insert("crest".into(), crest);
+        let n = mesh.elements.len();
+        let model = Model {
+            mesh,
+            node_sets: sets.node_sets,
+            element_sets: sets.element_sets,
+            surfaces: sets.surfaces,
+            materials: vec![Material { name: "ply".into(), youngs_modulus: E, poissons_ratio: NU, thermal_expansion: 0.0, plasticity: None }],
+            element_material: vec![0; n],
+            reference_temperature: 20.0,
+            kinematics: Kinematics::Small,
+            stepping: SteppingControls::default(),
+            output: OutputControls { fields: OutputFields::from_names(&["stress".to_string()])?, ..OutputControls::default() },
+            contacts: Vec::new(),
+            steps: vec![step],
+            source_text: format!("idealised convolution: C1 = {}, C2 = {}", 2.0 * self.rm / self.w, 1.82 * self.rm / (DM * TP).sqrt()),
+            source_files: Vec::new(),
+            reaction_segment_degrees: None,
+        };
+        model.validate()?;
+        Ok(model)
+    }
+
+    /// The largest meridional bending stress (magnitude) along the meridian, from the stress
+    /// of the last increment of `file`.
+    fn peak_bending(&self, file: &Path) -> Result<f64> {
+        let r = ResultsReader::open(file)?;
+        let last = r.increments()?.pop().ok_or_else(|| Error::Output { path: file.to_path_buf(), message: "no increment".into() })?;
+        let (coords, conn) = (r.coordinates()?, r.connectivity()?);
+        let stress: Vec<[[f64; 4]; 9]> =
+            r.field(&last, "stress")?.chunks_exact(36).map(|c| std::array::from_fn(|q| std::array::from_fn(|k| c[4 * q + k]))).collect();
+        let sampler = StressSampler::new(&coords, &conn, &stress);
+        let mut peak = 0.0f64;
+        for (k, piece) in self.pieces.iter().enumerate() {
+            let n = ((piece.length() / (0.1 * TP)).round() as usize).max(2);
+            for j in 0..=n {
+                // stations a little inside the cut planes, where the sampler finds the elements
+                let s = (j as f64 / n as f64).clamp(1e-6, 1.0 - 1e-6);
+                let (x, tan) = piece.at(s);
+                let normal = [-tan[1], tan[0]];
+                let half = 0.5 * TP * (1.0 - 1e-4);
+                let (a, b) = ([x[0] + half * normal[0], x[1] + half * normal[1]], [x[0] - half * normal[0], x[1] - half * normal[1]]);
+                let l = linearize(a, b, 40, |p| sampler.at(p)).map_err(|m| Error::Output { path: file.to_path_buf(), message: format!("piece {k}: {m}") })?;
+                peak = peak.max(l.bending[1].abs());
+            }
+        }
+        Ok(peak)
+    }
+}
+
+/// Cp, Cf, Cd at (C1, C2), by two elastic analyses of the idealised half convolution
+/// (collective: every rank of the session calls it; the analyses' files go to a temporary
+/// directory and are removed).
+pub fn compute(session: &PetscSession, c1: f64, c2: f64, fineness: Fineness) -> Result<Coefficients> {
+    let convolution = Convolution::new(c1, c2)?;
+    let w = convolution.w;
+    let hold = |set: &str, value: f64| PrescribedDisplacement { node_set: set.into(), component: Component::Z, value };
+    // a deflection e per convolution: the half convolution's crest plane moves e / 2
+    let e = 1e-3 * w;
+    let deflect = Step {
+        name: "deflect".into(),
+        increments: 1,
+        displacements: vec![hold("root", 0.0), hold("crest", -e / 2.0)],
+        pressures: vec![],
+        temperature: None,
+        time_span: None,
+    };
+    let press = Step {
+        name: "press".into(),
+        increments: 1,
+        displacements: vec![hold("root", 0.0), hold("crest", 0.0)],
+        pressures: vec![Pressure { surface: "inner".into(), value: PRESSURE }],
+        temperature: None,
+        time_span: None,
+    };
+    let dir = scratch(session)?;
+    let result = (|| {
+        let deflected = dir.join("deflect.h5");
+        let summary = run(session, &convolution.model(fineness, deflect)?, &options(&deflected))?;
+        let force = summary.history.last().and_then(|row| row.reactions.iter().find(|(s, _)| s == "crest")).map(|(_, f)| f[1].abs() * 2.0 * PI);
+        let force = force.ok_or_else(|| Error::Output { path: deflected.clone(), message: "no crest reaction".into() })?;
+        let s6 = convolution.peak_bending(&deflected)?;
+        let pressed = dir.join("press.h5");
+        run(session, &convolution.model(fineness, press)?, &options(&pressed))?;
+        let s4 = convolution.peak_bending(&pressed)?;
+        let fiu = force / e;
+        Ok(Coefficients {
+            cf: 1.7 * DM * E * TP.powi(3) / (w.powi(3) * fiu),
+            cd: 5.0 * E * TP * e / (3.0 * w * w * s6),
+            cp: s4 / (PRESSURE / 2.0 * (w / TP).powi(2)),
+        })
+    })();
+    session.world().barrier();
+    if session.world().rank() == 0 {
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+    result
+}
+
+fn options(output: &Path) -> RunOptions {
+    RunOptions { output: output.to_path_buf(), progress: false, verbose: false, monitor: false, restart: None }
+}
+
+/// A fresh temporary directory, the same on every rank (rank 0 names and creates it).
+fn scratch(session: &PetscSession) -> Result<PathBuf> {
+    let world = session.world();
+    let mut id = [std::process::id() as u64, std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).map_or(0, |d| d.as_nanos() as u64)];
+    world.process_at_rank(0).broadcast_into(&mut id[..]);
+    let dir = std::env::temp_dir().join(format!("slideline-convolution-{}-{}", id[0], id[1]));
+    if world.rank() == 0 {
+        std::fs::create_dir_all(&dir).map_err(|e| Error::Output { path: dir.clone(), message: e.to_string() })?;
+    }
+    world.barrier();
+    Ok(dir)
+}
