@@ -171,9 +171,20 @@ fn main() -> ExitCode {
                 };
             }
             let root = session.world().rank() == 0;
-            if root && !args.quiet {
-                let ejma = model::bellows::ejma_axial_rate(&params, EJMA_CF);
-                println!("bellows: {} plies x {} mm, {} convolutions, pitch {}, height {}; EJMA axial rate {:.1} N/mm full ring, {:.2} N/mm per 2.5-degree sector (Cf = {EJMA_CF})", params.plies, params.ply_thickness, params.convolutions, params.pitch, params.height, ejma, ejma * 2.5 / 360.0);
+            // EJMA's axial rate with the Cf of the joint's own convolution (collective)
+            let code = model::bellows::code_geometry(&params);
+            let cf = match slideline::assessment::convolution::compute(&session, code.c1(), code.c2(), Default::default()) {
+                Ok(c) => Some(c.cf),
+                Err(e) => {
+                    if root {
+                        println!("note: no EJMA rate: {e}");
+                    }
+                    None
+                }
+            };
+            let ejma = cf.map(|cf| (model::bellows::ejma_axial_rate(&params, cf), cf));
+            if let (true, false, Some((rate, cf))) = (root, args.quiet, ejma) {
+                println!("bellows: {} plies x {} mm, {} convolutions, pitch {}, height {}; EJMA axial rate {rate:.1} N/mm full ring, {:.2} N/mm per 2.5-degree sector (Cf = {cf:.3}, computed at C1 = {:.3}, C2 = {:.3})", params.plies, params.ply_thickness, params.convolutions, params.pitch, params.height, rate * 2.5 / 360.0, code.c1(), code.c2());
             }
             let result = model::bellows::model(&params).and_then(|m| {
                 run(
@@ -189,7 +200,7 @@ fn main() -> ExitCode {
                 )
             });
             warn_unused_options(&session, root && !is_bad_input(&result));
-            finish(result, root, |summary| report(&params, summary, &args.output))
+            finish(result, root, |summary| report(&params, ejma, summary, &args.output))
         }
         Command::PenaltyStudy(args) => {
             let session = match PetscSession::initialize(&args.petsc) {
@@ -309,19 +320,17 @@ fn write_mesh(session: &PetscSession, params: &model::bellows::BellowsParams, ou
 
 /// The bellows closing table (slideline beside the paper) and the pictures, from the results
 /// file (rank 0, after the run).
-fn report(params: &model::bellows::BellowsParams, summary: &RunSummary, output: &std::path::Path) -> Result<(), Error> {
+/// `ejma`: EJMA's axial rate (N/mm, full ring) and the Cf it was computed with.
+fn report(params: &model::bellows::BellowsParams, ejma: Option<(f64, f64)>, summary: &RunSummary, output: &std::path::Path) -> Result<(), Error> {
     let reader = ResultsReader::open(output)?;
-    let ejma = model::bellows::ejma_axial_rate(params, EJMA_CF) * SECTOR_RADIANS / (2.0 * std::f64::consts::PI);
-    let report = BellowsReport::new(params, ejma, EJMA_CF, summary, &reader)?;
+    let ejma = ejma.map(|(rate, cf)| (rate * SECTOR_RADIANS / (2.0 * std::f64::consts::PI), cf));
+    let report = BellowsReport::new(params, ejma, summary, &reader)?;
     println!("\n{}", report.table());
     for path in report.pictures(output, &reader)? {
         println!("picture: {}", path.display());
     }
     Ok(())
 }
-
-/// EJMA's C_f for the default convolution proportions (from the EJMA chart; approximate).
-const EJMA_CF: f64 = 1.9;
 
 /// Rank 0 prints the summary (then runs `then`, the subcommand's own report) or the error;
 /// every rank returns the exit code.

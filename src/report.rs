@@ -44,8 +44,9 @@ pub struct BellowsReport {
     /// Secant F/u and initial dF/du (first compression increment), N/mm per sector.
     pub secant_stiffness: f64,
     pub initial_stiffness: f64,
-    pub ejma_stiffness: f64,
-    pub ejma_cf: f64,
+    /// EJMA's axial rate (N/mm per sector) with the Cf computed for the joint's convolution,
+    /// and that Cf (None where the convolution is outside the charts).
+    pub ejma: Option<(f64, f64)>,
     pub von_mises: Extreme,
     pub plastic_strain: Extreme,
     /// Largest ply-to-ply and sleeve penetration over the whole history, mm.
@@ -120,7 +121,7 @@ fn extreme(reader: &ResultsReader, increment: &str, field: &str) -> Result<Extre
 }
 
 impl BellowsReport {
-    pub fn new(p: &BellowsParams, ejma_stiffness: f64, ejma_cf: f64, run: &RunSummary, reader: &ResultsReader) -> Result<Self> {
+    pub fn new(p: &BellowsParams, ejma: Option<(f64, f64)>, run: &RunSummary, reader: &ResultsReader) -> Result<Self> {
         let history = &run.history;
         let curve: Vec<(f64, f64)> = history.iter().map(|r| (applied(r, p), end_reaction(r))).collect();
         let heated = history.iter().rposition(|r| r.step == 1);
@@ -144,8 +145,7 @@ impl BellowsReport {
             reaction,
             secant_stiffness: reaction / displacement,
             initial_stiffness,
-            ejma_stiffness,
-            ejma_cf,
+            ejma,
             von_mises: extreme(reader, &last, "von_mises")?,
             plastic_strain: extreme(reader, &last, "equivalent_plastic_strain")?,
             ply_penetration: largest_penetration(history, |n| n.starts_with("ply")),
@@ -176,7 +176,9 @@ impl BellowsReport {
         line("  of which after step 1 (heat, pressure), N", format!("{:.1}", self.preload), "-");
         line("secant stiffness F/u, N/mm per sector", format!("{:.2}", self.secant_stiffness), &format!("{PAPER_STIFFNESS}"));
         line("initial stiffness, N/mm per sector", format!("{:.2}", self.initial_stiffness), "-");
-        line(&format!("EJMA axial rate (Cf = {}), N/mm per sector", self.ejma_cf), format!("{:.2}", self.ejma_stiffness), "-");
+        if let Some((stiffness, cf)) = self.ejma {
+            line(&format!("EJMA rate (computed Cf {cf:.3}), N/mm/sector"), format!("{stiffness:.2}"), "-");
+        }
         line("max von Mises at the end, MPa", format!("{:.2}", self.von_mises.value), &format!("{PAPER_VON_MISES}"));
         line("  where (part, deformed r, z mm)", format!("{} ({:.1}, {:.1})", self.von_mises.part, self.von_mises.at[0], self.von_mises.at[1]), "-");
         line("max equivalent plastic strain", format!("{:.4}", self.plastic_strain.value), "-");
@@ -231,16 +233,17 @@ impl BellowsReport {
         let name = |suffix: &str| PathBuf::from(format!("{}_{suffix}.png", stem.display()));
         let mut written = Vec::new();
         let force = name("force_displacement");
-        let ejma: Vec<(f64, f64)> = [0.0, self.displacement.max(1.0) * 0.35].iter().map(|&u| (u, self.preload + self.ejma_stiffness * u)).collect();
+        let mut curves = vec![Curve { label: "slideline".into(), points: self.curve.clone() }];
+        if let Some((stiffness, _)) = self.ejma {
+            let points = [0.0, self.displacement.max(1.0) * 0.35].iter().map(|&u| (u, self.preload + stiffness * u)).collect();
+            curves.push(Curve { label: format!("EJMA elastic rate {stiffness:.2} N/mm (from the step-1 preload)"), points });
+        }
         line_plot(
             &force,
             "Bellows end reaction (2.5-degree sector) vs axial compression",
             "axial compression u (mm)",
             "end reaction F (N per 2.5-degree sector)",
-            &[
-                Curve { label: "slideline".into(), points: self.curve.clone() },
-                Curve { label: format!("EJMA elastic rate {:.2} N/mm (from the step-1 preload)", self.ejma_stiffness), points: ejma },
-            ],
+            &curves,
             &[Marker { label: format!("paper (MSC Nastran): {PAPER_REACTION} N at 70 mm"), at: (70.0, PAPER_REACTION) }],
             Axes::FromOrigin,
         )?;

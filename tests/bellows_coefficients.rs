@@ -27,11 +27,9 @@ fn computed(c1: f64, c2: f64, extra: &[&str]) -> [f64; 3] {
 
 #[test]
 fn the_computed_coefficients_meet_the_printed_chart_points() {
-    for (c1, c2, printed, cd_tolerance) in [
-        (0.457, 0.423, [0.68, 1.65, 1.63], 0.06),
-        (0.500, 0.4164, [0.6634, 1.7033, 1.7048], 0.05),
-        (0.375, 0.558, [0.71, 1.47, 1.57], 0.05),
-    ] {
+    for (c1, c2, printed, cd_tolerance) in
+        [(0.457, 0.423, [0.68, 1.65, 1.63], 0.06), (0.500, 0.4164, [0.6634, 1.7033, 1.7048], 0.05), (0.375, 0.558, [0.71, 1.47, 1.57], 0.05)]
+    {
         let c = computed(c1, c2, &[]);
         for (k, name) in ["Cp", "Cf", "Cd"].iter().enumerate() {
             let error = (c[k] - printed[k]) / printed[k];
