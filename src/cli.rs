@@ -240,6 +240,10 @@ pub struct BellowsArgs {
     /// stiffness follows the pressure, eps_T = mu p / slip (Abaqus's form).
     #[arg(long, value_name = "MM", conflicts_with = "tangential_penalty")]
     pub elastic_slip: Option<f64>,
+    /// The code check's chart coefficients Cp,Cf,Cd read off the code's charts (EJMA, ASME
+    /// VIII-1 App. 26); without them slideline computes them from the idealised convolution.
+    #[arg(long, value_name = "CP,CF,CD", value_delimiter = ',')]
+    pub coefficients: Option<Vec<f64>>,
     /// A load cycle: after the compression, a further step takes tube B's end back to where it
     /// started (the force-displacement picture then shows the loop).
     #[arg(long)]
@@ -296,6 +300,9 @@ impl BellowsArgs {
     /// `--quick`, then every flag given on the command line (`given(id)`): a flag given
     /// explicitly wins over both.
     pub fn params(&self, given: impl Fn(&str) -> bool) -> Result<model::bellows::BellowsParams, Error> {
+        if let Some(c) = self.coefficients.as_ref().filter(|c| c.len() != 3) {
+            return Err(Error::input(format!("bellows: --coefficients takes three values, Cp,Cf,Cd; got {}", c.len())));
+        }
         let mut p = match (&self.params, &self.restart) {
             (Some(path), _) => model::bellows::BellowsParams::from_toml_file(path)?,
             // a restart continues the file's own joint
@@ -335,6 +342,7 @@ impl BellowsArgs {
         take("cycle", &mut |p| p.cycle = self.cycle);
         take("tangential_penalty", &mut |p| p.tangential_penalty = self.tangential_penalty);
         take("elastic_slip", &mut |p| p.elastic_slip = self.elastic_slip);
+        take("coefficients", &mut |p| p.coefficients = self.coefficients.as_ref().map(|c| [c[0], c[1], c[2]]));
         take("convergence", &mut |p| p.convergence = self.convergence.into());
         Ok(p)
     }

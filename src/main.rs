@@ -6,12 +6,14 @@ mod cli;
 use clap::{CommandFactory, FromArgMatches};
 use cli::{Cli, Command, PostArgs, StudyArgs};
 use mpi::traits::Communicator;
+use slideline::assessment::code::{CodeCheck, Source};
+use slideline::assessment::convolution::Coefficients;
 use slideline::dist::Partition;
 use slideline::io::plots::{outline_picture, SegmentLayer};
 use slideline::io::reader::ResultsReader;
 use slideline::io::ResultsFile;
 use slideline::petsc::PetscSession;
-use slideline::report::{BellowsReport, SECTOR_RADIANS};
+use slideline::report::BellowsReport;
 use slideline::solve::affinity::partition_affinity;
 use slideline::solve::{run, RunOptions, RunSummary};
 use slideline::{model, Error};
@@ -171,20 +173,19 @@ fn main() -> ExitCode {
                 };
             }
             let root = session.world().rank() == 0;
-            // EJMA's axial rate with the Cf of the joint's own convolution (collective)
-            let code = model::bellows::code_geometry(&params);
-            let cf = match slideline::assessment::convolution::compute(&session, code.c1(), code.c2(), Default::default()) {
-                Ok(c) => Some(c.cf),
-                Err(e) => {
-                    if root {
-                        println!("note: no EJMA rate: {e}");
-                    }
-                    None
-                }
-            };
-            let ejma = cf.map(|cf| (model::bellows::ejma_axial_rate(&params, cf), cf));
-            if let (true, false, Some((rate, cf))) = (root, args.quiet, ejma) {
-                println!("bellows: {} plies x {} mm, {} convolutions, pitch {}, height {}; EJMA axial rate {rate:.1} N/mm full ring, {:.2} N/mm per 2.5-degree sector (Cf = {cf:.3}, computed at C1 = {:.3}, C2 = {:.3})", params.plies, params.ply_thickness, params.convolutions, params.pitch, params.height, rate * 2.5 / 360.0, code.c1(), code.c2());
+            // the code check, with the chart coefficients given or computed for the joint's own
+            // convolution (collective)
+            let code = code_check(&session, &params);
+            if let (true, Err(e)) = (root, &code) {
+                println!("note: no code check: {e}");
+            }
+            let code = code.ok();
+            if let (true, false, Some(c)) = (root, args.quiet, &code) {
+                let k = c.coefficients;
+                println!(
+                    "bellows: {} plies x {} mm, {} convolutions, pitch {}, height {}; EJMA axial rate {:.1} N/mm full ring, {:.2} N/mm per 2.5-degree sector (C1 = {:.3}, C2 = {:.3}: Cp {:.3}, Cf {:.3}, Cd {:.3} {})",
+                    params.plies, params.ply_thickness, params.convolutions, params.pitch, params.height, c.axial_rate, c.axial_rate * 2.5 / 360.0, c.c1, c.c2, k.cp, k.cf, k.cd, c.source.label()
+                );
             }
             let result = model::bellows::model(&params).and_then(|m| {
                 run(
@@ -200,7 +201,7 @@ fn main() -> ExitCode {
                 )
             });
             warn_unused_options(&session, root && !is_bad_input(&result));
-            finish(result, root, |summary| report(&params, ejma, summary, &args.output))
+            finish(result, root, |summary| report(&params, code.as_ref(), summary, &args.output))
         }
         Command::PenaltyStudy(args) => {
             let session = match PetscSession::initialize(&args.petsc) {
@@ -320,16 +321,26 @@ fn write_mesh(session: &PetscSession, params: &model::bellows::BellowsParams, ou
 
 /// The bellows closing table (slideline beside the paper) and the pictures, from the results
 /// file (rank 0, after the run).
-/// `ejma`: EJMA's axial rate (N/mm, full ring) and the Cf it was computed with.
-fn report(params: &model::bellows::BellowsParams, ejma: Option<(f64, f64)>, summary: &RunSummary, output: &std::path::Path) -> Result<(), Error> {
+fn report(params: &model::bellows::BellowsParams, code: Option<&CodeCheck>, summary: &RunSummary, output: &std::path::Path) -> Result<(), Error> {
     let reader = ResultsReader::open(output)?;
-    let ejma = ejma.map(|(rate, cf)| (rate * SECTOR_RADIANS / (2.0 * std::f64::consts::PI), cf));
-    let report = BellowsReport::new(params, ejma, summary, &reader)?;
+    let report = BellowsReport::new(params, code.cloned(), summary, &reader)?;
     println!("\n{}", report.table());
     for path in report.pictures(output, &reader)? {
         println!("picture: {}", path.display());
     }
     Ok(())
+}
+
+/// The bellows' code check (EJMA): the design pressure and the whole stroke, with the chart
+/// coefficients given (`--coefficients`) or computed for its convolution (collective).
+fn code_check(session: &PetscSession, params: &model::bellows::BellowsParams) -> Result<CodeCheck, Error> {
+    let geometry = model::bellows::code_geometry(params);
+    let (coefficients, source) = match params.coefficients {
+        Some([cp, cf, cd]) => (Coefficients { cp, cf, cd }, Source::Given),
+        None => (slideline::assessment::convolution::compute(session, geometry.c1(), geometry.c2(), Default::default())?, Source::Computed),
+    };
+    let p = params;
+    Ok(CodeCheck::new(&geometry, coefficients, source, p.pressure, p.displacement.abs(), p.youngs_modulus, p.yield_stress, p.tangent_length))
 }
 
 /// Rank 0 prints the summary (then runs `then`, the subcommand's own report) or the error;

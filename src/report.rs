@@ -4,6 +4,7 @@
 //! displacement, deformed joint coloured by von Mises at an intermediate and the last
 //! increment). Rank 0 only, after the run: fields are read back from the results file.
 
+use crate::assessment::code::CodeCheck;
 use crate::error::Result;
 use crate::io::plots::{deformed_field, line_plot, Axes, Curve, FieldPicture, Marker};
 use crate::io::reader::ResultsReader;
@@ -44,9 +45,9 @@ pub struct BellowsReport {
     /// Secant F/u and initial dF/du (first compression increment), N/mm per sector.
     pub secant_stiffness: f64,
     pub initial_stiffness: f64,
-    /// EJMA's axial rate (N/mm per sector) with the Cf computed for the joint's convolution,
-    /// and that Cf (None where the convolution is outside the charts).
-    pub ejma: Option<(f64, f64)>,
+    /// The code check (EJMA) of the joint's bellows at its pressure and stroke (None where the
+    /// convolution is outside the charts).
+    pub code: Option<CodeCheck>,
     pub von_mises: Extreme,
     pub plastic_strain: Extreme,
     /// Largest ply-to-ply and sleeve penetration over the whole history, mm.
@@ -121,7 +122,7 @@ fn extreme(reader: &ResultsReader, increment: &str, field: &str) -> Result<Extre
 }
 
 impl BellowsReport {
-    pub fn new(p: &BellowsParams, ejma: Option<(f64, f64)>, run: &RunSummary, reader: &ResultsReader) -> Result<Self> {
+    pub fn new(p: &BellowsParams, code: Option<CodeCheck>, run: &RunSummary, reader: &ResultsReader) -> Result<Self> {
         let history = &run.history;
         let curve: Vec<(f64, f64)> = history.iter().map(|r| (applied(r, p), end_reaction(r))).collect();
         let heated = history.iter().rposition(|r| r.step == 1);
@@ -145,7 +146,7 @@ impl BellowsReport {
             reaction,
             secant_stiffness: reaction / displacement,
             initial_stiffness,
-            ejma,
+            code,
             von_mises: extreme(reader, &last, "von_mises")?,
             plastic_strain: extreme(reader, &last, "equivalent_plastic_strain")?,
             ply_penetration: largest_penetration(history, |n| n.starts_with("ply")),
@@ -176,8 +177,12 @@ impl BellowsReport {
         line("  of which after step 1 (heat, pressure), N", format!("{:.1}", self.preload), "-");
         line("secant stiffness F/u, N/mm per sector", format!("{:.2}", self.secant_stiffness), &format!("{PAPER_STIFFNESS}"));
         line("initial stiffness, N/mm per sector", format!("{:.2}", self.initial_stiffness), "-");
-        if let Some((stiffness, cf)) = self.ejma {
-            line(&format!("EJMA rate (computed Cf {cf:.3}), N/mm/sector"), format!("{stiffness:.2}"), "-");
+        if let Some(c) = &self.code {
+            line(
+                &format!("EJMA rate (Cf {:.3} {}), N/mm/sector", c.coefficients.cf, c.source.label()),
+                format!("{:.2}", c.axial_rate * SECTOR_RADIANS / (2.0 * PI)),
+                "-",
+            );
         }
         line("max von Mises at the end, MPa", format!("{:.2}", self.von_mises.value), &format!("{PAPER_VON_MISES}"));
         line("  where (part, deformed r, z mm)", format!("{} ({:.1}, {:.1})", self.von_mises.part, self.von_mises.at[0], self.von_mises.at[1]), "-");
@@ -224,9 +229,33 @@ impl BellowsReport {
              compression on, so the force levels off near the collapse load; the paper's 103 MPa and its linear\n  \
              1131 N = 16.16 N/mm x 70 mm are an elastic response, and its convolution shape (Figure 1) is not given.\n",
         );
+        if let Some(c) = &self.code {
+            t.push_str(&code_section(c));
+        }
         t
     }
+}
 
+/// The code check's section of the closing table: the EJMA figures at the joint's pressure and
+/// stroke, and the notes on where they do not apply.
+fn code_section(c: &CodeCheck) -> String {
+    let k = c.coefficients;
+    let mut t = format!("\n  code check (EJMA; C1 {:.3}, C2 {:.3}; Cp {:.3}, Cf {:.3}, Cd {:.3} {}):\n", c.c1, c.c2, k.cp, k.cf, k.cd, c.source.label());
+    let mut line = |what: &str, value: String| t.push_str(&format!("  {what:<50} {value:>20}\n"));
+    line("S1 hoop membrane in the tangent, pressure, MPa", format!("{:.1}", c.s1));
+    line("S3 / S4 meridional membrane / bending, pressure, MPa", format!("{:.1} / {:.1}", c.s3, c.s4));
+    line("S5 / S6 meridional membrane / bending, stroke, MPa", format!("{:.1} / {:.0}", c.s5, c.s6));
+    line("St = 0.7 (S3 + S4) + S5 + S6, MPa", format!("{:.0}", c.stress_range));
+    line("allowable cycles (as-formed austenitic curve)", c.cycles.map_or("endurance".into(), |n| format!("{n:.0}")));
+    line("axial rate, N/mm full ring", format!("{:.1}", c.axial_rate));
+    line("column instability pressure, MPa", format!("{:.2}", c.column_instability));
+    for note in &c.notes {
+        t.push_str(&format!("  note: {note}\n"));
+    }
+    t
+}
+
+impl BellowsReport {
     /// Writes the pictures next to `output` (the HDF5 file); returns their paths.
     pub fn pictures(&self, output: &Path, reader: &ResultsReader) -> Result<Vec<PathBuf>> {
         let stem = output.with_extension("");
@@ -234,7 +263,7 @@ impl BellowsReport {
         let mut written = Vec::new();
         let force = name("force_displacement");
         let mut curves = vec![Curve { label: "slideline".into(), points: self.curve.clone() }];
-        if let Some((stiffness, _)) = self.ejma {
+        if let Some(stiffness) = self.code.as_ref().map(|c| c.axial_rate * SECTOR_RADIANS / (2.0 * PI)) {
             let points = [0.0, self.displacement.max(1.0) * 0.35].iter().map(|&u| (u, self.preload + stiffness * u)).collect();
             curves.push(Curve { label: format!("EJMA elastic rate {stiffness:.2} N/mm (from the step-1 preload)"), points });
         }

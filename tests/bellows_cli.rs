@@ -26,6 +26,8 @@ fn bad_flags_are_refused_before_any_solve() {
         (vec!["--ply-element-length", "1e-6"], "the mesh would have about"),
         (vec!["--elastic-slip", "0.01"], "no pair has friction"),
         (vec!["--elastic-slip", "0.01", "--tangential-penalty", "100", "--friction-plies", "0.2"], "cannot be used with"),
+        (vec!["--coefficients", "0.68,0,1.63"], "coefficient Cf must be > 0"),
+        (vec!["--coefficients", "0.68,1.65"], "coefficients"),
     ] {
         let out = bellows(dir.path(), &args);
         let err = String::from_utf8_lossy(&out.stderr);
@@ -33,6 +35,26 @@ fn bad_flags_are_refused_before_any_solve() {
         assert!(err.contains(needle), "{args:?} should name {needle:?}: {err}");
         assert!(!dir.path().join("b.h5").exists(), "no analysis may start");
     }
+}
+
+/// The code check in the closing table takes the chart coefficients as given (`--coefficients`),
+/// labelled so, and says plainly that the seed stroke is far beyond the code's elastic formulas.
+/// The figures with Cp 0.68, Cf 1.65, Cd 1.63 (the joint: Db 320 (the tubes' outside), w 20,
+/// 2 plies of 1 mm, Dm 342, tp 0.9673, N 6, 0.6 MPa, E 200 GPa): S4 = 0.6 / 4 (20 / 0.9673)^2
+/// 0.68 = 43.6 MPa, the rate 1.7 x 342 x 200 000 x 0.9673^3 x 2 / (8000 x 1.65) / 6 = 2657.6
+/// N/mm; a 10 mm stroke gives S5 + S6 = 836 MPa, 2.8 times the yield stress.
+#[test]
+fn the_code_check_takes_given_coefficients() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = bellows(dir.path(), &["--quick", "--displacement", "10", "--increments", "4", "--quiet", "--coefficients", "0.68,1.65,1.63"]);
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{text}{}", String::from_utf8_lossy(&out.stderr));
+    assert!(text.contains("Cp 0.680, Cf 1.650, Cd 1.630 as given"), "{text}");
+    let s4: f64 = text.lines().find(|l| l.contains("S3 / S4")).and_then(|l| l.split_whitespace().last()).unwrap().parse().unwrap();
+    assert!((s4 - 43.6).abs() < 0.1, "{text}");
+    let rate: f64 = text.lines().find(|l| l.contains("axial rate, N/mm full ring")).and_then(|l| l.split_whitespace().last()).unwrap().parse().unwrap();
+    assert!((rate - 2657.6).abs() < 0.1, "{text}");
+    assert!(text.contains("far beyond the elastic range"), "{text}");
 }
 
 #[test]

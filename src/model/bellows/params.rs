@@ -55,6 +55,10 @@ pub struct BellowsParams {
     pub elastic_slip: Option<f64>,
     /// After the compression, a further step takes tube B's end back to where it started.
     pub cycle: bool,
+    /// The code check's chart coefficients [Cp, Cf, Cd], read off the code's charts; without
+    /// them they are computed from the idealised convolution.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub coefficients: Option<[f64; 3]>,
     /// How Newton's convergence is judged.
     pub convergence: crate::model::Convergence,
     // mesh
@@ -109,6 +113,7 @@ impl Default for BellowsParams {
             // about Abaqus' default allowance (0.5 % of the element length)
             tangential_penalty: 300.0,
             elastic_slip: None,
+            coefficients: None,
             convergence: crate::model::Convergence::default(),
             cycle: false,
             ply_elements: 2,
@@ -184,7 +189,8 @@ impl BellowsParams {
             ("Young's modulus", self.youngs_modulus),
             ("yield stress", self.yield_stress),
         ];
-        let positive = positive.into_iter().chain(self.elastic_slip.map(|g| ("elastic slip", g)));
+        let coefficients = self.coefficients.into_iter().flat_map(|c| [("coefficient Cp", c[0]), ("coefficient Cf", c[1]), ("coefficient Cd", c[2])]);
+        let positive = positive.into_iter().chain(self.elastic_slip.map(|g| ("elastic slip", g))).chain(coefficients);
         for (name, v) in positive {
             if !(v > 0.0 && v.is_finite()) {
                 return Err(Error::input(format!("bellows: {name} must be > 0, got {v}")));
