@@ -164,6 +164,9 @@ pub struct PostArgs {
     /// Print the deck text stored in the file.
     #[arg(long)]
     pub deck: bool,
+    /// Print the bellows code check stored in the file (`slideline bellows` writes it).
+    #[arg(long)]
+    pub assessment: bool,
     /// The history's long lines (every reaction, the contact, the residual norm).
     #[arg(long)]
     pub verbose: bool,

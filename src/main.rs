@@ -89,6 +89,12 @@ fn post(args: &PostArgs) -> Result<(), Error> {
     if args.deck {
         out += &format!("{}\n", r.text_attr("deck")?);
     }
+    if args.assessment {
+        match r.assessment()? {
+            Some(check) => out += &slideline::report::code_section(&check),
+            None => return Err(Error::input(format!("{}: no code check in the file (`slideline bellows` writes one)", args.file.display()))),
+        }
+    }
     if let Some(path) = &args.csv {
         std::fs::write(path, post::history_csv(&r)?).map_err(|e| Error::Output { path: path.clone(), message: e.to_string() })?;
         out += &format!("history written to {}\n", path.display());
@@ -328,7 +334,9 @@ fn report(params: &model::bellows::BellowsParams, code: Option<&CodeCheck>, summ
     for path in report.pictures(output, &reader)? {
         println!("picture: {}", path.display());
     }
-    Ok(())
+    drop(reader);
+    // the code check beside the run's results (the file is closed: rank 0 alone opens it)
+    code.map_or(Ok(()), |c| slideline::io::assessment::write(output, c))
 }
 
 /// The bellows' code check (EJMA): the design pressure and the whole stroke, with the chart

@@ -238,7 +238,7 @@ impl BellowsReport {
 
 /// The code check's section of the closing table: the EJMA figures at the joint's pressure and
 /// stroke, and the notes on where they do not apply.
-fn code_section(c: &CodeCheck) -> String {
+pub fn code_section(c: &CodeCheck) -> String {
     let k = c.coefficients;
     let mut t = format!("\n  code check (EJMA; C1 {:.3}, C2 {:.3}; Cp {:.3}, Cf {:.3}, Cd {:.3} {}):\n", c.c1, c.c2, k.cp, k.cf, k.cd, c.source.label());
     let mut line = |what: &str, value: String| t.push_str(&format!("  {what:<50} {value:>20}\n"));

@@ -54,6 +54,20 @@ fn the_code_check_takes_given_coefficients() {
     assert!((s4 - 43.6).abs() < 0.1, "{text}");
     let rate: f64 = text.lines().find(|l| l.contains("axial rate, N/mm full ring")).and_then(|l| l.split_whitespace().last()).unwrap().parse().unwrap();
     assert!((rate - 2657.6).abs() < 0.1, "{text}");
+    // the same check in the results file, each value with its units and source, and read back
+    let h5 = dir.path().join("b.h5");
+    let file = hdf5::File::open(&h5).unwrap();
+    let s4 = file.dataset("assessment/S4").unwrap();
+    let attr = |name: &str| s4.attr(name).unwrap().read_scalar::<hdf5::types::VarLenUnicode>().unwrap().to_string();
+    assert_eq!((attr("units").as_str(), attr("source").as_str()), ("MPa", "code (as given)"));
+    assert!((s4.read_scalar::<f64>().unwrap() - 43.6).abs() < 0.05);
+    let post = command_in(dir.path(), 1).args(["post", h5.to_str().unwrap(), "--assessment"]).output().unwrap();
+    let printed = String::from_utf8_lossy(&post.stdout);
+    let section = &text[text.find("  code check").unwrap()..];
+    assert!(
+        post.status.success() && section.lines().filter(|l| l.starts_with("  ")).all(|l| printed.contains(l)),
+        "post --assessment:\n{printed}\nthe run:\n{section}"
+    );
     assert!(text.contains("far beyond the elastic range"), "{text}");
 }
 

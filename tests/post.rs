@@ -321,6 +321,10 @@ fn post_names_a_missing_increment_and_a_corrupt_connectivity() {
     let out = post(dir.path(), &[h5s]);
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(out.status.success() && err.contains("increment(s) 3 should be in the file and are not"), "{err}");
+    // a deck's run has no bellows code check
+    let out = post(dir.path(), &[h5s, "--assessment"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.code() == Some(2) && err.contains("no code check in the file"), "{err}");
     {
         let file = hdf5::File::open_rw(&h5).unwrap();
         let ds = file.dataset("mesh/connectivity").unwrap();

@@ -1,6 +1,7 @@
 //! Output: the HDF5 results file (written by all ranks, each its own slab) and its XDMF
 //! sidecar for ParaView.
 
+pub mod assessment;
 pub mod describe;
 mod h5ffi;
 pub mod lock;

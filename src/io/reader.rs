@@ -285,6 +285,11 @@ impl ResultsReader {
         ["nodal/displacement", "displacement"].iter().any(|d| self.file.link_exists(&format!("increments/{increment}/{d}")))
     }
 
+    /// The bellows code check the file holds (`/assessment`), if any.
+    pub fn assessment(&self) -> Result<Option<crate::assessment::code::CodeCheck>> {
+        super::assessment::read(&self.file, &self.path)
+    }
+
     /// Any field of an increment, flattened (row-major).
     pub fn field(&self, increment: &str, name: &str) -> Result<Vec<f64>> {
         self.read_f64(&format!("increments/{increment}/{name}"))

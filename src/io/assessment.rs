@@ -1,0 +1,106 @@
+//! The bellows code check in the results file, `/assessment`: one scalar dataset per quantity,
+//! each with its `units`, `description` and `source` ("code (computed coefficients)" or "code
+//! (as given)" for the code's figures; the coefficients themselves "computed" or "as given"),
+//! and the notes as the group's `notes` attribute. Written by rank 0 after the run (the file
+//! is closed by then), read back by `slideline post --assessment`.
+
+use super::results::{describe_dataset, h5err};
+use crate::assessment::code::{CodeCheck, Source};
+use crate::assessment::convolution::Coefficients;
+use crate::error::{Error, Result};
+use hdf5::types::VarLenUnicode;
+use std::path::Path;
+
+/// The group's name.
+pub const GROUP: &str = "assessment";
+
+/// (dataset, units, description) of each value, in the order the check is read back.
+const VALUES: [(&str, &str, &str); 15] = [
+    ("C1", "-", "2 rm / w, the charts' first coordinate"),
+    ("C2", "-", "1.82 rm / sqrt(Dm tp), the charts' second coordinate"),
+    ("Cp", "-", "chart coefficient of the meridional bending stress from pressure"),
+    ("Cf", "-", "chart coefficient of the axial rate and the meridional membrane stress from deflection"),
+    ("Cd", "-", "chart coefficient of the meridional bending stress from deflection"),
+    ("S1", "MPa", "hoop membrane stress in the tangent from pressure"),
+    ("S3", "MPa", "meridional membrane stress from pressure"),
+    ("S4", "MPa", "meridional bending stress from pressure"),
+    ("S5", "MPa", "meridional membrane stress from the stroke"),
+    ("S6", "MPa", "meridional bending stress from the stroke"),
+    ("St", "MPa", "total stress range 0.7 (S3 + S4) + S5 + S6"),
+    ("cycles", "-", "allowable cycles, as-formed austenitic curve (0: below its endurance range)"),
+    ("axial_rate", "N/mm", "the bellows' axial spring rate, full ring"),
+    ("column_instability_pressure", "MPa", "column instability (squirm) pressure, both ends held"),
+    ("coefficients_computed", "-", "1: the chart coefficients computed from the idealised convolution; 0: as given"),
+];
+
+fn values(c: &CodeCheck) -> [f64; 15] {
+    let k = c.coefficients;
+    [
+        c.c1,
+        c.c2,
+        k.cp,
+        k.cf,
+        k.cd,
+        c.s1,
+        c.s3,
+        c.s4,
+        c.s5,
+        c.s6,
+        c.stress_range,
+        c.cycles.unwrap_or(0.0),
+        c.axial_rate,
+        c.column_instability,
+        f64::from(u8::from(c.source == Source::Computed)),
+    ]
+}
+
+fn text(s: &str, path: &Path) -> Result<VarLenUnicode> {
+    s.parse().map_err(|_| Error::Output { path: path.to_path_buf(), message: format!("attribute text {s:?}") })
+}
+
+/// Writes `check` into the (closed) results file at `path` (one process).
+pub fn write(path: &Path, check: &CodeCheck) -> Result<()> {
+    let err = h5err(path);
+    let file = hdf5::File::open_rw(path).map_err(&err)?;
+    let g = file.create_group(GROUP).map_err(&err)?;
+    let source = format!("code ({})", if check.source == Source::Computed { "computed coefficients" } else { "as given" });
+    for ((name, units, description), value) in VALUES.iter().zip(values(check)) {
+        let ds = g.new_dataset::<f64>().create(*name).map_err(&err)?;
+        ds.write_scalar(&value).map_err(&err)?;
+        describe_dataset(&ds, units, description, path)?;
+        let from = if ["Cp", "Cf", "Cd"].contains(name) { check.source.label().to_string() } else { source.clone() };
+        ds.new_attr::<VarLenUnicode>().create("source").map_err(&err)?.write_scalar(&text(&from, path)?).map_err(&err)?;
+    }
+    g.new_attr::<VarLenUnicode>().create("notes").map_err(&err)?.write_scalar(&text(&check.notes.join("\n"), path)?).map_err(&err)?;
+    file.flush().map_err(&err)
+}
+
+/// The check stored in `file`, None where it has none.
+pub fn read(file: &hdf5::File, path: &Path) -> Result<Option<CodeCheck>> {
+    if !file.link_exists(GROUP) {
+        return Ok(None);
+    }
+    let bad = |e: hdf5::Error| Error::input(format!("{}: /{GROUP}: {e}", path.display()));
+    let g = file.group(GROUP).map_err(bad)?;
+    let mut v = [0.0; 15];
+    for (slot, (name, _, _)) in v.iter_mut().zip(VALUES) {
+        *slot = g.dataset(name).and_then(|d| d.read_scalar::<f64>()).map_err(bad)?;
+    }
+    let notes = g.attr("notes").and_then(|a| a.read_scalar::<VarLenUnicode>()).map_err(bad)?.to_string();
+    Ok(Some(CodeCheck {
+        coefficients: Coefficients { cp: v[2], cf: v[3], cd: v[4] },
+        source: if v[14] == 1.0 { Source::Computed } else { Source::Given },
+        c1: v[0],
+        c2: v[1],
+        s1: v[5],
+        s3: v[6],
+        s4: v[7],
+        s5: v[8],
+        s6: v[9],
+        stress_range: v[10],
+        cycles: (v[11] > 0.0).then_some(v[11]),
+        axial_rate: v[12],
+        column_instability: v[13],
+        notes: notes.lines().filter(|l| !l.is_empty()).map(str::to_string).collect(),
+    }))
+}
