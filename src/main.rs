@@ -6,7 +6,7 @@ mod cli;
 use clap::{CommandFactory, FromArgMatches};
 use cli::{Cli, Command, PostArgs, StudyArgs};
 use mpi::traits::Communicator;
-use slideline::assessment::code::{CodeCheck, Source};
+use slideline::assessment::code::{CodeCheck, Duty, Source};
 use slideline::assessment::convolution::Coefficients;
 use slideline::dist::Partition;
 use slideline::io::plots::{outline_picture, SegmentLayer};
@@ -348,7 +348,9 @@ fn code_check(session: &PetscSession, params: &model::bellows::BellowsParams) ->
         None => (slideline::assessment::convolution::compute(session, geometry.c1(), geometry.c2(), Default::default())?, Source::Computed),
     };
     let p = params;
-    Ok(CodeCheck::new(&geometry, coefficients, source, p.pressure, p.displacement.abs(), p.youngs_modulus, p.yield_stress, p.tangent_length))
+    let duty =
+        Duty { pressure: p.pressure, stroke: p.displacement.abs(), modulus: p.youngs_modulus, yield_stress: p.yield_stress, tangent_length: p.tangent_length };
+    Ok(CodeCheck::new(&geometry, coefficients, source, duty))
 }
 
 /// Rank 0 prints the summary (then runs `then`, the subcommand's own report) or the error;

@@ -51,20 +51,22 @@ pub struct CodeCheck {
     pub notes: Vec<String>,
 }
 
+/// What the bellows is checked for: the design pressure (MPa) and the total axial stroke (mm)
+/// shared by the convolutions, with the elastic modulus and yield stress at temperature (MPa),
+/// and its cylindrical tangent's length (mm).
+#[derive(Clone, Copy, Debug)]
+pub struct Duty {
+    pub pressure: f64,
+    pub stroke: f64,
+    pub modulus: f64,
+    pub yield_stress: f64,
+    pub tangent_length: f64,
+}
+
 impl CodeCheck {
-    /// The check at `pressure` (MPa) and a total axial `stroke` (mm) shared by the
-    /// convolutions, with the elastic `modulus` and `yield_stress` at temperature (MPa) and the
-    /// cylindrical tangent's length (mm).
-    pub fn new(
-        b: &UBellows,
-        coefficients: Coefficients,
-        source: Source,
-        pressure: f64,
-        stroke: f64,
-        modulus: f64,
-        yield_stress: f64,
-        tangent_length: f64,
-    ) -> Self {
+    /// The check of bellows `b` for `duty`, with the chart coefficients from `source`.
+    pub fn new(b: &UBellows, coefficients: Coefficients, source: Source, duty: Duty) -> Self {
+        let Duty { pressure, stroke, modulus, yield_stress, tangent_length } = duty;
         let Coefficients { cp, cf, cd } = coefficients;
         let e = stroke / b.convolutions as f64;
         let (s3, s4, s5, s6) = (b.s3(pressure), b.s4(pressure, cp), b.s5(e, modulus, cf), b.s6(e, modulus, cd));
@@ -111,7 +113,7 @@ mod tests {
     fn the_sample_report_is_checked_as_printed() {
         let b = UBellows { inside_diameter: 130.0, height: 9.1, pitch: 8.0, ply_thickness: 0.3, plies: 3, convolutions: 18, torus_radius: 1.3 };
         let c = Coefficients { cp: 0.67, cf: 1.57, cd: 1.68 };
-        let check = CodeCheck::new(&b, c, Source::Given, 0.3, 27.5, 194_612.0, 206.8, 30.0);
+        let check = CodeCheck::new(&b, c, Source::Given, Duty { pressure: 0.3, stroke: 27.5, modulus: 194_612.0, yield_stress: 206.8, tangent_length: 30.0 });
         for (value, printed) in [(check.s4, 33.4), (check.s5, 10.6), (check.s6, 1034.9), (check.axial_rate, 159.0), (check.column_instability, 1.18)] {
             assert!((value - printed).abs() <= 0.01 * printed, "{value} against the printed {printed}");
         }
@@ -124,7 +126,12 @@ mod tests {
     #[test]
     fn a_small_stroke_gets_no_note() {
         let b = UBellows { inside_diameter: 130.0, height: 9.1, pitch: 8.0, ply_thickness: 0.3, plies: 3, convolutions: 18, torus_radius: 1.3 };
-        let check = CodeCheck::new(&b, Coefficients { cp: 0.67, cf: 1.57, cd: 1.68 }, Source::Computed, 0.3, 2.0, 194_612.0, 206.8, 30.0);
+        let check = CodeCheck::new(
+            &b,
+            Coefficients { cp: 0.67, cf: 1.57, cd: 1.68 },
+            Source::Computed,
+            Duty { pressure: 0.3, stroke: 2.0, modulus: 194_612.0, yield_stress: 206.8, tangent_length: 30.0 },
+        );
         assert!(check.notes.is_empty() && check.cycles.is_none(), "{:?} {:?}", check.notes, check.cycles);
     }
 }
