@@ -210,7 +210,6 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
             // changing contact better)
             let start_load = loads.at(model, lambda);
             let moving = problem.load().prescribed != start_load.prescribed;
-
             let extrapolated = match (controls.predictor, &last) {
                 (Predictor::Extrapolate, Some(last)) if moving && !failed_in_step => Some(last.extrapolate(&displacement, target - lambda)),
                 _ => None,
