@@ -83,6 +83,10 @@ pub enum Command {
         through: usize,
         #[arg(long, default_value_t = 4.0)]
         per_thickness: f64,
+        /// Draw each coefficient against C2, a curve per C1, as the codes' charts do:
+        /// PREFIX_cp.png, PREFIX_cf.png, PREFIX_cd.png.
+        #[arg(long, value_name = "PREFIX")]
+        plot: Option<PathBuf>,
         /// PETSc options (after `--`).
         #[arg(last = true, allow_hyphen_values = true)]
         petsc: Vec<String>,

@@ -222,7 +222,7 @@ fn main() -> ExitCode {
                 Err(e) => fail(&e, root),
             }
         }
-        Command::Coefficients { c1, c2, through, per_thickness, petsc } => {
+        Command::Coefficients { c1, c2, through, per_thickness, plot, petsc } => {
             let session = match PetscSession::initialize(&petsc) {
                 Ok(s) => s,
                 Err(e) => return fail(&e, launched_as_rank_zero()),
@@ -232,16 +232,24 @@ fn main() -> ExitCode {
             if root {
                 println!("chart coefficients of the idealised U-shaped convolution (computed):\n      C1       C2       Cp       Cf       Cd");
             }
+            let mut table = Vec::new();
             for &a in &c1 {
                 for &b in &c2 {
                     match slideline::assessment::convolution::compute(&session, a, b, fineness) {
-                        Ok(c) if root => println!("{a:>8.4} {b:>8.4} {:>8.4} {:>8.4} {:>8.4}", c.cp, c.cf, c.cd),
-                        Ok(_) => {}
+                        Ok(c) => {
+                            if root {
+                                println!("{a:>8.4} {b:>8.4} {:>8.4} {:>8.4} {:>8.4}", c.cp, c.cf, c.cd);
+                            }
+                            table.push((a, b, c));
+                        }
                         Err(e) => return fail(&e, root),
                     }
                 }
             }
-            ExitCode::SUCCESS
+            match plot.filter(|_| root).map(|prefix| coefficient_charts(&prefix, &table)) {
+                Some(Err(e)) => fail(&e, true),
+                _ => ExitCode::SUCCESS,
+            }
         }
         Command::Post(args) => match post(&args) {
             Ok(()) => ExitCode::SUCCESS,
@@ -337,6 +345,22 @@ fn report(params: &model::bellows::BellowsParams, code: Option<&CodeCheck>, summ
     drop(reader);
     // the code check beside the run's results (the file is closed: rank 0 alone opens it)
     code.map_or(Ok(()), |c| slideline::io::assessment::write(output, c))
+}
+
+/// Each coefficient against C2, a curve per C1 (the codes' charts): PREFIX_cp.png, ...
+fn coefficient_charts(prefix: &std::path::Path, table: &[(f64, f64, Coefficients)]) -> Result<(), Error> {
+    use slideline::io::plots::{line_plot, Axes, Curve};
+    let mut c1s: Vec<f64> = table.iter().map(|t| t.0).collect();
+    c1s.dedup();
+    for (name, pick) in [("cp", (|c: &Coefficients| c.cp) as fn(&Coefficients) -> f64), ("cf", |c| c.cf), ("cd", |c| c.cd)] {
+        let curves: Vec<Curve> =
+            c1s.iter().map(|&a| Curve { label: format!("C1 = {a}"), points: table.iter().filter(|t| t.0 == a).map(|t| (t.1, pick(&t.2))).collect() }).collect();
+        let path = PathBuf::from(format!("{}_{name}.png", prefix.display()));
+        let title = format!("C{} of the idealised U-shaped convolution (computed)", &name[1..]);
+        line_plot(&path, &title, "C2 = 1.82 rm / sqrt(Dm tp)", &format!("C{}", &name[1..]), &curves, &[], Axes::FromOrigin)?;
+        println!("picture: {}", path.display());
+    }
+    Ok(())
 }
 
 /// The bellows' code check (EJMA): the design pressure and the whole stroke, with the chart
