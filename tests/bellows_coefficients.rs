@@ -49,6 +49,18 @@ fn the_coefficients_hold_on_a_finer_mesh() {
 }
 
 #[test]
+fn the_charts_are_drawn_on_request() {
+    let dir = tempfile::tempdir().unwrap();
+    let prefix = dir.path().join("chart");
+    let out = command_in(dir.path(), 1).args(["coefficients", "--c1", "0.4,0.6", "--c2", "0.5,1.0", "--plot", prefix.to_str().unwrap()]).output().unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    for name in ["cp", "cf", "cd"] {
+        let png = std::fs::read(dir.path().join(format!("chart_{name}.png"))).unwrap();
+        assert_eq!(&png[..4], b"\x89PNG", "{name}");
+    }
+}
+
+#[test]
 fn a_geometry_the_charts_do_not_cover_is_refused() {
     let dir = tempfile::tempdir().unwrap();
     for (c1, c2, needle) in [("1.2", "0.5", "no U-shaped convolution"), ("0", "0.5", "must be positive"), ("0.5", "0.05", "rm > tp")] {
