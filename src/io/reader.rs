@@ -262,7 +262,7 @@ impl ResultsReader {
         let groups = self.file.group("increments").and_then(|g| g.member_names()).unwrap_or_default();
         let last_of_step = |k: usize| load_factor.get(k).is_some_and(|&l| l >= 1.0) || (k + 1 < step.len() && step[k + 1] != step[k]);
         // a restart's file holds the rows before it without their fields
-        let restarted: usize = self.text_attr("restarted_from").ok().and_then(|t| t.rsplit(' ').next()?.parse().ok()).unwrap_or(0);
+        let restarted = self.restarted_from().map_or(0, |(_, at)| at);
         Ok((restarted..rows.min(step.len()))
             .filter(|&k| last_of_step(k) || (k + 1).is_multiple_of(every.max(1) as usize))
             .map(|k| k + 1)
@@ -278,6 +278,14 @@ impl ResultsReader {
             // files of slideline 0.1 before it also kept an (r, z) copy, and older ones only it
             false => Ok(self.read_f64(&format!("increments/{increment}/displacement"))?.chunks_exact(2).map(|c| [c[0], c[1]]).collect()),
         }
+    }
+
+    /// The file a restart continued and the increment it continued from (the root attribute
+    /// `restarted_from`, "PATH increment N"), None for a run from the start.
+    pub fn restarted_from(&self) -> Option<(PathBuf, usize)> {
+        let text = self.text_attr("restarted_from").ok()?;
+        let (path, at) = text.rsplit_once(" increment ")?;
+        Some((PathBuf::from(path), at.trim().parse().ok()?))
     }
 
     /// Whether increment group `increment` holds the displacement (complete or not).

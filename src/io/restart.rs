@@ -264,13 +264,14 @@ impl RestartPoint {
             }
         }
         // this file and those it continues (restarts of restarts), each with its node order
-        let mut chain = vec![(ResultsReader::open(&from.file)?, nodes.clone())];
+        let mut chain = vec![(reader, nodes.clone())];
         while chain.len() < 64 {
-            let source = chain.last().and_then(|(r, _)| r.text_attr("restarted_from").ok()).and_then(|t| Some(PathBuf::from(t.rsplit_once(" increment ")?.0)));
-            let Some(earlier) = source.and_then(|p| ResultsReader::open(&p).ok()) else { break };
+            let source = chain.last().and_then(|(r, _)| r.restarted_from());
+            let Some(earlier) = source.and_then(|(p, _)| ResultsReader::open(&p).ok()) else { break };
             let (order, _) = check_mesh(&earlier, model).map_err(bad)?;
             chain.push((earlier, order));
         }
+        let reader = &chain[0].0;
         // the displacement of increment group `g` from the first file of the chain holding it
         let field = |g: &str| -> Result<Option<Vec<[f64; 2]>>> {
             let what = format!("increments/{g}/nodal/displacement");
@@ -381,7 +382,7 @@ impl RestartPoint {
         // the file it continues those before (oldest first, the order the run reserved them)
         let mut limits = vec![number];
         for (r, _) in &chain[..chain.len() - 1] {
-            let at = r.text_attr("restarted_from").ok().and_then(|t| t.rsplit(' ').next()?.parse::<usize>().ok()).unwrap_or(0);
+            let at = r.restarted_from().map_or(0, |(_, at)| at);
             limits.push(at.min(*limits.last().unwrap_or(&number)));
         }
         let mut pattern = Vec::new();

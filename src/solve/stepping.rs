@@ -280,9 +280,10 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
             let fields = output.run(|| problem.evaluate_fields(&x))??;
             problem.commit();
             let owned = owned_displacement(&x, &dofs, &partition, &problem.load().prescribed)?;
-            let before = displacement.clone();
+            // the extrapolating predictor's increment (kept only for it)
+            let before = (controls.predictor == Predictor::Extrapolate).then(|| displacement.clone());
             gather_displacement(&world, &partition, &owned, &mut displacement);
-            last = Some(LastIncrement::between(&before, &displacement, done));
+            last = before.map(|before| LastIncrement::between(&before, &displacement, done));
             let mut force = vec![0.0; 2 * nodes];
             let local: Vec<f64> = fields.nodal_force.iter().flatten().copied().collect();
             world.all_reduce_into(&local[..], &mut force[..], SystemOperation::sum());
