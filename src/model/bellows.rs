@@ -406,10 +406,10 @@ pub fn model(p: &BellowsParams) -> Result<Model> {
     Ok(model)
 }
 
-/// EJMA theoretical axial spring rate of the whole joint (full ring), N/mm, and the Cf used:
+/// EJMA theoretical axial spring rate of the whole joint (full ring), N/mm, with the chart
+/// coefficient `cf` (computed by `assessment::convolution`, or read off the chart):
 /// f = 1.7 D_m E t_p^3 n / (w^3 C_f) per convolution, divided by the number of convolutions,
-/// with D_m = D_b + w + n t and t_p = t sqrt(D_b / D_m) (EJMA 10th ed., C-3.3). C_f from the
-/// EJMA chart is approximated here by its value for these proportions.
+/// with D_m = D_b + w + n t and t_p = t sqrt(D_b / D_m) (EJMA 10th ed., C-3.3).
 pub fn ejma_axial_rate(p: &BellowsParams, cf: f64) -> f64 {
     code_geometry(p).axial_rate(p.youngs_modulus, cf)
 }
