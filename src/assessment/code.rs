@@ -5,7 +5,7 @@
 //! what they are for.
 
 use super::convolution::Coefficients;
-use super::formulas::{cycles_as_formed_austenitic, stress_range, UBellows, PSI_PER_MPA};
+use super::formulas::{cycles_as_formed_austenitic, stress_range, UBellows, AS_FORMED_YIELD_FACTOR, PSI_PER_MPA};
 
 /// Where the chart coefficients came from.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -32,9 +32,11 @@ pub struct CodeCheck {
     pub source: Source,
     pub c1: f64,
     pub c2: f64,
-    /// Hoop membrane stress in the tangent (S1) and meridional membrane and bending stresses
-    /// from pressure (S3, S4) and from the stroke (S5, S6), MPa.
+    /// Hoop membrane stress from pressure in the tangent (S1) and in the convolutions (S2), and
+    /// meridional membrane and bending stresses from pressure (S3, S4) and from the stroke (S5,
+    /// S6), MPa.
     pub s1: f64,
+    pub s2: f64,
     pub s3: f64,
     pub s4: f64,
     pub s5: f64,
@@ -47,6 +49,8 @@ pub struct CodeCheck {
     pub axial_rate: f64,
     /// Column instability (squirm) pressure, both ends held, MPa.
     pub column_instability: f64,
+    /// In-plane instability pressure, as-formed (Sy* = 2.3 Sy), MPa.
+    pub in_plane_instability: f64,
     /// Where the formulas are outside what they are for.
     pub notes: Vec<String>,
 }
@@ -72,7 +76,8 @@ impl CodeCheck {
         let (s3, s4, s5, s6) = (b.s3(pressure), b.s4(pressure, cp), b.s5(e, modulus, cf), b.s6(e, modulus, cd));
         let st = stress_range(s3, s4, s5, s6);
         let axial_rate = b.axial_rate(modulus, cf);
-        let mut notes = Vec::new();
+        let mut notes: Vec<String> =
+            b.conditions_of_applicability().into_iter().map(|c| format!("outside the code's conditions of applicability: {c}")).collect();
         if s5 + s6 > 2.0 * yield_stress {
             notes.push(format!(
                 "the stroke's meridional stress S5 + S6 = {:.0} MPa is {:.0} times the yield stress: far beyond the elastic range the code's formulas and fatigue curve are written for (the plies yield; the finite-element answers are the ones to use)",
@@ -86,6 +91,7 @@ impl CodeCheck {
             c1: b.c1(),
             c2: b.c2(),
             s1: b.s1(pressure, tangent_length),
+            s2: b.s2(pressure),
             s3,
             s4,
             s5,
@@ -94,6 +100,8 @@ impl CodeCheck {
             cycles: cycles_as_formed_austenitic(st * PSI_PER_MPA),
             axial_rate,
             column_instability: b.column_instability_pressure(axial_rate),
+            // the ratio S4 / S2 does not depend on the pressure: taken at 1 MPa when there is none
+            in_plane_instability: b.in_plane_instability_pressure(b.s2(1.0), b.s4(1.0, cp), AS_FORMED_YIELD_FACTOR * yield_stress),
             notes,
         }
     }
@@ -133,5 +141,17 @@ mod tests {
             Duty { pressure: 0.3, stroke: 2.0, modulus: 194_612.0, yield_stress: 206.8, tangent_length: 30.0 },
         );
         assert!(check.notes.is_empty() && check.cycles.is_none(), "{:?} {:?}", check.notes, check.cycles);
+    }
+
+    #[test]
+    fn a_bellows_outside_the_conditions_gets_a_note_naming_it() {
+        let b = UBellows { inside_diameter: 130.0, height: 9.1, pitch: 8.0, ply_thickness: 0.3, plies: 3, convolutions: 60, torus_radius: 1.3 };
+        let check = CodeCheck::new(
+            &b,
+            Coefficients { cp: 0.67, cf: 1.57, cd: 1.68 },
+            Source::Given,
+            Duty { pressure: 0.3, stroke: 2.0, modulus: 194_612.0, yield_stress: 206.8, tangent_length: 30.0 },
+        );
+        assert!(check.notes.iter().any(|n| n.contains("conditions of applicability") && n.contains("N q = 480")), "{:?}", check.notes);
     }
 }

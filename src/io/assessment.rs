@@ -15,13 +15,14 @@ use std::path::Path;
 pub const GROUP: &str = "assessment";
 
 /// (dataset, units, description) of each value, in the order the check is read back.
-const VALUES: [(&str, &str, &str); 15] = [
+const VALUES: [(&str, &str, &str); 17] = [
     ("C1", "-", "2 rm / w, the charts' first coordinate"),
     ("C2", "-", "1.82 rm / sqrt(Dm tp), the charts' second coordinate"),
     ("Cp", "-", "chart coefficient of the meridional bending stress from pressure"),
     ("Cf", "-", "chart coefficient of the axial rate and the meridional membrane stress from deflection"),
     ("Cd", "-", "chart coefficient of the meridional bending stress from deflection"),
     ("S1", "MPa", "hoop membrane stress in the tangent from pressure"),
+    ("S2", "MPa", "hoop membrane stress in an intermediate convolution from pressure"),
     ("S3", "MPa", "meridional membrane stress from pressure"),
     ("S4", "MPa", "meridional bending stress from pressure"),
     ("S5", "MPa", "meridional membrane stress from the stroke"),
@@ -30,10 +31,11 @@ const VALUES: [(&str, &str, &str); 15] = [
     ("cycles", "-", "allowable cycles, as-formed austenitic curve (0: below its endurance range)"),
     ("axial_rate", "N/mm", "the bellows' axial spring rate, full ring"),
     ("column_instability_pressure", "MPa", "column instability (squirm) pressure, both ends held"),
+    ("in_plane_instability_pressure", "MPa", "in-plane instability pressure, both ends held, as-formed effective yield 2.3 Sy"),
     ("coefficients_computed", "-", "1: the chart coefficients computed from the idealised convolution; 0: as given"),
 ];
 
-fn values(c: &CodeCheck) -> [f64; 15] {
+fn values(c: &CodeCheck) -> [f64; 17] {
     let k = c.coefficients;
     [
         c.c1,
@@ -42,6 +44,7 @@ fn values(c: &CodeCheck) -> [f64; 15] {
         k.cf,
         k.cd,
         c.s1,
+        c.s2,
         c.s3,
         c.s4,
         c.s5,
@@ -50,6 +53,7 @@ fn values(c: &CodeCheck) -> [f64; 15] {
         c.cycles.unwrap_or(0.0),
         c.axial_rate,
         c.column_instability,
+        c.in_plane_instability,
         f64::from(u8::from(c.source == Source::Computed)),
     ]
 }
@@ -82,25 +86,32 @@ pub fn read(file: &hdf5::File, path: &Path) -> Result<Option<CodeCheck>> {
     }
     let bad = |e: hdf5::Error| Error::input(format!("{}: /{GROUP}: {e}", path.display()));
     let g = file.group(GROUP).map_err(bad)?;
-    let mut v = [0.0; 15];
+    let mut v = [0.0; 17];
     for (slot, (name, _, _)) in v.iter_mut().zip(VALUES) {
-        *slot = g.dataset(name).and_then(|d| d.read_scalar::<f64>()).map_err(bad)?;
+        // S2 and the in-plane instability came later: NaN (printed "-") in older files
+        *slot = match g.link_exists(name) {
+            true => g.dataset(name).and_then(|d| d.read_scalar::<f64>()).map_err(bad)?,
+            false if ["S2", "in_plane_instability_pressure"].contains(&name) => f64::NAN,
+            false => return Err(bad(hdf5::Error::from(format!("no dataset {name}").as_str()))),
+        };
     }
     let notes = g.attr("notes").and_then(|a| a.read_scalar::<VarLenUnicode>()).map_err(bad)?.to_string();
     Ok(Some(CodeCheck {
         coefficients: Coefficients { cp: v[2], cf: v[3], cd: v[4] },
-        source: if v[14] == 1.0 { Source::Computed } else { Source::Given },
+        source: if v[16] == 1.0 { Source::Computed } else { Source::Given },
         c1: v[0],
         c2: v[1],
         s1: v[5],
-        s3: v[6],
-        s4: v[7],
-        s5: v[8],
-        s6: v[9],
-        stress_range: v[10],
-        cycles: (v[11] > 0.0).then_some(v[11]),
-        axial_rate: v[12],
-        column_instability: v[13],
+        s2: v[6],
+        s3: v[7],
+        s4: v[8],
+        s5: v[9],
+        s6: v[10],
+        stress_range: v[11],
+        cycles: (v[12] > 0.0).then_some(v[12]),
+        axial_rate: v[13],
+        column_instability: v[14],
+        in_plane_instability: v[15],
         notes: notes.lines().filter(|l| !l.is_empty()).map(str::to_string).collect(),
     }))
 }
