@@ -251,6 +251,11 @@ pub struct BellowsArgs {
     /// VIII-1 App. 26); without them slideline computes them from the idealised convolution.
     #[arg(long, value_name = "CP,CF,CD", value_delimiter = ',')]
     pub coefficients: Option<Vec<f64>>,
+    /// The design assessment by finite elements beside the code check: linear elastic analyses
+    /// of the design pressure alone and of the stroke alone, linearised across the plies, and
+    /// the life from the run's own strain range.
+    #[arg(long)]
+    pub assess: bool,
     /// A load cycle: after the compression, a further step takes tube B's end back to where it
     /// started (the force-displacement picture then shows the loop).
     #[arg(long)]

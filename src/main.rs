@@ -91,7 +91,12 @@ fn post(args: &PostArgs) -> Result<(), Error> {
     }
     if args.assessment {
         match r.assessment()? {
-            Some(check) => out += &slideline::report::code_section(&check),
+            Some(check) => {
+                out += &slideline::report::code_section(&check);
+                if let Some((fe, life)) = r.finite_element_assessment()? {
+                    out += &slideline::report::assessment_section(&check, &fe, life.as_ref());
+                }
+            }
             None => return Err(Error::input(format!("{}: no code check in the file (`slideline bellows` writes one)", args.file.display()))),
         }
     }
@@ -186,6 +191,18 @@ fn main() -> ExitCode {
                 println!("note: no code check: {e}");
             }
             let code = code.ok();
+            // the finite-element side of the assessment (collective)
+            let fe = args.assess.then(|| {
+                if root && !args.quiet {
+                    println!("assessment: linear elastic analyses of the design pressure and of the stroke ...");
+                }
+                slideline::assessment::finite_element::analyse(&session, &params)
+            });
+            let fe = match fe {
+                Some(Err(e)) => return fail(&e, root),
+                Some(Ok(fe)) => Some(fe),
+                None => None,
+            };
             if let (true, false, Some(c)) = (root, args.quiet, &code) {
                 let k = c.coefficients;
                 println!(
@@ -207,7 +224,7 @@ fn main() -> ExitCode {
                 )
             });
             warn_unused_options(&session, root && !is_bad_input(&result));
-            finish(result, root, |summary| report(&params, code.as_ref(), summary, &args.output))
+            finish(result, root, |summary| report(&params, code.as_ref(), fe.as_ref(), summary, &args.output))
         }
         Command::PenaltyStudy(args) => {
             let session = match PetscSession::initialize(&args.petsc) {
@@ -335,16 +352,32 @@ fn write_mesh(session: &PetscSession, params: &model::bellows::BellowsParams, ou
 
 /// The bellows closing table (slideline beside the paper) and the pictures, from the results
 /// file (rank 0, after the run).
-fn report(params: &model::bellows::BellowsParams, code: Option<&CodeCheck>, summary: &RunSummary, output: &std::path::Path) -> Result<(), Error> {
+fn report(
+    params: &model::bellows::BellowsParams,
+    code: Option<&CodeCheck>,
+    fe: Option<&slideline::assessment::finite_element::FeCheck>,
+    summary: &RunSummary,
+    output: &std::path::Path,
+) -> Result<(), Error> {
     let reader = ResultsReader::open(output)?;
+    let life = match fe {
+        Some(_) => slideline::assessment::finite_element::strain_life(&reader, params.youngs_modulus)?,
+        None => None,
+    };
     let report = BellowsReport::new(params, code.cloned(), summary, &reader)?;
     println!("\n{}", report.table());
+    if let (Some(c), Some(f)) = (code, fe) {
+        println!("{}", slideline::report::assessment_section(c, f, life.as_ref()));
+    }
     for path in report.pictures(output, &reader)? {
         println!("picture: {}", path.display());
     }
     drop(reader);
     // the code check beside the run's results (the file is closed: rank 0 alone opens it)
-    code.map_or(Ok(()), |c| slideline::io::assessment::write(output, c))
+    if let Some(c) = code {
+        slideline::io::assessment::write(output, c)?;
+    }
+    fe.map_or(Ok(()), |f| slideline::io::assessment::write_finite_element(output, f, life.as_ref()))
 }
 
 /// Each coefficient against C2, a curve per C1 (the codes' charts): PREFIX_cp.png, ...

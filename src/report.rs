@@ -5,6 +5,7 @@
 //! increment). Rank 0 only, after the run: fields are read back from the results file.
 
 use crate::assessment::code::CodeCheck;
+use crate::assessment::finite_element::{FeCheck, Peak, StrainLife};
 use crate::error::Result;
 use crate::io::plots::{deformed_field, line_plot, Axes, Curve, FieldPicture, Marker};
 use crate::io::reader::ResultsReader;
@@ -255,6 +256,63 @@ pub fn code_section(c: &CodeCheck) -> String {
     line("in-plane instability pressure (Sy* = 2.3 Sy), MPa", known(c.in_plane_instability, 2));
     for note in &c.notes {
         t.push_str(&format!("  note: {note}\n"));
+    }
+    t
+}
+
+fn peak_of(p: &Peak) -> Option<(f64, &str)> {
+    Some((p.value, p.at.as_str()))
+}
+
+/// The design assessment's section: each figure by the code (EJMA, the coefficients as the
+/// check has them) beside the finite-element value of the joint itself and their ratio; then the
+/// life from the elastic-plastic run's own strain range.
+pub fn assessment_section(c: &CodeCheck, fe: &FeCheck, life: Option<&StrainLife>) -> String {
+    let mut t = format!(
+        "\n  design assessment: code (EJMA, coefficients {}) beside finite elements (linear elastic, the joint itself, linearised across each ply)\n",
+        c.source.label()
+    );
+    t.push_str(&format!("  {:<50} {:>10} {:>10} {:>8}   {}\n", "", "code", "FE", "FE/code", "FE's largest at"));
+    let mut row = |what: &str, code: f64, ours: Option<(f64, &str)>, digits: usize| {
+        let value = |v: f64| match v {
+            v if v.is_nan() => "-".to_string(),
+            v if v.is_infinite() => "endurance".to_string(),
+            v => format!("{v:.digits$}"),
+        };
+        let (fe, ratio, at) = match ours {
+            Some((v, at)) => (value(v), if v.is_finite() && code.is_finite() { format!("{:.2}", v / code) } else { "-".into() }, at),
+            None => ("-".to_string(), "-".to_string(), ""),
+        };
+        t.push_str(&format!("  {what:<50} {:>10} {fe:>10} {ratio:>8}   {at}\n", value(code)));
+    };
+    row("S2 hoop membrane, convolution mean, pressure, MPa", c.s2, peak_of(&fe.s2), 1);
+    row("S3 meridional membrane, pressure, MPa", c.s3, peak_of(&fe.s3), 1);
+    row("S4 meridional bending, pressure, MPa", c.s4, peak_of(&fe.s4), 1);
+    row("S5 meridional membrane, stroke, MPa", c.s5, peak_of(&fe.s5), 1);
+    row("S6 meridional bending, stroke, MPa", c.s6, peak_of(&fe.s6), 0);
+    row("St = 0.7 (S3 + S4) + S5 + S6, MPa", c.stress_range, peak_of(&fe.stress_range), 0);
+    row("axial rate, N/mm full ring", c.axial_rate, Some((fe.axial_rate, "")), 1);
+    let cycles = |n: Option<f64>| n.unwrap_or(f64::INFINITY);
+    row("allowable cycles from St (as-formed curve)", cycles(c.cycles), Some((cycles(fe.cycles), "")), 0);
+    row("column instability pressure, MPa", c.column_instability, None, 2);
+    row("in-plane instability pressure, MPa", c.in_plane_instability, None, 2);
+    t.push_str("  stations: nine along every root, sidewall and crest of every convolution (the apexes and mid-sidewalls among them)\n");
+    let [e3, e4, e5, e6] = &fe.ends;
+    t.push_str(&format!(
+        "  where the pack leaves the tubes (outside the code's convolutions, a bonded corner): S3 {:.1}, S4 {:.1}, S5 {:.1}, S6 {:.0} MPa\n",
+        e3.value, e4.value, e5.value, e6.value
+    ));
+    t.push_str("  the instability pressures by finite elements need eigenvalue analyses, which slideline does not do yet\n");
+    if let Some(l) = life {
+        t.push_str(&format!(
+            "  the elastic-plastic run's own life: effective total strain range {:.4} at (r, z) = ({:.1}, {:.1}) mm,\n  \
+             pseudo-elastic St = E x range = {:.0} MPa: {} cycles (as-formed curve)\n",
+            l.strain_range,
+            l.at[0],
+            l.at[1],
+            l.pseudo_stress,
+            l.cycles.map_or("endurance: more than the curve's".into(), |n| if n < 1.0 { "less than 1".into() } else { format!("{n:.0}") })
+        ));
     }
     t
 }

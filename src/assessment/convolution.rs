@@ -23,10 +23,9 @@ use crate::model::bellows::{stations, Piece};
 use crate::model::mesh::{mapped_block, Edge};
 use crate::model::{Component, Kinematics, Material, Model, OutputControls, OutputFields, PrescribedDisplacement, Pressure, Step, SteppingControls};
 use crate::petsc::PetscSession;
-use crate::solve::{run, RunOptions};
-use mpi::traits::*;
+use crate::solve::run;
 use std::f64::consts::PI;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 /// Scale of the idealised convolution: Dm and tp (mm), E (MPa), and the loads.
 const DM: f64 = 1000.0;
@@ -196,15 +195,14 @@ pub fn compute(session: &PetscSession, c1: f64, c2: f64, fineness: Fineness) -> 
         temperature: None,
         time_span: None,
     };
-    let dir = scratch(session)?;
-    let result = (|| {
+    super::in_scratch(session, "convolution", |dir| {
         let deflected = dir.join("deflect.h5");
-        let summary = run(session, &convolution.model(fineness, deflect)?, &options(&deflected))?;
+        let summary = run(session, &convolution.model(fineness, deflect)?, &super::quiet_run(&deflected))?;
         let force = summary.history.last().and_then(|row| row.reactions.iter().find(|(s, _)| s == "crest")).map(|(_, f)| f[1].abs() * 2.0 * PI);
         let force = force.ok_or_else(|| Error::Output { path: deflected.clone(), message: "no crest reaction".into() })?;
         let s6 = convolution.peak_bending(&deflected)?;
         let pressed = dir.join("press.h5");
-        run(session, &convolution.model(fineness, press)?, &options(&pressed))?;
+        run(session, &convolution.model(fineness, press)?, &super::quiet_run(&pressed))?;
         let s4 = convolution.peak_bending(&pressed)?;
         let fiu = force / e;
         Ok(Coefficients {
@@ -212,27 +210,5 @@ pub fn compute(session: &PetscSession, c1: f64, c2: f64, fineness: Fineness) -> 
             cd: 5.0 * E * TP * e / (3.0 * w * w * s6),
             cp: s4 / (PRESSURE / 2.0 * (w / TP).powi(2)),
         })
-    })();
-    session.world().barrier();
-    if session.world().rank() == 0 {
-        let _ = std::fs::remove_dir_all(&dir);
-    }
-    result
-}
-
-fn options(output: &Path) -> RunOptions {
-    RunOptions { output: output.to_path_buf(), progress: false, verbose: false, monitor: false, restart: None }
-}
-
-/// A fresh temporary directory, the same on every rank (rank 0 names and creates it).
-fn scratch(session: &PetscSession) -> Result<PathBuf> {
-    let world = session.world();
-    let mut id = [std::process::id() as u64, std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).map_or(0, |d| d.as_nanos() as u64)];
-    world.process_at_rank(0).broadcast_into(&mut id[..]);
-    let dir = std::env::temp_dir().join(format!("slideline-convolution-{}-{}", id[0], id[1]));
-    if world.rank() == 0 {
-        std::fs::create_dir_all(&dir).map_err(|e| Error::Output { path: dir.clone(), message: e.to_string() })?;
-    }
-    world.barrier();
-    Ok(dir)
+    })
 }

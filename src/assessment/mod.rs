@@ -1,8 +1,40 @@
 //! The bellows design assessment: the expansion joint codes' formulas beside the finite-element
 //! answers. The formulas themselves ([`formulas`]), pure functions tested against published
 //! worked calculations; the chart coefficients computed from the idealised convolution
-//! ([`convolution`]); the code check of a bellows with them ([`code`]).
+//! ([`convolution`]); the code check of a bellows with them ([`code`]); the same figures by
+//! finite elements on the joint itself ([`finite_element`]).
 
 pub mod code;
 pub mod convolution;
+pub mod finite_element;
 pub mod formulas;
+
+use crate::error::{Error, Result};
+use crate::petsc::PetscSession;
+use crate::solve::RunOptions;
+use mpi::traits::*;
+use std::path::{Path, PathBuf};
+
+/// A run of one of the assessment's own analyses: no progress, no monitor.
+fn quiet_run(output: &Path) -> RunOptions {
+    RunOptions { output: output.to_path_buf(), progress: false, verbose: false, monitor: false, restart: None }
+}
+
+/// `work` in a fresh temporary directory, the same on every rank (rank 0 names and creates it,
+/// and removes it when every rank is done; collective).
+fn in_scratch<T>(session: &PetscSession, name: &str, work: impl FnOnce(&Path) -> Result<T>) -> Result<T> {
+    let world = session.world();
+    let mut id = [std::process::id() as u64, std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).map_or(0, |d| d.as_nanos() as u64)];
+    world.process_at_rank(0).broadcast_into(&mut id[..]);
+    let dir: PathBuf = std::env::temp_dir().join(format!("slideline-{name}-{}-{}", id[0], id[1]));
+    if world.rank() == 0 {
+        std::fs::create_dir_all(&dir).map_err(|e| Error::Output { path: dir.clone(), message: e.to_string() })?;
+    }
+    world.barrier();
+    let result = work(&dir);
+    world.barrier();
+    if world.rank() == 0 {
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+    result
+}

@@ -106,6 +106,8 @@ pub struct StressSampler<'a> {
     nodal: Vec<[[f64; 4]; 8]>,
     /// Per element, its bounding box (r0, z0, r1, z1).
     boxes: Vec<[f64; 4]>,
+    /// How far outside an element (in its coordinates xi, eta) a point still counts as in it.
+    slack: f64,
 }
 
 impl<'a> StressSampler<'a> {
@@ -122,18 +124,27 @@ impl<'a> StressSampler<'a> {
                 })
             })
             .collect();
-        StressSampler { coords, elements, nodal, boxes }
+        StressSampler { coords, elements, nodal, boxes, slack: 1e-9 }
+    }
+
+    /// Points up to `slack` outside an element (in its coordinates: 1e-2 is 0.5 % of its width)
+    /// count as in it, the field extrapolated: for sections ending on a curved surface, which the
+    /// quadratic edges follow only to about 1e-4 of an element. A sampler of one body only, so
+    /// that no neighbour's element takes a point of its own.
+    pub fn with_slack(mut self, slack: f64) -> Self {
+        self.slack = slack;
+        self
     }
 
     /// The stress at `p`, None outside every element.
     pub fn at(&self, p: [f64; 2]) -> Option<[f64; 4]> {
         for (e, bx) in self.boxes.iter().enumerate() {
-            let tol = 1e-9 * (bx[2] - bx[0]).max(bx[3] - bx[1]);
+            let tol = self.slack.max(1e-9) * (bx[2] - bx[0]).max(bx[3] - bx[1]);
             if p[0] < bx[0] - tol || p[0] > bx[2] + tol || p[1] < bx[1] - tol || p[1] > bx[3] + tol {
                 continue;
             }
             let x: [[f64; 2]; 8] = self.elements[e].map(|n| self.coords[n]);
-            if let Some(xi) = inverse_map(&x, p) {
+            if let Some(xi) = inverse_map(&x, p, self.slack) {
                 let (n, _) = q8(xi);
                 return Some(std::array::from_fn(|c| (0..8).map(|a| n[a] * self.nodal[e][a][c]).sum()));
             }
@@ -143,7 +154,7 @@ impl<'a> StressSampler<'a> {
 }
 
 /// The element coordinates (xi, eta) of `p` in the Q8 element `x`, if it lies inside.
-fn inverse_map(x: &[[f64; 2]; 8], p: [f64; 2]) -> Option<[f64; 2]> {
+fn inverse_map(x: &[[f64; 2]; 8], p: [f64; 2], slack: f64) -> Option<[f64; 2]> {
     let mut xi = [0.0f64; 2];
     for _ in 0..30 {
         let (n, d) = q8(xi);
@@ -164,7 +175,7 @@ fn inverse_map(x: &[[f64; 2]; 8], p: [f64; 2]) -> Option<[f64; 2]> {
         // stalls at the round-off of the coordinates, about 1e-13 of the element in a thin ply
         // far from the axis, so a fixed 1e-13 failed there
         if step[0].abs().max(step[1].abs()) < 1e-10 {
-            let inside = xi[0].abs() <= 1.0 + 1e-9 && xi[1].abs() <= 1.0 + 1e-9;
+            let inside = xi[0].abs() <= 1.0 + slack && xi[1].abs() <= 1.0 + slack;
             return inside.then_some(xi);
         }
     }
@@ -207,7 +218,7 @@ mod tests {
                 let xi = [-0.97 + 0.2425 * i as f64, -0.97 + 0.2425 * j as f64];
                 let (n, _) = q8(xi);
                 let p: [f64; 2] = std::array::from_fn(|c| (0..8).map(|a| n[a] * x[a][c]).sum());
-                let back = inverse_map(&x, p).unwrap_or_else(|| panic!("({}, {}) at xi {xi:?} not found", p[0], p[1]));
+                let back = inverse_map(&x, p, 1e-9).unwrap_or_else(|| panic!("({}, {}) at xi {xi:?} not found", p[0], p[1]));
                 assert!((back[0] - xi[0]).abs() < 1e-8 && (back[1] - xi[1]).abs() < 1e-8);
                 found += 1;
             }

@@ -7,6 +7,7 @@
 use super::results::{describe_dataset, h5err};
 use crate::assessment::code::{CodeCheck, Source};
 use crate::assessment::convolution::Coefficients;
+use crate::assessment::finite_element::{FeCheck, Peak, StrainLife};
 use crate::error::{Error, Result};
 use hdf5::types::VarLenUnicode;
 use std::path::Path;
@@ -114,4 +115,110 @@ pub fn read(file: &hdf5::File, path: &Path) -> Result<Option<CodeCheck>> {
         in_plane_instability: v[15],
         notes: notes.lines().filter(|l| !l.is_empty()).map(str::to_string).collect(),
     }))
+}
+
+/// The finite-element side's subgroup of `/assessment`.
+pub const FINITE_ELEMENT: &str = "assessment/finite_element";
+
+/// (dataset, units, description) of the finite-element figures, in the order read back.
+const FE_VALUES: [(&str, &str, &str); 16] = [
+    ("S2", "MPa", "hoop membrane stress from pressure, averaged over a convolution's meridian, worst convolution"),
+    ("S3", "MPa", "largest meridional membrane stress from pressure"),
+    ("S4", "MPa", "largest meridional bending stress from pressure"),
+    ("S5", "MPa", "largest meridional membrane stress from the stroke"),
+    ("S6", "MPa", "largest meridional bending stress from the stroke"),
+    ("St", "MPa", "largest 0.7 (|S3| + |S4|) + |S5| + |S6| at one point"),
+    ("axial_rate", "N/mm", "axial rate of the joint from the stroke analysis' end reaction, full ring"),
+    ("cycles", "-", "allowable cycles from St, as-formed austenitic curve (0: below its endurance range)"),
+    ("end_S3", "MPa", "largest meridional membrane stress from pressure where the pack leaves the tubes"),
+    ("end_S4", "MPa", "largest meridional bending stress from pressure where the pack leaves the tubes"),
+    ("end_S5", "MPa", "largest meridional membrane stress from the stroke where the pack leaves the tubes"),
+    ("end_S6", "MPa", "largest meridional bending stress from the stroke where the pack leaves the tubes"),
+    ("strain_range", "-", "the elastic-plastic run's largest effective total strain range over the plies, stroke start to end (NaN: not computed)"),
+    ("strain_range_r", "mm", "where: r in the undeformed mesh"),
+    ("strain_range_z", "mm", "where: z in the undeformed mesh"),
+    ("strain_cycles", "-", "allowable cycles for the pseudo-elastic range E x strain range, as-formed austenitic curve (0: below its endurance range)"),
+];
+
+/// The datasets with a place (the `where` attribute), in [`FeCheck`]'s order.
+const PEAKS: [&str; 10] = ["S2", "S3", "S4", "S5", "S6", "St", "end_S3", "end_S4", "end_S5", "end_S6"];
+
+/// Writes the finite-element figures into the (closed) results file at `path` (one process).
+pub fn write_finite_element(path: &Path, fe: &FeCheck, life: Option<&StrainLife>) -> Result<()> {
+    let err = h5err(path);
+    let file = hdf5::File::open_rw(path).map_err(&err)?;
+    if !file.link_exists(GROUP) {
+        file.create_group(GROUP).map_err(&err)?;
+    }
+    let g = file.create_group(FINITE_ELEMENT).map_err(&err)?;
+    let nan = f64::NAN;
+    let values = [
+        fe.s2.value,
+        fe.s3.value,
+        fe.s4.value,
+        fe.s5.value,
+        fe.s6.value,
+        fe.stress_range.value,
+        fe.axial_rate,
+        fe.cycles.unwrap_or(0.0),
+        fe.ends[0].value,
+        fe.ends[1].value,
+        fe.ends[2].value,
+        fe.ends[3].value,
+        life.map_or(nan, |l| l.strain_range),
+        life.map_or(nan, |l| l.at[0]),
+        life.map_or(nan, |l| l.at[1]),
+        life.map_or(nan, |l| l.cycles.unwrap_or(0.0)),
+    ];
+    let peaks = [&fe.s2, &fe.s3, &fe.s4, &fe.s5, &fe.s6, &fe.stress_range, &fe.ends[0], &fe.ends[1], &fe.ends[2], &fe.ends[3]];
+    for ((name, units, description), value) in FE_VALUES.iter().zip(values) {
+        let ds = g.new_dataset::<f64>().create(*name).map_err(&err)?;
+        ds.write_scalar(&value).map_err(&err)?;
+        describe_dataset(&ds, units, description, path)?;
+        ds.new_attr::<VarLenUnicode>().create("source").map_err(&err)?.write_scalar(&text("finite element", path)?).map_err(&err)?;
+        if let Some(peak) = PEAKS.iter().position(|n| n == name).map(|i| peaks[i]) {
+            ds.new_attr::<VarLenUnicode>().create("where").map_err(&err)?.write_scalar(&text(&peak.at, path)?).map_err(&err)?;
+        }
+    }
+    // the modulus that turned the strain range into the curve's pseudo-elastic stress, MPa
+    g.new_attr::<f64>().create("modulus").map_err(&err)?.write_scalar(&life.map_or(nan, |l| l.pseudo_stress / l.strain_range)).map_err(&err)?;
+    file.flush().map_err(&err)
+}
+
+/// The finite-element figures stored in `file`, None where it has none.
+pub fn read_finite_element(file: &hdf5::File, path: &Path) -> Result<Option<(FeCheck, Option<StrainLife>)>> {
+    if !file.link_exists(FINITE_ELEMENT) {
+        return Ok(None);
+    }
+    let bad = |e: hdf5::Error| Error::input(format!("{}: /{FINITE_ELEMENT}: {e}", path.display()));
+    let g = file.group(FINITE_ELEMENT).map_err(bad)?;
+    let value = |name: &str| g.dataset(name).and_then(|d| d.read_scalar::<f64>()).map_err(bad);
+    let peak = |name: &str| -> Result<Peak> {
+        let at = g.dataset(name).and_then(|d| d.attr("where")).and_then(|a| a.read_scalar::<VarLenUnicode>()).map_err(bad)?.to_string();
+        Ok(Peak { value: value(name)?, at })
+    };
+    let modulus = g.attr("modulus").and_then(|a| a.read_scalar::<f64>()).map_err(bad)?;
+    let counted = |n: f64| (n > 0.0).then_some(n);
+    let fe = FeCheck {
+        s2: peak("S2")?,
+        s3: peak("S3")?,
+        s4: peak("S4")?,
+        s5: peak("S5")?,
+        s6: peak("S6")?,
+        stress_range: peak("St")?,
+        cycles: counted(value("cycles")?),
+        ends: [peak("end_S3")?, peak("end_S4")?, peak("end_S5")?, peak("end_S6")?],
+        axial_rate: value("axial_rate")?,
+    };
+    let strain_range = value("strain_range")?;
+    let life = match strain_range.is_nan() {
+        true => None,
+        false => Some(StrainLife {
+            strain_range,
+            at: [value("strain_range_r")?, value("strain_range_z")?],
+            pseudo_stress: modulus * strain_range,
+            cycles: counted(value("strain_cycles")?),
+        }),
+    };
+    Ok(Some((fe, life)))
 }

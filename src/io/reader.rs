@@ -298,6 +298,11 @@ impl ResultsReader {
         super::assessment::read(&self.file, &self.path)
     }
 
+    /// The design assessment's finite-element figures the file holds, if any.
+    pub fn finite_element_assessment(&self) -> Result<Option<(crate::assessment::finite_element::FeCheck, Option<crate::assessment::finite_element::StrainLife>)>> {
+        super::assessment::read_finite_element(&self.file, &self.path)
+    }
+
     /// Any field of an increment, flattened (row-major).
     pub fn field(&self, increment: &str, name: &str) -> Result<Vec<f64>> {
         self.read_f64(&format!("increments/{increment}/{name}"))

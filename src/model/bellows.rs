@@ -27,7 +27,7 @@ pub use params::BellowsParams;
 
 /// A piece of the ply-pack mid-surface: a straight line or a circular arc.
 #[derive(Clone, Copy, Debug)]
-pub(crate) enum Piece {
+pub enum Piece {
     Line {
         from: [f64; 2],
         to: [f64; 2],
@@ -42,7 +42,7 @@ pub(crate) enum Piece {
 }
 
 impl Piece {
-    pub(crate) fn length(&self) -> f64 {
+    pub fn length(&self) -> f64 {
         match *self {
             Piece::Line { from, to } => (to[0] - from[0]).hypot(to[1] - from[1]),
             Piece::Arc { radius, a0, a1, .. } => radius * (a1 - a0).abs(),
@@ -50,7 +50,7 @@ impl Piece {
     }
 
     /// Point and unit tangent at fraction `s` in [0, 1].
-    pub(crate) fn at(&self, s: f64) -> ([f64; 2], [f64; 2]) {
+    pub fn at(&self, s: f64) -> ([f64; 2], [f64; 2]) {
         match *self {
             Piece::Line { from, to } => {
                 let l = self.length();
@@ -90,6 +90,42 @@ fn mid_surface(p: &BellowsParams) -> Vec<Piece> {
     let z_b = z + rm;
     pieces.push(Piece::Line { from: [r0, z_b], to: [r0, z_b + p.tangent_length] });
     pieces
+}
+
+/// A piece of the convolutions' mid-surface, named for a report, with the convolutions it
+/// belongs to and its share in each (a root between two convolutions is half in each).
+#[derive(Clone, Debug)]
+pub struct ConvolutionPiece {
+    pub piece: Piece,
+    pub label: String,
+    pub convolutions: Vec<(usize, f64)>,
+    /// A quarter torus off a tangent: where the pack leaves a tube, outside the codes'
+    /// intermediate convolution.
+    pub end: bool,
+}
+
+/// The convolutions' pieces of the mid-surface, tube A to tube B (the tangents left out): the
+/// quarter torus off each tangent counts as its end convolution's half root.
+pub fn convolution_pieces(p: &BellowsParams) -> Vec<ConvolutionPiece> {
+    let all = mid_surface(p);
+    let n = p.convolutions;
+    let mut labels = vec![("root at tube A".to_string(), vec![(0, 1.0)])];
+    for k in 0..n {
+        labels.push((format!("sidewall {}a", k + 1), vec![(k, 1.0)]));
+        labels.push((format!("crest {}", k + 1), vec![(k, 1.0)]));
+        labels.push((format!("sidewall {}b", k + 1), vec![(k, 1.0)]));
+        if k + 1 < n {
+            labels.push((format!("root {}-{}", k + 1, k + 2), vec![(k, 0.5), (k + 1, 0.5)]));
+        }
+    }
+    labels.push(("root at tube B".to_string(), vec![(n - 1, 1.0)]));
+    let last = labels.len() - 1;
+    all[1..all.len() - 1]
+        .iter()
+        .zip(labels)
+        .enumerate()
+        .map(|(i, (&piece, (label, convolutions)))| ConvolutionPiece { piece, label, convolutions, end: i == 0 || i == last })
+        .collect()
 }
 
 /// Stations (element boundaries and mid-side points) of `n` equal elements on [a, b].

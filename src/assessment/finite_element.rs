@@ -1,0 +1,297 @@
+//! The finite-element side of the bellows assessment: the stresses the code's formulas
+//! estimate (S2 .. S6, St, the axial rate, the cycles), computed on the joint itself by two
+//! linear elastic analyses as the codes define them:
+//! - the design pressure alone, both ends held;
+//! - the stroke alone, no pressure (the codes' movement per convolution is the stroke over N).
+//!
+//! Each is the joint's own model (mesh, contact between the plies, the sleeve) with the
+//! plasticity and the heat left out, its load applied at [`LOAD_FRACTION`] of the design value
+//! and the answers scaled back up: a linear analysis, as the codes' formulas are. The stress is
+//! linearised across each ply (`fe::linearize`) at nine stations along every piece of every
+//! convolution (crest, root, both sidewalls; the mid-sidewall, crest and root apexes among
+//! them), and the worst over the stations and the plies is reported with where it is. The
+//! quarter tori where the pack leaves the tubes are reported apart: the codes' formulas are
+//! for the convolutions between.
+//!
+//! For the elastic-plastic run itself (the seed case's stroke yields the plies far past what the
+//! code's elastic formulas are for) [`strain_life`] gives the life from the total strain range.
+
+use super::formulas::{cycles_as_formed_austenitic, PSI_PER_MPA};
+use crate::error::{Error, Result};
+use crate::fe::linearize::{linearize, Linearized, StressSampler};
+use crate::io::reader::ResultsReader;
+use crate::model::bellows::{convolution_pieces, BellowsParams, ConvolutionPiece};
+use crate::model::{Component, PrescribedDisplacement, Pressure, Step};
+use crate::petsc::PetscSession;
+use crate::solve::run;
+use std::f64::consts::PI;
+use std::path::Path;
+
+/// The share of the design pressure and stroke the linear analyses apply (then scaled by its
+/// inverse): small enough that the large-deformation solver answers linearly.
+pub const LOAD_FRACTION: f64 = 0.01;
+
+/// Stations per piece of the meridian (odd: the middle one is the apex or the mid-sidewall).
+const STATIONS: usize = 9;
+
+/// The largest value of a stress and where it is ("crest 1, ply 2").
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Peak {
+    pub value: f64,
+    pub at: String,
+}
+
+impl Peak {
+    fn offer(&mut self, value: f64, at: impl FnOnce() -> String) {
+        if value > self.value {
+            *self = Peak { value, at: at() };
+        }
+    }
+}
+
+/// The finite-element figures beside the code's (MPa, N/mm full ring).
+#[derive(Clone, Debug, PartialEq)]
+pub struct FeCheck {
+    /// Hoop membrane stress from pressure, averaged over a convolution's meridian (the code's
+    /// S2 is that average: the hoop load over the convolution's metal), worst convolution.
+    pub s2: Peak,
+    /// The largest meridional membrane and bending stresses (magnitudes), from pressure (S3,
+    /// S4) and from the stroke (S5, S6).
+    pub s3: Peak,
+    pub s4: Peak,
+    pub s5: Peak,
+    pub s6: Peak,
+    /// The largest 0.7 (|S3| + |S4|) + |S5| + |S6| at one point.
+    pub stress_range: Peak,
+    pub cycles: Option<f64>,
+    /// S3 .. S6 where the pack leaves the tubes (the quarter tori off the tangents): the codes'
+    /// formulas are for the convolutions between, so these are reported apart from the peaks
+    /// above; they sit at the corner of a bonded tangent and grow as the mesh is refined.
+    pub ends: [Peak; 4],
+    /// From the end reaction of the stroke analysis.
+    pub axial_rate: f64,
+}
+
+/// The linearised meridional and hoop stresses at one station of one ply.
+#[derive(Clone, Copy, Debug)]
+struct Station {
+    membrane: f64,
+    bending: f64,
+    hoop: f64,
+}
+
+impl From<&Linearized> for Station {
+    fn from(l: &Linearized) -> Self {
+        Station { membrane: l.membrane[1], bending: l.bending[1], hoop: l.membrane[2] }
+    }
+}
+
+/// The two linear analyses of joint `p` and their linearised stresses (collective: every rank
+/// calls it; the analyses' files go to a temporary directory and are removed).
+pub fn analyse(session: &PetscSession, p: &BellowsParams) -> Result<FeCheck> {
+    let hold = |set: &str, value: f64| PrescribedDisplacement { node_set: set.into(), component: Component::Z, value };
+    let pressure = Step {
+        name: "pressure".into(),
+        increments: 1,
+        displacements: vec![hold("fixed_end", 0.0), hold("moving_end", 0.0)],
+        pressures: vec![Pressure { surface: "wetted".into(), value: LOAD_FRACTION * p.pressure }],
+        temperature: None,
+        time_span: None,
+    };
+    // the stroke analysis runs without a stroke too (a pressure-only assessment), for the rate
+    let nominal = if p.displacement == 0.0 { 1.0 } else { p.displacement.abs() };
+    let stroke = LOAD_FRACTION * nominal;
+    let stroke_step = Step {
+        name: "stroke".into(),
+        increments: 1,
+        displacements: vec![hold("fixed_end", 0.0), hold("moving_end", -stroke)],
+        pressures: vec![],
+        temperature: None,
+        time_span: None,
+    };
+    let pieces = convolution_pieces(p);
+    super::in_scratch(session, "assess", |dir| {
+        let pressed = dir.join("pressure.h5");
+        run(session, &elastic(p, pressure)?, &super::quiet_run(&pressed))?;
+        let from_pressure = stations(&pressed, p, &pieces, 1.0 / LOAD_FRACTION)?;
+        let stroked = dir.join("stroke.h5");
+        let summary = run(session, &elastic(p, stroke_step)?, &super::quiet_run(&stroked))?;
+        let from_stroke = stations(&stroked, p, &pieces, p.displacement.abs() / stroke)?;
+        let force = summary.history.last().and_then(|row| row.reactions.iter().find(|(s, _)| s == "moving_end")).map(|(_, f)| f[1].abs() * 2.0 * PI);
+        let force = force.ok_or_else(|| Error::Output { path: stroked.clone(), message: "no reaction at the moving end".into() })?;
+        Ok(combine(p, &pieces, &from_pressure, &from_stroke, force / stroke))
+    })
+}
+
+/// The joint's model with `step` alone, elastic, without the heat.
+fn elastic(p: &BellowsParams, step: Step) -> Result<crate::model::Model> {
+    let mut m = crate::model::bellows::model(p)?;
+    for material in &mut m.materials {
+        material.plasticity = None;
+        material.thermal_expansion = 0.0;
+    }
+    m.steps = vec![step];
+    m.output.every = 1;
+    m.output.precision = crate::model::Precision::Double;
+    Ok(m)
+}
+
+/// The linearised stresses of one piece: [station][k], each with the ply it was found in.
+type PieceStations = Vec<Vec<(usize, Station)>>;
+
+/// The linearised stresses of every station of every piece, through the pack's thickness ply
+/// by ply (indexed [piece][station][k], with the ply's number from 0), from the last increment
+/// of `file`, multiplied by `scale` (from the applied load to the design's).
+fn stations(file: &Path, p: &BellowsParams, pieces: &[ConvolutionPiece], scale: f64) -> Result<Vec<PieceStations>> {
+    let r = ResultsReader::open(file)?;
+    let last = r.increments()?.pop().ok_or_else(|| Error::Output { path: file.to_path_buf(), message: "no increment".into() })?;
+    let (coords, conn) = (r.coordinates()?, r.connectivity()?);
+    let stress: Vec<[[f64; 4]; 9]> =
+        r.field(&last, "stress")?.chunks_exact(36).map(|c| std::array::from_fn(|q| std::array::from_fn(|k| c[4 * q + k] * scale))).collect();
+    // a sampler per ply: a section ends on the ply's surfaces, where the next ply begins
+    let sets: Vec<Vec<usize>> = (1..=p.plies).map(|k| r.element_set(&format!("ply{k}"))).collect::<Result<_>>()?;
+    let ply_conn: Vec<Vec<[usize; 8]>> = sets.iter().map(|set| set.iter().map(|&e| conn[e]).collect()).collect();
+    let samplers: Vec<StressSampler> = sets
+        .iter()
+        .zip(&ply_conn)
+        .map(|(set, c)| StressSampler::new(&coords, c, &set.iter().map(|&e| stress[e]).collect::<Vec<_>>()).with_slack(1e-2))
+        .collect();
+    let (t, pack) = (p.ply_thickness, p.pack_thickness());
+    pieces
+        .iter()
+        .map(|piece| {
+            (0..STATIONS)
+                .map(|j| {
+                    let (x, tan) = piece.piece.at((j as f64 + 0.5) / STATIONS as f64);
+                    let normal = [-tan[1], tan[0]];
+                    (0..p.plies)
+                        .map(|k| {
+                            // the k-th ply from the pack's side at -pack / 2 along the normal
+                            let (lo, hi) = (-pack / 2.0 + k as f64 * t, -pack / 2.0 + (k + 1) as f64 * t);
+                            let at = |d: f64| [x[0] + d * normal[0], x[1] + d * normal[1]];
+                            let ply = (0..p.plies).find(|&j| samplers[j].at(at(0.5 * (lo + hi))).is_some());
+                            let ply = ply.ok_or_else(|| Error::Output { path: file.to_path_buf(), message: format!("{}: no ply at {:?}", piece.label, at(0.5 * (lo + hi))) })?;
+                            linearize(at(lo), at(hi), 40, |q| samplers[ply].at(q))
+                                .map(|l| Station::from(&l))
+                                .map(|s| (ply, s))
+                                .map_err(|m| Error::Output { path: file.to_path_buf(), message: format!("{}, ply {}: {m}", piece.label, ply + 1) })
+                        })
+                        .collect()
+                })
+                .collect()
+        })
+        .collect()
+}
+
+/// The worst values over the stations, and S2 as the hoop membrane averaged over each
+/// convolution's meridian (a root shared by two convolutions counts half to each).
+fn combine(p: &BellowsParams, pieces: &[ConvolutionPiece], pressure: &[PieceStations], stroke: &[PieceStations], axial_rate: f64) -> FeCheck {
+    let (mut s3, mut s4, mut s5, mut s6, mut st) = Default::default();
+    let mut ends: [Peak; 4] = Default::default();
+    let mut hoop = vec![(0.0, 0.0); p.convolutions];
+    for (i, piece) in pieces.iter().enumerate() {
+        let weight = piece.piece.length() / STATIONS as f64;
+        for j in 0..STATIONS {
+            for k in 0..p.plies {
+                let ((ply, a), (_, b)) = (pressure[i][j][k], stroke[i][j][k]);
+                let at = || format!("{}, ply {}", piece.label, ply + 1);
+                if piece.end {
+                    for (end, value) in ends.iter_mut().zip([a.membrane, a.bending, b.membrane, b.bending]) {
+                        end.offer(value.abs(), at);
+                    }
+                } else {
+                    Peak::offer(&mut s3, a.membrane.abs(), at);
+                    Peak::offer(&mut s4, a.bending.abs(), at);
+                    Peak::offer(&mut s5, b.membrane.abs(), at);
+                    Peak::offer(&mut s6, b.bending.abs(), at);
+                    Peak::offer(&mut st, 0.7 * (a.membrane.abs() + a.bending.abs()) + b.membrane.abs() + b.bending.abs(), at);
+                }
+                for &(c, share) in &piece.convolutions {
+                    hoop[c].0 += share * weight * a.hoop;
+                    hoop[c].1 += share * weight;
+                }
+            }
+        }
+    }
+    let mut s2 = Peak::default();
+    for (c, (sum, length)) in hoop.iter().enumerate() {
+        s2.offer(sum / length, || format!("convolution {}", c + 1));
+    }
+    let cycles = cycles_as_formed_austenitic(st.value * PSI_PER_MPA);
+    FeCheck { s2, s3, s4, s5, s6, stress_range: st, cycles, ends, axial_rate }
+}
+
+/// The effective (von Mises equivalent) range of a total strain change [rr, zz, tt, rz], tensor
+/// shear: (sqrt 2 / 3) sqrt((d1 - d2)^2 + (d2 - d3)^2 + (d3 - d1)^2 + 6 d_rz^2), ASME VIII-2
+/// Part 5's effective strain range; for a uniaxial plastic (incompressible) strain it is that
+/// strain.
+pub fn effective_strain_range(d: [f64; 4]) -> f64 {
+    let [a, b, c, s] = d;
+    2f64.sqrt() / 3.0 * ((a - b).powi(2) + (b - c).powi(2) + (c - a).powi(2) + 6.0 * s * s).sqrt()
+}
+
+/// The fatigue life of the stroke from the elastic-plastic run's own strains.
+#[derive(Clone, Debug, PartialEq)]
+pub struct StrainLife {
+    /// The largest effective total strain range over the plies' nodes between the stroke's
+    /// start and its end.
+    pub strain_range: f64,
+    /// Where, in the undeformed mesh (r, z mm).
+    pub at: [f64; 2],
+    /// The pseudo-elastic stress range E x strain range, MPa: the curve's St.
+    pub pseudo_stress: f64,
+    pub cycles: Option<f64>,
+}
+
+/// The strain-based life of the run in `r` (a `slideline bellows` file): the effective total
+/// strain range between the end of step 1 (heat and pressure) and the end of step 2 (the
+/// stroke) at every ply node, the worst converted to the pseudo-elastic St = E x range the
+/// codes' curves are written in (EJMA's curve is fitted to strain-controlled tests so plotted),
+/// and the as-formed austenitic curve's cycles for it. None where the file lacks the strains.
+pub fn strain_life(r: &ResultsReader, modulus: f64) -> Result<Option<StrainLife>> {
+    let names = r.increments()?;
+    let end_of = |step: f64| names.iter().rev().find(|n| r.increment_attr(n, "step").ok() == Some(step) && r.increment_attr(n, "load_factor").ok() == Some(1.0));
+    let (Some(start), Some(end)) = (end_of(1.0), end_of(2.0)) else { return Ok(None) };
+    if !r.nodal_fields(end)?.iter().any(|n| n == "strain_rr") {
+        return Ok(None);
+    }
+    let strain = |inc: &str| -> Result<Vec<[f64; 4]>> {
+        let c = ["rr", "zz", "tt", "rz"].map(|k| r.field(inc, &format!("nodal/strain_{k}")));
+        let [a, b, c, d] = c;
+        let (a, b, c, d) = (a?, b?, c?, d?);
+        Ok((0..a.len()).map(|n| [a[n], b[n], c[n], d[n]]).collect())
+    };
+    let (e0, e1) = (strain(start)?, strain(end)?);
+    let (coords, conn) = (r.coordinates()?, r.connectivity()?);
+    let mut best: Option<StrainLife> = None;
+    for set in r.element_set_names()?.iter().filter(|s| s.starts_with("ply")) {
+        for e in r.element_set(set)? {
+            for &n in &conn[e] {
+                let range = effective_strain_range(std::array::from_fn(|k| e1[n][k] - e0[n][k]));
+                if best.as_ref().is_none_or(|b| range > b.strain_range) {
+                    let pseudo = modulus * range;
+                    best = Some(StrainLife { strain_range: range, at: coords[n], pseudo_stress: pseudo, cycles: cycles_as_formed_austenitic(pseudo * PSI_PER_MPA) });
+                }
+            }
+        }
+    }
+    Ok(best)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The effective strain range: a uniaxial incompressible strain (e, -e/2, -e/2) gives e; an
+    /// elastic uniaxial stress s (s/E, -nu s/E, -nu s/E) gives (1 + nu) s / (1.5 E); pure shear
+    /// gamma = 2 e_rz gives gamma / sqrt 3.
+    #[test]
+    fn effective_strain_range_of_textbook_states() {
+        let e = 0.01;
+        assert!((effective_strain_range([e, -e / 2.0, -e / 2.0, 0.0]) - e).abs() < 1e-15);
+        let (s, modulus, nu) = (300.0, 200_000.0, 0.3);
+        let elastic = effective_strain_range([s / modulus, -nu * s / modulus, -nu * s / modulus, 0.0]);
+        assert!((elastic - (1.0 + nu) * s / (1.5 * modulus)).abs() < 1e-15);
+        assert!((effective_strain_range([0.0, 0.0, 0.0, e]) - 2.0 * e / 3f64.sqrt()).abs() < 1e-15);
+    }
+}
