@@ -1,0 +1,101 @@
+//! The bellows design assessment by finite elements (`slideline bellows --assess`) beside the
+//! code check, on the coarse seed joint on 2 ranks. Independent references:
+//! - S2, the hoop membrane stress from pressure averaged over a convolution, is a force balance
+//!   (EJMA Eq. 4-29: P Dm q / (2 A), 23.7 MPa for this joint): the finite-element mean must
+//!   agree within 10 % (measured 0.96);
+//! - the axial rate of the linear stroke analysis against the elastic-plastic run's own first
+//!   compression increment (a different load path: heated and pressurised first): within 5 %
+//!   (measured 20.37 against 20.03 N/mm per 2.5-degree sector, 1.7 %);
+//! - the pseudo-elastic stress range is E x the effective strain range, both printed.
+//!
+//! The mesh check (the issue's, `--ply-elements 4 --ply-element-length 0.5` against the default
+//! ply mesh): S2, S4, S6, St and the rate move by less than 2 % (measured 0.0, 0.2, 0.1, 0.7,
+//! 0.02 %). The membrane stresses S3 and S5 do not: they are 2-8 % of the bending stresses
+//! beside them, and the displacement elements' stress, not in equilibrium point by point,
+//! carries an error of about 0.5 % of the bending stress into their mean across the ply (the
+//! plies' membrane forces at a root apex miss the end reaction by 20-30 %), so they move by
+//! 8 and 23 % (docs/bellows.md); the test holds that change below 1 % of the bending stress.
+
+mod common;
+use common::{command_in, Results};
+
+/// (code, FE) of a row of the assessment table.
+fn row(text: &str, starts: &str) -> (f64, f64) {
+    let line = text.lines().find(|l| l.trim_start().starts_with(starts)).unwrap_or_else(|| panic!("no row {starts:?} in\n{text}"));
+    let tail = &line[line.find(", MPa").or_else(|| line.find("full ring")).map_or(0, |i| i + 5)..];
+    let numbers: Vec<f64> = tail.split_whitespace().filter_map(|w| w.parse().ok()).collect();
+    (numbers[0], numbers[1])
+}
+
+fn assessment(dir: &std::path::Path, ranks: usize, extra: &[&str]) -> (String, std::path::PathBuf) {
+    let h5 = dir.join("assess.h5");
+    let out = command_in(dir, ranks).args(["bellows", "--assess", "--quiet", "-o"]).arg(&h5).args(extra).output().unwrap();
+    let text = String::from_utf8_lossy(&out.stdout).into_owned();
+    assert!(out.status.success(), "{text}\n{}", String::from_utf8_lossy(&out.stderr));
+    let section = text.split("design assessment:").nth(1).unwrap_or_else(|| panic!("no assessment section:\n{text}")).to_string();
+    (format!("design assessment:{section}"), h5)
+}
+
+#[test]
+fn the_quick_joint_is_assessed_beside_the_code() {
+    let dir = tempfile::tempdir().unwrap();
+    let (section, h5) = assessment(dir.path(), 2, &["--quick"]);
+    let (code_s2, fe_s2) = row(&section, "S2 hoop membrane");
+    assert!((fe_s2 / code_s2 - 1.0).abs() < 0.10, "S2: FE {fe_s2} against the force balance's {code_s2}\n{section}");
+    // the rate against the run's first compression increment
+    let r = Results::open(&h5);
+    let (step, lambda, fz) = (r.history("step"), r.history("load_factor"), r.history("reaction_moving_end_z"));
+    let heated = step.iter().rposition(|&s| s == 1.0).unwrap();
+    let initial = -(fz[heated + 1] - fz[heated]) * 2.0 * std::f64::consts::PI / (lambda[heated + 1] * 70.0);
+    let (_, fe_rate) = row(&section, "axial rate");
+    assert!((fe_rate / initial - 1.0).abs() < 0.05, "linear rate {fe_rate} against the run's initial {initial} N/mm");
+    // every stress row has a place, inside the convolutions
+    for name in ["S3", "S4", "S5", "S6", "St"] {
+        let line = section.lines().find(|l| l.trim_start().starts_with(name)).unwrap();
+        assert!(["crest", "root", "sidewall"].iter().any(|w| line.contains(w)) && !line.contains("tube"), "{line}");
+    }
+    // the life from the strain range: St = E x range
+    let life = section.split("effective total strain range ").nth(1).expect("the strain-based life is printed");
+    let range: f64 = life.split_whitespace().next().unwrap().parse().unwrap();
+    let pseudo: f64 = life.split("E x range = ").nth(1).unwrap().split_whitespace().next().unwrap().parse().unwrap();
+    assert!(range > 0.01 && (pseudo - 200_000.0 * range).abs() <= 0.5 + 1e-4 * pseudo, "{range} {pseudo}");
+
+    // the file: each value with its units and source, read back by post as the run printed it
+    let g = r.file.group("assessment/finite_element").unwrap();
+    let s6 = g.dataset("S6").unwrap();
+    let text = |name: &str| s6.attr(name).unwrap().read_scalar::<hdf5::types::VarLenUnicode>().unwrap().to_string();
+    assert_eq!((text("units").as_str(), text("source").as_str()), ("MPa", "finite element"));
+    assert!(text("where").starts_with("root"), "{}", text("where"));
+    drop((g, s6, r));
+    let post = command_in(dir.path(), 1).args(["post", h5.to_str().unwrap(), "--assessment"]).output().unwrap();
+    let printed = String::from_utf8_lossy(&post.stdout);
+    assert!(post.status.success());
+    let table = |t: &str| t.lines().filter(|l| l.contains("MPa") && l.contains('.')).map(str::to_string).collect::<Vec<_>>();
+    let from_post = printed.split("design assessment:").nth(1).expect("post prints the assessment");
+    assert_eq!(table(from_post)[..8], table(&section)[..8], "post --assessment:\n{printed}\nthe run:\n{section}");
+}
+
+#[test]
+fn the_finite_element_values_hold_on_a_finer_ply_mesh() {
+    // a short elastic run beside the assessment: the linear analyses do not depend on it
+    let short = ["--displacement", "1", "--increments", "2"];
+    let values = |extra: &[&str]| {
+        let dir = tempfile::tempdir().unwrap();
+        let (_, h5) = assessment(dir.path(), 2, &[&short[..], extra].concat());
+        let r = Results::open(&h5);
+        let g = r.file.group("assessment/finite_element").unwrap();
+        let v: Vec<f64> = ["S2", "S3", "S4", "S5", "S6", "St", "axial_rate"].iter().map(|n| g.dataset(n).unwrap().read_scalar::<f64>().unwrap()).collect();
+        v
+    };
+    let (default, fine) = (values(&[]), values(&["--ply-elements", "4", "--ply-element-length", "0.5"]));
+    for (k, name) in ["S2", "S3", "S4", "S5", "S6", "St", "axial rate"].iter().enumerate() {
+        eprintln!("{name}: {:.4} on the default ply mesh, {:.4} on the fine one, {:+.2} %", default[k], fine[k], 100.0 * (default[k] / fine[k] - 1.0));
+    }
+    for k in [0, 2, 4, 5, 6] {
+        assert!((default[k] / fine[k] - 1.0).abs() < 0.02, "{default:?} against {fine:?}");
+    }
+    // the membrane stresses: within 1 % of the bending stress beside them
+    for (membrane, bending) in [(1, 2), (3, 4)] {
+        assert!((default[membrane] - fine[membrane]).abs() < 0.01 * fine[bending], "{default:?} against {fine:?}");
+    }
+}
