@@ -28,6 +28,8 @@ fn bad_flags_are_refused_before_any_solve() {
         (vec!["--elastic-slip", "0.01", "--tangential-penalty", "100", "--friction-plies", "0.2"], "cannot be used with"),
         (vec!["--coefficients", "0.68,0,1.63"], "coefficient Cf must be > 0"),
         (vec!["--coefficients", "0.68,1.65"], "coefficients"),
+        // a joint that is not U-shaped is not assessed
+        (vec!["--assess", "--torus-radius", "11", "--pitch", "44"], "less than two torus radii"),
     ] {
         let out = bellows(dir.path(), &args);
         let err = String::from_utf8_lossy(&out.stderr);

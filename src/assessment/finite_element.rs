@@ -170,7 +170,10 @@ fn stations(file: &Path, p: &BellowsParams, pieces: &[ConvolutionPiece], scale: 
                             let (lo, hi) = (-pack / 2.0 + k as f64 * t, -pack / 2.0 + (k + 1) as f64 * t);
                             let at = |d: f64| [x[0] + d * normal[0], x[1] + d * normal[1]];
                             let ply = (0..p.plies).find(|&j| samplers[j].at(at(0.5 * (lo + hi))).is_some());
-                            let ply = ply.ok_or_else(|| Error::Output { path: file.to_path_buf(), message: format!("{}: no ply at {:?}", piece.label, at(0.5 * (lo + hi))) })?;
+                            let ply = ply.ok_or_else(|| Error::Output {
+                                path: file.to_path_buf(),
+                                message: format!("{}: no ply at {:?}", piece.label, at(0.5 * (lo + hi))),
+                            })?;
                             linearize(at(lo), at(hi), 40, |q| samplers[ply].at(q))
                                 .map(|l| Station::from(&l))
                                 .map(|s| (ply, s))
@@ -250,7 +253,8 @@ pub struct StrainLife {
 /// and the as-formed austenitic curve's cycles for it. None where the file lacks the strains.
 pub fn strain_life(r: &ResultsReader, modulus: f64) -> Result<Option<StrainLife>> {
     let names = r.increments()?;
-    let end_of = |step: f64| names.iter().rev().find(|n| r.increment_attr(n, "step").ok() == Some(step) && r.increment_attr(n, "load_factor").ok() == Some(1.0));
+    let end_of =
+        |step: f64| names.iter().rev().find(|n| r.increment_attr(n, "step").ok() == Some(step) && r.increment_attr(n, "load_factor").ok() == Some(1.0));
     let (Some(start), Some(end)) = (end_of(1.0), end_of(2.0)) else { return Ok(None) };
     if !r.nodal_fields(end)?.iter().any(|n| n == "strain_rr") {
         return Ok(None);
@@ -270,7 +274,12 @@ pub fn strain_life(r: &ResultsReader, modulus: f64) -> Result<Option<StrainLife>
                 let range = effective_strain_range(std::array::from_fn(|k| e1[n][k] - e0[n][k]));
                 if best.as_ref().is_none_or(|b| range > b.strain_range) {
                     let pseudo = modulus * range;
-                    best = Some(StrainLife { strain_range: range, at: coords[n], pseudo_stress: pseudo, cycles: cycles_as_formed_austenitic(pseudo * PSI_PER_MPA) });
+                    best = Some(StrainLife {
+                        strain_range: range,
+                        at: coords[n],
+                        pseudo_stress: pseudo,
+                        cycles: cycles_as_formed_austenitic(pseudo * PSI_PER_MPA),
+                    });
                 }
             }
         }

@@ -114,6 +114,16 @@ impl UBellows {
         0.34 * PI * axial_rate / (self.convolutions as f64 * self.pitch)
     }
 
+    /// The equivalent axial movement per convolution of an axial movement x (extension
+    /// positive), a lateral offset y of the ends held parallel and a rotation theta (radians)
+    /// (EJMA; ASME VIII-1 App. 26 writes the same): x / N + 3 Dm y / (N (Lb + x)) + Dm theta /
+    /// (2 N), Lb = N q the convolved length.
+    pub fn equivalent_axial_movement(&self, x: f64, y: f64, theta: f64) -> f64 {
+        let (n, dm) = (self.convolutions as f64, self.mean_diameter());
+        let lb = n * self.pitch;
+        x.abs() / n + 3.0 * dm * y.abs() / (n * (lb + x)) + dm * theta.abs() / (2.0 * n)
+    }
+
     /// Psi, the in-plane instability pressure with both ends held (EJMA; ASME VIII-1 App. 26,
     /// 26-6.3.6): (pi - 2) A Sy* / (Dm q sqrt(alpha)), alpha = 1 + 2 d^2 + sqrt(1 - 2 d^2 +
     /// 4 d^4), d = S4 / (3 S2) with S2 and S4 at the same pressure; Sy* the effective yield
@@ -146,7 +156,11 @@ impl UBellows {
             violated.push(format!("the torus radius rm = {} mm is below 3 t = {} mm (ASME VIII-1 26-6.2)", self.torus_radius, 3.0 * self.ply_thickness));
         }
         if 2.0 * self.torus_radius > self.height {
-            violated.push(format!("the convolution is not U-shaped: its tori (2 rm = {} mm) are taller than its height w = {} mm", 2.0 * self.torus_radius, self.height));
+            violated.push(format!(
+                "the convolution is not U-shaped: its tori (2 rm = {} mm) are taller than its height w = {} mm",
+                2.0 * self.torus_radius,
+                self.height
+            ));
         }
         violated
     }
@@ -233,6 +247,9 @@ mod tests {
         // S1 with the 30 mm tangent (k = 1: the tangent is longer than 1.5 sqrt(Db t))
         to_printed_digits(b.s1(0.3, 30.0), "21.8");
         to_printed_digits(b.column_instability_pressure(159.0), "1.18");
+        // the total equivalent axial movement of 25 mm axial and 1 mm lateral: printed 27.5 mm
+        // (the report takes the axial movement as an extension in Lb + x)
+        to_printed_digits(18.0 * b.equivalent_axial_movement(25.0, 1.0, 0.0), "27.5");
         // S2 by the intermediate-convolution form: 8.51 MPa, not the printed 10.0 (no form found
         // that gives it: the end convolution's gives 16); the in-plane instability pressure
         // with it, the printed S4 and the report's own Sy* (its "bellow yield at temp. by EJMA",

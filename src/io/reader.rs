@@ -299,7 +299,9 @@ impl ResultsReader {
     }
 
     /// The design assessment's finite-element figures the file holds, if any.
-    pub fn finite_element_assessment(&self) -> Result<Option<(crate::assessment::finite_element::FeCheck, Option<crate::assessment::finite_element::StrainLife>)>> {
+    pub fn finite_element_assessment(
+        &self,
+    ) -> Result<Option<(crate::assessment::finite_element::FeCheck, Option<crate::assessment::finite_element::StrainLife>)>> {
         super::assessment::read_finite_element(&self.file, &self.path)
     }
 
