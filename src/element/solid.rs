@@ -118,8 +118,14 @@ impl ElementGeometry {
         Ok(ElementGeometry { points, gradients, weights, basis, coef })
     }
 
+    /// The shape functions and gradients at each Gauss point, and its reference volume per
+    /// radian w R det J (for kernels beside this one on the same element: `element::harmonic`).
+    pub(crate) fn points(&self) -> (&[PointGeometry; QUADRATURE_POINTS], &[f64; QUADRATURE_POINTS]) {
+        (&self.points, &self.weights)
+    }
+
     /// The projected volume measure theta at every Gauss point, from its values `v` there.
-    fn project(&self, v: &[f64; QUADRATURE_POINTS]) -> [f64; QUADRATURE_POINTS] {
+    pub(crate) fn project(&self, v: &[f64; QUADRATURE_POINTS]) -> [f64; QUADRATURE_POINTS] {
         let mut c = [0.0; 3];
         for p in 0..QUADRATURE_POINTS {
             for k in 0..3 {
