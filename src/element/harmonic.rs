@@ -287,7 +287,9 @@ mod tests {
                 for (q, g) in points.iter().enumerate() {
                     // amplitudes and their r, z derivatives at the point
                     let at = |k: usize| -> (f64, f64, f64) {
-                        (0..NODES).fold((0.0, 0.0, 0.0), |(v, d_r, d_z), a| (v + g.n[a] * u[3 * a + k], d_r + g.grad[a][0] * u[3 * a + k], d_z + g.grad[a][1] * u[3 * a + k]))
+                        (0..NODES).fold((0.0, 0.0, 0.0), |(v, d_r, d_z), a| {
+                            (v + g.n[a] * u[3 * a + k], d_r + g.grad[a][0] * u[3 * a + k], d_z + g.grad[a][1] * u[3 * a + k])
+                        })
                     };
                     let (ur, uz, ut) = (at(0), at(1), at(2));
                     // Cartesian displacement at (r, theta), with U at the point (r, z fixed)
@@ -310,7 +312,8 @@ mod tests {
                         let du_dt = (field(t + h, value) - field(t - h, value)) / (2.0 * h);
                         // grad u = du/dr (x) e_r + (1/r) du/dtheta (x) e_theta + du/dz (x) e_z
                         let grad = du_dr * er.transpose() + du_dt * et.transpose() / g.r + du_dz * ez.transpose();
-                        let sigma = er * er.transpose() * rr + ez * ez.transpose() * zz + et * et.transpose() * tt + (er * ez.transpose() + ez * er.transpose()) * rz;
+                        let sigma =
+                            er * er.transpose() * rr + ez * ez.transpose() * zz + et * et.transpose() * tt + (er * ez.transpose() + ez * er.transpose()) * rz;
                         total += 0.5 * (sigma.component_mul(&(grad.transpose() * grad))).sum() * weights[q] / angles as f64;
                     }
                 }
