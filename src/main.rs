@@ -477,4 +477,11 @@ fn print_summary(summary: &RunSummary) {
             println!("  {:<20} {:>14.6e} {:>14.6e}   {:>14.6e} {:>14.6e}", set, f[0], f[1], f[0] * ring, f[1] * ring);
         }
     }
+    for (name, answer) in &summary.perturbations {
+        println!("perturbation step '{name}': reactions (full 360-degree ring)");
+        for r in &answer.reactions {
+            let resultants: Vec<String> = r.resultants.iter().map(|(what, v, units)| format!("{what} {v:.6e} {units}")).collect();
+            println!("  {:<20} {}", r.set, if resultants.is_empty() { format!("summed nodal forces per radian {:?}", r.force) } else { resultants.join(", ") });
+        }
+    }
 }

@@ -30,6 +30,11 @@ pub fn describe(group: &str, name: &str) -> (&'static str, String) {
             ("N per radian", "their reaction (r, z) and pressure load (r, z), where the next increment's external work starts (restart)".into())
         }
         (_, n) if n.starts_with("multipliers_pass") => ("MPa", "their committed augmented-Lagrangian multipliers (restart)".into()),
+        ("perturbations", "amplitudes") => (
+            "mm",
+            "harmonic amplitudes [U_r, U_z, U_t] of each node: u_r = U_r cos n theta, u_z = U_z cos n theta, u_theta = U_t sin n theta (n = 0: U_t)".into(),
+        ),
+        ("perturbations", "displacement") => ("mm", "the perturbation's displacement at theta = 0 as a vector (u_r, u_z, u_theta) for ParaView's warp".into()),
         ("mesh", "coordinates") => ("mm", "r, z of each node".into()),
         ("mesh", "connectivity") => ("-", "the 8 nodes of each Q8 element (rows of /mesh/coordinates), corners then mid-sides, counter-clockwise".into()),
         ("mesh", "node_ids") => ("-", "external node numbers (the input's)".into()),

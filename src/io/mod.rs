@@ -6,6 +6,7 @@ pub mod describe;
 mod h5ffi;
 pub mod lock;
 pub mod nodal;
+mod perturbation;
 pub mod restart;
 pub mod results;
 pub mod status;

@@ -160,8 +160,8 @@ impl HistoryRow {
 }
 
 pub struct ResultsFile {
-    file: hdf5::File,
-    path: PathBuf,
+    pub(super) file: hdf5::File,
+    pub(super) path: PathBuf,
     rank: usize,
     elements: usize,
     element_slab: (usize, usize),

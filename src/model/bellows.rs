@@ -434,6 +434,7 @@ pub fn model(p: &BellowsParams) -> Result<Model> {
         output: OutputControls { every: p.output_every, precision: p.output_precision, ..OutputControls::default() },
         contacts,
         steps,
+        perturbations: Vec::new(),
         source_text,
         source_files: Vec::new(),
         reaction_segment_degrees: None,

@@ -68,6 +68,7 @@
 //! ```
 
 use super::mesh::{blocks, rectangle, Block, MeshSets};
+use super::perturbation::{HarmonicComponent, HarmonicDisplacement, Perturbation, RingMotion};
 use super::{
     default_capture_distance, gmsh, Adjust, AugmentedLagrangian, Component, ContactIntegration, ContactPair, Convergence, Friction, Kinematics, Material,
     Model, OutputControls, OutputFields, Penalty, Plasticity, Precision, Predictor, PrescribedDisplacement, Pressure, Step, SteppingControls,
@@ -266,17 +267,16 @@ struct SectionSpec {
 #[serde(deny_unknown_fields)]
 struct StepSpec {
     name: Option<String>,
-    #[serde(default = "one")]
-    increments: usize,
+    /// "static" (the default) or "harmonic", a linear perturbation about the state before.
+    procedure: Option<String>,
+    /// The harmonic's circumferential mode n.
+    mode: Option<u32>,
+    increments: Option<usize>,
     temperature: Option<f64>,
     #[serde(default)]
     boundary: Vec<BoundarySpec>,
     #[serde(default)]
     pressure: Vec<PressureSpec>,
-}
-
-fn one() -> usize {
-    1
 }
 
 #[derive(Deserialize)]
@@ -285,6 +285,10 @@ struct BoundarySpec {
     set: String,
     ur: Option<f64>,
     uz: Option<f64>,
+    /// Harmonic steps: the U_t amplitude, and a ring's rigid motion (mode 1).
+    ut: Option<f64>,
+    lateral: Option<f64>,
+    rotation: Option<f64>,
 }
 
 #[derive(Deserialize)]
@@ -379,22 +383,69 @@ pub fn parse(text: &str, path: &Path) -> Result<Model> {
         return Err(Error::input(format!("element {} has no material: add a [[section]] covering it", mesh.element_ids[e])));
     }
 
-    let mut steps = Vec::new();
+    let (mut steps, mut perturbations) = (Vec::new(), Vec::new());
     for (k, s) in deck.step.iter().enumerate() {
         let name = s.name.clone().unwrap_or_else(|| format!("step-{}", k + 1));
-        let mut displacements = Vec::new();
-        for b in &s.boundary {
-            if b.ur.is_none() && b.uz.is_none() {
-                return Err(Error::input(format!("step '{name}': boundary on '{}' sets neither ur nor uz", b.set)));
-            }
-            for (component, value) in [(Component::R, b.ur), (Component::Z, b.uz)] {
-                if let Some(value) = value {
-                    displacements.push(PrescribedDisplacement { node_set: b.set.clone(), component, value });
+        let pressures: Vec<Pressure> = s.pressure.iter().map(|p| Pressure { surface: p.surface.clone(), value: p.value }).collect();
+        match s.procedure.as_deref().unwrap_or("static") {
+            "static" => {
+                if !perturbations.is_empty() {
+                    return Err(Error::input(format!("step '{name}': a general step after a perturbation step (perturbation steps come last)")));
                 }
+                if let Some(mode) = s.mode {
+                    return Err(Error::input(format!("step '{name}': mode = {mode} is for procedure = \"harmonic\"")));
+                }
+                let mut displacements = Vec::new();
+                for b in &s.boundary {
+                    if let Some(key) = [("ut", b.ut), ("lateral", b.lateral), ("rotation", b.rotation)].iter().find(|(_, v)| v.is_some()).map(|(k, _)| k) {
+                        return Err(Error::input(format!("step '{name}': boundary on '{}': {key} is for procedure = \"harmonic\"", b.set)));
+                    }
+                    if b.ur.is_none() && b.uz.is_none() {
+                        return Err(Error::input(format!("step '{name}': boundary on '{}' sets neither ur nor uz", b.set)));
+                    }
+                    for (component, value) in [(Component::R, b.ur), (Component::Z, b.uz)] {
+                        if let Some(value) = value {
+                            displacements.push(PrescribedDisplacement { node_set: b.set.clone(), component, value });
+                        }
+                    }
+                }
+                let increments = s.increments.unwrap_or(1);
+                steps.push(Step { name, increments, displacements, pressures, temperature: s.temperature, time_span: None });
             }
+            "harmonic" => {
+                let mode = s.mode.ok_or_else(|| Error::input(format!("step '{name}': procedure = \"harmonic\" needs its mode (mode = n)")))?;
+                if s.increments.is_some() || s.temperature.is_some() {
+                    return Err(Error::input(format!(
+                        "step '{name}': a harmonic step has no increments or temperature (it is linear, about the state before)"
+                    )));
+                }
+                let (mut displacements, mut rings) = (Vec::new(), Vec::new());
+                for b in &s.boundary {
+                    let set = b.set.clone();
+                    let amplitudes = [(HarmonicComponent::R, b.ur), (HarmonicComponent::Z, b.uz), (HarmonicComponent::T, b.ut)];
+                    let ring = b.lateral.is_some() || b.rotation.is_some();
+                    if ring && amplitudes.iter().any(|(_, v)| v.is_some()) {
+                        return Err(Error::input(format!(
+                            "step '{name}': boundary on '{set}': lateral and rotation move the ring rigidly; give them or ur, uz, ut, not both"
+                        )));
+                    }
+                    if ring {
+                        rings.push(RingMotion { node_set: set, lateral: b.lateral.unwrap_or(0.0), rotation: b.rotation.unwrap_or(0.0) });
+                        continue;
+                    }
+                    if amplitudes.iter().all(|(_, v)| v.is_none()) {
+                        return Err(Error::input(format!("step '{name}': boundary on '{set}' sets none of ur, uz, ut, lateral, rotation")));
+                    }
+                    for (component, value) in amplitudes {
+                        if let Some(value) = value {
+                            displacements.push(HarmonicDisplacement { node_set: set.clone(), component, value });
+                        }
+                    }
+                }
+                perturbations.push(Perturbation { name, mode, displacements, rings, pressures });
+            }
+            other => return Err(Error::input(format!("step '{name}': procedure {other:?} is not one of \"static\", \"harmonic\""))),
         }
-        let pressures = s.pressure.iter().map(|p| Pressure { surface: p.surface.clone(), value: p.value }).collect();
-        steps.push(Step { name, increments: s.increments, displacements, pressures, temperature: s.temperature, time_span: None });
     }
 
     let mut contacts = Vec::new();
@@ -456,6 +507,7 @@ pub fn parse(text: &str, path: &Path) -> Result<Model> {
         },
         contacts,
         steps,
+        perturbations,
         source_text: text.to_string(),
         source_files,
         reaction_segment_degrees: None,

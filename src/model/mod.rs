@@ -9,6 +9,7 @@ pub mod deck;
 pub mod gmsh;
 pub mod inp;
 pub mod mesh;
+pub mod perturbation;
 mod validate;
 
 pub use mesh::{Edge, Mesh, NODES_PER_ELEMENT};
@@ -410,6 +411,8 @@ pub struct Model {
     pub output: OutputControls,
     pub contacts: Vec<ContactPair>,
     pub steps: Vec<Step>,
+    /// Linear perturbation steps after the general ones, each about the state they end in.
+    pub perturbations: Vec<perturbation::Perturbation>,
     /// The text the model was read from, kept for the output file.
     pub source_text: String,
     /// The files it was read from (the deck, its mesh, its includes): a run never writes over

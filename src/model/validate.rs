@@ -35,6 +35,9 @@ impl Model {
                 }
             }
         }
+        for p in &self.perturbations {
+            p.validate(self)?;
+        }
         if self.output.every == 0 {
             return Err(Error::input("[output]: every must be at least 1 (fields of every increment)"));
         }

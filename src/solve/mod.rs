@@ -11,6 +11,7 @@ mod held;
 mod kept;
 pub mod layout;
 pub mod pattern;
+pub mod perturbation;
 pub mod problem;
 mod resume;
 pub mod schedule;

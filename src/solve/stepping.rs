@@ -60,6 +60,8 @@ pub struct RunSummary {
     /// The increments a restart took over from the file it continues (0 for a fresh run):
     /// `history` holds them first, then this run's.
     pub continued: usize,
+    /// Each perturbation step's name and answer, in order.
+    pub perturbations: Vec<(String, super::perturbation::PerturbationAnswer)>,
 }
 
 impl RunSummary {
@@ -138,6 +140,9 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
     let continued = rows.len();
     let (mut reserved_couplings, mut pattern_refits) = (0usize, 0usize);
     let first_step = resumed.as_ref().map_or(0, |r| r.step);
+    // the base state of the perturbation steps, if any: the last converged increment's stress,
+    // whether anything has yielded, and the pressures in force
+    let mut base: Option<super::perturbation::KeptBase> = None;
     for (s, step) in model.steps.iter().enumerate().skip(first_step) {
         let resumed_here = resumed.take();
         let loads = StepLoads::new(model, s, previous.as_ref(), resumed_here.as_ref().map_or(&displacement, |r| &r.step_start));
@@ -296,6 +301,10 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
                 world.all_reduce_into(&local[..], &mut total[..], SystemOperation::sum());
                 contact.recover_tractions(&total);
             }
+            if !model.perturbations.is_empty() {
+                base =
+                    Some(super::perturbation::KeptBase { stress: fields.stress.clone(), yielded: max_ep > 0.0, pressures: problem.load().pressures.clone() });
+            }
             let contacts = contact_summaries(&world, model, &problem);
             let energy = audit_increment(&world, model, &mut audit, &problem, &fields, &force, &prescribed, &displacement, &loads.at(model, lambda));
             let reactions = loads
@@ -382,6 +391,19 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
         (reserved_couplings, pattern_refits) = (total as usize, refits);
         previous = Some(loads);
     }
+    let mut perturbations = Vec::new();
+    for p in &model.perturbations {
+        let Some(kept) = base.as_ref() else {
+            return Err(Error::input(format!("perturbation step '{}': this run converged no increment of a general step to be its base state", p.name)));
+        };
+        let state = super::perturbation::BaseState { displacement: &displacement, stress: &kept.stress, pressures: &kept.pressures, yielded: kept.yielded };
+        let answer = super::perturbation::solve(session, model, &partition, &state, p)?;
+        for note in &answer.notes {
+            progress.note(&format!("note: {note}"));
+        }
+        stop_all_on_write_error(&world, results.write_perturbation(p, &answer, &partition))?;
+        perturbations.push((p.name.clone(), answer));
+    }
     progress.finish();
     if let Some(status) = status.as_mut() {
         status.note(&format!("completed: {} increments ({} in this run) in {:.1} s", rows.len(), rows.len() - continued, start.elapsed().as_secs_f64()));
@@ -394,6 +416,7 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
         reserved_couplings,
         pattern_refits,
         continued,
+        perturbations,
     })
 }
 

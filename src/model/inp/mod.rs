@@ -381,6 +381,7 @@ impl Builder {
             output: super::OutputControls { every: self.output_every.unwrap_or(1), ..Default::default() },
             contacts,
             steps,
+            perturbations: Vec::new(),
             source_text,
             source_files,
             reaction_segment_degrees: Some(CALCULIX_SEGMENT_DEGREES),

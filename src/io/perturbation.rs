@@ -1,0 +1,43 @@
+//! A perturbation step in the results file, `/perturbations/NAME` (collective): the mode, the
+//! harmonic amplitudes of every node, the displacement at theta = 0 as a 3-D vector, and
+//! `reactions/SET` with each set's summed nodal forces (per radian) and full-ring resultants
+//! as attributes.
+
+use super::results::{h5err, write_rows, ResultsFile};
+use crate::dist::Partition;
+use crate::error::Result;
+use crate::model::perturbation::Perturbation;
+use crate::solve::perturbation::PerturbationAnswer;
+
+impl ResultsFile {
+    /// Writes perturbation step `p`'s answer (collective; every rank holds the whole answer).
+    pub fn write_perturbation(&mut self, p: &Perturbation, answer: &PerturbationAnswer, partition: &Partition) -> Result<()> {
+        let path = self.path.clone();
+        let err = h5err(&path);
+        let top = match self.file.link_exists("perturbations") {
+            true => self.file.group("perturbations"),
+            false => self.file.create_group("perturbations"),
+        }
+        .map_err(&err)?;
+        let g = top.create_group(&p.name).map_err(&err)?;
+        g.new_attr::<u32>().create("mode").map_err(&err)?.write_scalar(&p.mode).map_err(&err)?;
+        let nn = answer.amplitudes.len();
+        let slab = (partition.node_offsets[partition.rank], partition.node_offsets[partition.rank + 1]);
+        let owned = partition.owned_nodes();
+        let amplitudes: Vec<f64> = owned.iter().flat_map(|&n| answer.amplitudes[n]).collect();
+        write_rows(&g, "amplitudes", &[nn, 3], slab, &amplitudes, &path)?;
+        // at theta = 0: cos = 1, sin = 0 (n = 0: u_theta = U_t)
+        let hoop = if p.mode == 0 { 1.0 } else { 0.0 };
+        let at_zero: Vec<f64> = owned.iter().flat_map(|&n| [answer.amplitudes[n][0], answer.amplitudes[n][1], hoop * answer.amplitudes[n][2]]).collect();
+        write_rows(&g, "displacement", &[nn, 3], slab, &at_zero, &path)?;
+        let reactions = g.create_group("reactions").map_err(&err)?;
+        for r in &answer.reactions {
+            let s = reactions.create_group(&r.set).map_err(&err)?;
+            s.new_attr::<f64>().shape(3).create("force").map_err(&err)?.write(&r.force).map_err(&err)?;
+            for (name, value, _) in &r.resultants {
+                s.new_attr::<f64>().create(*name).map_err(&err)?.write_scalar(value).map_err(&err)?;
+            }
+        }
+        self.file.flush().map_err(&err)
+    }
+}

@@ -1,0 +1,106 @@
+//! Linear perturbation steps (Abaqus's perturbation procedures): after the general steps, the
+//! response to a load of one circumferential harmonic n about the state they end in, which
+//! they leave unchanged. The load is prescribed harmonic displacement amplitudes on node sets,
+//! rigid motions of end rings (n = 1) and harmonic pressure amplitudes; the answer is the
+//! harmonic displacement field and each set's reactions (`solve::perturbation`,
+//! `element::harmonic`).
+
+use super::{Model, Pressure};
+use crate::error::{Error, Result};
+
+/// A harmonic amplitude component: u_r = U_r cos n theta, u_z = U_z cos n theta, u_theta =
+/// U_t sin n theta (n = 0: U_t alone, the twist).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum HarmonicComponent {
+    R,
+    Z,
+    T,
+}
+
+impl HarmonicComponent {
+    pub fn index(self) -> usize {
+        match self {
+            HarmonicComponent::R => 0,
+            HarmonicComponent::Z => 1,
+            HarmonicComponent::T => 2,
+        }
+    }
+
+    pub fn name(self) -> &'static str {
+        ["ur", "uz", "ut"][self.index()]
+    }
+}
+
+/// An amplitude prescribed on every node of a set (mm).
+#[derive(Clone, Debug, PartialEq)]
+pub struct HarmonicDisplacement {
+    pub node_set: String,
+    pub component: HarmonicComponent,
+    pub value: f64,
+}
+
+/// A rigid motion of a set's ring (mode 1): a translation `lateral` (mm) across the axis and a
+/// rotation `rotation` (radians) about a diameter through the set's centre on the axis,
+/// u_x = lateral + rotation (z - z_c), u_z = -rotation x: all three amplitudes of its nodes,
+/// U_r = -U_t = lateral + rotation (z - z_c), U_z = -rotation r.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RingMotion {
+    pub node_set: String,
+    pub lateral: f64,
+    pub rotation: f64,
+}
+
+/// One perturbation step.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Perturbation {
+    pub name: String,
+    pub mode: u32,
+    pub displacements: Vec<HarmonicDisplacement>,
+    pub rings: Vec<RingMotion>,
+    /// Harmonic pressure amplitudes, p cos n theta (MPa, positive pushing into the body).
+    pub pressures: Vec<Pressure>,
+}
+
+/// The largest mode accepted: beyond it a Q8 mesh of any reasonable ring resolves nothing.
+pub const MAX_MODE: u32 = 1000;
+
+impl Perturbation {
+    /// Checks the step against its model: known sets and surfaces, rings only for n = 1, finite
+    /// values, a general step before it.
+    pub fn validate(&self, model: &Model) -> Result<()> {
+        let at = |what: String| Error::input(format!("perturbation step '{}': {what}", self.name));
+        if model.steps.is_empty() {
+            return Err(at("a perturbation step needs a general step before it (its base state)".into()));
+        }
+        if self.mode > MAX_MODE {
+            return Err(at(format!("mode {} is above {MAX_MODE}", self.mode)));
+        }
+        for d in &self.displacements {
+            model.node_set(&d.node_set).map_err(|e| at(e.to_string()))?;
+            if !d.value.is_finite() {
+                return Err(at(format!("{} on '{}' must be finite", d.component.name(), d.node_set)));
+            }
+        }
+        for r in &self.rings {
+            model.node_set(&r.node_set).map_err(|e| at(e.to_string()))?;
+            if self.mode != 1 {
+                return Err(at(format!("lateral and rotation (on '{}') move a ring rigidly only in mode 1, not {}", r.node_set, self.mode)));
+            }
+            if !(r.lateral.is_finite() && r.rotation.is_finite()) {
+                return Err(at(format!("lateral and rotation on '{}' must be finite", r.node_set)));
+            }
+        }
+        for p in &self.pressures {
+            if !model.surfaces.contains_key(&p.surface) {
+                return Err(at(format!("unknown surface '{}'", p.surface)));
+            }
+            if !p.value.is_finite() {
+                return Err(at(format!("pressure on '{}' must be finite", p.surface)));
+            }
+        }
+        if self.displacements.is_empty() && self.rings.is_empty() && self.pressures.is_empty() {
+            return Err(at("no load: give amplitudes (ur, uz, ut), a ring's lateral or rotation, or a pressure".into()));
+        }
+        Ok(())
+    }
+}

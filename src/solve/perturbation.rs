@@ -1,0 +1,341 @@
+//! A linear perturbation step (`model::perturbation`) about the state the general steps end
+//! in: the harmonic elements (`element::harmonic`) on the base state's current geometry, with
+//! the material stiffness, the initial-stress stiffness of the base state's Cauchy stress (at
+//! small strain too: the stress's work on the perturbation's rotations) and the load stiffness
+//! of the pressures in force there where they follow the surface (finite kinematics),
+//! assembled over the unknown
+//! amplitudes [U_r, U_z, U_t] of every node and solved once with the SNES's linear solver
+//! (MUMPS). The base state is read, never changed.
+//!
+//! Not yet in the stiffness: contact (the base state's closed contact nodes carry nothing in
+//! the perturbation) and the consistent tangent of yielded points (the elastic one is used;
+//! the step says so when the base state has yielded).
+//!
+//! On the axis (r = 0) the amplitudes obey regularity, applied to free amplitudes of nodes
+//! there: n = 0, U_r = U_t = 0; n = 1, U_z = 0 and U_t = -U_r (one unknown, U_r); n >= 2, all
+//! zero.
+
+use crate::dist::Partition;
+use crate::element::harmonic::{initial_stress_stiffness, isotropic, material_stiffness, ring_factor, HarmonicMatrix, DOFS};
+use crate::element::harmonic_pressure::harmonic_pressure_stiffness;
+use crate::element::pressure::compute_pressure_load;
+use crate::element::solid::{ElementGeometry, NODES, QUADRATURE_POINTS};
+use crate::error::{Error, Result};
+use crate::model::perturbation::Perturbation;
+use crate::model::Model;
+use crate::petsc::sys::PetscInt;
+use crate::petsc::{MatOps, Matrix, PetscSession, Snes, VecOps, Vector};
+use mpi::collective::SystemOperation;
+use mpi::datatype::PartitionMut;
+use mpi::traits::*;
+use std::f64::consts::PI;
+
+/// The state a perturbation is about: every node's displacement, the Cauchy stress at the
+/// Gauss points of this rank's elements (partition order), the pressures in force.
+pub struct BaseState<'a> {
+    pub displacement: &'a [[f64; 2]],
+    pub stress: &'a [[[f64; 4]; QUADRATURE_POINTS]],
+    pub pressures: &'a [(String, f64)],
+    /// Whether any Gauss point has yielded.
+    pub yielded: bool,
+}
+
+/// What the general steps leave for the perturbation steps, kept at each converged increment:
+/// the stress of this rank's elements, whether any point has yielded, the pressures in force.
+#[derive(Clone, Debug, Default)]
+pub struct KeptBase {
+    pub stress: Vec<[[f64; 4]; QUADRATURE_POINTS]>,
+    pub yielded: bool,
+    pub pressures: Vec<(String, f64)>,
+}
+
+/// A set's reactions: the sums of its nodal forces per radian, and the full ring's resultants
+/// their mode has (n = 0: axial force and torque; n = 1: lateral force and the moment about the
+/// diameter through the set's centre, conjugate to a ring's `rotation`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct SetReaction {
+    pub set: String,
+    pub force: [f64; 3],
+    /// (name, value, units) of each resultant.
+    pub resultants: Vec<(&'static str, f64, &'static str)>,
+}
+
+/// What a perturbation step gives.
+#[derive(Clone, Debug)]
+pub struct PerturbationAnswer {
+    /// [U_r, U_z, U_t] of every node (model order).
+    pub amplitudes: Vec<[f64; 3]>,
+    pub reactions: Vec<SetReaction>,
+    pub notes: Vec<String>,
+}
+
+/// An amplitude's place in the system: an unknown (index, coefficient: an axis node's U_t of
+/// mode 1 is -1 times its U_r) or a prescribed value.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Amplitude {
+    Unknown(PetscInt, f64),
+    Prescribed(f64),
+}
+
+/// Solves perturbation `step` about `base` (collective).
+pub fn solve(session: &PetscSession, model: &Model, partition: &Partition, base: &BaseState<'_>, step: &Perturbation) -> Result<PerturbationAnswer> {
+    let world = session.world();
+    let mesh = &model.mesh;
+    let nodes = mesh.coords.len();
+    let current: Vec<[f64; 2]> = (0..nodes).map(|n| [mesh.coords[n][0] + base.displacement[n][0], mesh.coords[n][1] + base.displacement[n][1]]).collect();
+    let (prescribed, centres) = prescribed_amplitudes(model, step, &current)?;
+    let (amplitude, offsets) = number(partition, &prescribed, &current, step.mode, model_size(&current));
+    let rank = partition.rank;
+    let local_len = offsets[rank + 1] - offsets[rank];
+
+    // element and edge matrices on this rank, with their amplitudes
+    let mut blocks: Vec<(Vec<usize>, Vec<f64>)> = Vec::new();
+    let mut load = vec![[0.0f64; 3]; nodes];
+    for (k, &e) in partition.local_elements().iter().enumerate() {
+        let conn = mesh.elements[e];
+        let x: [[f64; 2]; NODES] = conn.map(|n| current[n]);
+        let geo = ElementGeometry::new(&x).map_err(|m| Error::input(format!("perturbation step '{}': element {}: {m}", step.name, mesh.element_ids[e])))?;
+        let m = &model.materials[model.element_material[e]];
+        let d = [isotropic(m.youngs_modulus, m.poissons_ratio); QUADRATURE_POINTS];
+        let ke: HarmonicMatrix = material_stiffness(&geo, step.mode, &d) + initial_stress_stiffness(&geo, step.mode, &base.stress[k]);
+        blocks.push((conn.to_vec(), ke.as_slice().to_vec()));
+        debug_assert_eq!(ke.nrows(), DOFS);
+    }
+    let local: std::collections::HashSet<usize> = partition.local_elements().iter().copied().collect();
+    let factor = ring_factor(step.mode);
+    // the base's pressures follow the surface (a load stiffness) where the kinematics are finite;
+    // at small strain they are dead loads, with none
+    let follower = model.kinematics == crate::material::Kinematics::Finite;
+    let base_pressures = base.pressures.iter().filter(|_| follower).map(|(s, p)| (s, *p, true));
+    for (surface, p, stiffness) in base_pressures.chain(step.pressures.iter().map(|q| (&q.surface, q.value, false))) {
+        for edge in model.surfaces.get(surface).into_iter().flatten().filter(|edge| local.contains(&edge.element)) {
+            let en = mesh.edge_nodes(*edge);
+            let x = en.map(|n| current[n]);
+            if stiffness {
+                // the base's pressure follows the surface: its load stiffness enters with a minus
+                let kp = harmonic_pressure_stiffness(&x, p, step.mode);
+                // column-major, as nalgebra's: entry (i, j) at j * 9 + i
+                let values: Vec<f64> = (0..9).flat_map(|j| (0..9).map(move |i| -kp[i][j])).collect();
+                blocks.push((en.to_vec(), values));
+            } else {
+                // the step's harmonic pressure: p cos n theta, weighed by cos n theta
+                for (a, f) in compute_pressure_load(&x, p).iter().enumerate() {
+                    load[en[a]][0] += factor * f[0];
+                    load[en[a]][1] += factor * f[1];
+                }
+            }
+        }
+    }
+
+    // the system: K_ff U_f = f_f - K_fp U_p
+    let mut rows = Vec::new();
+    let mut cols = Vec::new();
+    let mut values = Vec::new();
+    let mut rhs: Vec<(PetscInt, f64)> = Vec::new();
+    for (conn, k) in &blocks {
+        let dofs: Vec<Amplitude> = conn.iter().flat_map(|&n| amplitude[n]).collect();
+        let size = dofs.len();
+        for (i, &ai) in dofs.iter().enumerate() {
+            let Amplitude::Unknown(row, ci) = ai else { continue };
+            for (j, &aj) in dofs.iter().enumerate() {
+                let kij = k[j * size + i];
+                match aj {
+                    Amplitude::Unknown(col, cj) => {
+                        rows.push(row);
+                        cols.push(col);
+                        values.push(ci * cj * kij);
+                    }
+                    Amplitude::Prescribed(v) => rhs.push((row, -ci * kij * v)),
+                }
+            }
+        }
+    }
+    // the harmonic pressure's load: each rank has its own edges' part; PETSc sums the rows
+    for (n, l) in load.iter().enumerate() {
+        for c in 0..3 {
+            if let (Amplitude::Unknown(row, coef), true) = (amplitude[n][c], l[c] != 0.0) {
+                rhs.push((row, coef * l[c]));
+            }
+        }
+    }
+    let mut matrix = Matrix::aij_coo(session, session.comm(), local_len, &rows, &cols)?;
+    matrix.set_values_coo(&values)?;
+    let mut b = Vector::mpi(session, session.comm(), local_len)?;
+    b.set_all(0.0)?;
+    let (indices, adds): (Vec<PetscInt>, Vec<f64>) = rhs.into_iter().unzip();
+    b.add_values(&indices, &adds)?;
+    b.assemble()?;
+    let mut u = b.duplicate()?;
+    let mut snes = Snes::new(session)?;
+    if !snes.linear_solve(&matrix, &b, &mut u)? {
+        return Err(Error::NotConverged {
+            step: step.name.clone(),
+            load_factor: 1.0,
+            reason: "the linear solve failed: the perturbation's stiffness is singular (a rigid motion of its mode left free? hold it on a set)".into(),
+        });
+    }
+
+    // every node's amplitudes on every rank
+    let first = offsets[rank] as PetscInt;
+    let solution = u.read()?;
+    let value = |a: Amplitude| match a {
+        Amplitude::Unknown(i, c) => c * solution[(i - first) as usize],
+        Amplitude::Prescribed(v) => v,
+    };
+    let owned: Vec<f64> = partition.owned_nodes().iter().flat_map(|&n| amplitude[n].map(value)).collect();
+    drop(solution);
+    // (an owned node's unknowns are this rank's rows: the numbering goes by owned nodes)
+    let amplitudes = gather(&world, partition, &owned, nodes);
+
+    // reactions: K U - f at every node, summed over ranks
+    let mut force = vec![0.0; 3 * nodes];
+    for (conn, k) in &blocks {
+        let ue: Vec<f64> = conn.iter().flat_map(|&n| amplitudes[n]).collect();
+        let size = ue.len();
+        for i in 0..size {
+            let fi: f64 = (0..size).map(|j| k[j * size + i] * ue[j]).sum();
+            force[3 * conn[i / 3] + i % 3] += fi;
+        }
+    }
+    // minus this rank's part of the harmonic pressure's load
+    for (f, l) in force.iter_mut().zip(load.iter().flatten()) {
+        *f -= l;
+    }
+    let mut total = vec![0.0; 3 * nodes];
+    world.all_reduce_into(&force[..], &mut total[..], SystemOperation::sum());
+    let reactions = reactions(model, step, &current, &total, &centres);
+    let mut notes = Vec::new();
+    if base.yielded {
+        notes.push(format!(
+            "perturbation step '{}': the base state has yielded points; their stiffness here is the elastic one (not yet their consistent tangent)",
+            step.name
+        ));
+    }
+    if !model.contacts.is_empty() {
+        notes.push(format!("perturbation step '{}': contact carries nothing in the perturbation (not yet built)", step.name));
+    }
+    Ok(PerturbationAnswer { amplitudes, reactions, notes })
+}
+
+/// The model's size, for the axis tolerance.
+fn model_size(x: &[[f64; 2]]) -> f64 {
+    let (rmax, zmin, zmax) = x.iter().fold((0.0f64, f64::INFINITY, f64::NEG_INFINITY), |(r, a, b), p| (r.max(p[0]), a.min(p[1]), b.max(p[1])));
+    rmax.max(zmax - zmin)
+}
+
+/// Each node's prescribed amplitudes (None: free).
+type Prescription = Vec<[Option<f64>; 3]>;
+
+/// The amplitudes the step prescribes and each ring's (set, centre z_c).
+fn prescribed_amplitudes(model: &Model, step: &Perturbation, x: &[[f64; 2]]) -> Result<(Prescription, Vec<(String, f64)>)> {
+    let mut prescribed = vec![[None; 3]; x.len()];
+    let mut set_value = |n: usize, c: usize, v: f64, set: &str| -> Result<()> {
+        match prescribed[n][c] {
+            Some(old) if old != v => Err(Error::input(format!(
+                "perturbation step '{}': node {} gets two values of {} ({old} and {v}, the second from '{set}')",
+                step.name,
+                model.mesh.node_ids[n],
+                ["ur", "uz", "ut"][c]
+            ))),
+            _ => {
+                prescribed[n][c] = Some(v);
+                Ok(())
+            }
+        }
+    };
+    for d in &step.displacements {
+        for &n in model.node_set(&d.node_set)? {
+            set_value(n, d.component.index(), d.value, &d.node_set)?;
+        }
+    }
+    let mut centres = Vec::new();
+    for ring in &step.rings {
+        let set = model.node_set(&ring.node_set)?;
+        let zc = set.iter().map(|&n| x[n][1]).sum::<f64>() / set.len().max(1) as f64;
+        centres.push((ring.node_set.clone(), zc));
+        for &n in set {
+            let ur = ring.lateral + ring.rotation * (x[n][1] - zc);
+            set_value(n, 0, ur, &ring.node_set)?;
+            set_value(n, 2, -ur, &ring.node_set)?;
+            set_value(n, 1, -ring.rotation * x[n][0], &ring.node_set)?;
+        }
+    }
+    Ok((prescribed, centres))
+}
+
+/// Numbers the unknown amplitudes rank by rank in partition order, with the axis's regularity;
+/// returns every node's amplitudes and the ranks' offsets.
+fn number(partition: &Partition, prescribed: &[[Option<f64>; 3]], x: &[[f64; 2]], mode: u32, size: f64) -> (Vec<[Amplitude; 3]>, Vec<usize>) {
+    let mut amplitude = vec![[Amplitude::Prescribed(0.0); 3]; x.len()];
+    let mut offsets = vec![0; partition.size + 1];
+    let mut next: PetscInt = 0;
+    for r in 0..partition.size {
+        for &n in &partition.node_order[partition.node_offsets[r]..partition.node_offsets[r + 1]] {
+            let on_axis = x[n][0].abs() <= 1e-9 * size;
+            // which free amplitudes regularity fixes at zero, and whether U_t follows U_r
+            let (zero, follows) = match (on_axis, mode) {
+                (false, _) => ([false; 3], false),
+                (true, 0) => ([true, false, true], false),
+                (true, 1) => ([false, true, false], true),
+                (true, _) => ([true; 3], false),
+            };
+            for c in 0..3 {
+                amplitude[n][c] = match prescribed[n][c] {
+                    Some(v) => Amplitude::Prescribed(v),
+                    None if zero[c] => Amplitude::Prescribed(0.0),
+                    None if c == 2 && follows => match amplitude[n][0] {
+                        Amplitude::Unknown(i, _) => Amplitude::Unknown(i, -1.0),
+                        Amplitude::Prescribed(v) => Amplitude::Prescribed(-v),
+                    },
+                    None => {
+                        next += 1;
+                        Amplitude::Unknown(next - 1, 1.0)
+                    }
+                };
+            }
+        }
+        offsets[r + 1] = next as usize;
+    }
+    (amplitude, offsets)
+}
+
+/// All ranks' owned amplitudes into one array in model node order.
+fn gather(world: &impl Communicator, partition: &Partition, owned: &[f64], nodes: usize) -> Vec<[f64; 3]> {
+    let counts: Vec<i32> = (0..partition.size).map(|r| 3 * (partition.node_offsets[r + 1] - partition.node_offsets[r]) as i32).collect();
+    let displs: Vec<i32> = partition.node_offsets[..partition.size].iter().map(|&o| 3 * o as i32).collect();
+    let mut all = vec![0.0; 3 * nodes];
+    world.all_gather_varcount_into(owned, &mut PartitionMut::new(&mut all[..], counts, displs));
+    let mut out = vec![[0.0; 3]; nodes];
+    for (k, &n) in partition.node_order.iter().enumerate() {
+        out[n] = [all[3 * k], all[3 * k + 1], all[3 * k + 2]];
+    }
+    out
+}
+
+/// The reactions of every set the step prescribes amplitudes on.
+fn reactions(model: &Model, step: &Perturbation, x: &[[f64; 2]], force: &[f64], centres: &[(String, f64)]) -> Vec<SetReaction> {
+    let mut names: Vec<&str> = step.displacements.iter().map(|d| d.node_set.as_str()).chain(step.rings.iter().map(|r| r.node_set.as_str())).collect();
+    names.dedup();
+    let mut seen = std::collections::BTreeSet::new();
+    names.retain(|n| seen.insert(*n));
+    names
+        .into_iter()
+        .map(|name| {
+            let set = model.node_sets.get(name).map(Vec::as_slice).unwrap_or(&[]);
+            let f = |n: usize, c: usize| force[3 * n + c];
+            let sum = |c: usize| set.iter().map(|&n| f(n, c)).sum::<f64>();
+            let zc = centres.iter().find(|(s, _)| s == name).map_or_else(|| set.iter().map(|&n| x[n][1]).sum::<f64>() / set.len().max(1) as f64, |c| c.1);
+            let resultants = match step.mode {
+                0 => {
+                    vec![("axial_force_ring", 2.0 * PI * sum(1), "N"), ("torque_ring", 2.0 * PI * set.iter().map(|&n| x[n][0] * f(n, 2)).sum::<f64>(), "N mm")]
+                }
+                1 => vec![
+                    ("lateral_force_ring", 2.0 * PI * (sum(0) - sum(2)), "N"),
+                    ("moment_ring", 2.0 * PI * set.iter().map(|&n| (x[n][1] - zc) * (f(n, 0) - f(n, 2)) - x[n][0] * f(n, 1)).sum::<f64>(), "N mm"),
+                ],
+                _ => Vec::new(),
+            };
+            SetReaction { set: name.to_string(), force: [sum(0), sum(1), sum(2)], resultants }
+        })
+        .collect()
+}
