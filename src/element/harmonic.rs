@@ -59,6 +59,26 @@ pub fn isotropic(youngs_modulus: f64, poissons_ratio: f64) -> Tangent6 {
     d
 }
 
+/// The continuum elastic-plastic tangent of J2 flow with isotropic hardening slope `hardening`
+/// (MPa) at a point on the yield surface with Cauchy stress `stress` [rr, zz, tt, rz], over
+/// [rr, zz, tt, rz, rt, zt]: D - a a^T / (3 mu + H), a = 2 mu N, N = (3/2) s / sigma_eq the
+/// flow direction (Simo & Hughes, Computational Inelasticity, 2.3.2, at a vanishing increment,
+/// where the radial return's consistent tangent becomes it). The axisymmetric stress has no
+/// theta shear, so those two moduli stay mu.
+pub fn elastoplastic(youngs_modulus: f64, poissons_ratio: f64, hardening: f64, stress: &[f64; 4]) -> Tangent6 {
+    let d = isotropic(youngs_modulus, poissons_ratio);
+    let mu = youngs_modulus / (2.0 * (1.0 + poissons_ratio));
+    let [rr, zz, tt, rz] = *stress;
+    let mean = (rr + zz + tt) / 3.0;
+    let s = [rr - mean, zz - mean, tt - mean, rz];
+    let q = crate::fe::axisymmetric::von_mises(stress);
+    if q <= 0.0 {
+        return d;
+    }
+    let a = SVector::<f64, 6>::from_column_slice(&[s[0], s[1], s[2], s[3], 0.0, 0.0]) * (2.0 * mu * 1.5 / q);
+    d - a * a.transpose() / (3.0 * mu + hardening)
+}
+
 /// The strain-displacement matrices of mode `mode` at the element's Gauss points, the
 /// dilatation projected.
 fn strain_maps(geo: &ElementGeometry, mode: u32) -> [StrainMap; QUADRATURE_POINTS] {
@@ -328,6 +348,21 @@ mod tests {
                     assert!((kab - k[(a, b)]).abs() <= 1e-7 * scale, "mode {mode}, ({a}, {b}): 3-D {kab} against {}", k[(a, b)]);
                 }
             }
+        }
+    }
+
+    /// The elastic-plastic tangent under uniaxial stress: d sigma_zz / d eps_zz with the other
+    /// normal stresses held at zero is E H / (E + H) (the tangent modulus), the shears keep mu.
+    #[test]
+    fn elastoplastic_tangent_under_uniaxial_stress() {
+        let (e, nu, h) = (200_000.0, 0.3, 1000.0);
+        for stress in [[0.0, 300.0, 0.0, 0.0], [0.0, -300.0, 0.0, 0.0]] {
+            let d = elastoplastic(e, nu, h, &stress);
+            // eps_zz = 1, eps_rr = eps_tt = x with d sigma_rr = 0 (symmetric in rr, tt)
+            let x = -d[(0, 1)] / (d[(0, 0)] + d[(0, 2)]);
+            let modulus = d[(1, 1)] + 2.0 * d[(1, 0)] * x;
+            assert!((modulus - e * h / (e + h)).abs() < 1e-9 * e, "{modulus}");
+            assert!((d[(4, 4)] - e / (2.0 * (1.0 + nu))).abs() < 1e-9 && (d - d.transpose()).amax() < 1e-9);
         }
     }
 }

@@ -7,16 +7,20 @@
 //! amplitudes [U_r, U_z, U_t] of every node and solved once with the SNES's linear solver
 //! (MUMPS). The base state is read, never changed.
 //!
+//! The material tangent: elastic, and at the points on the yield surface at the base state J2's
+//! elastic-plastic (loading) tangent with the hardening slope there (`element::harmonic::
+//! elastoplastic`): the limit of the radial return's consistent tangent as the increment
+//! vanishes, what a perturbation about a yielded state sees if it loads further.
+//!
 //! Not yet in the stiffness: contact (the base state's closed contact nodes carry nothing in
-//! the perturbation) and the consistent tangent of yielded points (the elastic one is used;
-//! the step says so when the base state has yielded).
+//! the perturbation; the step says so).
 //!
 //! On the axis (r = 0) the amplitudes obey regularity, applied to free amplitudes of nodes
 //! there: n = 0, U_r = U_t = 0; n = 1, U_z = 0 and U_t = -U_r (one unknown, U_r); n >= 2, all
 //! zero.
 
 use crate::dist::Partition;
-use crate::element::harmonic::{initial_stress_stiffness, isotropic, material_stiffness, ring_factor, HarmonicMatrix, DOFS};
+use crate::element::harmonic::{elastoplastic, initial_stress_stiffness, isotropic, material_stiffness, ring_factor, HarmonicMatrix, Tangent6, DOFS};
 use crate::element::harmonic_pressure::harmonic_pressure_stiffness;
 use crate::element::pressure::compute_pressure_load;
 use crate::element::solid::{ElementGeometry, NODES, QUADRATURE_POINTS};
@@ -35,9 +39,9 @@ use std::f64::consts::PI;
 pub struct BaseState<'a> {
     pub displacement: &'a [[f64; 2]],
     pub stress: &'a [[[f64; 4]; QUADRATURE_POINTS]],
+    /// The equivalent plastic strain at the same points.
+    pub plastic_strain: &'a [[f64; QUADRATURE_POINTS]],
     pub pressures: &'a [(String, f64)],
-    /// Whether any Gauss point has yielded.
-    pub yielded: bool,
 }
 
 /// What the general steps leave for the perturbation steps, kept at each converged increment:
@@ -45,7 +49,7 @@ pub struct BaseState<'a> {
 #[derive(Clone, Debug, Default)]
 pub struct KeptBase {
     pub stress: Vec<[[f64; 4]; QUADRATURE_POINTS]>,
-    pub yielded: bool,
+    pub plastic_strain: Vec<[f64; QUADRATURE_POINTS]>,
     pub pressures: Vec<(String, f64)>,
 }
 
@@ -96,7 +100,17 @@ pub fn solve(session: &PetscSession, model: &Model, partition: &Partition, base:
         let x: [[f64; 2]; NODES] = conn.map(|n| current[n]);
         let geo = ElementGeometry::new(&x).map_err(|m| Error::input(format!("perturbation step '{}': element {}: {m}", step.name, mesh.element_ids[e])))?;
         let m = &model.materials[model.element_material[e]];
-        let d = [isotropic(m.youngs_modulus, m.poissons_ratio); QUADRATURE_POINTS];
+        let j2 = crate::solve::problem::material_kernel(m);
+        // points on the yield surface take the elastic-plastic tangent (loading), the others
+        // the elastic one
+        let d: [Tangent6; QUADRATURE_POINTS] = std::array::from_fn(|q| {
+            let (stress, ep) = (&base.stress[k][q], base.plastic_strain[k][q]);
+            let on_surface = ep > 0.0 && crate::fe::axisymmetric::von_mises(stress) >= (1.0 - 1e-6) * j2.hardening.yield_stress(ep);
+            match on_surface {
+                true => elastoplastic(m.youngs_modulus, m.poissons_ratio, j2.hardening.segment(ep).0, stress),
+                false => isotropic(m.youngs_modulus, m.poissons_ratio),
+            }
+        });
         let ke: HarmonicMatrix = material_stiffness(&geo, step.mode, &d) + initial_stress_stiffness(&geo, step.mode, &base.stress[k]);
         blocks.push((conn.to_vec(), ke.as_slice().to_vec()));
         debug_assert_eq!(ke.nrows(), DOFS);
@@ -205,12 +219,6 @@ pub fn solve(session: &PetscSession, model: &Model, partition: &Partition, base:
     world.all_reduce_into(&force[..], &mut total[..], SystemOperation::sum());
     let reactions = reactions(model, step, &current, &total, &centres);
     let mut notes = Vec::new();
-    if base.yielded {
-        notes.push(format!(
-            "perturbation step '{}': the base state has yielded points; their stiffness here is the elastic one (not yet their consistent tangent)",
-            step.name
-        ));
-    }
     if !model.contacts.is_empty() {
         notes.push(format!("perturbation step '{}': contact carries nothing in the perturbation (not yet built)", step.name));
     }

@@ -302,8 +302,11 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
                 contact.recover_tractions(&total);
             }
             if !model.perturbations.is_empty() {
-                base =
-                    Some(super::perturbation::KeptBase { stress: fields.stress.clone(), yielded: max_ep > 0.0, pressures: problem.load().pressures.clone() });
+                base = Some(super::perturbation::KeptBase {
+                    stress: fields.stress.clone(),
+                    plastic_strain: fields.plastic_strain.clone(),
+                    pressures: problem.load().pressures.clone(),
+                });
             }
             let contacts = contact_summaries(&world, model, &problem);
             let energy = audit_increment(&world, model, &mut audit, &problem, &fields, &force, &prescribed, &displacement, &loads.at(model, lambda));
@@ -396,7 +399,12 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
         let Some(kept) = base.as_ref() else {
             return Err(Error::input(format!("perturbation step '{}': this run converged no increment of a general step to be its base state", p.name)));
         };
-        let state = super::perturbation::BaseState { displacement: &displacement, stress: &kept.stress, pressures: &kept.pressures, yielded: kept.yielded };
+        let state = super::perturbation::BaseState {
+            displacement: &displacement,
+            stress: &kept.stress,
+            plastic_strain: &kept.plastic_strain,
+            pressures: &kept.pressures,
+        };
         let answer = super::perturbation::solve(session, model, &partition, &state, p)?;
         for note in &answer.notes {
             progress.note(&format!("note: {note}"));
