@@ -33,6 +33,13 @@ pub fn summary(r: &ResultsReader) -> Result<String> {
         last_step.map_or(0.0, |l| l.1)
     );
     let _ = writeln!(s, "wall time:   {:.2} s", rows.last().map_or(0.0, |(_, r)| r.wall_time));
+    for (name, mode, sets) in r.perturbations()? {
+        let _ = writeln!(s, "perturbation '{name}' (mode {mode}): reactions, full ring (N, N mm)");
+        for (set, values) in sets {
+            let values: Vec<String> = values.iter().map(|(what, v)| format!("{what} {v:.6e}")).collect();
+            let _ = writeln!(s, "  {set:<20} {}", values.join(", "));
+        }
+    }
     Ok(s)
 }
 

@@ -106,6 +106,11 @@ fn a_tube_pushed_sideways_as_timoshenko_says_on_one_and_two_ranks() {
     let top = field.chunks(3).map(|u| u[0]).fold(0.0f64, f64::max);
     assert!((top - 1.0).abs() < 1e-12, "the end moves 1 mm: {top}");
 
+    // `slideline post` prints the reactions as the run did
+    let post = common::command_in(one.dir.path(), 1).args(["post", one.h5.to_str().unwrap()]).output().unwrap();
+    let printed = String::from_utf8_lossy(&post.stdout);
+    assert!(printed.contains("perturbation 'guided' (mode 1)") && printed.contains(&format!("lateral_force_ring {guided:.6e}")), "{printed}");
+
     let two = run_deck(&deck("", SIDEWAYS), &[], 2, &[]);
     two.assert_ok();
     let r2 = Results::open(&two.h5);

@@ -298,6 +298,30 @@ impl ResultsReader {
         super::assessment::read(&self.file, &self.path)
     }
 
+    /// The perturbation steps the file holds: (name, mode, per set its full-ring resultants
+    /// (name, value)), sorted by name.
+    pub fn perturbations(&self) -> Result<Vec<(String, u32, Vec<(String, Vec<(String, f64)>)>)>> {
+        let Ok(top) = self.file.group("perturbations") else { return Ok(Vec::new()) };
+        let bad = |e: hdf5::Error| Error::input(format!("{}: /perturbations: {e}", self.path.display()));
+        let mut out = Vec::new();
+        for name in top.member_names().map_err(bad)? {
+            let g = top.group(&name).map_err(bad)?;
+            let mode = g.attr("mode").and_then(|a| a.read_scalar::<u32>()).map_err(bad)?;
+            let reactions = g.group("reactions").map_err(bad)?;
+            let mut sets = Vec::new();
+            for set in reactions.member_names().map_err(bad)? {
+                let sg = reactions.group(&set).map_err(bad)?;
+                let mut values = Vec::new();
+                for attr in sg.attr_names().map_err(bad)?.into_iter().filter(|a| a.ends_with("_ring")) {
+                    values.push((attr.clone(), sg.attr(&attr).and_then(|a| a.read_scalar::<f64>()).map_err(bad)?));
+                }
+                sets.push((set, values));
+            }
+            out.push((name, mode, sets));
+        }
+        Ok(out)
+    }
+
     /// The design assessment's finite-element figures the file holds, if any.
     pub fn finite_element_assessment(
         &self,
