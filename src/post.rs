@@ -33,9 +33,9 @@ pub fn summary(r: &ResultsReader) -> Result<String> {
         last_step.map_or(0.0, |l| l.1)
     );
     let _ = writeln!(s, "wall time:   {:.2} s", rows.last().map_or(0.0, |(_, r)| r.wall_time));
-    for (name, mode, sets) in r.perturbations()? {
-        let _ = writeln!(s, "perturbation '{name}' (mode {mode}): reactions, full ring (N, N mm)");
-        for (set, values) in sets {
+    for p in r.perturbations()? {
+        let _ = writeln!(s, "perturbation '{}' (mode {}): reactions, full ring (N, N mm)", p.name, p.mode);
+        for (set, values) in p.reactions {
             let values: Vec<String> = values.iter().map(|(what, v)| format!("{what} {v:.6e}")).collect();
             let _ = writeln!(s, "  {set:<20} {}", values.join(", "));
         }

@@ -300,7 +300,7 @@ impl ResultsReader {
 
     /// The perturbation steps the file holds: (name, mode, per set its full-ring resultants
     /// (name, value)), sorted by name.
-    pub fn perturbations(&self) -> Result<Vec<(String, u32, Vec<(String, Vec<(String, f64)>)>)>> {
+    pub fn perturbations(&self) -> Result<Vec<StoredPerturbation>> {
         let Ok(top) = self.file.group("perturbations") else { return Ok(Vec::new()) };
         let bad = |e: hdf5::Error| Error::input(format!("{}: /perturbations: {e}", self.path.display()));
         let mut out = Vec::new();
@@ -317,7 +317,7 @@ impl ResultsReader {
                 }
                 sets.push((set, values));
             }
-            out.push((name, mode, sets));
+            out.push(StoredPerturbation { name, mode, reactions: sets });
         }
         Ok(out)
     }
@@ -482,4 +482,13 @@ impl ResultsReader {
         let before_incomplete = incomplete.first().and_then(|n| n.parse::<usize>().ok()).map_or(usize::MAX, |n| n - 1);
         Ok(shortest.into_iter().min().unwrap_or(0).min(before_incomplete))
     }
+}
+
+/// A perturbation step as the results file keeps it: its name, mode and each set's full-ring
+/// resultants (name, value).
+#[derive(Clone, Debug, PartialEq)]
+pub struct StoredPerturbation {
+    pub name: String,
+    pub mode: u32,
+    pub reactions: Vec<(String, Vec<(String, f64)>)>,
 }
