@@ -131,27 +131,22 @@ mod tests {
         assert_eq!(Source::Given.label(), "as given");
     }
 
+    /// The sample report's bellows with `convolutions`, checked for a 2 mm stroke.
+    fn small_stroke(convolutions: usize) -> CodeCheck {
+        let b = UBellows { inside_diameter: 130.0, height: 9.1, pitch: 8.0, ply_thickness: 0.3, plies: 3, convolutions, torus_radius: 1.3 };
+        let duty = Duty { pressure: 0.3, stroke: 2.0, modulus: 194_612.0, yield_stress: 206.8, tangent_length: 30.0 };
+        CodeCheck::new(&b, Coefficients { cp: 0.67, cf: 1.57, cd: 1.68 }, Source::Computed, duty)
+    }
+
     #[test]
     fn a_small_stroke_gets_no_note() {
-        let b = UBellows { inside_diameter: 130.0, height: 9.1, pitch: 8.0, ply_thickness: 0.3, plies: 3, convolutions: 18, torus_radius: 1.3 };
-        let check = CodeCheck::new(
-            &b,
-            Coefficients { cp: 0.67, cf: 1.57, cd: 1.68 },
-            Source::Computed,
-            Duty { pressure: 0.3, stroke: 2.0, modulus: 194_612.0, yield_stress: 206.8, tangent_length: 30.0 },
-        );
+        let check = small_stroke(18);
         assert!(check.notes.is_empty() && check.cycles.is_none(), "{:?} {:?}", check.notes, check.cycles);
     }
 
     #[test]
     fn a_bellows_outside_the_conditions_gets_a_note_naming_it() {
-        let b = UBellows { inside_diameter: 130.0, height: 9.1, pitch: 8.0, ply_thickness: 0.3, plies: 3, convolutions: 60, torus_radius: 1.3 };
-        let check = CodeCheck::new(
-            &b,
-            Coefficients { cp: 0.67, cf: 1.57, cd: 1.68 },
-            Source::Given,
-            Duty { pressure: 0.3, stroke: 2.0, modulus: 194_612.0, yield_stress: 206.8, tangent_length: 30.0 },
-        );
+        let check = small_stroke(60);
         assert!(check.notes.iter().any(|n| n.contains("conditions of applicability") && n.contains("N q = 480")), "{:?}", check.notes);
     }
 }
