@@ -106,6 +106,19 @@ fn a_tube_pushed_sideways_as_timoshenko_says_on_one_and_two_ranks() {
     let top = field.chunks(3).map(|u| u[0]).fold(0.0f64, f64::max);
     assert!((top - 1.0).abs() < 1e-12, "the end moves 1 mm: {top}");
 
+    // the perturbation's sidecar: meshio (as ParaView's two readers, scripts/check-paraview.sh's
+    // way) finds the base state's displacement and the perturbation's field on the mesh
+    let sidecar = one.h5.with_file_name(format!("{}_cantilever.xmf", one.h5.file_stem().unwrap().to_string_lossy()));
+    let read = common::python()
+        .arg("-c")
+        .arg("import meshio, sys; m = meshio.read(sys.argv[1]); print(sorted(m.point_data), len(m.points), m.point_data['displacement'][:, 0].max())")
+        .arg(&sidecar)
+        .output()
+        .unwrap();
+    let text = String::from_utf8_lossy(&read.stdout);
+    assert!(read.status.success(), "{text}{}", String::from_utf8_lossy(&read.stderr));
+    assert!(text.starts_with("['amplitudes', 'base_displacement', 'displacement'] 805 1.0"), "{text}");
+
     // `slideline post` prints the reactions as the run did
     let post = common::command_in(one.dir.path(), 1).args(["post", one.h5.to_str().unwrap()]).output().unwrap();
     let printed = String::from_utf8_lossy(&post.stdout);

@@ -10,8 +10,10 @@ use crate::model::perturbation::Perturbation;
 use crate::solve::perturbation::PerturbationAnswer;
 
 impl ResultsFile {
-    /// Writes perturbation step `p`'s answer (collective; every rank holds the whole answer).
-    pub fn write_perturbation(&mut self, p: &Perturbation, answer: &PerturbationAnswer, partition: &Partition) -> Result<()> {
+    /// Writes perturbation step `p`'s answer (collective; every rank holds the whole answer),
+    /// and rank 0 its XDMF sidecar, with the base state's displacement from increment group
+    /// `base` (its fields in the file).
+    pub fn write_perturbation(&mut self, p: &Perturbation, answer: &PerturbationAnswer, partition: &Partition, base: Option<&str>) -> Result<()> {
         let path = self.path.clone();
         let err = h5err(&path);
         let top = match self.file.link_exists("perturbations") {
@@ -38,6 +40,11 @@ impl ResultsFile {
                 s.new_attr::<f64>().create(*name).map_err(&err)?.write_scalar(value).map_err(&err)?;
             }
         }
-        self.file.flush().map_err(&err)
+        self.file.flush().map_err(&err)?;
+        if partition.rank == 0 {
+            let elements = partition.element_offsets[partition.size];
+            super::xdmf::write_perturbation_sidecar(&path, &p.name, base, nn, elements)?;
+        }
+        Ok(())
     }
 }

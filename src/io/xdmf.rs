@@ -155,6 +155,37 @@ impl Sidecar {
     }
 }
 
+/// The sidecar of perturbation step `name` beside results file `h5`: `STEM_NAME.xmf`, one grid
+/// on the undeformed mesh with the base state's displacement (`base`, an increment's group, when
+/// its fields are in the file) and the perturbation's field at theta = 0 and its amplitudes, each
+/// a 3-component vector: warp by the first, then by the second with a scale. Written by one
+/// process; returns its path.
+pub fn write_perturbation_sidecar(h5: &Path, name: &str, base: Option<&str>, nodes: usize, elements: usize) -> Result<PathBuf> {
+    let file = h5.file_name().map(|f| f.to_string_lossy().into_owned()).unwrap_or_default();
+    let stem = h5.file_stem().map(|f| f.to_string_lossy().into_owned()).unwrap_or_default();
+    let target = h5.with_file_name(format!("{stem}_{name}.xmf"));
+    let item = |path: &str, dims: &str| format!(r#"<DataItem Dimensions="{dims}" NumberType="Float" Precision="8" Format="HDF">{file}:{path}</DataItem>"#);
+    let vector = |label: &str, path: &str| {
+        format!(r#"<Attribute Name="{label}" AttributeType="Vector" Center="Node">{}</Attribute>"#, item(path, &format!("{nodes} 3")))
+    };
+    // one grid alone in the domain (meshio reads no other element there); units: mm
+    let mut x = String::from("<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\"><Domain>\n");
+    let _ = writeln!(x, r#"<Grid Name="perturbation {name}" GridType="Uniform">"#);
+    let _ = writeln!(
+        x,
+        r#"<Topology TopologyType="Quadrilateral_8" NumberOfElements="{elements}"><DataItem Dimensions="{elements} 8" NumberType="Int" Precision="8" Format="HDF">{file}:/mesh/connectivity</DataItem></Topology>"#
+    );
+    let _ = writeln!(x, r#"<Geometry GeometryType="XY">{}</Geometry>"#, item("/mesh/coordinates", &format!("{nodes} 2")));
+    if let Some(g) = base {
+        let _ = writeln!(x, "{}", vector("base_displacement", &format!("/increments/{g}/nodal/displacement")));
+    }
+    let _ = writeln!(x, "{}", vector("displacement", &format!("/perturbations/{name}/displacement")));
+    let _ = writeln!(x, "{}", vector("amplitudes", &format!("/perturbations/{name}/amplitudes")));
+    x.push_str("</Grid></Domain></Xdmf>\n");
+    std::fs::write(&target, x).map_err(|e| Error::Output { path: target.clone(), message: e.to_string() })?;
+    Ok(target)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -409,7 +409,9 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
         for note in &answer.notes {
             progress.note(&format!("note: {note}"));
         }
-        stop_all_on_write_error(&world, results.write_perturbation(p, &answer, &partition))?;
+        // the base state's fields: the last increment's (always written: it ends its step)
+        let base_group = rows.last().map(|r| format!("{:06}", r.number));
+        stop_all_on_write_error(&world, results.write_perturbation(p, &answer, &partition, base_group.as_deref()))?;
         perturbations.push((p.name.clone(), answer));
     }
     progress.finish();
