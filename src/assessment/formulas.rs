@@ -136,8 +136,9 @@ impl UBellows {
 
     /// Where the code's formulas are not for this bellows: each violated condition of
     /// applicability, named with its values. ASME VIII-1 App. 26 (2013), 26-3: (a) N q <= 3 Db,
-    /// (b) n t <= 5 mm; 26-6.2 for U-shaped convolutions: the convolution height w <= Db / 3 and
-    /// the torus radius rm >= 3 t; and the U shape itself (2 rm <= w: tori no taller than the
+    /// (b) n t <= 5 mm (as its text prints them); 26-6.2 for U-shaped convolutions, as usually
+    /// quoted (not checked against the code's text): the convolution height w <= Db / 3 and the
+    /// torus radius rm >= 3 t; and the U shape itself (2 rm <= w: tori no taller than the
     /// convolution). Lengths in mm.
     pub fn conditions_of_applicability(&self) -> Vec<String> {
         let mut violated = Vec::new();
