@@ -44,8 +44,8 @@ pub struct BaseState<'a> {
     pub pressures: &'a [(String, f64)],
 }
 
-/// What the general steps leave for the perturbation steps, kept at each converged increment:
-/// the stress of this rank's elements, whether any point has yielded, the pressures in force.
+/// What the general steps leave for the perturbation steps, kept at the end of the last one:
+/// the stress and equivalent plastic strain of this rank's elements, the pressures in force.
 #[derive(Clone, Debug, Default)]
 pub struct KeptBase {
     pub stress: Vec<[[f64; 4]; QUADRATURE_POINTS]>,

@@ -140,8 +140,7 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
     let continued = rows.len();
     let (mut reserved_couplings, mut pattern_refits) = (0usize, 0usize);
     let first_step = resumed.as_ref().map_or(0, |r| r.step);
-    // the base state of the perturbation steps, if any: the last converged increment's stress,
-    // whether anything has yielded, and the pressures in force
+    // the base state of the perturbation steps, if any: the end of the last general step
     let mut base: Option<super::perturbation::KeptBase> = None;
     for (s, step) in model.steps.iter().enumerate().skip(first_step) {
         let resumed_here = resumed.take();
@@ -301,7 +300,9 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
                 world.all_reduce_into(&local[..], &mut total[..], SystemOperation::sum());
                 contact.recover_tractions(&total);
             }
-            if !model.perturbations.is_empty() {
+            // only the end of the last general step is the perturbations' base (a run that stops
+            // before it returns before them): no copy at every increment
+            if !model.perturbations.is_empty() && s + 1 == model.steps.len() && lambda >= 1.0 {
                 base = Some(super::perturbation::KeptBase {
                     stress: fields.stress.clone(),
                     plastic_strain: fields.plastic_strain.clone(),
