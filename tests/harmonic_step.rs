@@ -204,3 +204,81 @@ fn a_follower_end_load_turns_with_the_tube() {
     // the base takes G back (the follower load's lateral part is the difference)
     assert!((bottom + g).abs() < 0.02 * g, "base {bottom} against -{g}");
 }
+
+/// The tube in two halves pressed together end to end (a contact pair across z = L/2, normal
+/// and tangential penalties 1e6 MPa/mm), its top ring moved sideways by 1 mm, rotation held:
+/// - with friction the joint sticks, and the halves bend and shear as the one tube: the guided
+///   beam's force (Timoshenko, above, 7600 N) within 1 % (the joint's compliance, about E /
+///   (eps L) = 2e-4 of the beam's, and the base compression's softening, 0.05 %, are below
+///   it); 1 and 2 ranks agree to 1e-8;
+/// - frictionless, the joint carries no shear: each half is clamped at one end, with no shear,
+///   the moment is constant and, both ends' rotations held, zero; the offset is all slip at
+///   the joint and the force is below 1e-3 of the sticking one (what remains is the base
+///   pressure's geometric terms);
+/// - with the pair left out (`without_contact`) the halves are apart: no force at all (1e-9).
+#[test]
+fn a_tube_in_two_halves_bends_as_one_when_its_joint_sticks_and_slips_when_frictionless() {
+    let deck = |friction: &str, without: &str| {
+        format!(
+            r#"
+[[mesh.block]]
+name = "lower"
+r = [90.0, 100.0]
+z = [0.0, {half}]
+divisions = [2, 50]
+[[mesh.block]]
+name = "upper"
+r = [90.0, 100.0]
+z = [{half}, {L}]
+divisions = [2, 50]
+[[material]]
+name = "steel"
+youngs_modulus = {E}
+poissons_ratio = {NU}
+[[contact]]
+name = "joint"
+slave = "upper_bottom"
+master = "lower_top"
+penalty = 1.0e6
+{friction}
+[[step]]
+name = "press"
+boundary = [ {{ set = "lower_bottom", ur = 0.0, uz = 0.0 }}, {{ set = "upper_top", uz = -0.01 }} ]
+[[step]]
+name = "guided"
+procedure = "harmonic"
+mode = 1
+{without}
+boundary = [ {{ set = "lower_bottom", ur = 0.0, uz = 0.0, ut = 0.0 }}, {{ set = "upper_top", lateral = 1.0 }} ]
+"#,
+            half = L / 2.0
+        )
+    };
+    let sticking = "friction = 0.3\ntangential_penalty = 1.0e6";
+    let force = |run: &common::Run| resultants(&Results::open(&run.h5), "guided", "upper_top").0;
+    let one = run_deck(&deck(sticking, ""), &[], 1, &[]);
+    one.assert_ok();
+    let stuck = force(&one);
+    let ei = E * second_moment();
+    let expected = 12.0 * ei / (L.powi(3) * (1.0 + 12.0 * ei / (shear_stiffness() * L * L)));
+    eprintln!("two halves, sticking: {stuck:.2} N against the one tube's {expected:.2} N ({:+.3} %)", 100.0 * (stuck / expected - 1.0));
+    assert!((stuck / expected - 1.0).abs() < 0.01, "{stuck} against {expected}");
+    let two = run_deck(&deck(sticking, ""), &[], 2, &[]);
+    two.assert_ok();
+    let stuck2 = force(&two);
+    assert!((stuck2 - stuck).abs() < 1e-8 * stuck, "{stuck} on one rank, {stuck2} on two");
+
+    let frictionless = run_deck(&deck("", ""), &[], 1, &[]);
+    frictionless.assert_ok();
+    let slipping = force(&frictionless);
+    eprintln!("two halves, frictionless: {slipping:.4e} N");
+    assert!(slipping.abs() < 1e-3 * stuck, "frictionless joint: {slipping} N against {stuck} N sticking");
+
+    let apart = run_deck(&deck(sticking, "without_contact = [\"joint\"]"), &[], 1, &[]);
+    apart.assert_ok();
+    let free = force(&apart);
+    assert!(free.abs() < 1e-9 * stuck, "the pair left out: {free} N");
+    let bad = run_deck(&deck(sticking, "without_contact = [\"seal\"]"), &[], 1, &[]);
+    assert_eq!(bad.code(), 2, "{}", bad.stderr());
+    assert!(bad.stderr().contains("without_contact: no contact pair 'seal'"), "{}", bad.stderr());
+}

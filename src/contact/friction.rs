@@ -40,7 +40,7 @@ pub struct FrictionLaw {
 
 impl FrictionLaw {
     /// eps_T at contact pressure `pressure`.
-    fn stiffness<T: Scalar>(&self, pressure: T) -> T {
+    pub(crate) fn stiffness<T: Scalar>(&self, pressure: T) -> T {
         match self.elastic_slip {
             Some(gamma) => pressure * (self.coefficient / gamma),
             None => T::from_f64(self.penalty),

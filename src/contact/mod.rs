@@ -4,6 +4,7 @@
 
 pub mod adjust;
 pub mod friction;
+pub mod harmonic;
 pub mod integrated;
 pub mod node_to_edge;
 pub mod search;

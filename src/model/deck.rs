@@ -271,6 +271,8 @@ struct StepSpec {
     procedure: Option<String>,
     /// The harmonic's circumferential mode n.
     mode: Option<u32>,
+    /// Harmonic steps: contact pairs left out of the step's stiffness.
+    without_contact: Option<Vec<String>>,
     increments: Option<usize>,
     temperature: Option<f64>,
     #[serde(default)]
@@ -395,6 +397,9 @@ pub fn parse(text: &str, path: &Path) -> Result<Model> {
                 if let Some(mode) = s.mode {
                     return Err(Error::input(format!("step '{name}': mode = {mode} is for procedure = \"harmonic\"")));
                 }
+                if s.without_contact.is_some() {
+                    return Err(Error::input(format!("step '{name}': without_contact is for procedure = \"harmonic\"")));
+                }
                 let mut displacements = Vec::new();
                 for b in &s.boundary {
                     if let Some(key) = [("ut", b.ut), ("lateral", b.lateral), ("rotation", b.rotation)].iter().find(|(_, v)| v.is_some()).map(|(k, _)| k) {
@@ -442,7 +447,14 @@ pub fn parse(text: &str, path: &Path) -> Result<Model> {
                         }
                     }
                 }
-                perturbations.push(Perturbation { name, mode, displacements, rings, pressures });
+                perturbations.push(Perturbation {
+                    name,
+                    mode,
+                    displacements,
+                    rings,
+                    pressures,
+                    without_contact: s.without_contact.clone().unwrap_or_default(),
+                });
             }
             other => return Err(Error::input(format!("step '{name}': procedure {other:?} is not one of \"static\", \"harmonic\""))),
         }

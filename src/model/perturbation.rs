@@ -59,6 +59,8 @@ pub struct Perturbation {
     pub rings: Vec<RingMotion>,
     /// Harmonic pressure amplitudes, p cos n theta (MPa, positive pushing into the body).
     pub pressures: Vec<Pressure>,
+    /// Contact pairs whose closed nodes carry nothing in this step (by name).
+    pub without_contact: Vec<String>,
 }
 
 /// The largest mode accepted: beyond it a Q8 mesh of any reasonable ring resolves nothing.
@@ -96,6 +98,11 @@ impl Perturbation {
             }
             if !p.value.is_finite() {
                 return Err(at(format!("pressure on '{}' must be finite", p.surface)));
+            }
+        }
+        for name in &self.without_contact {
+            if !model.contacts.iter().any(|c| &c.name == name) {
+                return Err(at(format!("without_contact: no contact pair '{name}'")));
             }
         }
         if self.displacements.is_empty() && self.rings.is_empty() && self.pressures.is_empty() {

@@ -9,7 +9,7 @@
 
 pub use super::contact_surfaces::contact_nodes;
 use super::contact_surfaces::{edge_neighbourhood, surfaces_and_directions};
-pub use super::engagement::Engagement;
+pub use super::engagement::{BaseContact, Engagement};
 use super::engagement::{Engagements, PointHessians};
 use super::pattern::ContactPattern;
 use crate::contact::integrated::WeightedGap;
@@ -173,6 +173,8 @@ pub struct ContactAssembly {
     /// Per pass, the weighted gaps of the last evaluation (one per owned slave node), kept so
     /// the next one refills their sample vectors.
     gaps: Vec<Vec<WeightedGap>>,
+    /// Per pass, the end of its engagements in `engagements` (passes in order).
+    pass_ends: Vec<usize>,
     evaluated_at: Option<(Vec<[f64; 2]>, Multipliers)>,
     /// Whether the engagements carry their tangents.
     with_tangents: bool,
@@ -274,6 +276,7 @@ impl ContactAssembly {
             roundoff: 0.0,
             engagements: Engagements::default(),
             gaps,
+            pass_ends: Vec::new(),
             evaluated_at: None,
             with_tangents: false,
             points: 0,
@@ -322,12 +325,14 @@ impl ContactAssembly {
         self.nodal_forces.resize(self.nodes.len(), [0.0; 2]);
         self.roundoff = 0.0;
         self.points = 0;
+        self.pass_ends.clear();
         for p in 0..self.passes.len() {
             let pair = &model.contacts[self.passes[p].pair];
             match pair.integration {
                 ContactIntegration::NodeToSegment => self.evaluate_nodal(model, pair, p, &mut out),
                 ContactIntegration::Segment => self.evaluate_integrated(model, pair, p, &mut out),
             }
+            self.pass_ends.push(out.as_slice().len());
         }
         for e in out.as_slice() {
             for (a, &n) in e.nodes.iter().enumerate() {
@@ -344,6 +349,19 @@ impl ContactAssembly {
     /// The active slave nodes' contributions from the last `evaluate`.
     pub fn engagements(&self) -> &[Engagement] {
         self.engagements.as_slice()
+    }
+
+    /// The closed contact nodes this rank owns at the gathered positions (a converged state),
+    /// with their pair, for the perturbation steps about it (`contact::harmonic`).
+    pub fn base_contacts(&mut self, model: &Model) -> Vec<(usize, BaseContact)> {
+        self.evaluate(model, Need::Tangent);
+        let mut start = 0;
+        let mut out = Vec::new();
+        for (pass, &end) in self.passes.iter().zip(&self.pass_ends) {
+            out.extend(self.engagements.as_slice()[start..end].iter().map(|e| (pass.pair, e.for_perturbation())));
+            start = end;
+        }
+        out
     }
 
     /// Round-off floor (squared) of this rank's last evaluation.

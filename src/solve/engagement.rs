@@ -4,6 +4,7 @@
 //! recipe), without searching again.
 
 use crate::contact::friction::{friction_residual, friction_residual_and_tangent, FrictionLaw, FrictionState, FrictionVector, SlipReference};
+use crate::contact::harmonic::Sticking;
 use crate::contact::integrated::{GapSample, SampleMatrix};
 use crate::contact::node_to_edge::{edge_residual_and_tangent, ContactLaw, EdgeProjection};
 
@@ -40,6 +41,15 @@ enum TangentRecipe {
     FrictionIntegrated { recipe: FrictionRecipe, slots: [usize; 7], pressure: f64 },
 }
 
+/// A closed contact node of the base state, for a perturbation step.
+#[derive(Clone, Debug, PartialEq)]
+pub enum BaseContact {
+    /// The axisymmetric contact tangent over `nodes` (row-major, (r, z) per node).
+    Normal { nodes: Vec<usize>, tangent: Vec<f64> },
+    /// A frictional node, sticking: slave node and master edge [s, e_1, e_2, e_3].
+    Sticking { nodes: [usize; 4], sticking: Sticking },
+}
+
 /// The friction kernel's arguments at one slave node (see `contact::friction`).
 #[derive(Clone, Copy, Debug)]
 pub(super) struct FrictionRecipe {
@@ -66,6 +76,18 @@ impl Default for TangentRecipe {
 }
 
 impl Engagement {
+    /// What the engagement gives a harmonic perturbation about the state it was found in
+    /// (`contact::harmonic`): a normal one its tangent (formed), a frictional one a sticking
+    /// node on the edge it projects to.
+    pub fn for_perturbation(&self) -> BaseContact {
+        match &self.recipe {
+            TangentRecipe::Friction { recipe: r, slots } | TangentRecipe::FrictionIntegrated { recipe: r, slots, .. } => {
+                BaseContact::Sticking { nodes: [0, 1, 2, 3].map(|a| self.nodes[slots[a]]), sticking: Sticking::at(r.xs, &r.master, r.xi, &r.law, &r.friction) }
+            }
+            _ => BaseContact::Normal { nodes: self.nodes.clone(), tangent: self.tangent.clone() },
+        }
+    }
+
     /// Node-to-segment: slave node `node` at `xs` on the master edge with nodes `edge` at
     /// `x_master`, projected at `projection`; `residual` is the kernel's over [node, edge...].
     #[allow(clippy::too_many_arguments)]

@@ -12,13 +12,18 @@
 //! elastoplastic`): the limit of the radial return's consistent tangent as the increment
 //! vanishes, what a perturbation about a yielded state sees if it loads further.
 //!
-//! Not yet in the stiffness: contact (the base state's closed contact nodes carry nothing in
-//! the perturbation; the step says so).
+//! Contact: every contact node closed in the base state keeps its normal penalty stiffness (the
+//! base state's axisymmetric contact tangent, geometric terms and all) on the meridional
+//! amplitudes, and a node of a pair with friction sticks, along the meridian and around the
+//! hoop (`contact::harmonic`); open nodes stay open. A step may leave named pairs out
+//! (`without_contact`).
 //!
 //! On the axis (r = 0) the amplitudes obey regularity, applied to free amplitudes of nodes
 //! there: n = 0, U_r = U_t = 0; n = 1, U_z = 0 and U_t = -U_r (one unknown, U_r); n >= 2, all
 //! zero.
 
+use super::contact::BaseContact;
+use crate::contact::harmonic::{normal_stiffness, sticking_stiffness};
 use crate::dist::Partition;
 use crate::element::harmonic::{elastoplastic, initial_stress_stiffness, isotropic, material_stiffness, ring_factor, HarmonicMatrix, Tangent6};
 use crate::element::harmonic_pressure::harmonic_pressure_stiffness;
@@ -42,6 +47,8 @@ pub struct BaseState<'a> {
     /// The equivalent plastic strain at the same points.
     pub plastic_strain: &'a [[f64; QUADRATURE_POINTS]],
     pub pressures: &'a [(String, f64)],
+    /// The closed contact nodes this rank owns, with their pair.
+    pub contacts: &'a [(usize, BaseContact)],
 }
 
 /// What the general steps leave for the perturbation steps, kept at the end of the last one:
@@ -51,6 +58,7 @@ pub struct KeptBase {
     pub stress: Vec<[[f64; 4]; QUADRATURE_POINTS]>,
     pub plastic_strain: Vec<[f64; QUADRATURE_POINTS]>,
     pub pressures: Vec<(String, f64)>,
+    pub contacts: Vec<(usize, BaseContact)>,
 }
 
 /// A set's reactions: the sums of its nodal forces per radian, and the full ring's resultants
@@ -139,6 +147,14 @@ pub fn solve(session: &PetscSession, model: &Model, partition: &Partition, base:
             }
         }
     }
+    // the closed contact nodes of the pairs the step keeps
+    let left_out: Vec<usize> = step.without_contact.iter().filter_map(|name| model.contacts.iter().position(|c| &c.name == name)).collect();
+    for (_, contact) in base.contacts.iter().filter(|(pair, _)| !left_out.contains(pair)) {
+        match contact {
+            BaseContact::Normal { nodes, tangent } => blocks.push((nodes.clone(), normal_stiffness(tangent, nodes.len(), step.mode))),
+            BaseContact::Sticking { nodes, sticking } => blocks.push((nodes.to_vec(), sticking_stiffness(sticking, step.mode).as_slice().to_vec())),
+        }
+    }
 
     // the system: K_ff U_f = f_f - K_fp U_p
     let mut rows = Vec::new();
@@ -217,11 +233,7 @@ pub fn solve(session: &PetscSession, model: &Model, partition: &Partition, base:
     let mut total = vec![0.0; 3 * nodes];
     world.all_reduce_into(&force[..], &mut total[..], SystemOperation::sum());
     let reactions = reactions(model, step, &current, &total, &centres);
-    let mut notes = Vec::new();
-    if !model.contacts.is_empty() {
-        notes.push(format!("perturbation step '{}': contact carries nothing in the perturbation (not yet built)", step.name));
-    }
-    Ok(PerturbationAnswer { amplitudes, reactions, notes })
+    Ok(PerturbationAnswer { amplitudes, reactions, notes: Vec::new() })
 }
 
 /// The model's size, for the axis tolerance.

@@ -307,6 +307,7 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
                     stress: fields.stress.clone(),
                     plastic_strain: fields.plastic_strain.clone(),
                     pressures: problem.load().pressures.clone(),
+                    contacts: problem.contact.as_mut().map(|c| c.base_contacts(model)).unwrap_or_default(),
                 });
             }
             let contacts = contact_summaries(&world, model, &problem);
@@ -405,6 +406,7 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
             stress: &kept.stress,
             plastic_strain: &kept.plastic_strain,
             pressures: &kept.pressures,
+            contacts: &kept.contacts,
         };
         let answer = super::perturbation::solve(session, model, &partition, &state, p)?;
         for note in &answer.notes {
