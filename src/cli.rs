@@ -256,6 +256,15 @@ pub struct BellowsArgs {
     /// the life from the run's own strain range.
     #[arg(long)]
     pub assess: bool,
+    /// The lateral spring rate: tube B's end offset sideways by MM, its rotation held, by a
+    /// harmonic perturbation (mode 1) of the joint at rest and of the run's end state, beside
+    /// the code's beam analogy (the guide sleeve's contact left out).
+    #[arg(long, value_name = "MM")]
+    pub lateral: Option<f64>,
+    /// The angular spring rate: tube B's end rotated by DEG about a diameter through the
+    /// bellows' centre, as --lateral.
+    #[arg(long, value_name = "DEG")]
+    pub angular: Option<f64>,
     /// A load cycle: after the compression, a further step takes tube B's end back to where it
     /// started (the force-displacement picture then shows the loop).
     #[arg(long)]

@@ -8,6 +8,7 @@ use cli::{Cli, Command, PostArgs, StudyArgs};
 use mpi::traits::Communicator;
 use slideline::assessment::code::{CodeCheck, Duty, Source};
 use slideline::assessment::convolution::Coefficients;
+use slideline::assessment::flexibility::{Flexibility, Movements};
 use slideline::dist::Partition;
 use slideline::io::plots::{outline_picture, SegmentLayer};
 use slideline::io::reader::ResultsReader;
@@ -156,6 +157,20 @@ fn main() -> ExitCode {
                 Ok(p) => p,
                 Err(e) => return fail(&e, launched_as_rank_zero()),
             };
+            // the movements of the flexibility perturbations, if any
+            let movements = match (args.lateral, args.angular) {
+                (None, None) => None,
+                (lateral, angular) => {
+                    let bad = [("--lateral", lateral, "mm"), ("--angular", angular, "degrees")]
+                        .into_iter()
+                        .find(|(_, v, _)| v.is_some_and(|v| !v.is_finite() || v == 0.0));
+                    if let Some((flag, v, units)) = bad {
+                        let e = Error::input(format!("{flag} {}: give a nonzero movement in {units}", v.unwrap_or_default()));
+                        return fail(&e, launched_as_rank_zero());
+                    }
+                    Some(Movements { lateral: lateral.unwrap_or(0.0), angular: angular.unwrap_or(0.0) })
+                }
+            };
             if let Some(path) = &args.export_inp {
                 // checked before any work; never the --params file it may come from
                 if let Err(e) = slideline::io::check_output_path(path, args.params.as_deref().map(|p| (p, "the --params file"))) {
@@ -203,6 +218,18 @@ fn main() -> ExitCode {
                 Some(Ok(fe)) => Some(fe),
                 None => None,
             };
+            // the flexibility of the joint at rest (collective)
+            let rest = movements.map(|m| {
+                if root && !args.quiet {
+                    println!("flexibility: the joint at rest and its harmonic perturbations ...");
+                }
+                slideline::assessment::flexibility::at_rest(&session, &params, m)
+            });
+            let rest = match rest {
+                Some(Err(e)) => return fail(&e, root),
+                Some(Ok(f)) => movements.map(|m| (m, f)),
+                None => None,
+            };
             if let (true, false, Some(c)) = (root, args.quiet, &code) {
                 let k = c.coefficients;
                 println!(
@@ -210,7 +237,12 @@ fn main() -> ExitCode {
                     params.plies, params.ply_thickness, params.convolutions, params.pitch, params.height, c.axial_rate, c.axial_rate * 2.5 / 360.0, c.c1, c.c2, k.cp, k.cf, k.cd, c.source.label()
                 );
             }
-            let result = model::bellows::model(&params).and_then(|m| {
+            let result = model::bellows::model(&params).and_then(|mut m| {
+                // the same perturbations about the run's end state
+                if let Some(movements) = movements {
+                    m.perturbations = slideline::assessment::flexibility::steps(&params, movements);
+                    m.validate()?;
+                }
                 run(
                     &session,
                     &m,
@@ -224,7 +256,7 @@ fn main() -> ExitCode {
                 )
             });
             warn_unused_options(&session, root && !is_bad_input(&result));
-            finish(result, root, |summary| report(&params, code.as_ref(), fe.as_ref(), summary, &args.output))
+            finish(result, root, |summary| report(&params, code.as_ref(), fe.as_ref(), rest.as_ref(), summary, &args.output))
         }
         Command::PenaltyStudy(args) => {
             let session = match PetscSession::initialize(&args.petsc) {
@@ -356,6 +388,7 @@ fn report(
     params: &model::bellows::BellowsParams,
     code: Option<&CodeCheck>,
     fe: Option<&slideline::assessment::finite_element::FeCheck>,
+    rest: Option<&(Movements, Flexibility)>,
     summary: &RunSummary,
     output: &std::path::Path,
 ) -> Result<(), Error> {
@@ -368,6 +401,10 @@ fn report(
     println!("\n{}", report.table());
     if let (Some(c), Some(f)) = (code, fe) {
         println!("{}", slideline::report::assessment_section(c, f, life.as_ref()));
+    }
+    if let Some((movements, at_rest)) = rest {
+        let operating = slideline::assessment::flexibility::from_run(params, *movements, &summary.perturbations, &reader)?;
+        println!("{}", slideline::report::flexibility_section(params, code, *movements, at_rest, Some(&operating)));
     }
     for path in report.pictures(output, &reader)? {
         println!("picture: {}", path.display());

@@ -6,6 +6,7 @@
 
 use crate::assessment::code::CodeCheck;
 use crate::assessment::finite_element::{FeCheck, Peak, StrainLife};
+use crate::assessment::flexibility::{Flexibility, Movements};
 use crate::error::Result;
 use crate::io::plots::{deformed_field, line_plot, Axes, Curve, FieldPicture, Marker};
 use crate::io::reader::ResultsReader;
@@ -376,4 +377,73 @@ impl BellowsReport {
         }
         Ok(written)
     }
+}
+
+/// The flexibility section: the lateral and angular spring rates and what the movements add,
+/// by harmonic perturbations of the joint at rest and at the end of its run, each beside the
+/// codes' beam analogy evaluated with the same state's axial rate (and, for the stresses, the
+/// code check's S5 + S6 at the movement's equivalent axial movement per convolution).
+pub fn flexibility_section(p: &BellowsParams, code: Option<&CodeCheck>, movements: Movements, rest: &Flexibility, operating: Option<&Flexibility>) -> String {
+    let g = crate::model::bellows::code_geometry(p);
+    let (dm, lb, n) = (g.mean_diameter(), g.convolutions as f64 * g.pitch, g.convolutions as f64);
+    // the axial movement the operating state has taken (the codes' Lb + x)
+    let stroke = if p.cycle { 0.0 } else { -p.displacement };
+    let states: Vec<(&str, &Flexibility, f64)> = std::iter::once(("at rest", rest, 0.0)).chain(operating.map(|f| ("operating", f, stroke))).collect();
+    let mut t = format!(
+        "\n  flexibility: harmonic perturbations (mode 1) of the joint, the guide sleeve's contact left out, beside the beam analogy\n  \
+         (EJMA; lateral 3 K Dm^2 / (2 Lb^2), angular K Dm^2 pi / 1440, K the same state's axial rate by finite elements; Dm {dm:.1} mm, Lb {lb:.1} mm)\n"
+    );
+    t.push_str(&format!("  {:<52}", ""));
+    for (name, _, _) in &states {
+        t.push_str(&format!(" {:>11} {:>11} {:>7}", format!("{name} FE"), "code", "FE/code"));
+    }
+    t.push('\n');
+    let cell = |v: Option<f64>, digits: usize| v.filter(|v| v.is_finite()).map_or("-".to_string(), |v| format!("{v:.digits$}"));
+    let row = |what: &str, pick: &dyn Fn(&Flexibility, f64) -> (Option<f64>, Option<f64>), digits: usize| {
+        let mut t = format!("  {what:<52}");
+        for (_, f, x) in &states {
+            let (fe, code) = pick(f, *x);
+            let ratio = match (fe, code) {
+                (Some(a), Some(b)) if b != 0.0 && a.is_finite() => format!("{:.2}", a / b),
+                _ => "-".into(),
+            };
+            t.push_str(&format!(" {:>11} {:>11} {ratio:>7}", cell(fe, digits), cell(code, digits)));
+        }
+        t + "\n"
+    };
+    t += &row("axial rate, N/mm full ring", &|f, _| (Some(f.axial_rate), None), 1);
+    let lateral_code = |f: &Flexibility| crate::assessment::formulas::lateral_rate(f.axial_rate, dm, lb);
+    let angular_code = |f: &Flexibility| crate::assessment::formulas::angular_rate_per_degree(f.axial_rate, dm);
+    // the code check's S5 + S6 at the equivalent axial movement per convolution of a movement
+    let code_stress = |e: f64| code.map(|c| g.s5(e, p.youngs_modulus, c.coefficients.cf) + g.s6(e, p.youngs_modulus, c.coefficients.cd));
+    let (y, theta) = (movements.lateral, movements.angular.to_radians());
+    let centre = crate::assessment::flexibility::centre(p);
+    if rest.lateral.is_some() {
+        let lateral = |f: &Flexibility| f.lateral.clone().expect("both states have the same steps");
+        t.push_str(&format!("  lateral offset {y} mm of tube B's end, its rotation held:\n"));
+        t += &row("  lateral rate, N/mm", &|f, _| (Some(lateral(f).rate), Some(lateral_code(f))), 1);
+        t += &row("  force at the fixed end, N", &|f, _| (Some(lateral(f).fixed_force.abs()), Some(lateral_code(f) * y.abs())), 1);
+        // the guided beam's inflection at the bellows' centre: M = F (z_centre - z_fixed)
+        t += &row("  moment at the fixed end, N mm", &|f, _| (Some(lateral(f).fixed_moment.abs()), Some(lateral_code(f) * y.abs() * centre)), 0);
+        let e = |x: f64| g.equivalent_axial_movement(x, y, 0.0) - x.abs() / n;
+        t += &row("  meridional stress added at a crest, MPa (code S5 + S6)", &|f, x| (Some(lateral(f).crest.value), code_stress(e(x))), 1);
+        t += &row("  meridional stress added at a root, MPa (code S5 + S6)", &|f, x| (Some(lateral(f).root.value), code_stress(e(x))), 1);
+        t += &row("  lateral force the guide sleeve takes as built, N", &|f, _| (f.sleeve_force.map(f64::abs), None), 1);
+    }
+    if rest.angular.is_some() {
+        let angular = |f: &Flexibility| f.angular.clone().expect("both states have the same steps");
+        t.push_str(&format!("  rotation {} degrees of tube B's end about the bellows' centre:\n", movements.angular));
+        t += &row("  angular rate, N mm/degree", &|f, _| (Some(angular(f).rate), Some(angular_code(f))), 0);
+        t += &row("  moment at the fixed end, N mm", &|f, _| (Some(angular(f).fixed_moment.abs()), Some(angular_code(f) * movements.angular.abs())), 0);
+        t += &row("  lateral force at the fixed end, N (the code's: none)", &|f, _| (Some(angular(f).fixed_force.abs()), None), 1);
+        let e = g.equivalent_axial_movement(0.0, 0.0, theta);
+        t += &row("  meridional stress added at a crest, MPa (code S5 + S6)", &|f, _| (Some(angular(f).crest.value), code_stress(e)), 1);
+        t += &row("  meridional stress added at a root, MPa (code S5 + S6)", &|f, _| (Some(angular(f).root.value), code_stress(e)), 1);
+    }
+    t.push_str(
+        "  at rest: no pressure, heat or stroke, elastic (the codes' assumption); operating: the end of the run's last step.\n  \
+         the stresses are |membrane| + |bending| across a ply, the largest over the crests' and roots' stations; the code's are for\n  \
+         the equivalent axial movement per convolution, 3 Dm y / (N (Lb + x)) and Dm theta / (2 N) (EJMA; ASME VIII-1 App. 26)\n",
+    );
+    t
 }

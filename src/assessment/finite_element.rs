@@ -42,7 +42,7 @@ pub struct Peak {
 }
 
 impl Peak {
-    fn offer(&mut self, value: f64, at: impl FnOnce() -> String) {
+    pub(super) fn offer(&mut self, value: f64, at: impl FnOnce() -> String) {
         if value > self.value {
             *self = Peak { value, at: at() };
         }
@@ -74,10 +74,10 @@ pub struct FeCheck {
 
 /// The linearised meridional and hoop stresses at one station of one ply.
 #[derive(Clone, Copy, Debug)]
-struct Station {
-    membrane: f64,
-    bending: f64,
-    hoop: f64,
+pub(super) struct Station {
+    pub membrane: f64,
+    pub bending: f64,
+    pub hoop: f64,
 }
 
 impl From<&Linearized> for Station {
@@ -137,7 +137,7 @@ fn elastic(p: &BellowsParams, step: Step) -> Result<crate::model::Model> {
 }
 
 /// The linearised stresses of one piece: [station][k], each with the ply it was found in.
-type PieceStations = Vec<Vec<(usize, Station)>>;
+pub(super) type PieceStations = Vec<Vec<(usize, Station)>>;
 
 /// The linearised stresses of every station of every piece, through the pack's thickness ply
 /// by ply (indexed [piece][station][k], with the ply's number from 0), from the last increment
@@ -145,9 +145,16 @@ type PieceStations = Vec<Vec<(usize, Station)>>;
 fn stations(file: &Path, p: &BellowsParams, pieces: &[ConvolutionPiece], scale: f64) -> Result<Vec<PieceStations>> {
     let r = ResultsReader::open(file)?;
     let last = r.increments()?.pop().ok_or_else(|| Error::Output { path: file.to_path_buf(), message: "no increment".into() })?;
-    let (coords, conn) = (r.coordinates()?, r.connectivity()?);
     let stress: Vec<[[f64; 4]; 9]> =
         r.field(&last, "stress")?.chunks_exact(36).map(|c| std::array::from_fn(|q| std::array::from_fn(|k| c[4 * q + k] * scale))).collect();
+    stations_of(&r, &stress, p, pieces)
+}
+
+/// The linearised stresses of `stress` (the Gauss points' [rr, zz, tt, rz] of every element of
+/// the file `r`, in its order) at every station of every piece, as [`stations`].
+pub(super) fn stations_of(r: &ResultsReader, stress: &[[[f64; 4]; 9]], p: &BellowsParams, pieces: &[ConvolutionPiece]) -> Result<Vec<PieceStations>> {
+    let file = r.path();
+    let (coords, conn) = (r.coordinates()?, r.connectivity()?);
     // a sampler per ply: a section ends on the ply's surfaces, where the next ply begins
     let sets: Vec<Vec<usize>> = (1..=p.plies).map(|k| r.element_set(&format!("ply{k}"))).collect::<Result<_>>()?;
     let ply_conn: Vec<Vec<[usize; 8]>> = sets.iter().map(|set| set.iter().map(|&e| conn[e]).collect()).collect();

@@ -7,6 +7,7 @@
 pub mod code;
 pub mod convolution;
 pub mod finite_element;
+pub mod flexibility;
 pub mod formulas;
 
 use crate::error::{Error, Result};

@@ -34,6 +34,10 @@ pub fn describe(group: &str, name: &str) -> (&'static str, String) {
             "mm",
             "harmonic amplitudes [U_r, U_z, U_t] of each node: u_r = U_r cos n theta, u_z = U_z cos n theta, u_theta = U_t sin n theta (n = 0: U_t)".into(),
         ),
+        ("perturbations", "stress") => (
+            "MPa",
+            "stress amplitudes [s_rr, s_zz, s_tt, s_rz, s_rt, s_zt] at the 3 x 3 Gauss points of each element: the first four x cos n theta, the last two x sin n theta (n = 0: constant); D : strain".into(),
+        ),
         ("perturbations", "displacement") => ("mm", "the perturbation's displacement at theta = 0 as a vector (u_r, u_z, u_theta) for ParaView's warp".into()),
         ("mesh", "coordinates") => ("mm", "r, z of each node".into()),
         ("mesh", "connectivity") => ("-", "the 8 nodes of each Q8 element (rows of /mesh/coordinates), corners then mid-sides, counter-clockwise".into()),

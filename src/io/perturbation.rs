@@ -1,10 +1,12 @@
 //! A perturbation step in the results file, `/perturbations/NAME` (collective): the mode, the
-//! harmonic amplitudes of every node, the displacement at theta = 0 as a 3-D vector, and
+//! harmonic amplitudes of every node, the displacement at theta = 0 as a 3-D vector, the
+//! stress amplitudes at the Gauss points, and
 //! `reactions/SET` with each set's summed nodal forces (per radian) and full-ring resultants
 //! as attributes.
 
 use super::results::{h5err, write_rows, ResultsFile};
 use crate::dist::Partition;
+use crate::element::solid::QUADRATURE_POINTS;
 use crate::error::Result;
 use crate::model::perturbation::Perturbation;
 use crate::solve::perturbation::PerturbationAnswer;
@@ -32,6 +34,10 @@ impl ResultsFile {
         let hoop = if p.mode == 0 { 1.0 } else { 0.0 };
         let at_zero: Vec<f64> = owned.iter().flat_map(|&n| [answer.amplitudes[n][0], answer.amplitudes[n][1], hoop * answer.amplitudes[n][2]]).collect();
         write_rows(&g, "displacement", &[nn, 3], slab, &at_zero, &path)?;
+        let ne = partition.element_offsets[partition.size];
+        let element_slab = (partition.element_offsets[partition.rank], partition.element_offsets[partition.rank + 1]);
+        let stress: Vec<f64> = answer.stress.iter().flatten().flatten().copied().collect();
+        write_rows(&g, "stress", &[ne, QUADRATURE_POINTS, 6], element_slab, &stress, &path)?;
         let reactions = g.create_group("reactions").map_err(&err)?;
         for r in &answer.reactions {
             let s = reactions.create_group(&r.set).map_err(&err)?;

@@ -322,6 +322,11 @@ impl ResultsReader {
         Ok(out)
     }
 
+    /// A dataset of perturbation step `step`, flattened (row-major).
+    pub fn perturbation_field(&self, step: &str, name: &str) -> Result<Vec<f64>> {
+        self.read_f64(&format!("perturbations/{step}/{name}"))
+    }
+
     /// The design assessment's finite-element figures the file holds, if any.
     pub fn finite_element_assessment(
         &self,

@@ -25,7 +25,9 @@
 use super::contact::BaseContact;
 use crate::contact::harmonic::{normal_stiffness, sticking_stiffness};
 use crate::dist::Partition;
-use crate::element::harmonic::{elastoplastic, initial_stress_stiffness, isotropic, material_stiffness, ring_factor, HarmonicMatrix, Tangent6};
+use crate::element::harmonic::{
+    elastoplastic, harmonic_strain, initial_stress_stiffness, isotropic, material_stiffness, ring_factor, HarmonicMatrix, Tangent6,
+};
 use crate::element::harmonic_pressure::harmonic_pressure_stiffness;
 use crate::element::pressure::compute_pressure_load;
 use crate::element::solid::{ElementGeometry, NODES, QUADRATURE_POINTS};
@@ -78,6 +80,11 @@ pub struct PerturbationAnswer {
     /// [U_r, U_z, U_t] of every node (model order).
     pub amplitudes: Vec<[f64; 3]>,
     pub reactions: Vec<SetReaction>,
+    /// The stress amplitudes [rr, zz, tt, rz, rt, zt] (MPa; the first four x cos n theta, the
+    /// shears with theta x sin n theta, n = 0: constant) at the Gauss points of this rank's
+    /// elements (partition order): the material's response D : strain, as Abaqus reports a
+    /// perturbation's stress.
+    pub stress: Vec<[[f64; 6]; QUADRATURE_POINTS]>,
     pub notes: Vec<String>,
 }
 
@@ -102,6 +109,8 @@ pub fn solve(session: &PetscSession, model: &Model, partition: &Partition, base:
 
     // element and edge matrices on this rank, with their amplitudes
     let mut blocks: Vec<(Vec<usize>, Vec<f64>)> = Vec::new();
+    // each local element's geometry and Gauss-point tangents, for its stress
+    let mut materials: Vec<(ElementGeometry, [Tangent6; QUADRATURE_POINTS])> = Vec::new();
     let mut load = vec![[0.0f64; 3]; nodes];
     for (k, &e) in partition.local_elements().iter().enumerate() {
         let conn = mesh.elements[e];
@@ -121,6 +130,7 @@ pub fn solve(session: &PetscSession, model: &Model, partition: &Partition, base:
         });
         let ke: HarmonicMatrix = material_stiffness(&geo, step.mode, &d) + initial_stress_stiffness(&geo, step.mode, &base.stress[k]);
         blocks.push((conn.to_vec(), ke.as_slice().to_vec()));
+        materials.push((geo, d));
     }
     let local: std::collections::HashSet<usize> = partition.local_elements().iter().copied().collect();
     let factor = ring_factor(step.mode);
@@ -233,7 +243,17 @@ pub fn solve(session: &PetscSession, model: &Model, partition: &Partition, base:
     let mut total = vec![0.0; 3 * nodes];
     world.all_reduce_into(&force[..], &mut total[..], SystemOperation::sum());
     let reactions = reactions(model, step, &current, &total, &centres);
-    Ok(PerturbationAnswer { amplitudes, reactions, notes: Vec::new() })
+    // the material's stress amplitudes, D times the strain's
+    let stress = partition
+        .local_elements()
+        .iter()
+        .zip(&materials)
+        .map(|(&e, (geo, d))| {
+            let strain = harmonic_strain(geo, step.mode, &mesh.elements[e].map(|n| amplitudes[n]));
+            std::array::from_fn(|q| (d[q] * nalgebra::SVector::<f64, 6>::from(strain[q])).into())
+        })
+        .collect();
+    Ok(PerturbationAnswer { amplitudes, reactions, stress, notes: Vec::new() })
 }
 
 /// The model's size, for the axis tolerance.

@@ -1,0 +1,187 @@
+//! The bellows' lateral and angular spring rates by harmonic perturbation steps (mode 1) about a
+//! state of the joint (`solve::perturbation`), beside the codes' beam analogy evaluated with the
+//! joint's own axial rate (a mode 0 perturbation about the same state):
+//! - `axial`: the moving end pushed 1 mm along the axis, twist held at both ends;
+//! - `lateral`: the moving end offset sideways, its rotation held (the ends parallel, the codes'
+//!   lateral case); the fixed end held;
+//! - `angular`: the moving end rotated about a diameter through the bellows' centre (its middle
+//!   convolution's plane): the end moves as a joint bent to an arc by a moment alone, with
+//!   little shear left (the codes' angular case);
+//! - `lateral_as_built`: the lateral offset with the guide sleeve's contact kept, for the force
+//!   the sleeve takes in the joint as built.
+//!
+//! The first three leave the sleeve's contact out: the codes' rates are the bellows' own. The
+//! state is either the joint at rest (no pressure, heat or stroke: the codes' assumption; a
+//! run of its own, [`at_rest`]) or the end of the joint's own run (its last general step, the
+//! operating state: [`from_run`]).
+
+use super::finite_element::{stations_of, Peak, PieceStations};
+use crate::error::Result;
+use crate::io::reader::ResultsReader;
+use crate::model::bellows::{convolution_pieces, BellowsParams};
+use crate::model::perturbation::{HarmonicComponent, HarmonicDisplacement, Perturbation, RingMotion};
+use crate::petsc::PetscSession;
+use crate::solve::perturbation::PerturbationAnswer;
+use crate::solve::run;
+
+pub const AXIAL: &str = "axial";
+pub const LATERAL: &str = "lateral";
+pub const ANGULAR: &str = "angular";
+pub const LATERAL_AS_BUILT: &str = "lateral_as_built";
+/// The contact pair of the guide sleeve in the joint's model.
+const SLEEVE: &str = "sleeve";
+
+/// The movements of the moving end the perturbations apply: a lateral offset (mm) and a
+/// rotation (degrees); a zero one is left out.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Movements {
+    pub lateral: f64,
+    pub angular: f64,
+}
+
+/// One movement's answers (full ring).
+#[derive(Clone, Debug, PartialEq)]
+pub struct MovementResponse {
+    /// N/mm (lateral) or N mm per degree (angular).
+    pub rate: f64,
+    /// The fixed end's reactions: lateral force (N) and moment about its centre (N mm).
+    pub fixed_force: f64,
+    pub fixed_moment: f64,
+    /// The largest meridional stress, |membrane| + |bending|, the movement adds at a crest and
+    /// at a root (MPa; the amplitude, at theta = 0).
+    pub crest: Peak,
+    pub root: Peak,
+}
+
+/// The joint's flexibility about one state.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Flexibility {
+    /// The axial rate of the same state (N/mm, full ring), for the codes' beam analogy.
+    pub axial_rate: f64,
+    pub lateral: Option<MovementResponse>,
+    pub angular: Option<MovementResponse>,
+    /// The lateral force the guide sleeve takes in the joint as built (N): the as-built offset's
+    /// force at the moving end less the bellows' own.
+    pub sleeve_force: Option<f64>,
+}
+
+/// The z of the bellows' centre: the middle of its convolutions.
+pub fn centre(p: &BellowsParams) -> f64 {
+    let pieces = convolution_pieces(p);
+    let (a, b) = (pieces[0].piece.at(0.0).0[1], pieces[pieces.len() - 1].piece.at(1.0).0[1]);
+    0.5 * (a + b)
+}
+
+/// The perturbation steps of `movements` on joint `p`.
+pub fn steps(p: &BellowsParams, movements: Movements) -> Vec<Perturbation> {
+    let held = |set: &str| {
+        [HarmonicComponent::R, HarmonicComponent::Z, HarmonicComponent::T].map(|component| HarmonicDisplacement { node_set: set.into(), component, value: 0.0 })
+    };
+    let step = |name: &str, mode: u32, displacements: Vec<HarmonicDisplacement>, rings: Vec<RingMotion>, sleeve: bool| Perturbation {
+        name: name.into(),
+        mode,
+        displacements,
+        rings,
+        pressures: Vec::new(),
+        without_contact: if sleeve { Vec::new() } else { vec![SLEEVE.into()] },
+    };
+    let amplitude = |set: &str, component, value| HarmonicDisplacement { node_set: set.into(), component, value };
+    let mut out = vec![step(
+        AXIAL,
+        0,
+        vec![
+            amplitude("fixed_end", HarmonicComponent::Z, 0.0),
+            amplitude("fixed_end", HarmonicComponent::T, 0.0),
+            amplitude("moving_end", HarmonicComponent::Z, -1.0),
+            amplitude("moving_end", HarmonicComponent::T, 0.0),
+        ],
+        Vec::new(),
+        false,
+    )];
+    let ring = |lateral: f64, rotation: f64| vec![RingMotion { node_set: "moving_end".into(), lateral, rotation }];
+    if movements.lateral != 0.0 {
+        out.push(step(LATERAL, 1, held("fixed_end").to_vec(), ring(movements.lateral, 0.0), false));
+    }
+    if movements.angular != 0.0 {
+        // about the bellows' centre: the moving end's centre moves by theta (z_end - z_centre)
+        let theta = movements.angular.to_radians();
+        out.push(step(ANGULAR, 1, held("fixed_end").to_vec(), ring(theta * (p.length - centre(p)), theta), false));
+    }
+    if movements.lateral != 0.0 {
+        out.push(step(LATERAL_AS_BUILT, 1, held("fixed_end").to_vec(), ring(movements.lateral, 0.0), true));
+    }
+    out
+}
+
+/// The flexibility from the perturbation answers of a run of the joint `p` with [`steps`], its
+/// stresses from the run's results file `r`.
+pub fn from_run(p: &BellowsParams, movements: Movements, answers: &[(String, PerturbationAnswer)], r: &ResultsReader) -> Result<Flexibility> {
+    let resultant = |step: &str, set: &str, name: &str| -> Option<f64> {
+        let (_, answer) = answers.iter().find(|(s, _)| s == step)?;
+        let reaction = answer.reactions.iter().find(|x| x.set == set)?;
+        reaction.resultants.iter().find(|(n, _, _)| *n == name).map(|(_, v, _)| *v)
+    };
+    let missing = |what: &str| crate::error::Error::Output { path: r.path().to_path_buf(), message: format!("no {what} in the perturbation steps") };
+    let axial_rate = resultant(AXIAL, "moving_end", "axial_force_ring").ok_or_else(|| missing("axial force"))?.abs();
+    let pieces = convolution_pieces(p);
+    let response = |step: &str, per: f64| -> Result<Option<MovementResponse>> {
+        if per == 0.0 {
+            return Ok(None);
+        }
+        let (force, moment) = (resultant(step, "moving_end", "lateral_force_ring"), resultant(step, "moving_end", "moment_ring"));
+        let (Some(force), Some(moment)) = (force, moment) else { return Err(missing(step)) };
+        let fixed = |name: &str| resultant(step, "fixed_end", name).ok_or_else(|| missing(step));
+        // the stress amplitudes' first four components: [rr, zz, tt, rz] at theta = 0
+        let stress: Vec<[[f64; 4]; 9]> =
+            r.perturbation_field(step, "stress")?.chunks_exact(54).map(|c| std::array::from_fn(|q| std::array::from_fn(|k| c[6 * q + k]))).collect();
+        let stations = stations_of(r, &stress, p, &pieces)?;
+        let (crest, root) = peaks(&pieces, &stations);
+        let rate = if step == ANGULAR { moment / per } else { force / per };
+        Ok(Some(MovementResponse { rate: rate.abs(), fixed_force: fixed("lateral_force_ring")?, fixed_moment: fixed("moment_ring")?, crest, root }))
+    };
+    let lateral = response(LATERAL, movements.lateral)?;
+    let angular = response(ANGULAR, movements.angular)?;
+    let sleeve_force = match (resultant(LATERAL_AS_BUILT, "moving_end", "lateral_force_ring"), resultant(LATERAL, "moving_end", "lateral_force_ring")) {
+        (Some(built), Some(own)) => Some(built - own),
+        _ => None,
+    };
+    Ok(Flexibility { axial_rate, lateral, angular, sleeve_force })
+}
+
+/// The largest |membrane| + |bending| over the crests' and the roots' stations (the pieces at
+/// the tubes left out, as in the code check).
+fn peaks(pieces: &[crate::model::bellows::ConvolutionPiece], stations: &[PieceStations]) -> (Peak, Peak) {
+    let (mut crest, mut root) = (Peak::default(), Peak::default());
+    for (piece, stations) in pieces.iter().zip(stations).filter(|(piece, _)| !piece.end) {
+        let peak = match piece.label.split(' ').next() {
+            Some("crest") => &mut crest,
+            Some("root") => &mut root,
+            _ => continue,
+        };
+        for &(ply, s) in stations.iter().flatten() {
+            peak.offer(s.membrane.abs() + s.bending.abs(), || format!("{}, ply {}", piece.label, ply + 1));
+        }
+    }
+    (crest, root)
+}
+
+/// The joint `p` at rest (no pressure, heat or stroke, elastic: the codes' assumption) and the
+/// perturbations of `movements` about it (collective; the run's file goes to a temporary
+/// directory and is removed).
+pub fn at_rest(session: &PetscSession, p: &BellowsParams, movements: Movements) -> Result<Flexibility> {
+    // the joint's own two steps, of no pressure or stroke (and no heat: no expansion, below)
+    let rest = BellowsParams { pressure: 0.0, displacement: 0.0, heat_increments: 1, increments: 1, cycle: false, ..p.clone() };
+    let mut model = crate::model::bellows::model(&rest)?;
+    for material in &mut model.materials {
+        material.plasticity = None;
+        material.thermal_expansion = 0.0;
+    }
+    model.perturbations = steps(&rest, movements);
+    model.validate()?;
+    super::in_scratch(session, "flexibility", |dir| {
+        let file = dir.join("rest.h5");
+        let summary = run(session, &model, &super::quiet_run(&file))?;
+        let r = ResultsReader::open(&file)?;
+        from_run(&rest, movements, &summary.perturbations, &r)
+    })
+}
