@@ -399,7 +399,9 @@ pub fn flexibility_section(p: &BellowsParams, code: Option<&CodeCheck>, movement
     }
     t.push('\n');
     let cell = |v: Option<f64>, digits: usize| v.filter(|v| v.is_finite()).map_or("-".to_string(), |v| format!("{v:.digits$}"));
-    let row = |what: &str, pick: &dyn Fn(&Flexibility, f64) -> (Option<f64>, Option<f64>), digits: usize| {
+    // (FE, code) of a row in a state of axial movement x
+    type Pick<'a> = &'a dyn Fn(&Flexibility, f64) -> (Option<f64>, Option<f64>);
+    let row = |what: &str, pick: Pick, digits: usize| {
         let mut t = format!("  {what:<52}");
         for (_, f, x) in &states {
             let (fe, code) = pick(f, *x);
