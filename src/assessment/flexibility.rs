@@ -4,9 +4,9 @@
 //! - `axial`: the moving end pushed 1 mm along the axis, twist held at both ends;
 //! - `lateral`: the moving end offset sideways, its rotation held (the ends parallel, the codes'
 //!   lateral case); the fixed end held;
-//! - `angular`: the moving end rotated about a diameter through the bellows' centre (its middle
-//!   convolution's plane): the end moves as a joint bent to an arc by a moment alone, with
-//!   little shear left (the codes' angular case);
+//! - `angular`: the moving end rotated about a diameter through the bellows' centre: the end
+//!   moves as a joint bent to an arc by a moment alone, with little shear left (the codes'
+//!   angular case), and its moment is reported about that centre;
 //! - `lateral_as_built`: the lateral offset with the guide sleeve's contact kept, for the force
 //!   the sleeve takes in the joint as built.
 //!
@@ -98,17 +98,19 @@ pub fn steps(p: &BellowsParams, movements: Movements) -> Vec<Perturbation> {
         Vec::new(),
         false,
     )];
-    let ring = |lateral: f64, rotation: f64| vec![RingMotion { node_set: "moving_end".into(), lateral, rotation }];
+    let ring = |lateral: f64, rotation: f64, pivot: Option<f64>| vec![RingMotion { node_set: "moving_end".into(), lateral, rotation, pivot }];
     if movements.lateral != 0.0 {
-        out.push(step(LATERAL, 1, held("fixed_end").to_vec(), ring(movements.lateral, 0.0), false));
+        out.push(step(LATERAL, 1, held("fixed_end").to_vec(), ring(movements.lateral, 0.0, None), false));
     }
     if movements.angular != 0.0 {
-        // about the bellows' centre: the moving end's centre moves by theta (z_end - z_centre)
-        let theta = movements.angular.to_radians();
-        out.push(step(ANGULAR, 1, held("fixed_end").to_vec(), ring(theta * (p.length - centre(p)), theta), false));
+        // about the bellows' centre where the state has it: the stroke shortens the
+        // convolutions alone, so the centre has moved by half of it (the heat's few tenths of a
+        // millimetre left out); the moving end's moment is then the bellows' own
+        let stroke = if p.cycle { 0.0 } else { p.displacement };
+        out.push(step(ANGULAR, 1, held("fixed_end").to_vec(), ring(0.0, movements.angular.to_radians(), Some(centre(p) - stroke / 2.0)), false));
     }
     if movements.lateral != 0.0 {
-        out.push(step(LATERAL_AS_BUILT, 1, held("fixed_end").to_vec(), ring(movements.lateral, 0.0), true));
+        out.push(step(LATERAL_AS_BUILT, 1, held("fixed_end").to_vec(), ring(movements.lateral, 0.0, None), true));
     }
     out
 }

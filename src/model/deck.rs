@@ -291,6 +291,8 @@ struct BoundarySpec {
     ut: Option<f64>,
     lateral: Option<f64>,
     rotation: Option<f64>,
+    /// The z (current, mm) of the axis point the rotation's diameter passes through.
+    pivot: Option<f64>,
 }
 
 #[derive(Deserialize)]
@@ -402,7 +404,9 @@ pub fn parse(text: &str, path: &Path) -> Result<Model> {
                 }
                 let mut displacements = Vec::new();
                 for b in &s.boundary {
-                    if let Some(key) = [("ut", b.ut), ("lateral", b.lateral), ("rotation", b.rotation)].iter().find(|(_, v)| v.is_some()).map(|(k, _)| k) {
+                    if let Some(key) =
+                        [("ut", b.ut), ("lateral", b.lateral), ("rotation", b.rotation), ("pivot", b.pivot)].iter().find(|(_, v)| v.is_some()).map(|(k, _)| k)
+                    {
                         return Err(Error::input(format!("step '{name}': boundary on '{}': {key} is for procedure = \"harmonic\"", b.set)));
                     }
                     if b.ur.is_none() && b.uz.is_none() {
@@ -428,14 +432,14 @@ pub fn parse(text: &str, path: &Path) -> Result<Model> {
                 for b in &s.boundary {
                     let set = b.set.clone();
                     let amplitudes = [(HarmonicComponent::R, b.ur), (HarmonicComponent::Z, b.uz), (HarmonicComponent::T, b.ut)];
-                    let ring = b.lateral.is_some() || b.rotation.is_some();
+                    let ring = b.lateral.is_some() || b.rotation.is_some() || b.pivot.is_some();
                     if ring && amplitudes.iter().any(|(_, v)| v.is_some()) {
                         return Err(Error::input(format!(
                             "step '{name}': boundary on '{set}': lateral and rotation move the ring rigidly; give them or ur, uz, ut, not both"
                         )));
                     }
                     if ring {
-                        rings.push(RingMotion { node_set: set, lateral: b.lateral.unwrap_or(0.0), rotation: b.rotation.unwrap_or(0.0) });
+                        rings.push(RingMotion { node_set: set, lateral: b.lateral.unwrap_or(0.0), rotation: b.rotation.unwrap_or(0.0), pivot: b.pivot });
                         continue;
                     }
                     if amplitudes.iter().all(|(_, v)| v.is_none()) {

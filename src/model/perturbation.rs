@@ -40,14 +40,16 @@ pub struct HarmonicDisplacement {
 }
 
 /// A rigid motion of a set's ring (mode 1): a translation `lateral` (mm) across the axis and a
-/// rotation `rotation` (radians) about a diameter through the set's centre on the axis,
-/// u_x = lateral + rotation (z - z_c), u_z = -rotation x: all three amplitudes of its nodes,
-/// U_r = -U_t = lateral + rotation (z - z_c), U_z = -rotation r.
+/// rotation `rotation` (radians) about a diameter through the point z_c on the axis (`pivot`, in
+/// the base state's current geometry; by default the set's centre), u_x = lateral + rotation
+/// (z - z_c), u_z = -rotation x: all three amplitudes of its nodes, U_r = -U_t = lateral +
+/// rotation (z - z_c), U_z = -rotation r. The set's moment is reported about the same point.
 #[derive(Clone, Debug, PartialEq)]
 pub struct RingMotion {
     pub node_set: String,
     pub lateral: f64,
     pub rotation: f64,
+    pub pivot: Option<f64>,
 }
 
 /// One perturbation step.
@@ -88,8 +90,8 @@ impl Perturbation {
             if self.mode != 1 {
                 return Err(at(format!("lateral and rotation (on '{}') move a ring rigidly only in mode 1, not {}", r.node_set, self.mode)));
             }
-            if !(r.lateral.is_finite() && r.rotation.is_finite()) {
-                return Err(at(format!("lateral and rotation on '{}' must be finite", r.node_set)));
+            if !(r.lateral.is_finite() && r.rotation.is_finite() && r.pivot.is_none_or(f64::is_finite)) {
+                return Err(at(format!("lateral, rotation and pivot on '{}' must be finite", r.node_set)));
             }
         }
         for p in &self.pressures {

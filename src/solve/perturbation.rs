@@ -290,7 +290,7 @@ fn prescribed_amplitudes(model: &Model, step: &Perturbation, x: &[[f64; 2]]) -> 
     let mut centres = Vec::new();
     for ring in &step.rings {
         let set = model.node_set(&ring.node_set)?;
-        let zc = set.iter().map(|&n| x[n][1]).sum::<f64>() / set.len().max(1) as f64;
+        let zc = ring.pivot.unwrap_or_else(|| set.iter().map(|&n| x[n][1]).sum::<f64>() / set.len().max(1) as f64);
         centres.push((ring.node_set.clone(), zc));
         for &n in set {
             let ur = ring.lateral + ring.rotation * (x[n][1] - zc);
