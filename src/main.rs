@@ -397,8 +397,14 @@ fn report(
         Some(_) => slideline::assessment::finite_element::strain_life(&reader, params.youngs_modulus)?,
         None => None,
     };
-    let report = BellowsReport::new(params, code.cloned(), summary, &reader)?;
-    println!("\n{}", report.table());
+    // a restart from a finished run's end writes no increment of its own: its fields are in
+    // the file it continued
+    let fields = !reader.increments()?.is_empty();
+    let report = fields.then(|| BellowsReport::new(params, code.cloned(), summary, &reader)).transpose()?;
+    match &report {
+        Some(report) => println!("\n{}", report.table()),
+        None => println!("\nno increment in this run: the closing table is the continued file's (`slideline post` it)"),
+    }
     if let (Some(c), Some(f)) = (code, fe) {
         println!("{}", slideline::report::assessment_section(c, f, life.as_ref()));
     }
@@ -406,7 +412,7 @@ fn report(
         let operating = slideline::assessment::flexibility::from_run(params, *movements, &summary.perturbations, &reader)?;
         println!("{}", slideline::report::flexibility_section(params, code, *movements, at_rest, Some(&operating)));
     }
-    for path in report.pictures(output, &reader)? {
+    for path in report.map(|r| r.pictures(output, &reader)).transpose()?.into_iter().flatten() {
         println!("picture: {}", path.display());
     }
     drop(reader);

@@ -85,6 +85,17 @@ impl RunSummary {
 }
 
 /// Runs every step of `model` on the session's ranks, writing `options.output` as it goes.
+/// What the perturbation steps need of the converged state `problem` is in, whose fields are
+/// `fields`: this rank's stress and plastic strain, the pressures, the closed contact nodes.
+fn keep_base(model: &Model, problem: &mut Problem<'_, '_>, fields: &super::kept::ElementFields) -> super::perturbation::KeptBase {
+    super::perturbation::KeptBase {
+        stress: fields.stress.clone(),
+        plastic_strain: fields.plastic_strain.clone(),
+        pressures: problem.load().pressures.clone(),
+        contacts: problem.contact.as_mut().map(|c| c.base_contacts(model)).unwrap_or_default(),
+    }
+}
+
 pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Result<RunSummary> {
     let start = Instant::now();
     let world = session.world();
@@ -303,12 +314,7 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
             // only the end of the last general step is the perturbations' base (a run that stops
             // before it returns before them): no copy at every increment
             if !model.perturbations.is_empty() && s + 1 == model.steps.len() && lambda >= 1.0 {
-                base = Some(super::perturbation::KeptBase {
-                    stress: fields.stress.clone(),
-                    plastic_strain: fields.plastic_strain.clone(),
-                    pressures: problem.load().pressures.clone(),
-                    contacts: problem.contact.as_mut().map(|c| c.base_contacts(model)).unwrap_or_default(),
-                });
+                base = Some(keep_base(model, &mut problem, &fields));
             }
             let contacts = contact_summaries(&world, model, &problem);
             let energy = audit_increment(&world, model, &mut audit, &problem, &fields, &force, &prescribed, &displacement, &loads.at(model, lambda));
@@ -387,6 +393,14 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
             progress.increment(&row, &step.name, model.steps.len());
             rows.push(row);
             cutbacks = 0;
+        }
+        // a restart from the last step's end converges no increment: the state it resumes is
+        // the perturbations' base
+        if base.is_none() && !model.perturbations.is_empty() && s + 1 == model.steps.len() && lambda >= 1.0 {
+            problem.set_load(loads.at(model, lambda));
+            set_free_values(&mut x, &dofs, &partition, &displacement)?;
+            let fields = problem.evaluate_fields(&x)?;
+            base = Some(keep_base(model, &mut problem, &fields));
         }
         (history, carry) = problem.into_history();
         // couplings are reserved per rank (each for its own engagements): report the sum
