@@ -1,11 +1,32 @@
-//! Generates the PETSc FFI (src/petsc/sys.rs includes it) from Debian's PETSc 3.18,
-//! found through pkg-config, restricted to the calls the binding makes.
+//! Generates the PETSc and SLEPc FFI (src/petsc/sys.rs includes it) from Debian's PETSc 3.18
+//! and SLEPc 3.18, found through pkg-config, restricted to the calls the binding makes.
 
 use std::env;
 use std::path::PathBuf;
 
 /// Every PETSc function the binding calls; nothing else is generated.
 const FUNCTIONS: &[&str] = &[
+    // SLEPc: eigenproblems (src/petsc/eigen.rs)
+    "SlepcInitialize",
+    "SlepcFinalize",
+    "EPSCreate",
+    "EPSDestroy",
+    "EPSSetOperators",
+    "EPSSetProblemType",
+    "EPSSetType",
+    "EPSSetDimensions",
+    "EPSSetTarget",
+    "EPSSetWhichEigenpairs",
+    "EPSSetTolerances",
+    "EPSGetST",
+    "EPSSetFromOptions",
+    "EPSSolve",
+    "EPSGetConverged",
+    "EPSGetConvergedReason",
+    "EPSGetEigenpair",
+    "EPSComputeError",
+    "STSetType",
+    "STGetKSP",
     // system, options, errors, logging
     "PetscInitialize",
     "PetscFinalize",
@@ -134,6 +155,10 @@ fn main() {
         .atleast_version("3.18")
         .probe("petsc")
         .expect("PETSc not found by pkg-config: run ./run.sh (it installs petsc-dev), or set PKG_CONFIG_PATH");
+    let slepc = pkg_config::Config::new()
+        .atleast_version("3.18")
+        .probe("slepc")
+        .expect("SLEPc not found by pkg-config: run ./run.sh (it installs libslepc-real3.18-dev), or set PKG_CONFIG_PATH");
     // PETSc's headers include <mpi.h>; Debian's petsc.pc does not name its directory.
     let mpi = pkg_config::Config::new()
         .cargo_metadata(false)
@@ -166,10 +191,14 @@ fn main() {
         "KSPConvergedReason",
         "PetscErrorType",
         "SNESLineSearchReason",
+        "EPSProblemType",
+        "EPSWhich",
+        "EPSConvergedReason",
+        "EPSErrorType",
     ] {
         builder = builder.allowlist_type(ty);
     }
-    for path in petsc.include_paths.iter().chain(mpi.include_paths.iter()) {
+    for path in petsc.include_paths.iter().chain(slepc.include_paths.iter()).chain(mpi.include_paths.iter()) {
         builder = builder.clang_arg(format!("-I{}", path.display()));
     }
     let bindings = builder.generate().expect("bindgen failed on the PETSc headers");

@@ -12,7 +12,7 @@ export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OPENBLAS_NUM_TH
 # Containers often report fewer slots than cores: allow 2 ranks anyway.
 export OMPI_MCA_rmaps_base_oversubscribe=1
 
-PACKAGES=(petsc-dev libopenmpi-dev openmpi-bin libhdf5-openmpi-dev hdf5-tools libclang-dev pkg-config libopenblas0-pthread)
+PACKAGES=(petsc-dev libslepc-real3.18-dev libopenmpi-dev openmpi-bin libhdf5-openmpi-dev hdf5-tools libclang-dev pkg-config libopenblas0-pthread)
 # the tests read results as users do, with meshio and h5py: Debian's own, for Debian's python3
 # (which refuses pip installs), called by its path whatever python3 comes first on PATH
 TEST_PACKAGES=(python3-meshio python3-h5py python3-numpy)

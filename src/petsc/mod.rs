@@ -1,7 +1,8 @@
 //! Safe owners over the PETSc objects slideline uses. This module tree is the only place with
 //! `unsafe`; everything above it is safe Rust with `Result` errors.
 //!
-//! - [`PetscSession`] initialises PETSc on the `mpi` crate's world and finalises it on drop;
+//! - [`PetscSession`] initialises PETSc (and SLEPc, for [`eigen`]) on the `mpi` crate's world
+//!   and finalises them on drop;
 //!   every owner borrows it (lifetime `'s`) so the compiler orders the drops.
 //! - One owner per handle (`Drop` calls XDestroy and never panics), no `Clone`; borrowed views
 //!   (`*View`) for the handles PETSc passes into callbacks.
@@ -11,6 +12,7 @@
 
 pub mod sys;
 
+pub mod eigen;
 mod linesearch;
 mod log;
 mod matrix;
@@ -92,6 +94,9 @@ impl PetscSession {
         check(code, "PetscInitialize")?;
         // SAFETY: installs PETSc's own handler that returns the error code without printing.
         check(unsafe { sys::PetscPushErrorHandler(Some(sys::PetscReturnErrorHandler), std::ptr::null_mut()) }, "PetscPushErrorHandler")?;
+        // SAFETY: PETSc is initialised, so SLEPc only registers its packages (it starts PETSc
+        // only when nothing has, and then finalises it too); no arguments are needed for that.
+        check(unsafe { sys::SlepcInitialize(std::ptr::null_mut(), std::ptr::null_mut(), std::ptr::null(), std::ptr::null()) }, "SlepcInitialize")?;
         Ok(PetscSession { _args: args, _argv: argv, options: petsc_options.to_vec(), universe })
     }
 
@@ -156,7 +161,9 @@ impl Drop for PetscSession {
     fn drop(&mut self) {
         // SAFETY: every PETSc object borrows the session, so all are destroyed by now.
         // Errors at finalisation cannot be reported anywhere useful; they are ignored.
+        // SLEPc first: it did not start PETSc, so it leaves PETSc's finalisation to us.
         unsafe {
+            sys::SlepcFinalize();
             sys::PetscPopErrorHandler();
             sys::PetscFinalize();
         }

@@ -1,4 +1,4 @@
-/* The PETSc headers slideline binds; build.rs restricts the generated FFI to the calls listed there. */
+/* The PETSc and SLEPc headers slideline binds; build.rs restricts the generated FFI to the calls listed there. */
 #include <petscsys.h>
 #include <petscvec.h>
 #include <petscmat.h>
@@ -6,3 +6,4 @@
 #include <petscksp.h>
 #include <petscsnes.h>
 #include <petsclog.h>
+#include <slepceps.h>
