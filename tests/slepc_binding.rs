@@ -9,6 +9,7 @@
 //!   indefinite): lambda_j = -(2 + 2 sqrt(0.99) cos(j pi / 41)), real; the two nearest 0 to
 //!   1e-9 (a milder asymmetry than the eigenvalues' conditioning, (c / a)^(n / 2), would allow
 //!   at 1e-16 round-off: tridiag(-0.5, 2, -2) puts them 2 % off in any solver).
+//!
 //! The two 2-rank paths are the frequency and buckling steps' tests.
 
 use slideline::petsc::eigen::{nearest, Pencil};
