@@ -91,31 +91,42 @@ pub struct PerturbationAnswer {
 /// An amplitude's place in the system: an unknown (index, coefficient: an axis node's U_t of
 /// mode 1 is -1 times its U_r) or a prescribed value.
 #[derive(Clone, Copy, Debug, PartialEq)]
-enum Amplitude {
+pub(super) enum Amplitude {
     Unknown(PetscInt, f64),
     Prescribed(f64),
 }
 
-/// Solves perturbation `step` about `base` (collective).
-pub fn solve(session: &PetscSession, model: &Model, partition: &Partition, base: &BaseState<'_>, step: &Perturbation) -> Result<PerturbationAnswer> {
-    let world = session.world();
-    let mesh = &model.mesh;
-    let nodes = mesh.coords.len();
-    let current: Vec<[f64; 2]> = (0..nodes).map(|n| [mesh.coords[n][0] + base.displacement[n][0], mesh.coords[n][1] + base.displacement[n][1]]).collect();
-    let (prescribed, centres) = prescribed_amplitudes(model, step, &current)?;
-    let (amplitude, offsets) = number(partition, &prescribed, &current, step.mode, model_size(&current));
-    let rank = partition.rank;
-    let local_len = offsets[rank + 1] - offsets[rank];
+/// An element's or an edge's matrix over its nodes' amplitudes (column-major, 3 per node).
+pub(super) type Block = (Vec<usize>, Vec<f64>);
 
-    // element and edge matrices on this rank, with their amplitudes
-    let mut blocks: Vec<(Vec<usize>, Vec<f64>)> = Vec::new();
-    // each local element's geometry and Gauss-point tangents, for its stress
-    let mut materials: Vec<(ElementGeometry, [Tangent6; QUADRATURE_POINTS])> = Vec::new();
-    let mut load = vec![[0.0f64; 3]; nodes];
+/// A local element's geometry and the material tangent at its Gauss points.
+pub(super) type ElementMaterial = (ElementGeometry, [Tangent6; QUADRATURE_POINTS]);
+
+/// The base state's current geometry: every node's position.
+pub(super) fn current_positions(model: &Model, base: &BaseState<'_>) -> Vec<[f64; 2]> {
+    let mesh = &model.mesh;
+    (0..mesh.coords.len()).map(|n| [mesh.coords[n][0] + base.displacement[n][0], mesh.coords[n][1] + base.displacement[n][1]]).collect()
+}
+
+/// The stiffness of mode `mode` about `base` on this rank: its elements' material and
+/// initial-stress matrices, the base pressures' load stiffness (finite kinematics), the closed
+/// contact nodes of the pairs not in `without_contact`; and each element's material tangent.
+pub(super) fn stiffness_blocks(
+    model: &Model,
+    partition: &Partition,
+    base: &BaseState<'_>,
+    current: &[[f64; 2]],
+    mode: u32,
+    without_contact: &[String],
+    step: &str,
+) -> Result<(Vec<Block>, Vec<ElementMaterial>)> {
+    let mesh = &model.mesh;
+    let mut blocks: Vec<Block> = Vec::new();
+    let mut materials: Vec<ElementMaterial> = Vec::new();
     for (k, &e) in partition.local_elements().iter().enumerate() {
         let conn = mesh.elements[e];
         let x: [[f64; 2]; NODES] = conn.map(|n| current[n]);
-        let geo = ElementGeometry::new(&x).map_err(|m| Error::input(format!("perturbation step '{}': element {}: {m}", step.name, mesh.element_ids[e])))?;
+        let geo = ElementGeometry::new(&x).map_err(|m| Error::input(format!("perturbation step '{step}': element {}: {m}", mesh.element_ids[e])))?;
         let m = &model.materials[model.element_material[e]];
         let j2 = crate::solve::problem::material_kernel(m);
         // points on the yield surface take the elastic-plastic tangent (loading), the others
@@ -128,50 +139,56 @@ pub fn solve(session: &PetscSession, model: &Model, partition: &Partition, base:
                 false => isotropic(m.youngs_modulus, m.poissons_ratio),
             }
         });
-        let ke: HarmonicMatrix = material_stiffness(&geo, step.mode, &d) + initial_stress_stiffness(&geo, step.mode, &base.stress[k]);
+        let ke: HarmonicMatrix = material_stiffness(&geo, mode, &d) + initial_stress_stiffness(&geo, mode, &base.stress[k]);
         blocks.push((conn.to_vec(), ke.as_slice().to_vec()));
         materials.push((geo, d));
     }
-    let local: std::collections::HashSet<usize> = partition.local_elements().iter().copied().collect();
-    let factor = ring_factor(step.mode);
     // the base's pressures follow the surface (a load stiffness) where the kinematics are finite;
     // at small strain they are dead loads, with none
-    let follower = model.kinematics == crate::material::Kinematics::Finite;
-    let base_pressures = base.pressures.iter().filter(|_| follower).map(|(s, p)| (s, *p, true));
-    for (surface, p, stiffness) in base_pressures.chain(step.pressures.iter().map(|q| (&q.surface, q.value, false))) {
-        for edge in model.surfaces.get(surface).into_iter().flatten().filter(|edge| local.contains(&edge.element)) {
-            let en = mesh.edge_nodes(*edge);
-            let x = en.map(|n| current[n]);
-            if stiffness {
-                // the base's pressure follows the surface: its load stiffness enters with a minus
-                let kp = harmonic_pressure_stiffness(&x, p, step.mode);
-                // column-major, as nalgebra's: entry (i, j) at j * 9 + i
-                let values: Vec<f64> = (0..9).flat_map(|j| (0..9).map(move |i| -kp[i][j])).collect();
-                blocks.push((en.to_vec(), values));
-            } else {
-                // the step's harmonic pressure: p cos n theta, weighed by cos n theta
-                for (a, f) in compute_pressure_load(&x, p).iter().enumerate() {
-                    load[en[a]][0] += factor * f[0];
-                    load[en[a]][1] += factor * f[1];
-                }
-            }
+    if model.kinematics == crate::material::Kinematics::Finite {
+        for (surface, p) in base.pressures {
+            blocks.extend(pressure_stiffness_blocks(model, partition, current, surface, *p, mode));
         }
     }
     // the closed contact nodes of the pairs the step keeps
-    let left_out: Vec<usize> = step.without_contact.iter().filter_map(|name| model.contacts.iter().position(|c| &c.name == name)).collect();
+    let left_out: Vec<usize> = without_contact.iter().filter_map(|name| model.contacts.iter().position(|c| &c.name == name)).collect();
     for (_, contact) in base.contacts.iter().filter(|(pair, _)| !left_out.contains(pair)) {
         match contact {
-            BaseContact::Normal { nodes, tangent } => blocks.push((nodes.clone(), normal_stiffness(tangent, nodes.len(), step.mode))),
-            BaseContact::Sticking { nodes, sticking } => blocks.push((nodes.to_vec(), sticking_stiffness(sticking, step.mode).as_slice().to_vec())),
+            BaseContact::Normal { nodes, tangent } => blocks.push((nodes.clone(), normal_stiffness(tangent, nodes.len(), mode))),
+            BaseContact::Sticking { nodes, sticking } => blocks.push((nodes.to_vec(), sticking_stiffness(sticking, mode).as_slice().to_vec())),
         }
     }
+    Ok((blocks, materials))
+}
 
-    // the system: K_ff U_f = f_f - K_fp U_p
+/// The load stiffness of pressure `p` following `surface` on this rank's edges, for mode
+/// `mode` (d f_ext / dU enters the stiffness with a minus).
+pub(super) fn pressure_stiffness_blocks(model: &Model, partition: &Partition, current: &[[f64; 2]], surface: &str, p: f64, mode: u32) -> Vec<Block> {
+    let local: std::collections::HashSet<usize> = partition.local_elements().iter().copied().collect();
+    let edges = model.surfaces.get(surface).into_iter().flatten().filter(|edge| local.contains(&edge.element));
+    edges
+        .map(|edge| {
+            let en = model.mesh.edge_nodes(*edge);
+            let kp = harmonic_pressure_stiffness(&en.map(|n| current[n]), p, mode);
+            // column-major, as nalgebra's: entry (i, j) at j * 9 + i
+            (en.to_vec(), (0..9).flat_map(|j| (0..9).map(move |i| -kp[i][j])).collect())
+        })
+        .collect()
+}
+
+/// The unknowns' matrix of `blocks` (K_ff) and the right-hand side's entries -K_fp U_p of the
+/// prescribed amplitudes (collective: PETSc sums rows from every rank).
+pub(super) fn assemble<'s>(
+    session: &'s PetscSession,
+    blocks: &[Block],
+    amplitude: &[[Amplitude; 3]],
+    local_len: usize,
+) -> Result<(Matrix<'s>, Vec<(PetscInt, f64)>)> {
     let mut rows = Vec::new();
     let mut cols = Vec::new();
     let mut values = Vec::new();
     let mut rhs: Vec<(PetscInt, f64)> = Vec::new();
-    for (conn, k) in &blocks {
+    for (conn, k) in blocks {
         let dofs: Vec<Amplitude> = conn.iter().flat_map(|&n| amplitude[n]).collect();
         let size = dofs.len();
         for (i, &ai) in dofs.iter().enumerate() {
@@ -189,6 +206,91 @@ pub fn solve(session: &PetscSession, model: &Model, partition: &Partition, base:
             }
         }
     }
+    let mut matrix = Matrix::aij_coo(session, session.comm(), local_len, &rows, &cols)?;
+    matrix.set_values_coo(&values)?;
+    Ok((matrix, rhs))
+}
+
+/// Every node's amplitudes on every rank from this rank's part `solution` of the unknowns
+/// (collective).
+pub(super) fn amplitudes_of(
+    world: &impl Communicator,
+    partition: &Partition,
+    amplitude: &[[Amplitude; 3]],
+    offsets: &[usize],
+    solution: &[f64],
+) -> Vec<[f64; 3]> {
+    let first = offsets[partition.rank] as PetscInt;
+    let value = |a: Amplitude| match a {
+        Amplitude::Unknown(i, c) => c * solution[(i - first) as usize],
+        Amplitude::Prescribed(v) => v,
+    };
+    // (an owned node's unknowns are this rank's rows: the numbering goes by owned nodes)
+    let owned: Vec<f64> = partition.owned_nodes().iter().flat_map(|&n| amplitude[n].map(value)).collect();
+    gather(world, partition, &owned, amplitude.len())
+}
+
+/// The material's stress amplitudes D : strain at the Gauss points of this rank's elements.
+pub(super) fn stresses(
+    model: &Model,
+    partition: &Partition,
+    materials: &[ElementMaterial],
+    mode: u32,
+    amplitudes: &[[f64; 3]],
+) -> Vec<[[f64; 6]; QUADRATURE_POINTS]> {
+    partition
+        .local_elements()
+        .iter()
+        .zip(materials)
+        .map(|(&e, (geo, d))| {
+            let strain = harmonic_strain(geo, mode, &model.mesh.elements[e].map(|n| amplitudes[n]));
+            std::array::from_fn(|q| (d[q] * nalgebra::SVector::<f64, 6>::from(strain[q])).into())
+        })
+        .collect()
+}
+
+/// Solves perturbation `step` about `base` (collective).
+pub fn solve(session: &PetscSession, model: &Model, partition: &Partition, base: &BaseState<'_>, step: &Perturbation) -> Result<PerturbationAnswer> {
+    response(session, model, partition, base, step, false)
+}
+
+/// The response to the step's prescribed amplitudes and harmonic pressures; `hold_twist` holds
+/// every U_t at zero (an axisymmetric load's solve, whose twist is decoupled).
+pub(super) fn response(
+    session: &PetscSession,
+    model: &Model,
+    partition: &Partition,
+    base: &BaseState<'_>,
+    step: &Perturbation,
+    hold_twist: bool,
+) -> Result<PerturbationAnswer> {
+    let world = session.world();
+    let nodes = model.mesh.coords.len();
+    let current = current_positions(model, base);
+    let (mut prescribed, centres) = prescribed_amplitudes(model, step, &current)?;
+    if hold_twist {
+        prescribed.iter_mut().for_each(|p| p[2] = Some(0.0));
+    }
+    let (amplitude, offsets) = number(partition, &prescribed, &current, step.mode, model_size(&current));
+    let local_len = offsets[partition.rank + 1] - offsets[partition.rank];
+    let (blocks, materials) = stiffness_blocks(model, partition, base, &current, step.mode, &step.without_contact, &step.name)?;
+
+    // the step's harmonic pressure: p cos n theta, weighed by cos n theta
+    let factor = ring_factor(step.mode);
+    let local: std::collections::HashSet<usize> = partition.local_elements().iter().copied().collect();
+    let mut load = vec![[0.0f64; 3]; nodes];
+    for q in &step.pressures {
+        for edge in model.surfaces.get(&q.surface).into_iter().flatten().filter(|edge| local.contains(&edge.element)) {
+            let en = model.mesh.edge_nodes(*edge);
+            for (a, f) in compute_pressure_load(&en.map(|n| current[n]), q.value).iter().enumerate() {
+                load[en[a]][0] += factor * f[0];
+                load[en[a]][1] += factor * f[1];
+            }
+        }
+    }
+
+    // the system: K_ff U_f = f_f - K_fp U_p
+    let (matrix, mut rhs) = assemble(session, &blocks, &amplitude, local_len)?;
     // the harmonic pressure's load: each rank has its own edges' part; PETSc sums the rows
     for (n, l) in load.iter().enumerate() {
         for c in 0..3 {
@@ -197,8 +299,6 @@ pub fn solve(session: &PetscSession, model: &Model, partition: &Partition, base:
             }
         }
     }
-    let mut matrix = Matrix::aij_coo(session, session.comm(), local_len, &rows, &cols)?;
-    matrix.set_values_coo(&values)?;
     let mut b = Vector::mpi(session, session.comm(), local_len)?;
     b.set_all(0.0)?;
     let (indices, adds): (Vec<PetscInt>, Vec<f64>) = rhs.into_iter().unzip();
@@ -213,18 +313,7 @@ pub fn solve(session: &PetscSession, model: &Model, partition: &Partition, base:
             reason: "the linear solve failed: the perturbation's stiffness is singular (a rigid motion of its mode left free? hold it on a set)".into(),
         });
     }
-
-    // every node's amplitudes on every rank
-    let first = offsets[rank] as PetscInt;
-    let solution = u.read()?;
-    let value = |a: Amplitude| match a {
-        Amplitude::Unknown(i, c) => c * solution[(i - first) as usize],
-        Amplitude::Prescribed(v) => v,
-    };
-    let owned: Vec<f64> = partition.owned_nodes().iter().flat_map(|&n| amplitude[n].map(value)).collect();
-    drop(solution);
-    // (an owned node's unknowns are this rank's rows: the numbering goes by owned nodes)
-    let amplitudes = gather(&world, partition, &owned, nodes);
+    let amplitudes = amplitudes_of(&world, partition, &amplitude, &offsets, &u.read()?);
 
     // reactions: K U - f at every node, summed over ranks
     let mut force = vec![0.0; 3 * nodes];
@@ -243,21 +332,12 @@ pub fn solve(session: &PetscSession, model: &Model, partition: &Partition, base:
     let mut total = vec![0.0; 3 * nodes];
     world.all_reduce_into(&force[..], &mut total[..], SystemOperation::sum());
     let reactions = reactions(model, step, &current, &total, &centres);
-    // the material's stress amplitudes, D times the strain's
-    let stress = partition
-        .local_elements()
-        .iter()
-        .zip(&materials)
-        .map(|(&e, (geo, d))| {
-            let strain = harmonic_strain(geo, step.mode, &mesh.elements[e].map(|n| amplitudes[n]));
-            std::array::from_fn(|q| (d[q] * nalgebra::SVector::<f64, 6>::from(strain[q])).into())
-        })
-        .collect();
+    let stress = stresses(model, partition, &materials, step.mode, &amplitudes);
     Ok(PerturbationAnswer { amplitudes, reactions, stress, notes: Vec::new() })
 }
 
 /// The model's size, for the axis tolerance.
-fn model_size(x: &[[f64; 2]]) -> f64 {
+pub(super) fn model_size(x: &[[f64; 2]]) -> f64 {
     let (rmax, zmin, zmax) = x.iter().fold((0.0f64, f64::INFINITY, f64::NEG_INFINITY), |(r, a, b), p| (r.max(p[0]), a.min(p[1]), b.max(p[1])));
     rmax.max(zmax - zmin)
 }
@@ -266,7 +346,7 @@ fn model_size(x: &[[f64; 2]]) -> f64 {
 type Prescription = Vec<[Option<f64>; 3]>;
 
 /// The amplitudes the step prescribes and each ring's (set, centre z_c).
-fn prescribed_amplitudes(model: &Model, step: &Perturbation, x: &[[f64; 2]]) -> Result<(Prescription, Vec<(String, f64)>)> {
+pub(super) fn prescribed_amplitudes(model: &Model, step: &Perturbation, x: &[[f64; 2]]) -> Result<(Prescription, Vec<(String, f64)>)> {
     let mut prescribed = vec![[None; 3]; x.len()];
     let mut set_value = |n: usize, c: usize, v: f64, set: &str| -> Result<()> {
         match prescribed[n][c] {
@@ -304,7 +384,7 @@ fn prescribed_amplitudes(model: &Model, step: &Perturbation, x: &[[f64; 2]]) -> 
 
 /// Numbers the unknown amplitudes rank by rank in partition order, with the axis's regularity;
 /// returns every node's amplitudes and the ranks' offsets.
-fn number(partition: &Partition, prescribed: &[[Option<f64>; 3]], x: &[[f64; 2]], mode: u32, size: f64) -> (Vec<[Amplitude; 3]>, Vec<usize>) {
+pub(super) fn number(partition: &Partition, prescribed: &[[Option<f64>; 3]], x: &[[f64; 2]], mode: u32, size: f64) -> (Vec<[Amplitude; 3]>, Vec<usize>) {
     let mut amplitude = vec![[Amplitude::Prescribed(0.0); 3]; x.len()];
     let mut offsets = vec![0; partition.size + 1];
     let mut next: PetscInt = 0;
