@@ -521,6 +521,13 @@ fn print_summary(summary: &RunSummary) {
         }
     }
     for (name, answer) in &summary.perturbations {
+        if !answer.modes.is_empty() {
+            println!(
+                "{}",
+                slideline::post::eigen_lines(name, answer.analysis, &answer.modes.iter().map(|m| (m.eigenvalue, m.effective_mass)).collect::<Vec<_>>())
+            );
+            continue;
+        }
         println!("perturbation step '{name}': reactions (full 360-degree ring)");
         for r in &answer.reactions {
             let resultants: Vec<String> = r.resultants.iter().map(|(what, v, units)| format!("{what} {v:.6e} {units}")).collect();

@@ -34,6 +34,10 @@ pub fn summary(r: &ResultsReader) -> Result<String> {
     );
     let _ = writeln!(s, "wall time:   {:.2} s", rows.last().map_or(0.0, |(_, r)| r.wall_time));
     for p in r.perturbations()? {
+        if !p.eigenvalues.is_empty() {
+            let _ = writeln!(s, "{}", eigen_lines(&p.name, p.analysis, &p.eigenvalues));
+            continue;
+        }
         let _ = writeln!(s, "perturbation '{}' (mode {}): reactions, full ring (N, N mm)", p.name, p.mode);
         for (set, values) in p.reactions {
             let values: Vec<String> = values.iter().map(|(what, v)| format!("{what} {v:.6e}")).collect();
@@ -41,6 +45,27 @@ pub fn summary(r: &ResultsReader) -> Result<String> {
         }
     }
     Ok(s)
+}
+
+/// An eigenvalue step's lines: each mode's frequency (Hz) and effective mass, or its load
+/// factor, from (eigenvalue, effective mass) pairs.
+pub fn eigen_lines(name: &str, analysis: crate::model::perturbation::Analysis, modes: &[(f64, Option<f64>)]) -> String {
+    use crate::model::perturbation::Analysis;
+    let mut s = match analysis {
+        Analysis::Frequency { .. } => format!("perturbation step '{name}': natural frequencies"),
+        _ => format!("perturbation step '{name}': buckling load factors (critical load = base load + factor x the step's load)"),
+    };
+    for (i, (value, mass)) in modes.iter().enumerate() {
+        let line = match analysis {
+            Analysis::Frequency { .. } => {
+                let mass = mass.map_or(String::new(), |m| format!(", effective mass {m:.4e} t (full ring)"));
+                format!("\n  mode {:>2}: {:.6e} Hz{mass}", i + 1, crate::solve::modes::frequency_hz(*value))
+            }
+            _ => format!("\n  mode {:>2}: load factor {value:.6e}", i + 1),
+        };
+        s.push_str(&line);
+    }
+    s
 }
 
 /// The history as the run printed it, one line per converged increment (the long lines of

@@ -127,7 +127,7 @@ impl Convolution {
             node_sets: sets.node_sets,
             element_sets: sets.element_sets,
             surfaces: sets.surfaces,
-            materials: vec![Material { name: "ply".into(), youngs_modulus: E, poissons_ratio: NU, thermal_expansion: 0.0, plasticity: None }],
+            materials: vec![Material { name: "ply".into(), youngs_modulus: E, poissons_ratio: NU, thermal_expansion: 0.0, plasticity: None, density: 0.0 }],
             element_material: vec![0; n],
             reference_temperature: 20.0,
             kinematics: Kinematics::Small,

@@ -19,7 +19,7 @@ use super::finite_element::{stations_of, Peak, PieceStations};
 use crate::error::Result;
 use crate::io::reader::ResultsReader;
 use crate::model::bellows::{convolution_pieces, BellowsParams};
-use crate::model::perturbation::{HarmonicComponent, HarmonicDisplacement, Perturbation, RingMotion};
+use crate::model::perturbation::{Analysis, HarmonicComponent, HarmonicDisplacement, Perturbation, RingMotion};
 use crate::petsc::PetscSession;
 use crate::solve::perturbation::PerturbationAnswer;
 use crate::solve::run;
@@ -84,6 +84,7 @@ pub fn steps(p: &BellowsParams, movements: Movements) -> Vec<Perturbation> {
         rings,
         pressures: Vec::new(),
         without_contact: if sleeve { Vec::new() } else { vec![SLEEVE.into()] },
+        analysis: Analysis::Response,
     };
     let amplitude = |set: &str, component, value| HarmonicDisplacement { node_set: set.into(), component, value };
     let mut out = vec![step(

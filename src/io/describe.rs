@@ -34,6 +34,10 @@ pub fn describe(group: &str, name: &str) -> (&'static str, String) {
             "mm",
             "harmonic amplitudes [U_r, U_z, U_t] of each node: u_r = U_r cos n theta, u_z = U_z cos n theta, u_theta = U_t sin n theta (n = 0: U_t)".into(),
         ),
+        ("perturbations", "eigenvalues") => ("-", "omega^2 (rad^2/s^2; frequency steps) or the load factor (buckle steps) of each mode, nearest zero first".into()),
+        ("perturbations", "frequencies") => ("Hz", "natural frequency of each mode (negative: the base state is unstable in it)".into()),
+        ("perturbations", "effective_mass_ring") => ("t", "each mode's effective mass along its mode's rigid motion (n = 0 axial, n = 1 lateral), full ring".into()),
+        ("perturbations", n) if n.starts_with("mode_") => ("-", "the mode's amplitudes [U_r, U_z, U_t] of each node, largest 1".into()),
         ("perturbations", "stress") => (
             "MPa",
             "stress amplitudes [s_rr, s_zz, s_tt, s_rz, s_rt, s_zt] at the 3 x 3 Gauss points of each element: the first four x cos n theta, the last two x sin n theta (n = 0: constant); D : strain".into(),

@@ -8,7 +8,8 @@ use super::results::{h5err, write_rows, ResultsFile};
 use crate::dist::Partition;
 use crate::element::solid::QUADRATURE_POINTS;
 use crate::error::Result;
-use crate::model::perturbation::Perturbation;
+use crate::model::perturbation::{Analysis, Perturbation};
+use crate::solve::modes::frequency_hz;
 use crate::solve::perturbation::PerturbationAnswer;
 
 impl ResultsFile {
@@ -25,19 +26,49 @@ impl ResultsFile {
         .map_err(&err)?;
         let g = top.create_group(&p.name).map_err(&err)?;
         g.new_attr::<u32>().create("mode").map_err(&err)?.write_scalar(&p.mode).map_err(&err)?;
-        let nn = answer.amplitudes.len();
+        let procedure = match p.analysis {
+            Analysis::Response => "harmonic",
+            Analysis::Frequency { .. } => "frequency",
+            Analysis::Buckle { .. } => "buckle",
+        };
+        let procedure: hdf5::types::VarLenUnicode = procedure.parse().expect("no NUL");
+        g.new_attr::<hdf5::types::VarLenUnicode>().create("procedure").map_err(&err)?.write_scalar(&procedure).map_err(&err)?;
         let slab = (partition.node_offsets[partition.rank], partition.node_offsets[partition.rank + 1]);
         let owned = partition.owned_nodes();
-        let amplitudes: Vec<f64> = owned.iter().flat_map(|&n| answer.amplitudes[n]).collect();
-        write_rows(&g, "amplitudes", &[nn, 3], slab, &amplitudes, &path)?;
+        let field = |name: &str, amplitudes: &[[f64; 3]]| -> Result<()> {
+            let nn = amplitudes.len();
+            write_rows(&g, name, &[nn, 3], slab, &owned.iter().flat_map(|&n| amplitudes[n]).collect::<Vec<f64>>(), &path)
+        };
+        // the field a response step gives, or an eigenvalue step's first mode
+        let first = answer.modes.first().map_or(&answer.amplitudes, |m| &m.amplitudes);
+        let nn = first.len();
+        field("amplitudes", first)?;
         // at theta = 0: cos = 1, sin = 0 (n = 0: u_theta = U_t)
         let hoop = if p.mode == 0 { 1.0 } else { 0.0 };
-        let at_zero: Vec<f64> = owned.iter().flat_map(|&n| [answer.amplitudes[n][0], answer.amplitudes[n][1], hoop * answer.amplitudes[n][2]]).collect();
-        write_rows(&g, "displacement", &[nn, 3], slab, &at_zero, &path)?;
-        let ne = partition.element_offsets[partition.size];
-        let element_slab = (partition.element_offsets[partition.rank], partition.element_offsets[partition.rank + 1]);
-        let stress: Vec<f64> = answer.stress.iter().flatten().flatten().copied().collect();
-        write_rows(&g, "stress", &[ne, QUADRATURE_POINTS, 6], element_slab, &stress, &path)?;
+        field("displacement", &first.iter().map(|a| [a[0], a[1], hoop * a[2]]).collect::<Vec<_>>())?;
+        if answer.modes.is_empty() {
+            let ne = partition.element_offsets[partition.size];
+            let element_slab = (partition.element_offsets[partition.rank], partition.element_offsets[partition.rank + 1]);
+            let stress: Vec<f64> = answer.stress.iter().flatten().flatten().copied().collect();
+            write_rows(&g, "stress", &[ne, QUADRATURE_POINTS, 6], element_slab, &stress, &path)?;
+        } else {
+            // the eigenvalues (rank 0 writes the short lists) and every mode's amplitudes
+            let k = answer.modes.len();
+            let list = |name: &str, values: Vec<f64>| -> Result<()> {
+                let rows = if partition.rank == 0 { (0, k) } else { (k, k) };
+                write_rows(&g, name, &[k], rows, &values[rows.0..rows.1], &path)
+            };
+            list("eigenvalues", answer.modes.iter().map(|m| m.eigenvalue).collect())?;
+            if let Analysis::Frequency { .. } = p.analysis {
+                list("frequencies", answer.modes.iter().map(|m| frequency_hz(m.eigenvalue)).collect())?;
+                if answer.modes.iter().all(|m| m.effective_mass.is_some()) {
+                    list("effective_mass_ring", answer.modes.iter().map(|m| m.effective_mass.unwrap_or(f64::NAN)).collect())?;
+                }
+            }
+            for (i, mode) in answer.modes.iter().enumerate() {
+                field(&format!("mode_{}", i + 1), &mode.amplitudes)?;
+            }
+        }
         let reactions = g.create_group("reactions").map_err(&err)?;
         for r in &answer.reactions {
             let s = reactions.create_group(&r.set).map_err(&err)?;

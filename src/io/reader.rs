@@ -4,6 +4,7 @@
 
 use super::{ContactSummary, HistoryRow};
 use crate::error::{Error, Result};
+use crate::model::perturbation::Analysis;
 use crate::solve::energy::Energies;
 use hdf5::types::VarLenUnicode;
 use std::path::{Path, PathBuf};
@@ -317,7 +318,16 @@ impl ResultsReader {
                 }
                 sets.push((set, values));
             }
-            out.push(StoredPerturbation { name, mode, reactions: sets });
+            let procedure = g.attr("procedure").and_then(|a| a.read_scalar::<hdf5::types::VarLenUnicode>()).map(|v| v.as_str().to_string()).unwrap_or_default();
+            let list = |name: &str| g.dataset(name).and_then(|d| d.read_raw::<f64>()).unwrap_or_default();
+            let (eigenvalues, masses) = (list("eigenvalues"), list("effective_mass_ring"));
+            let analysis = match procedure.as_str() {
+                "frequency" => Analysis::Frequency { eigenvalues: eigenvalues.len() },
+                "buckle" => Analysis::Buckle { eigenvalues: eigenvalues.len() },
+                _ => Analysis::Response,
+            };
+            let eigenvalues = eigenvalues.iter().enumerate().map(|(i, &v)| (v, masses.get(i).copied())).collect();
+            out.push(StoredPerturbation { name, mode, reactions: sets, analysis, eigenvalues });
         }
         Ok(out)
     }
@@ -496,4 +506,7 @@ pub struct StoredPerturbation {
     pub name: String,
     pub mode: u32,
     pub reactions: Vec<(String, Vec<(String, f64)>)>,
+    pub analysis: Analysis,
+    /// Eigenvalue steps: each mode's (eigenvalue, effective mass).
+    pub eigenvalues: Vec<(f64, Option<f64>)>,
 }

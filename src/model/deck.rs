@@ -68,7 +68,7 @@
 //! ```
 
 use super::mesh::{blocks, rectangle, Block, MeshSets};
-use super::perturbation::{HarmonicComponent, HarmonicDisplacement, Perturbation, RingMotion};
+use super::perturbation::{Analysis, HarmonicComponent, HarmonicDisplacement, Perturbation, RingMotion};
 use super::{
     default_capture_distance, gmsh, Adjust, AugmentedLagrangian, Component, ContactIntegration, ContactPair, Convergence, Friction, Kinematics, Material,
     Model, OutputControls, OutputFields, Penalty, Plasticity, Precision, Predictor, PrescribedDisplacement, Pressure, Step, SteppingControls,
@@ -248,6 +248,9 @@ struct MaterialSpec {
     poissons_ratio: f64,
     #[serde(default)]
     thermal_expansion: f64,
+    /// t/mm^3.
+    #[serde(default)]
+    density: f64,
     yield_stress: Option<f64>,
     hardening_modulus: Option<f64>,
 }
@@ -273,6 +276,8 @@ struct StepSpec {
     mode: Option<u32>,
     /// Harmonic steps: contact pairs left out of the step's stiffness.
     without_contact: Option<Vec<String>>,
+    /// Frequency and buckle steps: how many eigenvalues.
+    eigenvalues: Option<usize>,
     increments: Option<usize>,
     temperature: Option<f64>,
     #[serde(default)]
@@ -361,6 +366,7 @@ pub fn parse(text: &str, path: &Path) -> Result<Model> {
             poissons_ratio: m.poissons_ratio,
             thermal_expansion: m.thermal_expansion,
             plasticity,
+            density: m.density,
         });
     }
     if materials.is_empty() {
@@ -397,10 +403,12 @@ pub fn parse(text: &str, path: &Path) -> Result<Model> {
                     return Err(Error::input(format!("step '{name}': a general step after a perturbation step (perturbation steps come last)")));
                 }
                 if let Some(mode) = s.mode {
-                    return Err(Error::input(format!("step '{name}': mode = {mode} is for procedure = \"harmonic\"")));
+                    return Err(Error::input(format!(
+                        "step '{name}': mode = {mode} is for the perturbation procedures (\"harmonic\", \"frequency\", \"buckle\")"
+                    )));
                 }
-                if s.without_contact.is_some() {
-                    return Err(Error::input(format!("step '{name}': without_contact is for procedure = \"harmonic\"")));
+                if s.without_contact.is_some() || s.eigenvalues.is_some() {
+                    return Err(Error::input(format!("step '{name}': without_contact and eigenvalues are for the perturbation procedures")));
                 }
                 let mut displacements = Vec::new();
                 for b in &s.boundary {
@@ -421,8 +429,14 @@ pub fn parse(text: &str, path: &Path) -> Result<Model> {
                 let increments = s.increments.unwrap_or(1);
                 steps.push(Step { name, increments, displacements, pressures, temperature: s.temperature, time_span: None });
             }
-            "harmonic" => {
-                let mode = s.mode.ok_or_else(|| Error::input(format!("step '{name}': procedure = \"harmonic\" needs its mode (mode = n)")))?;
+            procedure @ ("harmonic" | "frequency" | "buckle") => {
+                let mode = s.mode.ok_or_else(|| Error::input(format!("step '{name}': procedure = \"{procedure}\" needs its mode (mode = n)")))?;
+                let analysis = match (procedure, s.eigenvalues) {
+                    ("harmonic", None) => Analysis::Response,
+                    ("harmonic", Some(_)) => return Err(Error::input(format!("step '{name}': eigenvalues is for procedure = \"frequency\" or \"buckle\""))),
+                    ("frequency", count) => Analysis::Frequency { eigenvalues: count.unwrap_or(1) },
+                    (_, count) => Analysis::Buckle { eigenvalues: count.unwrap_or(1) },
+                };
                 if s.increments.is_some() || s.temperature.is_some() {
                     return Err(Error::input(format!(
                         "step '{name}': a harmonic step has no increments or temperature (it is linear, about the state before)"
@@ -458,9 +472,10 @@ pub fn parse(text: &str, path: &Path) -> Result<Model> {
                     rings,
                     pressures,
                     without_contact: s.without_contact.clone().unwrap_or_default(),
+                    analysis,
                 });
             }
-            other => return Err(Error::input(format!("step '{name}': procedure {other:?} is not one of \"static\", \"harmonic\""))),
+            other => return Err(Error::input(format!("step '{name}': procedure {other:?} is not one of \"static\", \"harmonic\", \"frequency\", \"buckle\""))),
         }
     }
 

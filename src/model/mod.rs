@@ -73,6 +73,9 @@ pub struct Material {
     pub poissons_ratio: f64,
     pub thermal_expansion: f64,
     pub plasticity: Option<Plasticity>,
+    /// Mass density, t/mm^3 (so that N, mm and s stay consistent; steel 7.85e-9); 0 when not
+    /// given (only frequency steps need it).
+    pub density: f64,
 }
 
 /// Isotropic hardening of a J2 material: linear, or a piecewise-linear table.

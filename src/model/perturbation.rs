@@ -52,6 +52,22 @@ pub struct RingMotion {
     pub pivot: Option<f64>,
 }
 
+/// What a perturbation step computes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Analysis {
+    /// The response to its prescribed amplitudes and harmonic pressures.
+    Response,
+    /// The lowest natural frequencies of its mode, its amplitudes held at zero where it names
+    /// them.
+    Frequency { eigenvalues: usize },
+    /// The lowest buckling load factors of its mode under its load: the axisymmetric load of its
+    /// pressures and its ur / uz values, applied about the base state.
+    Buckle { eigenvalues: usize },
+}
+
+/// The most eigenvalues a step may ask for.
+pub const MAX_EIGENVALUES: usize = 50;
+
 /// One perturbation step.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Perturbation {
@@ -63,6 +79,7 @@ pub struct Perturbation {
     pub pressures: Vec<Pressure>,
     /// Contact pairs whose closed nodes carry nothing in this step (by name).
     pub without_contact: Vec<String>,
+    pub analysis: Analysis,
 }
 
 /// The largest mode accepted: beyond it a Q8 mesh of any reasonable ring resolves nothing.
@@ -105,6 +122,33 @@ impl Perturbation {
         for name in &self.without_contact {
             if !model.contacts.iter().any(|c| &c.name == name) {
                 return Err(at(format!("without_contact: no contact pair '{name}'")));
+            }
+        }
+        match self.analysis {
+            Analysis::Response => {}
+            Analysis::Frequency { eigenvalues } | Analysis::Buckle { eigenvalues } if eigenvalues == 0 || eigenvalues > MAX_EIGENVALUES => {
+                return Err(at(format!("eigenvalues = {eigenvalues}: give 1 to {MAX_EIGENVALUES}")));
+            }
+            Analysis::Frequency { .. } => {
+                if let Some(d) = self.displacements.iter().find(|d| d.value != 0.0) {
+                    return Err(at(format!("a frequency step holds amplitudes at zero: {} = {} on '{}'", d.component.name(), d.value, d.node_set)));
+                }
+                if !self.rings.is_empty() || !self.pressures.is_empty() {
+                    return Err(at("a frequency step has no load (no lateral, rotation or pressure)".into()));
+                }
+                if let Some(m) = model.materials.iter().find(|m| !(m.density > 0.0 && m.density.is_finite())) {
+                    return Err(at(format!("material '{}' has no density (t/mm^3; steel 7.85e-9)", m.name)));
+                }
+                return Ok(());
+            }
+            Analysis::Buckle { .. } => {
+                if !self.rings.is_empty() {
+                    return Err(at("a buckle step's load is axisymmetric: pressures and ur / uz values, no lateral or rotation".into()));
+                }
+                if self.pressures.is_empty() && self.displacements.iter().all(|d| d.value == 0.0) {
+                    return Err(at("no load: give a pressure or nonzero ur / uz values (the load the load factors multiply)".into()));
+                }
+                return Ok(());
             }
         }
         if self.displacements.is_empty() && self.rings.is_empty() && self.pressures.is_empty() {

@@ -10,6 +10,7 @@ pub mod extrapolate;
 mod held;
 mod kept;
 pub mod layout;
+pub mod modes;
 pub mod pattern;
 pub mod perturbation;
 pub mod problem;

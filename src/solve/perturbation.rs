@@ -32,7 +32,7 @@ use crate::element::harmonic_pressure::harmonic_pressure_stiffness;
 use crate::element::pressure::compute_pressure_load;
 use crate::element::solid::{ElementGeometry, NODES, QUADRATURE_POINTS};
 use crate::error::{Error, Result};
-use crate::model::perturbation::Perturbation;
+use crate::model::perturbation::{Analysis, Perturbation};
 use crate::model::Model;
 use crate::petsc::sys::PetscInt;
 use crate::petsc::{MatOps, Matrix, PetscSession, Snes, VecOps, Vector};
@@ -85,6 +85,10 @@ pub struct PerturbationAnswer {
     /// elements (partition order): the material's response D : strain, as Abaqus reports a
     /// perturbation's stress.
     pub stress: Vec<[[f64; 6]; QUADRATURE_POINTS]>,
+    /// Frequency and buckle steps: the eigenmodes, nearest zero first (the fields above are
+    /// empty).
+    pub modes: Vec<super::modes::EigenMode>,
+    pub analysis: Analysis,
     pub notes: Vec<String>,
 }
 
@@ -251,7 +255,11 @@ pub(super) fn stresses(
 
 /// Solves perturbation `step` about `base` (collective).
 pub fn solve(session: &PetscSession, model: &Model, partition: &Partition, base: &BaseState<'_>, step: &Perturbation) -> Result<PerturbationAnswer> {
-    response(session, model, partition, base, step, false)
+    match step.analysis {
+        Analysis::Response => response(session, model, partition, base, step, false),
+        Analysis::Frequency { eigenvalues } => super::modes::frequency(session, model, partition, base, step, eigenvalues),
+        Analysis::Buckle { eigenvalues } => super::modes::buckle(session, model, partition, base, step, eigenvalues),
+    }
 }
 
 /// The response to the step's prescribed amplitudes and harmonic pressures; `hold_twist` holds
@@ -333,7 +341,7 @@ pub(super) fn response(
     world.all_reduce_into(&force[..], &mut total[..], SystemOperation::sum());
     let reactions = reactions(model, step, &current, &total, &centres);
     let stress = stresses(model, partition, &materials, step.mode, &amplitudes);
-    Ok(PerturbationAnswer { amplitudes, reactions, stress, notes: Vec::new() })
+    Ok(PerturbationAnswer { amplitudes, reactions, stress, modes: Vec::new(), analysis: step.analysis, notes: Vec::new() })
 }
 
 /// The model's size, for the axis tolerance.

@@ -324,7 +324,7 @@ impl Builder {
                 ([], _) | (_, None) => None,
                 (points, Some(at)) => Some(Plasticity::table(points).map_err(|e| error_at(at, "PLASTIC", e))?),
             };
-            materials.push(Material { name: m.name.clone(), youngs_modulus, poissons_ratio, thermal_expansion: m.expansion, plasticity });
+            materials.push(Material { name: m.name.clone(), youngs_modulus, poissons_ratio, thermal_expansion: m.expansion, plasticity, density: 0.0 });
         }
         if materials.is_empty() {
             return Err(Error::input("the deck defines no *MATERIAL"));

@@ -1,0 +1,221 @@
+//! Eigenvalue perturbation steps about the base state (Abaqus's *FREQUENCY and *BUCKLE on CAXA
+//! elements), one circumferential harmonic n at a time, on the harmonic element's system
+//! (`solve::perturbation`) and SLEPc (`petsc::eigen`):
+//! - **frequency**: K_T phi = omega^2 M phi, K_T the perturbation's stiffness about the base
+//!   state (material, initial stress, follower pressure, contact), M the consistent mass, the
+//!   ring factor in both; frequencies in Hz and each mode's effective mass along the mode's
+//!   rigid motion (n = 0 axial, n = 1 lateral), full ring;
+//! - **buckle**: (K_T + lambda K_D) phi = 0, K_D the initial-stress stiffness of the stress
+//!   increment the step's axisymmetric load causes (a linear solve of that load about the base
+//!   state, mode 0, twist held) plus that load's follower-pressure stiffness; the load factors
+//!   lambda nearest zero, the critical load being the base's plus lambda times the step's.
+//!
+//! The amplitudes a step names are held at zero in the eigenproblem.
+
+use super::perturbation::{
+    amplitudes_of, assemble, current_positions, model_size, number, prescribed_amplitudes, pressure_stiffness_blocks, response, stiffness_blocks, Amplitude,
+    BaseState, Block, PerturbationAnswer,
+};
+use crate::dist::Partition;
+use crate::element::harmonic::{initial_stress_stiffness, ring_factor};
+use crate::element::solid::{NODES, QUADRATURE_POINTS};
+use crate::error::{Error, Result};
+use crate::model::perturbation::{Analysis, HarmonicComponent, Perturbation};
+use crate::model::Model;
+use crate::petsc::eigen::{nearest, Pencil};
+use crate::petsc::PetscSession;
+use mpi::collective::SystemOperation;
+use mpi::traits::*;
+use std::f64::consts::PI;
+
+/// One eigenmode of a frequency or buckle step.
+#[derive(Clone, Debug, PartialEq)]
+pub struct EigenMode {
+    /// omega^2 (rad^2/s^2) or the load factor lambda.
+    pub eigenvalue: f64,
+    /// [U_r, U_z, U_t] of every node (model order), scaled to a largest amplitude of 1.
+    pub amplitudes: Vec<[f64; 3]>,
+    /// Frequency steps: the mode's effective mass along its mode's rigid motion, full ring (t),
+    /// where the mode has one (n = 0 axial, n = 1 lateral).
+    pub effective_mass: Option<f64>,
+    /// SLEPc's relative residual of the eigenpair.
+    pub error: f64,
+}
+
+/// Frequency (Hz) of an eigenvalue omega^2 (negative: the base state is unstable in this mode).
+pub fn frequency_hz(omega_squared: f64) -> f64 {
+    omega_squared.signum() * omega_squared.abs().sqrt() / (2.0 * PI)
+}
+
+/// The step's amplitudes held at zero, numbered for mode `mode`.
+fn held_numbering(model: &Model, partition: &Partition, step: &Perturbation, current: &[[f64; 2]]) -> Result<(Vec<[Amplitude; 3]>, Vec<usize>)> {
+    let (mut prescribed, _) = prescribed_amplitudes(model, step, current)?;
+    for p in prescribed.iter_mut().flatten() {
+        if p.is_some() {
+            *p = Some(0.0);
+        }
+    }
+    Ok(number(partition, &prescribed, current, step.mode, model_size(current)))
+}
+
+/// The consistent mass of this rank's elements for mode `mode` (per radian, the ring factor in).
+fn mass_blocks(model: &Model, partition: &Partition, current: &[[f64; 2]], mode: u32) -> Result<Vec<Block>> {
+    let factor = ring_factor(mode);
+    partition
+        .local_elements()
+        .iter()
+        .map(|&e| {
+            let conn = model.mesh.elements[e];
+            let geo = crate::element::solid::ElementGeometry::new(&conn.map(|n| current[n]))
+                .map_err(|m| Error::input(format!("element {}: {m}", model.mesh.element_ids[e])))?;
+            let rho = model.materials[model.element_material[e]].density;
+            let (points, weights) = geo.points();
+            let size = 3 * NODES;
+            let mut m = vec![0.0; size * size];
+            for q in 0..QUADRATURE_POINTS {
+                let n = &points[q].n;
+                for a in 0..NODES {
+                    for b in 0..NODES {
+                        let v = factor * rho * weights[q] * n[a] * n[b];
+                        for c in 0..3 {
+                            m[(3 * b + c) * size + 3 * a + c] += v;
+                        }
+                    }
+                }
+            }
+            Ok((conn.to_vec(), m))
+        })
+        .collect()
+}
+
+/// x^T (sum of `blocks`) y over every node (collective).
+fn product(world: &impl Communicator, blocks: &[Block], x: &[[f64; 3]], y: &[[f64; 3]]) -> f64 {
+    let mut local = 0.0;
+    for (conn, k) in blocks {
+        let size = 3 * conn.len();
+        let at = |v: &[[f64; 3]], i: usize| v[conn[i / 3]][i % 3];
+        for i in 0..size {
+            for j in 0..size {
+                local += at(x, i) * k[j * size + i] * at(y, j);
+            }
+        }
+    }
+    let mut total = 0.0;
+    world.all_reduce_into(&local, &mut total, SystemOperation::sum());
+    total
+}
+
+/// The modes of `pairs` as every node's amplitudes, scaled to a largest amplitude of 1.
+fn modes_of(
+    world: &impl Communicator,
+    partition: &Partition,
+    amplitude: &[[Amplitude; 3]],
+    offsets: &[usize],
+    pairs: Vec<crate::petsc::eigen::Eigenpair>,
+) -> Vec<EigenMode> {
+    pairs
+        .into_iter()
+        .map(|p| {
+            let mut amplitudes = amplitudes_of(world, partition, amplitude, offsets, &p.vector);
+            let largest = amplitudes.iter().flatten().fold(0.0f64, |m, &v| if v.abs() > m.abs() { v } else { m });
+            if largest != 0.0 {
+                amplitudes.iter_mut().flatten().for_each(|v| *v /= largest);
+            }
+            EigenMode { eigenvalue: p.value, amplitudes, effective_mass: None, error: p.error }
+        })
+        .collect()
+}
+
+/// A frequency step (collective).
+pub fn frequency(
+    session: &PetscSession,
+    model: &Model,
+    partition: &Partition,
+    base: &BaseState<'_>,
+    step: &Perturbation,
+    count: usize,
+) -> Result<PerturbationAnswer> {
+    let world = session.world();
+    let current = current_positions(model, base);
+    let (amplitude, offsets) = held_numbering(model, partition, step, &current)?;
+    let local_len = offsets[partition.rank + 1] - offsets[partition.rank];
+    let (stiffness, _) = stiffness_blocks(model, partition, base, &current, step.mode, &step.without_contact, &step.name)?;
+    let mass = mass_blocks(model, partition, &current, step.mode)?;
+    let (k, _) = assemble(session, &stiffness, &amplitude, local_len)?;
+    let (m, _) = assemble(session, &mass, &amplitude, local_len)?;
+    // a follower pressure's load stiffness is unsymmetric
+    let follower = model.kinematics == crate::material::Kinematics::Finite && base.pressures.iter().any(|(_, p)| *p != 0.0);
+    let pencil = if follower { Pencil::General } else { Pencil::Hermitian };
+    let pairs = nearest(session, &k, &m, local_len, pencil, count, 0.0)?;
+    let mut modes = modes_of(&world, partition, &amplitude, &offsets, pairs);
+    // the mode's rigid motion: n = 0 along the axis, n = 1 across it (U_r = -U_t)
+    let rigid: Option<[f64; 3]> = match step.mode {
+        0 => Some([0.0, 1.0, 0.0]),
+        1 => Some([1.0, 0.0, -1.0]),
+        _ => None,
+    };
+    if let Some(r) = rigid {
+        let r = vec![r; current.len()];
+        for mode in &mut modes {
+            let generalised = product(&world, &mass, &mode.amplitudes, &mode.amplitudes);
+            let participation = product(&world, &mass, &mode.amplitudes, &r);
+            mode.effective_mass = Some(2.0 * PI * participation * participation / generalised);
+        }
+    }
+    let notes =
+        if modes.len() < count { vec![format!("step '{}': {} of the {count} eigenvalues asked for converged", step.name, modes.len())] } else { Vec::new() };
+    Ok(PerturbationAnswer { amplitudes: Vec::new(), reactions: Vec::new(), stress: Vec::new(), modes, analysis: step.analysis, notes })
+}
+
+/// A buckle step (collective).
+pub fn buckle(
+    session: &PetscSession,
+    model: &Model,
+    partition: &Partition,
+    base: &BaseState<'_>,
+    step: &Perturbation,
+    count: usize,
+) -> Result<PerturbationAnswer> {
+    let world = session.world();
+    let current = current_positions(model, base);
+    // the stress increment of the step's load: its axisymmetric response about the base state
+    let load = Perturbation {
+        name: step.name.clone(),
+        mode: 0,
+        displacements: step.displacements.iter().filter(|d| d.component != HarmonicComponent::T).cloned().collect(),
+        rings: Vec::new(),
+        pressures: step.pressures.clone(),
+        without_contact: step.without_contact.clone(),
+        analysis: Analysis::Response,
+    };
+    let increment = response(session, model, partition, base, &load, true)?;
+    let (amplitude, offsets) = held_numbering(model, partition, step, &current)?;
+    let local_len = offsets[partition.rank + 1] - offsets[partition.rank];
+    let (stiffness, materials) = stiffness_blocks(model, partition, base, &current, step.mode, &step.without_contact, &step.name)?;
+    // K_D: the stress increment's initial stress, and the step's pressures' load stiffness
+    // where they follow the surface; B = -K_D
+    let mut load_stiffness: Vec<Block> = materials
+        .iter()
+        .zip(&increment.stress)
+        .zip(partition.local_elements())
+        .map(|(((geo, _), stress), &e)| {
+            let sigma: [[f64; 4]; QUADRATURE_POINTS] = stress.map(|s| [s[0], s[1], s[2], s[3]]);
+            (model.mesh.elements[e].to_vec(), initial_stress_stiffness(geo, step.mode, &sigma).as_slice().to_vec())
+        })
+        .collect();
+    if model.kinematics == crate::material::Kinematics::Finite {
+        for p in &step.pressures {
+            load_stiffness.extend(pressure_stiffness_blocks(model, partition, &current, &p.surface, p.value, step.mode));
+        }
+    }
+    for (_, values) in &mut load_stiffness {
+        values.iter_mut().for_each(|v| *v = -*v);
+    }
+    let (k, _) = assemble(session, &stiffness, &amplitude, local_len)?;
+    let (b, _) = assemble(session, &load_stiffness, &amplitude, local_len)?;
+    let pairs = nearest(session, &k, &b, local_len, Pencil::General, count, 0.0)?;
+    let modes = modes_of(&world, partition, &amplitude, &offsets, pairs);
+    let notes =
+        if modes.len() < count { vec![format!("step '{}': {} of the {count} eigenvalues asked for converged", step.name, modes.len())] } else { Vec::new() };
+    Ok(PerturbationAnswer { amplitudes: Vec::new(), reactions: Vec::new(), stress: Vec::new(), modes, analysis: step.analysis, notes })
+}

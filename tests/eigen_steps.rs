@@ -1,0 +1,165 @@
+//! Eigenvalue perturbation steps (`procedure = "frequency"` and `"buckle"`), through the whole
+//! program, against closed forms:
+//! - a free thin ring, mean radius R = 100 mm, 2 mm radial by 6 mm axial, steel (E 200 GPa,
+//!   nu 0.3, rho 7.85e-9 t/mm^3): its in-plane flexural mode n = 2, omega^2 = E t^2 n^2 (n^2 -
+//!   1)^2 / (12 rho R^4 (n^2 + 1)) = 124.45 Hz, and its breathing mode n = 0, omega^2 = E /
+//!   (rho R^2) = 8033.4 Hz (Blevins, Formulas for Natural Frequency and Mode Shape, table 9-1,
+//!   thin ring); within 0.5 % (measured -0.012 %, -0.002 %); 1 and 2 ranks agree to 1e-8;
+//! - a cantilevered tube r 95..100, 4000 mm long: its first bending mode (n = 1) against
+//!   Euler-Bernoulli's 1.8751^2 sqrt(E I / (rho A L^4)) within 1.5 % (the slender beam's
+//!   shear and rotary inertia take off about (1.875 r_g / L)^2 (1 + E / (k G)) = 0.6 %), and
+//!   its effective mass 0.6131 of the tube's (the same beam's) within 2 %;
+//! - the same tube under an axial end load (a dead pressure on its end, small strain): the
+//!   buckle step's load factor times the step's load is Euler's cantilever load pi^2 E I /
+//!   (4 L^2) with Engesser's shear correction P / (1 + P / (k G A)) (Timoshenko & Gere 2.17):
+//!   within 1 % from the unloaded tube, and from a base state already at half that load the
+//!   factor is the remaining half (critical = base + factor x step), within 1 %.
+
+mod common;
+use common::{run_deck, Results};
+use std::f64::consts::PI;
+
+const E: f64 = 200_000.0;
+const NU: f64 = 0.3;
+const RHO: f64 = 7.85e-9;
+
+fn f64s(r: &Results, path: &str) -> Vec<f64> {
+    r.f64s(path)
+}
+
+#[test]
+fn a_free_ring_rings_as_the_thin_ring_theory_says_on_one_and_two_ranks() {
+    let deck = format!(
+        r#"
+[mesh.rectangle]
+r = [99.0, 101.0]
+z = [0.0, 6.0]
+divisions = [2, 4]
+[[material]]
+name = "steel"
+youngs_modulus = {E}
+poissons_ratio = {NU}
+density = {RHO}
+[[step]]
+name = "rest"
+boundary = [ {{ set = "bottom", uz = 0.0 }} ]
+[[step]]
+name = "ovals"
+procedure = "frequency"
+mode = 2
+eigenvalues = 2
+[[step]]
+name = "breathing"
+procedure = "frequency"
+mode = 0
+boundary = [ {{ set = "bottom", uz = 0.0, ut = 0.0 }} ]
+"#
+    );
+    let (r, t, n) = (100.0f64, 2.0f64, 2.0f64);
+    let oval = (E * t * t * n * n * (n * n - 1.0).powi(2) / (12.0 * RHO * r.powi(4) * (n * n + 1.0))).sqrt() / (2.0 * PI);
+    let breathing = (E / RHO).sqrt() / r / (2.0 * PI);
+    let one = run_deck(&deck, &[], 1, &[]);
+    one.assert_ok();
+    let r1 = Results::open(&one.h5);
+    let (f_oval, f_breathing) = (f64s(&r1, "perturbations/ovals/frequencies")[0], f64s(&r1, "perturbations/breathing/frequencies")[0]);
+    eprintln!("ring: n = 2 {f_oval:.3} Hz against {oval:.3}; breathing {f_breathing:.2} Hz against {breathing:.2}");
+    assert!((f_oval / oval - 1.0).abs() < 5e-3, "{f_oval} against {oval}");
+    assert!((f_breathing / breathing - 1.0).abs() < 5e-3, "{f_breathing} against {breathing}");
+    assert!(one.stdout().contains("perturbation step 'ovals': natural frequencies"), "{}", one.stdout());
+    // the first mode's field, for ParaView, and `slideline post`
+    assert_eq!(f64s(&r1, "perturbations/ovals/mode_1").len(), f64s(&r1, "perturbations/ovals/amplitudes").len());
+    let post = common::command_in(one.dir.path(), 1).args(["post", one.h5.to_str().unwrap()]).output().unwrap();
+    let printed = String::from_utf8_lossy(&post.stdout);
+    assert!(printed.contains(&format!("mode  1: {f_oval:.6e} Hz")), "{printed}");
+
+    let two = run_deck(&deck, &[], 2, &[]);
+    two.assert_ok();
+    let r2 = Results::open(&two.h5);
+    for step in ["ovals", "breathing"] {
+        let (a, b) = (f64s(&r1, &format!("perturbations/{step}/frequencies")), f64s(&r2, &format!("perturbations/{step}/frequencies")));
+        for (x, y) in a.iter().zip(&b) {
+            assert!((x - y).abs() < 1e-8 * x, "{step}: {x} on one rank, {y} on two");
+        }
+    }
+}
+
+/// The tube r 95..100, `length` long, clamped at its base, with `steps` after a base step
+/// carrying `base`.
+fn tube(length: f64, base: &str, steps: &str) -> String {
+    format!(
+        r#"
+nlgeom = false
+[mesh.rectangle]
+r = [95.0, 100.0]
+z = [0.0, {length}]
+divisions = [2, 120]
+[[material]]
+name = "steel"
+youngs_modulus = {E}
+poissons_ratio = {NU}
+density = {RHO}
+[[step]]
+name = "base"
+boundary = [ {{ set = "bottom", ur = 0.0, uz = 0.0 }} ]
+{base}
+{steps}
+"#
+    )
+}
+
+const HELD: &str = r#"boundary = [ { set = "bottom", ur = 0.0, uz = 0.0, ut = 0.0 } ]"#;
+
+fn section() -> (f64, f64, f64) {
+    let area = PI * (100f64.powi(2) - 95f64.powi(2));
+    let inertia = PI / 4.0 * (100f64.powi(4) - 95f64.powi(4));
+    // Cowper's shear coefficient of a thin-walled tube, m = 0.95
+    let m2: f64 = 0.95 * 0.95;
+    let kappa = 6.0 * (1.0 + NU) * (1.0 + m2).powi(2) / ((7.0 + 6.0 * NU) * (1.0 + m2).powi(2) + (20.0 + 12.0 * NU) * m2);
+    (area, inertia, kappa * E / (2.0 * (1.0 + NU)) * area)
+}
+
+#[test]
+fn a_cantilevered_tube_vibrates_as_a_beam() {
+    let length = 4000.0;
+    let steps = format!("[[step]]\nname = \"sway\"\nprocedure = \"frequency\"\nmode = 1\n{HELD}\n");
+    let run = run_deck(&tube(length, "", &steps), &[], 1, &[]);
+    run.assert_ok();
+    let r = Results::open(&run.h5);
+    let (area, inertia, _) = section();
+    let beam = 1.8751f64.powi(2) * (E * inertia / (RHO * area * length.powi(4))).sqrt() / (2.0 * PI);
+    let f = f64s(&r, "perturbations/sway/frequencies")[0];
+    let mass = f64s(&r, "perturbations/sway/effective_mass_ring")[0];
+    let total = RHO * area * length;
+    eprintln!(
+        "cantilever: {f:.4} Hz against Euler-Bernoulli's {beam:.4} ({:+.3} %); effective mass {:.4} of the tube's",
+        100.0 * (f / beam - 1.0),
+        mass / total
+    );
+    assert!(f < beam && (f / beam - 1.0).abs() < 0.015, "{f} against {beam}");
+    assert!((mass / total / 0.6131 - 1.0).abs() < 0.02, "effective mass {mass} of {total}");
+}
+
+#[test]
+fn a_compressed_tube_buckles_at_eulers_load_with_engesser_s_shear() {
+    let length = 2000.0;
+    let (area, inertia, shear) = section();
+    let euler = PI * PI * E * inertia / (4.0 * length * length);
+    let critical = euler / (1.0 + euler / shear);
+    // the step's load: 1 MPa on the end
+    let steps = format!(
+        "[[step]]\nname = \"squash\"\nprocedure = \"buckle\"\nmode = 1\neigenvalues = 2\npressure = [ {{ surface = \"top\", value = 1.0 }} ]\n{HELD}\n"
+    );
+    let run = run_deck(&tube(length, "", &steps), &[], 1, &[]);
+    run.assert_ok();
+    let factor = f64s(&Results::open(&run.h5), "perturbations/squash/eigenvalues")[0];
+    eprintln!("buckling: {:.1} N against {critical:.1} N ({:+.3} %)", factor * area, 100.0 * (factor * area / critical - 1.0));
+    assert!((factor * area / critical - 1.0).abs() < 0.01, "{} against {critical}", factor * area);
+    assert!(run.stdout().contains("buckling load factors"), "{}", run.stdout());
+    // from a base already at half the critical load, the factor is the other half
+    let half = format!("pressure = [ {{ surface = \"top\", value = {} }} ]", critical / 2.0 / area);
+    let run = run_deck(&tube(length, &half, &steps), &[], 1, &[]);
+    run.assert_ok();
+    let rest = f64s(&Results::open(&run.h5), "perturbations/squash/eigenvalues")[0];
+    eprintln!("from half the load: {:.1} N more against {:.1}", rest * area, critical / 2.0);
+    assert!((rest * area / (critical / 2.0) - 1.0).abs() < 0.01, "{} against {}", rest * area, critical / 2.0);
+}
