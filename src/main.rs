@@ -526,6 +526,11 @@ fn print_summary(summary: &RunSummary) {
                 "{}",
                 slideline::post::eigen_lines(name, answer.analysis, &answer.modes.iter().map(|m| (m.eigenvalue, m.effective_mass)).collect::<Vec<_>>())
             );
+            for (i, m) in answer.modes.iter().enumerate() {
+                for (surface, p) in &m.critical_pressures {
+                    println!("  mode {:>2}: critical pressure on '{surface}' {p:.6e} MPa", i + 1);
+                }
+            }
             continue;
         }
         println!("perturbation step '{name}': reactions (full 360-degree ring)");

@@ -68,6 +68,11 @@ boundary = [ {{ set = "bottom", uz = 0.0, ut = 0.0 }} ]
     assert!(one.stdout().contains("perturbation step 'ovals': natural frequencies"), "{}", one.stdout());
     // the first mode's field, for ParaView, and `slideline post`
     assert_eq!(f64s(&r1, "perturbations/ovals/mode_1").len(), f64s(&r1, "perturbations/ovals/amplitudes").len());
+    // the modes in the step's sidecar, as meshio (and ParaView) read it
+    let sidecar = one.h5.with_file_name(format!("{}_ovals.xmf", one.h5.file_stem().unwrap().to_string_lossy()));
+    let read = common::python().arg("-c").arg("import meshio, sys; print(sorted(meshio.read(sys.argv[1]).point_data))").arg(&sidecar).output().unwrap();
+    let text = String::from_utf8_lossy(&read.stdout);
+    assert!(text.contains("'mode_1', 'mode_2'"), "{text}{}", String::from_utf8_lossy(&read.stderr));
     let post = common::command_in(one.dir.path(), 1).args(["post", one.h5.to_str().unwrap()]).output().unwrap();
     let printed = String::from_utf8_lossy(&post.stdout);
     assert!(printed.contains(&format!("mode  1: {f_oval:.6e} Hz")), "{printed}");
@@ -159,7 +164,12 @@ fn a_compressed_tube_buckles_at_eulers_load_with_engesser_s_shear() {
     let half = format!("pressure = [ {{ surface = \"top\", value = {} }} ]", critical / 2.0 / area);
     let run = run_deck(&tube(length, &half, &steps), &[], 1, &[]);
     run.assert_ok();
-    let rest = f64s(&Results::open(&run.h5), "perturbations/squash/eigenvalues")[0];
+    let r = Results::open(&run.h5);
+    let rest = f64s(&r, "perturbations/squash/eigenvalues")[0];
+    // the critical pressure the file and the run give: the base's plus the factor times 1 MPa
+    let on_top = f64s(&r, "perturbations/squash/critical_pressure_top")[0];
+    assert!((on_top - (critical / 2.0 / area + rest)).abs() < 1e-12 * on_top, "{on_top}");
+    assert!(run.stdout().contains(&format!("critical pressure on 'top' {on_top:.6e} MPa")), "{}", run.stdout());
     eprintln!("from half the load: {:.1} N more against {:.1}", rest * area, critical / 2.0);
     assert!((rest * area / (critical / 2.0) - 1.0).abs() < 0.01, "{} against {}", rest * area, critical / 2.0);
 }

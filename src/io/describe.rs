@@ -37,6 +37,7 @@ pub fn describe(group: &str, name: &str) -> (&'static str, String) {
         ("perturbations", "eigenvalues") => ("-", "omega^2 (rad^2/s^2; frequency steps) or the load factor (buckle steps) of each mode, nearest zero first".into()),
         ("perturbations", "frequencies") => ("Hz", "natural frequency of each mode (negative: the base state is unstable in it)".into()),
         ("perturbations", "effective_mass_ring") => ("t", "each mode's effective mass along its mode's rigid motion (n = 0 axial, n = 1 lateral), full ring".into()),
+        ("perturbations", n) if n.starts_with("critical_pressure_") => ("MPa", "each mode's critical pressure on the surface: the base state's plus the load factor times the step's".into()),
         ("perturbations", n) if n.starts_with("mode_") => ("-", "the mode's amplitudes [U_r, U_z, U_t] of each node, largest 1".into()),
         ("perturbations", "stress") => (
             "MPa",

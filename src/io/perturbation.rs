@@ -68,6 +68,10 @@ impl ResultsFile {
             for (i, mode) in answer.modes.iter().enumerate() {
                 field(&format!("mode_{}", i + 1), &mode.amplitudes)?;
             }
+            // buckle steps: each mode's critical pressure on each surface the step loads
+            for (k, (surface, _)) in answer.modes.first().map_or(&[][..], |m| m.critical_pressures.as_slice()).iter().enumerate() {
+                list(&format!("critical_pressure_{surface}"), answer.modes.iter().map(|m| m.critical_pressures[k].1).collect())?;
+            }
         }
         let reactions = g.create_group("reactions").map_err(&err)?;
         for r in &answer.reactions {
@@ -80,7 +84,7 @@ impl ResultsFile {
         self.file.flush().map_err(&err)?;
         if partition.rank == 0 {
             let elements = partition.element_offsets[partition.size];
-            super::xdmf::write_perturbation_sidecar(&path, &p.name, base, nn, elements)?;
+            super::xdmf::write_perturbation_sidecar(&path, &p.name, base, nn, elements, answer.modes.len())?;
         }
         Ok(())
     }

@@ -160,7 +160,7 @@ impl Sidecar {
 /// its fields are in the file) and the perturbation's field at theta = 0 and its amplitudes, each
 /// a 3-component vector: warp by the first, then by the second with a scale. Written by one
 /// process; returns its path.
-pub fn write_perturbation_sidecar(h5: &Path, name: &str, base: Option<&str>, nodes: usize, elements: usize) -> Result<PathBuf> {
+pub fn write_perturbation_sidecar(h5: &Path, name: &str, base: Option<&str>, nodes: usize, elements: usize, modes: usize) -> Result<PathBuf> {
     let file = h5.file_name().map(|f| f.to_string_lossy().into_owned()).unwrap_or_default();
     let stem = h5.file_stem().map(|f| f.to_string_lossy().into_owned()).unwrap_or_default();
     let target = h5.with_file_name(format!("{stem}_{name}.xmf"));
@@ -181,6 +181,9 @@ pub fn write_perturbation_sidecar(h5: &Path, name: &str, base: Option<&str>, nod
     }
     let _ = writeln!(x, "{}", vector("displacement", &format!("/perturbations/{name}/displacement")));
     let _ = writeln!(x, "{}", vector("amplitudes", &format!("/perturbations/{name}/amplitudes")));
+    for k in 1..=modes {
+        let _ = writeln!(x, "{}", vector(&format!("mode_{k}"), &format!("/perturbations/{name}/mode_{k}")));
+    }
     x.push_str("</Grid></Domain></Xdmf>\n");
     std::fs::write(&target, x).map_err(|e| Error::Output { path: target.clone(), message: e.to_string() })?;
     Ok(target)

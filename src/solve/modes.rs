@@ -40,6 +40,9 @@ pub struct EigenMode {
     pub effective_mass: Option<f64>,
     /// SLEPc's relative residual of the eigenpair.
     pub error: f64,
+    /// Buckle steps: the critical pressure on each surface the step loads, the base state's
+    /// pressure there plus the load factor times the step's (MPa).
+    pub critical_pressures: Vec<(String, f64)>,
 }
 
 /// Frequency (Hz) of an eigenvalue omega^2 (negative: the base state is unstable in this mode).
@@ -121,7 +124,7 @@ fn modes_of(
             if largest != 0.0 {
                 amplitudes.iter_mut().flatten().for_each(|v| *v /= largest);
             }
-            EigenMode { eigenvalue: p.value, amplitudes, effective_mass: None, error: p.error }
+            EigenMode { eigenvalue: p.value, amplitudes, effective_mass: None, error: p.error, critical_pressures: Vec::new() }
         })
         .collect()
 }
@@ -214,7 +217,11 @@ pub fn buckle(
     let (k, _) = assemble(session, &stiffness, &amplitude, local_len)?;
     let (b, _) = assemble(session, &load_stiffness, &amplitude, local_len)?;
     let pairs = nearest(session, &k, &b, local_len, Pencil::General, count, 0.0)?;
-    let modes = modes_of(&world, partition, &amplitude, &offsets, pairs);
+    let mut modes = modes_of(&world, partition, &amplitude, &offsets, pairs);
+    for mode in &mut modes {
+        let base_on = |surface: &str| base.pressures.iter().filter(|(s, _)| s == surface).map(|(_, p)| p).sum::<f64>();
+        mode.critical_pressures = step.pressures.iter().map(|p| (p.surface.clone(), base_on(&p.surface) + mode.eigenvalue * p.value)).collect();
+    }
     let notes =
         if modes.len() < count { vec![format!("step '{}': {} of the {count} eigenvalues asked for converged", step.name, modes.len())] } else { Vec::new() };
     Ok(PerturbationAnswer { amplitudes: Vec::new(), reactions: Vec::new(), stress: Vec::new(), modes, analysis: step.analysis, notes })
