@@ -265,6 +265,11 @@ pub struct BellowsArgs {
     /// bellows' centre, as --lateral.
     #[arg(long, value_name = "DEG")]
     pub angular: Option<f64>,
+    /// The instability pressures by buckling analyses of the joint at rest and of the run's end
+    /// state, both tubes' ends held: the column instability (squirm, mode 1) beside EJMA's
+    /// column formula, and the in-plane instability (mode 0) beside the code's.
+    #[arg(long)]
+    pub squirm: bool,
     /// A load cycle: after the compression, a further step takes tube B's end back to where it
     /// started (the force-displacement picture then shows the loop).
     #[arg(long)]

@@ -230,6 +230,18 @@ fn main() -> ExitCode {
                 Some(Ok(f)) => movements.map(|m| (m, f)),
                 None => None,
             };
+            // the instability pressures of the joint at rest (collective)
+            let stable = args.squirm.then(|| {
+                if root && !args.quiet {
+                    println!("stability: the joint at rest and its buckling analyses ...");
+                }
+                slideline::assessment::stability::at_rest(&session, &params)
+            });
+            let stable = match stable {
+                Some(Err(e)) => return fail(&e, root),
+                Some(Ok(s)) => Some(s),
+                None => None,
+            };
             if let (true, false, Some(c)) = (root, args.quiet, &code) {
                 let k = c.coefficients;
                 println!(
@@ -241,8 +253,14 @@ fn main() -> ExitCode {
                 // the same perturbations about the run's end state
                 if let Some(movements) = movements {
                     m.perturbations = slideline::assessment::flexibility::steps(&params, movements);
-                    m.validate()?;
                 }
+                if args.squirm {
+                    // the axial rate's step is shared with the flexibility's
+                    let more = slideline::assessment::stability::steps(&params);
+                    let have: Vec<String> = m.perturbations.iter().map(|s| s.name.clone()).collect();
+                    m.perturbations.extend(more.into_iter().filter(|s| !have.contains(&s.name)));
+                }
+                m.validate()?;
                 run(
                     &session,
                     &m,
@@ -256,7 +274,7 @@ fn main() -> ExitCode {
                 )
             });
             warn_unused_options(&session, root && !is_bad_input(&result));
-            finish(result, root, |summary| report(&params, code.as_ref(), fe.as_ref(), rest.as_ref(), summary, &args.output))
+            finish(result, root, |summary| report(&params, code.as_ref(), fe.as_ref(), rest.as_ref(), stable.as_ref(), summary, &args.output))
         }
         Command::PenaltyStudy(args) => {
             let session = match PetscSession::initialize(&args.petsc) {
@@ -389,6 +407,7 @@ fn report(
     code: Option<&CodeCheck>,
     fe: Option<&slideline::assessment::finite_element::FeCheck>,
     rest: Option<&(Movements, Flexibility)>,
+    stable: Option<&slideline::assessment::stability::Stability>,
     summary: &RunSummary,
     output: &std::path::Path,
 ) -> Result<(), Error> {
@@ -411,6 +430,10 @@ fn report(
     if let Some((movements, at_rest)) = rest {
         let operating = slideline::assessment::flexibility::from_run(params, *movements, &summary.perturbations, &reader)?;
         println!("{}", slideline::report::flexibility_section(params, code, *movements, at_rest, Some(&operating)));
+    }
+    if let Some(at_rest) = stable {
+        let operating = slideline::assessment::stability::from_answers(&summary.perturbations)?;
+        println!("{}", slideline::report::stability_section(params, code, at_rest, &operating));
     }
     for path in report.map(|r| r.pictures(output, &reader)).transpose()?.into_iter().flatten() {
         println!("picture: {}", path.display());

@@ -7,6 +7,7 @@
 use crate::assessment::code::CodeCheck;
 use crate::assessment::finite_element::{FeCheck, Peak, StrainLife};
 use crate::assessment::flexibility::{Flexibility, Movements};
+use crate::assessment::stability::{column_estimates, Stability};
 use crate::error::Result;
 use crate::io::plots::{deformed_field, line_plot, Axes, Curve, FieldPicture, Marker};
 use crate::io::reader::ResultsReader;
@@ -446,6 +447,30 @@ pub fn flexibility_section(p: &BellowsParams, code: Option<&CodeCheck>, movement
         "  at rest: no pressure, heat or stroke, elastic (the codes' assumption); operating: the end of the run's last step.\n  \
          the stresses are |membrane| + |bending| across a ply, the largest over the crests' and roots' stations; the code's are for\n  \
          the equivalent axial movement per convolution, 3 Dm y / (N (Lb + x)) and Dm theta / (2 N) (EJMA; ASME VIII-1 App. 26)\n",
+    );
+    t
+}
+
+/// The stability section: the buckling pressures of the joint at rest and at the end of its run
+/// (both tubes' ends held) beside the codes' estimates with the same state's axial rate.
+pub fn stability_section(p: &BellowsParams, code: Option<&CodeCheck>, rest: &Stability, operating: &Stability) -> String {
+    let mut t = String::from("\n  stability: buckling analyses of the joint (both tubes' ends held), the critical internal pressure, MPa\n");
+    t.push_str(&format!("  {:<58} {:>12} {:>12}\n", "", "at rest", "operating"));
+    let cell = |v: Option<f64>| v.filter(|v| v.is_finite()).map_or("-".to_string(), |v| format!("{v:.2}"));
+    let mut row = |what: &str, pick: &dyn Fn(&Stability) -> Option<f64>| {
+        t.push_str(&format!("  {what:<58} {:>12} {:>12}\n", cell(pick(rest)), cell(pick(operating))));
+    };
+    row("axial rate Kb by finite elements, N/mm full ring", &|s| Some(s.axial_rate));
+    row("column instability (squirm), mode 1, finite elements", &|s| s.squirm);
+    row("  EJMA column formula 0.34 pi Kb / (N q), the same Kb", &|s| Some(column_estimates(p, s.axial_rate).0));
+    row("  the equivalent column, unfactored, 2 pi Kb / (N q)", &|s| Some(column_estimates(p, s.axial_rate).1));
+    row("in-plane instability, mode 0, finite elements", &|s| s.in_plane);
+    let in_plane_code = code.map(|c| c.in_plane_instability);
+    row("  the code's in-plane formula (the code check's)", &|_| in_plane_code);
+    t.push_str(
+        "  EJMA's 0.34 is 0.17 of the equivalent column's 2: the code's formula carries that margin on the beam analogy;\n  \
+         the finite elements give the joint's own elastic buckling pressure, unfactored (the state's pressure plus the load factor);\n  \
+         the code's in-plane pressure is a yield criterion (Sy* = 2.3 Sy), not an elastic bifurcation: the two are not the same limit\n",
     );
     t
 }

@@ -13,7 +13,14 @@
 //!   buckle step's load factor times the step's load is Euler's cantilever load pi^2 E I /
 //!   (4 L^2) with Engesser's shear correction P / (1 + P / (k G A)) (Timoshenko & Gere 2.17):
 //!   within 1 % from the unloaded tube, and from a base state already at half that load the
-//!   factor is the remaining half (critical = base + factor x step), within 1 %.
+//!   factor is the remaining half (critical = base + factor x step), within 1 %;
+//! - a pipe r 95..100, 8000 mm long, both ends clamped, under internal pressure (nlgeom: the
+//!   pressure follows the wall): it bows sideways when the effective axial force p A_i (1 - 2
+//!   nu) (the pressure's thrust less the wall's Poisson tension; Palmer & Baldry 1974, Lateral
+//!   buckling of axially constrained pipelines) reaches the clamped column's 4 pi^2 E I / L^2,
+//!   with Engesser's shear correction: within 1 % (measured +0.4 %; with nlgeom = false, no
+//!   follower stiffness, the two factors nearest zero are -39.6 and -80.5: the wall's own
+//!   stresses alone, no squirm).
 
 mod common;
 use common::{run_deck, Results};
@@ -172,4 +179,39 @@ fn a_compressed_tube_buckles_at_eulers_load_with_engesser_s_shear() {
     assert!(run.stdout().contains(&format!("critical pressure on 'top' {on_top:.6e} MPa")), "{}", run.stdout());
     eprintln!("from half the load: {:.1} N more against {:.1}", rest * area, critical / 2.0);
     assert!((rest * area / (critical / 2.0) - 1.0).abs() < 0.01, "{} against {}", rest * area, critical / 2.0);
+}
+
+#[test]
+fn a_pipe_with_its_ends_held_bows_under_internal_pressure_at_the_effective_axial_force() {
+    let length = 8000.0;
+    let deck = format!(
+        r#"
+[mesh.rectangle]
+r = [95.0, 100.0]
+z = [0.0, {length}]
+divisions = [2, 200]
+[[material]]
+name = "steel"
+youngs_modulus = {E}
+poissons_ratio = {NU}
+[[step]]
+name = "base"
+boundary = [ {{ set = "bottom", ur = 0.0, uz = 0.0 }}, {{ set = "top", ur = 0.0, uz = 0.0 }} ]
+[[step]]
+name = "squirm"
+procedure = "buckle"
+mode = 1
+pressure = [ {{ surface = "inner", value = 1.0 }} ]
+boundary = [ {{ set = "bottom", ur = 0.0, uz = 0.0, ut = 0.0 }}, {{ set = "top", ur = 0.0, uz = 0.0, ut = 0.0 }} ]
+"#
+    );
+    let (_, inertia, shear) = section();
+    let euler = 4.0 * PI * PI * E * inertia / (length * length);
+    let column = euler / (1.0 + euler / shear);
+    let expected = column / (PI * 95.0 * 95.0 * (1.0 - 2.0 * NU));
+    let run = run_deck(&deck, &[], 1, &[]);
+    run.assert_ok();
+    let p = f64s(&Results::open(&run.h5), "perturbations/squirm/critical_pressure_inner")[0];
+    eprintln!("pipe squirm: {p:.2} MPa against {expected:.2} ({:+.3} %)", 100.0 * (p / expected - 1.0));
+    assert!((p / expected - 1.0).abs() < 0.01, "{p} against {expected}");
 }

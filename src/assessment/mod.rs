@@ -9,6 +9,7 @@ pub mod convolution;
 pub mod finite_element;
 pub mod flexibility;
 pub mod formulas;
+pub mod stability;
 
 use crate::error::{Error, Result};
 use crate::petsc::PetscSession;

@@ -1,0 +1,98 @@
+//! The bellows' instability pressures by buckle steps (`solve::modes`) about a state of the
+//! joint, both tubes' ends held: mode 1, the column instability ("squirm", the joint bowing
+//! sideways under its pressure thrust), and mode 0, the in-plane instability of the
+//! convolutions; each beside the codes' estimates:
+//! - the column formula of EJMA and ASME VIII-1 App. 26 with both ends held, Psc = 0.34 pi Kb /
+//!   (N q) (it reproduces two printed reports, `../shared/bellows-code/worked-examples.md`), with
+//!   slideline's own axial rate Kb of the same state;
+//! - the equivalent column it comes from, unfactored: (EI)eq = Kb Lb Dm^2 / 8 fixed at both ends,
+//!   4 pi^2 (EI)eq / Lb^2 = p pi Dm^2 / 4 gives p = 2 pi Kb / (N q), so the code's 0.34 is 0.17
+//!   of it;
+//! - the code's in-plane instability pressure (the code check's).
+//!
+//! The step's load is 1 MPa on the wetted surface: the critical pressure is the state's
+//! pressure plus the load factor. The axial rate comes from the `axial` perturbation of
+//! `flexibility`.
+
+use super::flexibility::AXIAL;
+use crate::error::{Error, Result};
+use crate::model::bellows::BellowsParams;
+use crate::model::perturbation::{Analysis, HarmonicComponent, HarmonicDisplacement, Perturbation};
+use crate::model::Pressure;
+use crate::petsc::PetscSession;
+use crate::solve::perturbation::PerturbationAnswer;
+use crate::solve::run;
+
+pub const SQUIRM: &str = "squirm";
+pub const IN_PLANE: &str = "in_plane";
+/// Eigenvalues asked of each buckle step: the lowest positive one is the answer.
+const EIGENVALUES: usize = 3;
+
+/// The critical pressures about one state (MPa) and the state's axial rate (N/mm, full ring).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Stability {
+    pub axial_rate: f64,
+    pub squirm: Option<f64>,
+    pub in_plane: Option<f64>,
+}
+
+/// The buckle steps (and the axial rate's step) on joint `p`.
+pub fn steps(p: &BellowsParams) -> Vec<Perturbation> {
+    let held = |set: &str| {
+        [HarmonicComponent::R, HarmonicComponent::Z, HarmonicComponent::T].map(|component| HarmonicDisplacement { node_set: set.into(), component, value: 0.0 })
+    };
+    let buckle = |name: &str, mode: u32| Perturbation {
+        name: name.into(),
+        mode,
+        displacements: held("fixed_end").into_iter().chain(held("moving_end")).collect(),
+        rings: Vec::new(),
+        pressures: vec![Pressure { surface: "wetted".into(), value: 1.0 }],
+        without_contact: Vec::new(),
+        analysis: Analysis::Buckle { eigenvalues: EIGENVALUES },
+    };
+    let axial = super::flexibility::steps(p, super::flexibility::Movements { lateral: 0.0, angular: 0.0 }).into_iter().filter(|s| s.name == AXIAL);
+    axial.chain([buckle(SQUIRM, 1), buckle(IN_PLANE, 0)]).collect()
+}
+
+/// The critical pressures from a run's answers to [`steps`].
+pub fn from_answers(answers: &[(String, PerturbationAnswer)]) -> Result<Stability> {
+    let answer = |name: &str| answers.iter().find(|(s, _)| s == name).map(|(_, a)| a);
+    let axial = answer(AXIAL).and_then(|a| a.reactions.iter().find(|r| r.set == "moving_end"));
+    let axial_rate = axial.and_then(|r| r.resultants.iter().find(|(n, _, _)| *n == "axial_force_ring")).map(|(_, v, _)| v.abs());
+    let axial_rate = axial_rate.ok_or_else(|| Error::input("the stability steps ran without their axial rate"))?;
+    // the lowest positive load factor's critical pressure
+    let critical = |name: &str| {
+        answer(name).and_then(|a| {
+            a.modes
+                .iter()
+                .filter(|m| m.eigenvalue > 0.0)
+                .min_by(|x, y| x.eigenvalue.total_cmp(&y.eigenvalue))
+                .and_then(|m| m.critical_pressures.first().map(|c| c.1))
+        })
+    };
+    Ok(Stability { axial_rate, squirm: critical(SQUIRM), in_plane: critical(IN_PLANE) })
+}
+
+/// The joint `p` at rest (no pressure, heat or stroke, elastic) and its buckle steps
+/// (collective; the run's file is removed).
+pub fn at_rest(session: &PetscSession, p: &BellowsParams) -> Result<Stability> {
+    let rest = BellowsParams { pressure: 0.0, displacement: 0.0, heat_increments: 1, increments: 1, cycle: false, ..p.clone() };
+    let mut model = crate::model::bellows::model(&rest)?;
+    for material in &mut model.materials {
+        material.plasticity = None;
+        material.thermal_expansion = 0.0;
+    }
+    model.perturbations = steps(&rest);
+    model.validate()?;
+    super::in_scratch(session, "stability", |dir| {
+        let summary = run(session, &model, &super::quiet_run(&dir.join("rest.h5")))?;
+        from_answers(&summary.perturbations)
+    })
+}
+
+/// EJMA's column instability pressure with both ends held, 0.34 pi Kb / (N q), and the
+/// unfactored equivalent column's, 2 pi Kb / (N q) (MPa).
+pub fn column_estimates(p: &BellowsParams, axial_rate: f64) -> (f64, f64) {
+    let code = crate::model::bellows::code_geometry(p).column_instability_pressure(axial_rate);
+    (code, code * 2.0 / 0.34)
+}
