@@ -13,6 +13,9 @@
 //! quarter tori where the pack leaves the tubes are reported apart: the codes' formulas are
 //! for the convolutions between.
 //!
+//! The instability pressures come from buckling analyses of the joint at rest
+//! (`stability::at_rest`).
+//!
 //! For the elastic-plastic run itself (the seed case's stroke yields the plies far past what the
 //! code's elastic formulas are for) [`strain_life`] gives the life from the total strain range.
 
@@ -70,6 +73,10 @@ pub struct FeCheck {
     pub ends: [Peak; 4],
     /// From the end reaction of the stroke analysis.
     pub axial_rate: f64,
+    /// The instability pressures by buckling analyses of the joint at rest (`stability`):
+    /// column (squirm, mode 1) and in-plane (mode 0), MPa; NaN where none was found.
+    pub column_instability: f64,
+    pub in_plane_instability: f64,
 }
 
 /// The linearised meridional and hoop stresses at one station of one ply.
@@ -120,6 +127,12 @@ pub fn analyse(session: &PetscSession, p: &BellowsParams) -> Result<FeCheck> {
         let force = summary.history.last().and_then(|row| row.reactions.iter().find(|(s, _)| s == "moving_end")).map(|(_, f)| f[1].abs() * 2.0 * PI);
         let force = force.ok_or_else(|| Error::Output { path: stroked.clone(), message: "no reaction at the moving end".into() })?;
         Ok(combine(p, &pieces, &from_pressure, &from_stroke, force / stroke))
+    })
+    .and_then(|mut fe| {
+        let stability = super::stability::at_rest(session, p)?;
+        fe.column_instability = stability.squirm.unwrap_or(f64::NAN);
+        fe.in_plane_instability = stability.in_plane.unwrap_or(f64::NAN);
+        Ok(fe)
     })
 }
 
@@ -228,7 +241,7 @@ fn combine(p: &BellowsParams, pieces: &[ConvolutionPiece], pressure: &[PieceStat
         s2.offer(sum / length, || format!("convolution {}", c + 1));
     }
     let cycles = cycles_as_formed_austenitic(st.value * PSI_PER_MPA);
-    FeCheck { s2, s3, s4, s5, s6, stress_range: st, cycles, ends, axial_rate }
+    FeCheck { s2, s3, s4, s5, s6, stress_range: st, cycles, ends, axial_rate, column_instability: f64::NAN, in_plane_instability: f64::NAN }
 }
 
 /// The effective (von Mises equivalent) range of a total strain change [rr, zz, tt, rz], tensor

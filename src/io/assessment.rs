@@ -121,7 +121,7 @@ pub fn read(file: &hdf5::File, path: &Path) -> Result<Option<CodeCheck>> {
 pub const FINITE_ELEMENT: &str = "assessment/finite_element";
 
 /// (dataset, units, description) of the finite-element figures, in the order read back.
-const FE_VALUES: [(&str, &str, &str); 16] = [
+const FE_VALUES: [(&str, &str, &str); 18] = [
     ("S2", "MPa", "hoop membrane stress from pressure, averaged over a convolution's meridian, worst convolution"),
     ("S3", "MPa", "largest meridional membrane stress from pressure"),
     ("S4", "MPa", "largest meridional bending stress from pressure"),
@@ -138,6 +138,12 @@ const FE_VALUES: [(&str, &str, &str); 16] = [
     ("strain_range_r", "mm", "where: r in the undeformed mesh"),
     ("strain_range_z", "mm", "where: z in the undeformed mesh"),
     ("strain_cycles", "-", "allowable cycles for the pseudo-elastic range E x strain range, as-formed austenitic curve (0: below its endurance range)"),
+    (
+        "column_instability",
+        "MPa",
+        "column instability (squirm) pressure by a buckling analysis (mode 1) of the joint at rest, both ends held (NaN: none found)",
+    ),
+    ("in_plane_instability", "MPa", "in-plane instability pressure by a buckling analysis (mode 0) of the joint at rest, both ends held (NaN: none found)"),
 ];
 
 /// The datasets with a place (the `where` attribute), in [`FeCheck`]'s order.
@@ -169,6 +175,8 @@ pub fn write_finite_element(path: &Path, fe: &FeCheck, life: Option<&StrainLife>
         life.map_or(nan, |l| l.at[0]),
         life.map_or(nan, |l| l.at[1]),
         life.map_or(nan, |l| l.cycles.unwrap_or(0.0)),
+        fe.column_instability,
+        fe.in_plane_instability,
     ];
     let peaks = [&fe.s2, &fe.s3, &fe.s4, &fe.s5, &fe.s6, &fe.stress_range, &fe.ends[0], &fe.ends[1], &fe.ends[2], &fe.ends[3]];
     for ((name, units, description), value) in FE_VALUES.iter().zip(values) {
@@ -209,6 +217,9 @@ pub fn read_finite_element(file: &hdf5::File, path: &Path) -> Result<Option<(FeC
         cycles: counted(value("cycles")?),
         ends: [peak("end_S3")?, peak("end_S4")?, peak("end_S5")?, peak("end_S6")?],
         axial_rate: value("axial_rate")?,
+        // files written before the buckling analyses have none
+        column_instability: value("column_instability").unwrap_or(f64::NAN),
+        in_plane_instability: value("in_plane_instability").unwrap_or(f64::NAN),
     };
     let strain_range = value("strain_range")?;
     let life = match strain_range.is_nan() {
