@@ -206,41 +206,29 @@ fn main() -> ExitCode {
                 println!("note: no code check: {e}");
             }
             let code = code.ok();
-            // the finite-element side of the assessment (collective)
-            let fe = args.assess.then(|| {
+            // the analyses of their own before the main run (collective), each announced
+            let announce = |what: &str| {
                 if root && !args.quiet {
-                    println!("assessment: linear elastic analyses of the design pressure and of the stroke ...");
+                    println!("{what} ...");
                 }
+            };
+            // the finite-element side of the assessment
+            let fe = args.assess.then(|| {
+                announce("assessment: linear elastic analyses of the design pressure and of the stroke, buckling analyses");
                 slideline::assessment::finite_element::analyse(&session, &params)
             });
-            let fe = match fe {
-                Some(Err(e)) => return fail(&e, root),
-                Some(Ok(fe)) => Some(fe),
-                None => None,
-            };
-            // the flexibility of the joint at rest (collective)
+            // the flexibility and the instability pressures of the joint at rest
             let rest = movements.map(|m| {
-                if root && !args.quiet {
-                    println!("flexibility: the joint at rest and its harmonic perturbations ...");
-                }
-                slideline::assessment::flexibility::at_rest(&session, &params, m)
+                announce("flexibility: the joint at rest and its harmonic perturbations");
+                slideline::assessment::flexibility::at_rest(&session, &params, m).map(|f| (m, f))
             });
-            let rest = match rest {
-                Some(Err(e)) => return fail(&e, root),
-                Some(Ok(f)) => movements.map(|m| (m, f)),
-                None => None,
-            };
-            // the instability pressures of the joint at rest (collective)
             let stable = args.squirm.then(|| {
-                if root && !args.quiet {
-                    println!("stability: the joint at rest and its buckling analyses ...");
-                }
+                announce("stability: the joint at rest and its buckling analyses");
                 slideline::assessment::stability::at_rest(&session, &params)
             });
-            let stable = match stable {
-                Some(Err(e)) => return fail(&e, root),
-                Some(Ok(s)) => Some(s),
-                None => None,
+            let (fe, rest, stable) = match (fe.transpose(), rest.transpose(), stable.transpose()) {
+                (Ok(fe), Ok(rest), Ok(stable)) => (fe, rest, stable),
+                (Err(e), _, _) | (_, Err(e), _) | (_, _, Err(e)) => return fail(&e, root),
             };
             if let (true, false, Some(c)) = (root, args.quiet, &code) {
                 let k = c.coefficients;

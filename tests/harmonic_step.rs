@@ -172,7 +172,20 @@ fn bad_perturbation_steps_are_refused() {
             "only in mode 1",
         ),
         (deck("", &format!("{SIDEWAYS}\n[[step]]\nname = \"late\"\nboundary = [ {{ set = \"top\", uz = 1.0 }} ]\n")), "after a perturbation step"),
-        (deck("", &SIDEWAYS.replace("procedure = \"harmonic\"\nmode = 1", "procedure = \"buckle\"\nmode = 1")), "procedure \"buckle\""),
+        (deck("", &SIDEWAYS.replace("procedure = \"harmonic\"\nmode = 1", "procedure = \"modal\"\nmode = 1")), "procedure \"modal\""),
+        (deck("", &SIDEWAYS.replace("procedure = \"harmonic\"\nmode = 1", "procedure = \"buckle\"\nmode = 1")), "a buckle step's load is axisymmetric"),
+        (
+            deck(
+                "",
+                &SIDEWAYS.replacen(
+                    "procedure = \"harmonic\"\nmode = 1\nboundary = [ { set = \"bottom\", ur = 0.0, uz = 0.0, ut = 0.0 }, { set = \"top\", lateral = 1.0 } ]",
+                    "procedure = \"frequency\"\nmode = 1",
+                    1,
+                ),
+            ),
+            "material 'steel' has no density",
+        ),
+        (deck("", &SIDEWAYS.replacen("mode = 1\n", "mode = 1\neigenvalues = 2\n", 1)), "eigenvalues is for procedure"),
         (deck("", &SIDEWAYS.replacen("mode = 1\n", "", 1)), "needs its mode"),
         (deck("", &SIDEWAYS.replace("set = \"top\", lateral", "set = \"nowhere\", lateral")), "unknown node set 'nowhere'"),
     ] {

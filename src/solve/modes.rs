@@ -129,6 +129,35 @@ fn modes_of(
         .collect()
 }
 
+/// The modes of A x = lambda B x nearest zero, A the sum of `a`, B of `b`, on the step's
+/// numbering with its named amplitudes held (collective).
+#[allow(clippy::too_many_arguments)]
+fn pencil_modes(
+    session: &PetscSession,
+    model: &Model,
+    partition: &Partition,
+    step: &Perturbation,
+    current: &[[f64; 2]],
+    a: &[Block],
+    b: &[Block],
+    pencil: Pencil,
+    count: usize,
+) -> Result<Vec<EigenMode>> {
+    let (amplitude, offsets) = held_numbering(model, partition, step, current)?;
+    let local_len = offsets[partition.rank + 1] - offsets[partition.rank];
+    let (a, _) = assemble(session, a, &amplitude, local_len)?;
+    let (b, _) = assemble(session, b, &amplitude, local_len)?;
+    let pairs = nearest(session, &a, &b, local_len, pencil, count, 0.0)?;
+    Ok(modes_of(&session.world(), partition, &amplitude, &offsets, pairs))
+}
+
+/// An eigenvalue step's answer, with a note where fewer modes converged than asked for.
+fn answer(step: &Perturbation, modes: Vec<EigenMode>, count: usize) -> PerturbationAnswer {
+    let notes =
+        if modes.len() < count { vec![format!("step '{}': {} of the {count} eigenvalues asked for converged", step.name, modes.len())] } else { Vec::new() };
+    PerturbationAnswer { amplitudes: Vec::new(), reactions: Vec::new(), stress: Vec::new(), modes, analysis: step.analysis, notes }
+}
+
 /// A frequency step (collective).
 pub fn frequency(
     session: &PetscSession,
@@ -140,17 +169,12 @@ pub fn frequency(
 ) -> Result<PerturbationAnswer> {
     let world = session.world();
     let current = current_positions(model, base);
-    let (amplitude, offsets) = held_numbering(model, partition, step, &current)?;
-    let local_len = offsets[partition.rank + 1] - offsets[partition.rank];
     let (stiffness, _) = stiffness_blocks(model, partition, base, &current, step.mode, &step.without_contact, &step.name)?;
     let mass = mass_blocks(model, partition, &current, step.mode)?;
-    let (k, _) = assemble(session, &stiffness, &amplitude, local_len)?;
-    let (m, _) = assemble(session, &mass, &amplitude, local_len)?;
     // a follower pressure's load stiffness is unsymmetric
     let follower = model.kinematics == crate::material::Kinematics::Finite && base.pressures.iter().any(|(_, p)| *p != 0.0);
     let pencil = if follower { Pencil::General } else { Pencil::Hermitian };
-    let pairs = nearest(session, &k, &m, local_len, pencil, count, 0.0)?;
-    let mut modes = modes_of(&world, partition, &amplitude, &offsets, pairs);
+    let mut modes = pencil_modes(session, model, partition, step, &current, &stiffness, &mass, pencil, count)?;
     // the mode's rigid motion: n = 0 along the axis, n = 1 across it (U_r = -U_t)
     let rigid: Option<[f64; 3]> = match step.mode {
         0 => Some([0.0, 1.0, 0.0]),
@@ -165,9 +189,7 @@ pub fn frequency(
             mode.effective_mass = Some(2.0 * PI * participation * participation / generalised);
         }
     }
-    let notes =
-        if modes.len() < count { vec![format!("step '{}': {} of the {count} eigenvalues asked for converged", step.name, modes.len())] } else { Vec::new() };
-    Ok(PerturbationAnswer { amplitudes: Vec::new(), reactions: Vec::new(), stress: Vec::new(), modes, analysis: step.analysis, notes })
+    Ok(answer(step, modes, count))
 }
 
 /// A buckle step (collective).
@@ -179,7 +201,6 @@ pub fn buckle(
     step: &Perturbation,
     count: usize,
 ) -> Result<PerturbationAnswer> {
-    let world = session.world();
     let current = current_positions(model, base);
     // the stress increment of the step's load: its axisymmetric response about the base state
     let load = Perturbation {
@@ -192,8 +213,6 @@ pub fn buckle(
         analysis: Analysis::Response,
     };
     let increment = response(session, model, partition, base, &load, true)?;
-    let (amplitude, offsets) = held_numbering(model, partition, step, &current)?;
-    let local_len = offsets[partition.rank + 1] - offsets[partition.rank];
     let (stiffness, materials) = stiffness_blocks(model, partition, base, &current, step.mode, &step.without_contact, &step.name)?;
     // K_D: the stress increment's initial stress, and the step's pressures' load stiffness
     // where they follow the surface; B = -K_D
@@ -214,15 +233,10 @@ pub fn buckle(
     for (_, values) in &mut load_stiffness {
         values.iter_mut().for_each(|v| *v = -*v);
     }
-    let (k, _) = assemble(session, &stiffness, &amplitude, local_len)?;
-    let (b, _) = assemble(session, &load_stiffness, &amplitude, local_len)?;
-    let pairs = nearest(session, &k, &b, local_len, Pencil::General, count, 0.0)?;
-    let mut modes = modes_of(&world, partition, &amplitude, &offsets, pairs);
+    let mut modes = pencil_modes(session, model, partition, step, &current, &stiffness, &load_stiffness, Pencil::General, count)?;
     for mode in &mut modes {
         let base_on = |surface: &str| base.pressures.iter().filter(|(s, _)| s == surface).map(|(_, p)| p).sum::<f64>();
         mode.critical_pressures = step.pressures.iter().map(|p| (p.surface.clone(), base_on(&p.surface) + mode.eigenvalue * p.value)).collect();
     }
-    let notes =
-        if modes.len() < count { vec![format!("step '{}': {} of the {count} eigenvalues asked for converged", step.name, modes.len())] } else { Vec::new() };
-    Ok(PerturbationAnswer { amplitudes: Vec::new(), reactions: Vec::new(), stress: Vec::new(), modes, analysis: step.analysis, notes })
+    Ok(answer(step, modes, count))
 }
