@@ -212,24 +212,30 @@ fn main() -> ExitCode {
                     println!("{what} ...");
                 }
             };
-            // the finite-element side of the assessment
-            let fe = args.assess.then(|| {
-                announce("assessment: linear elastic analyses of the design pressure and of the stroke, buckling analyses");
-                slideline::assessment::finite_element::analyse(&session, &params)
+            // the instability pressures of the joint at rest (for --squirm and --assess, once)
+            let stable = (args.squirm || args.assess).then(|| {
+                announce("stability: the joint at rest and its buckling analyses");
+                slideline::assessment::stability::at_rest(&session, &params)
             });
-            // the flexibility and the instability pressures of the joint at rest
+            let stable = match stable.transpose() {
+                Ok(s) => s,
+                Err(e) => return fail(&e, root),
+            };
+            // the finite-element side of the assessment, and the flexibility of the joint at rest
+            let fe = stable.as_ref().filter(|_| args.assess).map(|s| {
+                announce("assessment: linear elastic analyses of the design pressure and of the stroke");
+                slideline::assessment::finite_element::analyse(&session, &params, s)
+            });
             let rest = movements.map(|m| {
                 announce("flexibility: the joint at rest and its harmonic perturbations");
                 slideline::assessment::flexibility::at_rest(&session, &params, m).map(|f| (m, f))
             });
-            let stable = args.squirm.then(|| {
-                announce("stability: the joint at rest and its buckling analyses");
-                slideline::assessment::stability::at_rest(&session, &params)
-            });
-            let (fe, rest, stable) = match (fe.transpose(), rest.transpose(), stable.transpose()) {
-                (Ok(fe), Ok(rest), Ok(stable)) => (fe, rest, stable),
-                (Err(e), _, _) | (_, Err(e), _) | (_, _, Err(e)) => return fail(&e, root),
+            let (fe, rest) = match (fe.transpose(), rest.transpose()) {
+                (Ok(fe), Ok(rest)) => (fe, rest),
+                (Err(e), _) | (_, Err(e)) => return fail(&e, root),
             };
+            // the stability section is --squirm's
+            let stable = stable.filter(|_| args.squirm);
             if let (true, false, Some(c)) = (root, args.quiet, &code) {
                 let k = c.coefficients;
                 println!(

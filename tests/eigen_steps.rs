@@ -30,6 +30,11 @@ const E: f64 = 200_000.0;
 const NU: f64 = 0.3;
 const RHO: f64 = 7.85e-9;
 
+/// Every deck's material: steel with its density.
+fn steel() -> String {
+    format!("[[material]]\nname = \"steel\"\nyoungs_modulus = {E}\npoissons_ratio = {NU}\ndensity = {RHO}")
+}
+
 fn f64s(r: &Results, path: &str) -> Vec<f64> {
     r.f64s(path)
 }
@@ -42,11 +47,7 @@ fn a_free_ring_rings_as_the_thin_ring_theory_says_on_one_and_two_ranks() {
 r = [99.0, 101.0]
 z = [0.0, 6.0]
 divisions = [2, 4]
-[[material]]
-name = "steel"
-youngs_modulus = {E}
-poissons_ratio = {NU}
-density = {RHO}
+{steel}
 [[step]]
 name = "rest"
 boundary = [ {{ set = "bottom", uz = 0.0 }} ]
@@ -60,7 +61,8 @@ name = "breathing"
 procedure = "frequency"
 mode = 0
 boundary = [ {{ set = "bottom", uz = 0.0, ut = 0.0 }} ]
-"#
+"#,
+        steel = steel()
     );
     let (r, t, n) = (100.0f64, 2.0f64, 2.0f64);
     let oval = (E * t * t * n * n * (n * n - 1.0).powi(2) / (12.0 * RHO * r.powi(4) * (n * n + 1.0))).sqrt() / (2.0 * PI);
@@ -105,17 +107,14 @@ nlgeom = false
 r = [95.0, 100.0]
 z = [0.0, {length}]
 divisions = [2, 120]
-[[material]]
-name = "steel"
-youngs_modulus = {E}
-poissons_ratio = {NU}
-density = {RHO}
+{steel}
 [[step]]
 name = "base"
 boundary = [ {{ set = "bottom", ur = 0.0, uz = 0.0 }} ]
 {base}
 {steps}
-"#
+"#,
+        steel = steel()
     )
 }
 
@@ -190,10 +189,7 @@ fn a_pipe_with_its_ends_held_bows_under_internal_pressure_at_the_effective_axial
 r = [95.0, 100.0]
 z = [0.0, {length}]
 divisions = [2, 200]
-[[material]]
-name = "steel"
-youngs_modulus = {E}
-poissons_ratio = {NU}
+{steel}
 [[step]]
 name = "base"
 boundary = [ {{ set = "bottom", ur = 0.0, uz = 0.0 }}, {{ set = "top", ur = 0.0, uz = 0.0 }} ]
@@ -203,7 +199,8 @@ procedure = "buckle"
 mode = 1
 pressure = [ {{ surface = "inner", value = 1.0 }} ]
 boundary = [ {{ set = "bottom", ur = 0.0, uz = 0.0, ut = 0.0 }}, {{ set = "top", ur = 0.0, uz = 0.0, ut = 0.0 }} ]
-"#
+"#,
+        steel = steel()
     );
     let (_, inertia, shear) = section();
     let euler = 4.0 * PI * PI * E * inertia / (length * length);

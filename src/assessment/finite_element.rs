@@ -94,8 +94,9 @@ impl From<&Linearized> for Station {
 }
 
 /// The two linear analyses of joint `p` and their linearised stresses (collective: every rank
-/// calls it; the analyses' files go to a temporary directory and are removed).
-pub fn analyse(session: &PetscSession, p: &BellowsParams) -> Result<FeCheck> {
+/// calls it; the analyses' files go to a temporary directory and are removed), with the
+/// instability pressures of `stability` (the joint's buckling analyses at rest).
+pub fn analyse(session: &PetscSession, p: &BellowsParams, stability: &super::stability::Stability) -> Result<FeCheck> {
     let hold = |set: &str, value: f64| PrescribedDisplacement { node_set: set.into(), component: Component::Z, value };
     let pressure = Step {
         name: "pressure".into(),
@@ -126,10 +127,7 @@ pub fn analyse(session: &PetscSession, p: &BellowsParams) -> Result<FeCheck> {
         let from_stroke = stations(&stroked, p, &pieces, p.displacement.abs() / stroke)?;
         let force = summary.history.last().and_then(|row| row.reactions.iter().find(|(s, _)| s == "moving_end")).map(|(_, f)| f[1].abs() * 2.0 * PI);
         let force = force.ok_or_else(|| Error::Output { path: stroked.clone(), message: "no reaction at the moving end".into() })?;
-        Ok(combine(p, &pieces, &from_pressure, &from_stroke, force / stroke))
-    })
-    .and_then(|mut fe| {
-        let stability = super::stability::at_rest(session, p)?;
+        let mut fe = combine(p, &pieces, &from_pressure, &from_stroke, force / stroke);
         fe.column_instability = stability.squirm.unwrap_or(f64::NAN);
         fe.in_plane_instability = stability.in_plane.unwrap_or(f64::NAN);
         Ok(fe)
@@ -138,11 +136,7 @@ pub fn analyse(session: &PetscSession, p: &BellowsParams) -> Result<FeCheck> {
 
 /// The joint's model with `step` alone, elastic, without the heat.
 fn elastic(p: &BellowsParams, step: Step) -> Result<crate::model::Model> {
-    let mut m = crate::model::bellows::model(p)?;
-    for material in &mut m.materials {
-        material.plasticity = None;
-        material.thermal_expansion = 0.0;
-    }
+    let mut m = super::elastic_model(p)?;
     m.steps = vec![step];
     m.output.every = 1;
     m.output.precision = crate::model::Precision::Double;

@@ -22,7 +22,6 @@ use crate::model::bellows::{convolution_pieces, BellowsParams};
 use crate::model::perturbation::{Analysis, HarmonicComponent, HarmonicDisplacement, Perturbation, RingMotion};
 use crate::petsc::PetscSession;
 use crate::solve::perturbation::PerturbationAnswer;
-use crate::solve::run;
 
 pub const AXIAL: &str = "axial";
 pub const LATERAL: &str = "lateral";
@@ -172,19 +171,11 @@ fn peaks(pieces: &[crate::model::bellows::ConvolutionPiece], stations: &[PieceSt
 /// perturbations of `movements` about it (collective; the run's file goes to a temporary
 /// directory and is removed).
 pub fn at_rest(session: &PetscSession, p: &BellowsParams, movements: Movements) -> Result<Flexibility> {
-    // the joint's own two steps, of no pressure or stroke (and no heat: no expansion, below)
-    let rest = BellowsParams { pressure: 0.0, displacement: 0.0, heat_increments: 1, increments: 1, cycle: false, ..p.clone() };
-    let mut model = crate::model::bellows::model(&rest)?;
-    for material in &mut model.materials {
-        material.plasticity = None;
-        material.thermal_expansion = 0.0;
-    }
-    model.perturbations = steps(&rest, movements);
-    model.validate()?;
-    super::in_scratch(session, "flexibility", |dir| {
-        let file = dir.join("rest.h5");
-        let summary = run(session, &model, &super::quiet_run(&file))?;
-        let r = ResultsReader::open(&file)?;
-        from_run(&rest, movements, &summary.perturbations, &r)
-    })
+    super::at_rest(
+        session,
+        p,
+        "flexibility",
+        |rest| steps(rest, movements),
+        |rest, summary, file| from_run(rest, movements, &summary.perturbations, &ResultsReader::open(file)?),
+    )
 }

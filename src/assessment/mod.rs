@@ -17,6 +17,38 @@ use crate::solve::RunOptions;
 use mpi::traits::*;
 use std::path::{Path, PathBuf};
 
+/// The joint `p`'s own model, elastic and without thermal expansion (the codes' linear
+/// analyses).
+fn elastic_model(p: &crate::model::bellows::BellowsParams) -> Result<crate::model::Model> {
+    let mut m = crate::model::bellows::model(p)?;
+    for material in &mut m.materials {
+        material.plasticity = None;
+        material.thermal_expansion = 0.0;
+    }
+    Ok(m)
+}
+
+/// The joint `p` at rest (its own two steps with no pressure or stroke, elastic, no expansion:
+/// the codes' assumption) with the perturbation steps `steps` of that state, run in a scratch
+/// directory; `read` takes the rest parameters, the run's answers and its file (collective).
+fn at_rest<T>(
+    session: &PetscSession,
+    p: &crate::model::bellows::BellowsParams,
+    name: &str,
+    steps: impl FnOnce(&crate::model::bellows::BellowsParams) -> Vec<crate::model::perturbation::Perturbation>,
+    read: impl FnOnce(&crate::model::bellows::BellowsParams, &crate::solve::RunSummary, &Path) -> Result<T>,
+) -> Result<T> {
+    let rest = crate::model::bellows::BellowsParams { pressure: 0.0, displacement: 0.0, heat_increments: 1, increments: 1, cycle: false, ..p.clone() };
+    let mut model = elastic_model(&rest)?;
+    model.perturbations = steps(&rest);
+    model.validate()?;
+    in_scratch(session, name, |dir| {
+        let file = dir.join("rest.h5");
+        let summary = crate::solve::run(session, &model, &quiet_run(&file))?;
+        read(&rest, &summary, &file)
+    })
+}
+
 /// A run of one of the assessment's own analyses: no progress, no monitor.
 fn quiet_run(output: &Path) -> RunOptions {
     RunOptions { output: output.to_path_buf(), progress: false, verbose: false, monitor: false, restart: None }

@@ -21,7 +21,6 @@ use crate::model::perturbation::{Analysis, HarmonicComponent, HarmonicDisplaceme
 use crate::model::Pressure;
 use crate::petsc::PetscSession;
 use crate::solve::perturbation::PerturbationAnswer;
-use crate::solve::run;
 
 pub const SQUIRM: &str = "squirm";
 pub const IN_PLANE: &str = "in_plane";
@@ -76,18 +75,7 @@ pub fn from_answers(answers: &[(String, PerturbationAnswer)]) -> Result<Stabilit
 /// The joint `p` at rest (no pressure, heat or stroke, elastic) and its buckle steps
 /// (collective; the run's file is removed).
 pub fn at_rest(session: &PetscSession, p: &BellowsParams) -> Result<Stability> {
-    let rest = BellowsParams { pressure: 0.0, displacement: 0.0, heat_increments: 1, increments: 1, cycle: false, ..p.clone() };
-    let mut model = crate::model::bellows::model(&rest)?;
-    for material in &mut model.materials {
-        material.plasticity = None;
-        material.thermal_expansion = 0.0;
-    }
-    model.perturbations = steps(&rest);
-    model.validate()?;
-    super::in_scratch(session, "stability", |dir| {
-        let summary = run(session, &model, &super::quiet_run(&dir.join("rest.h5")))?;
-        from_answers(&summary.perturbations)
-    })
+    super::at_rest(session, p, "stability", steps, |_, summary, _| from_answers(&summary.perturbations))
 }
 
 /// EJMA's column instability pressure with both ends held, 0.34 pi Kb / (N q), and the
