@@ -186,6 +186,11 @@ fn bad_perturbation_steps_are_refused() {
             "material 'steel' has no density",
         ),
         (deck("", &SIDEWAYS.replacen("mode = 1\n", "mode = 1\neigenvalues = 2\n", 1)), "eigenvalues is for procedure"),
+        (
+            deck("", &SIDEWAYS.replacen("procedure = \"harmonic\"\nmode = 1\n", "procedure = \"buckle\"\nmode = 1\neigenvalues = 0\n", 1)),
+            "eigenvalues = 0: give 1 to",
+        ),
+        (deck("", "").replace("name = \"base\"", "name = \"base\"\nprocedure = \"frequency\"\nmode = 1"), "needs a general step before it"),
         (deck("", &SIDEWAYS.replacen("mode = 1\n", "", 1)), "needs its mode"),
         (deck("", &SIDEWAYS.replace("set = \"top\", lateral", "set = \"nowhere\", lateral")), "unknown node set 'nowhere'"),
     ] {

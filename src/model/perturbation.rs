@@ -133,8 +133,11 @@ impl Perturbation {
                 if let Some(d) = self.displacements.iter().find(|d| d.value != 0.0) {
                     return Err(at(format!("a frequency step holds amplitudes at zero: {} = {} on '{}'", d.component.name(), d.value, d.node_set)));
                 }
-                if !self.rings.is_empty() || !self.pressures.is_empty() {
-                    return Err(at("a frequency step has no load (no lateral, rotation or pressure)".into()));
+                if let Some(r) = self.rings.iter().find(|r| r.lateral != 0.0 || r.rotation != 0.0) {
+                    return Err(at(format!("a frequency step holds rings at rest: lateral = 0 and rotation = 0 on '{}'", r.node_set)));
+                }
+                if !self.pressures.is_empty() {
+                    return Err(at("a frequency step has no load (no pressure)".into()));
                 }
                 if let Some(m) = model.materials.iter().find(|m| !(m.density > 0.0 && m.density.is_finite())) {
                     return Err(at(format!("material '{}' has no density (t/mm^3; steel 7.85e-9)", m.name)));
@@ -142,8 +145,13 @@ impl Perturbation {
                 return Ok(());
             }
             Analysis::Buckle { .. } => {
-                if !self.rings.is_empty() {
-                    return Err(at("a buckle step's load is axisymmetric: pressures and ur / uz values, no lateral or rotation".into()));
+                // a ring held at rest (no lateral motion, no rotation) is a support of the mode
+                // alone: the axisymmetric load moves it freely
+                if let Some(r) = self.rings.iter().find(|r| r.lateral != 0.0 || r.rotation != 0.0) {
+                    return Err(at(format!(
+                        "a buckle step's load is axisymmetric: pressures and ur / uz values; a ring ('{}') may only be held (lateral = 0, rotation = 0)",
+                        r.node_set
+                    )));
                 }
                 if self.pressures.is_empty() && self.displacements.iter().all(|d| d.value == 0.0) {
                     return Err(at("no load: give a pressure or nonzero ur / uz values (the load the load factors multiply)".into()));
