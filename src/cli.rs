@@ -270,6 +270,11 @@ pub struct BellowsArgs {
     /// column formula, and the in-plane instability (mode 0) beside the code's.
     #[arg(long)]
     pub squirm: bool,
+    /// The natural frequencies by frequency steps of the joint at rest and of the run's end
+    /// state, both tubes' ends held: the first axial (mode 0) and lateral (mode 1) modes beside
+    /// the spring and beam analogies of EJMA's formulas (the fluid's mass left out).
+    #[arg(long)]
+    pub frequencies: bool,
     /// A load cycle: after the compression, a further step takes tube B's end back to where it
     /// started (the force-displacement picture then shows the loop).
     #[arg(long)]

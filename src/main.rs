@@ -9,6 +9,7 @@ use mpi::traits::Communicator;
 use slideline::assessment::code::{CodeCheck, Duty, Source};
 use slideline::assessment::convolution::Coefficients;
 use slideline::assessment::flexibility::{Flexibility, Movements};
+use slideline::assessment::{stability::SQUIRM, vibration::LATERAL_MODES};
 use slideline::dist::Partition;
 use slideline::io::plots::{outline_picture, SegmentLayer};
 use slideline::io::reader::ResultsReader;
@@ -215,10 +216,29 @@ fn main() -> ExitCode {
             // the instability pressures of the joint at rest (for --squirm and --assess, once)
             let stable = (args.squirm || args.assess).then(|| {
                 announce("stability: the joint at rest and its buckling analyses");
-                slideline::assessment::stability::at_rest(&session, &params)
+                // the squirm's mode at rest, pictured from the rest run's file (rank 0; a picture
+                // that fails is a note: the other ranks go on)
+                let picture = picture_path(&args.output, "squirm_mode");
+                slideline::assessment::stability::at_rest(&session, &params, |file, s| {
+                    if let (true, true, Some(p)) = (root, args.squirm, s.squirm) {
+                        let title = format!("the joint's squirm at rest, {p:.1} MPa: its column buckling mode (n = 1)");
+                        let drawn = ResultsReader::open(file).and_then(|r| slideline::report::mode_picture(&r, &picture, SQUIRM, 1, 1, &title));
+                        if let Err(e) = drawn {
+                            println!("note: no picture of the squirm's mode: {e}");
+                        }
+                    }
+                })
             });
             let stable = match stable.transpose() {
                 Ok(s) => s,
+                Err(e) => return fail(&e, root),
+            };
+            let vibrating = args.frequencies.then(|| {
+                announce("natural frequencies: the joint at rest and its frequency analyses");
+                slideline::assessment::vibration::at_rest(&session, &params)
+            });
+            let vibrating = match vibrating.transpose() {
+                Ok(v) => v,
                 Err(e) => return fail(&e, root),
             };
             // the finite-element side of the assessment, and the flexibility of the joint at rest
@@ -248,9 +268,11 @@ fn main() -> ExitCode {
                 if let Some(movements) = movements {
                     m.perturbations = slideline::assessment::flexibility::steps(&params, movements);
                 }
-                if args.squirm {
-                    // the axial rate's step is shared with the flexibility's
-                    let more = slideline::assessment::stability::steps(&params);
+                // the axial rate's step is shared by the flexibility's, the stability's and the
+                // frequencies'
+                let stability = args.squirm.then(|| slideline::assessment::stability::steps(&params));
+                let vibration = args.frequencies.then(|| slideline::assessment::vibration::steps(&params));
+                for more in stability.into_iter().chain(vibration) {
                     let have: Vec<String> = m.perturbations.iter().map(|s| s.name.clone()).collect();
                     m.perturbations.extend(more.into_iter().filter(|s| !have.contains(&s.name)));
                 }
@@ -268,7 +290,14 @@ fn main() -> ExitCode {
                 )
             });
             warn_unused_options(&session, root && !is_bad_input(&result));
-            finish(result, root, |summary| report(&params, code.as_ref(), fe.as_ref(), rest.as_ref(), stable.as_ref(), summary, &args.output))
+            finish(result, root, |summary| {
+                report(
+                    &params,
+                    &BeforeTheRun { code: code.as_ref(), fe: fe.as_ref(), rest: rest.as_ref(), stable: stable.as_ref(), vibrating: vibrating.as_ref() },
+                    summary,
+                    &args.output,
+                )
+            })
         }
         Command::PenaltyStudy(args) => {
             let session = match PetscSession::initialize(&args.petsc) {
@@ -394,17 +423,21 @@ fn write_mesh(session: &PetscSession, params: &model::bellows::BellowsParams, ou
     Ok(())
 }
 
+/// What the bellows' own analyses before the main run found, for its report: the code check,
+/// the finite-element assessment, and the flexibility, stability and natural frequencies of the
+/// joint at rest.
+struct BeforeTheRun<'a> {
+    code: Option<&'a CodeCheck>,
+    fe: Option<&'a slideline::assessment::finite_element::FeCheck>,
+    rest: Option<&'a (Movements, Flexibility)>,
+    stable: Option<&'a slideline::assessment::stability::Stability>,
+    vibrating: Option<&'a slideline::assessment::vibration::Frequencies>,
+}
+
 /// The bellows closing table (slideline beside the paper) and the pictures, from the results
 /// file (rank 0, after the run).
-fn report(
-    params: &model::bellows::BellowsParams,
-    code: Option<&CodeCheck>,
-    fe: Option<&slideline::assessment::finite_element::FeCheck>,
-    rest: Option<&(Movements, Flexibility)>,
-    stable: Option<&slideline::assessment::stability::Stability>,
-    summary: &RunSummary,
-    output: &std::path::Path,
-) -> Result<(), Error> {
+fn report(params: &model::bellows::BellowsParams, before: &BeforeTheRun<'_>, summary: &RunSummary, output: &std::path::Path) -> Result<(), Error> {
+    let BeforeTheRun { code, fe, rest, stable, vibrating } = *before;
     let reader = ResultsReader::open(output)?;
     let life = match fe {
         Some(_) => slideline::assessment::finite_element::strain_life(&reader, params.youngs_modulus)?,
@@ -425,11 +458,26 @@ fn report(
         let operating = slideline::assessment::flexibility::from_run(params, *movements, &summary.perturbations, &reader)?;
         println!("{}", slideline::report::flexibility_section(params, code, *movements, at_rest, Some(&operating)));
     }
+    // the pictures of modes: the squirm's at rest (drawn from the rest run's file), the first
+    // lateral mode's about the run's end
+    let mut pictures: Vec<PathBuf> = Vec::new();
     if let Some(at_rest) = stable {
         let operating = slideline::assessment::stability::from_answers(&summary.perturbations)?;
         println!("{}", slideline::report::stability_section(params, code, at_rest, &operating));
+        pictures.extend(at_rest.squirm.map(|_| picture_path(output, "squirm_mode")));
     }
-    for path in report.map(|r| r.pictures(output, &reader)).transpose()?.into_iter().flatten() {
+    if let Some(at_rest) = vibrating {
+        let operating = slideline::assessment::vibration::from_answers(params, &summary.perturbations)?;
+        println!("{}", slideline::report::frequencies_section(params, at_rest, &operating));
+        if let Some(m) = operating.lateral {
+            let path = picture_path(output, &format!("{LATERAL_MODES}_mode"));
+            let title = format!("the joint's first lateral mode (n = 1) about the end of the run, {:.1} Hz", m.frequency);
+            slideline::report::mode_picture(&reader, &path, LATERAL_MODES, 1, 1, &title)?;
+            pictures.push(path);
+        }
+    }
+    pictures.extend(report.map(|r| r.pictures(output, &reader)).transpose()?.into_iter().flatten());
+    for path in pictures {
         println!("picture: {}", path.display());
     }
     drop(reader);

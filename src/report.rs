@@ -8,6 +8,7 @@ use crate::assessment::code::CodeCheck;
 use crate::assessment::finite_element::{FeCheck, Peak, StrainLife};
 use crate::assessment::flexibility::{Flexibility, Movements};
 use crate::assessment::stability::{column_estimates, Stability};
+use crate::assessment::vibration::{estimates, Estimates, Frequencies, Mode};
 use crate::error::Result;
 use crate::io::plots::{deformed_field, line_plot, Axes, Curve, FieldPicture, Marker};
 use crate::io::reader::ResultsReader;
@@ -353,7 +354,9 @@ impl BellowsReport {
         let half = increments
             .iter()
             .position(|inc| reader.increment_attr(inc, "step").ok() == Some(2.0) && reader.increment_attr(inc, "load_factor").unwrap_or(0.0) >= 0.5);
-        let picks: Vec<&String> = half.map(|k| &increments[k]).into_iter().chain(increments.last()).collect();
+        let mut picks: Vec<&String> = half.map(|k| &increments[k]).into_iter().chain(increments.last()).collect();
+        // a step 2 of one increment: its half and its end are the same picture
+        picks.dedup();
         for inc in picks {
             let u = reader.displacement(inc)?;
             let vm = reader.field(inc, "von_mises_mean")?;
@@ -476,4 +479,77 @@ pub fn stability_section(p: &BellowsParams, code: Option<&CodeCheck>, rest: &Sta
          the code's in-plane pressure is a yield criterion (Sy* = 2.3 Sy), not an elastic bifurcation: the two are not the same limit\n",
     );
     t
+}
+
+/// The natural frequencies section: the lowest axial and lateral modes of the joint at rest and
+/// at the end of its run (both tubes' ends held) beside the analogies of EJMA's frequency
+/// formulas with the same state's axial rate, each with its ratio.
+pub fn frequencies_section(p: &BellowsParams, rest: &Frequencies, operating: &Frequencies) -> String {
+    let mut t = String::from("\n  natural frequencies: the joint with both tubes' ends held, Hz\n");
+    t.push_str(&format!("  {:<58} {:>12} {:>12}\n", "", "at rest", "operating"));
+    let cell = |v: Option<f64>, digits: usize| v.filter(|v| v.is_finite()).map_or("-".to_string(), |v| format!("{v:.digits$}"));
+    let mut row = |what: &str, pick: &dyn Fn(&Frequencies, Estimates) -> Option<f64>, digits: usize| {
+        let value = |f: &Frequencies| cell(pick(f, estimates(p, f)), digits);
+        t.push_str(&format!("  {what:<58} {:>12} {:>12}\n", value(rest), value(operating)));
+    };
+    let ratio = |m: Option<Mode>, analogy: f64| m.map(|m| m.frequency / analogy);
+    row("axial rate Kb by finite elements, N/mm full ring", &|f, _| Some(f.axial_rate), 1);
+    row("convolved length Lb + x, mm", &|f, _| Some(f.convolved_length), 1);
+    row("first axial mode (n = 0), finite elements", &|f, _| f.axial.map(|m| m.frequency), 1);
+    row("  spring analogy (1/2) sqrt(Kb / m), the same Kb", &|_, e| Some(e.axial), 1);
+    row("  ratio, finite elements / analogy", &|f, e| ratio(f.axial, e.axial), 3);
+    row("  effective mass / live mass", &|f, e| f.axial.map(|m| m.effective_mass / e.mass), 3);
+    row("first lateral mode (n = 1), finite elements", &|f, _| f.lateral.map(|m| m.frequency), 1);
+    row("  clamped beam, (E I)eq = Kb Lb Dm^2 / 8 (EJMA's analogy)", &|_, e| Some(e.lateral), 1);
+    row("  ratio, finite elements / analogy", &|f, e| ratio(f.lateral, e.lateral), 3);
+    row("  the same beam with the rotary inertia m Dm^2 / 8", &|_, e| Some(e.lateral_rotary), 1);
+    row("  ratio, finite elements / analogy", &|f, e| ratio(f.lateral, e.lateral_rotary), 3);
+    row("  effective mass / live mass", &|f, e| f.lateral.map(|m| m.effective_mass / e.mass), 3);
+    let mass = estimates(p, rest).mass;
+    t.push_str(&format!(
+        "  live mass m: the convolutions' metal, {:.3} kg at {:e} t/mm^3; the fluid's mass is left out (add it for a liquid line);\n  \
+         a rod's first mode carries 8 / pi^2 = 0.81 of its mass, a clamped beam's 0.69 (less where the convolutions rock);\n  \
+         EJMA's formulas, C sqrt(Kb / W) axially and C (Dm / Lb) sqrt(Kb / W) laterally, tend to the first two analogies for\n  \
+         many convolutions; a bellows about as wide as it is long rocks more than it translates, so the rotary inertia they leave\n  \
+         out lowers its lateral mode;\n  \
+         the finite elements add the tangents' and tubes' mass and stiffness, the plies' contact and, operating, the state's stress;\n  \
+         operating, where the folds bear on each other, the analogies are no longer the joint\n",
+        mass * 1000.0,
+        p.density
+    ));
+    t
+}
+
+/// A picture of an eigenmode of perturbation step `step` (mode `mode` of the harmonic `n`), to
+/// scale: the meridian section at theta = 0 and, mirrored across the axis, at theta = 180
+/// degrees, the base state (the run's last increment) in grey and the mode over it, its largest
+/// amplitude drawn as 2.5 % of the model's length.
+pub fn mode_picture(reader: &ResultsReader, path: &Path, step: &str, n: u32, mode: usize, title: &str) -> Result<()> {
+    use crate::io::plots::{outline_picture, SegmentLayer};
+    let increments = reader.increments()?;
+    let last = increments.last().ok_or_else(|| crate::error::Error::input("no increment: no base state to draw the mode on"))?;
+    let (x0, u) = (reader.coordinates()?, reader.displacement(last)?);
+    let amplitudes = reader.perturbation_field(step, &format!("mode_{mode}"))?;
+    let base: Vec<[f64; 2]> = x0.iter().zip(&u).map(|(x, u)| [x[0] + u[0], x[1] + u[1]]).collect();
+    let (z0, z1) = base.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| (a.min(x[1]), b.max(x[1])));
+    let scale = 0.025 * (z1 - z0);
+    // theta = 180 degrees: cos n theta = (-1)^n, and the radial direction points along -x
+    let sign = if n.is_multiple_of(2) { 1.0 } else { -1.0 };
+    let moved: Vec<[f64; 2]> = base.iter().enumerate().map(|(k, x)| [x[0] + scale * amplitudes[3 * k], x[1] + scale * amplitudes[3 * k + 1]]).collect();
+    let opposite: Vec<[f64; 2]> =
+        base.iter().enumerate().map(|(k, x)| [-(x[0] + sign * scale * amplitudes[3 * k]), x[1] + sign * scale * amplitudes[3 * k + 1]]).collect();
+    let mut mesh = crate::model::mesh::Mesh { coords: base.clone(), elements: reader.connectivity()?, ..Default::default() };
+    let edges = mesh.free_edges();
+    let mirror = |c: &[[f64; 2]]| c.iter().map(|x| [-x[0], x[1]]).collect::<Vec<_>>();
+    let mut outline = |coords: Vec<[f64; 2]>| {
+        mesh.coords = coords;
+        mesh.edge_segments(&edges)
+    };
+    let state = [outline(base.clone()), outline(mirror(&base))].concat();
+    let shape = [outline(moved), outline(opposite)].concat();
+    let layers = [
+        SegmentLayer { label: "base state (theta = 0 above the axis, 180 degrees below)".into(), segments: state, width: 1 },
+        SegmentLayer { label: format!("mode {mode} of n = {n}, scaled"), segments: shape, width: 2 },
+    ];
+    outline_picture(path, title, &layers)
 }

@@ -235,11 +235,9 @@ fn a_column_clamped_at_both_ends_buckles_at_four_times_the_pinned_load() {
     let euler = 4.0 * PI * PI * E * inertia / (length * length);
     let critical = euler / (1.0 + euler / shear);
     // the top: a ring held at rest (no lateral motion, no rotation), free along the axis
-    let steps = format!(
-        "[[step]]\nname = \"squash\"\nprocedure = \"buckle\"\nmode = 1\npressure = [ {{ surface = \"top\", value = 1.0 }} ]\n\
-         boundary = [ {{ set = \"bottom\", ur = 0.0, uz = 0.0, ut = 0.0 }}, {{ set = \"top\", lateral = 0.0, rotation = 0.0 }} ]\n"
-    );
-    let deck = tube(length, "", &steps);
+    let steps = "[[step]]\nname = \"squash\"\nprocedure = \"buckle\"\nmode = 1\npressure = [ { surface = \"top\", value = 1.0 } ]\n\
+                 boundary = [ { set = \"bottom\", ur = 0.0, uz = 0.0, ut = 0.0 }, { set = \"top\", lateral = 0.0, rotation = 0.0 } ]\n";
+    let deck = tube(length, "", steps);
     let one = run_deck(&deck, &[], 1, &[]);
     one.assert_ok();
     let factor = f64s(&Results::open(&one.h5), "perturbations/squash/eigenvalues")[0];

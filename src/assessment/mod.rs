@@ -2,7 +2,8 @@
 //! answers. The formulas themselves ([`formulas`]), pure functions tested against published
 //! worked calculations; the chart coefficients computed from the idealised convolution
 //! ([`convolution`]); the code check of a bellows with them ([`code`]); the same figures by
-//! finite elements on the joint itself ([`finite_element`]).
+//! finite elements on the joint itself ([`finite_element`]); its flexibility, stability and
+//! natural frequencies by perturbation steps ([`flexibility`], [`stability`], [`vibration`]).
 
 pub mod code;
 pub mod convolution;
@@ -10,6 +11,7 @@ pub mod finite_element;
 pub mod flexibility;
 pub mod formulas;
 pub mod stability;
+pub mod vibration;
 
 use crate::error::{Error, Result};
 use crate::petsc::PetscSession;

@@ -73,9 +73,14 @@ pub fn from_answers(answers: &[(String, PerturbationAnswer)]) -> Result<Stabilit
 }
 
 /// The joint `p` at rest (no pressure, heat or stroke, elastic) and its buckle steps
-/// (collective; the run's file is removed).
-pub fn at_rest(session: &PetscSession, p: &BellowsParams) -> Result<Stability> {
-    super::at_rest(session, p, "stability", steps, |_, summary, _| from_answers(&summary.perturbations))
+/// (collective); `keep` sees the run's file and its answer on every rank (a picture of a mode,
+/// say) before the file is removed.
+pub fn at_rest(session: &PetscSession, p: &BellowsParams, keep: impl FnOnce(&std::path::Path, &Stability)) -> Result<Stability> {
+    super::at_rest(session, p, "stability", steps, |_, summary, file| {
+        let stability = from_answers(&summary.perturbations)?;
+        keep(file, &stability);
+        Ok(stability)
+    })
 }
 
 /// EJMA's column instability pressure with both ends held, 0.34 pi Kb / (N q), and the

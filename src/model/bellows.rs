@@ -358,7 +358,7 @@ pub fn model(p: &BellowsParams) -> Result<Model> {
         poissons_ratio: p.poissons_ratio,
         thermal_expansion: p.thermal_expansion,
         plasticity: Some(Plasticity::linear(p.yield_stress, p.hardening_modulus)),
-        density: 0.0,
+        density: p.density,
     };
     let pair = |name: &str, slave: &str, master: &str, two_pass: bool, mu: f64| ContactPair {
         name: name.to_string(),

@@ -34,6 +34,8 @@ pub struct BellowsParams {
     pub thermal_expansion: f64,
     pub yield_stress: f64,
     pub hardening_modulus: f64,
+    /// t/mm^3 (so that N, mm and s stay consistent): the natural frequencies' mass.
+    pub density: f64,
     // loads
     pub temperature: f64,
     pub pressure: f64,
@@ -98,6 +100,8 @@ impl Default for BellowsParams {
             thermal_expansion: 1.875e-5,
             yield_stress: 300.0,
             hardening_modulus: 1000.0,
+            // AISI 304: 8.00 g/cm^3 (ASM Handbook)
+            density: 8.0e-9,
             temperature: 200.0,
             pressure: 0.6,
             displacement: 70.0,
@@ -188,6 +192,7 @@ impl BellowsParams {
             ("tangential penalty", self.tangential_penalty),
             ("Young's modulus", self.youngs_modulus),
             ("yield stress", self.yield_stress),
+            ("density", self.density),
         ];
         let coefficients = self.coefficients.into_iter().flat_map(|c| [("coefficient Cp", c[0]), ("coefficient Cf", c[1]), ("coefficient Cd", c[2])]);
         let positive = positive.into_iter().chain(self.elastic_slip.map(|g| ("elastic slip", g))).chain(coefficients);

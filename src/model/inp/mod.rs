@@ -74,6 +74,8 @@ struct MaterialDef {
     at: Location,
     elastic: Option<(f64, f64)>,
     expansion: f64,
+    /// *DENSITY, t/mm^3 (0 without).
+    density: f64,
     plastic: Vec<(f64, f64)>,
     plastic_at: Option<Location>,
 }
@@ -179,7 +181,7 @@ fn build(cards: &[Card], source_text: String) -> Result<InpModel> {
                 if b.materials.iter().any(|m| m.name == name) {
                     return Err(card.error(format!("material {name} is defined twice")));
                 }
-                b.materials.push(MaterialDef { name, at: card.at.clone(), elastic: None, expansion: 0.0, plastic: Vec::new(), plastic_at: None });
+                b.materials.push(MaterialDef { name, at: card.at.clone(), elastic: None, expansion: 0.0, density: 0.0, plastic: Vec::new(), plastic_at: None });
                 last_owner = "MATERIAL";
             }
             "ELASTIC" | "PLASTIC" | "EXPANSION" | "DENSITY" => {
@@ -324,7 +326,7 @@ impl Builder {
                 ([], _) | (_, None) => None,
                 (points, Some(at)) => Some(Plasticity::table(points).map_err(|e| error_at(at, "PLASTIC", e))?),
             };
-            materials.push(Material { name: m.name.clone(), youngs_modulus, poissons_ratio, thermal_expansion: m.expansion, plasticity, density: 0.0 });
+            materials.push(Material { name: m.name.clone(), youngs_modulus, poissons_ratio, thermal_expansion: m.expansion, plasticity, density: m.density });
         }
         if materials.is_empty() {
             return Err(Error::input("the deck defines no *MATERIAL"));

@@ -57,6 +57,10 @@ impl Builder {
             }
             _ => {
                 card.only(&[])?;
+                m.density = single(card)?.number("DENSITY", 0, "density (t/mm^3)", None)?;
+                if !(m.density >= 0.0 && m.density.is_finite()) {
+                    return Err(card.error(format!("density {} must be >= 0 (t/mm^3)", m.density)));
+                }
                 self.notes.push(format!("material {}: *DENSITY ({}) has no effect in a static analysis", m.name, card.at));
             }
         }

@@ -73,6 +73,9 @@ pub fn to_inp(model: &Model, title: &str) -> Result<String> {
         let _ = writeln!(w, "*MATERIAL, NAME={}", checked_name(&m.name)?);
         let _ = writeln!(w, "*ELASTIC\n{}, {}", num(m.youngs_modulus), num(m.poissons_ratio));
         let _ = writeln!(w, "*EXPANSION, ZERO={}\n{}", num(model.reference_temperature), num(m.thermal_expansion));
+        if m.density > 0.0 {
+            let _ = writeln!(w, "*DENSITY\n{}", num(m.density));
+        }
         match m.plasticity {
             None => {}
             Some(Plasticity::Linear { yield_stress, modulus }) => {
