@@ -149,3 +149,35 @@ fn a_step_allowed_no_increment_is_refused() {
     let run = Run { h5: dir.path().join("out.h5"), dir, output };
     assert_rejected(&run, &["model.inp:24", "*STEP", "INC=0", ">= 1"]);
 }
+
+/// What CalculiX's own decks hold beyond slideline's physics is refused with its reason:
+/// triangles, fluid networks, heat transfer, bolt pre-tension.
+#[test]
+fn cards_of_other_physics_are_refused_with_their_reason() {
+    for (model, step, needles) in [
+        ("*ELEMENT, TYPE=CAX6, ELSET=T\n2, 1, 2, 3, 5, 6, 8\n", "", ["model.inp:18", "CAX6", "triangles are not built"]),
+        ("*ELEMENT, TYPE=D, ELSET=F\n2, 1, 2, 3\n", "", ["model.inp:18", "type D", "no fluid networks"]),
+        ("*FLUID CONSTANTS\n1., 1.\n", "", ["model.inp:18", "*FLUID CONSTANTS", "no fluid networks"]),
+        ("*PRE-TENSION SECTION, SURFACE=S, NODE=1\n1., 0., 0.\n", "", ["model.inp:18", "*PRE-TENSION SECTION", "prescribed shortening"]),
+        ("", "*FILM\nRING, F1, 20., 1.\n", ["model.inp:29", "*FILM", "no heat conduction"]),
+    ] {
+        let run = run_inp(model, step, &[]);
+        assert_rejected(&run, &needles);
+    }
+}
+
+/// Material data a static step does not use, point masses and physical constants are read
+/// and said to have no effect (CalculiX's ring3 and mass3 carry them).
+#[test]
+fn thermal_material_data_and_point_masses_are_accepted_with_a_note() {
+    let model = "*ELEMENT, TYPE=MASS, ELSET=M\n5, 3\n*MASS, ELSET=M\n1.e-3\n*PHYSICAL CONSTANTS, ABSOLUTE ZERO=-273.15\n\
+                 *MATERIAL, NAME=OTHER\n*ELASTIC\n1000., 0.3\n*CONDUCTIVITY\n50.\n*SPECIFIC HEAT\n4.6e8\n";
+    let run = run_inp(model, "", &[]);
+    run.assert_ok();
+    let out = run.stdout();
+    for needle in ["*CONDUCTIVITY", "*SPECIFIC HEAT", "*PHYSICAL CONSTANTS", "the point masses of M have no effect"] {
+        assert!(out.contains(needle), "{needle}: {out}");
+    }
+    let run = run_inp("*MASS, ELSET=RING\n1.e-3\n", "", &[]);
+    assert_rejected(&run, &["model.inp:18", "RING holds no elements of type MASS"]);
+}

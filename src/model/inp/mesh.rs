@@ -37,15 +37,36 @@ impl Builder {
         self.node_index.get(&id).copied().ok_or_else(|| error_at(&d.at, keyword, format!("node {id} is not defined")))
     }
 
+    /// Point masses (type MASS, one node each): checked and left out (a static step does not
+    /// use them); their set is remembered so that *MASS and a load on it can say so.
+    fn point_masses(&mut self, card: &Card) -> Result<()> {
+        for d in &card.data {
+            self.node(d, "ELEMENT", 1)?;
+        }
+        let set = card.param("ELSET").map(|s| s.to_uppercase()).ok_or_else(|| card.error("point masses (TYPE=MASS) need an ELSET for their *MASS card"))?;
+        self.mass_sets.push(set);
+        Ok(())
+    }
+
     pub(super) fn elements(&mut self, card: &Card) -> Result<()> {
         card.only(&["TYPE", "ELSET"])?;
         let kind = card.required("TYPE")?.to_uppercase();
         let corners_only = match kind.as_str() {
             "CAX8" | "CAX8R" => false,
             "CAX4" | "CAX4R" => true,
+            "MASS" => return self.point_masses(card),
             other => {
-                return Err(card
-                    .error(format!("element type {other} is outside the subset (slideline reads the axisymmetric quadrilaterals CAX8, CAX8R, CAX4, CAX4R)")))
+                let why = match other {
+                    "CAX6" | "CAX3" => {
+                        "triangles are not built: slideline's elements are quadrilaterals CAX8, CAX8R, CAX4, CAX4R (in Gmsh, recombine the mesh)"
+                    }
+                    o if o.starts_with("CPS") || o.starts_with("CPE") => {
+                        "plane stress and plane strain elements: slideline models axisymmetric solids (CAX8, CAX8R, CAX4, CAX4R)"
+                    }
+                    "D" => "fluid network elements: slideline has no fluid networks",
+                    _ => "outside the subset (slideline reads the axisymmetric quadrilaterals CAX8, CAX8R, CAX4, CAX4R)",
+                };
+                return Err(card.error(format!("element type {other}: {why}")));
             }
         };
         let per_element = if corners_only { 4 } else { 8 };

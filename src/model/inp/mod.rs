@@ -132,6 +132,8 @@ struct Builder {
     node_sets: BTreeMap<String, Vec<usize>>,
     element_sets: BTreeMap<String, Vec<usize>>,
     surfaces: BTreeMap<String, Vec<Edge>>,
+    /// Element sets of point masses (type MASS), left out of the model.
+    mass_sets: Vec<String>,
     materials: Vec<MaterialDef>,
     sections: Vec<(String, String, Location)>,
     interactions: BTreeMap<String, Interaction>,
@@ -183,6 +185,24 @@ fn build(cards: &[Card], source_text: String) -> Result<InpModel> {
                 }
                 b.materials.push(MaterialDef { name, at: card.at.clone(), elastic: None, expansion: 0.0, density: 0.0, plastic: Vec::new(), plastic_at: None });
                 last_owner = "MATERIAL";
+            }
+            "CONDUCTIVITY" | "SPECIFIC HEAT" => {
+                if last_owner != "MATERIAL" {
+                    return Err(card.error("must follow a *MATERIAL card"));
+                }
+                let material = &b.materials.last().expect("after a *MATERIAL").name;
+                b.notes.push(format!("material {material}: *{kw} ({}) has no effect in a static structural analysis", card.at));
+            }
+            "PHYSICAL CONSTANTS" => {
+                b.notes.push(format!("*PHYSICAL CONSTANTS ({}) have no effect in a static structural analysis", card.at));
+            }
+            "MASS" => {
+                card.only(&["ELSET"])?;
+                let set = card.required("ELSET")?.to_uppercase();
+                if !b.mass_sets.contains(&set) {
+                    return Err(card.error(format!("element set {set} holds no elements of type MASS")));
+                }
+                b.notes.push(format!("*MASS ({}): the point masses of {set} have no effect in a static step; slideline leaves them out", card.at));
             }
             "ELASTIC" | "PLASTIC" | "EXPANSION" | "DENSITY" => {
                 if last_owner != "MATERIAL" {
@@ -258,7 +278,23 @@ fn build(cards: &[Card], source_text: String) -> Result<InpModel> {
                     }
                 }
             }
-            other => return Err(card.error(format!("keyword *{other} is outside the subset slideline reads (docs/inp.md lists it)"))),
+            other => {
+                let why = match other {
+                    "HEAT TRANSFER" | "COUPLED TEMPERATURE-DISPLACEMENT" | "UNCOUPLED TEMPERATURE-DISPLACEMENT" => {
+                        "slideline solves static structural steps, not heat conduction: give the temperatures with *TEMPERATURE"
+                    }
+                    "FILM" | "RADIATE" | "VIEWFACTOR" | "GAP HEAT GENERATION" | "GAP CONDUCTANCE" | "CFLUX" | "DFLUX" => {
+                        "a heat-transfer load: slideline solves no heat conduction"
+                    }
+                    "FLUID CONSTANTS" | "FLUID SECTION" | "SPECIFIC GAS CONSTANT" => "slideline has no fluid networks",
+                    "PRE-TENSION SECTION" => {
+                        "bolt pre-tension sections are not built: pre-load a bolt by a prescribed shortening of its shank, or a pressure on a cut face"
+                    }
+                    "FREQUENCY" | "BUCKLE" => "eigenvalue steps are read from the TOML deck only (procedure = \"frequency\" / \"buckle\", docs/deck.md)",
+                    _ => return Err(card.error(format!("keyword *{other} is outside the subset slideline reads (docs/inp.md lists it)"))),
+                };
+                return Err(card.error(why));
+            }
         }
     }
     let mut files: Vec<std::path::PathBuf> = Vec::new();
