@@ -115,16 +115,25 @@ pub fn steps(p: &BellowsParams, movements: Movements) -> Vec<Perturbation> {
     out
 }
 
+/// Resultant `name` of set `set` in the answer of perturbation step `step`.
+fn resultant_in(answers: &[(String, PerturbationAnswer)], step: &str, set: &str, name: &str) -> Option<f64> {
+    let (_, answer) = answers.iter().find(|(s, _)| s == step)?;
+    let reaction = answer.reactions.iter().find(|x| x.set == set)?;
+    reaction.resultants.iter().find(|(n, _, _)| *n == name).map(|(_, v, _)| *v)
+}
+
+/// The axial rate (N/mm, full ring) from the answer of the [`AXIAL`] step.
+pub(super) fn axial_rate(answers: &[(String, PerturbationAnswer)]) -> Result<f64> {
+    let force = resultant_in(answers, AXIAL, "moving_end", "axial_force_ring");
+    force.map(f64::abs).ok_or_else(|| crate::error::Error::input("the perturbation steps ran without the axial rate's"))
+}
+
 /// The flexibility from the perturbation answers of a run of the joint `p` with [`steps`], its
 /// stresses from the run's results file `r`.
 pub fn from_run(p: &BellowsParams, movements: Movements, answers: &[(String, PerturbationAnswer)], r: &ResultsReader) -> Result<Flexibility> {
-    let resultant = |step: &str, set: &str, name: &str| -> Option<f64> {
-        let (_, answer) = answers.iter().find(|(s, _)| s == step)?;
-        let reaction = answer.reactions.iter().find(|x| x.set == set)?;
-        reaction.resultants.iter().find(|(n, _, _)| *n == name).map(|(_, v, _)| *v)
-    };
+    let resultant = |step: &str, set: &str, name: &str| resultant_in(answers, step, set, name);
     let missing = |what: &str| crate::error::Error::Output { path: r.path().to_path_buf(), message: format!("no {what} in the perturbation steps") };
-    let axial_rate = resultant(AXIAL, "moving_end", "axial_force_ring").ok_or_else(|| missing("axial force"))?.abs();
+    let axial_rate = axial_rate(answers)?;
     let pieces = convolution_pieces(p);
     let response = |step: &str, per: f64| -> Result<Option<MovementResponse>> {
         if per == 0.0 {

@@ -15,7 +15,7 @@
 //! `flexibility`.
 
 use super::flexibility::AXIAL;
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::model::bellows::BellowsParams;
 use crate::model::perturbation::{Analysis, HarmonicComponent, HarmonicDisplacement, Perturbation};
 use crate::model::Pressure;
@@ -55,21 +55,17 @@ pub fn steps(p: &BellowsParams) -> Vec<Perturbation> {
 
 /// The critical pressures from a run's answers to [`steps`].
 pub fn from_answers(answers: &[(String, PerturbationAnswer)]) -> Result<Stability> {
-    let answer = |name: &str| answers.iter().find(|(s, _)| s == name).map(|(_, a)| a);
-    let axial = answer(AXIAL).and_then(|a| a.reactions.iter().find(|r| r.set == "moving_end"));
-    let axial_rate = axial.and_then(|r| r.resultants.iter().find(|(n, _, _)| *n == "axial_force_ring")).map(|(_, v, _)| v.abs());
-    let axial_rate = axial_rate.ok_or_else(|| Error::input("the stability steps ran without their axial rate"))?;
+    let axial_rate = super::flexibility::axial_rate(answers)?;
     // the lowest positive load factor's critical pressure
-    let critical = |name: &str| {
-        answer(name).and_then(|a| {
-            a.modes
-                .iter()
-                .filter(|m| m.eigenvalue > 0.0)
-                .min_by(|x, y| x.eigenvalue.total_cmp(&y.eigenvalue))
-                .and_then(|m| m.critical_pressures.first().map(|c| c.1))
-        })
-    };
+    let critical = |name: &str| lowest_positive_mode(answers, name).and_then(|m| m.critical_pressures.first().map(|c| c.1));
     Ok(Stability { axial_rate, squirm: critical(SQUIRM), in_plane: critical(IN_PLANE) })
+}
+
+/// The mode of the lowest positive eigenvalue of eigenvalue step `step` (a stable state's first
+/// frequency, the first load factor that buckles it).
+pub(super) fn lowest_positive_mode<'a>(answers: &'a [(String, PerturbationAnswer)], step: &str) -> Option<&'a crate::solve::modes::EigenMode> {
+    let (_, answer) = answers.iter().find(|(s, _)| s == step)?;
+    answer.modes.iter().filter(|m| m.eigenvalue > 0.0).min_by(|x, y| x.eigenvalue.total_cmp(&y.eigenvalue))
 }
 
 /// The joint `p` at rest (no pressure, heat or stroke, elastic) and its buckle steps

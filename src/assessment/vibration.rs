@@ -11,7 +11,8 @@
 //! The axial rate comes from the `axial` perturbation of `flexibility`.
 
 use super::flexibility::AXIAL;
-use crate::error::{Error, Result};
+use super::stability::lowest_positive_mode;
+use crate::error::Result;
 use crate::model::bellows::{code_geometry, BellowsParams};
 use crate::model::perturbation::{Analysis, HarmonicComponent, HarmonicDisplacement, Perturbation};
 use crate::petsc::PetscSession;
@@ -65,19 +66,9 @@ pub fn steps(p: &BellowsParams) -> Vec<Perturbation> {
 
 /// The frequencies from the answers to [`steps`] of a run of joint `p` (its end state).
 pub fn from_answers(p: &BellowsParams, answers: &[(String, PerturbationAnswer)]) -> Result<Frequencies> {
-    let answer = |name: &str| answers.iter().find(|(s, _)| s == name).map(|(_, a)| a);
-    let axial = answer(AXIAL).and_then(|a| a.reactions.iter().find(|r| r.set == "moving_end"));
-    let axial_rate = axial.and_then(|r| r.resultants.iter().find(|(n, _, _)| *n == "axial_force_ring")).map(|(_, v, _)| v.abs());
-    let axial_rate = axial_rate.ok_or_else(|| Error::input("the frequency steps ran without their axial rate"))?;
-    // the lowest mode of a stable state (the modes come nearest zero first)
+    let axial_rate = super::flexibility::axial_rate(answers)?;
     let lowest = |name: &str| {
-        answer(name).and_then(|a| {
-            a.modes
-                .iter()
-                .filter(|m| m.eigenvalue > 0.0)
-                .min_by(|x, y| x.eigenvalue.total_cmp(&y.eigenvalue))
-                .map(|m| Mode { frequency: frequency_hz(m.eigenvalue), effective_mass: m.effective_mass.unwrap_or(f64::NAN) })
-        })
+        lowest_positive_mode(answers, name).map(|m| Mode { frequency: frequency_hz(m.eigenvalue), effective_mass: m.effective_mass.unwrap_or(f64::NAN) })
     };
     let stroke = if p.cycle { 0.0 } else { p.displacement };
     let convolved_length = p.convolutions as f64 * p.pitch - stroke;
