@@ -187,6 +187,7 @@ pub fn compute(session: &PetscSession, c1: f64, c2: f64, fineness: Fineness) -> 
         pressures: vec![],
         temperature: None,
         time_span: None,
+        body_loads: Vec::new(),
     };
     let press = Step {
         name: "press".into(),
@@ -195,6 +196,7 @@ pub fn compute(session: &PetscSession, c1: f64, c2: f64, fineness: Fineness) -> 
         pressures: vec![Pressure { surface: "inner".into(), value: PRESSURE }],
         temperature: None,
         time_span: None,
+        body_loads: Vec::new(),
     };
     super::in_scratch(session, "convolution", |dir| {
         let deflected = dir.join("deflect.h5");

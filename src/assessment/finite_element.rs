@@ -105,6 +105,7 @@ pub fn analyse(session: &PetscSession, p: &BellowsParams, stability: &super::sta
         pressures: vec![Pressure { surface: "wetted".into(), value: LOAD_FRACTION * p.pressure }],
         temperature: None,
         time_span: None,
+        body_loads: Vec::new(),
     };
     // the stroke analysis runs without a stroke too (a pressure-only assessment), for the rate
     let nominal = if p.displacement == 0.0 { 1.0 } else { p.displacement.abs() };
@@ -116,6 +117,7 @@ pub fn analyse(session: &PetscSession, p: &BellowsParams, stability: &super::sta
         pressures: vec![],
         temperature: None,
         time_span: None,
+        body_loads: Vec::new(),
     };
     let pieces = convolution_pieces(p);
     super::in_scratch(session, "assess", |dir| {

@@ -40,7 +40,14 @@ impl BodyForce {
 
 /// Nodal forces [f_r, f_z] per radian of `force` on an element of density `rho` with
 /// reference geometry `geo`, coordinates `x0` and displacements `u`.
-pub fn body_load(geo: &ElementGeometry, x0: &[[f64; 2]; NODES], u: &[[f64; 2]; NODES], rho: f64, force: BodyForce, kinematics: Kinematics) -> [[f64; 2]; NODES] {
+pub fn body_load(
+    geo: &ElementGeometry,
+    x0: &[[f64; 2]; NODES],
+    u: &[[f64; 2]; NODES],
+    rho: f64,
+    force: BodyForce,
+    kinematics: Kinematics,
+) -> [[f64; 2]; NODES] {
     let (points, weights) = geo.points();
     let mut f = [[0.0; 2]; NODES];
     for q in 0..QUADRATURE_POINTS {

@@ -396,6 +396,7 @@ pub fn model(p: &BellowsParams) -> Result<Model> {
             pressures: vec![Pressure { surface: "wetted".into(), value: p.pressure }],
             temperature: Some(p.temperature),
             time_span: None,
+            body_loads: Vec::new(),
         },
         Step {
             name: "compress".into(),
@@ -404,6 +405,7 @@ pub fn model(p: &BellowsParams) -> Result<Model> {
             pressures: vec![],
             temperature: None,
             time_span: None,
+            body_loads: Vec::new(),
         },
     ];
     if p.cycle {
@@ -414,6 +416,7 @@ pub fn model(p: &BellowsParams) -> Result<Model> {
             pressures: vec![],
             temperature: None,
             time_span: None,
+            body_loads: Vec::new(),
         });
     }
     let source_text = p.to_toml();

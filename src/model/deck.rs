@@ -70,9 +70,10 @@
 use super::mesh::{blocks, rectangle, Block, MeshSets};
 use super::perturbation::{Analysis, HarmonicComponent, HarmonicDisplacement, Perturbation, RingMotion};
 use super::{
-    default_capture_distance, gmsh, Adjust, AugmentedLagrangian, Component, ContactIntegration, ContactPair, Convergence, Friction, Kinematics, Material,
-    Model, OutputControls, OutputFields, Penalty, Plasticity, Precision, Predictor, PrescribedDisplacement, Pressure, Step, SteppingControls,
+    default_capture_distance, gmsh, Adjust, AugmentedLagrangian, BodyLoad, Component, ContactIntegration, ContactPair, Convergence, Friction, Kinematics,
+    Material, Model, OutputControls, OutputFields, Penalty, Plasticity, Precision, Predictor, PrescribedDisplacement, Pressure, Step, SteppingControls,
 };
+use crate::element::body_load::BodyForce;
 use crate::error::{Error, Result};
 use serde::Deserialize;
 use std::path::{Path, PathBuf};
@@ -284,6 +285,19 @@ struct StepSpec {
     boundary: Vec<BoundarySpec>,
     #[serde(default)]
     pressure: Vec<PressureSpec>,
+    /// Body loads on element sets: gravity along the axis or spin about it.
+    #[serde(default)]
+    body_load: Vec<BodyLoadSpec>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct BodyLoadSpec {
+    elements: String,
+    /// Acceleration along +z, mm/s^2 (downward along the axis: -9810).
+    gravity: Option<f64>,
+    /// Angular velocity about the axis, rad/s (the load ramps as its square).
+    spin: Option<f64>,
 }
 
 #[derive(Deserialize)]
@@ -426,8 +440,17 @@ pub fn parse(text: &str, path: &Path) -> Result<Model> {
                         }
                     }
                 }
+                let mut body_loads = Vec::new();
+                for b in &s.body_load {
+                    let force = match (b.gravity, b.spin) {
+                        (Some(g), None) => BodyForce::Gravity(g),
+                        (None, Some(omega)) => BodyForce::Spin(omega * omega),
+                        _ => return Err(Error::input(format!("step '{name}': body_load on '{}': give one of gravity (mm/s^2) or spin (rad/s)", b.elements))),
+                    };
+                    body_loads.push(BodyLoad { elements: b.elements.clone(), force });
+                }
                 let increments = s.increments.unwrap_or(1);
-                steps.push(Step { name, increments, displacements, pressures, temperature: s.temperature, time_span: None });
+                steps.push(Step { name, increments, displacements, pressures, temperature: s.temperature, time_span: None, body_loads });
             }
             procedure @ ("harmonic" | "frequency" | "buckle") => {
                 let mode = s.mode.ok_or_else(|| Error::input(format!("step '{name}': procedure = \"{procedure}\" needs its mode (mode = n)")))?;
@@ -437,9 +460,9 @@ pub fn parse(text: &str, path: &Path) -> Result<Model> {
                     ("frequency", count) => Analysis::Frequency { eigenvalues: count.unwrap_or(1) },
                     (_, count) => Analysis::Buckle { eigenvalues: count.unwrap_or(1) },
                 };
-                if s.increments.is_some() || s.temperature.is_some() {
+                if s.increments.is_some() || s.temperature.is_some() || !s.body_load.is_empty() {
                     return Err(Error::input(format!(
-                        "step '{name}': a harmonic step has no increments or temperature (it is linear, about the state before)"
+                        "step '{name}': a perturbation step has no increments, temperature or body loads (it is linear, about the state before)"
                     )));
                 }
                 let (mut displacements, mut rings) = (Vec::new(), Vec::new());

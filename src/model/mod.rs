@@ -394,6 +394,16 @@ pub struct Step {
     /// The input deck's total time at the start and end of the step (CalculiX/Abaqus *STATIC
     /// periods), for the history's `time`; `None`: step k spans the time k - 1 to k.
     pub time_span: Option<[f64; 2]>,
+    /// Body loads at the end of the step (ramped from the previous step's, per element set).
+    pub body_loads: Vec<BodyLoad>,
+}
+
+/// A body load on an element set: gravity along the axis or spin about it, its value at the
+/// end of the step.
+#[derive(Clone, Debug, PartialEq)]
+pub struct BodyLoad {
+    pub elements: String,
+    pub force: crate::element::body_load::BodyForce,
 }
 
 #[derive(Clone, Debug)]

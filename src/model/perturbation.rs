@@ -93,6 +93,9 @@ impl Perturbation {
         if model.steps.is_empty() {
             return Err(at("a perturbation step needs a general step before it (its base state)".into()));
         }
+        if let Some(s) = model.steps.iter().find(|s| s.body_loads.iter().any(|b| matches!(b.force, crate::element::body_load::BodyForce::Spin(_)))) {
+            return Err(at(format!("the base state spins (step '{}'): perturbation steps leave the spin's softening out, and are refused about it", s.name)));
+        }
         if self.mode > MAX_MODE {
             return Err(at(format!("mode {} is above {MAX_MODE}", self.mode)));
         }

@@ -2,7 +2,7 @@
 //! loads the steps name, the contact pairs, and the constraints (one value per degree of
 //! freedom; no body free to move along the axis).
 
-use super::{Component, Edge, Model, Penalty, Plasticity, MAX_INCREMENTS, MIN_YOUNGS_MODULUS};
+use super::{BodyLoad, Component, Edge, Model, Penalty, Plasticity, MAX_INCREMENTS, MIN_YOUNGS_MODULUS};
 use crate::error::{Error, Result};
 use std::collections::BTreeMap;
 
@@ -117,6 +117,20 @@ impl Model {
                         "step '{}': surface '{}' is given two pressures: give one (their sum, if both act)",
                         step.name, p.surface
                     )));
+                }
+            }
+            for (k, b) in step.body_loads.iter().enumerate() {
+                let at = |what: String| Error::input(format!("step '{}': body load on '{}': {what}", step.name, b.elements));
+                let elements = self.element_sets.get(&b.elements).ok_or_else(|| at(format!("unknown element set '{}'", b.elements)))?;
+                if !b.force.value().is_finite() {
+                    return Err(at(format!("{} must be finite", b.force.value())));
+                }
+                if let Some(m) = elements.iter().map(|&e| &self.materials[self.element_material[e]]).find(|m| !(m.density > 0.0 && m.density.is_finite())) {
+                    return Err(at(format!("material '{}' has no density (t/mm^3; steel 7.85e-9)", m.name)));
+                }
+                let same = |c: &BodyLoad| c.elements == b.elements && std::mem::discriminant(&c.force) == std::mem::discriminant(&b.force);
+                if step.body_loads[..k].iter().any(same) {
+                    return Err(at("given twice: give one value (their sum, if both act)".into()));
                 }
             }
         }

@@ -13,6 +13,7 @@ pub use super::kept::ElementFields;
 use super::kept::{KeptTangent, KeptTangents, LastEvaluation};
 use super::layout::JacobianLayout;
 use crate::dist::{DofMap, Partition};
+use crate::element::body_load::BodyForce;
 use crate::element::solid::ElementMatrix;
 use crate::element::solid::{compute_solid, solid_tangent, ElementGeometry, MaterialTangents, SolidInput, SolidResponse, DOFS, NODES, QUADRATURE_POINTS};
 use crate::error::{Error, Result};
@@ -38,6 +39,8 @@ pub struct LoadState {
     pub temperature_change: f64,
     /// (surface name, pressure in MPa).
     pub pressures: Vec<(String, f64)>,
+    /// (element set, body force per unit mass).
+    pub body_loads: Vec<(String, BodyForce)>,
 }
 
 /// PETSc log stages of the assembly, so `-log_view` splits a Newton iteration into residual,
@@ -90,6 +93,8 @@ pub struct Problem<'s, 'm> {
     elements: Vec<LocalElement>,
     /// For each surface of the model: the (local element index, side) of its edges on this rank.
     surface_edges: Vec<(String, Vec<(usize, usize)>)>,
+    /// For each element set a step's body load names: its local elements on this rank.
+    loaded_elements: Vec<(String, Vec<usize>)>,
     /// The free DOFs this rank reads and writes (its elements' and every contact node's):
     /// gathered from the unknowns by `scatter`, and the residual added back through it.
     gathered: Vector<'s>,
@@ -209,6 +214,11 @@ impl<'s, 'm> Problem<'s, 'm> {
             .iter()
             .map(|(name, edges)| (name.clone(), edges.iter().filter(|e| position[e.element] != usize::MAX).map(|e| (position[e.element], e.side)).collect()))
             .collect();
+        let loaded: std::collections::BTreeSet<&String> = model.steps.iter().flat_map(|s| s.body_loads.iter().map(|b| &b.elements)).collect();
+        let loaded_elements = loaded
+            .into_iter()
+            .map(|name| (name.clone(), model.element_sets[name].iter().filter(|&&e| position[e] != usize::MAX).map(|&e| position[e]).collect()))
+            .collect();
         let materials = model.materials.iter().map(material_kernel).collect();
         let trial = history.clone();
         let contact = ContactAssembly::new(model, partition, dofs, slot_of, contact);
@@ -219,6 +229,7 @@ impl<'s, 'm> Problem<'s, 'm> {
             materials,
             elements,
             surface_edges,
+            loaded_elements,
             gathered,
             scatter,
             node_slots,
@@ -366,6 +377,14 @@ impl<'s, 'm> Problem<'s, 'm> {
         self.load.pressures.iter().flat_map(move |(surface, p)| {
             let edges = self.surface_edges.iter().find(|(n, _)| n == surface).map(|(_, e)| e.as_slice()).unwrap_or(&[]);
             edges.iter().map(move |&(k, side)| (k, edge_nodes(side), *p))
+        })
+    }
+
+    /// Body-loaded elements on this rank: (local element, its density, the force per unit mass).
+    fn body_loaded(&self) -> impl Iterator<Item = (usize, f64, BodyForce)> + '_ {
+        self.load.body_loads.iter().flat_map(move |(set, force)| {
+            let elements = self.loaded_elements.iter().find(|(n, _)| n == set).map(|(_, e)| e.as_slice()).unwrap_or(&[]);
+            elements.iter().map(move |&k| (k, self.model.materials[self.elements[k].material].density, *force))
         })
     }
 

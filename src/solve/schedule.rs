@@ -2,6 +2,7 @@
 //! interpolated linearly in the step's load factor.
 
 use super::problem::LoadState;
+use crate::element::body_load::BodyForce;
 use crate::model::Model;
 use std::collections::BTreeMap;
 
@@ -12,6 +13,8 @@ pub struct StepLoads {
     pub prescribed: BTreeMap<(usize, usize), (f64, f64)>,
     /// surface -> (start, end) pressure.
     pub pressures: BTreeMap<String, (f64, f64)>,
+    /// (element set, spin) -> (start, end) gravity along the axis or omega^2.
+    pub body_loads: BTreeMap<(String, bool), (f64, f64)>,
     /// (start, end) temperature, degC.
     pub temperature: (f64, f64),
     /// Node sets with a prescribed displacement in this or an earlier step (reaction output).
@@ -42,8 +45,15 @@ impl StepLoads {
             let start = pressures.get(&p.surface).map(|v| v.0).unwrap_or(0.0);
             pressures.insert(p.surface.clone(), (start, p.value));
         }
+        let mut body_loads: BTreeMap<(String, bool), (f64, f64)> =
+            previous.map(|p| p.body_loads.iter().map(|(k, &(_, end))| (k.clone(), (end, end))).collect()).unwrap_or_default();
+        for b in &step.body_loads {
+            let key = (b.elements.clone(), matches!(b.force, BodyForce::Spin(_)));
+            let start = body_loads.get(&key).map(|v| v.0).unwrap_or(0.0);
+            body_loads.insert(key, (start, b.force.value()));
+        }
         let t0 = previous.map(|p| p.temperature.1).unwrap_or(model.reference_temperature);
-        StepLoads { prescribed, pressures, temperature: (t0, step.temperature.unwrap_or(t0)), constrained_sets }
+        StepLoads { prescribed, pressures, body_loads, temperature: (t0, step.temperature.unwrap_or(t0)), constrained_sets }
     }
 
     /// Which DOFs are prescribed in this step.
@@ -66,6 +76,11 @@ impl StepLoads {
             prescribed,
             temperature_change: lerp(self.temperature) - model.reference_temperature,
             pressures: self.pressures.iter().map(|(s, &v)| (s.clone(), lerp(v))).collect(),
+            body_loads: self
+                .body_loads
+                .iter()
+                .map(|((set, spin), &v)| (set.clone(), if *spin { BodyForce::Spin(lerp(v)) } else { BodyForce::Gravity(lerp(v)) }))
+                .collect(),
         }
     }
 }

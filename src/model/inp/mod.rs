@@ -113,6 +113,8 @@ struct StepDef {
     minimum: Option<f64>,
     boundaries: Vec<Target<(String, Component)>>,
     pressures: Vec<Target<String>>,
+    /// *DLOAD GRAV and CENTRIF: (element set, spin) -> g along the axis, or omega^2.
+    body: Vec<Target<(String, bool)>>,
     temperature: Option<Target<()>>,
     /// *DLOAD, OP=NEW: loads of earlier steps not restated are removed.
     new_loads: bool,

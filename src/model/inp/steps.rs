@@ -1,11 +1,12 @@
 //! The history part of a deck: *AMPLITUDE, *INITIAL CONDITIONS / *TEMPERATURE, *STEP and
 //! *STATIC, *BOUNDARY, *DLOAD, and the steps they expand to (split at amplitude points).
 
-use super::cards::{error_at, normalise, Card};
+use super::cards::{error_at, normalise, Card, DataLine};
 use super::{face_side, Builder, StepDef, Target};
+use crate::element::body_load::BodyForce;
 use crate::error::Result;
 use crate::model::mesh::Edge;
-use crate::model::{Component, Predictor, PrescribedDisplacement, Pressure, Step};
+use crate::model::{BodyLoad, Component, Predictor, PrescribedDisplacement, Pressure, Step};
 use std::collections::{BTreeMap, BTreeSet};
 
 impl Builder {
@@ -119,6 +120,7 @@ impl Builder {
             minimum: None,
             boundaries: Vec::new(),
             pressures: Vec::new(),
+            body: Vec::new(),
             temperature: None,
             new_loads: false,
             has_procedure: false,
@@ -258,8 +260,13 @@ impl Builder {
         let amplitude = self.amplitude_ref(card)?;
         self.step_mut(card)?;
         let mut loads = Vec::new();
+        let mut body = Vec::new();
         for d in &card.data {
             let label = d.fields.get(1).map(|s| s.to_uppercase()).unwrap_or_default();
+            if label == "GRAV" || label == "CENTRIF" {
+                body.push(self.body_load(d, &label, amplitude.clone())?);
+                continue;
+            }
             let side =
                 face_side(&label, 'P').ok_or_else(|| error_at(&d.at, "DLOAD", format!("load type '{label}': slideline reads face pressures P1 to P4")))?;
             let value = d.number("DLOAD", 2, "magnitude", None)?;
@@ -287,7 +294,53 @@ impl Builder {
             step.pressures.retain(|p| p.key != l.key);
             step.pressures.push(l);
         }
+        for l in body {
+            step.body.retain(|b| b.key != l.key);
+            step.body.push(l);
+        }
         Ok(())
+    }
+
+    /// A *DLOAD line of type GRAV (magnitude, direction) or CENTRIF (omega^2, a point of the
+    /// axis, its direction), about slideline's axis: CalculiX's axisymmetric y (its x the
+    /// radius). Its elements: a set, or one element (as a set of its own).
+    fn body_load(&mut self, d: &DataLine, label: &str, amplitude: Option<String>) -> Result<Target<(String, bool)>> {
+        let target = d.fields[0].to_uppercase();
+        if self.mass_sets.contains(&target) {
+            return Err(error_at(&d.at, "DLOAD", format!("{label} on {target}: its point masses are left out of slideline's model")));
+        }
+        let elements = self.element_items(d, "DLOAD", 0)?;
+        let set = if self.element_sets.contains_key(&target) {
+            target
+        } else {
+            let name = format!("DLOAD_{target}");
+            self.element_sets.insert(name.clone(), elements);
+            name
+        };
+        let magnitude = d.number("DLOAD", 2, "magnitude", None)?;
+        let numbers = |from: usize| -> Result<[f64; 3]> {
+            Ok([
+                d.number("DLOAD", from, "coordinate", Some(0.0))?,
+                d.number("DLOAD", from + 1, "coordinate", Some(0.0))?,
+                d.number("DLOAD", from + 2, "coordinate", Some(0.0))?,
+            ])
+        };
+        let along_axis = |v: [f64; 3]| -> Option<f64> {
+            let length = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+            (length > 0.0 && (v[0].abs() + v[2].abs()) <= 1e-9 * length).then(|| v[1] / length)
+        };
+        let spin = label == "CENTRIF";
+        let value = if spin {
+            let (point, direction) = (numbers(3)?, numbers(6)?);
+            if point[0] != 0.0 || point[2] != 0.0 || along_axis(direction).is_none() {
+                return Err(error_at(&d.at, "DLOAD", "CENTRIF: the rotation axis must be the model's axis (a point with x = z = 0, direction along y)"));
+            }
+            magnitude
+        } else {
+            let direction = along_axis(numbers(3)?).ok_or_else(|| error_at(&d.at, "DLOAD", "GRAV: the direction must be along the model's axis (y)"))?;
+            magnitude * direction
+        };
+        Ok(Target { key: (set, spin), value, amplitude })
     }
 
     /// slideline steps ramp every target linearly from the previous step's value; a step whose
@@ -296,6 +349,7 @@ impl Builder {
     pub(super) fn expand_steps(&mut self, initial_temperature: f64) -> Result<Vec<Step>> {
         let mut displacement_now: BTreeMap<(String, Component), f64> = self.fixed.iter().map(|k| (k.clone(), 0.0)).collect();
         let mut pressure_now: BTreeMap<String, f64> = BTreeMap::new();
+        let mut body_now: BTreeMap<(String, bool), f64> = BTreeMap::new();
         let mut temperature_now = initial_temperature;
         let mut out = Vec::new();
         let mut total_time = 0.0;
@@ -312,6 +366,12 @@ impl Builder {
                 for (surface, v) in pressure_now.iter_mut() {
                     if !s.pressures.iter().any(|p| &p.key == surface) {
                         s.pressures.push(Target { key: surface.clone(), value: 0.0, amplitude: None });
+                        *v = 0.0;
+                    }
+                }
+                for (key, v) in body_now.iter_mut() {
+                    if !s.body.iter().any(|b| &b.key == key) {
+                        s.body.push(Target { key: key.clone(), value: 0.0, amplitude: None });
                         *v = 0.0;
                     }
                 }
@@ -334,7 +394,7 @@ impl Builder {
             times.sort_by(f64::total_cmp);
             times.dedup_by(|a, b| (*a - *b).abs() <= 1e-12 * s.period);
             let period = s.period;
-            let (d0, p0, t0) = (displacement_now.clone(), pressure_now.clone(), temperature_now);
+            let (d0, p0, b0, t0) = (displacement_now.clone(), pressure_now.clone(), body_now.clone(), temperature_now);
             let mut previous_time = 0.0;
             for (j, &time) in times.iter().enumerate() {
                 let displacements = s
@@ -350,6 +410,16 @@ impl Builder {
                     .iter()
                     .map(|p| Pressure { surface: p.key.clone(), value: p.at(p0.get(&p.key).copied().unwrap_or(0.0), time, period, &self.amplitudes) })
                     .collect::<Vec<_>>();
+                let body: Vec<((String, bool), f64)> =
+                    s.body.iter().map(|b| (b.key.clone(), b.at(b0.get(&b.key).copied().unwrap_or(0.0), time, period, &self.amplitudes))).collect();
+                for (key, value) in &body {
+                    body_now.insert(key.clone(), *value);
+                }
+                // every body load in force, as the step's end values
+                let body_loads = body_now
+                    .iter()
+                    .map(|((set, spin), &v)| BodyLoad { elements: set.clone(), force: if *spin { BodyForce::Spin(v) } else { BodyForce::Gravity(v) } })
+                    .collect::<Vec<_>>();
                 let temperature = s.temperature.as_ref().map(|t| t.at(t0, time, period, &self.amplitudes));
                 for d in &displacements {
                     displacement_now.insert((d.node_set.clone(), d.component), d.value);
@@ -363,7 +433,7 @@ impl Builder {
                 let name = if times.len() == 1 { s.name.clone() } else { format!("{}.{}", s.name, j + 1) };
                 let share = ((increments as f64) * (time - previous_time) / s.period).round().max(1.0) as usize;
                 let time_span = Some([total_time + previous_time, total_time + time]);
-                out.push(Step { name, increments: share, displacements, pressures, temperature, time_span });
+                out.push(Step { name, increments: share, displacements, pressures, temperature, time_span, body_loads });
                 previous_time = time;
             }
             total_time += s.period;

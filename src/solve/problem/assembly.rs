@@ -3,6 +3,7 @@
 //! coupling to the prescribed DOFs.
 
 use super::{Problem, ROUNDOFF_ULPS};
+use crate::element::body_load::{body_load, body_load_stiffness, BodyForce};
 use crate::element::pressure::{compute_pressure_load, pressure_load_stiffness};
 use crate::element::solid::DOFS;
 use crate::error::Result;
@@ -143,6 +144,16 @@ impl Problem<'_, '_> {
                     }
                 }
             }
+            // the spin's softening, d(-f_ext)/du
+            let spinning: Vec<(usize, f64, BodyForce)> = self.body_loaded().filter(|(_, _, f)| matches!(f, BodyForce::Spin(_))).collect();
+            for (k, rho, force) in spinning {
+                let kb = body_load_stiffness(&self.elements[k].geometry, rho, force, self.model.kinematics);
+                for (i, row) in kb.iter().enumerate() {
+                    for (j, v) in row.iter().enumerate().filter(|(_, v)| **v != 0.0) {
+                        self.layout.add_element_entry(k, i, j, -v);
+                    }
+                }
+            }
         }
         // the engagements and their tangents at this iterate: `fit_pattern` evaluated them
         if let Some(contact) = self.contact.as_ref() {
@@ -242,6 +253,18 @@ impl Problem<'_, '_> {
                 for c in 0..2 {
                     sink(conn[a], c, -f[j][c]);
                     fields.pressure_force[conn[a]][c] += f[j][c];
+                }
+            }
+        }
+        // the body loads, kept with the pressures' for the audit's external work
+        for (k, rho, force) in self.body_loaded() {
+            let element = &self.elements[k];
+            let f = body_load(&element.geometry, &element.coords, &us[k], rho, force, self.model.kinematics);
+            let conn = &self.model.mesh.elements[element.element];
+            for (a, f) in f.iter().enumerate() {
+                for c in 0..2 {
+                    sink(conn[a], c, -f[c]);
+                    fields.pressure_force[conn[a]][c] += f[c];
                 }
             }
         }
