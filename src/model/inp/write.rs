@@ -2,7 +2,7 @@
 //! CAX8 mesh, node and element sets, element-face surfaces, materials (*PLASTIC as a table),
 //! one *SURFACE INTERACTION and *CONTACT PAIR per pair with its penalty as the LINEAR slope
 //! (and its *FRICTION: mu and the stick slope),
-//! *DLOAD per loaded face label, the steps with *STATIC (the requested increment, which both
+//! *DLOAD per loaded face label (and GRAV / CENTRIF for body loads), the steps with *STATIC (the requested increment, which both
 //! codes cut back when Newton fails and never exceed; the smallest is `min_increment`), and
 //! *NODE PRINT of every constrained set's reaction.
 //!
@@ -10,6 +10,7 @@
 //! one per direction, each with half the penalty: the same forces, and what CalculiX needs to
 //! treat both surfaces alike.
 
+use crate::element::body_load::BodyForce;
 use crate::error::{Error, Result};
 use crate::model::{Component, ContactIntegration, Model, Penalty, Plasticity, Predictor};
 use std::collections::BTreeSet;
@@ -177,6 +178,17 @@ pub fn to_inp(model: &Model, title: &str) -> Result<String> {
                 }
             }
         }
+        if !step.body_loads.is_empty() {
+            // about CalculiX's axisymmetric axis, y
+            let _ = writeln!(w, "*DLOAD");
+            for b in &step.body_loads {
+                let set = checked_name(&b.elements)?;
+                let _ = match b.force {
+                    BodyForce::Gravity(g) => writeln!(w, "{set}, GRAV, {}, 0., 1., 0.", num(g)),
+                    BodyForce::Spin(w2) => writeln!(w, "{set}, CENTRIF, {}, 0., 0., 0., 0., 1., 0.", num(w2)),
+                };
+            }
+        }
         if let Some(t) = step.temperature {
             let _ = writeln!(w, "*TEMPERATURE\nNALL, {}", num(t));
         }
@@ -216,5 +228,39 @@ fn checked_name(name: &str) -> Result<&str> {
         Ok(name)
     } else {
         Err(Error::input(format!("name '{name}' cannot be written to an .inp deck: use letters, digits and underscores, starting with a letter")))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::element::body_load::BodyForce;
+    use std::path::Path;
+
+    /// A deck's body loads survive the trip through a written .inp and the reader: gravity
+    /// and spin on their element sets, in every step that has them (the reader restates the
+    /// loads in force, as CalculiX keeps them).
+    #[test]
+    fn body_loads_are_written_and_read_back() {
+        let deck = r#"
+[mesh.rectangle]
+r = [20.0, 100.0]
+z = [0.0, 1.0]
+divisions = [4, 1]
+[[material]]
+name = "steel"
+youngs_modulus = 200000.0
+poissons_ratio = 0.3
+density = 7.85e-9
+[[step]]
+name = "spin"
+boundary = [ { set = "bottom", uz = 0.0 } ]
+body_load = [ { elements = "all", spin = 3000.0 }, { elements = "all", gravity = -9810.0 } ]
+"#;
+        let model = crate::model::deck::parse(deck, Path::new("disc.toml")).unwrap();
+        let text = super::to_inp(&model, "disc").unwrap();
+        let read = crate::model::inp::parse(&text, Path::new("disc.inp")).unwrap().model;
+        let mut loads: Vec<(String, BodyForce)> = read.steps[0].body_loads.iter().map(|b| (b.elements.clone(), b.force)).collect();
+        loads.sort_by(|a, b| a.1.value().total_cmp(&b.1.value()));
+        assert_eq!(loads, vec![("ALL".to_string(), BodyForce::Gravity(-9810.0)), ("ALL".to_string(), BodyForce::Spin(9.0e6))]);
     }
 }
