@@ -228,6 +228,10 @@ pub struct BellowsArgs {
     /// Linear isotropic hardening modulus, MPa.
     #[arg(long, default_value_t = 1000.0)]
     pub hardening: f64,
+    /// Mass density of the plies, tubes and sleeve, t/mm^3 (AISI 304: 8.0e-9), for
+    /// --frequencies.
+    #[arg(long, default_value_t = 8.0e-9)]
+    pub density: f64,
     /// Element length along the plies, mm.
     #[arg(long, default_value_t = 1.0)]
     pub ply_element_length: f64,
@@ -364,6 +368,7 @@ impl BellowsArgs {
         take("pressure", &mut |p| p.pressure = self.pressure);
         take("yield_stress", &mut |p| p.yield_stress = self.yield_stress);
         take("hardening", &mut |p| p.hardening_modulus = self.hardening);
+        take("density", &mut |p| p.density = self.density);
         take("ply_element_length", &mut |p| p.ply_element_length = self.ply_element_length);
         take("ply_elements", &mut |p| p.ply_elements = self.ply_elements);
         take("output_every", &mut |p| p.output_every = self.output_every);

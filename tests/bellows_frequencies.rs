@@ -11,7 +11,7 @@
 //!   inertia is three times too high for a bellows as wide as it is long (ratio below 0.4,
 //!   measured 0.32);
 //! - the analogies' printed values recomputed here from the printed Kb and the geometry (1e-3);
-//! - 1 and 2 ranks agree to 1e-8.
+//! - 1 and 2 ranks agree to 1e-8; four times the density (`--density`) halves every frequency.
 
 mod common;
 use common::{command_in, Results};
@@ -19,9 +19,9 @@ use std::f64::consts::PI;
 
 const FLAGS: &[&str] = &["--displacement", "0", "--pressure", "0", "--temperature", "20", "--increments", "1", "--frequencies", "--quiet"];
 
-fn frequencies(dir: &std::path::Path, ranks: usize) -> (Vec<(String, f64)>, Results) {
-    let h5 = dir.join(format!("modes{ranks}.h5"));
-    let out = command_in(dir, ranks).args(["bellows", "-o"]).arg(&h5).args(FLAGS).output().unwrap();
+fn frequencies(dir: &std::path::Path, ranks: usize, more: &[&str]) -> (Vec<(String, f64)>, Results) {
+    let h5 = dir.join(format!("modes{ranks}{}.h5", if more.is_empty() { "" } else { "_more" }));
+    let out = command_in(dir, ranks).args(["bellows", "-o"]).arg(&h5).args(FLAGS).args(more).output().unwrap();
     let text = String::from_utf8_lossy(&out.stdout).into_owned();
     assert!(out.status.success(), "{text}\n{}", String::from_utf8_lossy(&out.stderr));
     let section = text.split("natural frequencies: the joint").nth(1).unwrap_or_else(|| panic!("no frequencies section:\n{text}"));
@@ -45,7 +45,7 @@ fn value(rows: &[(String, f64)], starts: &str, nth: usize) -> f64 {
 #[test]
 fn the_joint_at_rest_rings_as_a_spring_axially_and_as_a_rayleigh_beam_laterally() {
     let dir = tempfile::tempdir().unwrap();
-    let (rows, r) = frequencies(dir.path(), 1);
+    let (rows, r) = frequencies(dir.path(), 1, &[]);
     let kb = value(&rows, "axial rate Kb", 0);
     // the default joint: Dm = 320 + 20 + 2 = 342 mm, Lb = 6 x 24 mm, two 1 mm plies, U-shaped
     // convolutions of torus radius 6 and height 20, AISI 304 at 8.0e-9 t/mm^3
@@ -68,11 +68,30 @@ fn the_joint_at_rest_rings_as_a_spring_axially_and_as_a_rayleigh_beam_laterally(
     // the mode shape's picture beside the file
     assert!(dir.path().join("modes1_lateral_modes_mode.png").exists());
 
-    let (_, r2) = frequencies(dir.path(), 2);
+    let (_, r2) = frequencies(dir.path(), 2, &[]);
     for step in ["axial_modes", "lateral_modes"] {
         let (a, b) = (r.f64s(&format!("perturbations/{step}/frequencies")), r2.f64s(&format!("perturbations/{step}/frequencies")));
         for (x, y) in a.iter().zip(&b) {
             assert!((x - y).abs() < 1e-8 * x, "{step}: {x} on one rank, {y} on two");
         }
     }
+}
+
+/// `--density`: four times the mass halves every frequency (the stiffness unchanged, 1e-9);
+/// a density of zero is refused before any work.
+#[test]
+fn four_times_the_density_halves_the_frequencies() {
+    let dir = tempfile::tempdir().unwrap();
+    let (_, light) = frequencies(dir.path(), 1, &[]);
+    let (_, heavy) = frequencies(dir.path(), 1, &["--density", "3.2e-8"]);
+    for step in ["axial_modes", "lateral_modes"] {
+        let (a, b) = (light.f64s(&format!("perturbations/{step}/frequencies")), heavy.f64s(&format!("perturbations/{step}/frequencies")));
+        for (x, y) in a.iter().zip(&b) {
+            assert!((y / x - 0.5).abs() < 1e-9, "{step}: {x} Hz, then {y} Hz");
+        }
+    }
+    let out = command_in(dir.path(), 1).args(["bellows", "--density", "0", "--frequencies"]).output().unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(err.contains("density must be > 0"), "{err}");
 }
