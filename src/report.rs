@@ -488,9 +488,12 @@ pub fn frequencies_section(p: &BellowsParams, rest: &Frequencies, operating: &Fr
     let mut t = String::from("\n  natural frequencies: the joint with both tubes' ends held, Hz\n");
     t.push_str(&format!("  {:<58} {:>12} {:>12}\n", "", "at rest", "operating"));
     let cell = |v: Option<f64>, digits: usize| v.filter(|v| v.is_finite()).map_or("-".to_string(), |v| format!("{v:.digits$}"));
+    // each state's analogies once (the Rayleigh beam is a root search)
+    let states = [(rest, estimates(p, rest)), (operating, estimates(p, operating))];
+    let mass = states[0].1.mass;
     let mut row = |what: &str, pick: &dyn Fn(&Frequencies, Estimates) -> Option<f64>, digits: usize| {
-        let value = |f: &Frequencies| cell(pick(f, estimates(p, f)), digits);
-        t.push_str(&format!("  {what:<58} {:>12} {:>12}\n", value(rest), value(operating)));
+        let [a, b] = states.map(|(f, e)| cell(pick(f, e), digits));
+        t.push_str(&format!("  {what:<58} {a:>12} {b:>12}\n"));
     };
     let ratio = |m: Option<Mode>, analogy: f64| m.map(|m| m.frequency / analogy);
     row("axial rate Kb by finite elements, N/mm full ring", &|f, _| Some(f.axial_rate), 1);
@@ -505,7 +508,6 @@ pub fn frequencies_section(p: &BellowsParams, rest: &Frequencies, operating: &Fr
     row("  the same beam with the rotary inertia m Dm^2 / 8", &|_, e| Some(e.lateral_rotary), 1);
     row("  ratio, finite elements / analogy", &|f, e| ratio(f.lateral, e.lateral_rotary), 3);
     row("  effective mass / live mass", &|f, e| f.lateral.map(|m| m.effective_mass / e.mass), 3);
-    let mass = estimates(p, rest).mass;
     t.push_str(&format!(
         "  live mass m: the convolutions' metal, {:.3} kg at {:e} t/mm^3; the fluid's mass is left out (add it for a liquid line);\n  \
          a rod's first mode carries 8 / pi^2 = 0.81 of its mass, a clamped beam's 0.69 (less where the convolutions rock);\n  \

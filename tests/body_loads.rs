@@ -20,6 +20,11 @@ const NU: f64 = 0.3;
 const RHO: f64 = 7.85e-9;
 const OMEGA: f64 = 3000.0;
 
+/// Every deck's material: steel with its density.
+fn steel() -> String {
+    format!("[[material]]\nname = \"steel\"\nyoungs_modulus = {E}\npoissons_ratio = {NU}\ndensity = {RHO}")
+}
+
 fn disc(inner: f64, nlgeom: bool) -> String {
     format!(
         r#"
@@ -28,16 +33,13 @@ nlgeom = {nlgeom}
 r = [{inner}, 100.0]
 z = [0.0, 1.0]
 divisions = [50, 1]
-[[material]]
-name = "steel"
-youngs_modulus = {E}
-poissons_ratio = {NU}
-density = {RHO}
+{steel}
 [[step]]
 name = "spin"
 boundary = [ {{ set = "bottom", uz = 0.0 }} ]
 body_load = [ {{ elements = "all", spin = {OMEGA} }} ]
-"#
+"#,
+        steel = steel()
     )
 }
 
@@ -82,16 +84,13 @@ nlgeom = false
 r = [95.0, 100.0]
 z = [0.0, {length}]
 divisions = [2, 40]
-[[material]]
-name = "steel"
-youngs_modulus = {E}
-poissons_ratio = {NU}
-density = {RHO}
+{steel}
 [[step]]
 name = "hang"
 boundary = [ {{ set = "top", uz = 0.0 }} ]
 body_load = [ {{ elements = "all", gravity = {g} }} ]
-"#
+"#,
+        steel = steel()
     );
     let run = run_deck(&deck, &[], 1, &[]);
     run.assert_ok();
