@@ -176,6 +176,9 @@ pub struct ContactAssembly {
     /// Per pass, the end of its engagements in `engagements` (passes in order).
     pass_ends: Vec<usize>,
     evaluated_at: Option<(Vec<[f64; 2]>, Multipliers)>,
+    /// Friction left out of the evaluations (the load predictor's tangent; see
+    /// `Problem::set_without_friction`).
+    without_friction: bool,
     /// Whether the engagements carry their tangents.
     with_tangents: bool,
     /// Integration points of the last evaluation's segment-integrated passes (their samples'
@@ -278,6 +281,7 @@ impl ContactAssembly {
             gaps,
             pass_ends: Vec::new(),
             evaluated_at: None,
+            without_friction: false,
             with_tangents: false,
             points: 0,
             point_hessians: PointHessians::default(),
@@ -405,6 +409,16 @@ impl ContactAssembly {
             // predictor's tangent at this very state) must not reuse it
             self.evaluated_at = None;
         }
+    }
+
+    /// Leaves friction out of the evaluations from now on (or takes it back in); returns the
+    /// previous choice.
+    pub fn set_without_friction(&mut self, without: bool) -> bool {
+        if without != self.without_friction {
+            // the last evaluation was made with the other choice
+            self.evaluated_at = None;
+        }
+        std::mem::replace(&mut self.without_friction, without)
     }
 
     /// Drops multiplier updates of a failed attempt.

@@ -258,6 +258,12 @@ impl<'s, 'm> Problem<'s, 'm> {
         std::mem::replace(&mut self.surface, surface)
     }
 
+    /// Leaves friction out of the evaluations (residual and tangent) from now on, or takes it
+    /// back in; returns the previous choice.
+    pub fn set_without_friction(&mut self, without: bool) -> bool {
+        self.contact.as_mut().is_some_and(|c| c.set_without_friction(without))
+    }
+
     /// Accepts the trial history and contact multipliers of the last evaluation (call after a
     /// converged increment).
     pub fn commit(&mut self) {

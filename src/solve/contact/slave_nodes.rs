@@ -90,7 +90,8 @@ impl ContactAssembly {
             }
             // a node without a reference (beyond reach when the increment started) slides freely
             // in this increment and has one from the next on
-            if let (Some(f), true, Some(reference)) = (pair.friction, closed, self.slip_committed[p][k]) {
+            let friction = pair.friction.filter(|_| !self.without_friction);
+            if let (Some(f), true, Some(reference)) = (friction, closed, self.slip_committed[p][k]) {
                 let friction = FrictionLaw { coefficient: f.coefficient, penalty: f.tangential_penalty.unwrap_or(eps), elastic_slip: f.elastic_slip };
                 let recipe = friction_recipe(master, &x, xs, edge, proj.xi, reference, law, friction);
                 let (residual, slip) = recipe.residual();
@@ -146,7 +147,7 @@ impl ContactAssembly {
                 self.roundoff += (ROUNDOFF_ULPS * f64::EPSILON * pass.weight * eps * area * xs[0].hypot(xs[1])).powi(2);
                 out.next_slot().set_integrated(node, &g.samples, pass.weight * eps / area, pass.weight * pressure);
             }
-            let (Some(f), Some(grid)) = (pair.friction, grid.as_ref()) else { continue };
+            let (Some(f), Some(grid), false) = (pair.friction, grid.as_ref(), self.without_friction) else { continue };
             // the node's own projection: where its slip is measured and its friction acts
             let excluded = if pass.slave == pass.master { slave.neighbourhood(node, pair.exclude_neighbours) } else { Vec::new() };
             let found = grid.closest_edge(master, &x, xs, &excluded, pair.capture_distance, None).filter(|(_, proj)| {
