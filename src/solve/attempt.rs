@@ -78,7 +78,7 @@ pub(super) fn predict(
     // the converged stick/slip status and slip direction, which the increment changes (a
     // reversal, nodes starting to slip), and its slip term mu dp/du then predicts a whole
     // sliding fit closed, deep (the quick bellows' sleeve with mu 0.1: 16 cutbacks in the
-    // return stroke, none without it)
+    // return stroke, 1 without it)
     let without = problem.set_without_friction(true);
     let coupling = problem.prescribed_coupling(x, &delta, work);
     let tangent = problem.assemble_jacobian(x, jacobian);
