@@ -18,7 +18,7 @@ fn kernels(c: &mut Criterion) {
         geometry: &geometry,
         material: &m,
         kinematics: Kinematics::Finite,
-        temperature_change: 10.0,
+        temperature_change: [10.0; 8],
         committed: &committed,
         surface: SurfaceBranch::Elastic,
     };

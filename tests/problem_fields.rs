@@ -7,7 +7,7 @@
 //! One test function: MPI can be initialised once per process.
 
 use slideline::dist::{DofMap, Partition};
-use slideline::model::deck;
+use slideline::model::{deck, Temperature};
 use slideline::petsc::{MatOps, PetscSession, VecOps, Vector};
 use slideline::solve::affinity::partition_affinity;
 use slideline::solve::problem::{initial_history, ElementFields, Problem};
@@ -94,7 +94,7 @@ fn kept_output_fields_equal_a_fresh_evaluation() {
     // a changed load (temperature) is not served from the kept fields
     problem.assemble_residual(&x, &mut f).expect("residual");
     let mut hotter = loads.at(&model, 1.0);
-    hotter.temperature_change += 10.0;
+    hotter.temperature = Temperature::Uniform(hotter.temperature.at(0) + 10.0);
     problem.set_load(hotter);
     let heated = problem.evaluate_fields(&x).expect("fields under another load");
     let differs = kept.stress.iter().flatten().flatten().zip(heated.stress.iter().flatten().flatten()).any(|(a, b)| (a - b).abs() > 1e-6);

@@ -218,7 +218,7 @@ mod tests {
             geometry: &geo,
             material: &material,
             kinematics: Kinematics::Small,
-            temperature_change: 0.0,
+            temperature_change: [0.0; NODES],
             committed: &committed,
             surface: SurfaceBranch::Elastic,
         };

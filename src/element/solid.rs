@@ -195,17 +195,18 @@ pub struct SolidResponse {
     pub state: [PointState; QUADRATURE_POINTS],
     /// The element's energies at this state (per radian, N mm).
     pub energy: ElementEnergy,
+    /// The thermal strain's stress power per degree at each node: sum over the points of
+    /// alpha tr(tau) N_a dV_0 (N mm / degC per radian); the thermal work of a temperature
+    /// change dT_a is its sum of products with dT_a.
+    pub thermal_force: [f64; NODES],
 }
 
-/// Energies of one element at a state, per radian (N mm): the stored elastic energy, the
-/// plastic work (the integral of sigma_y over the equivalent plastic strain), and the
-/// thermal power per degree, sum over the points of alpha tr(tau) dV_0 (the thermal strain's
-/// work is its increment times the temperature change).
+/// Energies of one element at a state, per radian (N mm): the stored elastic energy and the
+/// plastic work (the integral of sigma_y over the equivalent plastic strain).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct ElementEnergy {
     pub elastic: f64,
     pub plastic_work: f64,
-    pub thermal_power: f64,
 }
 
 /// The element state an evaluation needs besides the displacements.
@@ -213,8 +214,9 @@ pub struct SolidInput<'a> {
     pub geometry: &'a ElementGeometry,
     pub material: &'a J2,
     pub kinematics: Kinematics,
-    /// Temperature change from the reference temperature, degC.
-    pub temperature_change: f64,
+    /// Temperature change from the reference temperature at each node, degC (interpolated
+    /// to the Gauss points with the shape functions).
+    pub temperature_change: [f64; NODES],
     /// History of the last converged increment (read, never written).
     pub committed: &'a [PointState; QUADRATURE_POINTS],
     /// The response of points on the yield surface (flowing for the load predictor).
@@ -240,11 +242,14 @@ pub fn compute_solid(input: &SolidInput<'_>, u: &[[f64; 2]; NODES], mut tangents
     let mut stress = [[0.0; 4]; QUADRATURE_POINTS];
     let mut state = [PointState::initial(kin); QUADRATURE_POINTS];
     let mut energy = ElementEnergy::default();
+    let mut thermal_force = [0.0; NODES];
     for q in 0..QUADRATURE_POINTS {
         let w = geo.weights[q];
+        let shape = &geo.points[q].n;
+        let dt: f64 = (0..NODES).map(|a| shape[a] * input.temperature_change[a]).sum();
         let phi: [f64; 5] = if let Some(tangents) = tangents.as_deref_mut() {
             let fd: [Dual<6>; 5] = std::array::from_fn(|i| Dual::variable(f[q][i], i));
-            let up = input.material.update_on(input.surface, kin, &fd, Dual::variable(theta[q], 5), input.temperature_change, &input.committed[q])?;
+            let up = input.material.update_on(input.surface, kin, &fd, Dual::variable(theta[q], 5), dt, &input.committed[q])?;
             tangents[q] = PointTangent {
                 stress_f: std::array::from_fn(|i| std::array::from_fn(|j| up.phi[i].eps[j] * w)),
                 stress_theta: std::array::from_fn(|i| up.phi[i].eps[5] * w),
@@ -254,7 +259,7 @@ pub fn compute_solid(input: &SolidInput<'_>, u: &[[f64; 2]; NODES], mut tangents
             state[q] = up.state;
             up.phi.map(|p| p.re)
         } else {
-            let up = input.material.update_on(input.surface, kin, &f[q], theta[q], input.temperature_change, &input.committed[q])?;
+            let up = input.material.update_on(input.surface, kin, &f[q], theta[q], dt, &input.committed[q])?;
             stress[q] = up.cauchy;
             state[q] = up.state;
             up.phi
@@ -265,13 +270,16 @@ pub fn compute_solid(input: &SolidInput<'_>, u: &[[f64; 2]; NODES], mut tangents
         let material = input.material;
         energy.elastic += w * material.elastic_energy(&tau);
         energy.plastic_work += w * material.hardening.plastic_work(state[q].ep);
-        energy.thermal_power += w * material.thermal_expansion * (tau[0] + tau[1] + tau[2]);
+        let thermal = w * material.thermal_expansion * (tau[0] + tau[1] + tau[2]);
+        for a in 0..NODES {
+            thermal_force[a] += thermal * shape[a];
+        }
         let fq = geo.gradients[q].contract(&phi.map(|p| p * w));
         for i in 0..DOFS {
             force[i] += fq[i];
         }
     }
-    Ok(SolidResponse { internal_force: ElementVector::from(force), stress, state, energy })
+    Ok(SolidResponse { internal_force: ElementVector::from(force), stress, state, energy, thermal_force })
 }
 
 /// The element tangent d f_int / d u from the material tangents of an evaluation:
@@ -367,7 +375,7 @@ mod tests {
                 geometry: &geometry,
                 material: &STEEL,
                 kinematics: kin,
-                temperature_change: 40.0,
+                temperature_change: std::array::from_fn(|a| 40.0 + 5.0 * a as f64),
                 committed: &committed,
                 surface: SurfaceBranch::Elastic,
             };
@@ -387,7 +395,7 @@ mod tests {
             geometry: &geometry,
             material: &STEEL,
             kinematics: Kinematics::Finite,
-            temperature_change: 0.0,
+            temperature_change: [0.0; NODES],
             committed: &committed,
             surface: SurfaceBranch::Elastic,
         };

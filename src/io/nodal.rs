@@ -84,6 +84,8 @@ pub struct NodalWriter {
     recovery: Recovery,
     /// File row of each mesh node (contact slave nodes come by mesh index).
     node_position: Vec<usize>,
+    /// The mesh nodes this rank writes, in file order.
+    owned: Vec<usize>,
     fields: OutputFields,
     precision: Precision,
 }
@@ -101,6 +103,7 @@ impl NodalWriter {
             element_slab: (partition.element_offsets[rank], partition.element_offsets[rank + 1]),
             recovery: Recovery::default(),
             node_position: partition.node_position.clone(),
+            owned: partition.owned_nodes().to_vec(),
             fields: output.fields,
             precision: output.precision,
         }
@@ -146,7 +149,7 @@ impl NodalWriter {
             write_field(&g, "equivalent_plastic_strain", &[self.nodes], self.node_slab, &ep, self.precision, path)?;
         }
         if self.fields.temperature {
-            let t = vec![f.temperature; owned.len()];
+            let t: Vec<f64> = self.owned.iter().map(|&n| f.temperature.at(n)).collect();
             write_field(&g, "temperature", &[self.nodes], self.node_slab, &t, self.precision, path)?;
         }
         if !f.contact.is_empty() && self.fields.contact {

@@ -102,8 +102,9 @@ pub(super) fn write_state(
     }
     // the audit's starting point: replicated, so rank 0 writes it (the nodes with a load)
     let a = state.audit;
-    sg.new_attr::<f64>().create("audit_thermal_power").map_err(&err)?.write_scalar(&a.thermal_power).map_err(&err)?;
-    sg.new_attr::<f64>().create("audit_temperature").map_err(&err)?.write_scalar(&a.temperature).map_err(&err)?;
+    // per node, mesh order: the thermal stress power per degree and the temperature
+    let local: Vec<f64> = if world.rank() == 0 { a.thermal_force.iter().zip(&a.temperature).flat_map(|(&f, &t)| [f, t]).collect() } else { Vec::new() };
+    write_gathered(&sg, world, AUDIT_THERMAL, 2, &local, path)?;
     let loaded: Vec<usize> = if world.rank() == 0 { (0..a.forces.len()).filter(|&n| a.forces[n].iter().any(|&f| f != 0.0)).collect() } else { Vec::new() };
     let ids: Vec<u64> = loaded.iter().map(|&n| mesh.node_ids[n]).collect();
     let forces: Vec<f64> = loaded.iter().flat_map(|&n| a.forces[n]).collect();
@@ -169,6 +170,7 @@ fn write_gathered<T: hdf5::H5Type + Equivalence + Copy>(
 
 /// State dataset: the extrapolation predictor's displacement increment, mesh node order.
 const PREDICTOR_INCREMENT: &str = "predictor_increment";
+const AUDIT_THERMAL: &str = "audit_thermal";
 
 /// Which increment to continue from.
 #[derive(Clone, Debug)]
@@ -368,13 +370,21 @@ impl RestartPoint {
             };
             slip.push(ids.into_iter().zip(values.chunks_exact(3)).map(|(id, v)| Ok((node(id)?, point(v)?))).collect::<Result<Vec<_>>>()?);
         }
-        let attr = |name: &str| sg.attr(name).and_then(|a| a.read_scalar::<f64>()).map_err(|e| bad(format!("{group}: {e}")));
-        let mut audit = AuditPoint {
-            forces: vec![[0.0; 4]; model.mesh.coords.len()],
-            displacement: displacement.clone(),
-            thermal_power: attr("audit_thermal_power")?,
-            temperature: attr("audit_temperature")?,
+        let count = model.mesh.coords.len();
+        let thermal = read_f64(AUDIT_THERMAL)?;
+        let (thermal_force, temperature) = if thermal.len() == 2 * count && thermal.iter().all(|v| v.is_finite()) {
+            (thermal.iter().step_by(2).copied().collect(), thermal.iter().skip(1).step_by(2).copied().collect())
+        } else if thermal.is_empty() && sg.attr("audit_temperature").is_ok() {
+            // written before temperatures could vary over the mesh: the stress power summed
+            // over the model, which a uniform temperature change multiplies wherever it sits
+            let attr = |name: &str| sg.attr(name).and_then(|a| a.read_scalar::<f64>()).map_err(|e| bad(format!("{group}: {e}")));
+            let mut force = vec![0.0; count];
+            force[0] = attr("audit_thermal_power")?;
+            (force, vec![attr("audit_temperature")?; count])
+        } else {
+            return Err(bad(format!("{group}/{AUDIT_THERMAL}: {} values for {count} nodes, or not finite", thermal.len())));
         };
+        let mut audit = AuditPoint { forces: vec![[0.0; 4]; count], displacement: displacement.clone(), thermal_force, temperature };
         for (id, f) in read_u64("audit_nodes")?.into_iter().zip(read_f64("audit_forces")?.chunks_exact(4)) {
             audit.forces[node(id)?] = [f[0], f[1], f[2], f[3]];
         }

@@ -14,7 +14,7 @@ use crate::dist::Partition;
 use crate::element::solid::QUADRATURE_POINTS;
 use crate::error::{Error, Result};
 use crate::fe::axisymmetric::von_mises;
-use crate::model::{Model, OutputFields, Precision};
+use crate::model::{Model, OutputFields, Precision, Temperature};
 use crate::petsc::PetscSession;
 use crate::solve::contact::PassOutput;
 use crate::solve::energy::Energies;
@@ -37,8 +37,8 @@ pub struct IncrementFields<'a> {
     pub plastic_strain_tensor: &'a [[[f64; 4]; QUADRATURE_POINTS]],
     /// Reaction force (r, z) of the owned nodes, per radian: zero on the free DOFs.
     pub reaction: &'a [[f64; 2]],
-    /// The uniform temperature, degC.
-    pub temperature: f64,
+    /// The temperature of every node, degC.
+    pub temperature: &'a Temperature,
     /// Contact slave nodes of the passes this rank owns.
     pub contact: &'a [PassOutput<'a>],
 }
@@ -248,7 +248,8 @@ impl ResultsFile {
         let owned_count = node_slab.1 - node_slab.0;
         write_rows(&initial, "vector", &[nn, 3], node_slab, &vec![0.0f64; 3 * owned_count], path)?;
         write_rows(&initial, "scalar", &[nn], node_slab, &vec![0.0f64; owned_count], path)?;
-        write_rows(&initial, "temperature", &[nn], node_slab, &vec![model.reference_temperature; owned_count], path)?;
+        let initial_temperature: Vec<f64> = owned.iter().map(|&n| model.reference_temperature.at(n)).collect();
+        write_rows(&initial, "temperature", &[nn], node_slab, &initial_temperature, path)?;
         file.create_group("increments").map_err(&err)?;
         file.create_group("history").map_err(&err)?;
         file.flush().map_err(&err)?;
@@ -351,8 +352,9 @@ impl ResultsFile {
         let IncrementFields { stress: local_stress, plastic_strain: local_plastic_strain, contact, .. } = *fields;
         let err = h5err(&self.path);
         let g = self.file.group("increments").map_err(&err)?.create_group(name).map_err(&err)?;
-        // the temperature is uniform: one number (the nodal copy is for ParaView and meshio)
-        let temperature = ("temperature", fields.temperature);
+        // one number: the uniform temperature, or the field's largest value (the nodal field
+        // is for ParaView and meshio)
+        let temperature = ("temperature", fields.temperature.uniform().unwrap_or(fields.temperature.range()[1]));
         for (attr, value) in [("step", row.step as f64), ("increment", row.increment as f64), ("load_factor", row.load_factor), ("time", row.time), temperature]
         {
             g.new_attr::<f64>().create(attr).map_err(&err)?.write_scalar(&value).map_err(&err)?;

@@ -16,7 +16,7 @@
 use super::mesh::{mapped_block, Edge, Mesh, MeshSets};
 use super::{
     AugmentedLagrangian, Component, ContactIntegration, ContactPair, Friction, Kinematics, Material, Model, OutputControls, Penalty, Plasticity, Predictor,
-    PrescribedDisplacement, Pressure, Step, SteppingControls,
+    PrescribedDisplacement, Pressure, Step, SteppingControls, Temperature,
 };
 use crate::error::Result;
 use std::collections::HashMap;
@@ -399,7 +399,7 @@ pub fn model(p: &BellowsParams) -> Result<Model> {
             increments: p.heat_increments,
             displacements: vec![hold("fixed_end", Component::Z, 0.0), hold("moving_end", Component::Z, 0.0)],
             pressures: vec![Pressure { surface: "wetted".into(), value: p.pressure }],
-            temperature: Some(p.temperature),
+            temperature: Some(Temperature::Uniform(p.temperature)),
             time_span: None,
             body_loads: Vec::new(),
         },
@@ -433,7 +433,7 @@ pub fn model(p: &BellowsParams) -> Result<Model> {
         surfaces: sets.surfaces,
         materials: vec![material],
         element_material: vec![0; n],
-        reference_temperature: 20.0,
+        reference_temperature: Temperature::Uniform(20.0),
         kinematics: Kinematics::Finite,
         // after a cutback the increment grows back after anything up to 12 Newton iterations
         // (set when the plies took 8-11 per increment; kept, as the cycle studies were measured

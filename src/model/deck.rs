@@ -2,6 +2,7 @@
 //!
 //! ```toml
 //! reference_temperature = 20.0      # degC, zero thermal strain; also the initial temperature
+//!                                   # (or a field: [{ value = 20.0 }, { set = "hot", value = 80.0 }])
 //! nlgeom = true                     # finite strain + follower pressure (default); false: small
 //!
 //! [stepping]                        # optional; defaults shown
@@ -62,7 +63,8 @@
 //! [[step]]
 //! name = "load"
 //! increments = 1
-//! temperature = 20.0                # degC at the end of the step (optional)
+//! temperature = 20.0                # degC at the end of the step (optional); or on node sets,
+//!                                   # the others keeping theirs: [{ set = "bore", value = 150.0 }]
 //! boundary = [ { set = "bottom", uz = 0.0 }, { set = "top", uz = 0.0 } ]
 //! pressure = [ { surface = "inner", value = 50.0 } ]
 //! ```
@@ -72,6 +74,7 @@ use super::perturbation::{Analysis, HarmonicComponent, HarmonicDisplacement, Per
 use super::{
     default_capture_distance, gmsh, Adjust, AugmentedLagrangian, BodyLoad, Component, ContactIntegration, ContactPair, Convergence, Friction, Kinematics,
     Material, Model, OutputControls, OutputFields, Penalty, Plasticity, Precision, Predictor, PrescribedDisplacement, Pressure, Step, SteppingControls,
+    Temperature,
 };
 use crate::element::body_load::BodyForce;
 use crate::error::{Error, Result};
@@ -82,7 +85,7 @@ use std::path::{Path, PathBuf};
 #[serde(deny_unknown_fields)]
 struct DeckFile {
     #[serde(default = "default_reference_temperature")]
-    reference_temperature: f64,
+    reference_temperature: TemperatureSpec,
     #[serde(default = "yes")]
     nlgeom: bool,
     mesh: MeshSpec,
@@ -165,8 +168,55 @@ fn ten() -> usize {
     10
 }
 
-fn default_reference_temperature() -> f64 {
-    20.0
+fn default_reference_temperature() -> TemperatureSpec {
+    TemperatureSpec::Uniform(20.0)
+}
+
+/// `temperature = 20.0` (every node) or `temperature = [{ set = "hot", value = 150.0 }, ...]`:
+/// node sets in order, a later entry winning on shared nodes, an entry without `set` for every
+/// node; in a step, nodes no entry names keep their temperature.
+#[derive(Deserialize, Clone)]
+#[serde(untagged)]
+enum TemperatureSpec {
+    Uniform(f64),
+    Sets(Vec<SetTemperatureSpec>),
+}
+
+#[derive(Deserialize, Clone)]
+#[serde(deny_unknown_fields)]
+struct SetTemperatureSpec {
+    set: Option<String>,
+    value: f64,
+}
+
+impl TemperatureSpec {
+    /// The field it gives over `before` (None: the reference temperature, which must reach
+    /// every node); `what` names it in errors.
+    fn field(
+        &self,
+        mesh: &super::Mesh,
+        node_sets: &std::collections::BTreeMap<String, Vec<usize>>,
+        before: Option<&Temperature>,
+        what: &str,
+    ) -> Result<Temperature> {
+        let entries = match self {
+            TemperatureSpec::Uniform(t) => return Ok(Temperature::Uniform(*t)),
+            TemperatureSpec::Sets(entries) => entries,
+        };
+        let all: Vec<usize> = (0..mesh.coords.len()).collect();
+        let mut assignments = Vec::new();
+        for e in entries {
+            let nodes = match &e.set {
+                None => all.as_slice(),
+                Some(name) => node_sets.get(name).map(Vec::as_slice).ok_or_else(|| {
+                    Error::input(format!("{what}: unknown node set '{name}' (known: {})", node_sets.keys().cloned().collect::<Vec<_>>().join(", ")))
+                })?,
+            };
+            assignments.push((nodes, e.value));
+        }
+        super::temperature::assign(mesh.coords.len(), before, &assignments)
+            .map_err(|missing| Error::input(format!("{what}: {missing} nodes are in none of the sets given (add an entry without `set` for every node first)")))
+    }
 }
 
 fn yes() -> bool {
@@ -280,7 +330,7 @@ struct StepSpec {
     /// Frequency and buckle steps: how many eigenvalues.
     eigenvalues: Option<usize>,
     increments: Option<usize>,
-    temperature: Option<f64>,
+    temperature: Option<TemperatureSpec>,
     #[serde(default)]
     boundary: Vec<BoundarySpec>,
     #[serde(default)]
@@ -407,6 +457,8 @@ pub fn parse(text: &str, path: &Path) -> Result<Model> {
         return Err(Error::input(format!("element {} has no material: add a [[section]] covering it", mesh.element_ids[e])));
     }
 
+    let reference_temperature = deck.reference_temperature.field(&mesh, &node_sets, None, "reference_temperature")?;
+    let mut temperature_now = reference_temperature.clone();
     let (mut steps, mut perturbations) = (Vec::new(), Vec::new());
     for (k, s) in deck.step.iter().enumerate() {
         let name = s.name.clone().unwrap_or_else(|| format!("step-{}", k + 1));
@@ -450,7 +502,12 @@ pub fn parse(text: &str, path: &Path) -> Result<Model> {
                     body_loads.push(BodyLoad { elements: b.elements.clone(), force });
                 }
                 let increments = s.increments.unwrap_or(1);
-                steps.push(Step { name, increments, displacements, pressures, temperature: s.temperature, time_span: None, body_loads });
+                let temperature =
+                    s.temperature.as_ref().map(|t| t.field(&mesh, &node_sets, Some(&temperature_now), &format!("step '{name}': temperature"))).transpose()?;
+                if let Some(t) = &temperature {
+                    temperature_now = t.clone();
+                }
+                steps.push(Step { name, increments, displacements, pressures, temperature, time_span: None, body_loads });
             }
             procedure @ ("harmonic" | "frequency" | "buckle") => {
                 let mode = s.mode.ok_or_else(|| Error::input(format!("step '{name}': procedure = \"{procedure}\" needs its mode (mode = n)")))?;
@@ -551,7 +608,7 @@ pub fn parse(text: &str, path: &Path) -> Result<Model> {
         surfaces,
         materials,
         element_material,
-        reference_temperature: deck.reference_temperature,
+        reference_temperature,
         kinematics,
         stepping: deck.stepping.controls(),
         output: OutputControls {

@@ -10,9 +10,11 @@ pub mod gmsh;
 pub mod inp;
 pub mod mesh;
 pub mod perturbation;
+pub mod temperature;
 mod validate;
 
 pub use mesh::{Edge, Mesh, NODES_PER_ELEMENT};
+pub use temperature::Temperature;
 
 use crate::error::{Error, Result};
 pub use crate::material::Kinematics;
@@ -389,8 +391,9 @@ pub struct Step {
     pub increments: usize,
     pub displacements: Vec<PrescribedDisplacement>,
     pub pressures: Vec<Pressure>,
-    /// Uniform temperature (degC) at the end of the step; `None` keeps the previous value.
-    pub temperature: Option<f64>,
+    /// Temperature (degC) at the end of the step, ramped from the step's start; `None` keeps
+    /// the previous one.
+    pub temperature: Option<Temperature>,
     /// The input deck's total time at the start and end of the step (CalculiX/Abaqus *STATIC
     /// periods), for the history's `time`; `None`: step k spans the time k - 1 to k.
     pub time_span: Option<[f64; 2]>,
@@ -415,8 +418,9 @@ pub struct Model {
     pub materials: Vec<Material>,
     /// Material index of every element.
     pub element_material: Vec<usize>,
-    /// Temperature (degC) at which thermal strain is zero, and the initial temperature.
-    pub reference_temperature: f64,
+    /// Temperature (degC) at which thermal strain is zero, and the initial temperature (a
+    /// field where it varies from node to node).
+    pub reference_temperature: Temperature,
     /// Finite strains and rotations with follower pressure (NLGEOM), or small strain.
     pub kinematics: Kinematics,
     pub stepping: SteppingControls,

@@ -2,7 +2,7 @@
 //! loads the steps name, the contact pairs, and the constraints (one value per degree of
 //! freedom; no body free to move along the axis).
 
-use super::{BodyLoad, Component, Edge, Model, Penalty, Plasticity, MAX_INCREMENTS, MIN_YOUNGS_MODULUS};
+use super::{BodyLoad, Component, Edge, Model, Penalty, Plasticity, Temperature, MAX_INCREMENTS, MIN_YOUNGS_MODULUS};
 use crate::error::{Error, Result};
 use std::collections::BTreeMap;
 
@@ -88,8 +88,18 @@ impl Model {
         if let Some(w) = names.windows(2).find(|w| w[0] == w[1]) {
             return Err(Error::input(format!("contact pair name '{}' is used twice: give each pair its own name", w[0])));
         }
-        if !self.reference_temperature.is_finite() {
-            return Err(Error::input(format!("the reference temperature must be finite, got {}", self.reference_temperature)));
+        if let Some(t) = self.reference_temperature.non_finite() {
+            return Err(Error::input(format!("the reference temperature must be finite, got {t}")));
+        }
+        let fields = std::iter::once(&self.reference_temperature).chain(self.steps.iter().filter_map(|s| s.temperature.as_ref()));
+        if let Some(n) = fields
+            .filter_map(|t| match t {
+                Temperature::Nodal(v) => Some(v.len()),
+                Temperature::Uniform(_) => None,
+            })
+            .find(|&n| n != self.mesh.coords.len())
+        {
+            return Err(Error::input(format!("a temperature field has {n} values for the mesh's {} nodes", self.mesh.coords.len())));
         }
         if self.steps.is_empty() {
             return Err(Error::input("the model has no steps: add a [[step]]"));
@@ -98,7 +108,7 @@ impl Model {
             if step.increments == 0 || step.increments > MAX_INCREMENTS {
                 return Err(Error::input(format!("step '{}': increments must lie in 1..={MAX_INCREMENTS}, got {}", step.name, step.increments)));
             }
-            if let Some(t) = step.temperature.filter(|t| !t.is_finite()) {
+            if let Some(t) = step.temperature.as_ref().and_then(Temperature::non_finite) {
                 return Err(Error::input(format!("step '{}': temperature must be finite, got {t}", step.name)));
             }
             for d in &step.displacements {

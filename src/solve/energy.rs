@@ -8,8 +8,9 @@
 //!   state function);
 //! - plastic work: the integral of sigma_y over the equivalent plastic strain (a state
 //!   function of ep for isotropic hardening);
-//! - thermal work: the stress power of the thermal strain, alpha tr(tau) per degree,
-//!   integrated along the temperature path (trapezoids); with no temperature change, zero;
+//! - thermal work: the stress power of the thermal strain, alpha tr(tau) N_a per degree of
+//!   each node's temperature, integrated along every node's temperature path (trapezoids);
+//!   with no temperature change, zero;
 //! - contact energy, stored: the normal penalty's eps g^2 A / 2 and the tangential penalty's
 //!   tau^2 A / (2 eps_T) of every slave node;
 //! - friction dissipation: each increment's A tau (slip beyond the elastic), summed.
@@ -67,9 +68,10 @@ pub struct AuditPoint {
     /// Per node: the reaction (prescribed DOFs, 0 elsewhere) and the pressure load, (r, z) each.
     pub forces: Vec<[f64; 4]>,
     pub displacement: Vec<[f64; 2]>,
-    /// Sum over the Gauss points of alpha tr(tau) dV_0, and the temperature, degC.
-    pub thermal_power: f64,
-    pub temperature: f64,
+    /// Per node: the thermal strain's stress power per degree (`SolidResponse::thermal_force`)
+    /// and the temperature, degC.
+    pub thermal_force: Vec<f64>,
+    pub temperature: Vec<f64>,
 }
 
 /// The running audit.
@@ -82,11 +84,12 @@ pub struct EnergyAudit {
 }
 
 impl EnergyAudit {
-    /// Before the first increment: nothing loaded, at `temperature`.
-    pub fn new(nodes: usize, temperature: f64) -> Self {
+    /// Before the first increment: nothing loaded, at `temperature` (per node).
+    pub fn new(temperature: Vec<f64>) -> Self {
+        let nodes = temperature.len();
         EnergyAudit {
             totals: Energies::default(),
-            last: AuditPoint { forces: vec![[0.0; 4]; nodes], displacement: vec![[0.0; 2]; nodes], thermal_power: 0.0, temperature },
+            last: AuditPoint { forces: vec![[0.0; 4]; nodes], displacement: vec![[0.0; 2]; nodes], thermal_force: vec![0.0; nodes], temperature },
             starts_overlapping: false,
         }
     }
@@ -94,7 +97,8 @@ impl EnergyAudit {
     /// Takes a converged increment: `residual` the nodal f_int - f_ext (+ contact) summed over
     /// ranks (the reactions at the prescribed DOFs `prescribed`), `pressure` the pressure loads,
     /// `displacement` every node's, `elements` and `contact` ([normal stored, tangential stored,
-    /// dissipated in the increment]) summed over ranks, at `temperature`.
+    /// dissipated in the increment]) and `thermal_force` summed over ranks, at `temperature`
+    /// (per node).
     #[allow(clippy::too_many_arguments)]
     pub fn record(
         &mut self,
@@ -104,7 +108,8 @@ impl EnergyAudit {
         displacement: &[[f64; 2]],
         elements: ElementEnergy,
         contact: [f64; 3],
-        temperature: f64,
+        thermal_force: &[f64],
+        temperature: &[f64],
     ) -> Energies {
         let mut work = 0.0;
         let mut forces = vec![[0.0; 4]; displacement.len()];
@@ -120,7 +125,8 @@ impl EnergyAudit {
         }
         let t = &mut self.totals;
         t.external_work += work;
-        t.thermal_work += 0.5 * (self.last.thermal_power + elements.thermal_power) * (temperature - self.last.temperature);
+        t.thermal_work +=
+            (0..temperature.len()).map(|n| 0.5 * (self.last.thermal_force[n] + thermal_force[n]) * (temperature[n] - self.last.temperature[n])).sum::<f64>();
         t.elastic = elements.elastic;
         t.plastic_work = elements.plastic_work;
         t.contact_stored = contact[0] + contact[1];
@@ -129,7 +135,7 @@ impl EnergyAudit {
             t.initial_contact = 0.0;
             t.initial_contact = -t.balance_error();
         }
-        self.last = AuditPoint { forces, displacement: displacement.to_vec(), thermal_power: elements.thermal_power, temperature };
+        self.last = AuditPoint { forces, displacement: displacement.to_vec(), thermal_force: thermal_force.to_vec(), temperature: temperature.to_vec() };
         self.totals
     }
 }
@@ -143,18 +149,23 @@ mod tests {
         // one node pulled by a prescribed displacement against a spring k = 3: reaction k u; the
         // trapezoids integrate the linear path exactly, so W = k u^2 / 2 in any number of steps
         let k = 3.0;
-        let mut audit = EnergyAudit::new(1, 20.0);
+        let mut audit = EnergyAudit::new(vec![20.0]);
         let mut last = Energies::default();
         for u in [0.1, 0.25, 0.7] {
             let elements = ElementEnergy { elastic: 0.5 * k * u * u, ..Default::default() };
-            last = audit.record(&[0.0, k * u], &[[false, true]], &[0.0, 0.0], &[[0.0, u]], elements, [0.0; 3], 20.0);
+            last = audit.record(&[0.0, k * u], &[[false, true]], &[0.0, 0.0], &[[0.0, u]], elements, [0.0; 3], &[0.0], &[20.0]);
         }
         assert!((last.external_work - 0.5 * k * 0.49).abs() < 1e-12, "{last:?}");
         assert!(last.balance_error().abs() < 1e-12);
-        // a pressure load on a free DOF works too; heating under a constant stress power does thermal work
-        let mut audit = EnergyAudit::new(1, 20.0);
-        let elements = ElementEnergy { thermal_power: 2.0, ..Default::default() };
-        let e = audit.record(&[0.0, 0.0], &[[false, false]], &[5.0, 0.0], &[[0.2, 0.0]], elements, [0.0; 3], 30.0);
+        // a pressure load on a free DOF works too; heating under a stress power that grows
+        // from 0 to 2 per degree does thermal work 2 x 10 / 2
+        let mut audit = EnergyAudit::new(vec![20.0]);
+        let e = audit.record(&[0.0, 0.0], &[[false, false]], &[5.0, 0.0], &[[0.2, 0.0]], ElementEnergy::default(), [0.0; 3], &[2.0], &[30.0]);
         assert!((e.external_work - 0.5 * 5.0 * 0.2).abs() < 1e-12 && (e.thermal_work - 0.5 * 2.0 * 10.0).abs() < 1e-12, "{e:?}");
+        // two nodes heated differently: each node's trapezoid
+        let mut audit = EnergyAudit::new(vec![20.0, 20.0]);
+        let displacement = [[0.0; 2]; 2];
+        let e = audit.record(&[0.0; 4], &[[false; 2]; 2], &[0.0; 4], &displacement, ElementEnergy::default(), [0.0; 3], &[1.0, 3.0], &[30.0, 25.0]);
+        assert!((e.thermal_work - (0.5 * 1.0 * 10.0 + 0.5 * 3.0 * 5.0)).abs() < 1e-12, "{e:?}");
     }
 }

@@ -23,14 +23,14 @@ pub(super) struct KeptTangent {
     /// Whether `material` belongs to `u` and `temperature_change` (and today's history).
     pub valid: bool,
     pub u: [[f64; 2]; NODES],
-    pub temperature_change: f64,
+    pub temperature_change: [f64; NODES],
     pub material: MaterialTangents,
 }
 
 impl KeptTangents {
-    pub fn get(&self, k: usize, u: &[[f64; 2]; NODES], temperature_change: f64) -> Option<&MaterialTangents> {
+    pub fn get(&self, k: usize, u: &[[f64; 2]; NODES], temperature_change: &[f64; NODES]) -> Option<&MaterialTangents> {
         let e = self.elements.get(k)?;
-        (e.valid && e.u == *u && e.temperature_change == temperature_change).then_some(&e.material)
+        (e.valid && e.u == *u && e.temperature_change == *temperature_change).then_some(&e.material)
     }
 
     /// Drops element `k`'s tangents (its history has changed).
@@ -55,6 +55,9 @@ pub struct ElementFields {
     pub pressure_force: Vec<[f64; 2]>,
     /// This rank's elements' energies, summed (per radian, N mm).
     pub energy: ElementEnergy,
+    /// This rank's part of the thermal strain's stress power per degree at every node (see
+    /// `SolidResponse::thermal_force`).
+    pub thermal_force: Vec<f64>,
 }
 
 impl ElementFields {
@@ -66,6 +69,7 @@ impl ElementFields {
             nodal_force: vec![[0.0; 2]; nodes],
             pressure_force: vec![[0.0; 2]; nodes],
             energy: ElementEnergy::default(),
+            thermal_force: vec![0.0; nodes],
         }
     }
 }
@@ -89,16 +93,16 @@ mod tests {
     fn kept_tangents_serve_only_the_state_they_were_computed_at() {
         let mut kept = KeptTangents { elements: vec![KeptTangent::default(); 2] };
         let u = [[0.1, -0.2]; NODES];
-        kept.elements[1] = KeptTangent { valid: true, u, temperature_change: 180.0, material: MaterialTangents::default() };
-        assert!(kept.get(1, &u, 180.0).is_some());
-        assert!(kept.get(0, &u, 180.0).is_none(), "never computed");
+        kept.elements[1] = KeptTangent { valid: true, u, temperature_change: [180.0; NODES], material: MaterialTangents::default() };
+        assert!(kept.get(1, &u, &[180.0; NODES]).is_some());
+        assert!(kept.get(0, &u, &[180.0; NODES]).is_none(), "never computed");
         let mut moved = u;
         moved[3][1] += 1e-12;
-        assert!(kept.get(1, &moved, 180.0).is_none(), "another iterate");
-        assert!(kept.get(1, &u, 180.5).is_none(), "another temperature");
+        assert!(kept.get(1, &moved, &[180.0; NODES]).is_none(), "another iterate");
+        assert!(kept.get(1, &u, &[180.5; NODES]).is_none(), "another temperature");
         kept.forget_element(0);
-        assert!(kept.get(1, &u, 180.0).is_some(), "another element's history changed");
+        assert!(kept.get(1, &u, &[180.0; NODES]).is_some(), "another element's history changed");
         kept.forget_element(1);
-        assert!(kept.get(1, &u, 180.0).is_none(), "a commit changed the history");
+        assert!(kept.get(1, &u, &[180.0; NODES]).is_none(), "a commit changed the history");
     }
 }

@@ -19,7 +19,7 @@ use crate::element::solid::{compute_solid, solid_tangent, ElementGeometry, Mater
 use crate::error::{Error, Result};
 use crate::fe::shape::edge_nodes;
 use crate::material::{Kinematics, PointState, SurfaceBranch, J2};
-use crate::model::{Material, Model};
+use crate::model::{Material, Model, Temperature};
 use crate::petsc::sys::PetscInt;
 use crate::petsc::{LogStage, Matrix, PetscSession, Scatter, VecOps, Vector};
 
@@ -31,12 +31,12 @@ mod assembly;
 pub const ROUNDOFF_ULPS: f64 = 100.0;
 
 /// Loads and prescribed values at the current load factor.
-#[derive(Clone, Debug, Default)]
+#[derive(Clone, Debug)]
 pub struct LoadState {
     /// Value of every prescribed DOF (node, component); entries of free DOFs are unused.
     pub prescribed: Vec<[f64; 2]>,
-    /// Uniform temperature minus the reference temperature (degC).
-    pub temperature_change: f64,
+    /// The temperature, degC.
+    pub temperature: Temperature,
     /// (surface name, pressure in MPa).
     pub pressures: Vec<(String, f64)>,
     /// (element set, body force per unit mass).
@@ -246,7 +246,7 @@ impl<'s, 'm> Problem<'s, 'm> {
             force_sums: [0.0, 0.0],
             surface: SurfaceBranch::Elastic,
             contact,
-            load: LoadState::default(),
+            load: LoadState { prescribed: Vec::new(), temperature: model.reference_temperature.clone(), pressures: Vec::new(), body_loads: Vec::new() },
             load_generation: 0,
             stages: Stages::new()?,
         })
@@ -350,13 +350,19 @@ impl<'s, 'm> Problem<'s, 'm> {
         std::array::from_fn(|a| std::array::from_fn(|c| if el.dofs[2 * a + c] >= 0 { gathered[el.slots[2 * a + c]] } else { self.load.prescribed[conn[a]][c] }))
     }
 
-    fn solid(&self, k: usize, u: &[[f64; 2]; NODES], tangents: Option<&mut MaterialTangents>) -> Result<SolidResponse> {
+    /// The temperature change from the reference at the nodes of local element `k`, degC.
+    fn temperature_change(&self, k: usize) -> [f64; NODES] {
+        let conn = &self.model.mesh.elements[self.elements[k].element];
+        conn.map(|n| self.load.temperature.at(n) - self.model.reference_temperature.at(n))
+    }
+
+    fn solid(&self, k: usize, u: &[[f64; 2]; NODES], temperature_change: &[f64; NODES], tangents: Option<&mut MaterialTangents>) -> Result<SolidResponse> {
         let el = &self.elements[k];
         let input = SolidInput {
             geometry: &el.geometry,
             material: &self.materials[el.material],
             kinematics: self.model.kinematics,
-            temperature_change: self.load.temperature_change,
+            temperature_change: *temperature_change,
             committed: &self.committed[k],
             surface: self.surface,
         };
@@ -368,13 +374,14 @@ impl<'s, 'm> Problem<'s, 'm> {
     fn element_tangent(&self, k: usize, u: &[[f64; 2]; NODES]) -> Result<ElementMatrix> {
         let geometry = &self.elements[k].geometry;
         // the kept tangents are the residual's, elastic on the yield surface
+        let temperature_change = self.temperature_change(k);
         if self.surface == SurfaceBranch::Elastic {
-            if let Some(material) = self.kept.get(k, u, self.load.temperature_change) {
+            if let Some(material) = self.kept.get(k, u, &temperature_change) {
                 return Ok(solid_tangent(geometry, material));
             }
         }
         let mut material = MaterialTangents::default();
-        self.solid(k, u, Some(&mut material))?;
+        self.solid(k, u, &temperature_change, Some(&mut material))?;
         Ok(solid_tangent(geometry, &material))
     }
 

@@ -48,7 +48,7 @@ impl Carried {
             carry: None,
             rows: Vec::new(),
             previous: None,
-            audit: EnergyAudit::new(nodes, model.reference_temperature),
+            audit: EnergyAudit::new(model.reference_temperature.nodal(nodes)),
             wall_before: 0.0,
         }
     }
@@ -62,7 +62,7 @@ impl Carried {
         for k in 0..point.step {
             previous = Some(StepLoads::new(model, k, previous.as_ref(), if k == 0 { &zeros } else { &point.step_ends[k - 1] }));
         }
-        let mut audit = EnergyAudit::new(nodes, model.reference_temperature);
+        let mut audit = EnergyAudit::new(model.reference_temperature.nodal(nodes));
         if let Some(energy) = point.rows.last().and_then(|(_, r)| r.energy) {
             audit = EnergyAudit { totals: energy, last: point.audit.clone(), starts_overlapping: false };
         }

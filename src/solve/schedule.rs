@@ -3,7 +3,7 @@
 
 use super::problem::LoadState;
 use crate::element::body_load::BodyForce;
-use crate::model::Model;
+use crate::model::{Model, Temperature};
 use std::collections::BTreeMap;
 
 /// Start and end of every load quantity over one step.
@@ -16,7 +16,7 @@ pub struct StepLoads {
     /// (element set, spin) -> (start, end) gravity along the axis or omega^2.
     pub body_loads: BTreeMap<(String, bool), (f64, f64)>,
     /// (start, end) temperature, degC.
-    pub temperature: (f64, f64),
+    pub temperature: (Temperature, Temperature),
     /// Node sets with a prescribed displacement in this or an earlier step (reaction output).
     pub constrained_sets: Vec<String>,
 }
@@ -52,8 +52,9 @@ impl StepLoads {
             let start = body_loads.get(&key).map(|v| v.0).unwrap_or(0.0);
             body_loads.insert(key, (start, b.force.value()));
         }
-        let t0 = previous.map(|p| p.temperature.1).unwrap_or(model.reference_temperature);
-        StepLoads { prescribed, pressures, body_loads, temperature: (t0, step.temperature.unwrap_or(t0)), constrained_sets }
+        let t0 = previous.map_or(&model.reference_temperature, |p| &p.temperature.1).clone();
+        let t1 = step.temperature.clone().unwrap_or_else(|| t0.clone());
+        StepLoads { prescribed, pressures, body_loads, temperature: (t0, t1), constrained_sets }
     }
 
     /// Which DOFs are prescribed in this step.
@@ -74,7 +75,7 @@ impl StepLoads {
         }
         LoadState {
             prescribed,
-            temperature_change: lerp(self.temperature) - model.reference_temperature,
+            temperature: Temperature::lerp(&self.temperature.0, &self.temperature.1, lambda, model.mesh.coords.len()),
             pressures: self.pressures.iter().map(|(s, &v)| (s.clone(), lerp(v))).collect(),
             body_loads: self
                 .body_loads

@@ -317,7 +317,8 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
                 base = Some(keep_base(model, &mut problem, &fields));
             }
             let contacts = contact_summaries(&world, model, &problem);
-            let energy = audit_increment(&world, model, &mut audit, &problem, &fields, &force, &prescribed, &displacement, &loads.at(model, lambda));
+            let load_now = loads.at(model, lambda);
+            let energy = audit_increment(&world, model, &mut audit, &problem, &fields, &force, &prescribed, &displacement, &load_now);
             let reactions = loads
                 .constrained_sets
                 .iter()
@@ -363,7 +364,7 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
                 strain: &strain,
                 plastic_strain_tensor: &plastic_strain_tensor,
                 reaction: &reaction,
-                temperature: model.reference_temperature + loads.at(model, lambda).temperature_change,
+                temperature: &load_now.temperature,
                 contact: &contact_output,
             };
             let state = with_fields.then(|| {
@@ -466,12 +467,14 @@ fn audit_increment(
     world.all_reduce_into(&local[..], &mut pressure[..], SystemOperation::sum());
     let e = fields.energy;
     let contact = problem.contact.as_ref().map_or([0.0; 3], |c| c.energies());
-    let local = [e.elastic, e.plastic_work, e.thermal_power, contact[0], contact[1], contact[2]];
-    let mut total = [0.0; 6];
+    let local = [e.elastic, e.plastic_work, contact[0], contact[1], contact[2]];
+    let mut total = [0.0; 5];
     world.all_reduce_into(&local[..], &mut total[..], SystemOperation::sum());
-    let elements = ElementEnergy { elastic: total[0], plastic_work: total[1], thermal_power: total[2] };
-    let temperature = model.reference_temperature + load.temperature_change;
-    audit.record(residual, prescribed, &pressure, displacement, elements, [total[3], total[4], total[5]], temperature)
+    let mut thermal_force = vec![0.0; fields.thermal_force.len()];
+    world.all_reduce_into(&fields.thermal_force[..], &mut thermal_force[..], SystemOperation::sum());
+    let elements = ElementEnergy { elastic: total[0], plastic_work: total[1] };
+    let temperature = load.temperature.nodal(model.mesh.coords.len());
+    audit.record(residual, prescribed, &pressure, displacement, elements, [total[2], total[3], total[4]], &thermal_force, &temperature)
 }
 
 /// Per pair, over all ranks: active slave nodes, largest penetration, total normal force.

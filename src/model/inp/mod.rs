@@ -25,7 +25,7 @@ mod write;
 pub use write::{to_inp, write};
 
 use super::mesh::{Edge, Mesh};
-use super::{Component, Kinematics, Material, Model, Plasticity, Predictor, SteppingControls};
+use super::{Component, Kinematics, Material, Model, Plasticity, Predictor, SteppingControls, Temperature};
 use crate::error::{Error, Result};
 use cards::{error_at, Card, DataLine, Location};
 use properties::ListedPair;
@@ -115,7 +115,8 @@ struct StepDef {
     pressures: Vec<Target<String>>,
     /// *DLOAD GRAV and CENTRIF: (element set, spin) -> g along the axis, or omega^2.
     body: Vec<Target<(String, bool)>>,
-    temperature: Option<Target<()>>,
+    /// *TEMPERATURE lines in order: (their nodes, the value at the step's end).
+    temperature: Vec<Target<Vec<usize>>>,
     /// *DLOAD, OP=NEW: loads of earlier steps not restated are removed.
     new_loads: bool,
     /// A procedure card (*STATIC) was read.
@@ -142,7 +143,8 @@ struct Builder {
     current_interaction: Option<String>,
     contacts: Vec<ListedPair>,
     amplitudes: BTreeMap<String, Vec<(f64, f64)>>,
-    initial_temperature: Option<f64>,
+    /// *INITIAL CONDITIONS, TYPE=TEMPERATURE lines in order, and where the first card is.
+    initial_temperature: Option<(Vec<(Vec<usize>, f64)>, Location)>,
     fixed: Vec<(String, Component)>,
     steps: Vec<StepDef>,
     in_step: bool,
@@ -241,7 +243,9 @@ fn build(cards: &[Card], source_text: String) -> Result<InpModel> {
                 if !card.param("TYPE").is_some_and(|t| t.eq_ignore_ascii_case("TEMPERATURE")) {
                     return Err(card.error("only TYPE=TEMPERATURE is supported"));
                 }
-                b.initial_temperature = Some(b.uniform_temperature(card)?);
+                let (mut lines, at) = b.initial_temperature.take().unwrap_or_else(|| (Vec::new(), card.at.clone()));
+                lines.extend(b.node_temperatures(card)?);
+                b.initial_temperature = Some((lines, at));
             }
             "BOUNDARY" => b.boundary(card)?,
             "STEP" => b.step(card)?,
@@ -253,9 +257,10 @@ fn build(cards: &[Card], source_text: String) -> Result<InpModel> {
                 if card.param("OP").is_some_and(|o| !o.eq_ignore_ascii_case("MOD")) {
                     return Err(card.error("only OP=MOD is supported"));
                 }
-                let value = b.uniform_temperature(card)?;
+                let lines = b.node_temperatures(card)?;
                 let amplitude = b.amplitude_ref(card)?;
-                b.step_mut(card)?.temperature = Some(Target { key: (), value, amplitude });
+                let step = b.step_mut(card)?;
+                step.temperature.extend(lines.into_iter().map(|(key, value)| Target { key, value, amplitude: amplitude.clone() }));
             }
             "END STEP" => {
                 if !b.in_step {
@@ -390,13 +395,20 @@ impl Builder {
         if kinematics == Kinematics::Finite && self.steps.first().is_some_and(|s| s.nlgeom != Some(true)) {
             self.notes.push("NLGEOM is set in a later step: slideline runs every step with finite strain".into());
         }
-        let uses_temperature = self.steps.iter().any(|s| s.temperature.is_some());
-        let reference_temperature = match self.initial_temperature {
-            Some(t) => t,
+        let uses_temperature = self.steps.iter().any(|s| !s.temperature.is_empty());
+        let reference_temperature = match &self.initial_temperature {
+            Some((lines, at)) => self.temperature_field(None, lines).map_err(|missing| {
+                let named = self.mesh.coords.len() - self.added_midside.len();
+                error_at(
+                    at,
+                    "INITIAL CONDITIONS",
+                    format!("TYPE=TEMPERATURE: {missing} of the {named} nodes have no temperature (give every node one: the stress-free state)"),
+                )
+            })?,
             None if uses_temperature => return Err(Error::input("*TEMPERATURE needs *INITIAL CONDITIONS, TYPE=TEMPERATURE (the stress-free temperature)")),
-            None => 0.0,
+            None => Temperature::Uniform(0.0),
         };
-        let steps = self.expand_steps(reference_temperature)?;
+        let steps = self.expand_steps(&reference_temperature)?;
 
         let contacts = self.contact_pairs()?;
         let mut stepping = SteppingControls::default();
@@ -553,10 +565,24 @@ mod tests {
     }
 
     #[test]
-    fn a_uniform_temperature_must_cover_every_node() {
+    fn initial_temperatures_must_cover_every_node_and_may_vary() {
         let deck = "*INITIAL CONDITIONS, TYPE=TEMPERATURE\nTOP, 20.\n*STEP\n*STATIC\n*END STEP\n";
         let err = parse(&format!("{MESH}{deck}"), Path::new("t.inp")).err().unwrap().to_string();
-        assert!(err.contains("t.inp:24") && err.contains("cover 3 of the 6 nodes"), "{err}");
+        assert!(err.contains("t.inp:24") && err.contains("3 of the 6 nodes have no temperature"), "{err}");
+        // a field per node set (a later line wins), and a step that heats one set: the others
+        // keep theirs; a node number works as a set
+        let deck = "*INITIAL CONDITIONS, TYPE=TEMPERATURE\nBOTTOM, 20.\nTOP, 40.\n*STEP\n*STATIC\n*BOUNDARY\nBOTTOM, 2, 2\n*TEMPERATURE\nTOP, 100.\n1, 60.\n*END STEP\n";
+        let m = read(deck).model;
+        let (top, bottom) = (&m.node_sets["TOP"], &m.node_sets["BOTTOM"]);
+        assert!(top.iter().all(|&n| m.reference_temperature.at(n) == 40.0) && bottom.iter().all(|&n| m.reference_temperature.at(n) == 20.0));
+        let end = m.steps[0].temperature.as_ref().unwrap();
+        assert!(top.iter().all(|&n| end.at(n) == 100.0), "{end:?}");
+        let node = |id: u64| m.mesh.node_ids.iter().position(|&i| i == id).unwrap();
+        assert_eq!([1, 2, 5].map(|id| end.at(node(id))), [60.0, 20.0, 20.0]);
+        // the mid-side node slideline added between nodes 1 and 2 takes their mean
+        let (a, b) = (m.mesh.coords[node(1)], m.mesh.coords[node(2)]);
+        let mid = bottom.iter().find(|&&n| m.mesh.coords[n] == [0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])]).unwrap();
+        assert_eq!(end.at(*mid), 40.0);
     }
 
     #[test]

@@ -4,9 +4,9 @@
 use super::cards::{error_at, normalise, Card, DataLine};
 use super::{face_side, Builder, StepDef, Target};
 use crate::element::body_load::BodyForce;
-use crate::error::Result;
+use crate::error::{Error, Result};
 use crate::model::mesh::Edge;
-use crate::model::{BodyLoad, Component, Predictor, PrescribedDisplacement, Pressure, Step};
+use crate::model::{BodyLoad, Component, Predictor, PrescribedDisplacement, Pressure, Step, Temperature};
 use std::collections::{BTreeMap, BTreeSet};
 
 impl Builder {
@@ -50,25 +50,19 @@ impl Builder {
         }
     }
 
-    /// The single temperature that the data lines set on every node.
-    pub(super) fn uniform_temperature(&self, card: &Card) -> Result<f64> {
-        let mut covered = BTreeSet::new();
-        let mut value: Option<f64> = None;
-        for d in &card.data {
-            let t = d.number(&card.keyword, 1, "temperature", None)?;
-            if value.is_some_and(|v| v != t) {
-                return Err(error_at(&d.at, &card.keyword, "slideline applies one uniform temperature: every line must give the same value"));
-            }
-            value = Some(t);
-            covered.extend(self.node_items(d, &card.keyword, 0)?);
+    /// The (nodes, temperature) of each data line of *TEMPERATURE or *INITIAL CONDITIONS,
+    /// TYPE=TEMPERATURE: a node or a node set, then degC.
+    pub(super) fn node_temperatures(&self, card: &Card) -> Result<Vec<(Vec<usize>, f64)>> {
+        if card.data.is_empty() {
+            return Err(card.error("needs a data line: node or node set, temperature"));
         }
-        let t = value.ok_or_else(|| card.error("needs a data line: node set, temperature"))?;
-        // the deck's own nodes (mid-side nodes added to CAX4 elements cannot be named)
-        let named = self.mesh.coords.len() - self.added_midside.len();
-        if covered.len() != named {
-            return Err(card.error(format!("slideline applies one uniform temperature: the sets given cover {} of the {named} nodes", covered.len())));
-        }
-        Ok(t)
+        card.data.iter().map(|d| Ok((self.node_items(d, &card.keyword, 0)?, d.number(&card.keyword, 1, "temperature", None)?))).collect()
+    }
+
+    /// A nodal field from `before` (None: every node the deck names must be given) with the
+    /// values in order; `Err` counts the nodes left without one.
+    pub(super) fn temperature_field(&self, before: Option<&Temperature>, values: &[(Vec<usize>, f64)]) -> std::result::Result<Temperature, usize> {
+        temperature_field(self.mesh.coords.len(), &self.added_midside, before, values)
     }
 
     pub(super) fn step_mut(&mut self, card: &Card) -> Result<&mut StepDef> {
@@ -121,7 +115,7 @@ impl Builder {
             boundaries: Vec::new(),
             pressures: Vec::new(),
             body: Vec::new(),
-            temperature: None,
+            temperature: Vec::new(),
             new_loads: false,
             has_procedure: false,
             time_points: Vec::new(),
@@ -346,11 +340,11 @@ impl Builder {
     /// slideline steps ramp every target linearly from the previous step's value; a step whose
     /// loads follow an *AMPLITUDE is split at the amplitude's points so that the piecewise-linear
     /// history is followed exactly.
-    pub(super) fn expand_steps(&mut self, initial_temperature: f64) -> Result<Vec<Step>> {
+    pub(super) fn expand_steps(&mut self, initial_temperature: &Temperature) -> Result<Vec<Step>> {
         let mut displacement_now: BTreeMap<(String, Component), f64> = self.fixed.iter().map(|k| (k.clone(), 0.0)).collect();
         let mut pressure_now: BTreeMap<String, f64> = BTreeMap::new();
         let mut body_now: BTreeMap<(String, bool), f64> = BTreeMap::new();
-        let mut temperature_now = initial_temperature;
+        let mut temperature_now = initial_temperature.clone();
         let mut out = Vec::new();
         let mut total_time = 0.0;
         for (k, s) in self.steps.iter_mut().enumerate() {
@@ -394,7 +388,7 @@ impl Builder {
             times.sort_by(f64::total_cmp);
             times.dedup_by(|a, b| (*a - *b).abs() <= 1e-12 * s.period);
             let period = s.period;
-            let (d0, p0, b0, t0) = (displacement_now.clone(), pressure_now.clone(), body_now.clone(), temperature_now);
+            let (d0, p0, b0, t0) = (displacement_now.clone(), pressure_now.clone(), body_now.clone(), temperature_now.clone());
             let mut previous_time = 0.0;
             for (j, &time) in times.iter().enumerate() {
                 let displacements = s
@@ -420,15 +414,25 @@ impl Builder {
                     .iter()
                     .map(|((set, spin), &v)| BodyLoad { elements: set.clone(), force: if *spin { BodyForce::Spin(v) } else { BodyForce::Gravity(v) } })
                     .collect::<Vec<_>>();
-                let temperature = s.temperature.as_ref().map(|t| t.at(t0, time, period, &self.amplitudes));
+                // each line's nodes ramp from their own start (or follow the line's amplitude)
+                let temperature = if s.temperature.is_empty() {
+                    None
+                } else {
+                    let values: Vec<(Vec<usize>, f64)> =
+                        s.temperature.iter().flat_map(|t| t.key.iter().map(|&n| (vec![n], t.at(t0.at(n), time, period, &self.amplitudes)))).collect();
+                    Some(
+                        temperature_field(self.mesh.coords.len(), &self.added_midside, Some(&t0), &values)
+                            .map_err(|_| Error::input("internal: a step's temperature left nodes unset"))?,
+                    )
+                };
                 for d in &displacements {
                     displacement_now.insert((d.node_set.clone(), d.component), d.value);
                 }
                 for p in &pressures {
                     pressure_now.insert(p.surface.clone(), p.value);
                 }
-                if let Some(t) = temperature {
-                    temperature_now = t;
+                if let Some(t) = &temperature {
+                    temperature_now = t.clone();
                 }
                 let name = if times.len() == 1 { s.name.clone() } else { format!("{}.{}", s.name, j + 1) };
                 let share = ((increments as f64) * (time - previous_time) / s.period).round().max(1.0) as usize;
@@ -449,4 +453,31 @@ impl Builder {
         }
         Ok(out)
     }
+}
+
+/// A nodal field over `nodes` nodes from `before` with the values in order; the mid-side nodes
+/// slideline added to CAX4 elements take their corners' mean, as a linear field along the edge
+/// has. `Err` counts the nodes left without a value.
+fn temperature_field(
+    nodes: usize,
+    added_midside: &std::collections::HashMap<(usize, usize), usize>,
+    before: Option<&Temperature>,
+    values: &[(Vec<usize>, f64)],
+) -> std::result::Result<Temperature, usize> {
+    let mut field: Vec<Option<f64>> = (0..nodes).map(|n| before.map(|t| t.at(n))).collect();
+    for (set, t) in values {
+        for &n in set {
+            field[n] = Some(*t);
+        }
+    }
+    for (&(a, b), &m) in added_midside {
+        field[m] = field[a].zip(field[b]).map(|(x, y)| 0.5 * (x + y));
+    }
+    // counted among the deck's own nodes (an added one lacks a value only when a corner does)
+    let added: BTreeSet<usize> = added_midside.values().copied().collect();
+    let missing = field.iter().enumerate().filter(|(n, t)| t.is_none() && !added.contains(n)).count();
+    if missing > 0 {
+        return Err(missing);
+    }
+    Ok(Temperature::from_nodal(field.into_iter().flatten().collect()))
 }

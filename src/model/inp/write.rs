@@ -12,7 +12,7 @@
 
 use crate::element::body_load::BodyForce;
 use crate::error::{Error, Result};
-use crate::model::{Component, ContactIntegration, Model, Penalty, Plasticity, Predictor};
+use crate::model::{Component, ContactIntegration, Model, Penalty, Plasticity, Predictor, Temperature};
 use std::collections::BTreeSet;
 use std::fmt::Write as _;
 use std::path::Path;
@@ -73,7 +73,13 @@ pub fn to_inp(model: &Model, title: &str) -> Result<String> {
     for (k, m) in model.materials.iter().enumerate() {
         let _ = writeln!(w, "*MATERIAL, NAME={}", checked_name(&m.name)?);
         let _ = writeln!(w, "*ELASTIC\n{}, {}", num(m.youngs_modulus), num(m.poissons_ratio));
-        let _ = writeln!(w, "*EXPANSION, ZERO={}\n{}", num(model.reference_temperature), num(m.thermal_expansion));
+        // ZERO= is the stress-free temperature of a uniform field (for a constant alpha both codes
+        // count thermal strain from the initial conditions, so a field needs none)
+        match model.reference_temperature.uniform() {
+            Some(t) => writeln!(w, "*EXPANSION, ZERO={}\n{}", num(t), num(m.thermal_expansion)),
+            None => writeln!(w, "*EXPANSION\n{}", num(m.thermal_expansion)),
+        }
+        .ok();
         if m.density > 0.0 {
             let _ = writeln!(w, "*DENSITY\n{}", num(m.density));
         }
@@ -132,7 +138,8 @@ pub fn to_inp(model: &Model, title: &str) -> Result<String> {
             let _ = writeln!(w, "*CONTACT PAIR, INTERACTION={name}, TYPE={kind}\n{}, {}", c.master, c.slave);
         }
     }
-    let _ = writeln!(w, "*INITIAL CONDITIONS, TYPE=TEMPERATURE\nNALL, {}", num(model.reference_temperature));
+    let _ = writeln!(w, "*INITIAL CONDITIONS, TYPE=TEMPERATURE");
+    temperature_lines(w, model, &model.reference_temperature);
 
     let constrained: BTreeSet<&str> = model.steps.iter().flat_map(|s| s.displacements.iter().map(|d| d.node_set.as_str())).collect();
     let mut time = 0.0;
@@ -189,8 +196,9 @@ pub fn to_inp(model: &Model, title: &str) -> Result<String> {
                 };
             }
         }
-        if let Some(t) = step.temperature {
-            let _ = writeln!(w, "*TEMPERATURE\nNALL, {}", num(t));
+        if let Some(t) = &step.temperature {
+            let _ = writeln!(w, "*TEMPERATURE");
+            temperature_lines(w, model, t);
         }
         for set in &constrained {
             let _ = writeln!(w, "*NODE PRINT, NSET={set}, TOTALS=ONLY\nRF");
@@ -202,6 +210,14 @@ pub fn to_inp(model: &Model, title: &str) -> Result<String> {
 
 /// A number in at most 20 characters (CalculiX reads fields of 20): the shortest text that
 /// reads back to the same double where it fits, else 14 digits after the point.
+/// The data lines of a temperature: `NALL, T` when uniform, else a line per node.
+fn temperature_lines(w: &mut String, model: &Model, t: &Temperature) {
+    match t.uniform() {
+        Some(t) => writeln!(w, "NALL, {}", num(t)).ok(),
+        None => (0..model.mesh.coords.len()).try_for_each(|n| writeln!(w, "{}, {}", model.mesh.node_ids[n], num(t.at(n)))).ok(),
+    };
+}
+
 fn num(x: f64) -> String {
     let shortest = format!("{x:?}");
     if shortest.len() <= 20 {

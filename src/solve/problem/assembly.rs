@@ -202,6 +202,7 @@ impl Problem<'_, '_> {
         fields.nodal_force.fill([0.0; 2]);
         fields.pressure_force.fill([0.0; 2]);
         fields.energy = Default::default();
+        fields.thermal_force.fill(0.0);
         let mut sink = |node: usize, c: usize, v: f64| {
             fields.nodal_force[node][c] += v;
             sink(node, c, v);
@@ -215,7 +216,8 @@ impl Problem<'_, '_> {
             let entry = &mut kept.elements[k];
             // written in place: invalid until the evaluation has succeeded
             entry.valid &= !keep_tangents;
-            let out = match self.solid(k, &u, keep_tangents.then_some(&mut entry.material)) {
+            let temperature_change = self.temperature_change(k);
+            let out = match self.solid(k, &u, &temperature_change, keep_tangents.then_some(&mut entry.material)) {
                 Ok(out) => out,
                 Err(e) => {
                     self.kept = kept;
@@ -223,12 +225,11 @@ impl Problem<'_, '_> {
                 }
             };
             if keep_tangents {
-                (entry.valid, entry.u, entry.temperature_change) = (true, u, self.load.temperature_change);
+                (entry.valid, entry.u, entry.temperature_change) = (true, u, temperature_change);
             }
             self.trial[k] = out.state;
             fields.energy.elastic += out.energy.elastic;
             fields.energy.plastic_work += out.energy.plastic_work;
-            fields.energy.thermal_power += out.energy.thermal_power;
             let element = &self.elements[k];
             let size =
                 element.roundoff_scale * (u.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs())) + element.roundoff_length) + out.internal_force.abs().max();
@@ -240,6 +241,9 @@ impl Problem<'_, '_> {
             let conn = &self.model.mesh.elements[self.elements[k].element];
             for i in 0..DOFS {
                 sink(conn[i / 2], i % 2, out.internal_force[i]);
+            }
+            for (a, &n) in conn.iter().enumerate() {
+                fields.thermal_force[n] += out.thermal_force[a];
             }
             us.push(u);
         }
