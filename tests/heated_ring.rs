@@ -80,3 +80,32 @@ fn held_ends_give_minus_e_alpha_dt_then_yield() {
         assert!((s[1] - expected).abs() < 1e-8 * expected.abs(), "sigma_z {} vs {expected}", s[1]);
     }
 }
+
+/// Temperatures given on node sets in the TOML deck: a stress-free state that varies (the top
+/// nodes at 30, the rest at 20 degC) heated by the same 30 degC everywhere (the top to 60, the
+/// rest to 50) is free expansion again: no stress, u = alpha 30 x. A set the mesh lacks is
+/// refused by name.
+#[test]
+fn temperatures_on_node_sets_count_from_each_nodes_reference() {
+    let text = deck(false, 0.0, r#"{ set = "bottom", uz = 0.0 }"#)
+        .replace("reference_temperature = 20.0", r#"reference_temperature = [{ value = 20.0 }, { set = "top", value = 30.0 }]"#)
+        .replace("temperature = 0\n", "temperature = [{ value = 50.0 }, { set = \"top\", value = 60.0 }]\n");
+    assert!(text.contains("set = \"top\", value = 60.0"), "{text}");
+    let run = run_deck(&text, &[], 2, &[]);
+    run.assert_ok();
+    let res = Results::open(&run.h5);
+    for (x, u) in res.nodes() {
+        let strain = ALPHA * 30.0;
+        assert!((u[0] - strain * x[0]).abs() < 1e-9 * x[0] && (u[1] - strain * x[1]).abs() < 1e-9, "u at {x:?} = {u:?}");
+    }
+    let worst = res.f64s(&format!("{}/stress", res.last_increment())).iter().fold(0.0f64, |m, s| m.max(s.abs()));
+    assert!(worst < 1e-8, "stress {worst:e} MPa in free expansion");
+    // the field in the results file: 60 on the top nodes, 50 elsewhere
+    let coords = res.f64s("mesh/coordinates");
+    let t = res.f64s(&format!("{}/nodal/temperature", res.last_increment()));
+    for (x, t) in coords.chunks(2).zip(t) {
+        assert_eq!(t, if x[1] == 10.0 { 60.0 } else { 50.0 }, "at {x:?}");
+    }
+    let bad = run_deck(&text.replace("set = \"top\", value = 60.0", "set = \"lid\", value = 60.0"), &[], 1, &[]);
+    common::assert_rejected(&bad, &["step", "temperature", "unknown node set 'lid'"]);
+}

@@ -51,6 +51,9 @@ pub struct CommittedState<'a> {
     pub predictor_increment: Option<&'a [[f64; 2]]>,
     /// Where the energy audit's next trapezoids start (the same on every rank).
     pub audit: &'a AuditPoint,
+    /// Whether the temperature varies over the mesh in some step (the audit's thermal part
+    /// is then kept per node; else as its sum and the one temperature).
+    pub thermal_by_node: bool,
     pub refits: usize,
 }
 
@@ -102,9 +105,17 @@ pub(super) fn write_state(
     }
     // the audit's starting point: replicated, so rank 0 writes it (the nodes with a load)
     let a = state.audit;
-    // per node, mesh order: the thermal stress power per degree and the temperature
-    let local: Vec<f64> = if world.rank() == 0 { a.thermal_force.iter().zip(&a.temperature).flat_map(|(&f, &t)| [f, t]).collect() } else { Vec::new() };
-    write_gathered(&sg, world, AUDIT_THERMAL, 2, &local, path)?;
+    if state.thermal_by_node {
+        // per node, mesh order: the thermal stress power per degree and the temperature
+        let local: Vec<f64> = if world.rank() == 0 { a.thermal_force.iter().zip(&a.temperature).flat_map(|(&f, &t)| [f, t]).collect() } else { Vec::new() };
+        write_gathered(&sg, world, AUDIT_THERMAL, 2, &local, path)?;
+    } else {
+        // one temperature everywhere: only the sum of the stress power multiplies its changes
+        let power: f64 = a.thermal_force.iter().sum();
+        let temperature = a.temperature.first().copied().unwrap_or(0.0);
+        sg.new_attr::<f64>().create("audit_thermal_power").map_err(&err)?.write_scalar(&power).map_err(&err)?;
+        sg.new_attr::<f64>().create("audit_temperature").map_err(&err)?.write_scalar(&temperature).map_err(&err)?;
+    }
     let loaded: Vec<usize> = if world.rank() == 0 { (0..a.forces.len()).filter(|&n| a.forces[n].iter().any(|&f| f != 0.0)).collect() } else { Vec::new() };
     let ids: Vec<u64> = loaded.iter().map(|&n| mesh.node_ids[n]).collect();
     let forces: Vec<f64> = loaded.iter().flat_map(|&n| a.forces[n]).collect();
@@ -375,8 +386,8 @@ impl RestartPoint {
         let (thermal_force, temperature) = if thermal.len() == 2 * count && thermal.iter().all(|v| v.is_finite()) {
             (thermal.iter().step_by(2).copied().collect(), thermal.iter().skip(1).step_by(2).copied().collect())
         } else if thermal.is_empty() && sg.attr("audit_temperature").is_ok() {
-            // written before temperatures could vary over the mesh: the stress power summed
-            // over the model, which a uniform temperature change multiplies wherever it sits
+            // a model at one temperature throughout: the stress power summed over it, which a
+            // uniform temperature change multiplies wherever it sits
             let attr = |name: &str| sg.attr(name).and_then(|a| a.read_scalar::<f64>()).map_err(|e| bad(format!("{group}: {e}")));
             let mut force = vec![0.0; count];
             force[0] = attr("audit_thermal_power")?;

@@ -441,6 +441,11 @@ pub struct Model {
 }
 
 impl Model {
+    /// Whether the temperature varies over the mesh at the start or in some step.
+    pub fn has_temperature_field(&self) -> bool {
+        std::iter::once(&self.reference_temperature).chain(self.steps.iter().filter_map(|s| s.temperature.as_ref())).any(|t| t.uniform().is_none())
+    }
+
     pub fn node_set(&self, name: &str) -> Result<&[usize]> {
         self.node_sets
             .get(name)

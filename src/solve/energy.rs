@@ -125,8 +125,15 @@ impl EnergyAudit {
         }
         let t = &mut self.totals;
         t.external_work += work;
-        t.thermal_work +=
-            (0..temperature.len()).map(|n| 0.5 * (self.last.thermal_force[n] + thermal_force[n]) * (temperature[n] - self.last.temperature[n])).sum::<f64>();
+        let uniform = |t: &[f64]| t.iter().all(|&x| x == t[0]);
+        t.thermal_work += if uniform(temperature) && uniform(&self.last.temperature) {
+            // one temperature change for every node: the sums' trapezoid (what a restart, which
+            // keeps only the sum, continues bit for bit)
+            let sum = |f: &[f64]| f.iter().sum::<f64>();
+            0.5 * (sum(&self.last.thermal_force) + sum(thermal_force)) * (temperature[0] - self.last.temperature[0])
+        } else {
+            (0..temperature.len()).map(|n| 0.5 * (self.last.thermal_force[n] + thermal_force[n]) * (temperature[n] - self.last.temperature[n])).sum::<f64>()
+        };
         t.elastic = elements.elastic;
         t.plastic_work = elements.plastic_work;
         t.contact_stored = contact[0] + contact[1];

@@ -382,6 +382,7 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
                     // the extrapolation's increment, unless the previous increment's field has it
                     predictor_increment: (increment > 1 && !last_in_file).then(|| last.as_ref().map(|l| l.displacement.as_slice())).flatten(),
                     audit: &audit.last,
+                    thermal_by_node: model.has_temperature_field(),
                     refits,
                 }
             });

@@ -125,6 +125,9 @@ struct StepDef {
     time_points: Vec<(Vec<f64>, bool)>,
 }
 
+/// A temperature line: its nodes and the value, degC.
+type NodeTemperatures = (Vec<usize>, f64);
+
 #[derive(Default)]
 struct Builder {
     mesh: Mesh,
@@ -144,7 +147,7 @@ struct Builder {
     contacts: Vec<ListedPair>,
     amplitudes: BTreeMap<String, Vec<(f64, f64)>>,
     /// *INITIAL CONDITIONS, TYPE=TEMPERATURE lines in order, and where the first card is.
-    initial_temperature: Option<(Vec<(Vec<usize>, f64)>, Location)>,
+    initial_temperature: Option<(Vec<NodeTemperatures>, Location)>,
     fixed: Vec<(String, Component)>,
     steps: Vec<StepDef>,
     in_step: bool,
