@@ -1,0 +1,46 @@
+#!/usr/bin/env bash
+# Runs every deck of a directory of CalculiX test decks (such as CalculiX's own axisymmetric
+# ones) unchanged through slideline (2 ranks) and, where slideline runs it, through CalculiX
+# 2.20 (ccx, Debian package calculix-ccx), and prints a table: slideline's verdict (runs, or
+# its error naming the card) and, for the decks that run, the largest difference of the final
+# nodal displacements from ccx's printed ones, as a fraction of ccx's largest.
+#
+# usage: scripts/calculix-test-decks.sh DIR [DECK ...]
+#   DIR   the decks (e.g. ../shared/calculix-tests/axisymmetric); work files go to
+#         out/calculix-test-decks/
+#   DECK  only these (names without .inp)
+set -euo pipefail
+here="$(cd "$(dirname "$0")/.." && pwd)"
+dir="${1:?usage: scripts/calculix-test-decks.sh DIR [DECK ...]}"
+shift
+command -v ccx >/dev/null || { echo "installing CalculiX (calculix-ccx)"; apt-get install -y calculix-ccx >/dev/null; }
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1
+[ -x "$here/target/release/slideline" ] || (cd "$here" && cargo build --release --quiet)
+slideline="$here/target/release/slideline"
+python="${SLIDELINE_PYTHON:-/usr/bin/python3}"
+work="$here/out/calculix-test-decks"
+mkdir -p "$work"
+if [ $# -gt 0 ]; then decks=("$@"); else decks=(); for f in "$dir"/*.inp; do decks+=("$(basename "$f" .inp)"); done; fi
+printf '| deck | slideline | against ccx 2.20 (final displacements) |\n| --- | --- | --- |\n'
+runs=0
+for name in "${decks[@]}"; do
+    rm -rf "${work:?}/$name"; mkdir -p "$work/$name"
+    cp "$dir/$name.inp" "$work/$name/"
+    cd "$work/$name"
+    if timeout 600 mpirun -n 2 --oversubscribe "$slideline" run "$name.inp" -o "$name.h5" --quiet > slideline.log 2>&1; then
+        runs=$((runs + 1))
+        if timeout 600 ccx "$name" > ccx.log 2>&1 && [ -f "$name.dat" ]; then
+            compared="$("$python" "$here/scripts/calculix_decks.py" "$name.dat" "$name.h5")"
+        else
+            compared="ccx failed (see $work/$name/ccx.log)"
+        fi
+        printf '| %s | runs | %s |\n' "$name" "$compared"
+    else
+        code=$?
+        reason="$(grep -m1 '^error:' slideline.log | sed 's/^error: //; s/|/\\|/g' || true)"
+        printf '| %s | exit %s: %s | |\n' "$name" "$code" "${reason:-see $work/$name/slideline.log}"
+    fi
+    cd "$here"
+done
+echo
+echo "$runs of ${#decks[@]} decks run"

@@ -1,0 +1,56 @@
+#!/usr/bin/env python3
+"""Compares the final nodal displacements of a CalculiX run (JOB.dat, its last
+'displacements' blocks, any set) with slideline's results file, node by node, and prints one
+line: nodes compared, the largest |u_r| and |u_z| of CalculiX, and the largest difference of
+each as a fraction of that. Used by scripts/calculix-test-decks.sh; needs h5py and numpy
+(Debian's python3-h5py).
+
+usage: calculix_decks.py JOB.dat RESULTS.h5
+"""
+import sys
+
+import h5py
+import numpy as np
+
+
+def dat_displacements(path):
+    """{node: (u_r, u_z)} of the last time's 'displacements' blocks."""
+    blocks, current, time = {}, None, None
+    for line in open(path):
+        t = line.strip()
+        if t.startswith("displacements") and " and time" in t:
+            time = float(t.split(" and time")[1])
+            current = blocks.setdefault(time, {})
+            continue
+        if not t or not t[0].isdigit() and not t[0] == "-":
+            if t and not t[0].isdigit():
+                current = None if not t.startswith("displacements") else current
+            continue
+        p = t.split()
+        if current is not None and len(p) >= 3 and p[0].isdigit():
+            current[int(p[0])] = (float(p[1]), float(p[2]))
+    if not blocks:
+        return {}
+    return blocks[max(blocks)]
+
+
+def main():
+    ccx = dat_displacements(sys.argv[1])
+    with h5py.File(sys.argv[2], "r") as f:
+        last = sorted(k for k in f["increments"] if f["increments"][k].attrs.get("complete", 1))[-1]
+        u = f["increments"][last]["nodal/displacement"][:, :2]
+        ids = f["mesh/node_ids"][:]
+    ours = {int(n): u[k] for k, n in enumerate(ids)}
+    common = [n for n in ccx if n in ours]
+    if not common:
+        print("no displacement printed by ccx")
+        return
+    a = np.array([ccx[n] for n in common])
+    b = np.array([ours[n] for n in common])
+    scale = np.abs(a).max(axis=0)
+    diff = np.abs(a - b).max(axis=0)
+    rel = [d / s if s > 0 else float("nan") for d, s in zip(diff, scale)]
+    print(f"{len(common)} nodes: max |u_r| {scale[0]:.4e}, |u_z| {scale[1]:.4e} mm; largest difference {100 * rel[0]:.3f} % / {100 * rel[1]:.3f} %")
+
+
+main()
