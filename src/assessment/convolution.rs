@@ -187,6 +187,8 @@ pub fn compute(session: &PetscSession, c1: f64, c2: f64, fineness: Fineness) -> 
         pressures: vec![],
         temperature: None,
         time_span: None,
+        release_constraints: false,
+        without_field_output: false,
         body_loads: Vec::new(),
     };
     let press = Step {
@@ -196,6 +198,8 @@ pub fn compute(session: &PetscSession, c1: f64, c2: f64, fineness: Fineness) -> 
         pressures: vec![Pressure { surface: "inner".into(), value: PRESSURE }],
         temperature: None,
         time_span: None,
+        release_constraints: false,
+        without_field_output: false,
         body_loads: Vec::new(),
     };
     super::in_scratch(session, "convolution", |dir| {

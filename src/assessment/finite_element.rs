@@ -105,6 +105,8 @@ pub fn analyse(session: &PetscSession, p: &BellowsParams, stability: &super::sta
         pressures: vec![Pressure { surface: "wetted".into(), value: LOAD_FRACTION * p.pressure }],
         temperature: None,
         time_span: None,
+        release_constraints: false,
+        without_field_output: false,
         body_loads: Vec::new(),
     };
     // the stroke analysis runs without a stroke too (a pressure-only assessment), for the rate
@@ -117,6 +119,8 @@ pub fn analyse(session: &PetscSession, p: &BellowsParams, stability: &super::sta
         pressures: vec![],
         temperature: None,
         time_span: None,
+        release_constraints: false,
+        without_field_output: false,
         body_loads: Vec::new(),
     };
     let pieces = convolution_pieces(p);

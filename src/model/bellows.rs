@@ -401,6 +401,8 @@ pub fn model(p: &BellowsParams) -> Result<Model> {
             pressures: vec![Pressure { surface: "wetted".into(), value: p.pressure }],
             temperature: Some(Temperature::Uniform(p.temperature)),
             time_span: None,
+            release_constraints: false,
+            without_field_output: false,
             body_loads: Vec::new(),
         },
         Step {
@@ -410,6 +412,8 @@ pub fn model(p: &BellowsParams) -> Result<Model> {
             pressures: vec![],
             temperature: None,
             time_span: None,
+            release_constraints: false,
+            without_field_output: false,
             body_loads: Vec::new(),
         },
     ];
@@ -421,6 +425,8 @@ pub fn model(p: &BellowsParams) -> Result<Model> {
             pressures: vec![],
             temperature: None,
             time_span: None,
+            release_constraints: false,
+            without_field_output: false,
             body_loads: Vec::new(),
         });
     }

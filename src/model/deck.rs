@@ -507,7 +507,17 @@ pub fn parse(text: &str, path: &Path) -> Result<Model> {
                 if let Some(t) = &temperature {
                     temperature_now = t.clone();
                 }
-                steps.push(Step { name, increments, displacements, pressures, temperature, time_span: None, body_loads });
+                steps.push(Step {
+                    name,
+                    increments,
+                    displacements,
+                    pressures,
+                    temperature,
+                    time_span: None,
+                    body_loads,
+                    release_constraints: false,
+                    without_field_output: false,
+                });
             }
             procedure @ ("harmonic" | "frequency" | "buckle") => {
                 let mode = s.mode.ok_or_else(|| Error::input(format!("step '{name}': procedure = \"{procedure}\" needs its mode (mode = n)")))?;

@@ -399,6 +399,11 @@ pub struct Step {
     pub time_span: Option<[f64; 2]>,
     /// Body loads at the end of the step (ramped from the previous step's, per element set).
     pub body_loads: Vec<BodyLoad>,
+    /// The prescribed displacements of earlier steps that this one does not restate are
+    /// released at its start (CalculiX's *BOUNDARY, OP=NEW).
+    pub release_constraints: bool,
+    /// Only the history is written in this step, no field output (CalculiX's FREQUENCY=0).
+    pub without_field_output: bool,
 }
 
 /// A body load on an element set: gravity along the axis or spin about it, its value at the

@@ -94,6 +94,18 @@ impl EnergyAudit {
         }
     }
 
+    /// Forgets the reactions of the DOFs no longer `prescribed` (a released constraint's force
+    /// vanishes at the release: it does no work on the motion that follows).
+    pub fn release(&mut self, prescribed: &[[bool; 2]]) {
+        for (force, held) in self.last.forces.iter_mut().zip(prescribed) {
+            for c in 0..2 {
+                if !held[c] {
+                    force[c] = 0.0;
+                }
+            }
+        }
+    }
+
     /// Takes a converged increment: `residual` the nodal f_int - f_ext (+ contact) summed over
     /// ranks (the reactions at the prescribed DOFs `prescribed`), `pressure` the pressure loads,
     /// `displacement` every node's, `elements` and `contact` ([normal stored, tangential stored,

@@ -26,8 +26,10 @@ impl StepLoads {
     /// current nodal displacements (a newly prescribed DOF ramps from where it is).
     pub fn new(model: &Model, index: usize, previous: Option<&StepLoads>, displacement: &[[f64; 2]]) -> Self {
         let step = &model.steps[index];
+        // what earlier steps prescribed holds, unless this step releases what it does not restate
+        let earlier = previous.filter(|_| !step.release_constraints);
         let mut prescribed: BTreeMap<(usize, usize), (f64, f64)> =
-            previous.map(|p| p.prescribed.iter().map(|(&k, &(_, end))| (k, (end, end))).collect()).unwrap_or_default();
+            earlier.map(|p| p.prescribed.iter().map(|(&k, &(_, end))| (k, (end, end))).collect()).unwrap_or_default();
         let mut constrained_sets = previous.map(|p| p.constrained_sets.clone()).unwrap_or_default();
         for d in &step.displacements {
             for &n in &model.node_sets[&d.node_set] {

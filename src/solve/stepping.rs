@@ -157,6 +157,8 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
         let resumed_here = resumed.take();
         let loads = StepLoads::new(model, s, previous.as_ref(), resumed_here.as_ref().map_or(&displacement, |r| &r.step_start));
         let prescribed = loads.prescribed_mask(nodes);
+        // a constraint released at the step's start lets go of its reaction at once
+        audit.release(&prescribed);
         let dofs = DofMap::new(&partition, &prescribed)?;
         let mut x = Vector::mpi(session, comm, dofs.local_len())?;
         let mut residual = x.duplicate()?;
@@ -348,7 +350,7 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
             };
             // the next attempt's size: kept after a hard increment, grown after an easy one
             size = if report.newton_iterations <= controls.easy_iterations { (done * controls.growth_factor).min(requested) } else { done };
-            let with_fields = model.output.writes_fields(row.number, lambda >= 1.0);
+            let with_fields = !step.without_field_output && model.output.writes_fields(row.number, lambda >= 1.0);
             let fresh_pattern = match (with_fields, problem.contact.as_mut()) {
                 (true, Some(c)) => c.pattern_mut().take_fresh(),
                 _ => Vec::new(),

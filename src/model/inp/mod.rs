@@ -119,6 +119,13 @@ struct StepDef {
     temperature: Vec<Target<Vec<usize>>>,
     /// *DLOAD, OP=NEW: loads of earlier steps not restated are removed.
     new_loads: bool,
+    /// *BOUNDARY, OP=NEW on the step's first *BOUNDARY card: earlier constraints not restated
+    /// are released; and whether a *BOUNDARY card was read in the step.
+    new_boundaries: bool,
+    boundary_cards: usize,
+    /// The step's file output requests (*NODE FILE, *EL FILE, *CONTACT FILE): [with
+    /// FREQUENCY=0, with another frequency]; only zeros mean no field output in the step.
+    file_requests: [usize; 2],
     /// A procedure card (*STATIC) was read.
     has_procedure: bool,
     /// The time points its output requests name: (times, in total time).
@@ -282,8 +289,14 @@ fn build(cards: &[Card], source_text: String) -> Result<InpModel> {
                 b.use_time_points(card)?;
                 // the frequency of the results file's field output
                 if kw == "NODE FILE" || kw == "EL FILE" || kw == "CONTACT FILE" {
-                    if let Some(f) = card.param("FREQUENCY") {
-                        let every: usize = f.parse().ok().filter(|&n| n >= 1).ok_or_else(|| card.error(format!("FREQUENCY={f}: a whole number >= 1")))?;
+                    let every: usize = match card.param("FREQUENCY") {
+                        Some(f) => f.parse().map_err(|_| card.error(format!("FREQUENCY={f}: a whole number >= 0")))?,
+                        None => 1,
+                    };
+                    // FREQUENCY=0: none of this request in the step; slideline writes all
+                    // fields or none, so a step whose every file request says 0 has none
+                    b.step_mut(card)?.file_requests[usize::from(every > 0)] += 1;
+                    if every > 0 && card.param("FREQUENCY").is_some() {
                         b.output_every = Some(b.output_every.map_or(every, |e: usize| e.min(every)));
                     }
                 }
@@ -649,7 +662,26 @@ mod tests {
         let read = read(deck);
         assert_eq!(read.model.output.every, 4, "the smaller of the two");
         assert!(read.notes.iter().any(|n| n.contains("every 4th increment")), "{:?}", read.notes);
-        let err = parse(&format!("{MESH}*STEP\n*STATIC\n*NODE FILE, FREQUENCY=0\nU\n*END STEP\n"), Path::new("t.inp")).err().unwrap().to_string();
-        assert!(err.contains("FREQUENCY=0"), "{err}");
+        // FREQUENCY=0 on every file request of a step: no fields in it; beside a request that
+        // writes, fields as before
+        let two = "*STEP\n*STATIC\n*BOUNDARY\nBOTTOM, 2, 2\n*NODE FILE, FREQUENCY=0\nU\n*END STEP\n*STEP\n*STATIC\n*NODE FILE, FREQUENCY=0\nU\n*EL FILE\nS\n*END STEP\n";
+        let m = self::read(two).model;
+        assert_eq!(m.steps.iter().map(|s| s.without_field_output).collect::<Vec<_>>(), vec![true, false]);
+        let err = parse(&format!("{MESH}*STEP\n*STATIC\n*NODE FILE, FREQUENCY=-1\nU\n*END STEP\n"), Path::new("t.inp")).err().unwrap().to_string();
+        assert!(err.contains("FREQUENCY=-1"), "{err}");
+    }
+
+    #[test]
+    fn boundary_op_new_releases_what_the_step_does_not_restate() {
+        // model data holds BOTTOM axially; step 1 pushes TOP; step 2 restates only TOP
+        let deck = "*BOUNDARY\nBOTTOM, 2, 2\n*STEP\n*STATIC\n*BOUNDARY\nTOP, 2, 2, 0.1\n*END STEP\n\
+*STEP\n*STATIC\n*BOUNDARY, OP=NEW\nTOP, 2, 2, 0.2\n*BOUNDARY, OP=NEW\nTOP, 1, 1\n*END STEP\n";
+        let read = read(deck);
+        let m = &read.model;
+        assert_eq!(m.steps.iter().map(|s| s.release_constraints).collect::<Vec<_>>(), vec![false, true]);
+        assert!(read.notes.iter().any(|n| n.contains("OP=NEW releases BOTTOM u_z")), "{:?}", read.notes);
+        assert!(read.notes.iter().any(|n| n.contains("later *BOUNDARY card has no effect")), "{:?}", read.notes);
+        let err = parse(&format!("{MESH}*BOUNDARY, OP=NEW\nBOTTOM, 2, 2\n*STEP\n*STATIC\n*END STEP\n"), Path::new("t.inp")).err().unwrap().to_string();
+        assert!(err.contains("t.inp:24") && err.contains("OP=NEW belongs in a *STEP"), "{err}");
     }
 }

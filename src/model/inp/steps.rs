@@ -117,6 +117,9 @@ impl Builder {
             body: Vec::new(),
             temperature: Vec::new(),
             new_loads: false,
+            new_boundaries: false,
+            boundary_cards: 0,
+            file_requests: [0, 0],
             has_procedure: false,
             time_points: Vec::new(),
         });
@@ -199,8 +202,21 @@ impl Builder {
 
     pub(super) fn boundary(&mut self, card: &Card) -> Result<()> {
         card.only(&["OP", "AMPLITUDE"])?;
-        if card.param("OP").is_some_and(|o| !o.eq_ignore_ascii_case("MOD")) {
-            return Err(card.error("only OP=MOD is supported (slideline keeps a constraint once applied)"));
+        let new = match card.param("OP").map(|o| o.to_uppercase()).as_deref() {
+            None | Some("MOD") => false,
+            Some("NEW") if self.in_step => true,
+            Some("NEW") => return Err(card.error("OP=NEW belongs in a *STEP (it releases the constraints of earlier steps)")),
+            Some(o) => return Err(card.error(format!("OP={o}: MOD or NEW"))),
+        };
+        if self.in_step {
+            // as CalculiX: OP counts on the step's first *BOUNDARY card only
+            let step = self.steps.last_mut().expect("in a step");
+            step.boundary_cards += 1;
+            if step.boundary_cards == 1 {
+                step.new_boundaries = new;
+            } else if new {
+                self.notes.push(format!("{}: OP=NEW on a step's later *BOUNDARY card has no effect (CalculiX reads it on the first only)", card.at));
+            }
         }
         let amplitude = self.amplitude_ref(card)?;
         for d in &card.data {
@@ -356,6 +372,18 @@ impl Builder {
                     }
                 }
             }
+            if s.new_boundaries {
+                // the constraints of earlier steps (and of the model data) not restated go
+                let released: Vec<String> = displacement_now
+                    .keys()
+                    .filter(|k| !s.boundaries.iter().any(|b| &b.key == *k))
+                    .map(|(set, c)| format!("{set} {}", if *c == Component::R { "u_r" } else { "u_z" }))
+                    .collect();
+                displacement_now.retain(|k, _| s.boundaries.iter().any(|b| &b.key == k));
+                if !released.is_empty() {
+                    self.notes.push(format!("{} ({}): *BOUNDARY, OP=NEW releases {} at the step's start", s.name, s.at, released.join(", ")));
+                }
+            }
             if s.new_loads {
                 for (surface, v) in pressure_now.iter_mut() {
                     if !s.pressures.iter().any(|p| &p.key == surface) {
@@ -437,7 +465,19 @@ impl Builder {
                 let name = if times.len() == 1 { s.name.clone() } else { format!("{}.{}", s.name, j + 1) };
                 let share = ((increments as f64) * (time - previous_time) / s.period).round().max(1.0) as usize;
                 let time_span = Some([total_time + previous_time, total_time + time]);
-                out.push(Step { name, increments: share, displacements, pressures, temperature, time_span, body_loads });
+                let release_constraints = s.new_boundaries && j == 0;
+                let without_field_output = s.file_requests[0] > 0 && s.file_requests[1] == 0;
+                out.push(Step {
+                    name,
+                    increments: share,
+                    displacements,
+                    pressures,
+                    temperature,
+                    time_span,
+                    body_loads,
+                    release_constraints,
+                    without_field_output,
+                });
                 previous_time = time;
             }
             total_time += s.period;
