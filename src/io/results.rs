@@ -354,7 +354,7 @@ impl ResultsFile {
         let g = self.file.group("increments").map_err(&err)?.create_group(name).map_err(&err)?;
         // one number: the uniform temperature, or the field's largest value (the nodal field
         // is for ParaView and meshio)
-        let temperature = ("temperature", fields.temperature.uniform().unwrap_or(fields.temperature.range()[1]));
+        let temperature = ("temperature", fields.temperature.range()[1]);
         for (attr, value) in [("step", row.step as f64), ("increment", row.increment as f64), ("load_factor", row.load_factor), ("time", row.time), temperature]
         {
             g.new_attr::<f64>().create(attr).map_err(&err)?.write_scalar(&value).map_err(&err)?;

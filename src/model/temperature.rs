@@ -69,19 +69,21 @@ impl Temperature {
     }
 }
 
+/// The value of each of `nodes` nodes after setting `values` (node, degC) in order over
+/// `before` (None: no value yet): a later value wins on a node set twice.
+pub fn apply(nodes: usize, before: Option<&Temperature>, values: impl IntoIterator<Item = (usize, f64)>) -> Vec<Option<f64>> {
+    let mut field: Vec<Option<f64>> = (0..nodes).map(|n| before.map(|t| t.at(n))).collect();
+    for (n, value) in values {
+        field[n] = Some(value);
+    }
+    field
+}
+
 /// Builds a nodal field by assignments in order (a later one wins on the nodes two share),
 /// starting from `before` (None: every node must be assigned); returns the field, uniform when
 /// every node ends with the same value. `Err` names how many nodes no assignment reached.
 pub fn assign(nodes: usize, before: Option<&Temperature>, assignments: &[(&[usize], f64)]) -> Result<Temperature, usize> {
-    let mut field: Vec<Option<f64>> = match before {
-        Some(t) => (0..nodes).map(|n| Some(t.at(n))).collect(),
-        None => vec![None; nodes],
-    };
-    for &(set, value) in assignments {
-        for &n in set {
-            field[n] = Some(value);
-        }
-    }
+    let field = apply(nodes, before, assignments.iter().flat_map(|&(set, value)| set.iter().map(move |&n| (n, value))));
     let missing = field.iter().filter(|t| t.is_none()).count();
     if missing > 0 {
         return Err(missing);

@@ -61,7 +61,8 @@ impl Builder {
 
     /// A nodal field from `before` (None: every node the deck names must be given) with the
     /// values in order; `Err` counts the nodes left without one.
-    pub(super) fn temperature_field(&self, before: Option<&Temperature>, values: &[(Vec<usize>, f64)]) -> std::result::Result<Temperature, usize> {
+    pub(super) fn temperature_field(&self, before: Option<&Temperature>, lines: &[(Vec<usize>, f64)]) -> std::result::Result<Temperature, usize> {
+        let values = lines.iter().flat_map(|(set, t)| set.iter().map(move |&n| (n, *t)));
         temperature_field(self.mesh.coords.len(), &self.added_midside, before, values)
     }
 
@@ -446,10 +447,10 @@ impl Builder {
                 let temperature = if s.temperature.is_empty() {
                     None
                 } else {
-                    let values: Vec<(Vec<usize>, f64)> =
-                        s.temperature.iter().flat_map(|t| t.key.iter().map(|&n| (vec![n], t.at(t0.at(n), time, period, &self.amplitudes)))).collect();
+                    let amplitudes = &self.amplitudes;
+                    let values = s.temperature.iter().flat_map(|t| t.key.iter().map(|&n| (n, t.at(t0.at(n), time, period, amplitudes))));
                     Some(
-                        temperature_field(self.mesh.coords.len(), &self.added_midside, Some(&t0), &values)
+                        temperature_field(self.mesh.coords.len(), &self.added_midside, Some(&t0), values)
                             .map_err(|_| Error::input("internal: a step's temperature left nodes unset"))?,
                     )
                 };
@@ -502,14 +503,9 @@ fn temperature_field(
     nodes: usize,
     added_midside: &std::collections::HashMap<(usize, usize), usize>,
     before: Option<&Temperature>,
-    values: &[(Vec<usize>, f64)],
+    values: impl IntoIterator<Item = (usize, f64)>,
 ) -> std::result::Result<Temperature, usize> {
-    let mut field: Vec<Option<f64>> = (0..nodes).map(|n| before.map(|t| t.at(n))).collect();
-    for (set, t) in values {
-        for &n in set {
-            field[n] = Some(*t);
-        }
-    }
+    let mut field = crate::model::temperature::apply(nodes, before, values);
     for (&(a, b), &m) in added_midside {
         field[m] = field[a].zip(field[b]).map(|(x, y)| 0.5 * (x + y));
     }
