@@ -136,6 +136,66 @@ fn a_run_with_friction_continues_bit_identically_from_a_restart() {
     common::assert_continues(&full.h5, &continued, 5);
 }
 
+/// A changed friction acts from its step's start: the fit pushed on at mu = 0.2, then (step
+/// 3, `contact_friction`) at mu = 0.1, then frictionless. Sliding at each step's end, the push
+/// force is mu N of the step's mu (to 1e-6: every node at its Coulomb limit), and zero without
+/// friction; a restart inside the step of mu = 0.1 continues with it, bit for bit. A pair
+/// frictionless at first takes friction from the push on (its slip measured from where the
+/// nodes are when the step starts).
+#[test]
+fn a_friction_changed_in_a_step_acts_from_its_start_and_survives_a_restart() {
+    let more_steps = r#"[[step]]
+name = "lighter"
+increments = 4
+boundary = [ { set = "ring_bottom", uz = 4.0e-4 }, { set = "ring_top", uz = 4.0e-4 } ]
+contact_friction = [ { pair = "fit", friction = 0.1 } ]
+[[step]]
+name = "frictionless"
+increments = 2
+boundary = [ { set = "ring_bottom", uz = 5.0e-4 }, { set = "ring_top", uz = 5.0e-4 } ]
+contact_friction = [ { pair = "fit", friction = 0.0 } ]
+"#;
+    for integration in ["node-to-segment", "segment"] {
+        let with = |text: String| text.replace("integration = \"node-to-segment\"", &format!("integration = \"{integration}\""));
+        let text = with(deck_with(2.0e-4, 5, &format!("friction = {MU}"), RIGID_TUBE)) + more_steps;
+        let full = run_deck(&text, &[], 1, TIGHT);
+        full.assert_ok();
+        let r = Results::open(&full.h5);
+        let rows = push_history(&r);
+        let step = r.history("step");
+        let last_of = |s: f64| step.iter().rposition(|&k| k == s).unwrap();
+        let mu_n = |row: usize, mu: f64| {
+            let (push, normal, _) = rows[row];
+            assert!((push / (mu * normal) - 1.0).abs() < 1e-6, "{integration} #{}: push {push} N/rad against mu N = {}", row + 1, mu * normal);
+        };
+        mu_n(last_of(2.0), MU);
+        // the lighter step's first increment already slides at the new mu
+        mu_n(last_of(2.0) + 1, 0.1);
+        mu_n(last_of(3.0), 0.1);
+        let (push, normal, _) = rows[last_of(4.0)];
+        assert!(push.abs() < 1e-6 * normal, "{integration}: frictionless: push {push} N/rad");
+        // a restart inside step 3 continues with mu = 0.1
+        let continued = full.dir.path().join("continued.h5");
+        let out = common::command_in(full.dir.path(), 1)
+            .arg("run")
+            .arg(full.dir.path().join("deck.toml"))
+            .args(["--restart", full.h5.to_str().unwrap(), "--increment", &(last_of(2.0) + 2).to_string(), "-q", "-o", continued.to_str().unwrap()])
+            .args(TIGHT)
+            .output()
+            .unwrap();
+        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        common::assert_continues(&full.h5, &continued, last_of(2.0) + 2);
+
+        // frictionless at first, friction from the push on
+        let text = with(deck_with(2.0e-4, 5, "", RIGID_TUBE)).replace("name = \"push\"\n", &format!("name = \"push\"\ncontact_friction = [ {{ pair = \"fit\", friction = {MU} }} ]\n"));
+        let run = run_deck(&text, &[], 1, TIGHT);
+        run.assert_ok();
+        let rows = push_history(&Results::open(&run.h5));
+        let (push, normal, _) = *rows.last().unwrap();
+        assert!((push / (MU * normal) - 1.0).abs() < 1e-6, "{integration}: friction turned on: push {push} N/rad against mu N = {}", MU * normal);
+    }
+}
+
 #[test]
 fn assembled_jacobian_with_friction_matches_finite_differences_for_both_integrations_one_and_two_pass() {
     // PETSc's -snes_test_jacobian at every Newton iterate, on 2 ranks: the pushed fit on an

@@ -189,6 +189,7 @@ pub fn compute(session: &PetscSession, c1: f64, c2: f64, fineness: Fineness) -> 
         time_span: None,
         release_constraints: false,
         without_field_output: false,
+        friction_changes: Vec::new(),
         body_loads: Vec::new(),
     };
     let press = Step {
@@ -200,6 +201,7 @@ pub fn compute(session: &PetscSession, c1: f64, c2: f64, fineness: Fineness) -> 
         time_span: None,
         release_constraints: false,
         without_field_output: false,
+        friction_changes: Vec::new(),
         body_loads: Vec::new(),
     };
     super::in_scratch(session, "convolution", |dir| {

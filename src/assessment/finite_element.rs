@@ -107,6 +107,7 @@ pub fn analyse(session: &PetscSession, p: &BellowsParams, stability: &super::sta
         time_span: None,
         release_constraints: false,
         without_field_output: false,
+        friction_changes: Vec::new(),
         body_loads: Vec::new(),
     };
     // the stroke analysis runs without a stroke too (a pressure-only assessment), for the rate
@@ -121,6 +122,7 @@ pub fn analyse(session: &PetscSession, p: &BellowsParams, stability: &super::sta
         time_span: None,
         release_constraints: false,
         without_field_output: false,
+        friction_changes: Vec::new(),
         body_loads: Vec::new(),
     };
     let pieces = convolution_pieces(p);

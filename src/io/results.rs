@@ -257,7 +257,7 @@ impl ResultsFile {
             fields: model.output.fields,
             precision: model.output.precision,
             contact: !model.contacts.is_empty(),
-            friction: model.contacts.iter().any(|c| c.friction.is_some()),
+            friction: (0..model.contacts.len()).any(|p| model.pair_has_friction(p)),
         };
         let sidecar = (rank == 0).then(|| xdmf::Sidecar::new(path, nn, ne, what)).transpose();
         // rank 0 alone writes the sidecar: every rank learns whether it could

@@ -403,6 +403,7 @@ pub fn model(p: &BellowsParams) -> Result<Model> {
             time_span: None,
             release_constraints: false,
             without_field_output: false,
+            friction_changes: Vec::new(),
             body_loads: Vec::new(),
         },
         Step {
@@ -414,6 +415,7 @@ pub fn model(p: &BellowsParams) -> Result<Model> {
             time_span: None,
             release_constraints: false,
             without_field_output: false,
+            friction_changes: Vec::new(),
             body_loads: Vec::new(),
         },
     ];
@@ -427,6 +429,7 @@ pub fn model(p: &BellowsParams) -> Result<Model> {
             time_span: None,
             release_constraints: false,
             without_field_output: false,
+            friction_changes: Vec::new(),
             body_loads: Vec::new(),
         });
     }

@@ -67,12 +67,14 @@
 //!                                   # the others keeping theirs: [{ set = "bore", value = 150.0 }]
 //! boundary = [ { set = "bottom", uz = 0.0 }, { set = "top", uz = 0.0 } ]
 //! pressure = [ { surface = "inner", value = 50.0 } ]
+//! contact_friction = [ { pair = "fit", friction = 0.1 } ]  # from this step on (optional;
+//!                                   # tangential_penalty / elastic_slip as in [[contact]])
 //! ```
 
 use super::mesh::{blocks, rectangle, Block, MeshSets};
 use super::perturbation::{Analysis, HarmonicComponent, HarmonicDisplacement, Perturbation, RingMotion};
 use super::{
-    default_capture_distance, gmsh, Adjust, AugmentedLagrangian, BodyLoad, Component, ContactIntegration, ContactPair, Convergence, Friction, Kinematics,
+    default_capture_distance, gmsh, Adjust, AugmentedLagrangian, BodyLoad, Component, ContactIntegration, ContactPair, Convergence, Friction, FrictionChange, Kinematics,
     Material, Model, OutputControls, OutputFields, Penalty, Plasticity, Precision, Predictor, PrescribedDisplacement, Pressure, Step, SteppingControls,
     Temperature,
 };
@@ -338,6 +340,20 @@ struct StepSpec {
     /// Body loads on element sets: gravity along the axis or spin about it.
     #[serde(default)]
     body_load: Vec<BodyLoadSpec>,
+    /// Contact pairs whose friction changes from this step on.
+    #[serde(default)]
+    contact_friction: Vec<FrictionChangeSpec>,
+}
+
+/// `{ pair = "fit", friction = 0.1 }`, with `tangential_penalty` or `elastic_slip` as in a
+/// `[[contact]]`; `friction = 0` makes the pair frictionless.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct FrictionChangeSpec {
+    pair: String,
+    friction: f64,
+    tangential_penalty: Option<f64>,
+    elastic_slip: Option<f64>,
 }
 
 #[derive(Deserialize)]
@@ -507,6 +523,15 @@ pub fn parse(text: &str, path: &Path) -> Result<Model> {
                 if let Some(t) = &temperature {
                     temperature_now = t.clone();
                 }
+                let friction_changes = s
+                    .contact_friction
+                    .iter()
+                    .map(|c| {
+                        let friction = Friction::from_values(&c.pair, Some(c.friction), c.tangential_penalty, c.elastic_slip)
+                            .map_err(|e| Error::input(format!("step '{name}': contact_friction: {e}")))?;
+                        Ok(FrictionChange { pair: c.pair.clone(), friction })
+                    })
+                    .collect::<Result<Vec<_>>>()?;
                 steps.push(Step {
                     name,
                     increments,
@@ -517,6 +542,7 @@ pub fn parse(text: &str, path: &Path) -> Result<Model> {
                     body_loads,
                     release_constraints: false,
                     without_field_output: false,
+                    friction_changes,
                 });
             }
             procedure @ ("harmonic" | "frequency" | "buckle") => {
@@ -527,9 +553,9 @@ pub fn parse(text: &str, path: &Path) -> Result<Model> {
                     ("frequency", count) => Analysis::Frequency { eigenvalues: count.unwrap_or(1) },
                     (_, count) => Analysis::Buckle { eigenvalues: count.unwrap_or(1) },
                 };
-                if s.increments.is_some() || s.temperature.is_some() || !s.body_load.is_empty() {
+                if s.increments.is_some() || s.temperature.is_some() || !s.body_load.is_empty() || !s.contact_friction.is_empty() {
                     return Err(Error::input(format!(
-                        "step '{name}': a perturbation step has no increments, temperature or body loads (it is linear, about the state before)"
+                        "step '{name}': a perturbation step has no increments, temperature, body loads or friction changes (it is linear, about the state before)"
                     )));
                 }
                 let (mut displacements, mut rings) = (Vec::new(), Vec::new());

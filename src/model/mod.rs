@@ -404,6 +404,16 @@ pub struct Step {
     pub release_constraints: bool,
     /// Only the history is written in this step, no field output (CalculiX's FREQUENCY=0).
     pub without_field_output: bool,
+    /// Contact pairs whose friction changes at the step's start, for this step and the
+    /// following ones (CalculiX's *CHANGE FRICTION).
+    pub friction_changes: Vec<FrictionChange>,
+}
+
+/// A pair's friction from a step on: `None` makes it frictionless.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FrictionChange {
+    pub pair: String,
+    pub friction: Option<Friction>,
 }
 
 /// A body load on an element set: gravity along the axis or spin about it, its value at the
@@ -449,6 +459,24 @@ impl Model {
     /// Whether the temperature varies over the mesh at the start or in some step.
     pub fn has_temperature_field(&self) -> bool {
         std::iter::once(&self.reference_temperature).chain(self.steps.iter().filter_map(|s| s.temperature.as_ref())).any(|t| t.uniform().is_none())
+    }
+
+    /// The friction of every contact pair (in `contacts` order) in step `step`: the pair's
+    /// own, changed by the friction changes of that step and the steps before it.
+    pub fn friction_in_step(&self, step: usize) -> Vec<Option<Friction>> {
+        let mut friction: Vec<Option<Friction>> = self.contacts.iter().map(|c| c.friction).collect();
+        for change in self.steps.iter().take(step + 1).flat_map(|s| &s.friction_changes) {
+            if let Some(p) = self.contacts.iter().position(|c| c.name == change.pair) {
+                friction[p] = change.friction;
+            }
+        }
+        friction
+    }
+
+    /// Whether contact pair `pair` has friction in some step.
+    pub fn pair_has_friction(&self, pair: usize) -> bool {
+        self.contacts[pair].friction.is_some()
+            || self.steps.iter().flat_map(|s| &s.friction_changes).any(|c| c.pair == self.contacts[pair].name && c.friction.is_some())
     }
 
     pub fn node_set(&self, name: &str) -> Result<&[usize]> {

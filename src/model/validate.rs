@@ -2,7 +2,7 @@
 //! loads the steps name, the contact pairs, and the constraints (one value per degree of
 //! freedom; no body free to move along the axis).
 
-use super::{BodyLoad, Component, Edge, Model, Penalty, Plasticity, Temperature, MAX_INCREMENTS, MIN_YOUNGS_MODULUS};
+use super::{known, BodyLoad, Component, Edge, Model, Penalty, Plasticity, Temperature, MAX_INCREMENTS, MIN_YOUNGS_MODULUS};
 use crate::error::{Error, Result};
 use std::collections::BTreeMap;
 
@@ -127,6 +127,19 @@ impl Model {
                         "step '{}': surface '{}' is given two pressures: give one (their sum, if both act)",
                         step.name, p.surface
                     )));
+                }
+            }
+            for (k, change) in step.friction_changes.iter().enumerate() {
+                if !self.contacts.iter().any(|c| c.name == change.pair) {
+                    return Err(Error::input(format!(
+                        "step '{}': friction of an unknown contact pair '{}' (known: {})",
+                        step.name,
+                        change.pair,
+                        known(self.contacts.iter().map(|c| &c.name))
+                    )));
+                }
+                if step.friction_changes[..k].iter().any(|c| c.pair == change.pair) {
+                    return Err(Error::input(format!("step '{}': the friction of pair '{}' is changed twice", step.name, change.pair)));
                 }
             }
             for (k, b) in step.body_loads.iter().enumerate() {

@@ -16,7 +16,7 @@ use crate::contact::integrated::WeightedGap;
 use crate::contact::search::EdgeGrid;
 use crate::contact::surface::ContactSurface;
 use crate::dist::{DofMap, Partition};
-use crate::model::{ContactIntegration, Model};
+use crate::model::{ContactIntegration, Friction, Model};
 use crate::petsc::sys::PetscInt;
 
 mod output;
@@ -40,7 +40,7 @@ struct Pass {
     /// slave node (node-to-segment, in `owned` order) may not bear on, its own neighbourhood;
     /// fixed by the topology, so listed once. Empty for two surfaces.
     excluded: Vec<Vec<usize>>,
-    /// The pair has friction.
+    /// The pair has friction in some step (its slip references are kept).
     friction: bool,
 }
 
@@ -176,6 +176,8 @@ pub struct ContactAssembly {
     /// Per pass, the end of its engagements in `engagements` (passes in order).
     pass_ends: Vec<usize>,
     evaluated_at: Option<(Vec<[f64; 2]>, Multipliers)>,
+    /// The friction of each pair in the current step (`Model::friction_in_step`).
+    friction: Vec<Option<Friction>>,
     /// Friction left out of the evaluations (the load predictor's tangent; see
     /// `Problem::set_without_friction`).
     without_friction: bool,
@@ -194,10 +196,17 @@ pub struct ContactAssembly {
 }
 
 impl ContactAssembly {
-    /// None when the model has no contact pairs.
+    /// None when the model has no contact pairs. The pairs' friction is that of step `step`.
     /// `slot_of` gives the position of a free DOF in the values the problem gathers at each
     /// evaluation (it gathers every contact node's).
-    pub fn new(model: &Model, partition: &Partition, dofs: &DofMap, slot_of: impl Fn(PetscInt) -> usize, carry: Option<ContactCarry>) -> Option<Self> {
+    pub fn new(
+        model: &Model,
+        step: usize,
+        partition: &Partition,
+        dofs: &DofMap,
+        slot_of: impl Fn(PetscInt) -> usize,
+        carry: Option<ContactCarry>,
+    ) -> Option<Self> {
         if model.contacts.is_empty() {
             return None;
         }
@@ -216,7 +225,7 @@ impl ContactAssembly {
                 (true, ContactIntegration::NodeToSegment) => owned.iter().map(|&i| surface.neighbourhood(surface.nodes[i], c.exclude_neighbours)).collect(),
                 (true, ContactIntegration::Segment) => (0..surface.edges.len()).map(|e| edge_neighbourhood(surface, e, c.exclude_neighbours)).collect(),
             };
-            passes.push(Pass { pair: d.pair, slave, master, weight: d.weight, owned, offset, total: order.len(), excluded, friction: c.friction.is_some() });
+            passes.push(Pass { pair: d.pair, slave, master, weight: d.weight, owned, offset, total: order.len(), excluded, friction: model.pair_has_friction(d.pair) });
         }
         let mut nodes: Vec<usize> = surfaces.iter().flat_map(|s| s.nodes.iter().copied()).collect();
         nodes.sort_unstable();
@@ -281,6 +290,7 @@ impl ContactAssembly {
             gaps,
             pass_ends: Vec::new(),
             evaluated_at: None,
+            friction: model.friction_in_step(step),
             without_friction: false,
             with_tangents: false,
             points: 0,

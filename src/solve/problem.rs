@@ -152,11 +152,12 @@ pub fn initial_history(model: &Model, partition: &Partition) -> History {
 }
 
 impl<'s, 'm> Problem<'s, 'm> {
-    /// `layout` is any global vector with the layout of the unknowns; `history` the committed
-    /// history of this rank's elements.
+    /// The problem of step `step` (its contact pairs' friction); `layout` is any global vector
+    /// with the layout of the unknowns; `history` the committed history of this rank's elements.
     pub fn new(
         session: &'s PetscSession,
         model: &'m Model,
+        step: usize,
         partition: &Partition,
         dofs: &DofMap,
         layout: &Vector<'s>,
@@ -221,7 +222,7 @@ impl<'s, 'm> Problem<'s, 'm> {
             .collect();
         let materials = model.materials.iter().map(material_kernel).collect();
         let trial = history.clone();
-        let contact = ContactAssembly::new(model, partition, dofs, slot_of, contact);
+        let contact = ContactAssembly::new(model, step, partition, dofs, slot_of, contact);
         let local_residual = gathered.duplicate()?;
         let layout = jacobian_layout(&elements, contact.as_ref(), dofs);
         Ok(Problem {

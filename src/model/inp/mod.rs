@@ -130,6 +130,8 @@ struct StepDef {
     has_procedure: bool,
     /// The time points its output requests name: (times, in total time).
     time_points: Vec<(Vec<f64>, bool)>,
+    /// *CHANGE FRICTION: (interaction, its new mu and stick slope), from this step on.
+    friction_changes: Vec<(String, Option<(f64, Option<f64>)>)>,
 }
 
 /// A temperature line: its nodes and the value, degC.
@@ -239,6 +241,26 @@ fn build(cards: &[Card], source_text: String) -> Result<InpModel> {
                 b.interactions.insert(name.clone(), Interaction { slope: None, friction: None });
                 b.current_interaction = Some(name);
                 last_owner = "SURFACE INTERACTION";
+            }
+            "CHANGE FRICTION" => {
+                b.step_mut(card)?;
+                card.only(&["INTERACTION"])?;
+                let name = card.required("INTERACTION")?.to_uppercase();
+                if !b.interactions.contains_key(&name) {
+                    return Err(card.error(format!("surface interaction {name} is not defined")));
+                }
+                b.current_interaction = Some(name);
+                last_owner = "CHANGE FRICTION";
+            }
+            "FRICTION" if last_owner == "CHANGE FRICTION" => {
+                let name = b.current_interaction.clone().expect("set by *CHANGE FRICTION");
+                let friction = properties::friction_values(card)?;
+                let step = b.step_mut(card)?;
+                if step.friction_changes.iter().any(|(i, _)| *i == name) {
+                    return Err(card.error(format!("the friction of interaction {name} is changed twice in the step")));
+                }
+                step.friction_changes.push((name, friction));
+                last_owner = "";
             }
             "SURFACE BEHAVIOR" | "FRICTION" => {
                 if last_owner != "SURFACE INTERACTION" {
@@ -424,9 +446,9 @@ impl Builder {
             None if uses_temperature => return Err(Error::input("*TEMPERATURE needs *INITIAL CONDITIONS, TYPE=TEMPERATURE (the stress-free temperature)")),
             None => Temperature::Uniform(0.0),
         };
-        let steps = self.expand_steps(&reference_temperature)?;
-
         let contacts = self.contact_pairs()?;
+        let steps = self.expand_steps(&reference_temperature, &contacts)?;
+        let contacts = contacts.into_iter().map(|c| c.pair).collect();
         let mut stepping = SteppingControls::default();
         stepping.easy_iterations = self.easy_iterations.unwrap_or(stepping.easy_iterations);
         stepping.predictor = self.predictor.as_ref().map_or(stepping.predictor, |p| p.0);
@@ -654,6 +676,31 @@ mod tests {
         assert_eq!(m.materials[1].youngs_modulus, 200000.0);
         assert_eq!(m.contacts.len(), 1);
         assert_eq!(m.contacts[0].penalty, crate::model::Penalty::Stiffness(1e5));
+    }
+
+    #[test]
+    fn change_friction_changes_every_pair_of_its_interaction_from_its_step_on() {
+        let pairs = "*SURFACE, NAME=L\nA, S2\n*SURFACE, NAME=R\nA, S4\n*SURFACE, NAME=T\nA, S3\n\
+*SURFACE INTERACTION, NAME=I\n*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR\n1.e5\n*FRICTION\n0.2, 4.e4\n\
+*CONTACT PAIR, INTERACTION=I\nL, R\nR, L\n*CONTACT PAIR, INTERACTION=I\nT, R\n";
+        let step = |change: &str| format!("*STEP\n*STATIC\n{change}*BOUNDARY\nBOTTOM, 2, 2\n*END STEP\n");
+        let deck = format!("{pairs}{}{}{}", step(""), step("*CHANGE FRICTION, INTERACTION=i\n*FRICTION\n0.1\n"), step(""));
+        let m = read(&deck).model;
+        let mu = |s: usize| m.friction_in_step(s).iter().map(|f| f.map(|f| (f.coefficient, f.tangential_penalty))).collect::<Vec<_>>();
+        // the two-pass pair L-R carries each direction's half: twice the stick slope
+        assert_eq!(mu(0), vec![Some((0.2, Some(8e4))), Some((0.2, Some(4e4)))]);
+        assert_eq!(mu(1), vec![Some((0.1, None)), Some((0.1, None))], "the normal penalty as the stick slope when none is given");
+        assert_eq!(mu(2), mu(1), "the change holds in the steps after it");
+        for (change, needle) in [
+            ("*CHANGE FRICTION, INTERACTION=NONE\n*FRICTION\n0.1\n", "surface interaction NONE is not defined"),
+            ("*CHANGE FRICTION, INTERACTION=I\n*FRICTION\n0.1\n*CHANGE FRICTION, INTERACTION=I\n*FRICTION\n0.3\n", "changed twice"),
+            ("*CHANGE FRICTION, INTERACTION=I\n*FRICTION\n-0.1\n", "friction coefficient -0.1"),
+        ] {
+            let err = parse(&format!("{MESH}{pairs}{}", step(change)), Path::new("t.inp")).err().unwrap().to_string();
+            assert!(err.contains(needle), "{change}: {err}");
+        }
+        let err = parse(&format!("{MESH}{pairs}*CHANGE FRICTION, INTERACTION=I\n*FRICTION\n0.1\n{}", step("")), Path::new("t.inp")).err().unwrap().to_string();
+        assert!(err.contains("inside a *STEP"), "{err}");
     }
 
     #[test]

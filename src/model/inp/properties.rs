@@ -70,19 +70,7 @@ impl Builder {
     pub(super) fn interaction_property(&mut self, card: &Card) -> Result<()> {
         let name = self.current_interaction.clone().expect("checked by the caller");
         if card.keyword == "FRICTION" {
-            // Abaqus' parameters (ELASTIC SLIP, SLIP TOLERANCE, EXPONENTIAL DECAY, ...) are refused
-            card.only(&[])?;
-            let d = card.data.first().ok_or_else(|| card.error("needs the friction coefficient (mu[, stick slope])"))?;
-            let mu = d.number("FRICTION", 0, "friction coefficient", None)?;
-            // CalculiX's second value: the stick slope, MPa/mm (tangential stress per unit slip)
-            let stick = (d.fields.len() > 1 && !d.fields[1].is_empty()).then(|| d.number("FRICTION", 1, "stick slope (MPa/mm)", None)).transpose()?;
-            if !mu.is_finite() || mu < 0.0 {
-                return Err(card.error(format!("friction coefficient {mu}: give mu >= 0")));
-            }
-            if let Some(k) = stick.filter(|k| !k.is_finite() || *k <= 0.0) {
-                return Err(card.error(format!("stick slope {k}: give a positive stiffness (MPa/mm)")));
-            }
-            self.interactions.get_mut(&name).expect("registered").friction = (mu > 0.0).then_some((mu, stick));
+            self.interactions.get_mut(&name).expect("registered").friction = friction_values(card)?;
             return Ok(());
         }
         card.only(&["PRESSURE-OVERCLOSURE"])?;
@@ -148,8 +136,8 @@ impl Builder {
     /// The deck's contact pairs as slideline's: a pair listed both ways with one interaction
     /// is one two-pass pair (each direction carries half its force, so its penalty is twice
     /// the slope: the same forces as CalculiX's two pairs); a pair listed twice is refused.
-    pub(super) fn contact_pairs(&mut self) -> Result<Vec<ContactPair>> {
-        let mut contacts: Vec<ContactPair> = Vec::new();
+    pub(super) fn contact_pairs(&mut self) -> Result<Vec<ListedContact>> {
+        let mut contacts: Vec<ListedContact> = Vec::new();
         let mut merged = vec![false; self.contacts.len()];
         for (i, listed) in self.contacts.iter().enumerate() {
             if merged[i] {
@@ -192,7 +180,7 @@ impl Builder {
             let name = if slave == master { slave.clone() } else { format!("{slave}-{master}") };
             // two-pass: each direction carries half the force, so its stiffnesses are doubled
             let passes = if two_pass { 2.0 } else { 1.0 };
-            let friction = friction.map(|(mu, stick)| Friction { coefficient: mu, tangential_penalty: stick.map(|k| passes * k), elastic_slip: None });
+            let friction = pair_friction(friction, passes);
             self.notes.push(format!(
                 "contact {name}: {} penalty {slope} N/mm^3 (the LINEAR slope), {}{}",
                 match friction {
@@ -209,7 +197,7 @@ impl Builder {
                 },
                 if two_pass { "; listed both ways: one two-pass pair, each direction carrying half the force of penalty 2 x slope" } else { "" }
             ));
-            contacts.push(ContactPair {
+            let pair = ContactPair {
                 name,
                 slave: slave.clone(),
                 master: master.clone(),
@@ -221,10 +209,42 @@ impl Builder {
                 exclude_neighbours: 2,
                 friction,
                 adjust: adjust.clone(),
-            });
+            };
+            contacts.push(ListedContact { pair, interaction: interaction.clone(), passes });
         }
         Ok(contacts)
     }
+}
+
+/// A contact pair of the deck, with its interaction's name and its number of passes (for a
+/// *CHANGE FRICTION of the interaction).
+pub(super) struct ListedContact {
+    pub pair: ContactPair,
+    pub interaction: String,
+    pub passes: f64,
+}
+
+/// A *FRICTION card's mu and CalculiX's stick slope (MPa/mm, tangential stress per unit
+/// slip), None for mu = 0; Abaqus' parameters (ELASTIC SLIP, SLIP TOLERANCE, EXPONENTIAL
+/// DECAY, ...) are refused.
+pub(super) fn friction_values(card: &Card) -> Result<Option<(f64, Option<f64>)>> {
+    card.only(&[])?;
+    let d = card.data.first().ok_or_else(|| card.error("needs the friction coefficient (mu[, stick slope])"))?;
+    let mu = d.number("FRICTION", 0, "friction coefficient", None)?;
+    let stick = (d.fields.len() > 1 && !d.fields[1].is_empty()).then(|| d.number("FRICTION", 1, "stick slope (MPa/mm)", None)).transpose()?;
+    if !mu.is_finite() || mu < 0.0 {
+        return Err(card.error(format!("friction coefficient {mu}: give mu >= 0")));
+    }
+    if let Some(k) = stick.filter(|k| !k.is_finite() || *k <= 0.0) {
+        return Err(card.error(format!("stick slope {k}: give a positive stiffness (MPa/mm)")));
+    }
+    Ok((mu > 0.0).then_some((mu, stick)))
+}
+
+/// slideline's friction of a pair for CalculiX's mu and stick slope: a two-pass pair's
+/// directions (`passes` = 2) each carry half the force, so its stiffness is doubled.
+pub(super) fn pair_friction(friction: Option<(f64, Option<f64>)>, passes: f64) -> Option<Friction> {
+    friction.map(|(mu, stick)| Friction { coefficient: mu, tangential_penalty: stick.map(|k| passes * k), elastic_slip: None })
 }
 
 /// TYPE=ISO, also spelt ISOTROPIC (both are Abaqus' and CalculiX's).

@@ -1,12 +1,13 @@
 //! The history part of a deck: *AMPLITUDE, *INITIAL CONDITIONS / *TEMPERATURE, *STEP and
-//! *STATIC, *BOUNDARY, *DLOAD, and the steps they expand to (split at amplitude points).
+//! *STATIC, *BOUNDARY, *DLOAD, *CHANGE FRICTION, and the steps they expand to (split at amplitude points).
 
 use super::cards::{error_at, normalise, Card, DataLine};
+use super::properties::{pair_friction, ListedContact};
 use super::{face_side, Builder, StepDef, Target};
 use crate::element::body_load::BodyForce;
 use crate::error::{Error, Result};
 use crate::model::mesh::Edge;
-use crate::model::{BodyLoad, Component, Predictor, PrescribedDisplacement, Pressure, Step, Temperature};
+use crate::model::{BodyLoad, Component, FrictionChange, Predictor, PrescribedDisplacement, Pressure, Step, Temperature};
 use std::collections::{BTreeMap, BTreeSet};
 
 impl Builder {
@@ -123,6 +124,7 @@ impl Builder {
             file_requests: [0, 0],
             has_procedure: false,
             time_points: Vec::new(),
+            friction_changes: Vec::new(),
         });
         self.in_step = true;
         Ok(())
@@ -357,7 +359,8 @@ impl Builder {
     /// slideline steps ramp every target linearly from the previous step's value; a step whose
     /// loads follow an *AMPLITUDE is split at the amplitude's points so that the piecewise-linear
     /// history is followed exactly.
-    pub(super) fn expand_steps(&mut self, initial_temperature: &Temperature) -> Result<Vec<Step>> {
+    /// The deck's steps as slideline's (`contacts`: the deck's pairs, for *CHANGE FRICTION).
+    pub(super) fn expand_steps(&mut self, initial_temperature: &Temperature, contacts: &[ListedContact]) -> Result<Vec<Step>> {
         let mut displacement_now: BTreeMap<(String, Component), f64> = self.fixed.iter().map(|k| (k.clone(), 0.0)).collect();
         let mut pressure_now: BTreeMap<String, f64> = BTreeMap::new();
         let mut body_now: BTreeMap<(String, bool), f64> = BTreeMap::new();
@@ -468,6 +471,21 @@ impl Builder {
                 let time_span = Some([total_time + previous_time, total_time + time]);
                 let release_constraints = s.new_boundaries && j == 0;
                 let without_field_output = s.file_requests[0] > 0 && s.file_requests[1] == 0;
+                // a friction change acts from the step's start: on its first sub-step, for every
+                // pair of the interaction
+                let friction_changes = if j > 0 {
+                    Vec::new()
+                } else {
+                    s.friction_changes
+                        .iter()
+                        .flat_map(|(interaction, friction)| {
+                            contacts
+                                .iter()
+                                .filter(move |c| c.interaction == *interaction)
+                                .map(|c| FrictionChange { pair: c.pair.name.clone(), friction: pair_friction(*friction, c.passes) })
+                        })
+                        .collect()
+                };
                 out.push(Step {
                     name,
                     increments: share,
@@ -478,6 +496,7 @@ impl Builder {
                     body_loads,
                     release_constraints,
                     without_field_output,
+                    friction_changes,
                 });
                 previous_time = time;
             }

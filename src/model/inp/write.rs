@@ -1,7 +1,7 @@
 //! A [`Model`] written as a CalculiX/Abaqus deck that both CalculiX and slideline's reader run:
 //! CAX8 mesh, node and element sets, element-face surfaces, materials (*PLASTIC as a table),
 //! one *SURFACE INTERACTION and *CONTACT PAIR per pair with its penalty as the LINEAR slope
-//! (and its *FRICTION: mu and the stick slope),
+//! (and its *FRICTION: mu and the stick slope; a step's change of it as *CHANGE FRICTION),
 //! *DLOAD per loaded face label (and GRAV / CENTRIF for body loads), the steps with *STATIC (the requested increment, which both
 //! codes cut back when Newton fails and never exceed; the smallest is `min_increment`), and
 //! *NODE PRINT of every constrained set's reaction.
@@ -12,7 +12,7 @@
 
 use crate::element::body_load::BodyForce;
 use crate::error::{Error, Result};
-use crate::model::{Component, ContactIntegration, Model, Penalty, Plasticity, Predictor, Temperature};
+use crate::model::{Component, ContactIntegration, Friction, Model, Penalty, Plasticity, Predictor, Temperature};
 use std::collections::BTreeSet;
 use std::fmt::Write as _;
 use std::path::Path;
@@ -25,6 +25,22 @@ const LINEAR_TABLE_END_STRAIN: f64 = 10.0;
 pub fn write(model: &Model, title: &str, path: &Path) -> Result<()> {
     let text = to_inp(model, title)?;
     std::fs::write(path, text).map_err(|e| Error::Output { path: path.to_path_buf(), message: e.to_string() })
+}
+
+/// CalculiX's *FRICTION of pair `name`: mu and the stick slope per listing, as the reader maps
+/// it back (a two-pass pair's directions each carry half, so each takes half the slope).
+fn friction_card(w: &mut String, name: &str, f: &Friction, two_pass: bool) -> Result<()> {
+    if f.elastic_slip.is_some() {
+        return Err(Error::input(format!(
+            "contact '{name}': friction with an elastic slip has no CalculiX form (its *FRICTION takes a stick slope): give --tangential-penalty for the export"
+        )));
+    }
+    let passes = if two_pass { 2.0 } else { 1.0 };
+    let _ = match f.tangential_penalty {
+        Some(k) => writeln!(w, "*FRICTION\n{}, {}", num(f.coefficient), num(k / passes)),
+        None => writeln!(w, "*FRICTION\n{}", num(f.coefficient)),
+    };
+    Ok(())
 }
 
 /// The deck's text.
@@ -115,23 +131,7 @@ pub fn to_inp(model: &Model, title: &str) -> Result<String> {
         let name = checked_name(&c.name)?;
         let _ = writeln!(w, "*SURFACE INTERACTION, NAME={name}\n*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR\n{}", num(slope));
         if let Some(f) = &c.friction {
-            // CalculiX's *FRICTION: mu and the stick slope per listing, as the reader maps it
-            // back (a two-pass pair's directions each carry half, so each takes half the slope)
-            if f.elastic_slip.is_some() {
-                return Err(Error::input(format!(
-                    "contact '{}': friction with an elastic slip has no CalculiX form (its *FRICTION takes a stick slope): give --tangential-penalty for the export",
-                    c.name
-                )));
-            }
-            let passes = if two_pass { 2.0 } else { 1.0 };
-            match f.tangential_penalty {
-                Some(k) => {
-                    let _ = writeln!(w, "*FRICTION\n{}, {}", num(f.coefficient), num(k / passes));
-                }
-                None => {
-                    let _ = writeln!(w, "*FRICTION\n{}", num(f.coefficient));
-                }
-            }
+            friction_card(w, &c.name, f, two_pass)?;
         }
         let _ = writeln!(w, "*CONTACT PAIR, INTERACTION={name}, TYPE={kind}\n{}, {}", c.slave, c.master);
         if two_pass {
@@ -166,8 +166,18 @@ pub fn to_inp(model: &Model, title: &str) -> Result<String> {
             // CalculiX's defaults but for I_G, the iterations after which an increment grows
             let _ = writeln!(w, "*CONTROLS, PARAMETERS=TIME INCREMENTATION\n4, 8, 9, 16, 10, {}", model.stepping.easy_iterations);
         }
-        if !step.displacements.is_empty() {
-            let _ = writeln!(w, "*BOUNDARY");
+        for change in &step.friction_changes {
+            let c = model.contacts.iter().find(|c| c.name == change.pair).expect("validated: the pair exists");
+            let _ = writeln!(w, "*CHANGE FRICTION, INTERACTION={}", checked_name(&c.name)?);
+            match &change.friction {
+                Some(f) => friction_card(w, &c.name, f, c.two_pass && c.slave != c.master)?,
+                None => {
+                    let _ = writeln!(w, "*FRICTION\n0.");
+                }
+            }
+        }
+        if !step.displacements.is_empty() || step.release_constraints {
+            let _ = writeln!(w, "*BOUNDARY{}", if step.release_constraints { ", OP=NEW" } else { "" });
             for d in &step.displacements {
                 let dof = match d.component {
                     Component::R => 1,
@@ -203,7 +213,8 @@ pub fn to_inp(model: &Model, title: &str) -> Result<String> {
         for set in &constrained {
             let _ = writeln!(w, "*NODE PRINT, NSET={set}, TOTALS=ONLY\nRF");
         }
-        let _ = writeln!(w, "*NODE FILE\nU\n*EL FILE\nS, PEEQ\n*END STEP");
+        let frequency = if step.without_field_output { ", FREQUENCY=0" } else { "" };
+        let _ = writeln!(w, "*NODE FILE{frequency}\nU\n*EL FILE{frequency}\nS, PEEQ\n*END STEP");
     }
     Ok(out)
 }
@@ -278,5 +289,58 @@ body_load = [ { elements = "all", spin = 3000.0 }, { elements = "all", gravity =
         let mut loads: Vec<(String, BodyForce)> = read.steps[0].body_loads.iter().map(|b| (b.elements.clone(), b.force)).collect();
         loads.sort_by(|a, b| a.1.value().total_cmp(&b.1.value()));
         assert_eq!(loads, vec![("ALL".to_string(), BodyForce::Gravity(-9810.0)), ("ALL".to_string(), BodyForce::Spin(9.0e6))]);
+    }
+
+    /// Friction changed in steps (CalculiX's *CHANGE FRICTION) survives the trip through a
+    /// written deck and the reader: per step, every pair's friction, a two-pass pair's stick
+    /// slope included (written per listing, halved, and doubled back).
+    #[test]
+    fn friction_changes_are_written_and_read_back() {
+        let deck = r#"
+[[mesh.block]]
+name = "a"
+r = [10.0, 20.0]
+z = [0.0, 5.0]
+divisions = [2, 1]
+[[mesh.block]]
+name = "b"
+r = [20.0, 30.0]
+z = [0.0, 5.0]
+divisions = [2, 1]
+[[material]]
+name = "steel"
+youngs_modulus = 200000.0
+poissons_ratio = 0.3
+[[contact]]
+name = "one"
+slave = "a_outer"
+master = "b_inner"
+penalty = 1.0e5
+friction = 0.2
+[[contact]]
+name = "two"
+slave = "b_top"
+master = "a_top"
+two_pass = true
+penalty = 1.0e5
+[[step]]
+name = "first"
+boundary = [ { set = "a_bottom", uz = 0.0 }, { set = "b_bottom", uz = 0.0 } ]
+[[step]]
+name = "second"
+contact_friction = [ { pair = "one", friction = 0.1, tangential_penalty = 3.0e4 }, { pair = "two", friction = 0.3, tangential_penalty = 2.0e4 } ]
+[[step]]
+name = "third"
+contact_friction = [ { pair = "one", friction = 0.0 } ]
+"#;
+        let model = crate::model::deck::parse(deck, Path::new("pair.toml")).unwrap();
+        let text = super::to_inp(&model, "pairs").unwrap();
+        assert!(text.contains("*CHANGE FRICTION, INTERACTION=two\n*FRICTION\n0.3, 10000"), "{text}");
+        let read = crate::model::inp::parse(&text, Path::new("pairs.inp")).unwrap().model;
+        for step in 0..3 {
+            assert_eq!(read.friction_in_step(step), model.friction_in_step(step), "step {}", step + 1);
+        }
+        assert_eq!(model.friction_in_step(2)[0], None);
+        assert_eq!(model.friction_in_step(2)[1].map(|f| f.coefficient), Some(0.3), "a change holds in the steps after it");
     }
 }

@@ -90,7 +90,7 @@ impl ContactAssembly {
             }
             // a node without a reference (beyond reach when the increment started) slides freely
             // in this increment and has one from the next on
-            let friction = pair.friction.filter(|_| !self.without_friction);
+            let friction = self.friction[pass.pair].filter(|_| !self.without_friction);
             if let (Some(f), true, Some(reference)) = (friction, closed, self.slip_committed[p][k]) {
                 let friction = FrictionLaw { coefficient: f.coefficient, penalty: f.tangential_penalty.unwrap_or(eps), elastic_slip: f.elastic_slip };
                 let recipe = friction_recipe(master, &x, xs, edge, proj.xi, reference, law, friction);
@@ -122,7 +122,8 @@ impl ContactAssembly {
             s.point += first;
             self.points = self.points.max(s.point + 1);
         }
-        let grid = pair.friction.map(|_| EdgeGrid::new(master, &x, pair.capture_distance));
+        // the slip references are kept up to date wherever the pair has friction in some step
+        let grid = pass.friction.then(|| EdgeGrid::new(master, &x, pair.capture_distance));
         // gaps[k] is owned slave node k's
         for (k, g) in gaps.iter().enumerate() {
             if g.samples.is_empty() {
@@ -147,7 +148,7 @@ impl ContactAssembly {
                 self.roundoff += (ROUNDOFF_ULPS * f64::EPSILON * pass.weight * eps * area * xs[0].hypot(xs[1])).powi(2);
                 out.next_slot().set_integrated(node, &g.samples, pass.weight * eps / area, pass.weight * pressure);
             }
-            let (Some(f), Some(grid), false) = (pair.friction, grid.as_ref(), self.without_friction) else { continue };
+            let (Some(grid), false) = (grid.as_ref(), self.without_friction) else { continue };
             // the node's own projection: where its slip is measured and its friction acts
             let excluded = if pass.slave == pass.master { slave.neighbourhood(node, pair.exclude_neighbours) } else { Vec::new() };
             let found = grid.closest_edge(master, &x, xs, &excluded, pair.capture_distance, None).filter(|(_, proj)| {
@@ -159,7 +160,7 @@ impl ContactAssembly {
                 continue;
             };
             self.slip_trial[p][k] = Some(SlipPoint { edge, xi: proj.xi, traction: 0.0 });
-            let Some(reference) = self.slip_committed[p][k].filter(|_| trial >= 0.0) else { continue };
+            let (Some(f), Some(reference)) = (self.friction[pass.pair], self.slip_committed[p][k].filter(|_| trial >= 0.0)) else { continue };
             // the pressure is given (the integrated one): a law of penalty 0 and multiplier p
             let law = ContactLaw { area: area * pass.weight, penalty: 0.0, multiplier: pressure, free_ends: [false; 2] };
             let friction = FrictionLaw { coefficient: f.coefficient, penalty: f.tangential_penalty.unwrap_or(eps), elastic_slip: f.elastic_slip };
