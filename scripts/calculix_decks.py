@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
 """Compares the final nodal displacements of a CalculiX run (JOB.dat, its last
 'displacements' blocks, any set) with slideline's results file, node by node, and prints one
-line: nodes compared, the largest |u_r| and |u_z| of CalculiX, and the largest difference of
-each as a fraction of that. Used by scripts/calculix-test-decks.sh; needs h5py and numpy
+line: nodes compared, the largest |u_r| and |u_z| of CalculiX, the largest difference of
+each as a fraction of that, and the difference of u_r at the node where ccx's |u_r| is largest (the
+headline number). Used by scripts/calculix-test-decks.sh; needs h5py and numpy
 (Debian's python3-h5py).
 
 usage: calculix_decks.py JOB.dat RESULTS.h5
@@ -50,7 +51,13 @@ def main():
     scale = np.abs(a).max(axis=0)
     diff = np.abs(a - b).max(axis=0)
     rel = [d / s if s > 0 else float("nan") for d, s in zip(diff, scale)]
-    print(f"{len(common)} nodes: max |u_r| {scale[0]:.4e}, |u_z| {scale[1]:.4e} mm; largest difference {100 * rel[0]:.3f} % / {100 * rel[1]:.3f} %")
+    # the headline: u_r at the node of ccx's largest |u_r| (the rim of a disc, a fit's bore)
+    peak = int(np.argmax(np.abs(a[:, 0])))
+    at_peak = abs(a[peak, 0] - b[peak, 0]) / abs(a[peak, 0])
+    print(
+        f"{len(common)} nodes: max |u_r| {scale[0]:.4e}, |u_z| {scale[1]:.4e} mm; largest difference {100 * rel[0]:.3f} % / {100 * rel[1]:.3f} %;"
+        f" u_r at node {common[peak]} (ccx's largest) {100 * at_peak:.3f} %"
+    )
 
 
 main()

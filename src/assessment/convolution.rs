@@ -190,6 +190,7 @@ pub fn compute(session: &PetscSession, c1: f64, c2: f64, fineness: Fineness) -> 
         release_constraints: false,
         without_field_output: false,
         friction_changes: Vec::new(),
+        nodal_forces: Vec::new(),
         body_loads: Vec::new(),
     };
     let press = Step {
@@ -202,6 +203,7 @@ pub fn compute(session: &PetscSession, c1: f64, c2: f64, fineness: Fineness) -> 
         release_constraints: false,
         without_field_output: false,
         friction_changes: Vec::new(),
+        nodal_forces: Vec::new(),
         body_loads: Vec::new(),
     };
     super::in_scratch(session, "convolution", |dir| {

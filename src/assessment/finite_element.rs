@@ -108,6 +108,7 @@ pub fn analyse(session: &PetscSession, p: &BellowsParams, stability: &super::sta
         release_constraints: false,
         without_field_output: false,
         friction_changes: Vec::new(),
+        nodal_forces: Vec::new(),
         body_loads: Vec::new(),
     };
     // the stroke analysis runs without a stroke too (a pressure-only assessment), for the rate
@@ -123,6 +124,7 @@ pub fn analyse(session: &PetscSession, p: &BellowsParams, stability: &super::sta
         release_constraints: false,
         without_field_output: false,
         friction_changes: Vec::new(),
+        nodal_forces: Vec::new(),
         body_loads: Vec::new(),
     };
     let pieces = convolution_pieces(p);

@@ -404,6 +404,7 @@ pub fn model(p: &BellowsParams) -> Result<Model> {
             release_constraints: false,
             without_field_output: false,
             friction_changes: Vec::new(),
+            nodal_forces: Vec::new(),
             body_loads: Vec::new(),
         },
         Step {
@@ -416,6 +417,7 @@ pub fn model(p: &BellowsParams) -> Result<Model> {
             release_constraints: false,
             without_field_output: false,
             friction_changes: Vec::new(),
+            nodal_forces: Vec::new(),
             body_loads: Vec::new(),
         },
     ];
@@ -430,6 +432,7 @@ pub fn model(p: &BellowsParams) -> Result<Model> {
             release_constraints: false,
             without_field_output: false,
             friction_changes: Vec::new(),
+            nodal_forces: Vec::new(),
             body_loads: Vec::new(),
         });
     }

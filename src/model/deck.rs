@@ -543,6 +543,7 @@ pub fn parse(text: &str, path: &Path) -> Result<Model> {
                     release_constraints: false,
                     without_field_output: false,
                     friction_changes,
+                    nodal_forces: Vec::new(),
                 });
             }
             procedure @ ("harmonic" | "frequency" | "buckle") => {

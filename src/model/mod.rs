@@ -383,6 +383,15 @@ pub struct Pressure {
     pub value: f64,
 }
 
+/// A concentrated force on a node (N per radian: the ring's total over 2 pi), reached at the
+/// end of the step, ramped from its value at the step's start; a dead load.
+#[derive(Clone, Debug, PartialEq)]
+pub struct NodalForce {
+    pub node: usize,
+    pub component: Component,
+    pub value: f64,
+}
+
 /// One load step: targets at its end, reached in `increments` equal increments. What a step
 /// does not mention keeps its value from the previous step (constraints persist, as in Abaqus).
 #[derive(Clone, Debug, PartialEq)]
@@ -391,6 +400,9 @@ pub struct Step {
     pub increments: usize,
     pub displacements: Vec<PrescribedDisplacement>,
     pub pressures: Vec<Pressure>,
+    /// Nodal forces at the end of the step (ramped from the previous step's, per node and
+    /// component).
+    pub nodal_forces: Vec<NodalForce>,
     /// Temperature (degC) at the end of the step, ramped from the step's start; `None` keeps
     /// the previous one.
     pub temperature: Option<Temperature>,

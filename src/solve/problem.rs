@@ -41,6 +41,8 @@ pub struct LoadState {
     pub pressures: Vec<(String, f64)>,
     /// (element set, body force per unit mass).
     pub body_loads: Vec<(String, BodyForce)>,
+    /// (node, component, force per radian).
+    pub nodal_forces: Vec<(usize, usize, f64)>,
 }
 
 /// PETSc log stages of the assembly, so `-log_view` splits a Newton iteration into residual,
@@ -101,6 +103,8 @@ pub struct Problem<'s, 'm> {
     scatter: Scatter<'s>,
     /// Position in `gathered` of every (node, component) it holds, usize::MAX elsewhere.
     node_slots: Vec<[usize; 2]>,
+    /// The nodes this rank owns: it alone adds their nodal forces.
+    owns_node: Vec<bool>,
     /// This rank's residual contributions, in `gathered`'s order.
     local_residual: Vector<'s>,
     session: &'s PetscSession,
@@ -234,6 +238,7 @@ impl<'s, 'm> Problem<'s, 'm> {
             gathered,
             scatter,
             node_slots,
+            owns_node: partition.node_owner.iter().map(|&r| r == partition.rank).collect(),
             local_residual,
             session,
             dofs: dofs.clone(),
@@ -247,7 +252,7 @@ impl<'s, 'm> Problem<'s, 'm> {
             force_sums: [0.0, 0.0],
             surface: SurfaceBranch::Elastic,
             contact,
-            load: LoadState { prescribed: Vec::new(), temperature: model.reference_temperature.clone(), pressures: Vec::new(), body_loads: Vec::new() },
+            load: LoadState { prescribed: Vec::new(), temperature: model.reference_temperature.clone(), pressures: Vec::new(), body_loads: Vec::new(), nodal_forces: Vec::new() },
             load_generation: 0,
             stages: Stages::new()?,
         })

@@ -15,6 +15,8 @@ pub struct StepLoads {
     pub pressures: BTreeMap<String, (f64, f64)>,
     /// (element set, spin) -> (start, end) gravity along the axis or omega^2.
     pub body_loads: BTreeMap<(String, bool), (f64, f64)>,
+    /// (node, component) -> (start, end) force, N per radian.
+    pub nodal_forces: BTreeMap<(usize, usize), (f64, f64)>,
     /// (start, end) temperature, degC.
     pub temperature: (Temperature, Temperature),
     /// Node sets with a prescribed displacement in this or an earlier step (reaction output).
@@ -54,9 +56,16 @@ impl StepLoads {
             let start = body_loads.get(&key).map(|v| v.0).unwrap_or(0.0);
             body_loads.insert(key, (start, b.force.value()));
         }
+        let mut nodal_forces: BTreeMap<(usize, usize), (f64, f64)> =
+            previous.map(|p| p.nodal_forces.iter().map(|(&k, &(_, end))| (k, (end, end))).collect()).unwrap_or_default();
+        for f in &step.nodal_forces {
+            let key = (f.node, f.component as usize);
+            let start = nodal_forces.get(&key).map(|v| v.0).unwrap_or(0.0);
+            nodal_forces.insert(key, (start, f.value));
+        }
         let t0 = previous.map_or(&model.reference_temperature, |p| &p.temperature.1).clone();
         let t1 = step.temperature.clone().unwrap_or_else(|| t0.clone());
-        StepLoads { prescribed, pressures, body_loads, temperature: (t0, t1), constrained_sets }
+        StepLoads { prescribed, pressures, body_loads, nodal_forces, temperature: (t0, t1), constrained_sets }
     }
 
     /// Which DOFs are prescribed in this step.
@@ -84,6 +93,7 @@ impl StepLoads {
                 .iter()
                 .map(|((set, spin), &v)| (set.clone(), if *spin { BodyForce::Spin(lerp(v)) } else { BodyForce::Gravity(lerp(v)) }))
                 .collect(),
+            nodal_forces: self.nodal_forces.iter().map(|(&(n, c), &v)| (n, c, lerp(v))).collect(),
         }
     }
 }

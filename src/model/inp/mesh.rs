@@ -37,14 +37,15 @@ impl Builder {
         self.node_index.get(&id).copied().ok_or_else(|| error_at(&d.at, keyword, format!("node {id} is not defined")))
     }
 
-    /// Point masses (type MASS, one node each): checked and left out (a static step does not
-    /// use them); their set is remembered so that *MASS and a load on it can say so.
+    /// Point masses (type MASS, one node each): not elements of slideline's mesh; their nodes
+    /// are kept by set, for the *MASS card and a GRAV or CENTRIF load on the set.
     fn point_masses(&mut self, card: &Card) -> Result<()> {
-        for d in &card.data {
-            self.node(d, "ELEMENT", 1)?;
-        }
         let set = card.param("ELSET").map(|s| s.to_uppercase()).ok_or_else(|| card.error("point masses (TYPE=MASS) need an ELSET for their *MASS card"))?;
-        self.mass_sets.push(set);
+        let mut nodes = Vec::new();
+        for d in &card.data {
+            nodes.push(self.node(d, "ELEMENT", 1)?);
+        }
+        self.point_masses.entry(set).or_insert((Vec::new(), None)).0.extend(nodes);
         Ok(())
     }
 

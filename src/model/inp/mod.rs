@@ -113,6 +113,10 @@ struct StepDef {
     minimum: Option<f64>,
     boundaries: Vec<Target<(String, Component)>>,
     pressures: Vec<Target<String>>,
+    /// *CLOAD: (node, component) -> force per radian; with OP=NEW, earlier ones not restated
+    /// are removed.
+    cloads: Vec<Target<(usize, Component)>>,
+    new_cloads: bool,
     /// *DLOAD GRAV and CENTRIF: (element set, spin) -> g along the axis, or omega^2.
     body: Vec<Target<(String, bool)>>,
     /// *TEMPERATURE lines in order: (their nodes, the value at the step's end).
@@ -147,8 +151,11 @@ struct Builder {
     node_sets: BTreeMap<String, Vec<usize>>,
     element_sets: BTreeMap<String, Vec<usize>>,
     surfaces: BTreeMap<String, Vec<Edge>>,
-    /// Element sets of point masses (type MASS), left out of the model.
-    mass_sets: Vec<String>,
+    /// Point masses (type MASS) by element set: their nodes and the *MASS value (t, the whole
+    /// ring's, as CalculiX's and its *CLOAD); not in the model's mesh.
+    point_masses: BTreeMap<String, (Vec<usize>, Option<f64>)>,
+    /// Where a point mass is first loaded (GRAV or CENTRIF): refused with NLGEOM.
+    mass_load_at: Option<Location>,
     materials: Vec<MaterialDef>,
     sections: Vec<(String, String, Location)>,
     interactions: BTreeMap<String, Interaction>,
@@ -215,10 +222,18 @@ fn build(cards: &[Card], source_text: String) -> Result<InpModel> {
             "MASS" => {
                 card.only(&["ELSET"])?;
                 let set = card.required("ELSET")?.to_uppercase();
-                if !b.mass_sets.contains(&set) {
-                    return Err(card.error(format!("element set {set} holds no elements of type MASS")));
+                let mass = single(card)?.number("MASS", 0, "mass (t)", None)?;
+                if !(mass > 0.0 && mass.is_finite()) {
+                    return Err(card.error(format!("mass {mass}: give a positive mass (t)")));
                 }
-                b.notes.push(format!("*MASS ({}): the point masses of {set} have no effect in a static step; slideline leaves them out", card.at));
+                let Some(entry) = b.point_masses.get_mut(&set) else {
+                    return Err(card.error(format!("element set {set} holds no elements of type MASS")));
+                };
+                entry.1 = Some(mass);
+                b.notes.push(format!(
+                    "*MASS ({}): the point masses of {set} carry only the GRAV and CENTRIF loads given on them in a static step",
+                    card.at
+                ));
             }
             "ELASTIC" | "PLASTIC" | "EXPANSION" | "DENSITY" => {
                 if last_owner != "MATERIAL" {
@@ -283,6 +298,7 @@ fn build(cards: &[Card], source_text: String) -> Result<InpModel> {
             "STEP" => b.step(card)?,
             "STATIC" => b.static_procedure(card)?,
             "DLOAD" => b.dload(card)?,
+            "CLOAD" => b.cload(card)?,
             "TEMPERATURE" => {
                 b.step_mut(card)?;
                 card.only(&["AMPLITUDE", "OP"])?;
@@ -430,6 +446,13 @@ impl Builder {
             return Err(Error::input("the deck has no *STEP"));
         }
         let kinematics = if self.steps.iter().any(|s| s.nlgeom == Some(true)) { Kinematics::Finite } else { Kinematics::Small };
+        if let (Kinematics::Finite, Some(at)) = (kinematics, &self.mass_load_at) {
+            return Err(error_at(
+                at,
+                "DLOAD",
+                "a load on point masses with NLGEOM: slideline applies their force at the masses' initial position only (a dead load); run the deck without NLGEOM",
+            ));
+        }
         if kinematics == Kinematics::Finite && self.steps.first().is_some_and(|s| s.nlgeom != Some(true)) {
             self.notes.push("NLGEOM is set in a later step: slideline runs every step with finite strain".into());
         }

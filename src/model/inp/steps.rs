@@ -7,7 +7,7 @@ use super::{face_side, Builder, StepDef, Target};
 use crate::element::body_load::BodyForce;
 use crate::error::{Error, Result};
 use crate::model::mesh::Edge;
-use crate::model::{BodyLoad, Component, FrictionChange, Predictor, PrescribedDisplacement, Pressure, Step, Temperature};
+use crate::model::{BodyLoad, Component, FrictionChange, NodalForce, Predictor, PrescribedDisplacement, Pressure, Step, Temperature};
 use std::collections::{BTreeMap, BTreeSet};
 
 impl Builder {
@@ -125,6 +125,8 @@ impl Builder {
             has_procedure: false,
             time_points: Vec::new(),
             friction_changes: Vec::new(),
+            cloads: Vec::new(),
+            new_cloads: false,
         });
         self.in_step = true;
         Ok(())
@@ -263,6 +265,42 @@ impl Builder {
         Ok(())
     }
 
+    /// *CLOAD: a force on each node of a node (set), dof 1 (r) or 2 (z), kept per radian.
+    /// CalculiX takes an axisymmetric node's force as the whole ring's (measured with ccx 2.20:
+    /// a bore's consistent nodal loads given so reproduce the pressure's displacements only
+    /// when read as 360-degree totals; its reactions it prints per 2-degree segment).
+    pub(super) fn cload(&mut self, card: &Card) -> Result<()> {
+        card.only(&["OP", "AMPLITUDE"])?;
+        let new = match card.param("OP").map(|o| o.to_uppercase()).as_deref() {
+            None | Some("MOD") => false,
+            Some("NEW") => true,
+            Some(o) => return Err(card.error(format!("OP={o}: MOD or NEW"))),
+        };
+        let amplitude = self.amplitude_ref(card)?;
+        self.step_mut(card)?;
+        let mut loads: Vec<Target<(usize, Component)>> = Vec::new();
+        for d in &card.data {
+            let nodes = self.node_items(d, "CLOAD", 0)?;
+            let component = match d.id("CLOAD", 1, "degree of freedom")? {
+                1 => Component::R,
+                2 => Component::Z,
+                dof => return Err(error_at(&d.at, "CLOAD", format!("degree of freedom {dof}: axisymmetric nodes have 1 (r) and 2 (z)"))),
+            };
+            let value = d.number("CLOAD", 2, "magnitude", None)? / std::f64::consts::TAU;
+            for node in nodes {
+                loads.retain(|l| l.key != (node, component));
+                loads.push(Target { key: (node, component), value, amplitude: amplitude.clone() });
+            }
+        }
+        let step = self.step_mut(card)?;
+        step.new_cloads |= new;
+        for l in loads {
+            step.cloads.retain(|c| c.key != l.key);
+            step.cloads.push(l);
+        }
+        Ok(())
+    }
+
     pub(super) fn dload(&mut self, card: &Card) -> Result<()> {
         card.only(&["OP", "AMPLITUDE"])?;
         let new = match card.param("OP").map(|o| o.to_uppercase()).as_deref() {
@@ -274,8 +312,13 @@ impl Builder {
         self.step_mut(card)?;
         let mut loads = Vec::new();
         let mut body = Vec::new();
+        let mut masses = Vec::new();
         for d in &card.data {
             let label = d.fields.get(1).map(|s| s.to_uppercase()).unwrap_or_default();
+            if (label == "GRAV" || label == "CENTRIF") && self.point_masses.contains_key(&d.fields[0].to_uppercase()) {
+                masses.extend(self.point_mass_load(d, &label, amplitude.clone())?);
+                continue;
+            }
             if label == "GRAV" || label == "CENTRIF" {
                 body.push(self.body_load(d, &label, amplitude.clone())?);
                 continue;
@@ -311,7 +354,29 @@ impl Builder {
             step.body.retain(|b| b.key != l.key);
             step.body.push(l);
         }
+        for l in masses {
+            step.cloads.retain(|c| c.key != l.key);
+            step.cloads.push(l);
+        }
         Ok(())
+    }
+
+    /// GRAV or CENTRIF on a set of point masses: each mass's force m g along the axis or
+    /// m omega^2 r outward at its node's initial radius, as a nodal force per radian (the
+    /// mass is the whole ring's). It then follows the rules of a *CLOAD.
+    fn point_mass_load(&mut self, d: &DataLine, label: &str, amplitude: Option<String>) -> Result<Vec<Target<(usize, Component)>>> {
+        let target = d.fields[0].to_uppercase();
+        let (nodes, mass) = self.point_masses[&target].clone();
+        let mass = mass.ok_or_else(|| error_at(&d.at, "DLOAD", format!("{label} on {target}: its point masses have no *MASS (define it before the step)")))?;
+        let (spin, value) = self.body_load_value(d, label)?;
+        self.mass_load_at.get_or_insert(d.at.clone());
+        Ok(nodes
+            .into_iter()
+            .map(|n| {
+                let (component, force) = if spin { (Component::R, mass * value * self.mesh.coords[n][0]) } else { (Component::Z, mass * value) };
+                Target { key: (n, component), value: force / std::f64::consts::TAU, amplitude: amplitude.clone() }
+            })
+            .collect())
     }
 
     /// A *DLOAD line of type GRAV (magnitude, direction) or CENTRIF (omega^2, a point of the
@@ -319,9 +384,6 @@ impl Builder {
     /// radius). Its elements: a set, or one element (as a set of its own).
     fn body_load(&mut self, d: &DataLine, label: &str, amplitude: Option<String>) -> Result<Target<(String, bool)>> {
         let target = d.fields[0].to_uppercase();
-        if self.mass_sets.contains(&target) {
-            return Err(error_at(&d.at, "DLOAD", format!("{label} on {target}: its point masses are left out of slideline's model")));
-        }
         let elements = self.element_items(d, "DLOAD", 0)?;
         let set = if self.element_sets.contains_key(&target) {
             target
@@ -330,6 +392,13 @@ impl Builder {
             self.element_sets.insert(name.clone(), elements);
             name
         };
+        let (spin, value) = self.body_load_value(d, label)?;
+        Ok(Target { key: (set, spin), value, amplitude })
+    }
+
+    /// A GRAV or CENTRIF line's load about slideline's axis: (spin, g along the axis or
+    /// omega^2).
+    fn body_load_value(&self, d: &DataLine, label: &str) -> Result<(bool, f64)> {
         let magnitude = d.number("DLOAD", 2, "magnitude", None)?;
         let numbers = |from: usize| -> Result<[f64; 3]> {
             Ok([
@@ -353,7 +422,7 @@ impl Builder {
             let direction = along_axis(numbers(3)?).ok_or_else(|| error_at(&d.at, "DLOAD", "GRAV: the direction must be along the model's axis (y)"))?;
             magnitude * direction
         };
-        Ok(Target { key: (set, spin), value, amplitude })
+        Ok((spin, value))
     }
 
     /// slideline steps ramp every target linearly from the previous step's value; a step whose
@@ -364,6 +433,7 @@ impl Builder {
         let mut displacement_now: BTreeMap<(String, Component), f64> = self.fixed.iter().map(|k| (k.clone(), 0.0)).collect();
         let mut pressure_now: BTreeMap<String, f64> = BTreeMap::new();
         let mut body_now: BTreeMap<(String, bool), f64> = BTreeMap::new();
+        let mut cload_now: BTreeMap<(usize, Component), f64> = BTreeMap::new();
         let mut temperature_now = initial_temperature.clone();
         let mut out = Vec::new();
         let mut total_time = 0.0;
@@ -388,6 +458,14 @@ impl Builder {
                     self.notes.push(format!("{} ({}): *BOUNDARY, OP=NEW releases {} at the step's start", s.name, s.at, released.join(", ")));
                 }
             }
+            if s.new_cloads {
+                for (key, v) in cload_now.iter_mut() {
+                    if !s.cloads.iter().any(|c| &c.key == key) {
+                        s.cloads.push(Target { key: *key, value: 0.0, amplitude: None });
+                        *v = 0.0;
+                    }
+                }
+            }
             if s.new_loads {
                 for (surface, v) in pressure_now.iter_mut() {
                     if !s.pressures.iter().any(|p| &p.key == surface) {
@@ -406,6 +484,8 @@ impl Builder {
             let mut used: BTreeSet<&String> = BTreeSet::new();
             used.extend(s.boundaries.iter().filter_map(|b| b.amplitude.as_ref()));
             used.extend(s.pressures.iter().filter_map(|b| b.amplitude.as_ref()));
+            used.extend(s.body.iter().filter_map(|b| b.amplitude.as_ref()));
+            used.extend(s.cloads.iter().filter_map(|b| b.amplitude.as_ref()));
             used.extend(s.temperature.iter().filter_map(|b| b.amplitude.as_ref()));
             // the step is split at its amplitudes' points and at the time points its output
             // requests name, so that increments end there
@@ -421,6 +501,7 @@ impl Builder {
             times.dedup_by(|a, b| (*a - *b).abs() <= 1e-12 * s.period);
             let period = s.period;
             let (d0, p0, b0, t0) = (displacement_now.clone(), pressure_now.clone(), body_now.clone(), temperature_now.clone());
+            let c0 = cload_now.clone();
             let mut previous_time = 0.0;
             for (j, &time) in times.iter().enumerate() {
                 let displacements = s
@@ -441,6 +522,11 @@ impl Builder {
                 for (key, value) in &body {
                     body_now.insert(key.clone(), *value);
                 }
+                for c in &s.cloads {
+                    cload_now.insert(c.key, c.at(c0.get(&c.key).copied().unwrap_or(0.0), time, period, &self.amplitudes));
+                }
+                // every nodal force in force, as the step's end values
+                let nodal_forces = cload_now.iter().map(|(&(node, component), &value)| NodalForce { node, component, value }).collect::<Vec<_>>();
                 // every body load in force, as the step's end values
                 let body_loads = body_now
                     .iter()
@@ -497,6 +583,7 @@ impl Builder {
                     release_constraints,
                     without_field_output,
                     friction_changes,
+                    nodal_forces,
                 });
                 previous_time = time;
             }

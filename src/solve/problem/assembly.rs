@@ -260,7 +260,8 @@ impl Problem<'_, '_> {
                 }
             }
         }
-        // the body loads, kept with the pressures' for the audit's external work
+        // the body loads (and below the nodal forces), kept with the pressures' for the
+        // audit's external work
         for (k, rho, force) in self.body_loaded() {
             let element = &self.elements[k];
             let f = body_load(&element.geometry, &element.coords, &us[k], rho, force, self.model.kinematics);
@@ -270,6 +271,13 @@ impl Problem<'_, '_> {
                     sink(conn[a], c, -f[c]);
                     fields.pressure_force[conn[a]][c] += f[c];
                 }
+            }
+        }
+        // the nodal forces, by the rank that owns the node
+        for &(n, c, f) in &self.load.nodal_forces {
+            if self.owns_node[n] {
+                sink(n, c, -f);
+                fields.pressure_force[n][c] += f;
             }
         }
         let stage = self.stages.contact;
