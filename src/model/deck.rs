@@ -67,6 +67,7 @@
 //!                                   # the others keeping theirs: [{ set = "bore", value = 150.0 }]
 //! boundary = [ { set = "bottom", uz = 0.0 }, { set = "top", uz = 0.0 } ]
 //! pressure = [ { surface = "inner", value = 50.0 } ]
+//! force = [ { set = "tip", fz = -1000.0 } ]  # N around the whole ring, on each node of the set
 //! contact_friction = [ { pair = "fit", friction = 0.1 } ]  # from this step on (optional;
 //!                                   # tangential_penalty / elastic_slip as in [[contact]])
 //! ```
@@ -74,7 +75,7 @@
 use super::mesh::{blocks, rectangle, Block, MeshSets};
 use super::perturbation::{Analysis, HarmonicComponent, HarmonicDisplacement, Perturbation, RingMotion};
 use super::{
-    default_capture_distance, gmsh, Adjust, AugmentedLagrangian, BodyLoad, Component, ContactIntegration, ContactPair, Convergence, Friction, FrictionChange, Kinematics,
+    default_capture_distance, gmsh, Adjust, AugmentedLagrangian, BodyLoad, Component, ContactIntegration, ContactPair, Convergence, Friction, FrictionChange, Kinematics, NodalForce,
     Material, Model, OutputControls, OutputFields, Penalty, Plasticity, Precision, Predictor, PrescribedDisplacement, Pressure, Step, SteppingControls,
     Temperature,
 };
@@ -337,6 +338,9 @@ struct StepSpec {
     boundary: Vec<BoundarySpec>,
     #[serde(default)]
     pressure: Vec<PressureSpec>,
+    /// Concentrated forces on the nodes of node sets.
+    #[serde(default)]
+    force: Vec<ForceSpec>,
     /// Body loads on element sets: gravity along the axis or spin about it.
     #[serde(default)]
     body_load: Vec<BodyLoadSpec>,
@@ -378,6 +382,16 @@ struct BoundarySpec {
     rotation: Option<f64>,
     /// The z (current, mm) of the axis point the rotation's diameter passes through.
     pivot: Option<f64>,
+}
+
+/// `{ set = "top", fz = -1000.0 }`: a force on each node of the set, N around the whole ring
+/// (as CalculiX's *CLOAD).
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ForceSpec {
+    set: String,
+    fr: Option<f64>,
+    fz: Option<f64>,
 }
 
 #[derive(Deserialize)]
@@ -508,6 +522,18 @@ pub fn parse(text: &str, path: &Path) -> Result<Model> {
                         }
                     }
                 }
+                let mut nodal_forces = Vec::new();
+                for f in &s.force {
+                    let nodes = node_sets.get(&f.set).ok_or_else(|| Error::input(format!("step '{name}': force on an unknown node set '{}'", f.set)))?;
+                    if f.fr.is_none() && f.fz.is_none() {
+                        return Err(Error::input(format!("step '{name}': force on '{}' gives neither fr nor fz (N around the ring)", f.set)));
+                    }
+                    for (component, value) in [(Component::R, f.fr), (Component::Z, f.fz)] {
+                        for &node in nodes.iter().filter(|_| value.is_some()) {
+                            nodal_forces.push(NodalForce { node, component, value: value.unwrap_or_default() / std::f64::consts::TAU });
+                        }
+                    }
+                }
                 let mut body_loads = Vec::new();
                 for b in &s.body_load {
                     let force = match (b.gravity, b.spin) {
@@ -543,7 +569,7 @@ pub fn parse(text: &str, path: &Path) -> Result<Model> {
                     release_constraints: false,
                     without_field_output: false,
                     friction_changes,
-                    nodal_forces: Vec::new(),
+                    nodal_forces,
                 });
             }
             procedure @ ("harmonic" | "frequency" | "buckle") => {
@@ -554,9 +580,9 @@ pub fn parse(text: &str, path: &Path) -> Result<Model> {
                     ("frequency", count) => Analysis::Frequency { eigenvalues: count.unwrap_or(1) },
                     (_, count) => Analysis::Buckle { eigenvalues: count.unwrap_or(1) },
                 };
-                if s.increments.is_some() || s.temperature.is_some() || !s.body_load.is_empty() || !s.contact_friction.is_empty() {
+                if s.increments.is_some() || s.temperature.is_some() || !s.body_load.is_empty() || !s.contact_friction.is_empty() || !s.force.is_empty() {
                     return Err(Error::input(format!(
-                        "step '{name}': a perturbation step has no increments, temperature, body loads or friction changes (it is linear, about the state before)"
+                        "step '{name}': a perturbation step has no increments, temperature, body loads, nodal forces or friction changes (it is linear, about the state before)"
                     )));
                 }
                 let (mut displacements, mut rings) = (Vec::new(), Vec::new());

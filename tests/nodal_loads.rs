@@ -1,4 +1,5 @@
-//! Concentrated loads of CalculiX decks: *CLOAD, and GRAV / CENTRIF on point masses (*MASS).
+//! Concentrated loads: *CLOAD, GRAV / CENTRIF on point masses (*MASS), and the TOML deck's
+//! `force`.
 //!
 //! CalculiX takes an axisymmetric node's force, and a point mass, as the whole ring's
 //! (measured with ccx 2.20: the bore loads below reproduce the pressure's displacements only so;
@@ -16,9 +17,14 @@
 //!    its node out with m omega^2 r = 100 N around the ring. The same as a *CLOAD of 100 N there
 //!    to round-off; u_r there 5.482124e-4 mm in ccx 2.20 (the same deck), slideline within
 //!    0.5 % (0.19 %: the one-element-wide mesh under a point load).
+//! 3. A TOML deck's `force` (N around the whole ring, on each node of a set): a block whose top
+//!    nodes (5, corners and mid-sides) each take fz = -1000 N and fr = +200 N, held axially at its
+//!    bottom: the full-ring axial reaction balances the 5 kN to 1e-9, ramped over two
+//!    increments, and kept by a later step that does not restate the force; the radial forces
+//!    push the top out.
 
 mod common;
-use common::{command_in, data, Results, Run};
+use common::{command_in, data, run_deck, Results, Run};
 use std::f64::consts::TAU;
 
 /// Runs the deck `text` in a directory of its own (with the Lame mesh it may include).
@@ -115,4 +121,41 @@ fn a_spinning_point_mass_pulls_its_node_as_calculix_has_it() {
         assert_eq!(run.code(), 2, "{needle}: {}", run.stderr());
         assert!(run.stderr().contains(needle), "{needle}: {}", run.stderr());
     }
+}
+
+#[test]
+fn a_toml_force_is_the_whole_rings_on_each_node_and_is_kept_by_later_steps() {
+    let deck = r#"
+[mesh.rectangle]
+r = [100.0, 110.0]
+z = [0.0, 10.0]
+divisions = [2, 2]
+[[material]]
+name = "steel"
+youngs_modulus = 200000.0
+poissons_ratio = 0.3
+[[step]]
+name = "load"
+increments = 2
+boundary = [ { set = "bottom", uz = 0.0 } ]
+force = [ { set = "top", fz = -1000.0, fr = 200.0 } ]
+[[step]]
+name = "hold"
+"#;
+    let run = run_deck(deck, &[], 2, common::TIGHT);
+    run.assert_ok();
+    let r = Results::open(&run.h5);
+    let fz = r.history("reaction_bottom_z_ring");
+    let load = r.history("load_factor");
+    for (k, (&f, &lambda)) in fz.iter().zip(&load).enumerate() {
+        let expected = if k < 2 { 5000.0 * lambda } else { 5000.0 };
+        assert!((f - expected).abs() < 1e-9 * 5000.0, "#{}: bottom reaction {f} N against {expected}", k + 1);
+    }
+    assert_eq!(fz.len(), 3);
+    // the radial forces stretch the ring: the bottom carries no radial reaction (it is free
+    // radially), the top moves out
+    assert!(r.nodes().iter().filter(|(x, _)| x[1] == 10.0).all(|(_, u)| u[0] > 0.0), "the radial forces push the top out");
+    let bad = run_deck(&deck.replace("fz = -1000.0, fr = 200.0", "fz = -1000.0").replace("set = \"top\"", "set = \"nowhere\""), &[], 1, &[]);
+    assert_eq!(bad.code(), 2, "{}", bad.stderr());
+    assert!(bad.stderr().contains("force on an unknown node set 'nowhere'"), "{}", bad.stderr());
 }
