@@ -10,7 +10,7 @@ use slideline::model::bellows::{model, BellowsParams};
 use slideline::petsc::{PetscSession, VecOps, Vector};
 use slideline::solve::affinity::partition_affinity;
 use slideline::solve::contact::contact_nodes;
-use slideline::solve::problem::{initial_history, Problem};
+use slideline::solve::problem::{initial_history, Problem, StepStart};
 use slideline::solve::schedule::StepLoads;
 
 fn assembly(c: &mut Criterion) {
@@ -26,7 +26,8 @@ fn assembly(c: &mut Criterion) {
     xb.set_all(1e-9).expect("set");
     let mut f = Vector::mpi(&session, session.comm(), dofs.local_len()).expect("vector");
     let coupled = contact_nodes(&m);
-    let mut problem = Problem::new(&session, &m, &partition, &dofs, &xa, initial_history(&m, &partition), None).expect("problem");
+    let mut problem =
+        Problem::new(&session, &m, &partition, &dofs, &xa, StepStart { step: 0, history: initial_history(&m, &partition), contact: None }).expect("problem");
     problem.set_load(loads.at(&m, 1.0));
     // the matrix as the stepping loop makes it, with the contact couplings of this state reserved
     let mut jacobian = problem.jacobian_matrix().expect("matrix");

@@ -187,7 +187,8 @@ contact_friction = [ { pair = "fit", friction = 0.0 } ]
         common::assert_continues(&full.h5, &continued, last_of(2.0) + 2);
 
         // frictionless at first, friction from the push on
-        let text = with(deck_with(2.0e-4, 5, "", RIGID_TUBE)).replace("name = \"push\"\n", &format!("name = \"push\"\ncontact_friction = [ {{ pair = \"fit\", friction = {MU} }} ]\n"));
+        let text = with(deck_with(2.0e-4, 5, "", RIGID_TUBE))
+            .replace("name = \"push\"\n", &format!("name = \"push\"\ncontact_friction = [ {{ pair = \"fit\", friction = {MU} }} ]\n"));
         let run = run_deck(&text, &[], 1, TIGHT);
         run.assert_ok();
         let rows = push_history(&Results::open(&run.h5));

@@ -10,7 +10,7 @@ use slideline::dist::{DofMap, Partition};
 use slideline::model::{deck, Temperature};
 use slideline::petsc::{MatOps, PetscSession, VecOps, Vector};
 use slideline::solve::affinity::partition_affinity;
-use slideline::solve::problem::{initial_history, ElementFields, Problem};
+use slideline::solve::problem::{initial_history, ElementFields, Problem, StepStart};
 use slideline::solve::schedule::StepLoads;
 use std::path::Path;
 
@@ -76,7 +76,8 @@ fn kept_output_fields_equal_a_fresh_evaluation() {
     other.copy_from(&x).expect("copy");
     other.axpy(1e-3, &x).expect("axpy");
     let mut f = Vector::mpi(&session, session.comm(), dofs.local_len()).expect("vector");
-    let mut problem = Problem::new(&session, &model, &partition, &dofs, &x, initial_history(&model, &partition), None).expect("problem");
+    let mut problem = Problem::new(&session, &model, &partition, &dofs, &x, StepStart { step: 0, history: initial_history(&model, &partition), contact: None })
+        .expect("problem");
     problem.set_load(loads.at(&model, 1.0));
 
     problem.assemble_residual(&x, &mut f).expect("residual");
@@ -114,7 +115,7 @@ fn kept_output_fields_equal_a_fresh_evaluation() {
     assert!(problem.writes_jacobian_storage(), "bound to the storage after the first assembly");
     problem.assemble_jacobian(&x, &mut rewritten).expect("jacobian written into the storage");
     let (history, carry) = problem.into_history();
-    let mut restarted = Problem::new(&session, &model, &partition, &dofs, &x, history, carry).expect("problem");
+    let mut restarted = Problem::new(&session, &model, &partition, &dofs, &x, StepStart { step: 0, history, contact: carry }).expect("problem");
     restarted.set_load(loads.at(&model, 1.0));
     let mut fresh = restarted.jacobian_matrix().expect("matrix");
     restarted.assemble_jacobian(&x, &mut fresh).expect("jacobian from the committed history");

@@ -75,9 +75,9 @@
 use super::mesh::{blocks, rectangle, Block, MeshSets};
 use super::perturbation::{Analysis, HarmonicComponent, HarmonicDisplacement, Perturbation, RingMotion};
 use super::{
-    default_capture_distance, gmsh, Adjust, AugmentedLagrangian, BodyLoad, Component, ContactIntegration, ContactPair, Convergence, Friction, FrictionChange, Kinematics, NodalForce,
-    Material, Model, OutputControls, OutputFields, Penalty, Plasticity, Precision, Predictor, PrescribedDisplacement, Pressure, Step, SteppingControls,
-    Temperature,
+    default_capture_distance, gmsh, Adjust, AugmentedLagrangian, BodyLoad, Component, ContactIntegration, ContactPair, Convergence, Friction, FrictionChange,
+    Kinematics, Material, Model, NodalForce, OutputControls, OutputFields, Penalty, Plasticity, Precision, Predictor, PrescribedDisplacement, Pressure, Step,
+    SteppingControls, Temperature,
 };
 use crate::element::body_load::BodyForce;
 use crate::error::{Error, Result};

@@ -131,7 +131,10 @@ impl Model {
             }
             for f in &step.nodal_forces {
                 if f.node >= self.mesh.coords.len() || !f.value.is_finite() {
-                    return Err(Error::input(format!("step '{}': a nodal force of {} on node index {} (give a finite force on a mesh node)", step.name, f.value, f.node)));
+                    return Err(Error::input(format!(
+                        "step '{}': a nodal force of {} on node index {} (give a finite force on a mesh node)",
+                        step.name, f.value, f.node
+                    )));
                 }
             }
             for (k, change) in step.friction_changes.iter().enumerate() {

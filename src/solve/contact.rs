@@ -225,7 +225,17 @@ impl ContactAssembly {
                 (true, ContactIntegration::NodeToSegment) => owned.iter().map(|&i| surface.neighbourhood(surface.nodes[i], c.exclude_neighbours)).collect(),
                 (true, ContactIntegration::Segment) => (0..surface.edges.len()).map(|e| edge_neighbourhood(surface, e, c.exclude_neighbours)).collect(),
             };
-            passes.push(Pass { pair: d.pair, slave, master, weight: d.weight, owned, offset, total: order.len(), excluded, friction: model.pair_has_friction(d.pair) });
+            passes.push(Pass {
+                pair: d.pair,
+                slave,
+                master,
+                weight: d.weight,
+                owned,
+                offset,
+                total: order.len(),
+                excluded,
+                friction: model.pair_has_friction(d.pair),
+            });
         }
         let mut nodes: Vec<usize> = surfaces.iter().flat_map(|s| s.nodes.iter().copied()).collect();
         nodes.sort_unstable();

@@ -155,19 +155,18 @@ pub fn initial_history(model: &Model, partition: &Partition) -> History {
     vec![[PointState::initial(model.kinematics); QUADRATURE_POINTS]; partition.local_elements().len()]
 }
 
+/// Where a step's problem starts: the step (its contact pairs' friction), the committed
+/// history of this rank's elements, and what contact carries from the step before.
+pub struct StepStart {
+    pub step: usize,
+    pub history: History,
+    pub contact: Option<ContactCarry>,
+}
+
 impl<'s, 'm> Problem<'s, 'm> {
-    /// The problem of step `step` (its contact pairs' friction); `layout` is any global vector
-    /// with the layout of the unknowns; `history` the committed history of this rank's elements.
-    pub fn new(
-        session: &'s PetscSession,
-        model: &'m Model,
-        step: usize,
-        partition: &Partition,
-        dofs: &DofMap,
-        layout: &Vector<'s>,
-        history: History,
-        contact: Option<ContactCarry>,
-    ) -> Result<Self> {
+    /// The problem of a step; `layout` is any global vector with the layout of the unknowns.
+    pub fn new(session: &'s PetscSession, model: &'m Model, partition: &Partition, dofs: &DofMap, layout: &Vector<'s>, start: StepStart) -> Result<Self> {
+        let StepStart { step, history, contact } = start;
         let local = partition.local_elements();
         assert_eq!(history.len(), local.len(), "one history entry per local element");
         // Free DOFs this rank's elements touch and those of every contact node: fetched by one
@@ -252,7 +251,13 @@ impl<'s, 'm> Problem<'s, 'm> {
             force_sums: [0.0, 0.0],
             surface: SurfaceBranch::Elastic,
             contact,
-            load: LoadState { prescribed: Vec::new(), temperature: model.reference_temperature.clone(), pressures: Vec::new(), body_loads: Vec::new(), nodal_forces: Vec::new() },
+            load: LoadState {
+                prescribed: Vec::new(),
+                temperature: model.reference_temperature.clone(),
+                pressures: Vec::new(),
+                body_loads: Vec::new(),
+                nodal_forces: Vec::new(),
+            },
             load_generation: 0,
             stages: Stages::new()?,
         })

@@ -12,7 +12,7 @@ use super::attempt::{predict, solve_increment};
 use super::energy::{Energies, EnergyAudit};
 use super::extrapolate::LastIncrement;
 use super::held;
-use super::problem::{LoadState, Problem};
+use super::problem::{LoadState, Problem, StepStart};
 use super::resume::{restart_point, Carried};
 use super::schedule::StepLoads;
 use crate::dist::{DofMap, Partition};
@@ -165,7 +165,7 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
         let mut correction = x.duplicate()?;
         // every contact coupling found so far is in the new step's pattern (each Jacobian
         // synchronises the pattern across ranks, so the carried one is complete)
-        let mut problem = Problem::new(session, model, s, &partition, &dofs, &x, history, carry)?;
+        let mut problem = Problem::new(session, model, &partition, &dofs, &x, StepStart { step: s, history, contact: carry })?;
         let mut jacobian = problem.jacobian_matrix()?;
         let mut snes = Snes::new(session)?;
         snes.set_field_test((controls.convergence == Convergence::Field).then(FieldRatios::default));

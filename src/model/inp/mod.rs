@@ -83,7 +83,7 @@ struct MaterialDef {
 struct Interaction {
     slope: Option<f64>,
     /// *FRICTION: mu and the stick slope (MPa/mm), if given.
-    friction: Option<(f64, Option<f64>)>,
+    friction: properties::CalculixFriction,
 }
 
 /// A displacement, pressure or temperature target of a step, optionally through an amplitude.
@@ -135,7 +135,7 @@ struct StepDef {
     /// The time points its output requests name: (times, in total time).
     time_points: Vec<(Vec<f64>, bool)>,
     /// *CHANGE FRICTION: (interaction, its new mu and stick slope), from this step on.
-    friction_changes: Vec<(String, Option<(f64, Option<f64>)>)>,
+    friction_changes: Vec<(String, properties::CalculixFriction)>,
 }
 
 /// A temperature line: its nodes and the value, degC.
@@ -230,10 +230,7 @@ fn build(cards: &[Card], source_text: String) -> Result<InpModel> {
                     return Err(card.error(format!("element set {set} holds no elements of type MASS")));
                 };
                 entry.1 = Some(mass);
-                b.notes.push(format!(
-                    "*MASS ({}): the point masses of {set} carry only the GRAV and CENTRIF loads given on them in a static step",
-                    card.at
-                ));
+                b.notes.push(format!("*MASS ({}): the point masses of {set} carry only the GRAV and CENTRIF loads given on them in a static step", card.at));
             }
             "ELASTIC" | "PLASTIC" | "EXPANSION" | "DENSITY" => {
                 if last_owner != "MATERIAL" {

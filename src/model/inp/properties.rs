@@ -224,10 +224,14 @@ pub(super) struct ListedContact {
     pub passes: f64,
 }
 
+/// CalculiX's friction of an interaction: mu and the stick slope (MPa/mm) if given; None for
+/// mu = 0.
+pub(super) type CalculixFriction = Option<(f64, Option<f64>)>;
+
 /// A *FRICTION card's mu and CalculiX's stick slope (MPa/mm, tangential stress per unit
 /// slip), None for mu = 0; Abaqus' parameters (ELASTIC SLIP, SLIP TOLERANCE, EXPONENTIAL
 /// DECAY, ...) are refused.
-pub(super) fn friction_values(card: &Card) -> Result<Option<(f64, Option<f64>)>> {
+pub(super) fn friction_values(card: &Card) -> Result<CalculixFriction> {
     card.only(&[])?;
     let d = card.data.first().ok_or_else(|| card.error("needs the friction coefficient (mu[, stick slope])"))?;
     let mu = d.number("FRICTION", 0, "friction coefficient", None)?;
@@ -243,7 +247,7 @@ pub(super) fn friction_values(card: &Card) -> Result<Option<(f64, Option<f64>)>>
 
 /// slideline's friction of a pair for CalculiX's mu and stick slope: a two-pass pair's
 /// directions (`passes` = 2) each carry half the force, so its stiffness is doubled.
-pub(super) fn pair_friction(friction: Option<(f64, Option<f64>)>, passes: f64) -> Option<Friction> {
+pub(super) fn pair_friction(friction: CalculixFriction, passes: f64) -> Option<Friction> {
     friction.map(|(mu, stick)| Friction { coefficient: mu, tangential_penalty: stick.map(|k| passes * k), elastic_slip: None })
 }
 
