@@ -271,11 +271,7 @@ impl Builder {
     /// when read as 360-degree totals; its reactions it prints per 2-degree segment).
     pub(super) fn cload(&mut self, card: &Card) -> Result<()> {
         card.only(&["OP", "AMPLITUDE"])?;
-        let new = match card.param("OP").map(|o| o.to_uppercase()).as_deref() {
-            None | Some("MOD") => false,
-            Some("NEW") => true,
-            Some(o) => return Err(card.error(format!("OP={o}: MOD or NEW"))),
-        };
+        let new = replaces_earlier_loads(card)?;
         let amplitude = self.amplitude_ref(card)?;
         self.step_mut(card)?;
         let mut loads: Vec<Target<(usize, Component)>> = Vec::new();
@@ -303,11 +299,7 @@ impl Builder {
 
     pub(super) fn dload(&mut self, card: &Card) -> Result<()> {
         card.only(&["OP", "AMPLITUDE"])?;
-        let new = match card.param("OP").map(|o| o.to_uppercase()).as_deref() {
-            None | Some("MOD") => false,
-            Some("NEW") => true,
-            Some(o) => return Err(card.error(format!("OP={o}: MOD or NEW"))),
-        };
+        let new = replaces_earlier_loads(card)?;
         let amplitude = self.amplitude_ref(card)?;
         self.step_mut(card)?;
         let mut loads = Vec::new();
@@ -599,6 +591,16 @@ impl Builder {
             }
         }
         Ok(out)
+    }
+}
+
+/// A load card's OP=: NEW (true) removes the earlier loads of its kind that it does not
+/// restate, MOD (the default) keeps them.
+fn replaces_earlier_loads(card: &Card) -> Result<bool> {
+    match card.param("OP").map(|o| o.to_uppercase()).as_deref() {
+        None | Some("MOD") => Ok(false),
+        Some("NEW") => Ok(true),
+        Some(o) => Err(card.error(format!("OP={o}: MOD or NEW"))),
     }
 }
 
