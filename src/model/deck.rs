@@ -528,10 +528,10 @@ pub fn parse(text: &str, path: &Path) -> Result<Model> {
                     if f.fr.is_none() && f.fz.is_none() {
                         return Err(Error::input(format!("step '{name}': force on '{}' gives neither fr nor fz (N around the ring)", f.set)));
                     }
-                    for (component, value) in [(Component::R, f.fr), (Component::Z, f.fz)] {
-                        for &node in nodes.iter().filter(|_| value.is_some()) {
-                            nodal_forces.push(NodalForce { node, component, value: value.unwrap_or_default() / std::f64::consts::TAU });
-                        }
+                    // the whole ring's force, kept per radian
+                    for (component, ring) in [(Component::R, f.fr), (Component::Z, f.fz)] {
+                        let Some(ring) = ring else { continue };
+                        nodal_forces.extend(nodes.iter().map(|&node| NodalForce { node, component, value: ring / std::f64::consts::TAU }));
                     }
                 }
                 let mut body_loads = Vec::new();
