@@ -2,6 +2,7 @@
 //! function returns what it would print, so the CLI prints it and the tests read it.
 
 use crate::error::{Error, Result};
+use crate::fe::shape::Shape;
 use crate::io::plots::{line_plot, Axes, Curve};
 use crate::io::reader::ResultsReader;
 use std::fmt::Write as _;
@@ -195,7 +196,8 @@ pub fn field(r: &ResultsReader, name: &str, number: usize) -> Result<String> {
         if nodal {
             [x0[entity][0] + u[entity][0], x0[entity][1] + u[entity][1]]
         } else {
-            [0, 1].map(|c| conn[entity][..4].iter().map(|&n| x0[n][c] + u[n][c]).sum::<f64>() / 4.0)
+            let corners = &conn[entity][..Shape::of(&conn[entity]).corners()];
+            [0, 1].map(|c| corners.iter().map(|&n| x0[n][c] + u[n][c]).sum::<f64>() / corners.len() as f64)
         }
     };
     for (c, label) in components.iter().enumerate() {

@@ -10,6 +10,7 @@ use crate::assessment::flexibility::{Flexibility, Movements};
 use crate::assessment::stability::{column_estimates, Stability};
 use crate::assessment::vibration::{estimates, Estimates, Frequencies, Mode};
 use crate::error::Result;
+use crate::fe::shape::Shape;
 use crate::io::plots::{deformed_field, line_plot, Axes, Curve, FieldPicture, Marker};
 use crate::io::reader::ResultsReader;
 use crate::io::HistoryRow;
@@ -114,7 +115,8 @@ fn extreme(reader: &ResultsReader, increment: &str, field: &str) -> Result<Extre
     let (k, &value) = values.iter().enumerate().max_by(|a, b| a.1.total_cmp(b.1)).unwrap_or((0, &f64::NAN));
     let element = k / per_element.max(1);
     let (x0, u) = (reader.coordinates()?, reader.displacement(increment)?);
-    let at = [0, 1].map(|c| conn[element][..4].iter().map(|&n| x0[n][c] + u[n][c]).sum::<f64>() / 4.0);
+    let corners = &conn[element][..Shape::of(&conn[element]).corners()];
+    let at = [0, 1].map(|c| corners.iter().map(|&n| x0[n][c] + u[n][c]).sum::<f64>() / corners.len() as f64);
     let mut part = String::from("?");
     for name in reader.element_set_names()? {
         if name != "all" && reader.element_set(&name)?.contains(&element) {

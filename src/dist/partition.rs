@@ -1,7 +1,6 @@
 //! Element partitioning and node ownership.
 
 use crate::error::{Error, Result};
-use crate::fe::shape::edge_nodes;
 use crate::model::Mesh;
 use crate::petsc::{partition_graph, PetscSession};
 use mpi::datatype::PartitionMut;
@@ -141,9 +140,9 @@ fn inverse(order: &[usize]) -> Vec<usize> {
 /// Element dual graph: elements are neighbours when they share a side.
 pub fn dual_graph(mesh: &Mesh) -> Vec<Vec<usize>> {
     let mut by_side: HashMap<(usize, usize), Vec<usize>> = HashMap::new();
-    for (e, conn) in mesh.elements.iter().enumerate() {
-        for side in 0..4 {
-            let [a, b, _] = edge_nodes(side).map(|k| conn[k]);
+    for e in 0..mesh.elements.len() {
+        for edge in mesh.sides(e) {
+            let [a, b, _] = mesh.edge_nodes(edge);
             by_side.entry((a.min(b), a.max(b))).or_default().push(e);
         }
     }

@@ -1,5 +1,6 @@
-//! The 8-node axisymmetric solid: Q8 serendipity, 3x3 Gauss integration, total Lagrangian,
-//! with F-bar on a linearly projected dilatation.
+//! The quadratic axisymmetric solid: the 8-node quadrilateral (Q8 serendipity, 3x3 Gauss
+//! integration) and the 6-node triangle (T6, 9-point conical rule), total Lagrangian, with
+//! F-bar on a projected dilatation.
 //!
 //! Why Q8: the bellows plies are 1 mm thick and bend. A quadratic element carries the linear
 //! bending strain through the thickness exactly, so it neither shear-locks (as plain bilinear Q4
@@ -15,6 +16,12 @@
 //! exact, so thin plies bend as with plain Q8 (the clamped-plate test). Deviatoric response
 //! stays fully integrated.
 //!
+//! The T6 projects onto the constant {1} instead: one volume constraint per element, the
+//! count of the P2/P0 mixed triangle, which satisfies the inf-sup condition in 2D (Boffi,
+//! Brezzi & Fortin, Mixed Finite Element Methods, 2013, sec. 8.6); with the linear basis it
+//! would be P2/P1-discontinuous, which locks. A T6 carries the through-thickness bending
+//! dilatation less well than a Q8, so the thin plies of a bellows stay quadrilaterals.
+//!
 //! Total Lagrangian: dF/du is constant, so f_int = sum_q w_q G_q^T phi_q and the tangent is
 //! exactly K = sum_q w_q G_q^T (A_q G_q + b_q (x) Theta_q), where A = d phi / d F and
 //! b = d phi / d theta come from the material update on dual numbers and
@@ -28,7 +35,7 @@
 
 use crate::ad::Dual;
 use crate::fe::axisymmetric::{map_point, PointGeometry};
-use crate::fe::quadrature::square_3x3;
+use crate::fe::shape::Shape;
 use crate::material::log_exp::log_sym2;
 use crate::material::{Kinematics, PointState, SurfaceBranch, J2};
 use nalgebra::{Matrix3, SMatrix, SVector, Vector3};
@@ -86,25 +93,34 @@ pub struct ElementGeometry {
     gradients: [GradientMap; QUADRATURE_POINTS],
     /// Reference volume per radian of each Gauss point: w R det J.
     weights: [f64; QUADRATURE_POINTS],
-    /// The projection through its rank-3 basis: theta_q = basis[q] . sum_p coef[p] v_p, so the
-    /// 9 rows Theta_q are combinations of 3 rows (sum_p coef[p][k] (dv/dF)_p G_p).
+    /// The projection through its basis of rank 3 (Q8) or 1 (T6, the last two columns zero):
+    /// theta_q = basis[q] . sum_p coef[p] v_p, so the 9 rows Theta_q are combinations of 3 rows
+    /// (sum_p coef[p][k] (dv/dF)_p G_p).
     basis: [[f64; 3]; QUADRATURE_POINTS],
     coef: [[f64; 3]; QUADRATURE_POINTS],
 }
 
 impl ElementGeometry {
-    pub fn new(x: &[[f64; 2]; NODES]) -> Result<Self, String> {
-        let rule = square_3x3();
-        let mut points = [map_point(x, rule[0].0)?; QUADRATURE_POINTS];
+    /// The geometry of an element of shape `shape` with nodal coordinates `x`.
+    pub fn new(shape: Shape, x: &[[f64; 2]; NODES]) -> Result<Self, String> {
+        let rule = shape.rule();
+        let mut points = [map_point(shape, x, rule[0].0)?; QUADRATURE_POINTS];
         let mut weights = [0.0; QUADRATURE_POINTS];
         let mut pos = [[0.0; 2]; QUADRATURE_POINTS];
         for (q, (p, w)) in rule.into_iter().enumerate() {
-            points[q] = map_point(x, p)?;
+            points[q] = map_point(shape, x, p)?;
             weights[q] = w * points[q].r * points[q].det_j;
             pos[q] = [points[q].r, (0..NODES).map(|a| points[q].n[a] * x[a][1]).sum()];
         }
-        // L2 projection (weighted by the reference volume) onto {1, R - Rc, Z - Zc}.
+        let gradients = points.map(|g| GradientMap::new(&g));
         let vol: f64 = weights.iter().sum();
+        if shape == Shape::Tri6 {
+            // L2 projection onto the constant: the element's mean
+            let basis = [[1.0, 0.0, 0.0]; QUADRATURE_POINTS];
+            let coef = weights.map(|w| [w / vol, 0.0, 0.0]);
+            return Ok(ElementGeometry { points, gradients, weights, basis, coef });
+        }
+        // L2 projection (weighted by the reference volume) onto {1, R - Rc, Z - Zc}.
         let centre = [0, 1].map(|i| (0..QUADRATURE_POINTS).map(|q| weights[q] * pos[q][i]).sum::<f64>() / vol);
         let basis_vector = |q: usize| Vector3::new(1.0, pos[q][0] - centre[0], pos[q][1] - centre[1]);
         let mut m = Matrix3::zeros();
@@ -114,7 +130,6 @@ impl ElementGeometry {
         let m_inv = m.try_inverse().ok_or_else(|| "degenerate element: singular volume projection".to_string())?;
         let basis: [[f64; 3]; QUADRATURE_POINTS] = std::array::from_fn(|q| basis_vector(q).into());
         let coef: [[f64; 3]; QUADRATURE_POINTS] = std::array::from_fn(|p| (m_inv * basis_vector(p) * weights[p]).into());
-        let gradients = points.map(|g| GradientMap::new(&g));
         Ok(ElementGeometry { points, gradients, weights, basis, coef })
     }
 
@@ -363,7 +378,7 @@ mod tests {
     #[test]
     fn tangent_matches_central_differences_small_and_large_plastic() {
         let x = element();
-        let geometry = ElementGeometry::new(&x).unwrap();
+        let geometry = ElementGeometry::new(Shape::Quad8, &x).unwrap();
         for (kin, amplitude) in [(Kinematics::Small, 2e-2), (Kinematics::Finite, 0.6)] {
             let committed = [PointState::initial(kin); 9];
             // a large rotation-stretch-shear field, plastic at every point
@@ -386,10 +401,63 @@ mod tests {
         }
     }
 
+    /// A curved 6-node triangle in its 8 slots (the last two at its first node).
+    fn triangle() -> [[f64; 2]; 8] {
+        let x = [[10.0, 0.0], [12.5, 0.3], [10.4, 2.2], [11.3, 0.05], [11.5, 1.35], [10.1, 1.1]];
+        [x[0], x[1], x[2], x[3], x[4], x[5], x[0], x[0]]
+    }
+
+    #[test]
+    fn triangle_tangent_matches_central_differences_and_its_spare_slots_are_inert() {
+        let x = triangle();
+        let geometry = ElementGeometry::new(Shape::Tri6, &x).unwrap();
+        for (kin, amplitude) in [(Kinematics::Small, 2e-2), (Kinematics::Finite, 0.6)] {
+            let committed = [PointState::initial(kin); 9];
+            let u: [[f64; 2]; 8] = std::array::from_fn(|a| {
+                let (r, z) = (x[a][0], x[a][1]);
+                [amplitude * (0.3 * r - 0.2 * z + 0.05 * z * z), amplitude * (0.5 * r + 0.1 * z - 0.02 * r * z)]
+            });
+            let input = SolidInput {
+                geometry: &geometry,
+                material: &STEEL,
+                kinematics: kin,
+                temperature_change: std::array::from_fn(|a| 40.0 + 5.0 * a as f64),
+                committed: &committed,
+                surface: SurfaceBranch::Elastic,
+            };
+            let out = compute_solid(&input, &u, None).unwrap();
+            assert!(out.state.iter().all(|s| s.ep > 0.0), "{kin:?}: every point should be plastic");
+            let err = tangent_error(&input, &u, if kin == Kinematics::Small { 1e-8 } else { 1e-6 });
+            assert!(err <= 1e-6, "{kin:?}: tangent error {err:e}");
+            // the spare slots: no force, and moving them changes nothing
+            assert!((12..16).all(|i| out.internal_force[i] == 0.0));
+            let mut moved = u;
+            moved[6] = [5.0, -3.0];
+            moved[7] = [-2.0, 7.0];
+            assert_eq!(compute_solid(&input, &moved, None).unwrap().internal_force, out.internal_force);
+        }
+    }
+
+    #[test]
+    fn a_triangle_projects_the_dilatation_onto_its_mean_and_holds_a_linear_field() {
+        let x = triangle();
+        let geometry = ElementGeometry::new(Shape::Tri6, &x).unwrap();
+        let v: [f64; 9] = std::array::from_fn(|q| 2.0 + 0.3 * geometry.points[q].r);
+        let theta = geometry.project(&v);
+        let mean = (0..9).map(|q| geometry.weights[q] * v[q]).sum::<f64>() / geometry.weights.iter().sum::<f64>();
+        assert!(theta.iter().all(|t| (t - mean).abs() < 1e-13));
+        // a linear displacement gives its exact (constant) small strain at every point
+        let u: [[f64; 2]; 8] = std::array::from_fn(|a| [1e-3 * x[a][0], -5e-4 * x[a][1] + 2e-4 * x[a][0] + 0.3]);
+        for e in geometry.total_strain(Kinematics::Small, &u) {
+            let expected = [1e-3, -5e-4, 1e-3, 1e-4];
+            assert!((0..4).all(|k| (e[k] - expected[k]).abs() < 1e-14), "{e:?}");
+        }
+    }
+
     #[test]
     fn rigid_rotation_and_translation_give_no_force_at_finite_strain() {
         let x = element();
-        let geometry = ElementGeometry::new(&x).unwrap();
+        let geometry = ElementGeometry::new(Shape::Quad8, &x).unwrap();
         let committed = [PointState::initial(Kinematics::Finite); 9];
         let input = SolidInput {
             geometry: &geometry,
@@ -408,7 +476,7 @@ mod tests {
 
     #[test]
     fn projection_reproduces_linear_fields() {
-        let geometry = ElementGeometry::new(&element()).unwrap();
+        let geometry = ElementGeometry::new(Shape::Quad8, &element()).unwrap();
         let pos: Vec<[f64; 2]> = (0..9).map(|q| [geometry.points[q].r, 0.0]).collect();
         let v: [f64; 9] = std::array::from_fn(|q| 2.0 + 0.3 * pos[q][0]);
         let theta = geometry.project(&v);

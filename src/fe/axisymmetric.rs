@@ -6,9 +6,9 @@
 //! node by node, `[u_r0, u_z0, u_r1, u_z1, ...]`. Integrals are per radian: `dV = r dr dz`;
 //! multiply by 2*pi for the full ring.
 
-use super::shape;
+use super::shape::Shape;
 
-/// Shape functions and physical gradients at one point of a Q8 element.
+/// Shape functions and physical gradients at one point of an element (8 slots; see `fe::shape`).
 #[derive(Clone, Copy, Debug)]
 pub struct PointGeometry {
     pub n: [f64; 8],
@@ -20,10 +20,10 @@ pub struct PointGeometry {
     pub det_j: f64,
 }
 
-/// Maps reference point `p` of the element with nodal coordinates `x` (r, z). Fails with a
-/// message when the Jacobian is not positive (inverted or degenerate element).
-pub fn map_point(x: &[[f64; 2]; 8], p: [f64; 2]) -> Result<PointGeometry, String> {
-    let (n, d) = shape::q8(p);
+/// Maps reference point `p` of the element of shape `shape` with nodal coordinates `x` (r, z).
+/// Fails with a message when the Jacobian is not positive (inverted or degenerate element).
+pub fn map_point(shape: Shape, x: &[[f64; 2]; 8], p: [f64; 2]) -> Result<PointGeometry, String> {
+    let (n, d) = shape.functions(p);
     let (j, det_j) = jacobian(x, &d, p)?;
     let r: f64 = (0..8).map(|a| n[a] * x[a][0]).sum();
     if r <= 0.0 {
@@ -129,7 +129,7 @@ mod tests {
         let x = ring_element();
         let (a, b, c, d) = (1e-3, -2e-3, 5e-4, 0.1);
         let u: [[f64; 2]; 8] = std::array::from_fn(|k| [a * x[k][0] + c * x[k][1], b * x[k][1] + d]);
-        let g = map_point(&x, [0.2, -0.4]).unwrap();
+        let g = map_point(Shape::Quad8, &x, [0.2, -0.4]).unwrap();
         let e = small_strain(&g, &u);
         let zr = g.n.iter().zip(&x).map(|(n, p)| n * p[1]).sum::<f64>() / g.r;
         let exact = [a, b, a + c * zr, c];
@@ -144,7 +144,7 @@ mod tests {
         x.swap(1, 3);
         x.swap(4, 7);
         x.swap(5, 6);
-        assert!(map_point(&x, [0.0, 0.0]).unwrap_err().contains("non-positive Jacobian"));
+        assert!(map_point(Shape::Quad8, &x, [0.0, 0.0]).unwrap_err().contains("non-positive Jacobian"));
     }
 
     #[test]

@@ -10,8 +10,8 @@
 //! for thick axisymmetric sections is not used.
 
 use super::axisymmetric::von_mises;
-use super::recover::gauss_to_nodes;
-use super::shape::q8;
+use super::recover::{Recovery, Rule};
+use super::shape::Shape;
 
 /// A stress tensor in the section's axes: [normal, meridional, hoop, shear].
 pub type SectionComponents = [f64; 4];
@@ -97,8 +97,7 @@ pub fn linearize(a: [f64; 2], b: [f64; 2], intervals: usize, stress_at: impl Fn(
 }
 
 /// The stress anywhere in a mesh from its Gauss-point values: the element holding the point
-/// (reference coordinates), its Gauss values carried to its nodes (the biquadratic fit, as the
-/// nodal output does) and interpolated there, so within an element the field is the fitted one.
+/// (reference coordinates), its Gauss values carried to its nodes (the fit the nodal output uses) and interpolated there, so within an element the field is the fitted one.
 pub struct StressSampler<'a> {
     coords: &'a [[f64; 2]],
     elements: &'a [[usize; 8]],
@@ -113,8 +112,8 @@ pub struct StressSampler<'a> {
 impl<'a> StressSampler<'a> {
     /// `stress` per element: [rr, zz, tt, rz] at the 3 x 3 Gauss points.
     pub fn new(coords: &'a [[f64; 2]], elements: &'a [[usize; 8]], stress: &[[[f64; 4]; 9]]) -> Self {
-        let m = gauss_to_nodes();
-        let nodal = stress.iter().map(|g| std::array::from_fn(|a| std::array::from_fn(|c| (0..9).map(|q| m[a][q] * g[q][c]).sum()))).collect();
+        let recovery = Recovery::default();
+        let nodal = elements.iter().zip(stress).map(|(e, g)| recovery.element_nodal(Shape::of(e), Rule::Extrapolate, g)).collect();
         let boxes = elements
             .iter()
             .map(|e| {
@@ -143,9 +142,10 @@ impl<'a> StressSampler<'a> {
             if p[0] < bx[0] - tol || p[0] > bx[2] + tol || p[1] < bx[1] - tol || p[1] > bx[3] + tol {
                 continue;
             }
+            let shape = Shape::of(&self.elements[e]);
             let x: [[f64; 2]; 8] = self.elements[e].map(|n| self.coords[n]);
-            if let Some(xi) = inverse_map(&x, p, self.slack) {
-                let (n, _) = q8(xi);
+            if let Some(xi) = inverse_map(shape, &x, p, self.slack) {
+                let (n, _) = shape.functions(xi);
                 return Some(std::array::from_fn(|c| (0..8).map(|a| n[a] * self.nodal[e][a][c]).sum()));
             }
         }
@@ -153,11 +153,12 @@ impl<'a> StressSampler<'a> {
     }
 }
 
-/// The element coordinates (xi, eta) of `p` in the Q8 element `x`, if it lies inside.
-fn inverse_map(x: &[[f64; 2]; 8], p: [f64; 2], slack: f64) -> Option<[f64; 2]> {
-    let mut xi = [0.0f64; 2];
+/// The element coordinates (xi, eta) of `p` in the element `x` of shape `shape`, if it lies
+/// inside.
+fn inverse_map(shape: Shape, x: &[[f64; 2]; 8], p: [f64; 2], slack: f64) -> Option<[f64; 2]> {
+    let mut xi = shape.centre();
     for _ in 0..30 {
-        let (n, d) = q8(xi);
+        let (n, d) = shape.functions(xi);
         let pos: [f64; 2] = std::array::from_fn(|c| (0..8).map(|a| n[a] * x[a][c]).sum());
         let r = [p[0] - pos[0], p[1] - pos[1]];
         // J[c][k] = d x_c / d xi_k
@@ -175,8 +176,7 @@ fn inverse_map(x: &[[f64; 2]; 8], p: [f64; 2], slack: f64) -> Option<[f64; 2]> {
         // stalls at the round-off of the coordinates, about 1e-13 of the element in a thin ply
         // far from the axis, so a fixed 1e-13 failed there
         if step[0].abs().max(step[1].abs()) < 1e-10 {
-            let inside = xi[0].abs() <= 1.0 + slack && xi[1].abs() <= 1.0 + slack;
-            return inside.then_some(xi);
+            return shape.contains(xi, slack).then_some(xi);
         }
     }
     None
@@ -184,6 +184,7 @@ fn inverse_map(x: &[[f64; 2]; 8], p: [f64; 2], slack: f64) -> Option<[f64; 2]> {
 
 #[cfg(test)]
 mod tests {
+    use super::super::shape::q8;
     use super::*;
 
     #[test]
@@ -218,7 +219,7 @@ mod tests {
                 let xi = [-0.97 + 0.2425 * i as f64, -0.97 + 0.2425 * j as f64];
                 let (n, _) = q8(xi);
                 let p: [f64; 2] = std::array::from_fn(|c| (0..8).map(|a| n[a] * x[a][c]).sum());
-                let back = inverse_map(&x, p, 1e-9).unwrap_or_else(|| panic!("({}, {}) at xi {xi:?} not found", p[0], p[1]));
+                let back = inverse_map(Shape::Quad8, &x, p, 1e-9).unwrap_or_else(|| panic!("({}, {}) at xi {xi:?} not found", p[0], p[1]));
                 assert!((back[0] - xi[0]).abs() < 1e-8 && (back[1] - xi[1]).abs() < 1e-8);
                 found += 1;
             }

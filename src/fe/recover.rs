@@ -1,7 +1,9 @@
 //! Gauss-point values carried to the nodes for plots, the rule ANSYS applies by default
 //! (its ERESX command, key DEFA): in an element that is wholly elastic, the 3 x 3 values are
 //! fitted by the biquadratic Lagrange polynomial through the Gauss points and evaluated at the
-//! Q8's nodes (a linear or quadratic stress comes back exactly); in an element with plastic
+//! Q8's nodes (a linear or quadratic stress comes back exactly; a T6's 9 values are fitted by
+//! the complete quadratic in least squares, which also returns a quadratic exactly); in an
+//! element with plastic
 //! strain anywhere, each node takes the value of its nearest Gauss point (copied). Plastic
 //! quantities (the equivalent plastic strain, the plastic strain tensor) are always copied.
 //!
@@ -16,10 +18,8 @@
 //! averaged components (`io::nodal`), never averaged as scalars, so they keep their sign.
 
 use super::quadrature::{square_3x3, GAUSS3};
-use super::shape::CORNERS;
-
-/// Natural coordinates of the Q8 nodes (corners, then mid-sides), the order of `fe::shape`.
-const NODES: [[f64; 2]; 8] = [CORNERS[0], CORNERS[1], CORNERS[2], CORNERS[3], [0.0, -1.0], [1.0, 0.0], [0.0, 1.0], [-1.0, 0.0]];
+use super::shape::{q8_nodes, Shape};
+use nalgebra::{SMatrix, SVector};
 
 /// How an element's Gauss values reach its nodes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -47,50 +47,71 @@ fn weight(a: usize, q: usize) -> f64 {
     let points = GAUSS3.map(|g| g.0);
     // 1D Lagrange basis through the three Gauss abscissae, at x
     let lagrange = |k: usize, x: f64| -> f64 { (0..3).filter(|&m| m != k).map(|m| (x - points[m]) / (points[k] - points[m])).product() };
-    let [xi, eta] = NODES[a];
+    let [xi, eta] = q8_nodes()[a];
     lagrange(q % 3, xi) * lagrange(q / 3, eta)
 }
 
-/// The 8 x 9 extrapolation matrix: row a gives node a's value from the 9 Gauss values.
-pub fn gauss_to_nodes() -> [[f64; 9]; 8] {
-    debug_assert_eq!(square_3x3()[1].0, [GAUSS3[1].0, GAUSS3[0].0], "square_3x3 runs over xi first");
-    std::array::from_fn(|a| std::array::from_fn(|q| weight(a, q)))
+/// The 8 x 9 extrapolation matrix of a shape: row a gives node a's value from the 9 Gauss
+/// values (a T6's unused slots take its first node's row).
+pub fn gauss_to_nodes(shape: Shape) -> [[f64; 9]; 8] {
+    match shape {
+        Shape::Quad8 => {
+            debug_assert_eq!(square_3x3()[1].0, [GAUSS3[1].0, GAUSS3[0].0], "square_3x3 runs over xi first");
+            std::array::from_fn(|a| std::array::from_fn(|q| weight(a, q)))
+        }
+        Shape::Tri6 => {
+            // least-squares fit of {1, xi, eta, xi^2, xi eta, eta^2} to the 9 values
+            let monomials = |p: [f64; 2]| SVector::<f64, 6>::from([1.0, p[0], p[1], p[0] * p[0], p[0] * p[1], p[1] * p[1]]);
+            let rule = Shape::Tri6.rule();
+            let a = SMatrix::<f64, 9, 6>::from_fn(|q, k| monomials(rule[q].0)[k]);
+            // the normal matrix of 9 interior points is well conditioned (a fixed rule)
+            let fit = (a.transpose() * a).try_inverse().unwrap_or_else(SMatrix::zeros) * a.transpose();
+            let nodes = Shape::Tri6.reference_nodes();
+            std::array::from_fn(|n| {
+                let row = monomials(nodes[n]).transpose() * fit;
+                std::array::from_fn(|q| row[q])
+            })
+        }
+    }
 }
 
-/// The Gauss point (the order of `square_3x3`) nearest each Q8 node: a corner's is the corner
-/// point of the 3 x 3 grid, a mid-side node's the point at the middle of that side.
-pub fn nearest_gauss_points() -> [usize; 8] {
-    let points = square_3x3();
+/// The Gauss point (the order of the shape's rule) nearest each node: for a Q8 a corner's is
+/// the corner point of the 3 x 3 grid, a mid-side node's the point at the middle of that side.
+pub fn nearest_gauss_points(shape: Shape) -> [usize; 8] {
+    let (points, nodes) = (shape.rule(), shape.reference_nodes());
     let distance = |a: [f64; 2], b: [f64; 2]| (a[0] - b[0]).hypot(a[1] - b[1]);
-    std::array::from_fn(|a| (0..9).min_by(|&p, &q| distance(NODES[a], points[p].0).total_cmp(&distance(NODES[a], points[q].0))).unwrap_or(0))
+    std::array::from_fn(|a| (0..9).min_by(|&p, &q| distance(nodes[a], points[p].0).total_cmp(&distance(nodes[a], points[q].0))).unwrap_or(0))
 }
 
-/// Carries Gauss values to an element's nodes.
+/// Carries Gauss values to an element's nodes, for each shape.
 #[derive(Clone, Debug)]
 pub struct Recovery {
-    matrix: [[f64; 9]; 8],
-    nearest: [usize; 8],
+    matrix: [[[f64; 9]; 8]; 2],
+    nearest: [[usize; 8]; 2],
 }
 
 impl Default for Recovery {
     fn default() -> Self {
-        Recovery { matrix: gauss_to_nodes(), nearest: nearest_gauss_points() }
+        let shapes = [Shape::Quad8, Shape::Tri6];
+        Recovery { matrix: shapes.map(gauss_to_nodes), nearest: shapes.map(nearest_gauss_points) }
     }
 }
 
 impl Recovery {
-    /// The values at the element's 8 nodes of the `C` quantities given at its Gauss points.
-    pub fn element_nodal<const C: usize>(&self, rule: Rule, gauss: &[[f64; C]; 9]) -> [[f64; C]; 8] {
+    /// The values at the 8 node slots of an element of shape `shape` (a T6's unused slots
+    /// repeat its first node's) of the `C` quantities given at its Gauss points.
+    pub fn element_nodal<const C: usize>(&self, shape: Shape, rule: Rule, gauss: &[[f64; C]; 9]) -> [[f64; C]; 8] {
+        let s = shape as usize;
         match rule {
-            Rule::Extrapolate => std::array::from_fn(|a| std::array::from_fn(|c| (0..9).map(|q| self.matrix[a][q] * gauss[q][c]).sum())),
-            Rule::Copy => std::array::from_fn(|a| gauss[self.nearest[a]]),
+            Rule::Extrapolate => std::array::from_fn(|a| std::array::from_fn(|c| (0..9).map(|q| self.matrix[s][a][q] * gauss[q][c]).sum())),
+            Rule::Copy => std::array::from_fn(|a| gauss[self.nearest[s][a]]),
         }
     }
 
-    /// Adds an element's nodal values (`nodal[a][c]` for its nodes `nodes`) into `sums`
+    /// Adds an element's nodal values (`nodal[a][c]` for its node slots `nodes`) into `sums`
     /// (node-major, `C` per node) and 1 per node into `counts`.
     pub fn accumulate<const C: usize>(nodes: &[usize; 8], nodal: &[[f64; C]; 8], sums: &mut [f64], counts: &mut [f64]) {
-        for (a, &n) in nodes.iter().enumerate() {
+        for (a, &n) in nodes.iter().enumerate().take(Shape::of(nodes).nodes()) {
             for c in 0..C {
                 sums[n * C + c] += nodal[a][c];
             }
@@ -106,9 +127,9 @@ mod tests {
     #[test]
     fn a_biquadratic_field_is_carried_to_the_nodes_exactly() {
         let f = |p: [f64; 2]| 3.0 + 2.0 * p[0] - p[1] + 0.5 * p[0] * p[1] + 0.25 * p[0] * p[0] - 0.75 * p[1] * p[1] + 0.1 * p[0] * p[0] * p[1] * p[1];
-        let m = gauss_to_nodes();
+        let m = gauss_to_nodes(Shape::Quad8);
         let gauss = square_3x3().map(|(p, _)| f(p));
-        for (a, node) in NODES.iter().enumerate() {
+        for (a, node) in q8_nodes().iter().enumerate() {
             let value: f64 = (0..9).map(|q| m[a][q] * gauss[q]).sum();
             assert!((value - f(*node)).abs() < 1e-12, "node {a}: {value} vs {}", f(*node));
         }
@@ -119,9 +140,9 @@ mod tests {
     #[test]
     fn copying_takes_each_nodes_nearest_gauss_point() {
         // q = i + 3 j with i along xi, j along eta, both from -sqrt(0.6) up
-        assert_eq!(nearest_gauss_points(), [0, 2, 8, 6, 1, 5, 7, 3]);
+        assert_eq!(nearest_gauss_points(Shape::Quad8), [0, 2, 8, 6, 1, 5, 7, 3]);
         let gauss: [[f64; 1]; 9] = std::array::from_fn(|q| [q as f64]);
-        let nodal = Recovery::default().element_nodal(Rule::Copy, &gauss);
+        let nodal = Recovery::default().element_nodal(Shape::Quad8, Rule::Copy, &gauss);
         assert_eq!(nodal.map(|v| v[0]), [0.0, 2.0, 8.0, 6.0, 1.0, 5.0, 7.0, 3.0]);
     }
 
@@ -136,11 +157,32 @@ mod tests {
         assert_eq!(Rule::for_element(&plastic), Rule::Copy);
         assert_eq!(Rule::for_element(&[0.0; 9]), Rule::Extrapolate);
         let r = Recovery::default();
-        let extrapolated = r.element_nodal(Rule::Extrapolate, &gauss);
+        let extrapolated = r.element_nodal(Shape::Quad8, Rule::Extrapolate, &gauss);
         assert!((extrapolated[1][0] - 320.0 / 0.6f64.sqrt()).abs() < 1e-9);
-        let copied = r.element_nodal(Rule::Copy, &gauss);
+        let copied = r.element_nodal(Shape::Quad8, Rule::Copy, &gauss);
         assert_eq!(copied[1][0], 320.0);
         assert!(copied.iter().all(|v| v[0].abs() <= 320.0));
+    }
+
+    #[test]
+    fn a_quadratic_field_is_carried_to_a_triangles_nodes_exactly_and_its_spare_slots_repeat_node_0() {
+        let f = |p: [f64; 2]| 3.0 + 2.0 * p[0] - p[1] + 0.5 * p[0] * p[1] + 0.25 * p[0] * p[0] - 0.75 * p[1] * p[1];
+        let gauss: [[f64; 1]; 9] = Shape::Tri6.rule().map(|(p, _)| [f(p)]);
+        let nodal = Recovery::default().element_nodal(Shape::Tri6, Rule::Extrapolate, &gauss);
+        for (a, node) in Shape::Tri6.reference_nodes().iter().enumerate() {
+            assert!((nodal[a][0] - f(*node)).abs() < 1e-12, "node {a}: {} vs {}", nodal[a][0], f(*node));
+        }
+        // copying: each corner takes a point near it, and the spare slots are node 0's
+        let copied = Recovery::default().element_nodal(Shape::Tri6, Rule::Copy, &std::array::from_fn(|q| [q as f64]));
+        let nearest = nearest_gauss_points(Shape::Tri6);
+        assert_eq!(copied.map(|v| v[0] as usize), nearest);
+        assert_eq!((nearest[6], nearest[7]), (nearest[0], nearest[0]));
+        // its corner 0 at (0, 0) is nearest the rule's first point (small s, small t)
+        assert_eq!(nearest[0], 0);
+        // a T6 adds to its six nodes only
+        let (mut sums, mut counts) = (vec![0.0; 7], vec![0.0; 7]);
+        Recovery::accumulate(&Shape::tri6_slots([1, 2, 3, 4, 5, 6]), &[[1.0]; 8], &mut sums, &mut counts);
+        assert_eq!(counts, [0.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0]);
     }
 
     #[test]
@@ -151,7 +193,7 @@ mod tests {
         let (mut sums, mut counts) = (vec![0.0; 13], vec![0.0; 13]);
         let r = Recovery::default();
         for (nodes, gauss) in conn.iter().zip(&values) {
-            Recovery::accumulate(nodes, &r.element_nodal(Rule::Extrapolate, gauss), &mut sums, &mut counts);
+            Recovery::accumulate(nodes, &r.element_nodal(Shape::Quad8, Rule::Extrapolate, gauss), &mut sums, &mut counts);
         }
         let mean = |n: usize| sums[n] / counts[n];
         assert!((mean(0) - 1.0).abs() < 1e-12 && (mean(8) - 3.0).abs() < 1e-12);

@@ -45,7 +45,14 @@ pub fn describe(group: &str, name: &str) -> (&'static str, String) {
         ),
         ("perturbations", "displacement") => ("mm", "the perturbation's displacement at theta = 0 as a vector (u_r, u_z, u_theta) for ParaView's warp".into()),
         ("mesh", "coordinates") => ("mm", "r, z of each node".into()),
-        ("mesh", "connectivity") => ("-", "the 8 nodes of each Q8 element (rows of /mesh/coordinates), corners then mid-sides, counter-clockwise".into()),
+        ("mesh", "connectivity") => (
+            "-",
+            "the 8 node slots of each element (rows of /mesh/coordinates), corners then mid-sides, counter-clockwise; a 6-node triangle's last two repeat its first".into(),
+        ),
+        ("mesh", "topology") => (
+            "-",
+            "the cells in XDMF's form: a mesh of triangles, the 6 nodes of each; a mixed mesh, each cell's type (36 a 6-node triangle, 37 an 8-node quadrilateral) then its nodes".into(),
+        ),
         ("mesh", "node_ids") => ("-", "external node numbers (the input's)".into()),
         ("mesh", "element_ids") => ("-", "external element numbers (the input's)".into()),
         ("mesh", "element_rank") => ("-", "MPI rank that assembled the element".into()),

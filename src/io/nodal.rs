@@ -15,6 +15,7 @@ use crate::dist::Partition;
 use crate::error::Result;
 use crate::fe::axisymmetric::{principal_stresses, von_mises};
 use crate::fe::recover::{Recovery, Rule};
+use crate::fe::shape::Shape;
 use crate::model::{Mesh, OutputControls, OutputFields, Precision};
 use crate::solve::contact::PassOutput;
 use mpi::collective::SystemOperation;
@@ -130,7 +131,8 @@ impl NodalWriter {
                 let p = f.plastic_strain_tensor[k][q];
                 [p[0], p[1], p[2], p[3], ep[q]]
             });
-            let (elastic_part, plastic_part) = (self.recovery.element_nodal(rule, &gauss), self.recovery.element_nodal(Rule::Copy, &plastic));
+            let shape = Shape::of(nodes);
+            let (elastic_part, plastic_part) = (self.recovery.element_nodal(shape, rule, &gauss), self.recovery.element_nodal(shape, Rule::Copy, &plastic));
             let nodal: [[f64; AVERAGED]; 8] = std::array::from_fn(|a| std::array::from_fn(|c| if c < 8 { elastic_part[a][c] } else { plastic_part[a][c - 8] }));
             Recovery::accumulate(nodes, &nodal, sums, counts);
         }
@@ -156,8 +158,10 @@ impl NodalWriter {
             self.write_contact(&g, f.contact, path)?;
         }
         if self.fields.element_nodal {
-            let stress: Vec<f64> =
-                f.stress.iter().zip(f.plastic_strain).flat_map(|(s, ep)| self.recovery.element_nodal(Rule::for_element(ep), s)).flatten().collect();
+            let stress: Vec<f64> = (self.connectivity.iter().zip(f.stress).zip(f.plastic_strain))
+                .flat_map(|((nodes, s), ep)| self.recovery.element_nodal(Shape::of(nodes), Rule::for_element(ep), s))
+                .flatten()
+                .collect();
             write_field(increment, "element_nodal_stress", &[self.elements, 8, 4], self.element_slab, &stress, self.precision, path)?;
         }
         Ok(())

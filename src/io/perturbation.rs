@@ -84,7 +84,7 @@ impl ResultsFile {
         self.file.flush().map_err(&err)?;
         if partition.rank == 0 {
             let elements = partition.element_offsets[partition.size];
-            super::xdmf::write_perturbation_sidecar(&path, &p.name, base, nn, elements, answer.modes.len())?;
+            super::xdmf::write_perturbation_sidecar(&path, &p.name, base, (nn, elements, self.topology), answer.modes.len())?;
         }
         Ok(())
     }

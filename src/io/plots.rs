@@ -3,6 +3,7 @@
 //! the same pictures.
 
 use crate::error::{Error, Result};
+use crate::fe::shape::Shape;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::{register_font, FontStyle};
@@ -169,9 +170,6 @@ pub fn rainbow(t: f64) -> RGBColor {
     RGBColor(c[0], c[1], c[2])
 }
 
-/// The element outline through corner and mid-side nodes (Q8 numbering: corners 0-3, mid 4-7).
-const OUTLINE: [usize; 8] = [0, 4, 1, 5, 2, 6, 3, 7];
-
 /// A picture window: (z range, r range), mm.
 pub type Window = ((f64, f64), (f64, f64));
 
@@ -240,14 +238,15 @@ fn draw_panel(
         .map_err(|e| e.to_string())?;
     let visible = |p: [f64; 2]| (p[1] - zc).abs() <= hz + 5.0 && (p[0] - rc).abs() <= hr + 5.0;
     let polygons = picture.connectivity.iter().zip(picture.values).filter_map(|(conn, &v)| {
-        let pts: Vec<(f64, f64)> = OUTLINE.iter().map(|&k| x(conn[k])).map(|p| (p[1], p[0])).collect();
+        let pts: Vec<(f64, f64)> = Shape::of(conn).outline().iter().map(|&k| x(conn[k])).map(|p| (p[1], p[0])).collect();
         pts.iter().any(|&(zz, rr)| visible([rr, zz])).then(|| Polygon::new(pts, colour(v).filled()))
     });
     chart.draw_series(polygons).map_err(|e| e.to_string())?;
     // element edges, thin, where the elements are large enough on screen to show them
     let edges = picture.connectivity.iter().filter_map(|conn| {
-        let mut pts: Vec<(f64, f64)> = OUTLINE.iter().map(|&k| x(conn[k])).map(|p| (p[1], p[0])).collect();
-        let size = (pts[0].0 - pts[4].0).hypot(pts[0].1 - pts[4].1) * scale;
+        let mut pts: Vec<(f64, f64)> = Shape::of(conn).outline().iter().map(|&k| x(conn[k])).map(|p| (p[1], p[0])).collect();
+        // corner to the opposite corner (Q8) or mid-side (T6)
+        let size = (pts[0].0 - pts[pts.len() / 2].0).hypot(pts[0].1 - pts[pts.len() / 2].1) * scale;
         pts.push(pts[0]);
         (size > 12.0 && pts.iter().any(|&(zz, rr)| visible([rr, zz]))).then(|| PathElement::new(pts, BLACK.mix(0.25).stroke_width(1)))
     });

@@ -169,6 +169,8 @@ pub struct ResultsFile {
     increments: usize,
     /// The XDMF sidecar, on rank 0 (which writes it).
     sidecar: Option<xdmf::Sidecar>,
+    /// How the sidecars give the cells.
+    pub(super) topology: xdmf::Topology,
     contact_mesh_written: bool,
     /// Reactions also per segment of this angle (degrees), CalculiX's convention for .inp runs.
     reaction_segment_degrees: Option<f64>,
@@ -225,6 +227,22 @@ impl ResultsFile {
         write_rows(&g, "coordinates", &[nn, 2], node_slab, &coords, path)?;
         let conn: Vec<i64> = local.iter().flat_map(|&e| mesh.elements[e].map(|n| partition.node_position[n] as i64)).collect();
         write_rows(&g, "connectivity", &[ne, 8], element_slab, &conn, path)?;
+        let topology = xdmf::Topology::of(mesh);
+        let nodes_of = |e: usize| mesh.element_nodes(e).iter().map(|&n| partition.node_position[n] as i64);
+        match topology {
+            xdmf::Topology::Quad8 => {}
+            xdmf::Topology::Tri6 => {
+                let cells: Vec<i64> = local.iter().flat_map(|&e| nodes_of(e)).collect();
+                write_rows(&g, "topology", &[ne, 6], element_slab, &cells, path)?;
+            }
+            xdmf::Topology::Mixed { values } => {
+                // each rank's cells follow those of the ranks before it
+                let length = |e: usize| 1 + mesh.shape(e).nodes();
+                let start: usize = (0..ne).filter(|&e| partition.element_rank[e] < rank).map(length).sum();
+                let cells: Vec<i64> = local.iter().flat_map(|&e| std::iter::once(xdmf::xdmf_cell_type(mesh.shape(e))).chain(nodes_of(e))).collect();
+                write_rows(&g, "topology", &[values], (start, start + cells.len()), &cells, path)?;
+            }
+        }
         let ids: Vec<u64> = owned.iter().map(|&n| mesh.node_ids[n]).collect();
         write_rows(&g, "node_ids", &[nn], node_slab, &ids, path)?;
         let ids: Vec<u64> = local.iter().map(|&e| mesh.element_ids[e]).collect();
@@ -258,6 +276,7 @@ impl ResultsFile {
             precision: model.output.precision,
             contact: !model.contacts.is_empty(),
             friction: (0..model.contacts.len()).any(|p| model.pair_has_friction(p)),
+            topology,
         };
         let sidecar = (rank == 0).then(|| xdmf::Sidecar::new(path, nn, ne, what)).transpose();
         // rank 0 alone writes the sidecar: every rank learns whether it could
@@ -278,6 +297,7 @@ impl ResultsFile {
             element_slab,
             increments: 0,
             sidecar,
+            topology,
             contact_mesh_written: false,
             reaction_segment_degrees: model.reaction_segment_degrees,
             nodal: NodalWriter::new(world, mesh, partition, model.output),

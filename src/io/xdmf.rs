@@ -1,4 +1,5 @@
-//! XDMF 3 sidecar describing the HDF5 results as a time series of Q8 meshes, so that ParaView
+//! XDMF 3 sidecar describing the HDF5 results as a time series of meshes (Q8, or Q8 and T6
+//! through XDMF's mixed topology), so that ParaView
 //! (its default Xdmf3 reader and the legacy one) and meshio open `results.xmf` directly. Every
 //! data item is a plain HDF5 dataset (no functions or hyperslabs, which Xdmf3 and meshio skip):
 //! the displacement and reaction force as 3-component vectors (r, z, 0) for Warp By Vector and
@@ -13,7 +14,8 @@
 use super::describe::describe;
 use super::nodal::{nodal_scalar_kept, CONTACT_SCALARS, NODAL_SCALARS, NODAL_TAIL};
 use crate::error::{Error, Result};
-use crate::model::{OutputFields, Precision};
+use crate::fe::shape::Shape;
+use crate::model::{Mesh, OutputFields, Precision};
 use std::fmt::Write as _;
 use std::io::Write as _;
 use std::path::{Path, PathBuf};
@@ -27,6 +29,54 @@ pub fn sidecar_path(h5: &Path) -> PathBuf {
 /// temperature.
 pub const INITIAL: &str = "/initial";
 
+/// The dataset of the cells of a mesh with triangles, in XDMF's form.
+pub const CELLS: &str = "/mesh/topology";
+
+/// How the grids give their cells: the Q8 rows of `/mesh/connectivity`; in a mesh of T6 only,
+/// their 6 nodes per row in [`CELLS`]; in a mesh of both, XDMF's mixed list there (each cell's
+/// type number, then its nodes) of `values` numbers. The padded rows of `/mesh/connectivity`
+/// stay slideline's own format (`fe::shape`). meshio 5 reads the first two; its reader of mixed
+/// lists knows no quadratic quadrilateral, so a mixed mesh opens in ParaView, and in Python
+/// through h5py.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Topology {
+    Quad8,
+    Tri6,
+    Mixed { values: usize },
+}
+
+impl Topology {
+    pub fn of(mesh: &Mesh) -> Topology {
+        let shapes = |s: Shape| (0..mesh.elements.len()).filter(|&e| mesh.shape(e) == s).count();
+        match (shapes(Shape::Quad8), shapes(Shape::Tri6)) {
+            (_, 0) => Topology::Quad8,
+            (0, _) => Topology::Tri6,
+            (q, t) => Topology::Mixed { values: 9 * q + 7 * t },
+        }
+    }
+
+    /// The `Topology` element of a grid of `elements` cells in results file `file`.
+    fn xml(self, file: &str, elements: usize) -> String {
+        let (kind, path, dims) = match self {
+            Topology::Quad8 => ("Quadrilateral_8", "/mesh/connectivity", format!("{elements} 8")),
+            Topology::Tri6 => ("Triangle_6", CELLS, format!("{elements} 6")),
+            Topology::Mixed { values } => ("Mixed", CELLS, values.to_string()),
+        };
+        format!(
+            r#"<Topology TopologyType="{kind}" NumberOfElements="{elements}"><DataItem Dimensions="{dims}" NumberType="Int" Precision="8" Format="HDF">{file}:{path}</DataItem></Topology>"#
+        )
+    }
+}
+
+/// XDMF's number for a cell of shape `shape` in a mixed topology (XdmfTopologyType:
+/// Triangle_6 0x24, Quadrilateral_8 0x25).
+pub const fn xdmf_cell_type(shape: Shape) -> i64 {
+    match shape {
+        Shape::Tri6 => 0x24,
+        Shape::Quad8 => 0x25,
+    }
+}
+
 /// What the sidecar's grids hold beside the displacement.
 #[derive(Clone, Copy, Debug)]
 pub struct GridFields {
@@ -37,6 +87,7 @@ pub struct GridFields {
     pub contact: bool,
     /// Some pair has friction: the nodal shear and sliding are written.
     pub friction: bool,
+    pub topology: Topology,
 }
 
 /// The sidecar of one results file, grown by one grid per converged increment. Each grid is
@@ -109,11 +160,7 @@ impl Sidecar {
         let x = &mut self.grids;
         let label = if group.is_some() { format!("increment {name}") } else { "initial state".to_string() };
         let _ = writeln!(x, r#"<Grid Name="{label}" GridType="Uniform"><Time Value="{time}"/>"#);
-        let _ = writeln!(
-            x,
-            r#"<Topology TopologyType="Quadrilateral_8" NumberOfElements="{elements}">{}</Topology>"#,
-            item("/mesh/connectivity", &format!("{elements} 8"), "Int", 8)
-        );
+        let _ = writeln!(x, "{}", self.what.topology.xml(file, elements));
         let _ = writeln!(x, r#"<Geometry GeometryType="XY">{}</Geometry>"#, item("/mesh/coordinates", &format!("{nodes} 2"), "Float", 8));
         let vector_path = |name: &str| group.map_or(format!("{INITIAL}/vector"), |g| format!("{g}/nodal/{name}"));
         let scalar_path = |name: &str| match (group, name) {
@@ -121,7 +168,7 @@ impl Sidecar {
             (None, "temperature") => format!("{INITIAL}/temperature"),
             (None, _) => format!("{INITIAL}/scalar"),
         };
-        let GridFields { fields: f, precision, contact, friction } = self.what;
+        let GridFields { fields: f, precision, contact, friction, .. } = self.what;
         // the t = 0 frame's zeros are 64-bit
         let width = if group.is_some() && precision == Precision::Single { 4 } else { 8 };
         for (name, width) in [("displacement", 8), ("reaction_force", width)] {
@@ -160,7 +207,13 @@ impl Sidecar {
 /// its fields are in the file) and the perturbation's field at theta = 0 and its amplitudes, each
 /// a 3-component vector: warp by the first, then by the second with a scale. Written by one
 /// process; returns its path.
-pub fn write_perturbation_sidecar(h5: &Path, name: &str, base: Option<&str>, nodes: usize, elements: usize, modes: usize) -> Result<PathBuf> {
+pub fn write_perturbation_sidecar(
+    h5: &Path,
+    name: &str,
+    base: Option<&str>,
+    (nodes, elements, topology): (usize, usize, Topology),
+    modes: usize,
+) -> Result<PathBuf> {
     let file = h5.file_name().map(|f| f.to_string_lossy().into_owned()).unwrap_or_default();
     let stem = h5.file_stem().map(|f| f.to_string_lossy().into_owned()).unwrap_or_default();
     let target = h5.with_file_name(format!("{stem}_{name}.xmf"));
@@ -171,10 +224,7 @@ pub fn write_perturbation_sidecar(h5: &Path, name: &str, base: Option<&str>, nod
     // one grid alone in the domain (meshio reads no other element there); units: mm
     let mut x = String::from("<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\"><Domain>\n");
     let _ = writeln!(x, r#"<Grid Name="perturbation {name}" GridType="Uniform">"#);
-    let _ = writeln!(
-        x,
-        r#"<Topology TopologyType="Quadrilateral_8" NumberOfElements="{elements}"><DataItem Dimensions="{elements} 8" NumberType="Int" Precision="8" Format="HDF">{file}:/mesh/connectivity</DataItem></Topology>"#
-    );
+    let _ = writeln!(x, "{}", topology.xml(&file, elements));
     let _ = writeln!(x, r#"<Geometry GeometryType="XY">{}</Geometry>"#, item("/mesh/coordinates", &format!("{nodes} 2")));
     if let Some(g) = base {
         let _ = writeln!(x, "{}", vector("base_displacement", &format!("/increments/{g}/nodal/displacement")));
@@ -198,8 +248,13 @@ mod tests {
         let dir = std::env::temp_dir().join(format!("slideline-xdmf-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
         let h5 = dir.join("run.h5");
-        let mut sidecar =
-            Sidecar::new(&h5, 10, 2, GridFields { fields: OutputFields::DEFAULT, precision: Precision::Double, contact: false, friction: false }).unwrap();
+        let mut sidecar = Sidecar::new(
+            &h5,
+            10,
+            2,
+            GridFields { fields: OutputFields::DEFAULT, precision: Precision::Double, contact: false, friction: false, topology: Topology::Quad8 },
+        )
+        .unwrap();
         let text = std::fs::read_to_string(sidecar_path(&h5)).unwrap();
         assert!(text.contains("<Time Value=\"0\"/>") && text.contains("run.h5:/initial/vector"), "the t = 0 frame is there from the start");
         for (k, time) in [0.5, 1.0, 1.25].into_iter().enumerate() {

@@ -72,7 +72,7 @@
 //!                                   # tangential_penalty / elastic_slip as in [[contact]])
 //! ```
 
-use super::mesh::{blocks, rectangle, Block, MeshSets};
+use super::mesh::{blocks, rectangle, split_into_triangles, Block, MeshSets};
 use super::perturbation::{Analysis, HarmonicComponent, HarmonicDisplacement, Perturbation, RingMotion};
 use super::{
     default_capture_distance, gmsh, Adjust, AugmentedLagrangian, BodyLoad, Component, ContactIntegration, ContactPair, Convergence, Friction, FrictionChange,
@@ -283,6 +283,9 @@ struct RectangleSpec {
     r: [f64; 2],
     z: [f64; 2],
     divisions: [usize; 2],
+    /// Each quadrilateral split into two 6-node triangles.
+    #[serde(default)]
+    triangles: bool,
 }
 
 #[derive(Deserialize, Clone, Copy, PartialEq, Eq, Debug)]
@@ -433,7 +436,14 @@ pub fn parse(text: &str, path: &Path) -> Result<Model> {
             source_files.push(full.clone());
             gmsh::read(&full)?
         }
-        (None, Some(r), true) => rectangle(r.r, r.z, r.divisions)?,
+        (None, Some(r), true) => {
+            let (mesh, sets) = rectangle(r.r, r.z, r.divisions)?;
+            if r.triangles {
+                split_into_triangles(&mesh, &sets)
+            } else {
+                (mesh, sets)
+            }
+        }
         (None, None, false) => {
             let specs: Vec<Block> =
                 deck.mesh.block.iter().map(|b| Block { name: b.name.clone(), r: b.r, z: b.z, divisions: b.divisions, grading: b.grading }).collect();

@@ -3,20 +3,22 @@
 //! Physical groups become sets: a 2D group becomes an element set (and a node set of its
 //! nodes), a 1D group a surface of 3-node edges (and the node set of its nodes), a 0D group a
 //! node set. Every name is the group's physical name (or `physical_<tag>` if it has none).
-//! Elements must be 8-node quadrilaterals (Gmsh type 16: `Mesh.ElementOrder = 2`,
-//! `Mesh.SecondOrderIncomplete = 1`, recombined). Errors name the file and line (the element
-//! block in a binary file).
+//! Elements must be quadratic: 8-node quadrilaterals (Gmsh type 16: `Mesh.ElementOrder = 2`,
+//! `Mesh.SecondOrderIncomplete = 1`, recombined) or 6-node triangles (type 9, what
+//! `Mesh.ElementOrder = 2` gives without recombination), mixed as they come. Errors name the
+//! file and line (the element block in a binary file).
 //!
 //! (The `mshio` crate was considered: it drops node tags of densely numbered files and ignores
 //! `$PhysicalNames`, which is where set names come from.)
 
 use super::mesh::{Edge, Mesh, MeshSets};
 use crate::error::{Error, Result};
-use crate::fe::shape::edge_nodes;
+use crate::fe::shape::Shape;
 use std::collections::{BTreeMap, HashMap};
 use std::path::Path;
 
 const QUAD8: u32 = 16;
+const TRI6: u32 = 9;
 const LINE3: u32 = 8;
 const POINT: u32 = 15;
 
@@ -307,11 +309,11 @@ fn parse_text(text: &str, name: &str) -> Result<RawMesh> {
     Ok(raw)
 }
 
-/// The mesh of a file's 8-node quadrilaterals and the sets of its physical groups.
+/// The mesh of a file's quadratic elements and the sets of its physical groups.
 fn assemble(raw: RawMesh, name: &str) -> Result<(Mesh, MeshSets)> {
     let RawMesh { physical_names, entity_physicals, node_coords, elements } = raw;
 
-    // Q8 elements define the mesh; only their nodes are kept.
+    // the 2D elements define the mesh; only their nodes are kept
     let mut mesh = Mesh::default();
     let mut node_index: HashMap<u64, usize> = HashMap::new();
     let mut entity_elements: BTreeMap<i32, Vec<usize>> = BTreeMap::new();
@@ -319,11 +321,13 @@ fn assemble(raw: RawMesh, name: &str) -> Result<(Mesh, MeshSets)> {
         if *dim != 2 {
             continue;
         }
-        if *ty != QUAD8 {
-            return Err(Error::input(format!("{at}: element {tag} is {}; slideline uses 8-node quadrilaterals (Gmsh type 16: Mesh.ElementOrder = 2, Mesh.SecondOrderIncomplete = 1, recombined)", type_name(*ty))));
-        }
-        if nodes.len() != 8 {
-            return Err(Error::input(format!("{at}: element {tag} lists {} nodes, an 8-node quadrilateral needs 8", nodes.len())));
+        let (count, what) = match *ty {
+            QUAD8 => (8, "an 8-node quadrilateral"),
+            TRI6 => (6, "a 6-node triangle"),
+            _ => return Err(Error::input(format!("{at}: element {tag} is {}; slideline uses quadratic elements: 8-node quadrilaterals (Gmsh type 16: Mesh.ElementOrder = 2, Mesh.SecondOrderIncomplete = 1, recombined) or 6-node triangles (type 9: Mesh.ElementOrder = 2)", type_name(*ty)))),
+        };
+        if nodes.len() != count {
+            return Err(Error::input(format!("{at}: element {tag} lists {} nodes, {what} needs {count}", nodes.len())));
         }
         let mut conn = [0usize; 8];
         for (k, t) in nodes.iter().enumerate() {
@@ -334,13 +338,18 @@ fn assemble(raw: RawMesh, name: &str) -> Result<(Mesh, MeshSets)> {
                 mesh.coords.len() - 1
             });
         }
+        if count == 6 {
+            conn = Shape::tri6_slots([conn[0], conn[1], conn[2], conn[3], conn[4], conn[5]]);
+        }
         entity_elements.entry(*entity).or_default().push(mesh.elements.len());
         mesh.elements.push(conn);
         mesh.element_ids.push(*tag);
     }
 
     if mesh.elements.is_empty() {
-        return Err(Error::input(format!("{name}: the mesh has no elements (slideline needs 8-node quadrilaterals, Gmsh type 16)")));
+        return Err(Error::input(format!(
+            "{name}: the mesh has no elements (slideline needs 8-node quadrilaterals, Gmsh type 16, or 6-node triangles, type 9)"
+        )));
     }
     let mut sets = MeshSets::default();
     sets.element_sets.insert("all".into(), (0..mesh.elements.len()).collect());
@@ -355,10 +364,10 @@ fn assemble(raw: RawMesh, name: &str) -> Result<(Mesh, MeshSets)> {
     }
     // 1D groups: surfaces made of element sides; 0D groups: node sets.
     let mut side_of: HashMap<(usize, usize), Edge> = HashMap::new();
-    for (e, conn) in mesh.elements.iter().enumerate() {
-        for side in 0..4 {
-            let [a, b, _] = edge_nodes(side).map(|k| conn[k]);
-            side_of.insert((a.min(b), a.max(b)), Edge { element: e, side });
+    for e in 0..mesh.elements.len() {
+        for edge in mesh.sides(e) {
+            let [a, b, _] = mesh.edge_nodes(edge);
+            side_of.insert((a.min(b), a.max(b)), edge);
         }
     }
     let mut surfaces: BTreeMap<String, Vec<Edge>> = BTreeMap::new();
@@ -399,7 +408,7 @@ fn assemble(raw: RawMesh, name: &str) -> Result<(Mesh, MeshSets)> {
         if nm == "all" {
             continue;
         }
-        let mut nodes: Vec<usize> = elems.iter().flat_map(|&e| mesh.elements[e]).collect();
+        let mut nodes: Vec<usize> = elems.iter().flat_map(|&e| mesh.element_nodes(e).to_vec()).collect();
         nodes.sort_unstable();
         nodes.dedup();
         sets.node_sets.entry(nm).or_insert(nodes);

@@ -1,9 +1,9 @@
-//! Axisymmetric mesh of 8-node quadrilaterals in (r, z), and a structured block generator.
+//! Axisymmetric mesh of quadratic elements (8-node quadrilaterals, 6-node triangles) in (r, z),
+//! and a structured block generator.
 
 use crate::error::{Error, Result};
 use crate::fe::axisymmetric::{jacobian, map_point};
-use crate::fe::quadrature::square_3x3;
-use crate::fe::shape::{edge_nodes, q8, CORNERS};
+use crate::fe::shape::Shape;
 use std::collections::BTreeMap;
 
 pub const NODES_PER_ELEMENT: usize = 8;
@@ -14,13 +14,15 @@ pub struct Mesh {
     pub coords: Vec<[f64; 2]>,
     /// External node numbers (Gmsh tags), for messages and output.
     pub node_ids: Vec<u64>,
-    /// Q8 connectivity in internal node indices (order of `fe::shape`).
+    /// Connectivity in internal node indices (order of `fe::shape`), 8 slots per element: a
+    /// Q8's nodes, or a T6's six and its first node twice (`Shape::of`).
     pub elements: Vec<[usize; NODES_PER_ELEMENT]>,
     /// External element numbers.
     pub element_ids: Vec<u64>,
 }
 
-/// Side `side` (0..4) of element `element`: a 3-node edge, part of a surface.
+/// Side `side` (0..4 of a Q8, 0..3 of a T6) of element `element`: a 3-node edge, part of a
+/// surface.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
 pub struct Edge {
     pub element: usize,
@@ -43,9 +45,25 @@ impl Mesh {
         self.elements[e].map(|n| self.coords[n])
     }
 
+    /// The shape of element `e`.
+    pub fn shape(&self, e: usize) -> Shape {
+        Shape::of(&self.elements[e])
+    }
+
+    /// The nodes of element `e`: 8 or 6 (without a T6's unused slots).
+    pub fn element_nodes(&self, e: usize) -> &[usize] {
+        &self.elements[e][..self.shape(e).nodes()]
+    }
+
+    /// The sides of element `e`.
+    pub fn sides(&self, e: usize) -> impl Iterator<Item = Edge> + Clone {
+        (0..self.shape(e).corners()).map(move |side| Edge { element: e, side })
+    }
+
     /// Global nodes (start, end, middle) of an edge.
     pub fn edge_nodes(&self, edge: Edge) -> [usize; 3] {
-        edge_nodes(edge.side).map(|a| self.elements[edge.element][a])
+        let conn = &self.elements[edge.element];
+        Shape::of(conn).edge_nodes(edge.side).map(|a| conn[a])
     }
 
     /// Chord length of a (quadratic) edge: start to middle to end.
@@ -61,7 +79,7 @@ impl Mesh {
             let [a, b, _] = self.edge_nodes(e);
             (a.min(b), a.max(b))
         };
-        let all = (0..self.elements.len()).flat_map(|element| (0..4).map(move |side| Edge { element, side }));
+        let all = (0..self.elements.len()).flat_map(|e| self.sides(e));
         for e in all.clone() {
             *count.entry(key(e)).or_default() += 1;
         }
@@ -90,7 +108,7 @@ impl Mesh {
             n
         }
         for conn in &self.elements {
-            for &n in &conn[1..] {
+            for &n in &conn[1..Shape::of(conn).nodes()] {
                 let (a, b) = (root(&mut parent, conn[0]), root(&mut parent, n));
                 parent[a.max(b)] = a.min(b);
             }
@@ -106,22 +124,33 @@ impl Mesh {
     /// Checks the mesh has elements, lies at r >= 0, and has no inverted or degenerate element.
     pub fn validate(&self) -> Result<()> {
         if self.elements.is_empty() {
-            return Err(Error::input("the mesh has no elements (slideline needs 8-node quadrilaterals)"));
+            return Err(Error::input("the mesh has no elements (slideline needs 8-node quadrilaterals or 6-node triangles)"));
         }
         let size = self.coords.iter().fold(0.0f64, |m, c| m.max(c[0].abs()).max(c[1].abs())).max(1.0);
         if let Some((i, c)) = self.coords.iter().enumerate().find(|(_, c)| c[0] < -1e-9 * size || !c[0].is_finite() || !c[1].is_finite()) {
             return Err(Error::input(format!("node {} at (r, z) = ({}, {}): axisymmetric nodes need a finite r >= 0", self.node_ids[i], c[0], c[1])));
         }
-        for (e, conn) in self.elements.iter().enumerate() {
-            let x = self.element_coords(e);
+        for e in 0..self.elements.len() {
+            let (shape, x) = (self.shape(e), self.element_coords(e));
+            let nodes = || self.element_nodes(e).iter().map(|&n| self.node_ids[n]).collect::<Vec<u64>>();
+            let mut distinct = self.element_nodes(e).to_vec();
+            distinct.sort_unstable();
+            distinct.dedup();
+            if distinct.len() < shape.nodes() {
+                return Err(Error::input(format!(
+                    "element {} (nodes {:?}): a node appears twice (collapsed elements are not supported)",
+                    self.element_ids[e],
+                    nodes()
+                )));
+            }
             // Gauss points (also checks r > 0 there) and corners (a collapsed side or corner
             // has det J = 0 exactly at the corner).
-            let gauss = square_3x3().map(|q| map_point(&x, q.0).map(|_| ()));
-            let corners = CORNERS.map(|c| jacobian(&x, &q8(c).1, c).map(|_| ()));
+            let reference = shape.reference_nodes();
+            let gauss = shape.rule().map(|q| map_point(shape, &x, q.0).map(|_| ()));
+            let corners = reference[..shape.corners()].iter().map(|&c| jacobian(&x, &shape.functions(c).1, c).map(|_| ()));
             for check in gauss.into_iter().chain(corners) {
                 if let Err(msg) = check {
-                    let nodes: Vec<u64> = conn.iter().map(|&n| self.node_ids[n]).collect();
-                    return Err(Error::input(format!("element {} (nodes {:?}): {msg}", self.element_ids[e], nodes)));
+                    return Err(Error::input(format!("element {} (nodes {:?}): {msg}", self.element_ids[e], nodes())));
                 }
             }
         }
@@ -256,6 +285,42 @@ pub fn mapped_block(divisions: [usize; 2], position: impl Fn(usize, usize) -> [f
     (mesh, sets)
 }
 
+/// Splits every Q8 of a generated mesh into two T6 along its diagonal from corner 0 to corner
+/// 2, through a new node at the Q8's centre (its reference point (0, 0), on the diagonal): a
+/// structured triangle mesh of the same region and sets. Element e becomes 2e and 2e + 1; node
+/// set `all` takes the new nodes.
+pub fn split_into_triangles(mesh: &Mesh, sets: &MeshSets) -> (Mesh, MeshSets) {
+    let mut out = Mesh { coords: mesh.coords.clone(), node_ids: mesh.node_ids.clone(), ..Mesh::default() };
+    for (e, c) in mesh.elements.iter().enumerate() {
+        let x = mesh.element_coords(e);
+        let (n, _) = Shape::Quad8.functions([0.0, 0.0]);
+        out.coords.push([0, 1].map(|k| (0..8).map(|a| n[a] * x[a][k]).sum()));
+        out.node_ids.push(out.node_ids.iter().max().copied().unwrap_or(0) + 1);
+        let centre = out.coords.len() - 1;
+        out.elements.push(Shape::tri6_slots([c[0], c[1], c[2], c[4], c[5], centre]));
+        out.elements.push(Shape::tri6_slots([c[0], c[2], c[3], centre, c[6], c[7]]));
+        out.element_ids.extend([2 * e as u64 + 1, 2 * e as u64 + 2]);
+    }
+    // a Q8 side -> (which triangle, its side)
+    let side_of = |edge: Edge| match edge.side {
+        0 => Edge { element: 2 * edge.element, side: 0 },
+        1 => Edge { element: 2 * edge.element, side: 1 },
+        2 => Edge { element: 2 * edge.element + 1, side: 1 },
+        _ => Edge { element: 2 * edge.element + 1, side: 2 },
+    };
+    let mut split = sets.clone();
+    for members in split.element_sets.values_mut() {
+        *members = members.iter().flat_map(|&e| [2 * e, 2 * e + 1]).collect();
+    }
+    for edges in split.surfaces.values_mut() {
+        *edges = edges.iter().map(|&e| side_of(e)).collect();
+    }
+    if let Some(all) = split.node_sets.get_mut("all") {
+        all.extend(mesh.coords.len()..out.coords.len());
+    }
+    (out, split)
+}
+
 /// One structured block of a multi-block mesh.
 #[derive(Clone, Debug)]
 pub struct Block {
@@ -294,6 +359,39 @@ pub fn blocks(specs: &[Block]) -> Result<(Mesh, MeshSets)> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_block_split_into_triangles_keeps_its_area_boundary_and_sets() {
+        let (q, qs) = mapped_block([3, 2], |i, j| [10.0 + i as f64 + 0.1 * j as f64, j as f64 * 0.7]);
+        let (t, ts) = split_into_triangles(&q, &qs);
+        t.validate().unwrap();
+        assert_eq!(t.elements.len(), 12);
+        assert!((0..12).all(|e| t.shape(e) == Shape::Tri6));
+        // the same area (sum of det J w over the rule) and the same boundary length
+        let area = |m: &Mesh| -> f64 {
+            (0..m.elements.len())
+                .map(|e| {
+                    let (s, x) = (m.shape(e), m.element_coords(e));
+                    s.rule().iter().map(|(p, w)| w * jacobian(&x, &s.functions(*p).1, *p).unwrap().1).sum::<f64>()
+                })
+                .sum()
+        };
+        assert!((area(&q) - area(&t)).abs() < 1e-12 * area(&q));
+        let boundary = |m: &Mesh| m.free_edges().iter().map(|&e| m.edge_length(e)).sum::<f64>();
+        assert!((boundary(&q) - boundary(&t)).abs() < 1e-12);
+        for name in ["inner", "outer", "bottom", "top"] {
+            let nodes = |m: &Mesh, s: &MeshSets| {
+                let mut n: Vec<usize> = s.surfaces[name].iter().flat_map(|&e| m.edge_nodes(e)).collect();
+                n.sort_unstable();
+                n.dedup();
+                n
+            };
+            assert_eq!(nodes(&q, &qs), nodes(&t, &ts), "surface {name}");
+        }
+        assert_eq!(ts.node_sets["all"].len(), t.coords.len());
+        assert_eq!(ts.element_sets["all"].len(), 12);
+        assert_eq!(t.bodies().len(), 1);
+    }
 
     #[test]
     fn grading_refines_towards_the_far_end_and_blocks_are_separate_bodies() {

@@ -17,7 +17,7 @@ use crate::element::body_load::BodyForce;
 use crate::element::solid::ElementMatrix;
 use crate::element::solid::{compute_solid, solid_tangent, ElementGeometry, MaterialTangents, SolidInput, SolidResponse, DOFS, NODES, QUADRATURE_POINTS};
 use crate::error::{Error, Result};
-use crate::fe::shape::edge_nodes;
+use crate::fe::shape::Shape;
 use crate::material::{Kinematics, PointState, SurfaceBranch, J2};
 use crate::model::{Material, Model, Temperature};
 use crate::petsc::sys::PetscInt;
@@ -192,7 +192,8 @@ impl<'s, 'm> Problem<'s, 'm> {
             let conn = model.mesh.elements[e];
             let mut d = [-1; DOFS];
             let mut slots = [usize::MAX; DOFS];
-            for a in 0..NODES {
+            // a T6's two unused slots keep DOF -1: their rows and columns are zero
+            for a in 0..Shape::of(&conn).nodes() {
                 for c in 0..2 {
                     let g = dofs.dof[conn[a]][c];
                     d[2 * a + c] = g;
@@ -202,7 +203,7 @@ impl<'s, 'm> Problem<'s, 'm> {
                 }
             }
             let coords = model.mesh.element_coords(e);
-            let geometry = ElementGeometry::new(&coords).map_err(|m| Error::input(format!("element {}: {m}", model.mesh.element_ids[e])))?;
+            let geometry = ElementGeometry::new(Shape::of(&conn), &coords).map_err(|m| Error::input(format!("element {}: {m}", model.mesh.element_ids[e])))?;
             let mat = &model.materials[model.element_material[e]];
             let roundoff_scale = mat.youngs_modulus * geometry.mean_radius();
             let extent = |c: usize| coords.iter().map(|x| x[c]).fold(f64::MIN, f64::max) - coords.iter().map(|x| x[c]).fold(f64::MAX, f64::min);
@@ -400,7 +401,7 @@ impl<'s, 'm> Problem<'s, 'm> {
     fn pressure_edges(&self) -> impl Iterator<Item = (usize, [usize; 3], f64)> + '_ {
         self.load.pressures.iter().flat_map(move |(surface, p)| {
             let edges = self.surface_edges.iter().find(|(n, _)| n == surface).map(|(_, e)| e.as_slice()).unwrap_or(&[]);
-            edges.iter().map(move |&(k, side)| (k, edge_nodes(side), *p))
+            edges.iter().map(move |&(k, side)| (k, Shape::of(&self.model.mesh.elements[self.elements[k].element]).edge_nodes(side), *p))
         })
     }
 

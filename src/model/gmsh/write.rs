@@ -1,8 +1,9 @@
 //! Writer for Gmsh .msh 4.1 ASCII meshes: the inverse of the reader, so a generated mesh (the
 //! bellows, a block mesh) can be looked at in Gmsh and read back as a deck's mesh.
 
-use super::{LINE3, POINT, QUAD8};
+use super::{LINE3, POINT, QUAD8, TRI6};
 use crate::error::{Error, Result};
+use crate::fe::shape::Shape;
 use crate::model::mesh::{Edge, Mesh, MeshSets};
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -40,11 +41,16 @@ pub fn to_msh(mesh: &Mesh, sets: &MeshSets) -> String {
         names.push((0, tag, n.as_str()));
         tag += 1;
     }
-    // surfaces: one entity per signature of element-set membership
-    let mut surface_entities: BTreeMap<Vec<i32>, Vec<usize>> = BTreeMap::new();
+    // surfaces: one entity per signature of element-set membership and shape (a block of
+    // elements has one type)
+    let mut surface_entities: BTreeMap<(Vec<i32>, u32), Vec<usize>> = BTreeMap::new();
     for e in 0..mesh.elements.len() {
         let sig: Vec<i32> = element_groups.iter().enumerate().filter(|(_, (_, m))| m.contains(&e)).map(|(k, _)| k as i32 + 1).collect();
-        surface_entities.entry(sig).or_default().push(e);
+        let ty = match mesh.shape(e) {
+            Shape::Quad8 => QUAD8,
+            Shape::Tri6 => TRI6,
+        };
+        surface_entities.entry((sig, ty)).or_default().push(e);
     }
     let curve_entities = by_membership(&surface_groups, first_curve_tag);
     let point_entities = by_membership(&point_groups, first_point_tag);
@@ -66,7 +72,7 @@ pub fn to_msh(mesh: &Mesh, sets: &MeshSets) -> String {
     for (k, sig) in curve_entities.keys().enumerate() {
         let _ = writeln!(out, "{} 0 0 0 0 0 0 {} {} 0", k + 1, sig.len(), tags(sig));
     }
-    for (k, sig) in surface_entities.keys().enumerate() {
+    for (k, (sig, _)) in surface_entities.keys().enumerate() {
         let _ = writeln!(out, "{} 0 0 0 0 0 0 {} {} 0", k + 1, sig.len(), tags(sig));
     }
     let _ = writeln!(out, "$EndEntities");
@@ -95,10 +101,10 @@ pub fn to_msh(mesh: &Mesh, sets: &MeshSets) -> String {
             id += 1;
         }
     }
-    for (k, list) in surface_entities.values().enumerate() {
-        let _ = writeln!(out, "2 {} {QUAD8} {}", k + 1, list.len());
+    for (k, ((_, ty), list)) in surface_entities.iter().enumerate() {
+        let _ = writeln!(out, "2 {} {ty} {}", k + 1, list.len());
         for &e in list {
-            let conn: Vec<String> = mesh.elements[e].iter().map(|n| (n + 1).to_string()).collect();
+            let conn: Vec<String> = mesh.element_nodes(e).iter().map(|n| (n + 1).to_string()).collect();
             let _ = writeln!(out, "{id} {}", conn.join(" "));
             id += 1;
         }

@@ -1,9 +1,10 @@
-//! The mesh cards of a deck: *NODE, *ELEMENT (CAX4 elements get shared mid-side nodes),
+//! The mesh cards of a deck: *NODE, *ELEMENT (CAX4 and CAX3 elements get shared mid-side nodes),
 //! *NSET / *ELSET, *SURFACE.
 
 use super::cards::{error_at, Card, DataLine, Location};
 use super::{face_side, Builder};
 use crate::error::Result;
+use crate::fe::shape::Shape;
 use crate::model::mesh::Edge;
 use std::collections::BTreeSet;
 
@@ -52,25 +53,25 @@ impl Builder {
     pub(super) fn elements(&mut self, card: &Card) -> Result<()> {
         card.only(&["TYPE", "ELSET"])?;
         let kind = card.required("TYPE")?.to_uppercase();
-        let corners_only = match kind.as_str() {
-            "CAX8" | "CAX8R" => false,
-            "CAX4" | "CAX4R" => true,
+        // (shape, nodes listed): the linear CAX4 and CAX3 get mid-side nodes
+        let (shape, per_element) = match kind.as_str() {
+            "CAX8" | "CAX8R" => (Shape::Quad8, 8),
+            "CAX4" | "CAX4R" => (Shape::Quad8, 4),
+            "CAX6" => (Shape::Tri6, 6),
+            "CAX3" => (Shape::Tri6, 3),
             "MASS" => return self.point_masses(card),
             other => {
                 let why = match other {
-                    "CAX6" | "CAX3" => {
-                        "triangles are not built: slideline's elements are quadrilaterals CAX8, CAX8R, CAX4, CAX4R (in Gmsh, recombine the mesh)"
-                    }
                     o if o.starts_with("CPS") || o.starts_with("CPE") => {
-                        "plane stress and plane strain elements: slideline models axisymmetric solids (CAX8, CAX8R, CAX4, CAX4R)"
+                        "plane stress and plane strain elements: slideline models axisymmetric solids (CAX8, CAX8R, CAX6, CAX4, CAX4R, CAX3)"
                     }
                     "D" => "fluid network elements: slideline has no fluid networks",
-                    _ => "outside the subset (slideline reads the axisymmetric quadrilaterals CAX8, CAX8R, CAX4, CAX4R)",
+                    _ => "outside the subset (slideline reads the axisymmetric elements CAX8, CAX8R, CAX6, CAX4, CAX4R, CAX3)",
                 };
                 return Err(card.error(format!("element type {other}: {why}")));
             }
         };
-        let per_element = if corners_only { 4 } else { 8 };
+        let corners_only = per_element == shape.corners();
         // an element's node list may continue on following lines
         let mut pending: Vec<(String, Location)> = Vec::new();
         let mut ids = Vec::new();
@@ -92,10 +93,14 @@ impl Builder {
             for (k, slot) in conn.iter_mut().take(per_element).enumerate() {
                 *slot = self.node(&line, "ELEMENT", k + 1)?;
             }
+            let c = shape.corners();
             if corners_only {
-                for s in 0..4 {
-                    conn[4 + s] = self.midside(conn[s], conn[(s + 1) % 4]);
+                for s in 0..c {
+                    conn[c + s] = self.midside(conn[s], conn[(s + 1) % c]);
                 }
+            }
+            if shape == Shape::Tri6 {
+                conn = Shape::tri6_slots([conn[0], conn[1], conn[2], conn[3], conn[4], conn[5]]);
             }
             self.element_index.insert(id, self.mesh.elements.len());
             ids.push(self.mesh.elements.len());
@@ -213,9 +218,16 @@ impl Builder {
             None | Some("ELEMENT") => {
                 for d in &card.data {
                     let face = d.fields.get(1).map(|s| s.to_uppercase()).unwrap_or_default();
-                    let side = face_side(&face, 'S')
-                        .ok_or_else(|| error_at(&d.at, "SURFACE", format!("face '{face}': axisymmetric quadrilaterals have faces S1 to S4")))?;
-                    edges.extend(self.element_items(d, "SURFACE", 0)?.into_iter().map(|element| Edge { element, side }));
+                    let side = face_side(&face, 'S').ok_or_else(|| {
+                        error_at(&d.at, "SURFACE", format!("face '{face}': axisymmetric quadrilaterals have faces S1 to S4, triangles S1 to S3"))
+                    })?;
+                    for element in self.element_items(d, "SURFACE", 0)? {
+                        if side >= self.mesh.shape(element).corners() {
+                            let id = self.mesh.element_ids[element];
+                            return Err(error_at(&d.at, "SURFACE", format!("face '{face}' of element {id}: a triangle has faces S1 to S3")));
+                        }
+                        edges.push(Edge { element, side });
+                    }
                 }
             }
             Some("NODE") => {

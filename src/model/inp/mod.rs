@@ -4,7 +4,7 @@
 //! formulation, contact algorithm, output requests, force convention) becomes a note that the
 //! run prints.
 //!
-//! Read: *HEADING, *NODE, *ELEMENT (CAX8, CAX8R, CAX4, CAX4R), *NSET/*ELSET (GENERATE),
+//! Read: *HEADING, *NODE, *ELEMENT (CAX8, CAX8R, CAX6, CAX4, CAX4R, CAX3), *NSET/*ELSET (GENERATE),
 //! *SURFACE (element faces S1..S4, or nodes), *MATERIAL with *ELASTIC, *PLASTIC, *EXPANSION
 //! (ZERO), *DENSITY, *SOLID SECTION, *BOUNDARY, *DLOAD (P1..P4), *INITIAL CONDITIONS
 //! (TEMPERATURE), *TEMPERATURE, *AMPLITUDE, *SURFACE INTERACTION, *SURFACE BEHAVIOR
@@ -398,6 +398,8 @@ impl Builder {
             let how = match kind.as_str() {
                 "CAX8" => "slideline's 8-node axisymmetric quadrilateral (3 x 3 Gauss points, F-bar)",
                 "CAX8R" => "slideline's 8-node axisymmetric quadrilateral with full 3 x 3 integration and F-bar (no reduced integration)",
+                "CAX6" => "slideline's 6-node axisymmetric triangle (9 Gauss points, F-bar on the element's mean dilatation)",
+                "CAX3" => "6-node triangles with mid-side nodes added at the middle of each straight edge (quadratic displacements, 9 Gauss points, F-bar)",
                 _ => "8-node quadrilaterals with mid-side nodes added at the middle of each straight edge (quadratic displacements, 3 x 3 Gauss points, F-bar)",
             };
             self.notes.push(format!("{n} {kind} elements run as {how}"));

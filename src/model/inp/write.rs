@@ -12,6 +12,7 @@
 
 use crate::element::body_load::BodyForce;
 use crate::error::{Error, Result};
+use crate::fe::shape::Shape;
 use crate::model::{Component, ContactIntegration, Friction, Model, Penalty, Plasticity, Predictor, Temperature};
 use std::collections::BTreeSet;
 use std::fmt::Write as _;
@@ -53,10 +54,16 @@ pub fn to_inp(model: &Model, title: &str) -> Result<String> {
     for (id, c) in mesh.node_ids.iter().zip(&mesh.coords) {
         let _ = writeln!(w, "{id}, {}, {}", num(c[0]), num(c[1]));
     }
-    let _ = writeln!(w, "*ELEMENT, TYPE=CAX8, ELSET=EALL");
-    for (id, conn) in mesh.element_ids.iter().zip(&mesh.elements) {
-        let nodes: Vec<String> = conn.iter().map(|&n| mesh.node_ids[n].to_string()).collect();
-        let _ = writeln!(w, "{id}, {}", nodes.join(", "));
+    for shape in [Shape::Quad8, Shape::Tri6] {
+        let of_shape: Vec<usize> = (0..mesh.elements.len()).filter(|&e| mesh.shape(e) == shape).collect();
+        if of_shape.is_empty() {
+            continue;
+        }
+        let _ = writeln!(w, "*ELEMENT, TYPE={}, ELSET=EALL", shape.abaqus_name());
+        for e in of_shape {
+            let nodes: Vec<String> = mesh.element_nodes(e).iter().map(|&n| mesh.node_ids[n].to_string()).collect();
+            let _ = writeln!(w, "{}, {}", mesh.element_ids[e], nodes.join(", "));
+        }
     }
     for (name, nodes) in &model.node_sets {
         listing(w, &format!("*NSET, NSET={}", checked_name(name)?), nodes.iter().map(|&n| mesh.node_ids[n]));
