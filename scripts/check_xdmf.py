@@ -1,11 +1,12 @@
 #!/usr/bin/env python3
 """Reads a slideline results file's XDMF sidecar with meshio, as a user would, and checks it
 against the HDF5 file read with h5py: every increment is a step at the history's time, the
-points and Q8 cells are the mesh, the first step is the undeformed state at t = 0, the
+points and cells are the mesh (Q8, or 6-node triangles), the first step is the undeformed state at t = 0, the
 displacement is (u_r, u_z, 0) of the increment, the element fields are the stored ones, and the
 nodal stresses are the Gauss-point stresses carried to the nodes, computed here independently:
 the biquadratic fit through the 3 x 3 points in elements where no point has yielded, the
-nearest Gauss point's value in the others (ANSYS's ERESX default), averaged over the elements at
+nearest Gauss point's value in the others (ANSYS's ERESX default; a triangle's 9 points are
+fitted by the complete quadratic in least squares), averaged over the elements at
 a node; von Mises from the averaged components (never negative), the equivalent plastic strain
 copied (within the Gauss values' range). Prints one line per check; exits 1 on the first
 failure.
@@ -40,13 +41,41 @@ def nodal_from_gauss(conn, gauss, nodes, copied):
     nearest = np.zeros((8, 9))
     for a, (xi, eta) in enumerate(natural):
         nearest[a, 3 * (int(np.sign(eta)) + 1) + int(np.sign(xi)) + 1] = 1.0
+    tri_fit, tri_nearest = triangle_recovery()
     sums = np.zeros(nodes)
     counts = np.zeros(nodes)
     for e in range(conn.shape[0]):
-        values = (nearest if copied[e] else fit) @ gauss[e]
-        np.add.at(sums, conn[e], values)
-        np.add.at(counts, conn[e], 1.0)
+        triangle = conn[e, 6] == conn[e, 0]
+        if triangle:
+            values = (tri_nearest if copied[e] else tri_fit) @ gauss[e]
+            nodes_of = conn[e, :6]
+        else:
+            values = (nearest if copied[e] else fit) @ gauss[e]
+            nodes_of = conn[e]
+        np.add.at(sums, nodes_of, values)
+        np.add.at(counts, nodes_of, 1.0)
     return sums / counts
+
+
+def triangle_recovery():
+    """The 6 x 9 matrices of a 6-node triangle: the least-squares quadratic through its 9
+    Gauss points at the nodes, and each node's nearest point. The points are Stroud's conical
+    product rule, built here from its definition: Gauss-Legendre in s, Gauss-Jacobi for the
+    weight (1 - t) in t, xi = s (1 - t), eta = t, s running first."""
+    legendre = (np.polynomial.legendre.leggauss(3)[0] + 1.0) / 2.0
+    # monic orthogonal polynomial of degree 3 for the weight (1 - t) on [0, 1], from moments
+    m = [1.0 / ((k + 1) * (k + 2)) for k in range(6)]
+    c = np.linalg.solve([[m[i + j] for j in range(3)] for i in range(3)], [-m[i + 3] for i in range(3)])
+    jacobi = np.sort(np.roots([1.0, c[2], c[1], c[0]]).real)
+    pts = np.array([(s * (1.0 - t), t) for t in jacobi for s in legendre])
+    mono = lambda x, y: [1.0, x, y, x * x, x * y, y * y]
+    a = np.array([mono(*p) for p in pts])
+    natural = [(0, 0), (1, 0), (0, 1), (0.5, 0), (0.5, 0.5), (0, 0.5)]
+    fit = np.array([mono(*n) for n in natural]) @ np.linalg.pinv(a)
+    nearest = np.zeros((6, 9))
+    for k, n in enumerate(natural):
+        nearest[k, np.argmin(np.hypot(pts[:, 0] - n[0], pts[:, 1] - n[1]))] = 1.0
+    return fit, nearest
 
 
 def main():
@@ -56,9 +85,16 @@ def main():
     points, cells = reader.read_points_cells()
     coords = h5["mesh/coordinates"][:]
     conn = h5["mesh/connectivity"][:]
-    if not np.array_equal(points[:, :2], coords) or cells[0].type != "quad8" or not np.array_equal(cells[0].data, conn):
+    triangles = conn[:, 6] == conn[:, 0]
+    if triangles.all():
+        cell_type, cell_nodes = "triangle6", conn[:, :6]
+    elif not triangles.any():
+        cell_type, cell_nodes = "quad8", conn
+    else:
+        fail("a mixed mesh: meshio 5 does not read XDMF's mixed cells with quadratic quadrilaterals")
+    if not np.array_equal(points[:, :2], coords) or cells[0].type != cell_type or not np.array_equal(cells[0].data, cell_nodes):
         fail("points or cells differ from /mesh")
-    print(f"mesh: {points.shape[0]} points, {cells[0].data.shape[0]} quad8 cells")
+    print(f"mesh: {points.shape[0]} points, {cells[0].data.shape[0]} {cell_type} cells")
     increments = sorted(h5["increments"].keys())
     rows = len(h5["history/time"])
     if reader.num_steps != len(increments) + 1:

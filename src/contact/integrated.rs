@@ -264,8 +264,8 @@ mod tests {
 
     fn uniform_gap_consistent(slave_divisions: usize, master_divisions: usize) {
         let specs = [
-            Block { name: "lower".into(), r: [0.0, 10.0], z: [0.0, 5.0], divisions: [master_divisions, 1], grading: [1.0, 1.0] },
-            Block { name: "upper".into(), r: [0.0, 10.0], z: [4.99, 10.0], divisions: [slave_divisions, 1], grading: [1.0, 1.0] },
+            Block { name: "lower".into(), r: [0.0, 10.0], z: [0.0, 5.0], divisions: [master_divisions, 1], grading: [1.0, 1.0], triangles: false },
+            Block { name: "upper".into(), r: [0.0, 10.0], z: [4.99, 10.0], divisions: [slave_divisions, 1], grading: [1.0, 1.0], triangles: false },
         ];
         let (mesh, sets) = blocks(&specs).unwrap();
         let slave = ContactSurface::new(&mesh, &sets.surfaces["upper_bottom"]);

@@ -271,6 +271,8 @@ struct BlockSpec {
     divisions: [usize; 2],
     #[serde(default = "no_grading")]
     grading: [f64; 2],
+    #[serde(default)]
+    triangles: bool,
 }
 
 fn no_grading() -> [f64; 2] {
@@ -445,8 +447,12 @@ pub fn parse(text: &str, path: &Path) -> Result<Model> {
             }
         }
         (None, None, false) => {
-            let specs: Vec<Block> =
-                deck.mesh.block.iter().map(|b| Block { name: b.name.clone(), r: b.r, z: b.z, divisions: b.divisions, grading: b.grading }).collect();
+            let specs: Vec<Block> = deck
+                .mesh
+                .block
+                .iter()
+                .map(|b| Block { name: b.name.clone(), r: b.r, z: b.z, divisions: b.divisions, grading: b.grading, triangles: b.triangles })
+                .collect();
             blocks(&specs)?
         }
         _ => return Err(Error::input(format!("{}: [mesh] needs exactly one of `file`, `rectangle` or [[mesh.block]]", path.display()))),

@@ -477,8 +477,8 @@ $Elements\n3\n1 15 2 3 1 1\n2 8 2 2 1 1 2 5\n3 16 2 1 1 1 2 3 4 5 6 7 8\n$EndEle
     #[test]
     fn written_meshes_read_back_with_their_sets() {
         let specs = [
-            Block { name: "a".into(), r: [0.0, 2.0], z: [0.0, 1.0], divisions: [2, 1], grading: [1.0, 1.0] },
-            Block { name: "b".into(), r: [0.0, 2.0], z: [1.0, 3.0], divisions: [3, 2], grading: [1.0, 0.5] },
+            Block { name: "a".into(), r: [0.0, 2.0], z: [0.0, 1.0], divisions: [2, 1], grading: [1.0, 1.0], triangles: false },
+            Block { name: "b".into(), r: [0.0, 2.0], z: [1.0, 3.0], divisions: [3, 2], grading: [1.0, 0.5], triangles: true },
         ];
         let (mesh, mut sets) = blocks(&specs).unwrap();
         sets.node_sets.insert("corner".into(), vec![0]);
@@ -492,7 +492,10 @@ $Elements\n3\n1 15 2 3 1 1\n2 8 2 2 1 1 2 5\n3 16 2 1 1 1 2 3 4 5 6 7 8\n$EndEle
         for name in ["a", "b", "corner", "b_top", "all"] {
             assert_eq!(back_sets.node_sets[name].len(), sets.node_sets[name].len(), "node set {name}");
         }
-        assert_eq!(back_sets.element_sets["b"].len(), 6);
+        // block b is 12 triangles (type 9), read back as such
+        assert_eq!(back_sets.element_sets["b"].len(), 12);
+        assert!(back_sets.element_sets["b"].iter().all(|&e| back.shape(e) == Shape::Tri6));
+        assert!(back_sets.element_sets["a"].iter().all(|&e| back.shape(e) == Shape::Quad8));
         back.validate().unwrap();
     }
 }

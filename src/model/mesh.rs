@@ -329,6 +329,8 @@ pub struct Block {
     pub z: [f64; 2],
     pub divisions: [usize; 2],
     pub grading: [f64; 2],
+    /// Each quadrilateral split into two 6-node triangles.
+    pub triangles: bool,
 }
 
 /// Separate bodies, one per block (nodes are not shared). Each block's sets carry its name:
@@ -339,6 +341,7 @@ pub fn blocks(specs: &[Block]) -> Result<(Mesh, MeshSets)> {
     let mut sets = MeshSets::default();
     for b in specs {
         let (m, s) = graded_rectangle(b.r, b.z, b.divisions, b.grading).map_err(|e| Error::input(format!("mesh block '{}': {e}", b.name)))?;
+        let (m, s) = if b.triangles { split_into_triangles(&m, &s) } else { (m, s) };
         let (n0, e0) = mesh.append(&m);
         if sets.element_sets.contains_key(&b.name) {
             return Err(Error::input(format!("mesh block '{}' is defined twice", b.name)));
@@ -404,8 +407,8 @@ mod tests {
         assert!((last / first - 0.25).abs() < 1e-12, "{first} {last}");
         mesh.validate().unwrap();
         let specs = [
-            Block { name: "a".into(), r: [0.0, 1.0], z: [0.0, 1.0], divisions: [1, 1], grading: [1.0, 1.0] },
-            Block { name: "b".into(), r: [0.0, 1.0], z: [1.0, 2.0], divisions: [2, 1], grading: [1.0, 1.0] },
+            Block { name: "a".into(), r: [0.0, 1.0], z: [0.0, 1.0], divisions: [1, 1], grading: [1.0, 1.0], triangles: false },
+            Block { name: "b".into(), r: [0.0, 1.0], z: [1.0, 2.0], divisions: [2, 1], grading: [1.0, 1.0], triangles: false },
         ];
         let (mesh, sets) = blocks(&specs).unwrap();
         assert_eq!(mesh.elements.len(), 3);

@@ -81,11 +81,16 @@ fn command(ranks: usize) -> Command {
 /// Writes `deck` (with `files` beside it) into a fresh directory and runs
 /// `slideline run deck.toml -o out.h5 [extra...]` on `ranks` ranks.
 pub fn run_deck(deck: &str, files: &[(&str, &Path)], ranks: usize, extra: &[&str]) -> Run {
+    run_deck_file("deck.toml", deck, files, ranks, extra)
+}
+
+/// [`run_deck`] with the deck written as `name` (`deck.inp` for a CalculiX deck).
+pub fn run_deck_file(name: &str, deck: &str, files: &[(&str, &Path)], ranks: usize, extra: &[&str]) -> Run {
     let dir = tempfile::tempdir().expect("temp dir");
     for (name, src) in files {
         std::fs::copy(src, dir.path().join(name)).expect("copy test file");
     }
-    let deck_path = dir.path().join("deck.toml");
+    let deck_path = dir.path().join(name);
     std::fs::write(&deck_path, deck).expect("write deck");
     let h5 = dir.path().join("out.h5");
     let output = command_in(dir.path(), ranks).arg("run").arg(&deck_path).arg("-o").arg(&h5).arg("--quiet").args(extra).output().expect("run slideline");

@@ -326,6 +326,13 @@ impl Builder {
                 target
             } else {
                 let elements = self.element_items(d, "DLOAD", 0)?;
+                if let Some(&e) = elements.iter().find(|&&e| side >= self.mesh.shape(e).corners()) {
+                    return Err(error_at(
+                        &d.at,
+                        "DLOAD",
+                        format!("load type '{label}' on element {}: a triangle has faces P1 to P3", self.mesh.element_ids[e]),
+                    ));
+                }
                 // the loaded faces as a surface named after the element set and face
                 let surface = format!("DLOAD_{target}_{label}");
                 self.surfaces.insert(surface.clone(), elements.into_iter().map(|element| Edge { element, side }).collect());
