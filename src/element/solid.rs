@@ -24,7 +24,7 @@
 //! linear one met the thick cylinder's limit pressure to 4e-6 and its mean stress to 0.3 % of
 //! the yield stress at every Gauss point (the constant 2 %). Its price is near
 //! incompressibility in elastic bending (nu = 0.4999: 2 % to 6 % too stiff, the Q8 0.5 % to
-//! 1 %), outside what slideline's metals do; docs/elements.md has the figures.
+//! 1 %), outside what slideline's metals do; docs/deck.md (Element) has the figures.
 //!
 //! Total Lagrangian: dF/du is constant, so f_int = sum_q w_q G_q^T phi_q and the tangent is
 //! exactly K = sum_q w_q G_q^T (A_q G_q + b_q (x) Theta_q), where A = d phi / d F and
