@@ -291,11 +291,12 @@ pub fn mapped_block(divisions: [usize; 2], position: impl Fn(usize, usize) -> [f
 /// set `all` takes the new nodes.
 pub fn split_into_triangles(mesh: &Mesh, sets: &MeshSets) -> (Mesh, MeshSets) {
     let mut out = Mesh { coords: mesh.coords.clone(), node_ids: mesh.node_ids.clone(), ..Mesh::default() };
+    let (n, _) = Shape::Quad8.functions([0.0, 0.0]);
+    let first_id = mesh.node_ids.iter().max().copied().unwrap_or(0) + 1;
     for (e, c) in mesh.elements.iter().enumerate() {
         let x = mesh.element_coords(e);
-        let (n, _) = Shape::Quad8.functions([0.0, 0.0]);
         out.coords.push([0, 1].map(|k| (0..8).map(|a| n[a] * x[a][k]).sum()));
-        out.node_ids.push(out.node_ids.iter().max().copied().unwrap_or(0) + 1);
+        out.node_ids.push(first_id + e as u64);
         let centre = out.coords.len() - 1;
         out.elements.push(Shape::tri6_slots([c[0], c[1], c[2], c[4], c[5], centre]));
         out.elements.push(Shape::tri6_slots([c[0], c[2], c[3], centre, c[6], c[7]]));
