@@ -17,42 +17,11 @@
 //! of the master's shape functions; the test states its deviation.
 
 mod common;
-use common::{run_deck, Results, TIGHT};
-
-fn deck(integration: &str, two_pass: bool) -> String {
-    format!(
-        r#"nlgeom = false
-[[mesh.block]]
-name = "lower"
-r = [0.0, 10.0]
-z = [0.0, 5.0]
-divisions = [5, 2]
-[[mesh.block]]
-name = "upper"
-r = [0.0, 10.0]
-z = [5.0, 10.0]
-divisions = [7, 2]
-[[material]]
-name = "steel"
-youngs_modulus = 200000.0
-poissons_ratio = 0.3
-[[contact]]
-name = "interface"
-slave = "upper_bottom"
-master = "lower_top"
-two_pass = {two_pass}
-integration = "{integration}"
-penalty = 1.0e6
-[[step]]
-boundary = [ {{ set = "lower_bottom", uz = 0.0 }}, {{ set = "lower_inner", ur = 0.0 }}, {{ set = "upper_inner", ur = 0.0 }} ]
-pressure = [ {{ surface = "upper_top", value = 10.0 }} ]
-"#
-    )
-}
+use common::{patch_test_deck, run_deck, Results, TIGHT};
 
 /// (r, pressure, traction) at every slave node of every pass, and the largest |sigma_zz + 10|.
 fn run(integration: &str, two_pass: bool) -> (Vec<(f64, f64, f64)>, f64) {
-    let run = run_deck(&deck(integration, two_pass), &[], 1, TIGHT);
+    let run = run_deck(&patch_test_deck(integration, two_pass, false), &[], 1, TIGHT);
     run.assert_ok();
     let res = Results::open(&run.h5);
     let coords = res.f64s("mesh/coordinates");

@@ -19,7 +19,7 @@
 //!   every slave node to 1e-6.
 
 mod common;
-use common::{assert_rejected, data, run_deck, run_deck_file, Results, TIGHT};
+use common::{assert_rejected, data, patch_test_deck, run_deck, run_deck_file, Results, TIGHT};
 use slideline::fe::shape::Shape;
 use slideline::model::mesh::{rectangle, split_into_triangles};
 
@@ -170,34 +170,8 @@ fn clamped_plate_bends_within_half_a_percent_on_triangles() {
 #[test]
 fn contact_patch_test_on_triangles() {
     // the Q8 patch test's stacked blocks (tests/contact_patch_test.rs), both split into triangles
-    let deck = r#"nlgeom = false
-[[mesh.block]]
-name = "lower"
-r = [0.0, 10.0]
-z = [0.0, 5.0]
-divisions = [5, 2]
-triangles = true
-[[mesh.block]]
-name = "upper"
-r = [0.0, 10.0]
-z = [5.0, 10.0]
-divisions = [7, 2]
-triangles = true
-[[material]]
-name = "steel"
-youngs_modulus = 200000.0
-poissons_ratio = 0.3
-[[contact]]
-name = "interface"
-slave = "upper_bottom"
-master = "lower_top"
-integration = "segment"
-penalty = 1.0e6
-[[step]]
-boundary = [ { set = "lower_bottom", uz = 0.0 }, { set = "lower_inner", ur = 0.0 }, { set = "upper_inner", ur = 0.0 } ]
-pressure = [ { surface = "upper_top", value = 10.0 } ]
-"#;
-    let run = run_deck(deck, &[], 2, TIGHT);
+    let deck = patch_test_deck("segment", false, true);
+    let run = run_deck(&deck, &[], 2, TIGHT);
     run.assert_ok();
     let res = Results::open(&run.h5);
     let p = res.f64s("increments/000001/contact/interface/pass0/pressure");

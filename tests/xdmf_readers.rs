@@ -39,22 +39,18 @@ fn run_and_check(dir: &Path, name: &str, extra: &[&str]) {
 /// equal the Gauss values carried to the nodes as recomputed in Python.
 #[test]
 fn meshio_reads_a_triangle_mesh_and_its_nodal_stresses_are_the_recovered_ones() {
-    let deck = r#"nlgeom = false
+    let deck = format!(
+        r#"nlgeom = false
 [mesh]
-rectangle = { r = [100.0, 130.0], z = [0.0, 3.0], divisions = [8, 2], triangles = true }
-[[material]]
-name = "steel"
-model = "j2"
-youngs_modulus = 200000.0
-poissons_ratio = 0.3
-yield_stress = 300.0
-hardening_modulus = 1000.0
-[[step]]
+rectangle = {{ r = [100.0, 130.0], z = [0.0, 3.0], divisions = [8, 2], triangles = true }}
+{PLASTIC_STEEL}[[step]]
 increments = 3
-boundary = [ { set = "bottom", uz = 0.0 }, { set = "top", uz = 0.0 } ]
-pressure = [ { surface = "inner", value = 80.0 } ]
-"#;
-    let run = common::run_deck(deck, &[], 2, &[]);
+boundary = [ {{ set = "bottom", uz = 0.0 }}, {{ set = "top", uz = 0.0 }} ]
+pressure = [ {{ surface = "inner", value = 80.0 }} ]
+"#,
+        PLASTIC_STEEL = common::PLASTIC_STEEL
+    );
+    let run = common::run_deck(&deck, &[], 2, &[]);
     run.assert_ok();
     let text = check(&run.h5.with_extension("xmf"));
     assert!(text.contains("mesh: ") && text.contains(" 32 triangle6 cells"), "{text}");

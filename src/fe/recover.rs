@@ -83,6 +83,9 @@ pub fn nearest_gauss_points(shape: Shape) -> [usize; 8] {
     std::array::from_fn(|a| (0..9).min_by(|&p, &q| distance(nodes[a], points[p].0).total_cmp(&distance(nodes[a], points[q].0))).unwrap_or(0))
 }
 
+/// The shapes, in the order of [`Recovery`]'s tables.
+const SHAPES: [Shape; 2] = [Shape::Quad8, Shape::Tri6];
+
 /// Carries Gauss values to an element's nodes, for each shape.
 #[derive(Clone, Debug)]
 pub struct Recovery {
@@ -92,8 +95,7 @@ pub struct Recovery {
 
 impl Default for Recovery {
     fn default() -> Self {
-        let shapes = [Shape::Quad8, Shape::Tri6];
-        Recovery { matrix: shapes.map(gauss_to_nodes), nearest: shapes.map(nearest_gauss_points) }
+        Recovery { matrix: SHAPES.map(gauss_to_nodes), nearest: SHAPES.map(nearest_gauss_points) }
     }
 }
 
@@ -101,7 +103,7 @@ impl Recovery {
     /// The values at the 8 node slots of an element of shape `shape` (a T6's unused slots
     /// repeat its first node's) of the `C` quantities given at its Gauss points.
     pub fn element_nodal<const C: usize>(&self, shape: Shape, rule: Rule, gauss: &[[f64; C]; 9]) -> [[f64; C]; 8] {
-        let s = shape as usize;
+        let s = SHAPES.iter().position(|&k| k == shape).unwrap_or(0);
         match rule {
             Rule::Extrapolate => std::array::from_fn(|a| std::array::from_fn(|c| (0..9).map(|q| self.matrix[s][a][q] * gauss[q][c]).sum())),
             Rule::Copy => std::array::from_fn(|a| gauss[self.nearest[s][a]]),

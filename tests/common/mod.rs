@@ -336,3 +336,39 @@ boundary = [ {{ set = "ring_bottom", uz = {push} }}, {{ set = "ring_top", uz = {
 "#
     )
 }
+
+/// The contact patch test's deck (tests/contact_patch_test.rs): two stacked blocks on
+/// r in [0, 10], lower z in [0, 5] (5 x 2), upper z in [5, 10] (7 x 2), touching through the
+/// pair `interface` only, 10 MPa on the upper face; `triangles` splits both meshes into T6.
+pub fn patch_test_deck(integration: &str, two_pass: bool, triangles: bool) -> String {
+    format!(
+        r#"nlgeom = false
+[[mesh.block]]
+name = "lower"
+r = [0.0, 10.0]
+z = [0.0, 5.0]
+divisions = [5, 2]
+triangles = {triangles}
+[[mesh.block]]
+name = "upper"
+r = [0.0, 10.0]
+z = [5.0, 10.0]
+divisions = [7, 2]
+triangles = {triangles}
+[[material]]
+name = "steel"
+youngs_modulus = 200000.0
+poissons_ratio = 0.3
+[[contact]]
+name = "interface"
+slave = "upper_bottom"
+master = "lower_top"
+two_pass = {two_pass}
+integration = "{integration}"
+penalty = 1.0e6
+[[step]]
+boundary = [ {{ set = "lower_bottom", uz = 0.0 }}, {{ set = "lower_inner", ur = 0.0 }}, {{ set = "upper_inner", ur = 0.0 }} ]
+pressure = [ {{ surface = "upper_top", value = 10.0 }} ]
+"#
+    )
+}
