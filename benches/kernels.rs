@@ -5,6 +5,7 @@ use criterion::{black_box, criterion_group, criterion_main, Criterion, Throughpu
 use slideline::ad::Dual;
 use slideline::element::pressure::{compute_pressure_load, pressure_load_stiffness};
 use slideline::element::solid::{compute_solid, solid_tangent, ElementGeometry, SolidInput};
+use slideline::fe::section::Section;
 use slideline::fe::shape::Shape;
 use slideline::material::{Kinematics, PointState, SurfaceBranch, J2};
 
@@ -13,7 +14,7 @@ fn kernels(c: &mut Criterion) {
     // a plastic state at every Gauss point
     let u: [[f64; 2]; 8] = std::array::from_fn(|a| [0.02 * x[a][0], -0.01 * x[a][1]]);
     let m = J2::plastic(200e3, 0.3, 1.2e-5, 300.0, 1000.0);
-    let geometry = ElementGeometry::new(Shape::Quad8, &x).unwrap();
+    let geometry = ElementGeometry::new(Shape::Quad8, Section::Axisymmetric, &x).unwrap();
     let committed = [PointState::initial(Kinematics::Finite); 9];
     let input = SolidInput {
         geometry: &geometry,
@@ -42,8 +43,8 @@ fn kernels(c: &mut Criterion) {
     g.bench_function("q8 finite J2 residual + material tangents (dual)", |b| b.iter(|| compute_solid(&input, black_box(&u), Some(&mut material)).unwrap()));
     g.bench_function("q8 element tangent from the material tangents", |b| b.iter(|| solid_tangent(&geometry, black_box(&material))));
     let edge = [[100.0, 10.0], [100.5, 0.0], [100.1, 5.0]];
-    g.bench_function("pressure edge load", |b| b.iter(|| compute_pressure_load(black_box(&edge), 50.0)));
-    g.bench_function("pressure edge stiffness", |b| b.iter(|| pressure_load_stiffness(black_box(&edge), 50.0)));
+    g.bench_function("pressure edge load", |b| b.iter(|| compute_pressure_load(Section::Axisymmetric, black_box(&edge), 50.0)));
+    g.bench_function("pressure edge stiffness", |b| b.iter(|| pressure_load_stiffness(Section::Axisymmetric, black_box(&edge), 50.0)));
     g.finish();
 }
 

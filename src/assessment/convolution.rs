@@ -129,6 +129,7 @@ impl Convolution {
             surfaces: sets.surfaces,
             materials: vec![Material { name: "ply".into(), youngs_modulus: E, poissons_ratio: NU, thermal_expansion: 0.0, plasticity: None, density: 0.0 }],
             element_material: vec![0; n],
+            element_section: vec![crate::fe::section::Section::Axisymmetric; n],
             reference_temperature: crate::model::Temperature::Uniform(20.0),
             kinematics: Kinematics::Small,
             stepping: SteppingControls::default(),

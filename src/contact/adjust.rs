@@ -20,8 +20,8 @@ pub fn adjust_slave_nodes(model: &mut Model) -> Result<Vec<String>> {
         if pair.slave == pair.master {
             return Err(Error::input(format!("contact '{name}': adjust is for two surfaces, not self-contact")));
         }
-        let slave = ContactSurface::new(&model.mesh, &model.surfaces[&pair.slave]);
-        let master = ContactSurface::new(&model.mesh, &model.surfaces[&pair.master]);
+        let slave = ContactSurface::of_model(model, &pair.slave);
+        let master = ContactSurface::of_model(model, &pair.master);
         let chosen: Vec<usize> = match &adjust {
             Adjust::Clearance(c) if !(*c >= 0.0 && c.is_finite()) => {
                 return Err(Error::input(format!("contact '{name}': adjust must be a clearance >= 0 mm or a node set, got {c}")))

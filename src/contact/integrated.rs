@@ -202,7 +202,7 @@ pub fn weighted_gaps_into(
             for &(s, w) in &GAUSS3 {
                 let xi = 0.5 * (lo + hi) + 0.5 * (hi - lo) * s;
                 let (n, dn) = line3(xi);
-                let r0: f64 = (0..3).map(|a| n[a] * xr[a][0]).sum();
+                let r0 = slave.section[e].measure((0..3).map(|a| n[a] * xr[a][0]).sum());
                 let t0 = [0, 1].map(|i| (0..3).map(|a| dn[a] * xr[a][i]).sum::<f64>());
                 let weight = w * 0.5 * (hi - lo) * r0 * (t0[0] * t0[0] + t0[1] * t0[1]).sqrt();
                 let p = point(&xs, xi);

@@ -2,6 +2,8 @@
 //! axisymmetric tributary areas, its edges (oriented counter-clockwise around their element,
 //! so the outward normal is the tangent turned clockwise) and their neighbours.
 //!
+//! In a plane section the measure r below is the section's thickness (`fe::section`).
+//!
 //! Tributary area per radian, A_a = sum over the node's edges of integral N_a r ds (reference
 //! configuration): the nodal force of a unit pressure. Near the axis this is what makes the
 //! contact force right: r_a times half the adjacent lengths would be zero at r = 0 and wrong
@@ -9,8 +11,9 @@
 //! there, as it does for a pressure load; its pressure comes from the traction recovery.)
 
 use crate::fe::quadrature::GAUSS3;
+use crate::fe::section::Section;
 use crate::fe::shape::line3;
-use crate::model::{Edge, Mesh};
+use crate::model::{Edge, Mesh, Model};
 
 #[derive(Clone, Debug)]
 pub struct ContactSurface {
@@ -27,6 +30,8 @@ pub struct ContactSurface {
     pub edge_length: Vec<f64>,
     /// Element each edge belongs to.
     pub element: Vec<usize>,
+    /// Section of each edge's element: its out-of-plane measure weights the edge.
+    pub section: Vec<Section>,
     /// For each edge, the edges continuing it at its start and its end (None at a chain end).
     pub neighbours: Vec<[Option<usize>; 2]>,
     /// Consistent "mass" matrix M_ij = integral N_i N_j r ds as (i, j, value) triplets over
@@ -37,7 +42,18 @@ pub struct ContactSurface {
 }
 
 impl ContactSurface {
+    /// Surface `name` of `model`, each edge weighted by its element's section.
+    pub fn of_model(model: &Model, name: &str) -> Self {
+        Self::with_sections(&model.mesh, &model.surfaces[name], &model.element_section)
+    }
+
+    /// An axisymmetric surface.
     pub fn new(mesh: &Mesh, edges: &[Edge]) -> Self {
+        Self::with_sections(mesh, edges, &vec![Section::Axisymmetric; mesh.elements.len()])
+    }
+
+    /// A surface whose edges' elements have sections `element_section` (per mesh element).
+    pub fn with_sections(mesh: &Mesh, edges: &[Edge], element_section: &[Section]) -> Self {
         let mut nodes: Vec<usize> = edges.iter().flat_map(|&e| mesh.edge_nodes(e)).collect();
         nodes.sort_unstable();
         nodes.dedup();
@@ -48,7 +64,9 @@ impl ContactSurface {
         let mut list = Vec::with_capacity(edges.len());
         let mut edge_length = Vec::with_capacity(edges.len());
         let mut element = Vec::with_capacity(edges.len());
+        let mut section = Vec::with_capacity(edges.len());
         for &edge in edges {
+            let measure = |r: f64| element_section[edge.element].measure(r);
             let en = mesh.edge_nodes(edge);
             let x = en.map(|n| mesh.coords[n]);
             let k = en.map(index);
@@ -56,7 +74,7 @@ impl ContactSurface {
             let mut m = [[0.0; 3]; 3];
             for &(s, w) in &GAUSS3 {
                 let (n, dn) = line3(s);
-                let r: f64 = (0..3).map(|a| n[a] * x[a][0]).sum();
+                let r = measure((0..3).map(|a| n[a] * x[a][0]).sum());
                 let t = [0, 1].map(|i| (0..3).map(|a| dn[a] * x[a][i]).sum::<f64>());
                 let jac = t[0].hypot(t[1]);
                 length += w * jac;
@@ -77,7 +95,7 @@ impl ContactSurface {
                 for &(s, w) in &GAUSS3 {
                     let xi = 0.5 * (lo + hi) + 0.5 * (hi - lo) * s;
                     let (n, dn) = line3(xi);
-                    let r: f64 = (0..3).map(|a| n[a] * x[a][0]).sum();
+                    let r = measure((0..3).map(|a| n[a] * x[a][0]).sum());
                     let t = [0, 1].map(|i| (0..3).map(|a| dn[a] * x[a][i]).sum::<f64>());
                     let ds = w * 0.5 * (hi - lo) * t[0].hypot(t[1]);
                     let psi = hats(xi);
@@ -89,6 +107,7 @@ impl ContactSurface {
             list.push(en);
             edge_length.push(length);
             element.push(edge.element);
+            section.push(element_section[edge.element]);
         }
         let mut node_edges = vec![Vec::new(); nodes.len()];
         for (e, en) in list.iter().enumerate() {
@@ -103,7 +122,7 @@ impl ContactSurface {
                 [find(start, 1), find(end, 0)]
             })
             .collect();
-        ContactSurface { nodes, areas, hat_areas, edges: list, edge_length, element, neighbours, mass, node_edges }
+        ContactSurface { nodes, areas, hat_areas, edges: list, edge_length, element, section, neighbours, mass, node_edges }
     }
 
     /// Index of mesh node `node` in `nodes`.

@@ -64,7 +64,7 @@ mod tests {
     /// n = 0 without U_t: the axisymmetric load stiffness (which has its own difference test).
     #[test]
     fn mode_zero_is_the_axisymmetric_load_stiffness() {
-        let (h, axi) = (harmonic_pressure_stiffness(&EDGE, 7.0, 0), pressure_load_stiffness(&EDGE, 7.0));
+        let (h, axi) = (harmonic_pressure_stiffness(&EDGE, 7.0, 0), pressure_load_stiffness(crate::fe::section::Section::Axisymmetric, &EDGE, 7.0));
         for a in 0..3 {
             for b in 0..3 {
                 for (i, j) in [(0, 0), (0, 1), (1, 0), (1, 1)] {

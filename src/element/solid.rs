@@ -39,6 +39,7 @@
 
 use crate::ad::Dual;
 use crate::fe::axisymmetric::{map_point, PointGeometry};
+use crate::fe::section::Section;
 use crate::fe::shape::Shape;
 use crate::material::log_exp::log_sym2;
 use crate::material::{Kinematics, PointState, SurfaceBranch, J2};
@@ -61,8 +62,11 @@ struct GradientMap {
 }
 
 impl GradientMap {
-    fn new(g: &PointGeometry) -> Self {
-        GradientMap { dr: g.grad.map(|d| d[0]), dz: g.grad.map(|d| d[1]), hoop: std::array::from_fn(|a| g.n[a] / g.r) }
+    /// The map at a point; a plane section has no hoop term (F_33 is 1 in plane strain and
+    /// solved from sigma_33 = 0 in plane stress, never moved by the displacements).
+    fn new(g: &PointGeometry, section: Section) -> Self {
+        let hoop = std::array::from_fn(|a| if section.is_axisymmetric() { g.n[a] / g.r } else { 0.0 });
+        GradientMap { dr: g.grad.map(|d| d[0]), dz: g.grad.map(|d| d[1]), hoop }
     }
 
     /// G^T s for a 5-vector s over the F components (equally, the row s^T G).
@@ -93,9 +97,11 @@ pub type MaterialTangents = [PointTangent; QUADRATURE_POINTS];
 /// formulation).
 #[derive(Clone, Debug)]
 pub struct ElementGeometry {
+    section: Section,
     points: [PointGeometry; QUADRATURE_POINTS],
     gradients: [GradientMap; QUADRATURE_POINTS],
-    /// Reference volume per radian of each Gauss point: w R det J.
+    /// Reference volume of each Gauss point: w m det J, m the section's measure (R per radian
+    /// in axisymmetry, the thickness in a plane section).
     weights: [f64; QUADRATURE_POINTS],
     /// The projection through its rank-3 basis: theta_q = basis[q] . sum_p coef[p] v_p, so the
     /// 9 rows Theta_q are combinations of 3 rows (sum_p coef[p][k] (dv/dF)_p G_p).
@@ -104,18 +110,22 @@ pub struct ElementGeometry {
 }
 
 impl ElementGeometry {
-    /// The geometry of an element of shape `shape` with nodal coordinates `x`.
-    pub fn new(shape: Shape, x: &[[f64; 2]; NODES]) -> Result<Self, String> {
+    /// The geometry of an element of shape `shape` and section `section` with nodal
+    /// coordinates `x`.
+    pub fn new(shape: Shape, section: Section, x: &[[f64; 2]; NODES]) -> Result<Self, String> {
         let rule = shape.rule();
         let mut points = [map_point(shape, x, rule[0].0)?; QUADRATURE_POINTS];
         let mut weights = [0.0; QUADRATURE_POINTS];
         let mut pos = [[0.0; 2]; QUADRATURE_POINTS];
         for (q, (p, w)) in rule.into_iter().enumerate() {
             points[q] = map_point(shape, x, p)?;
-            weights[q] = w * points[q].r * points[q].det_j;
+            if section.is_axisymmetric() && points[q].r <= 0.0 {
+                return Err(format!("radius {:.3e} <= 0 at an integration point: an axisymmetric mesh must lie at r >= 0", points[q].r));
+            }
+            weights[q] = w * section.measure(points[q].r) * points[q].det_j;
             pos[q] = [points[q].r, (0..NODES).map(|a| points[q].n[a] * x[a][1]).sum()];
         }
-        let gradients = points.map(|g| GradientMap::new(&g));
+        let gradients = points.map(|g| GradientMap::new(&g, section));
         let vol: f64 = weights.iter().sum();
         // L2 projection (weighted by the reference volume) onto {1, R - Rc, Z - Zc}.
         let centre = [0, 1].map(|i| (0..QUADRATURE_POINTS).map(|q| weights[q] * pos[q][i]).sum::<f64>() / vol);
@@ -127,11 +137,11 @@ impl ElementGeometry {
         let m_inv = m.try_inverse().ok_or_else(|| "degenerate element: singular volume projection".to_string())?;
         let basis: [[f64; 3]; QUADRATURE_POINTS] = std::array::from_fn(|q| basis_vector(q).into());
         let coef: [[f64; 3]; QUADRATURE_POINTS] = std::array::from_fn(|p| (m_inv * basis_vector(p) * weights[p]).into());
-        Ok(ElementGeometry { points, gradients, weights, basis, coef })
+        Ok(ElementGeometry { section, points, gradients, weights, basis, coef })
     }
 
-    /// The shape functions and gradients at each Gauss point, and its reference volume per
-    /// radian w R det J (for kernels beside this one on the same element: `element::harmonic`).
+    /// The shape functions and gradients at each Gauss point, and its reference volume
+    /// w m det J (for kernels beside this one on the same element: `element::harmonic`).
     pub(crate) fn points(&self) -> (&[PointGeometry; QUADRATURE_POINTS], &[f64; QUADRATURE_POINTS]) {
         (&self.points, &self.weights)
     }
@@ -147,8 +157,13 @@ impl ElementGeometry {
         self.basis.map(|b| b[0] * c[0] + b[1] * c[1] + b[2] * c[2])
     }
 
-    /// Mean radius of the element, volume per radian over area in the (r, z) plane.
-    pub fn mean_radius(&self) -> f64 {
+    pub fn section(&self) -> Section {
+        self.section
+    }
+
+    /// Mean out-of-plane measure of the element, its volume over its area in the (r, z)
+    /// plane: the mean radius in axisymmetry, the thickness in a plane section.
+    pub fn mean_measure(&self) -> f64 {
         let area: f64 = (0..QUADRATURE_POINTS).map(|q| self.weights[q] / self.points[q].r).sum();
         self.weights.iter().sum::<f64>() / area
     }
@@ -156,9 +171,19 @@ impl ElementGeometry {
     /// The total strain [rr, zz, tt, rz] (tensor shear) at every Gauss point for nodal
     /// displacements `u`, for output: sym grad u in small strain; in finite strain the
     /// logarithmic (Hencky) strain of the current configuration, ln(F F^T) / 2, Abaqus's LE.
-    pub fn total_strain(&self, kinematics: Kinematics, u: &[[f64; 2]; NODES]) -> [[f64; 4]; QUADRATURE_POINTS] {
+    /// In plane stress the thickness stretch F_33 of each point comes from the evaluation
+    /// (`SolidResponse::thickness_stretch`).
+    pub fn total_strain(
+        &self,
+        kinematics: Kinematics,
+        u: &[[f64; 2]; NODES],
+        thickness_stretch: Option<&[f64; QUADRATURE_POINTS]>,
+    ) -> [[f64; 4]; QUADRATURE_POINTS] {
         std::array::from_fn(|q| {
-            let f = self.deformation_gradient(q, u);
+            let mut f = self.deformation_gradient(q, u);
+            if let Some(s) = thickness_stretch {
+                f[4] = s[q];
+            }
             match kinematics {
                 Kinematics::Small => [f[0] - 1.0, f[3] - 1.0, f[4] - 1.0, 0.5 * (f[1] + f[2])],
                 Kinematics::Finite => {
@@ -211,6 +236,9 @@ pub struct SolidResponse {
     /// alpha tr(tau) N_a dV_0 (N mm / degC per radian); the thermal work of a temperature
     /// change dT_a is its sum of products with dT_a.
     pub thermal_force: [f64; NODES],
+    /// F_33 at each Gauss point: the hoop stretch in axisymmetry, 1 in plane strain, the
+    /// solved thickness stretch in plane stress.
+    pub thickness_stretch: [f64; QUADRATURE_POINTS],
 }
 
 /// Energies of one element at a state, per radian (N mm): the stored elastic energy and the
@@ -248,7 +276,10 @@ pub fn compute_solid(input: &SolidInput<'_>, u: &[[f64; 2]; NODES], mut tangents
         f[q] = geo.deformation_gradient(q, u);
         (v[q], dv[q]) = volume_measure(kin, &f[q]);
     }
-    let theta = geo.project(&v);
+    // plane stress: no projection (the free thickness strain takes up the plastic flow's
+    // volume constraint); each point's theta is its own v, set with its F_33 below
+    let plane_stress = matches!(geo.section, Section::PlaneStress { .. });
+    let mut theta = if plane_stress { v } else { geo.project(&v) };
 
     let mut force = [0.0; DOFS];
     let mut stress = [[0.0; 4]; QUADRATURE_POINTS];
@@ -259,7 +290,21 @@ pub fn compute_solid(input: &SolidInput<'_>, u: &[[f64; 2]; NODES], mut tangents
         let w = geo.weights[q];
         let shape = &geo.points[q].n;
         let dt: f64 = (0..NODES).map(|a| shape[a] * input.temperature_change[a]).sum();
-        let phi: [f64; 5] = if let Some(tangents) = tangents.as_deref_mut() {
+        let phi: [f64; 5] = if plane_stress {
+            let (f33, up, dv33) = plane_stress_point(input.material, input.surface, kin, f[q], dt, &input.committed[q])?;
+            f[q][4] = f33;
+            theta[q] = volume_measure(kin, &f[q]).0;
+            if let Some(tangents) = tangents.as_deref_mut() {
+                // d phi / dF along theta = v(F), then F_33 condensed out by d phi_33 = 0
+                let a: [[f64; 5]; 5] = std::array::from_fn(|i| std::array::from_fn(|j| up.phi[i].eps[j] + up.phi[i].eps[5] * dv33[j]));
+                let condensed =
+                    std::array::from_fn(|i| std::array::from_fn(|j| if i < 4 && j < 4 { (a[i][j] - a[i][4] * a[4][j] / a[4][4]) * w } else { 0.0 }));
+                tangents[q] = PointTangent { stress_f: condensed, stress_theta: [0.0; 5], volume_f: [0.0; 5] };
+            }
+            stress[q] = up.cauchy;
+            state[q] = up.state;
+            up.phi.map(|p| p.re)
+        } else if let Some(tangents) = tangents.as_deref_mut() {
             let fd: [Dual<6>; 5] = std::array::from_fn(|i| Dual::variable(f[q][i], i));
             let up = input.material.update_on(input.surface, kin, &fd, Dual::variable(theta[q], 5), dt, &input.committed[q])?;
             tangents[q] = PointTangent {
@@ -291,7 +336,50 @@ pub fn compute_solid(input: &SolidInput<'_>, u: &[[f64; 2]; NODES], mut tangents
             force[i] += fq[i];
         }
     }
-    Ok(SolidResponse { internal_force: ElementVector::from(force), stress, state, energy, thermal_force })
+    let thickness_stretch = f.map(|fq| fq[4]);
+    Ok(SolidResponse { internal_force: ElementVector::from(force), stress, state, energy, thermal_force, thickness_stretch })
+}
+
+/// Plane stress at one point of in-plane deformation gradient `f`: the thickness stretch
+/// F_33 at which phi_33 (hence sigma_33) vanishes, found by Newton's method on the material
+/// update itself, safeguarded by bisection (phi_33 rises with F_33; the yield kink can make
+/// plain Newton cycle). Returns F_33, the update there on dual numbers over the 5 components
+/// of F and theta (= v(F), no F-bar), and dv/dF there.
+fn plane_stress_point(
+    material: &J2,
+    surface: SurfaceBranch,
+    kin: Kinematics,
+    f: [f64; 5],
+    dt: f64,
+    committed: &PointState,
+) -> Result<(f64, crate::material::Update<Dual<6>>, [f64; 5]), String> {
+    let (k, g) = (material.bulk_modulus, material.shear_modulus);
+    // the elastic guess: eps_33 = -nu / (1 - nu) (eps_11 + eps_22) + (1 + nu) / (1 - nu) alpha dT
+    let nu = (3.0 * k - 2.0 * g) / (2.0 * (3.0 * k + g));
+    let mut f33 = 1.0 - nu / (1.0 - nu) * (f[0] + f[3] - 2.0) + (1.0 + nu) / (1.0 - nu) * material.thermal_expansion * dt;
+    let (mut below, mut above) = (f64::NEG_INFINITY, f64::INFINITY);
+    for _ in 0..60 {
+        let mut fq = f;
+        fq[4] = f33;
+        let (v, dv) = volume_measure(kin, &fq);
+        let fd: [Dual<6>; 5] = std::array::from_fn(|i| Dual::variable(fq[i], i));
+        let up = material.update_on(surface, kin, &fd, Dual::variable(v, 5), dt, committed)?;
+        let (r, slope) = (up.phi[4].re, up.phi[4].eps[4] + up.phi[4].eps[5] * dv[4]);
+        if r < 0.0 {
+            below = f33;
+        } else if r > 0.0 {
+            above = f33;
+        }
+        let mut next = f33 - r / slope;
+        if !(next > below && next < above) || !(slope > 0.0) {
+            next = if below.is_finite() && above.is_finite() { 0.5 * (below + above) } else { f33 * if r > 0.0 { 0.9 } else { 1.1 } };
+        }
+        if r == 0.0 || (next - f33).abs() <= 4.0 * f64::EPSILON * f33.abs() {
+            return Ok((f33, up, dv));
+        }
+        f33 = next;
+    }
+    Err(format!("plane stress: the thickness stretch did not converge (F_33 = {f33:.6e})"))
 }
 
 /// The element tangent d f_int / d u from the material tangents of an evaluation:
@@ -378,11 +466,20 @@ mod tests {
         [x[0], x[1], x[2], x[3], x[4], x[5], x[0], x[0]]
     }
 
-    /// Both shapes; a triangle's spare slots carry no force, and moving them changes nothing.
+    /// Both shapes, the three sections; a triangle's spare slots carry no force, and moving them
+    /// changes nothing.
     #[test]
     fn tangent_matches_central_differences_small_and_large_plastic() {
-        for (shape, x) in [(Shape::Quad8, element()), (Shape::Tri6, triangle())] {
-            let geometry = ElementGeometry::new(shape, &x).unwrap();
+        let (strain, stress) = (Section::PlaneStrain { thickness: 2.5 }, Section::PlaneStress { thickness: 2.5 });
+        let cases = [
+            (Shape::Quad8, Section::Axisymmetric, element()),
+            (Shape::Tri6, Section::Axisymmetric, triangle()),
+            (Shape::Quad8, strain, element()),
+            (Shape::Quad8, stress, element()),
+            (Shape::Tri6, stress, triangle()),
+        ];
+        for (shape, section, x) in cases {
+            let geometry = ElementGeometry::new(shape, section, &x).unwrap();
             for (kin, amplitude) in [(Kinematics::Small, 2e-2), (Kinematics::Finite, 0.6)] {
                 let committed = [PointState::initial(kin); 9];
                 // a large rotation-stretch-shear field, plastic at every point
@@ -399,9 +496,12 @@ mod tests {
                     surface: SurfaceBranch::Elastic,
                 };
                 let out = compute_solid(&input, &u, None).unwrap();
-                assert!(out.state.iter().all(|s| s.ep > 0.0), "{shape:?} {kin:?}: every point should be plastic");
+                assert!(out.state.iter().all(|s| s.ep > 0.0), "{shape:?} {section:?} {kin:?}: every point should be plastic");
+                if section == stress {
+                    assert!(out.stress.iter().all(|s| s[2].abs() < 1e-9), "{kin:?}: sigma_33 {:?}", out.stress);
+                }
                 let err = tangent_error(&input, &u, if kin == Kinematics::Small { 1e-8 } else { 1e-6 });
-                assert!(err <= 1e-6, "{shape:?} {kin:?}: tangent error {err:e}");
+                assert!(err <= 1e-6, "{shape:?} {section:?} {kin:?}: tangent error {err:e}");
                 if shape == Shape::Tri6 {
                     assert!((12..16).all(|i| out.internal_force[i] == 0.0));
                     let mut moved = u;
@@ -416,14 +516,14 @@ mod tests {
     #[test]
     fn a_triangle_projects_a_linear_dilatation_onto_itself_and_holds_a_linear_field() {
         let x = triangle();
-        let geometry = ElementGeometry::new(Shape::Tri6, &x).unwrap();
+        let geometry = ElementGeometry::new(Shape::Tri6, Section::Axisymmetric, &x).unwrap();
         let z = |q: usize| (0..NODES).map(|a| geometry.points[q].n[a] * x[a][1]).sum::<f64>();
         let v: [f64; 9] = std::array::from_fn(|q| 2.0 + 0.3 * geometry.points[q].r - 0.1 * z(q));
         let theta = geometry.project(&v);
         assert!((0..9).all(|q| (theta[q] - v[q]).abs() < 1e-12));
         // a linear displacement gives its exact (constant) small strain at every point
         let u: [[f64; 2]; 8] = std::array::from_fn(|a| [1e-3 * x[a][0], -5e-4 * x[a][1] + 2e-4 * x[a][0] + 0.3]);
-        for e in geometry.total_strain(Kinematics::Small, &u) {
+        for e in geometry.total_strain(Kinematics::Small, &u, None) {
             let expected = [1e-3, -5e-4, 1e-3, 1e-4];
             assert!((0..4).all(|k| (e[k] - expected[k]).abs() < 1e-14), "{e:?}");
         }
@@ -432,7 +532,7 @@ mod tests {
     #[test]
     fn rigid_rotation_and_translation_give_no_force_at_finite_strain() {
         let x = element();
-        let geometry = ElementGeometry::new(Shape::Quad8, &x).unwrap();
+        let geometry = ElementGeometry::new(Shape::Quad8, Section::Axisymmetric, &x).unwrap();
         let committed = [PointState::initial(Kinematics::Finite); 9];
         let input = SolidInput {
             geometry: &geometry,
@@ -449,9 +549,50 @@ mod tests {
         assert!(out.internal_force.abs().max() < 1e-7, "{}", out.internal_force.abs().max());
     }
 
+    /// Uniform elastic strain in the plane sections (Hooke's law, small strain): plane stress
+    /// under eps_11 = e, eps_22 = -nu e gives sigma = (E e, 0, 0) and eps_33 = -nu e; plane
+    /// strain under eps_11 = e gives sigma_11 = (lambda + 2 mu) e, sigma_22 = sigma_33 =
+    /// lambda e. The internal force is that stress on the faces times the thickness.
+    #[test]
+    fn plane_sections_follow_hookes_law() {
+        let (x, e) = (element(), 1e-4);
+        let (k, g) = (STEEL.bulk_modulus, STEEL.shear_modulus);
+        let (young, nu) = (9.0 * k * g / (3.0 * k + g), (3.0 * k - 2.0 * g) / (2.0 * (3.0 * k + g)));
+        let lambda = k - 2.0 * g / 3.0;
+        let committed = [PointState::initial(Kinematics::Small); 9];
+        for (section, v, expected, stretch) in [
+            (Section::PlaneStress { thickness: 3.0 }, -nu * e, [young * e, 0.0, 0.0], 1.0 - nu * e),
+            (Section::PlaneStrain { thickness: 3.0 }, 0.0, [(lambda + 2.0 * g) * e, lambda * e, lambda * e], 1.0),
+        ] {
+            let geometry = ElementGeometry::new(Shape::Quad8, section, &x).unwrap();
+            let input = SolidInput {
+                geometry: &geometry,
+                material: &STEEL,
+                kinematics: Kinematics::Small,
+                temperature_change: [0.0; NODES],
+                committed: &committed,
+                surface: SurfaceBranch::Elastic,
+            };
+            let u: [[f64; 2]; 8] = std::array::from_fn(|a| [e * x[a][0], v * x[a][1]]);
+            let out = compute_solid(&input, &u, None).unwrap();
+            for q in 0..9 {
+                let s = out.stress[q];
+                assert!((0..3).all(|i| (s[i] - expected[i]).abs() < 1e-9 * young * e) && s[3].abs() < 1e-9 * young * e, "{section:?}: {s:?}");
+                assert!((out.thickness_stretch[q] - stretch).abs() < 1e-15, "{section:?}: F_33 {}", out.thickness_stretch[q]);
+            }
+            // a uniform stress in a plane section is in equilibrium: the nodal forces sum to zero
+            // (in axisymmetry the hoop stress would pull the element inward)
+            let f = out.internal_force;
+            for c in 0..2 {
+                let net: f64 = (0..8).map(|a| f[2 * a + c]).sum();
+                assert!(net.abs() < 1e-9 * f.abs().max(), "{section:?}: net force {net} in component {c}");
+            }
+        }
+    }
+
     #[test]
     fn projection_reproduces_linear_fields() {
-        let geometry = ElementGeometry::new(Shape::Quad8, &element()).unwrap();
+        let geometry = ElementGeometry::new(Shape::Quad8, Section::Axisymmetric, &element()).unwrap();
         let pos: Vec<[f64; 2]> = (0..9).map(|q| [geometry.points[q].r, 0.0]).collect();
         let v: [f64; 9] = std::array::from_fn(|q| 2.0 + 0.3 * pos[q][0]);
         let theta = geometry.project(&v);

@@ -21,14 +21,12 @@ pub struct PointGeometry {
 }
 
 /// Maps reference point `p` of the element of shape `shape` with nodal coordinates `x` (r, z).
-/// Fails with a message when the Jacobian is not positive (inverted or degenerate element).
+/// Fails with a message when the Jacobian is not positive (inverted or degenerate element);
+/// the radius `r` may be anything (an axisymmetric element checks it is positive).
 pub fn map_point(shape: Shape, x: &[[f64; 2]; 8], p: [f64; 2]) -> Result<PointGeometry, String> {
     let (n, d) = shape.functions(p);
     let (j, det_j) = jacobian(x, &d, p)?;
     let r: f64 = (0..8).map(|a| n[a] * x[a][0]).sum();
-    if r <= 0.0 {
-        return Err(format!("radius {r:.3e} <= 0 at an integration point: the mesh must lie at r >= 0"));
-    }
     // inverse Jacobian: d xi_k / d x_i
     let inv = [[j[1][1] / det_j, -j[0][1] / det_j], [-j[1][0] / det_j, j[0][0] / det_j]];
     let mut grad = [[0.0; 2]; 8];

@@ -174,6 +174,9 @@ pub struct ResultsFile {
     contact_mesh_written: bool,
     /// Reactions also per segment of this angle (degrees), CalculiX's convention for .inp runs.
     reaction_segment_degrees: Option<f64>,
+    /// Whether the model is axisymmetric (has an axisymmetric element): its forces are per
+    /// radian and get full-ring columns; a plane model's are for its thickness.
+    axisymmetric: bool,
     nodal: NodalWriter,
     /// The fields written beside the displacement.
     fields: OutputFields,
@@ -200,9 +203,14 @@ impl ResultsFile {
         let file = hdf5::File::with_options().with_fapl(|p| p.mpio(world.as_raw(), None)).create(path).map_err(&err)?;
         let rank = partition.rank;
         let text = |s: &str| s.parse::<VarLenUnicode>().map_err(|e| Error::Output { path: path.to_path_buf(), message: e.to_string() });
+        let units = if model.element_section.iter().any(|s| s.is_axisymmetric()) {
+            "length mm, force N, stress MPa, temperature degC, time s; forces and reactions per radian unless named _ring (full 360 degrees)"
+        } else {
+            "length mm, force N, stress MPa, temperature degC, time s; a plane model (x, y stored as r, z; tt the out-of-plane component): forces and reactions over the sections' thickness, where the datasets say per radian"
+        };
         for (name, value) in [
             ("deck", model.source_text.as_str()),
-            ("units", "length mm, force N, stress MPa, temperature degC, time s; forces and reactions per radian unless named _ring (full 360 degrees)"),
+            ("units", units),
             ("petsc_options", &session.options().join(" ")),
             ("slideline_version", env!("CARGO_PKG_VERSION")),
             ("step_names", &model.steps.iter().map(|s| s.name.as_str()).collect::<Vec<_>>().join("\n")),
@@ -300,6 +308,7 @@ impl ResultsFile {
             topology,
             contact_mesh_written: false,
             reaction_segment_degrees: model.reaction_segment_degrees,
+            axisymmetric: model.element_section.iter().any(|s| s.is_axisymmetric()),
             nodal: NodalWriter::new(world, mesh, partition, model.output),
             fields: model.output.fields,
             precision: model.output.precision,
@@ -472,7 +481,9 @@ impl ResultsFile {
             columns.push((format!("contact_{}_active_nodes", c.name), c.active_nodes as f64));
             columns.push((format!("contact_{}_max_penetration", c.name), c.max_penetration));
             columns.push((format!("contact_{}_force", c.name), c.normal_force));
-            columns.push((format!("contact_{}_force_ring", c.name), c.normal_force * ring));
+            if self.axisymmetric {
+                columns.push((format!("contact_{}_force_ring", c.name), c.normal_force * ring));
+            }
         }
         for (name, value) in row.energy.map(|e| e.columns()).into_iter().flatten() {
             columns.push((name.to_string(), value));
@@ -480,8 +491,10 @@ impl ResultsFile {
         for (set, f) in &row.reactions {
             columns.push((format!("reaction_{set}_r"), f[0]));
             columns.push((format!("reaction_{set}_z"), f[1]));
-            columns.push((format!("reaction_{set}_r_ring"), f[0] * ring));
-            columns.push((format!("reaction_{set}_z_ring"), f[1] * ring));
+            if self.axisymmetric {
+                columns.push((format!("reaction_{set}_r_ring"), f[0] * ring));
+                columns.push((format!("reaction_{set}_z_ring"), f[1] * ring));
+            }
             if let Some(deg) = self.reaction_segment_degrees {
                 let seg = deg.to_radians();
                 columns.push((format!("reaction_{set}_r_{deg}deg"), f[0] * seg));

@@ -4,6 +4,9 @@
 //! reference_temperature = 20.0      # degC, zero thermal strain; also the initial temperature
 //!                                   # (or a field: [{ value = 20.0 }, { set = "hot", value = 80.0 }])
 //! nlgeom = true                     # finite strain + follower pressure (default); false: small
+//! geometry = "axisymmetric"         # (r, z) about the z axis, per radian (default); or a plane
+//! # geometry = "plane_strain"       # slice (x, y) of a long body, or "plane_stress": a thin plate,
+//! # thickness = 1.0                 # mm, of the plane slice (default 1)
 //!
 //! [stepping]                        # optional; defaults shown
 //! cutback_factor = 0.5              # increment x this after a failed attempt
@@ -81,6 +84,7 @@ use super::{
 };
 use crate::element::body_load::BodyForce;
 use crate::error::{Error, Result};
+use crate::fe::section::Section;
 use serde::Deserialize;
 use std::path::{Path, PathBuf};
 
@@ -91,6 +95,9 @@ struct DeckFile {
     reference_temperature: TemperatureSpec,
     #[serde(default = "yes")]
     nlgeom: bool,
+    #[serde(default)]
+    geometry: GeometrySpec,
+    thickness: Option<f64>,
     mesh: MeshSpec,
     #[serde(default)]
     stepping: SteppingSpec,
@@ -316,6 +323,32 @@ struct MaterialSpec {
 
 fn default_kind() -> MaterialKind {
     MaterialKind::Elastic
+}
+
+#[derive(Deserialize, Default, Clone, Copy, PartialEq)]
+#[serde(rename_all = "snake_case")]
+enum GeometrySpec {
+    #[default]
+    Axisymmetric,
+    PlaneStrain,
+    PlaneStress,
+}
+
+impl DeckFile {
+    /// The section every element gets.
+    fn section(&self) -> Result<Section> {
+        let thickness = self.thickness.unwrap_or(1.0);
+        if self.geometry == GeometrySpec::Axisymmetric {
+            if self.thickness.is_some() {
+                return Err(Error::input("thickness: only a plane geometry has one (geometry = \"plane_strain\" or \"plane_stress\")"));
+            }
+            return Ok(Section::Axisymmetric);
+        }
+        if !(thickness > 0.0 && thickness.is_finite()) {
+            return Err(Error::input(format!("thickness = {thickness}: must be a positive length (mm)")));
+        }
+        Ok(if self.geometry == GeometrySpec::PlaneStrain { Section::PlaneStrain { thickness } } else { Section::PlaneStress { thickness } })
+    }
 }
 
 #[derive(Deserialize)]
@@ -680,6 +713,8 @@ pub fn parse(text: &str, path: &Path) -> Result<Model> {
         });
     }
     let kinematics = if deck.nlgeom { Kinematics::Finite } else { Kinematics::Small };
+    let section = deck.section()?;
+    let n_elements = mesh.elements.len();
     let model = Model {
         mesh,
         node_sets,
@@ -687,6 +722,7 @@ pub fn parse(text: &str, path: &Path) -> Result<Model> {
         surfaces,
         materials,
         element_material,
+        element_section: vec![section; n_elements],
         reference_temperature,
         kinematics,
         stepping: deck.stepping.controls(),

@@ -3,6 +3,7 @@
 
 use crate::error::{Error, Result};
 use crate::fe::axisymmetric::{jacobian, map_point};
+use crate::fe::section::Section;
 use crate::fe::shape::Shape;
 use std::collections::BTreeMap;
 
@@ -121,13 +122,24 @@ impl Mesh {
         groups.into_values().collect()
     }
 
-    /// Checks the mesh has elements, lies at r >= 0, and has no inverted or degenerate element.
+    /// Checks an axisymmetric mesh (`validate_sections` with every element axisymmetric).
     pub fn validate(&self) -> Result<()> {
+        self.validate_sections(&vec![Section::Axisymmetric; self.elements.len()])
+    }
+
+    /// Checks the mesh has elements, finite coordinates, its axisymmetric elements (by
+    /// `sections`) at r >= 0, and no inverted or degenerate element.
+    pub fn validate_sections(&self, sections: &[Section]) -> Result<()> {
         if self.elements.is_empty() {
             return Err(Error::input("the mesh has no elements (slideline needs 8-node quadrilaterals or 6-node triangles)"));
         }
         let size = self.coords.iter().fold(0.0f64, |m, c| m.max(c[0].abs()).max(c[1].abs())).max(1.0);
-        if let Some((i, c)) = self.coords.iter().enumerate().find(|(_, c)| c[0] < -1e-9 * size || !c[0].is_finite() || !c[1].is_finite()) {
+        if let Some((i, c)) = self.coords.iter().enumerate().find(|(_, c)| !c[0].is_finite() || !c[1].is_finite()) {
+            return Err(Error::input(format!("node {} at ({}, {}): coordinates must be finite", self.node_ids[i], c[0], c[1])));
+        }
+        let axisymmetric_nodes = (0..self.elements.len()).filter(|&e| sections[e].is_axisymmetric()).flat_map(|e| self.element_nodes(e).to_vec());
+        if let Some(i) = axisymmetric_nodes.into_iter().find(|&n| self.coords[n][0] < -1e-9 * size) {
+            let c = self.coords[i];
             return Err(Error::input(format!("node {} at (r, z) = ({}, {}): axisymmetric nodes need a finite r >= 0", self.node_ids[i], c[0], c[1])));
         }
         for e in 0..self.elements.len() {
@@ -146,7 +158,14 @@ impl Mesh {
             // Gauss points (also checks r > 0 there) and corners (a collapsed side or corner
             // has det J = 0 exactly at the corner).
             let reference = shape.reference_nodes();
-            let gauss = shape.rule().map(|q| map_point(shape, &x, q.0).map(|_| ()));
+            let positive = |r: f64| {
+                if sections[e].is_axisymmetric() && r <= 0.0 {
+                    Err(format!("radius {r:.3e} <= 0 at an integration point: an axisymmetric mesh must lie at r >= 0"))
+                } else {
+                    Ok(())
+                }
+            };
+            let gauss = shape.rule().map(|q| map_point(shape, &x, q.0).and_then(|g| positive(g.r)));
             let corners = reference[..shape.corners()].iter().map(|&c| jacobian(&x, &shape.functions(c).1, c).map(|_| ()));
             for check in gauss.into_iter().chain(corners) {
                 if let Err(msg) = check {

@@ -17,6 +17,7 @@ pub use mesh::{Edge, Mesh, NODES_PER_ELEMENT};
 pub use temperature::Temperature;
 
 use crate::error::{Error, Result};
+use crate::fe::section::Section;
 pub use crate::material::Kinematics;
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -445,6 +446,8 @@ pub struct Model {
     pub materials: Vec<Material>,
     /// Material index of every element.
     pub element_material: Vec<usize>,
+    /// Section of every element: axisymmetric, or a plane section with its thickness.
+    pub element_section: Vec<Section>,
     /// Temperature (degC) at which thermal strain is zero, and the initial temperature (a
     /// field where it varies from node to node).
     pub reference_temperature: Temperature,

@@ -9,7 +9,15 @@ use std::collections::BTreeMap;
 impl Model {
     /// Checks everything the solver relies on; the first problem found is reported by name.
     pub fn validate(&self) -> Result<()> {
-        self.mesh.validate()?;
+        if self.element_section.len() != self.mesh.elements.len() {
+            return Err(Error::input("internal: element_section does not match the element count"));
+        }
+        self.mesh.validate_sections(&self.element_section)?;
+        if !self.perturbations.is_empty() && self.element_section.iter().any(|s| !s.is_axisymmetric()) {
+            return Err(Error::input(
+                "perturbation steps (harmonic loads, buckling, natural frequencies) are built for axisymmetric models only; this model has plane-strain or plane-stress elements",
+            ));
+        }
         for m in &self.materials {
             if !(m.youngs_modulus > 0.0 && m.youngs_modulus.is_finite()) {
                 return Err(Error::input(format!("material '{}': Young's modulus must be > 0, got {}", m.name, m.youngs_modulus)));
@@ -177,6 +185,7 @@ impl Model {
     fn check_constraints(&self) -> Result<()> {
         let mut in_force: BTreeMap<(String, Component), f64> = BTreeMap::new();
         let mut held_z = vec![false; self.mesh.coords.len()];
+        let mut held_r = vec![false; self.mesh.coords.len()];
         for step in &self.steps {
             for (k, d) in step.displacements.iter().enumerate() {
                 if let Some(e) = step.displacements[..k].iter().find(|e| e.node_set == d.node_set && e.component == d.component && e.value != d.value) {
@@ -195,8 +204,9 @@ impl Model {
             let mut by_dof: std::collections::HashMap<(usize, Component), (&str, f64)> = std::collections::HashMap::new();
             for ((set, component), value) in &in_force {
                 for &n in self.node_set(set)? {
-                    if *component == Component::Z {
-                        held_z[n] = true;
+                    match component {
+                        Component::Z => held_z[n] = true,
+                        Component::R => held_r[n] = true,
                     }
                     match by_dof.insert((n, *component), (set.as_str(), *value)) {
                         Some((other, v)) if v != *value => {
@@ -216,6 +226,16 @@ impl Model {
         if let Some((n, _)) = self.axially_free_bodies(&held_z).into_iter().find(|(_, pairs)| pairs.is_empty()) {
             return Err(Error::input(format!(
                 "the body containing node {} (at r = {}, z = {}) has no prescribed uz and no contact: it is free to move along the axis; prescribe uz on one of its nodes",
+                self.mesh.node_ids[n], self.mesh.coords[n][0], self.mesh.coords[n][1]
+            )));
+        }
+        // a plane body has no hoop stiffness to hold it in r either
+        let plane_nodes: std::collections::HashSet<usize> =
+            (0..self.mesh.elements.len()).filter(|&e| !self.element_section[e].is_axisymmetric()).flat_map(|e| self.mesh.element_nodes(e).to_vec()).collect();
+        let held_r_or_axisymmetric: Vec<bool> = (0..held_r.len()).map(|n| held_r[n] || !plane_nodes.contains(&n)).collect();
+        if let Some((n, _)) = self.axially_free_bodies(&held_r_or_axisymmetric).into_iter().find(|(_, pairs)| pairs.is_empty()) {
+            return Err(Error::input(format!(
+                "the plane body containing node {} (at x = {}, y = {}) has no prescribed ux and no contact: it is free to move along x; prescribe ux on one of its nodes",
                 self.mesh.node_ids[n], self.mesh.coords[n][0], self.mesh.coords[n][1]
             )));
         }

@@ -34,7 +34,7 @@ pub(super) fn surfaces_and_directions(model: &Model) -> (Vec<ContactSurface>, Ve
             }
         }
     }
-    let surfaces = names.iter().map(|n| ContactSurface::new(&model.mesh, &model.surfaces[*n])).collect();
+    let surfaces = names.iter().map(|n| ContactSurface::of_model(model, n)).collect();
     let index = |n: &str| names.iter().position(|m| *m == n).expect("surface listed");
     let mut directions = Vec::new();
     for (pair, c) in model.contacts.iter().enumerate() {

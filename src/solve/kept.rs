@@ -48,6 +48,8 @@ pub struct ElementFields {
     pub stress: Vec<[[f64; 4]; QUADRATURE_POINTS]>,
     /// Equivalent plastic strain at the Gauss points.
     pub plastic_strain: Vec<[f64; QUADRATURE_POINTS]>,
+    /// F_33 at the Gauss points (`SolidResponse::thickness_stretch`).
+    pub thickness_stretch: Vec<[f64; QUADRATURE_POINTS]>,
     /// This rank's part of f_int - f_ext at every node of the mesh (summed over ranks, it is
     /// the reaction at prescribed DOFs), per radian.
     pub nodal_force: Vec<[f64; 2]>,
@@ -66,6 +68,7 @@ impl ElementFields {
         ElementFields {
             stress: vec![[[0.0; 4]; QUADRATURE_POINTS]; elements],
             plastic_strain: vec![[0.0; QUADRATURE_POINTS]; elements],
+            thickness_stretch: vec![[1.0; QUADRATURE_POINTS]; elements],
             nodal_force: vec![[0.0; 2]; nodes],
             pressure_force: vec![[0.0; 2]; nodes],
             energy: ElementEnergy::default(),

@@ -130,7 +130,7 @@ pub(super) fn stiffness_blocks(
     for (k, &e) in partition.local_elements().iter().enumerate() {
         let conn = mesh.elements[e];
         let x: [[f64; 2]; NODES] = conn.map(|n| current[n]);
-        let geo = ElementGeometry::new(crate::fe::shape::Shape::of(&conn), &x)
+        let geo = ElementGeometry::new(crate::fe::shape::Shape::of(&conn), model.element_section[e], &x)
             .map_err(|m| Error::input(format!("perturbation step '{step}': element {}: {m}", mesh.element_ids[e])))?;
         let m = &model.materials[model.element_material[e]];
         let j2 = crate::solve::problem::material_kernel(m);
@@ -291,7 +291,7 @@ pub(super) fn response(
     for q in &step.pressures {
         for edge in model.surfaces.get(&q.surface).into_iter().flatten().filter(|edge| local.contains(&edge.element)) {
             let en = model.mesh.edge_nodes(*edge);
-            for (a, f) in compute_pressure_load(&en.map(|n| current[n]), q.value).iter().enumerate() {
+            for (a, f) in compute_pressure_load(crate::fe::section::Section::Axisymmetric, &en.map(|n| current[n]), q.value).iter().enumerate() {
                 load[en[a]][0] += factor * f[0];
                 load[en[a]][1] += factor * f[1];
             }

@@ -17,6 +17,7 @@ use crate::element::body_load::BodyForce;
 use crate::element::solid::ElementMatrix;
 use crate::element::solid::{compute_solid, solid_tangent, ElementGeometry, MaterialTangents, SolidInput, SolidResponse, DOFS, NODES, QUADRATURE_POINTS};
 use crate::error::{Error, Result};
+use crate::fe::section::Section;
 use crate::fe::shape::Shape;
 use crate::material::{Kinematics, PointState, SurfaceBranch, J2};
 use crate::model::{Material, Model, Temperature};
@@ -203,9 +204,10 @@ impl<'s, 'm> Problem<'s, 'm> {
                 }
             }
             let coords = model.mesh.element_coords(e);
-            let geometry = ElementGeometry::new(Shape::of(&conn), &coords).map_err(|m| Error::input(format!("element {}: {m}", model.mesh.element_ids[e])))?;
+            let geometry = ElementGeometry::new(Shape::of(&conn), model.element_section[e], &coords)
+                .map_err(|m| Error::input(format!("element {}: {m}", model.mesh.element_ids[e])))?;
             let mat = &model.materials[model.element_material[e]];
-            let roundoff_scale = mat.youngs_modulus * geometry.mean_radius();
+            let roundoff_scale = mat.youngs_modulus * geometry.mean_measure();
             let extent = |c: usize| coords.iter().map(|x| x[c]).fold(f64::MIN, f64::max) - coords.iter().map(|x| x[c]).fold(f64::MAX, f64::min);
             let roundoff_length = extent(0).hypot(extent(1));
             elements.push(LocalElement { element: e, geometry, coords, dofs: d, slots, material: model.element_material[e], roundoff_scale, roundoff_length });
@@ -318,11 +320,19 @@ impl<'s, 'm> Problem<'s, 'm> {
     }
 
     /// For output, at the Gauss points of this rank's elements: the total strain at the whole
-    /// mesh's `displacement`, and the plastic strain tensor of the committed history.
-    pub fn strain_fields(&self, displacement: &[[f64; 2]]) -> (Vec<PointTensors>, Vec<PointTensors>) {
+    /// mesh's `displacement` (with the plane-stress thickness stretches of its evaluation,
+    /// `thickness_stretch`), and the plastic strain tensor of the committed history.
+    pub fn strain_fields(&self, displacement: &[[f64; 2]], thickness_stretch: &[[f64; QUADRATURE_POINTS]]) -> (Vec<PointTensors>, Vec<PointTensors>) {
         let kinematics = self.model.kinematics;
-        let total =
-            self.elements.iter().map(|el| el.geometry.total_strain(kinematics, &self.model.mesh.elements[el.element].map(|n| displacement[n]))).collect();
+        let total = self
+            .elements
+            .iter()
+            .zip(thickness_stretch)
+            .map(|(el, stretch)| {
+                let plane_stress = matches!(el.geometry.section(), Section::PlaneStress { .. });
+                el.geometry.total_strain(kinematics, &self.model.mesh.elements[el.element].map(|n| displacement[n]), plane_stress.then_some(stretch))
+            })
+            .collect();
         let plastic = self.committed.iter().map(|points| points.map(|p| p.plastic_strain_tensor(kinematics))).collect();
         (total, plastic)
     }

@@ -356,7 +356,8 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
                 _ => Vec::new(),
             };
             let contact_output = problem.contact.as_ref().map(|c| c.pass_outputs()).unwrap_or_default();
-            let (strain, plastic_strain_tensor) = if with_fields { problem.strain_fields(&displacement) } else { Default::default() };
+            let (strain, plastic_strain_tensor) =
+                if with_fields { problem.strain_fields(&displacement, &fields.thickness_stretch) } else { Default::default() };
             let reaction: Vec<[f64; 2]> =
                 partition.owned_nodes().iter().map(|&n| std::array::from_fn(|c| if prescribed[n][c] { force[2 * n + c] } else { 0.0 })).collect();
             let increment_fields = IncrementFields {

@@ -4,6 +4,7 @@
 use super::cards::{error_at, Card, DataLine, Location};
 use super::{face_side, Builder};
 use crate::error::Result;
+use crate::fe::section::Section;
 use crate::fe::shape::Shape;
 use crate::model::mesh::Edge;
 use std::collections::BTreeSet;
@@ -54,21 +55,24 @@ impl Builder {
         card.only(&["TYPE", "ELSET"])?;
         let kind = card.required("TYPE")?.to_uppercase();
         // (shape, nodes listed): the linear CAX4 and CAX3 get mid-side nodes
-        let (shape, per_element) = match kind.as_str() {
-            "CAX8" | "CAX8R" => (Shape::Quad8, 8),
-            "CAX4" | "CAX4R" => (Shape::Quad8, 4),
-            "CAX6" => (Shape::Tri6, 6),
-            "CAX3" => (Shape::Tri6, 3),
-            "MASS" => return self.point_masses(card),
-            other => {
-                let why = match other {
-                    o if o.starts_with("CPS") || o.starts_with("CPE") => {
-                        "plane stress and plane strain elements: slideline models axisymmetric solids (CAX8, CAX8R, CAX6, CAX4, CAX4R, CAX3)"
-                    }
+        // the section family (its thickness comes with *SOLID SECTION): CAX, CPE, CPS
+        let family = match kind.get(..3) {
+            Some("CPE") => Section::PlaneStrain { thickness: 1.0 },
+            Some("CPS") => Section::PlaneStress { thickness: 1.0 },
+            _ => Section::Axisymmetric,
+        };
+        let (shape, per_element) = match kind.get(3..).filter(|_| ["CAX", "CPE", "CPS"].contains(&&kind[..3])) {
+            Some("8" | "8R") => (Shape::Quad8, 8),
+            Some("4" | "4R") => (Shape::Quad8, 4),
+            Some("6") => (Shape::Tri6, 6),
+            Some("3") => (Shape::Tri6, 3),
+            _ if kind == "MASS" => return self.point_masses(card),
+            _ => {
+                let why = match kind.as_str() {
                     "D" => "fluid network elements: slideline has no fluid networks",
-                    _ => "outside the subset (slideline reads the axisymmetric elements CAX8, CAX8R, CAX6, CAX4, CAX4R, CAX3)",
+                    _ => "outside the subset (slideline reads the axisymmetric CAX8, CAX8R, CAX6, CAX4, CAX4R, CAX3 and the plane CPE.., CPS.. of the same shapes)",
                 };
-                return Err(card.error(format!("element type {other}: {why}")));
+                return Err(card.error(format!("element type {kind}: {why}")));
             }
         };
         let corners_only = per_element == shape.corners();
@@ -106,6 +110,7 @@ impl Builder {
             ids.push(self.mesh.elements.len());
             self.mesh.elements.push(conn);
             self.mesh.element_ids.push(id);
+            self.element_family.push(family);
         }
         if let Some((_, at)) = pending.first() {
             return Err(error_at(at, "ELEMENT", format!("{kind} takes {per_element} nodes, the last element has {}", pending.len() - 1)));

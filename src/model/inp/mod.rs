@@ -27,6 +27,7 @@ pub use write::{to_inp, write};
 use super::mesh::{Edge, Mesh};
 use super::{Component, Kinematics, Material, Model, Plasticity, Predictor, SteppingControls, Temperature};
 use crate::error::{Error, Result};
+use crate::fe::section::Section;
 use cards::{error_at, Card, DataLine, Location};
 use properties::ListedPair;
 use std::collections::{BTreeMap, BTreeSet, HashMap};
@@ -157,7 +158,11 @@ struct Builder {
     /// Where a point mass is first loaded (GRAV or CENTRIF): refused with NLGEOM.
     mass_load_at: Option<Location>,
     materials: Vec<MaterialDef>,
-    sections: Vec<(String, String, Location)>,
+    /// *SOLID SECTION: element set, material, the thickness line's value (if any), where.
+    sections: Vec<(String, String, Option<f64>, Location)>,
+    /// Each element's section family from its type (CAX, CPE, CPS), thickness 1 until its
+    /// *SOLID SECTION gives one.
+    element_family: Vec<Section>,
     interactions: BTreeMap<String, Interaction>,
     current_interaction: Option<String>,
     contacts: Vec<ListedPair>,
@@ -244,7 +249,11 @@ fn build(cards: &[Card], source_text: String) -> Result<InpModel> {
                 if !b.element_sets.contains_key(&elset) {
                     return Err(card.error(format!("element set {elset} is not defined (define it before its use)")));
                 }
-                b.sections.push((elset, card.required("MATERIAL")?.to_uppercase(), card.at.clone()));
+                let thickness = match card.data.first().and_then(|d| d.fields.first()).filter(|f| !f.is_empty()) {
+                    Some(_) => Some(card.data[0].number("SOLID SECTION", 0, "thickness", None)?),
+                    None => None,
+                };
+                b.sections.push((elset, card.required("MATERIAL")?.to_uppercase(), thickness, card.at.clone()));
                 last_owner = "";
             }
             "SURFACE INTERACTION" => {
@@ -388,6 +397,16 @@ impl Builder {
         Ok(())
     }
 
+    /// What CalculiX's nodal forces and masses are divided by: 2 pi (the whole ring's, kept
+    /// per radian) in a deck with axisymmetric elements, 1 in a plane deck.
+    fn ring_measure(&self) -> f64 {
+        if self.element_family.iter().any(|s| s.is_axisymmetric()) {
+            std::f64::consts::TAU
+        } else {
+            1.0
+        }
+    }
+
     fn finish(mut self, source_text: String, source_files: Vec<std::path::PathBuf>) -> Result<InpModel> {
         if self.in_step {
             let at = &self.steps.last().expect("in a step").at;
@@ -428,14 +447,25 @@ impl Builder {
             return Err(Error::input("the deck defines no *MATERIAL"));
         }
         let mut element_material = vec![usize::MAX; self.mesh.elements.len()];
-        for (elset, material, at) in &self.sections {
+        let mut element_section = self.element_family.clone();
+        let axisymmetric = element_section.iter().any(|s| s.is_axisymmetric());
+        for (elset, material, thickness, at) in &self.sections {
             let k = materials
                 .iter()
                 .position(|m| &m.name == material)
                 .ok_or_else(|| error_at(at, "SOLID SECTION", format!("material {material} is not defined")))?;
             for &e in &self.element_sets[elset] {
                 element_material[e] = k;
+                element_section[e] = plane_thickness(element_section[e], *thickness, axisymmetric)
+                    .map_err(|m| error_at(at, "SOLID SECTION", format!("element {}: {m}", self.mesh.element_ids[e])))?;
             }
+        }
+        if !axisymmetric {
+            self.notes.push("a plane model: forces and reactions are those of the sections' thickness (no per radian, ring or segment values)".to_string());
+        } else if element_section.iter().any(|s| !s.is_axisymmetric()) {
+            self.notes.push(format!(
+                "plane elements beside axisymmetric ones: their *SOLID SECTION thickness is taken beside CalculiX's {CALCULIX_SEGMENT_DEGREES}-degree segment, so per radian it is thickness x 180 / ({CALCULIX_SEGMENT_DEGREES} pi)"
+            ));
         }
         if let Some(e) = element_material.iter().position(|&m| m == usize::MAX) {
             return Err(Error::input(format!("element {} has no *SOLID SECTION", self.mesh.element_ids[e])));
@@ -477,9 +507,11 @@ impl Builder {
         if let Some(min) = self.steps.iter().filter_map(|s| s.minimum.map(|m| m / s.period)).reduce(f64::min) {
             stepping.min_increment = min.clamp(1e-12, 1.0);
         }
-        self.notes.push(format!(
-            "reactions are written per radian, per full ring (_ring) and per {CALCULIX_SEGMENT_DEGREES}-degree segment (_2deg, CalculiX's axisymmetric convention)"
-        ));
+        if axisymmetric {
+            self.notes.push(format!(
+                "reactions are written per radian, per full ring (_ring) and per {CALCULIX_SEGMENT_DEGREES}-degree segment (_2deg, CalculiX's axisymmetric convention)"
+            ));
+        }
         let model = Model {
             mesh: self.mesh,
             node_sets: self.node_sets,
@@ -487,6 +519,7 @@ impl Builder {
             surfaces: self.surfaces,
             materials,
             element_material,
+            element_section,
             reference_temperature,
             kinematics,
             stepping,
@@ -496,11 +529,28 @@ impl Builder {
             perturbations: Vec::new(),
             source_text,
             source_files,
-            reaction_segment_degrees: Some(CALCULIX_SEGMENT_DEGREES),
+            reaction_segment_degrees: axisymmetric.then_some(CALCULIX_SEGMENT_DEGREES),
         };
         model.validate()?;
         Ok(InpModel { model, notes: self.notes })
     }
+}
+
+/// The section of a plane element (`family`) of a *SOLID SECTION with `thickness` (1 when
+/// not given), in a deck with axisymmetric elements (`axisymmetric`) or without. Beside
+/// axisymmetric elements CalculiX expands the model into a 2-degree segment and the plane
+/// element's slab of `thickness` stands beside it; per radian that is thickness x 90 / pi.
+fn plane_thickness(family: Section, thickness: Option<f64>, axisymmetric: bool) -> std::result::Result<Section, String> {
+    let t = thickness.unwrap_or(1.0);
+    if !family.is_axisymmetric() && !(t > 0.0 && t.is_finite()) {
+        return Err(format!("the plane element's thickness {t} must be a positive length"));
+    }
+    let t = if axisymmetric { t * 180.0 / (CALCULIX_SEGMENT_DEGREES * std::f64::consts::PI) } else { t };
+    Ok(match family {
+        Section::Axisymmetric => Section::Axisymmetric,
+        Section::PlaneStrain { .. } => Section::PlaneStrain { thickness: t },
+        Section::PlaneStress { .. } => Section::PlaneStress { thickness: t },
+    })
 }
 
 /// Side index 0..3 of a face label `S1`..`S4` (surfaces) or `P1`..`P4` (pressures): face k

@@ -282,7 +282,7 @@ impl Builder {
                 2 => Component::Z,
                 dof => return Err(error_at(&d.at, "CLOAD", format!("degree of freedom {dof}: axisymmetric nodes have 1 (r) and 2 (z)"))),
             };
-            let value = d.number("CLOAD", 2, "magnitude", None)? / std::f64::consts::TAU;
+            let value = d.number("CLOAD", 2, "magnitude", None)? / self.ring_measure();
             for node in nodes {
                 loads.retain(|l| l.key != (node, component));
                 loads.push(Target { key: (node, component), value, amplitude: amplitude.clone() });
@@ -373,7 +373,7 @@ impl Builder {
             .into_iter()
             .map(|n| {
                 let (component, force) = if spin { (Component::R, mass * value * self.mesh.coords[n][0]) } else { (Component::Z, mass * value) };
-                Target { key: (n, component), value: force / std::f64::consts::TAU, amplitude: amplitude.clone() }
+                Target { key: (n, component), value: force / self.ring_measure(), amplitude: amplitude.clone() }
             })
             .collect())
     }

@@ -136,7 +136,7 @@ impl Problem<'_, '_> {
             // follower pressure, d(-f_ext)/du, at the entries of the element the edge bounds
             let edges: Vec<(usize, [usize; 3], f64)> = self.pressure_edges().collect();
             for (k, local, p) in edges {
-                let kp = pressure_load_stiffness(&self.edge_positions(k, &local, &us[k]), p);
+                let kp = pressure_load_stiffness(self.elements[k].geometry.section(), &self.edge_positions(k, &local, &us[k]), p);
                 let at = |i: usize| 2 * local[i / 2] + i % 2;
                 for (i, row) in kp.iter().enumerate() {
                     for (j, v) in row.iter().enumerate() {
@@ -238,6 +238,7 @@ impl Problem<'_, '_> {
             forces[1] += DOFS as f64;
             fields.stress[k] = out.stress;
             fields.plastic_strain[k] = out.state.map(|s| s.ep);
+            fields.thickness_stretch[k] = out.thickness_stretch;
             let conn = &self.model.mesh.elements[self.elements[k].element];
             for i in 0..DOFS {
                 sink(conn[i / 2], i % 2, out.internal_force[i]);
@@ -251,7 +252,7 @@ impl Problem<'_, '_> {
         // the pressure loads, also kept apart (the energy audit's external work; the sink
         // closure holds only `fields.nodal_force`)
         for (k, local, p) in self.pressure_edges() {
-            let f = compute_pressure_load(&self.edge_positions(k, &local, &us[k]), p);
+            let f = compute_pressure_load(self.elements[k].geometry.section(), &self.edge_positions(k, &local, &us[k]), p);
             let conn = &self.model.mesh.elements[self.elements[k].element];
             for (j, &a) in local.iter().enumerate() {
                 for c in 0..2 {
