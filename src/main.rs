@@ -577,7 +577,13 @@ fn print_summary(summary: &RunSummary) {
             summary.reserved_couplings, summary.pattern_refits
         );
     }
-    if !last.reactions.is_empty() {
+    if !last.reactions.is_empty() && summary.plane {
+        println!("final reactions (N, over the plane model's thickness):");
+        println!("  {:<20} {:>14} {:>14}", "set", "F_x", "F_y");
+        for (set, f) in &last.reactions {
+            println!("  {:<20} {:>14.6e} {:>14.6e}", set, f[0], f[1]);
+        }
+    } else if !last.reactions.is_empty() {
         println!("final reactions (N):            per radian                      full 360-degree ring");
         println!("  {:<20} {:>14} {:>14}   {:>14} {:>14}", "set", "F_r", "F_z", "F_r", "F_z");
         let ring = 2.0 * std::f64::consts::PI;

@@ -412,7 +412,9 @@ struct BodyLoadSpec {
 #[serde(deny_unknown_fields)]
 struct BoundarySpec {
     set: String,
+    #[serde(alias = "ux")]
     ur: Option<f64>,
+    #[serde(alias = "uy")]
     uz: Option<f64>,
     /// Harmonic steps: the U_t amplitude, and a ring's rigid motion (mode 1).
     ut: Option<f64>,
@@ -428,7 +430,9 @@ struct BoundarySpec {
 #[serde(deny_unknown_fields)]
 struct ForceSpec {
     set: String,
+    #[serde(alias = "fx")]
     fr: Option<f64>,
+    #[serde(alias = "fy")]
     fz: Option<f64>,
 }
 
@@ -539,6 +543,7 @@ pub fn parse(text: &str, path: &Path) -> Result<Model> {
     let reference_temperature = deck.reference_temperature.field(&mesh, &node_sets, None, "reference_temperature")?;
     let mut temperature_now = reference_temperature.clone();
     let (mut steps, mut perturbations) = (Vec::new(), Vec::new());
+    let plane = deck.geometry != GeometrySpec::Axisymmetric;
     for (k, s) in deck.step.iter().enumerate() {
         let name = s.name.clone().unwrap_or_else(|| format!("step-{}", k + 1));
         let pressures: Vec<Pressure> = s.pressure.iter().map(|p| Pressure { surface: p.surface.clone(), value: p.value }).collect();
@@ -577,10 +582,11 @@ pub fn parse(text: &str, path: &Path) -> Result<Model> {
                     if f.fr.is_none() && f.fz.is_none() {
                         return Err(Error::input(format!("step '{name}': force on '{}' gives neither fr nor fz (N around the ring)", f.set)));
                     }
-                    // the whole ring's force, kept per radian
+                    // the whole ring's force, kept per radian (a plane model's force as it is)
+                    let per = if plane { 1.0 } else { std::f64::consts::TAU };
                     for (component, ring) in [(Component::R, f.fr), (Component::Z, f.fz)] {
                         let Some(ring) = ring else { continue };
-                        nodal_forces.extend(nodes.iter().map(|&node| NodalForce { node, component, value: ring / std::f64::consts::TAU }));
+                        nodal_forces.extend(nodes.iter().map(|&node| NodalForce { node, component, value: ring / per }));
                     }
                 }
                 let mut body_loads = Vec::new();

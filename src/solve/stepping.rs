@@ -62,6 +62,9 @@ pub struct RunSummary {
     pub continued: usize,
     /// Each perturbation step's name and answer, in order.
     pub perturbations: Vec<(String, super::perturbation::PerturbationAnswer)>,
+    /// Whether the model is plane (no axisymmetric element): its forces are over its
+    /// thickness, not per radian.
+    pub plane: bool,
 }
 
 impl RunSummary {
@@ -449,6 +452,7 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
         pattern_refits,
         continued,
         perturbations,
+        plane: model.element_section.iter().all(|s| !s.is_axisymmetric()),
     })
 }
 

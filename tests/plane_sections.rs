@@ -1,0 +1,193 @@
+//! Plane strain and plane stress (`geometry = "plane_strain"` / `"plane_stress"`, and the .inp
+//! types CPE.. / CPS..) against analytical answers.
+//!
+//! - Kirsch's plate with a hole (Kirsch 1898; Timoshenko & Goodier, Theory of Elasticity,
+//!   sec. 35): remote tension s along y gives sigma_yy = 3 s at the hole's edge on the x axis
+//!   and sigma_xx = -s on the y axis, in plane stress and plane strain alike. The quarter plate
+//!   (tests/data/plate_hole.geo) is 25 hole radii wide and long; the finite width raises the
+//!   factor to 3.005 (Heywood's K_tn = 2 + (1 - d/W)^3 over the net section, d/W = 0.04; Pilkey,
+//!   Peterson's Stress Concentration Factors, chart 4.1). The nodal sigma_yy at the edge is
+//!   held to 1 % of 3 s (measured 3.016 plane stress, 3.012 plane strain), sigma_xx on the y
+//!   axis to 2 % of -s; plane stress's thickness strain is -nu (s_xx + s_yy) / E and the
+//!   reaction is s times the width times the thickness (2 mm).
+//! - Hertz's cylinder on a flat block in plane strain (Johnson, Contact Mechanics, sec. 4.3):
+//!   load P per unit length, E* = E / (2 (1 - nu^2)) for two equal bodies, half-width
+//!   b = sqrt(4 P R / (pi E*)), peak pressure p0 = 2 P / (pi b). R = 10 mm, E = 200 GPa,
+//!   nu = 0.3, pressed 0.06 mm on 2 ranks: P = 2492 N/mm, b = 0.537 mm, p0 = 2953 MPa. The
+//!   contact pressure's fit p^2 = p0^2 (1 - x^2 / b^2) gives both within 2 % (measured b
+//!   +0.4 %, p0 -0.7 %).
+//! - A CPS8 strip from an .inp deck in uniaxial tension: u = s L / E, reaction s W t.
+
+mod common;
+use common::{assert_rejected, data, run_deck, run_deck_file, Results};
+
+const STEEL: &str = r#"
+[[material]]
+name = "steel"
+youngs_modulus = 200000.0
+poissons_ratio = 0.3
+"#;
+
+fn kirsch_deck(geometry: &str) -> String {
+    format!(
+        r#"nlgeom = false
+geometry = "{geometry}"
+thickness = 2.0
+[mesh]
+file = "plate_hole.msh"
+{STEEL}
+[[step]]
+name = "pull"
+boundary = [ {{ set = "left", ux = 0.0 }}, {{ set = "bottom", uy = 0.0 }} ]
+pressure = [ {{ surface = "top", value = -100.0 }} ]
+"#
+    )
+}
+
+/// The nodal value of `field` at the node at (x, y).
+fn nodal_at(res: &Results, field: &str, at: [f64; 2]) -> f64 {
+    let x = res.f64s("mesh/coordinates");
+    let k = x.chunks(2).position(|c| (c[0] - at[0]).hypot(c[1] - at[1]) < 1e-9).expect("a node there");
+    res.f64s(&format!("{}/nodal/{field}", res.last_increment()))[k]
+}
+
+#[test]
+fn kirsch_plate_concentrates_stress_threefold_in_plane_stress_and_plane_strain() {
+    for (geometry, ranks) in [("plane_stress", 1), ("plane_strain", 2)] {
+        let run = run_deck(&kirsch_deck(geometry), &[("plate_hole.msh", &data("plate_hole.msh"))], ranks, &[]);
+        run.assert_ok();
+        let res = Results::open(&run.h5);
+        let peak = nodal_at(&res, "stress_zz", [1.0, 0.0]) / 100.0;
+        let side = nodal_at(&res, "stress_rr", [0.0, 1.0]) / 100.0;
+        eprintln!("{geometry}: sigma_yy / s at the hole's edge {peak:.4} (3.005 with the finite width), sigma_xx / s on the y axis {side:.4}");
+        assert!((peak - 3.0).abs() < 0.03, "{geometry}: stress concentration {peak}");
+        assert!((side + 1.0).abs() < 0.02, "{geometry}: sigma_xx / s on the y axis {side}");
+        let reaction = res.history("reaction_bottom_z");
+        assert!((reaction.last().unwrap() + 100.0 * 25.0 * 2.0).abs() < 1e-6 * 5000.0, "{geometry}: reaction {reaction:?}");
+        let (sxx, syy, stt, ett) = (
+            nodal_at(&res, "stress_rr", [1.0, 0.0]),
+            nodal_at(&res, "stress_zz", [1.0, 0.0]),
+            nodal_at(&res, "stress_tt", [1.0, 0.0]),
+            nodal_at(&res, "strain_tt", [1.0, 0.0]),
+        );
+        if geometry == "plane_stress" {
+            assert!(stt.abs() < 1e-6, "sigma_zz out of plane {stt}");
+            let hooke = -0.3 * (sxx + syy) / 200e3;
+            assert!((ett - hooke).abs() < 1e-6 * hooke.abs(), "thickness strain {ett} vs {hooke}");
+        } else {
+            assert!(ett == 0.0, "plane strain's strain_tt {ett}");
+            assert!((stt - 0.3 * (sxx + syy)).abs() < 0.01 * stt, "sigma_zz {stt} vs nu (sxx + syy) {}", 0.3 * (sxx + syy));
+        }
+        assert!(!res.file.group("history").unwrap().member_names().unwrap().iter().any(|n| n.ends_with("_ring")), "a plane model has no ring columns");
+    }
+}
+
+#[test]
+fn hertz_cylinder_on_a_block_in_plane_strain() {
+    let deck = format!(
+        r#"nlgeom = false
+geometry = "plane_strain"
+[mesh]
+file = "hertz_cylinder.msh"
+{STEEL}
+[[contact]]
+slave = "cylinder_surface"
+master = "block_top"
+penalty = 1.0e7
+[[step]]
+name = "press"
+increments = 4
+boundary = [ {{ set = "cylinder_top", uy = -0.06 }}, {{ set = "cylinder_axis", ux = 0.0 }}, {{ set = "block_axis", ux = 0.0 }}, {{ set = "block_bottom", uy = 0.0 }} ]
+"#
+    );
+    let run = run_deck(&deck, &[("hertz_cylinder.msh", &data("hertz_cylinder.msh"))], 2, &[]);
+    run.assert_ok();
+    let res = Results::open(&run.h5);
+    // the half model carries half the load
+    let load = -2.0 * res.history("reaction_cylinder_top_z").last().unwrap();
+    let e_star = 200e3 / (2.0 * (1.0 - 0.3 * 0.3));
+    let b = (4.0 * load * 10.0 / (std::f64::consts::PI * e_star)).sqrt();
+    let p0 = 2.0 * load / (std::f64::consts::PI * b);
+    let pass = "cylinder_surface-block_top/pass0";
+    let nodes = res.u64s(&format!("mesh/contact/{pass}/nodes"));
+    let pressure = res.f64s(&format!("{}/contact/{pass}/pressure", res.last_increment()));
+    let x = res.f64s("mesh/coordinates");
+    let peak = pressure.iter().cloned().fold(0.0, f64::max);
+    // least squares of p^2 = A + B x^2 over the nodes above a fifth of the peak
+    let points: Vec<(f64, f64)> = nodes.iter().zip(&pressure).filter(|(_, &p)| p > 0.2 * peak).map(|(&n, &p)| (x[2 * n as usize].powi(2), p * p)).collect();
+    let n = points.len() as f64;
+    let (sx, sy) = (points.iter().map(|p| p.0).sum::<f64>(), points.iter().map(|p| p.1).sum::<f64>());
+    let (sxx, sxy) = (points.iter().map(|p| p.0 * p.0).sum::<f64>(), points.iter().map(|p| p.0 * p.1).sum::<f64>());
+    let slope = (n * sxy - sx * sy) / (n * sxx - sx * sx);
+    let intercept = (sy - slope * sx) / n;
+    let (p0_fit, b_fit) = (intercept.sqrt(), (-intercept / slope).sqrt());
+    eprintln!("Hertz: P = {load:.1} N/mm; b {b_fit:.4} vs {b:.4} mm, p0 {p0_fit:.1} vs {p0:.1} MPa ({} points)", points.len());
+    assert!(points.len() >= 10, "{} points in the contact", points.len());
+    assert!((b_fit / b - 1.0).abs() < 0.02, "half-width {b_fit} vs Hertz {b}");
+    assert!((p0_fit / p0 - 1.0).abs() < 0.02, "peak pressure {p0_fit} vs Hertz {p0}");
+}
+
+/// A strip 10 mm long, 2 mm wide, of five 8-node plane elements of type `kind`, with
+/// `thickness` on its *SOLID SECTION line, pulled by `stress` on its right edge (face P2 of
+/// the last element, from its corner 2 to corner 3), held along x at its left edge.
+fn strip_deck(kind: &str, thickness: &str, stress: f64) -> String {
+    // nodes on a grid of 1 mm half-steps: i in 0..=10 along x, j in 0..=2 across
+    let id = |i: usize, j: usize| 1 + i + 11 * j;
+    let mut nodes = String::new();
+    for j in 0..=2 {
+        for i in (0..=10).filter(|i| j != 1 || i % 2 == 0) {
+            nodes.push_str(&format!("{}, {}.0, {}.0\n", id(i, j), i, j));
+        }
+    }
+    let mut elements = String::new();
+    for e in 0..5 {
+        let i = 2 * e;
+        let n = [id(i, 0), id(i + 2, 0), id(i + 2, 2), id(i, 2), id(i + 1, 0), id(i + 2, 1), id(i + 1, 2), id(i, 1)];
+        elements.push_str(&format!("{}, {}\n", e + 1, n.map(|k| k.to_string()).join(", ")));
+    }
+    format!(
+        "*NODE, NSET=NALL\n{nodes}*ELEMENT, TYPE={kind}, ELSET=EALL\n{elements}*NSET, NSET=LEFT\n{}, {}, {}\n*NSET, NSET=CORNER\n{}\n\
+*MATERIAL, NAME=STEEL\n*ELASTIC\n200000., 0.3\n*SOLID SECTION, ELSET=EALL, MATERIAL=STEEL\n{thickness}\n\
+*BOUNDARY\nLEFT, 1, 1\nCORNER, 2, 2\n*STEP\n*STATIC\n*DLOAD\n5, P2, {}\n*NODE FILE\nU\n*END STEP\n",
+        id(0, 0),
+        id(0, 1),
+        id(0, 2),
+        id(0, 0),
+        -stress
+    )
+}
+
+#[test]
+fn a_plane_stress_strip_from_an_inp_deck_stretches_as_hookes_law_says() {
+    for (kind, thickness, t) in [("CPS8", "0.5", 0.5), ("CPE8R", "", 1.0)] {
+        let run = run_deck_file("strip.inp", &strip_deck(kind, thickness, 100.0), &[], 1, &[]);
+        run.assert_ok();
+        let res = Results::open(&run.h5);
+        // plane stress: u = s L / E; plane strain (free across the strip): u = s L (1 - nu^2) / E
+        let expected = if kind == "CPS8" { 100.0 * 10.0 / 200e3 } else { 100.0 * 10.0 * (1.0 - 0.09) / 200e3 };
+        let tip = res.nodes().iter().filter(|(x, _)| x[0] == 10.0).map(|(_, u)| u[0]).fold(f64::NAN, f64::max);
+        assert!((tip - expected).abs() < 1e-9, "{kind}: u at the tip {tip} vs {expected}");
+        let reaction = *res.history("reaction_LEFT_r").last().unwrap();
+        assert!((reaction + 100.0 * 2.0 * t).abs() < 1e-8, "{kind}: reaction {reaction} vs {}", -100.0 * 2.0 * t);
+        assert!(run.stdout().contains("plane model"), "{kind}: the note on forces over the thickness:\n{}", run.stdout());
+    }
+}
+
+#[test]
+fn plane_input_errors_name_the_item() {
+    let body = format!("[mesh]\nrectangle = {{ r = [0.0, 10.0], z = [0.0, 2.0], divisions = [2, 1] }}\n{STEEL}");
+    // a thickness without a plane geometry
+    let run = run_deck(&format!("thickness = 2.0\n{body}[[step]]\nboundary = [ {{ set = \"bottom\", uz = 0.0 }} ]\n"), &[], 1, &[]);
+    assert_rejected(&run, &["thickness", "plane"]);
+    // a plane body nothing holds along x
+    let run = run_deck(&format!("geometry = \"plane_strain\"\n{body}[[step]]\nboundary = [ {{ set = \"bottom\", uy = 0.0 }} ]\n"), &[], 1, &[]);
+    assert_rejected(&run, &["free to move along x", "ux"]);
+    // a zero thickness
+    let run = run_deck(
+        &format!("geometry = \"plane_stress\"\nthickness = 0.0\n{body}[[step]]\nboundary = [ {{ set = \"inner\", ux = 0.0, uy = 0.0 }} ]\n"),
+        &[],
+        1,
+        &[],
+    );
+    assert_rejected(&run, &["thickness = 0", "positive"]);
+}
