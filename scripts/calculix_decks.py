@@ -3,7 +3,10 @@
 'displacements' blocks, any set) with slideline's results file, node by node, and prints one
 line: nodes compared, the largest |u_r| and |u_z| of CalculiX, the largest difference of
 each as a fraction of that, and the difference of u_r at the node where ccx's |u_r| is largest (the
-headline number). Used by scripts/calculix-test-decks.sh; needs h5py and numpy
+headline number). A deck that prints no displacement but element stresses (*EL PRINT, S) is
+compared by element: each element's mean stress over its integration points, and the
+headline is the difference of each element's largest mean component (CalculiX's x, y, z, xy
+are slideline's r, z, t, rz). Used by scripts/calculix-test-decks.sh; needs h5py and numpy
 (Debian's python3-h5py).
 
 usage: calculix_decks.py JOB.dat RESULTS.h5
@@ -35,8 +38,50 @@ def dat_displacements(path):
     return blocks[max(blocks)]
 
 
+def dat_element_stresses(path):
+    """{element: mean (sxx, syy, szz, sxy)} of the last time's 'stresses' blocks."""
+    blocks, current = {}, None
+    for line in open(path):
+        t = line.strip()
+        if t and not t[0].isdigit():
+            current = None
+            if t.startswith("stresses") and " and time" in t:
+                current = blocks.setdefault(float(t.split(" and time")[1]), {})
+            continue
+        p = t.split()
+        if current is not None and len(p) >= 6:
+            current.setdefault(int(p[0]), []).append([float(v) for v in p[2:6]])
+    if not blocks:
+        return {}
+    return {e: np.mean(v, axis=0) for e, v in blocks[max(blocks)].items()}
+
+
+def compare_stresses(dat, results):
+    ccx = dat_element_stresses(dat)
+    with h5py.File(results, "r") as f:
+        last = sorted(k for k in f["increments"] if f["increments"][k].attrs.get("complete", 1))[-1]
+        stress = f["increments"][last]["stress"][:]
+        ids = f["mesh/element_ids"][:]
+    ours = {int(e): stress[k].mean(axis=0) for k, e in enumerate(ids)}
+    common = [e for e in ccx if e in ours]
+    if not common:
+        print("no displacement or element stress printed by ccx")
+        return
+    parts = []
+    worst = 0.0
+    for e in common:
+        k = int(np.argmax(np.abs(ccx[e])))
+        d = abs(ours[e][k] - ccx[e][k]) / abs(ccx[e][k])
+        worst = max(worst, d)
+        parts.append(f"element {e} s{('xx', 'yy', 'zz', 'xy')[k]} {ccx[e][k]:.4e} MPa {100 * d:.2f} %")
+    print(f"element-mean stresses of {len(common)} elements, largest component of each: " + "; ".join(parts) + f"; largest difference {100 * worst:.2f} %")
+
+
 def main():
     ccx = dat_displacements(sys.argv[1])
+    if not ccx:
+        compare_stresses(sys.argv[1], sys.argv[2])
+        return
     with h5py.File(sys.argv[2], "r") as f:
         last = sorted(k for k in f["increments"] if f["increments"][k].attrs.get("complete", 1))[-1]
         u = f["increments"][last]["nodal/displacement"][:, :2]

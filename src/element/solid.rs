@@ -371,7 +371,8 @@ fn plane_stress_point(
             above = f33;
         }
         let mut next = f33 - r / slope;
-        if !(next > below && next < above) || !(slope > 0.0) {
+        let inside = next > below && next < above && slope > 0.0;
+        if !inside {
             next = if below.is_finite() && above.is_finite() { 0.5 * (below + above) } else { f33 * if r > 0.0 { 0.9 } else { 1.1 } };
         }
         if r == 0.0 || (next - f33).abs() <= 4.0 * f64::EPSILON * f33.abs() {

@@ -463,9 +463,10 @@ impl Builder {
         if !axisymmetric {
             self.notes.push("a plane model: forces and reactions are those of the sections' thickness (no per radian, ring or segment values)".to_string());
         } else if element_section.iter().any(|s| !s.is_axisymmetric()) {
-            self.notes.push(format!(
-                "plane elements beside axisymmetric ones: their *SOLID SECTION thickness is taken beside CalculiX's {CALCULIX_SEGMENT_DEGREES}-degree segment, so per radian it is thickness x 180 / ({CALCULIX_SEGMENT_DEGREES} pi)"
-            ));
+            self.notes.push(
+                "plane elements beside axisymmetric ones: as in CalculiX, a plane slab's forces are the whole ring's, so per radian its *SOLID SECTION thickness is thickness / 2 pi"
+                    .to_string(),
+            );
         }
         if let Some(e) = element_material.iter().position(|&m| m == usize::MAX) {
             return Err(Error::input(format!("element {} has no *SOLID SECTION", self.mesh.element_ids[e])));
@@ -538,14 +539,16 @@ impl Builder {
 
 /// The section of a plane element (`family`) of a *SOLID SECTION with `thickness` (1 when
 /// not given), in a deck with axisymmetric elements (`axisymmetric`) or without. Beside
-/// axisymmetric elements CalculiX expands the model into a 2-degree segment and the plane
-/// element's slab of `thickness` stands beside it; per radian that is thickness x 90 / pi.
+/// axisymmetric elements CalculiX takes the plane element's forces as the whole ring's (as
+/// its *CLOAD): measured with ccx 2.20 on its axiplane deck, the ring's hoop stress is that
+/// of the slab's force spread over 360 degrees. Per radian the slab is thickness / 2 pi.
 fn plane_thickness(family: Section, thickness: Option<f64>, axisymmetric: bool) -> std::result::Result<Section, String> {
     let t = thickness.unwrap_or(1.0);
-    if !family.is_axisymmetric() && !(t > 0.0 && t.is_finite()) {
+    let positive = t > 0.0 && t.is_finite();
+    if !family.is_axisymmetric() && !positive {
         return Err(format!("the plane element's thickness {t} must be a positive length"));
     }
-    let t = if axisymmetric { t * 180.0 / (CALCULIX_SEGMENT_DEGREES * std::f64::consts::PI) } else { t };
+    let t = if axisymmetric { t / std::f64::consts::TAU } else { t };
     Ok(match family {
         Section::Axisymmetric => Section::Axisymmetric,
         Section::PlaneStrain { .. } => Section::PlaneStrain { thickness: t },
