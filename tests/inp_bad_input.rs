@@ -181,3 +181,75 @@ fn thermal_material_data_and_point_masses_are_accepted_with_a_note() {
     let run = run_inp("*MASS, ELSET=RING\n1.e-3\n", "", &[]);
     assert_rejected(&run, &["model.inp:18", "RING holds no elements of type MASS"]);
 }
+
+/// CalculiX 2.20's axisymmetric test decks, each with the reader's verdict: `None`, it runs (and
+/// scripts/calculix-test-decks.sh compares it with ccx); or the model and step lines holding the
+/// card it refuses first, with the text naming it, which the docs' table must name too.
+type Verdict = Option<(&'static str, &'static str, &'static str)>;
+const HEAT_TRANSFER: Verdict = Some(("", "*HEAT TRANSFER\n1., 1.\n", "*HEAT TRANSFER"));
+const PRE_TENSION: Verdict = Some(("*PRE-TENSION SECTION, SURFACE=S, NODE=1\n1., 0., 0.\n", "", "*PRE-TENSION SECTION"));
+const HEAT_GENERATION: Verdict = Some(("*SURFACE INTERACTION, NAME=I1\n*GAP HEAT GENERATION\n1., 1.\n", "", "*GAP HEAT GENERATION"));
+const NETWORK: Verdict = Some(("*ELEMENT, TYPE=D, ELSET=F\n2, 1, 2, 3\n", "", "type `D`"));
+const CALCULIX_AXISYMMETRIC_DECKS: [(&str, Verdict); 20] = [
+    ("ring1", None),
+    ("ring2", None),
+    ("axial", None),
+    ("mass3", None),
+    ("ax6", None),
+    ("axiplane", None),
+    ("ax6ht", HEAT_TRANSFER),
+    ("axrad", HEAT_TRANSFER),
+    ("bolt", Some(("*SURFACE INTERACTION, NAME=I1\n*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=EXPONENTIAL\n1.E-4, .1\n", "", "PRESSURE-OVERCLOSURE=EXPONENTIAL"))),
+    ("pret2", PRE_TENSION),
+    ("thread", PRE_TENSION),
+    ("ring3", HEAT_GENERATION),
+    ("ring4", HEAT_GENERATION),
+    ("artery1", NETWORK),
+    ("artery2", NETWORK),
+    ("artery3", NETWORK),
+    ("artery4", NETWORK),
+    ("artery5", NETWORK),
+    ("gaspres", NETWORK),
+    ("axrad2", Some(("*NODE\n9, 1., 2., 3.\n", "", "third coordinate"))),
+];
+
+/// The table of CalculiX's decks in docs/inp.md lists every deck above once, says "runs" for
+/// those that run, and names the card the reader refuses first for the others; the reader
+/// refuses that card with its name.
+#[test]
+fn the_docs_table_of_calculix_decks_matches_the_readers_verdicts() {
+    let docs = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/inp.md")).unwrap();
+    let start = docs.find("| deck | what it tests |").expect("the table of CalculiX's decks");
+    let mut rows: Vec<(String, String)> = Vec::new();
+    for line in docs[start..].lines().skip(2).take_while(|l| l.starts_with('|')) {
+        let cells: Vec<&str> = line.split('|').map(str::trim).collect();
+        for name in cells[1].split(", ") {
+            // "artery1..5" is artery1 to artery5
+            let names: Vec<String> = match name.split_once("..") {
+                Some((first, last)) => {
+                    let stem = first.trim_end_matches(|c: char| c.is_ascii_digit());
+                    let from: usize = first[stem.len()..].parse().unwrap();
+                    (from..=last.parse().unwrap()).map(|k| format!("{stem}{k}")).collect()
+                }
+                None => vec![name.to_string()],
+            };
+            rows.extend(names.into_iter().map(|n| (n, cells[3].to_string())));
+        }
+    }
+    let mut listed: Vec<&str> = rows.iter().map(|r| r.0.as_str()).collect();
+    listed.sort_unstable();
+    let mut decks: Vec<&str> = CALCULIX_AXISYMMETRIC_DECKS.iter().map(|d| d.0).collect();
+    decks.sort_unstable();
+    assert_eq!(listed, decks, "the table lists each of CalculiX's 20 axisymmetric decks once");
+    for (deck, verdict) in CALCULIX_AXISYMMETRIC_DECKS {
+        let said = &rows.iter().find(|r| r.0 == deck).unwrap().1;
+        match verdict {
+            None => assert!(said.starts_with("runs"), "{deck}: the table says {said:?}, the reader runs it"),
+            Some((model, step, card)) => {
+                assert!(said.contains(card), "{deck}: the table says {said:?}, the reader refuses {card}");
+                let run = run_inp(model, step, &[]);
+                assert_rejected(&run, &[&card.replace('`', "")]);
+            }
+        }
+    }
+}

@@ -19,7 +19,7 @@
 //! - A CPS8 strip from an .inp deck in uniaxial tension: u = s L / E, reaction s W t.
 
 mod common;
-use common::{assert_rejected, data, run_deck, run_deck_file, Results};
+use common::{assert_rejected, command_in, data, run_deck, Results, Run};
 
 const STEEL: &str = r#"
 [[material]]
@@ -160,7 +160,12 @@ fn strip_deck(kind: &str, thickness: &str, stress: f64) -> String {
 #[test]
 fn a_plane_stress_strip_from_an_inp_deck_stretches_as_hookes_law_says() {
     for (kind, thickness, t) in [("CPS8", "0.5", 0.5), ("CPE8R", "", 1.0)] {
-        let run = run_deck_file("strip.inp", &strip_deck(kind, thickness, 100.0), &[], 1, &[]);
+        // run without --quiet, for the reader's notes
+        let dir = tempfile::tempdir().unwrap();
+        std::fs::write(dir.path().join("strip.inp"), strip_deck(kind, thickness, 100.0)).unwrap();
+        let h5 = dir.path().join("out.h5");
+        let output = command_in(dir.path(), 1).current_dir(dir.path()).args(["run", "strip.inp", "-o"]).arg(&h5).output().unwrap();
+        let run = Run { dir, output, h5 };
         run.assert_ok();
         let res = Results::open(&run.h5);
         // plane stress: u = s L / E; plane strain (free across the strip): u = s L (1 - nu^2) / E
@@ -169,7 +174,9 @@ fn a_plane_stress_strip_from_an_inp_deck_stretches_as_hookes_law_says() {
         assert!((tip - expected).abs() < 1e-9, "{kind}: u at the tip {tip} vs {expected}");
         let reaction = *res.history("reaction_LEFT_r").last().unwrap();
         assert!((reaction + 100.0 * 2.0 * t).abs() < 1e-8, "{kind}: reaction {reaction} vs {}", -100.0 * 2.0 * t);
-        assert!(run.stdout().contains("plane model"), "{kind}: the note on forces over the thickness:\n{}", run.stdout());
+        assert!(run.stdout().contains("note: a plane model: forces and reactions are those of the sections' thickness"), "{kind}:\n{}", run.stdout());
+        let section = if kind == "CPS8" { "plane-stress" } else { "plane-strain" };
+        assert!(run.stdout().contains(&format!("5 {kind} elements run as slideline's 8-node {section} quadrilateral")), "{}", run.stdout());
     }
 }
 

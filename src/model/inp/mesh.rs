@@ -18,7 +18,11 @@ impl Builder {
             let r = d.number("NODE", 1, "r (first coordinate)", Some(0.0))?;
             let z = d.number("NODE", 2, "z (second coordinate)", Some(0.0))?;
             if d.fields.len() > 3 && d.number("NODE", 3, "third coordinate", Some(0.0))? != 0.0 {
-                return Err(error_at(&d.at, "NODE", format!("node {id} has a third coordinate: axisymmetric models lie in the r-z plane")));
+                return Err(error_at(
+                    &d.at,
+                    "NODE",
+                    format!("node {id} has a third coordinate: slideline's models are two-dimensional (the r-z plane, or x-y for a plane model)"),
+                ));
             }
             if self.node_index.contains_key(&id) {
                 return Err(error_at(&d.at, "NODE", format!("node {id} is defined twice (or clashes with a mid-side node added to a CAX4 element)")));

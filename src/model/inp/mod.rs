@@ -414,14 +414,7 @@ impl Builder {
         }
         self.join_midside_nodes_to_sets();
         for (kind, n) in &self.element_types {
-            let how = match kind.as_str() {
-                "CAX8" => "slideline's 8-node axisymmetric quadrilateral (3 x 3 Gauss points, F-bar)",
-                "CAX8R" => "slideline's 8-node axisymmetric quadrilateral with full 3 x 3 integration and F-bar (no reduced integration)",
-                "CAX6" => "slideline's 6-node axisymmetric triangle (9 Gauss points, F-bar on the element's mean dilatation)",
-                "CAX3" => "6-node triangles with mid-side nodes added at the middle of each straight edge (quadratic displacements, 9 Gauss points, F-bar)",
-                _ => "8-node quadrilaterals with mid-side nodes added at the middle of each straight edge (quadratic displacements, 3 x 3 Gauss points, F-bar)",
-            };
-            self.notes.push(format!("{n} {kind} elements run as {how}"));
+            self.notes.push(format!("{n} {kind} elements run as {}", element_note(kind)));
         }
         if !self.output_requests.is_empty() {
             let list: Vec<&str> = self.output_requests.iter().map(|s| s.as_str()).collect();
@@ -534,6 +527,23 @@ impl Builder {
         };
         model.validate()?;
         Ok(InpModel { model, notes: self.notes })
+    }
+}
+
+/// How an element type of the reader's (CAX.., CPE.., CPS.. with 8, 8R, 6, 4, 4R, 3) runs.
+fn element_note(kind: &str) -> String {
+    let (family, suffix) = kind.split_at(3);
+    let (section, volumetric) = match family {
+        "CPE" => ("plane-strain", "F-bar"),
+        "CPS" => ("plane-stress", "the thickness stretch solved from sigma_33 = 0, no F-bar"),
+        _ => ("axisymmetric", "F-bar"),
+    };
+    match suffix {
+        "8" => format!("slideline's 8-node {section} quadrilateral (3 x 3 Gauss points, {volumetric})"),
+        "8R" => format!("slideline's 8-node {section} quadrilateral with full 3 x 3 integration and {volumetric} (no reduced integration)"),
+        "6" => format!("slideline's 6-node {section} triangle (9 Gauss points, {volumetric})"),
+        "3" => format!("{section} 6-node triangles with mid-side nodes added at the middle of each straight edge (quadratic displacements, 9 Gauss points, {volumetric})"),
+        _ => format!("{section} 8-node quadrilaterals with mid-side nodes added at the middle of each straight edge (quadratic displacements, 3 x 3 Gauss points, {volumetric})"),
     }
 }
 
