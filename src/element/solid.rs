@@ -553,7 +553,7 @@ mod tests {
     /// Uniform elastic strain in the plane sections (Hooke's law, small strain): plane stress
     /// under eps_11 = e, eps_22 = -nu e gives sigma = (E e, 0, 0) and eps_33 = -nu e; plane
     /// strain under eps_11 = e gives sigma_11 = (lambda + 2 mu) e, sigma_22 = sigma_33 =
-    /// lambda e. The internal force is that stress on the faces times the thickness.
+    /// lambda e; the uniform stress is in equilibrium (the nodal forces sum to zero).
     #[test]
     fn plane_sections_follow_hookes_law() {
         let (x, e) = (element(), 1e-4);
