@@ -203,7 +203,7 @@ impl ResultsFile {
         let file = hdf5::File::with_options().with_fapl(|p| p.mpio(world.as_raw(), None)).create(path).map_err(&err)?;
         let rank = partition.rank;
         let text = |s: &str| s.parse::<VarLenUnicode>().map_err(|e| Error::Output { path: path.to_path_buf(), message: e.to_string() });
-        let units = if model.element_section.iter().any(|s| s.is_axisymmetric()) {
+        let units = if model.is_axisymmetric() {
             "length mm, force N, stress MPa, temperature degC, time s; forces and reactions per radian unless named _ring (full 360 degrees)"
         } else {
             "length mm, force N, stress MPa, temperature degC, time s; a plane model (x, y stored as r, z; tt the out-of-plane component): forces and reactions over the sections' thickness, where the datasets say per radian"
@@ -308,7 +308,7 @@ impl ResultsFile {
             topology,
             contact_mesh_written: false,
             reaction_segment_degrees: model.reaction_segment_degrees,
-            axisymmetric: model.element_section.iter().any(|s| s.is_axisymmetric()),
+            axisymmetric: model.is_axisymmetric(),
             nodal: NodalWriter::new(world, mesh, partition, model.output),
             fields: model.output.fields,
             precision: model.output.precision,

@@ -471,6 +471,12 @@ pub struct Model {
 }
 
 impl Model {
+    /// Whether some element is axisymmetric: forces are then per radian (a plane model's are
+    /// over its thickness).
+    pub fn is_axisymmetric(&self) -> bool {
+        self.element_section.iter().any(|s| s.is_axisymmetric())
+    }
+
     /// Whether the temperature varies over the mesh at the start or in some step.
     pub fn has_temperature_field(&self) -> bool {
         std::iter::once(&self.reference_temperature).chain(self.steps.iter().filter_map(|s| s.temperature.as_ref())).any(|t| t.uniform().is_none())

@@ -452,7 +452,7 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
         pattern_refits,
         continued,
         perturbations,
-        plane: model.element_section.iter().all(|s| !s.is_axisymmetric()),
+        plane: !model.is_axisymmetric(),
     })
 }
 
