@@ -64,3 +64,32 @@ fn node_to_segment_collocation_deviation_is_stated() {
         assert!(worst < if two_pass { 2.5 } else { 0.25 }, "worse than documented: {worst}");
     }
 }
+
+/// CalculiX's exponential pressure-overclosure law, p = p0 exp(-ln(100) g / c0), on the patch
+/// with matching meshes (the upper block also 5 x 2), where the node-to-segment slide line
+/// transmits a uniform pressure exactly. 10 MPa with p0 = 0.1 MPa is 100 p0, which the law
+/// reaches at a penetration of exactly c0: every slave node must carry 10 MPa at a gap of
+/// -c0 = -2e-3 mm, and sigma_zz = -10 MPa throughout (the law's definition, ccx 2.20 manual,
+/// *SURFACE BEHAVIOR; the case's equilibrium).
+#[test]
+fn the_exponential_law_carries_the_patch_at_a_penetration_of_its_clearance() {
+    let deck = patch_test_deck("node-to-segment", false, false)
+        .replace("divisions = [7, 2]", "divisions = [5, 2]")
+        .replace("penalty = 1.0e6", "exponential = { clearance = 2.0e-3, pressure = 0.1 }");
+    let run = run_deck(&deck, &[], 1, TIGHT);
+    run.assert_ok();
+    let res = Results::open(&run.h5);
+    // the first attempt at the whole load meets the law's soft start (0.1 MPa at touch) and
+    // cuts back: the full load is the last increment
+    let last = res.last_increment();
+    let nodes = res.u64s("mesh/contact/interface/pass0/nodes");
+    let p = res.f64s(&format!("{last}/contact/interface/pass0/pressure"));
+    let gap = res.f64s(&format!("{last}/contact/interface/pass0/gap"));
+    assert_eq!(nodes.len(), 11);
+    for k in 0..nodes.len() {
+        assert!((p[k] - 10.0).abs() <= 1e-6 * 10.0, "slave node {}: pressure {}", nodes[k], p[k]);
+        assert!((gap[k] + 2.0e-3).abs() <= 1e-6 * 2.0e-3, "slave node {}: gap {}", nodes[k], gap[k]);
+    }
+    let szz = res.f64s(&format!("{last}/stress")).chunks(4).map(|s| (s[1] + 10.0).abs()).fold(0.0, f64::max);
+    assert!(szz <= 1e-6 * 10.0, "sigma_zz off by {szz}");
+}

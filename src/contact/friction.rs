@@ -153,7 +153,7 @@ mod tests {
         let x = [[v[2], v[3]], [v[4], v[5]], [v[6], v[7]]];
         let reference = [[v[8], v[9]], [v[10], v[11]], [v[12], v[13]]];
         let p = project_on_edge(xs, &x).unwrap();
-        let law = ContactLaw { area: 0.7, penalty: 2e4, multiplier: 0.0, free_ends: FREE };
+        let law = ContactLaw::linear(0.7, 2e4, 0.0, FREE);
         friction_residual_and_tangent(xs, &x, &reference, p.xi, from, &law, friction)
     }
 
@@ -224,7 +224,7 @@ mod tests {
         // at r = 1.3 penetrates, p = eps 0.01 = 200 MPa
         let x = [[0.0, 0.0], [2.0, 0.0], [1.0, 0.0]];
         let xs = [1.3, 0.01];
-        let law = ContactLaw { area: 1.0, penalty: 2e4, multiplier: 0.0, free_ends: FREE };
+        let law = ContactLaw::linear(1.0, 2e4, 0.0, FREE);
         let xi = project_on_edge(xs, &x).unwrap().xi;
         assert!((xi - 0.3).abs() < 1e-12);
         let friction = FrictionLaw { coefficient: 0.3, penalty: 1e3, elastic_slip: None };

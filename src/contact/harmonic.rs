@@ -98,7 +98,7 @@ mod tests {
 
     #[test]
     fn normal_stiffness_is_the_ring_mean_of_the_axisymmetric_kernel_at_each_angle() {
-        let law = ContactLaw { area: 0.8, penalty: 3e3, multiplier: 0.0, free_ends: FREE };
+        let law = ContactLaw::linear(0.8, 3e3, 0.0, FREE);
         let proj = project_on_edge(XS, &EDGE).unwrap();
         assert!(proj.gap < 0.0, "closed: {proj:?}");
         let (_, k_axi, _) = edge_residual_and_tangent(XS, &EDGE, &proj, &law);
@@ -139,14 +139,14 @@ mod tests {
 
     #[test]
     fn sticking_stiffness_is_the_ring_mean_of_the_3d_tangential_penalty() {
-        let law = ContactLaw { area: 0.8, penalty: 3e3, multiplier: 0.0, free_ends: FREE };
+        let law = ContactLaw::linear(0.8, 3e3, 0.0, FREE);
         let proj = project_on_edge(XS, &EDGE).unwrap();
         for (friction, pressure_dependent) in [
             (FrictionLaw { coefficient: 0.2, penalty: 450.0, elastic_slip: None }, false),
             (FrictionLaw { coefficient: 0.2, penalty: 0.0, elastic_slip: Some(0.004) }, true),
         ] {
             let s = Sticking::at(XS, &EDGE, proj.xi, &law, &friction);
-            let pressure = -law.penalty * proj.gap;
+            let pressure: f64 = law.normal.pressure(proj.gap);
             let expected = if pressure_dependent { 0.2 * pressure / 0.004 } else { 450.0 } * law.area;
             assert!((s.stiffness - expected).abs() < 1e-12 * expected, "{} vs {expected}", s.stiffness);
             let u: Vec<f64> = (0..12).map(|i| (1.3 * i as f64).sin() + 0.1).collect();

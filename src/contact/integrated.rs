@@ -76,7 +76,7 @@ impl GapSample {
         let master = [3, 4, 5].map(|a| x(self.nodes[a]));
         let p = [0, 1].map(|i| (0..3).map(|a| self.shape[a] * slave[a][i]).sum::<f64>());
         // the kernel with p = 1, A = 1, eps = 0 gives -dg and -d2g
-        let unit = ContactLaw { area: 1.0, penalty: 0.0, multiplier: 1.0, free_ends: [false, false] };
+        let unit = ContactLaw::linear(1.0, 0.0, 1.0, [false, false]);
         let (_, minus, _) = edge_residual_and_tangent(p, &master, &self.projection, &unit);
         // x_s = sum N_a x_a: slave DOF (a, c) is kernel DOF c scaled by N_a; master DOFs map
         // one to one (kernel DOFs 2..8)

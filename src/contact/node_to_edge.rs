@@ -6,7 +6,8 @@
 //! t = x'(xi) / |x'(xi)|, n = (t_z, -t_r) the outward normal, g_n = (x_s - x(xi)) . n, and since
 //! x_s - x(xi) is parallel to n at the closest point,
 //!   delta g_n = n . (delta x_s - sum N_k(xi) delta x_k),
-//! so the penalty residual is f = -p A [n, -N_1 n, -N_2 n, -N_3 n] with p = max(0, lambda - eps g).
+//! so the penalty residual is f = -p A [n, -N_1 n, -N_2 n, -N_3 n] with p = p(g) the pair's
+//! pressure-overclosure law (`Overclosure`: p = max(0, lambda - eps g), or exponential).
 //! On a straight edge whose middle node sits at the chord midpoint, t, a = (1 + xi) / 2 and g_n
 //! are exactly eqs. (1)-(3) on the chord; with the middle node tied to the midpoint the
 //! residual and tangent reduce exactly to eqs. (5)-(6) (tested below against
@@ -128,7 +129,7 @@ pub(crate) fn contact_point<T: Scalar>(xs: &[T; 2], x: &[[T; 2]; 3], xi_converge
     let tangent = [t[0] / lt, t[1] / lt];
     let normal = [tangent[1], -tangent[0]];
     let gap = (xs[0] - p[0]) * normal[0] + (xs[1] - p[1]) * normal[1];
-    let pressure = (-(gap * law.penalty) + law.multiplier) * end_taper(xi, law.free_ends); // the caller ensures >= 0
+    let pressure = law.normal.pressure(gap) * end_taper(xi, law.free_ends); // the caller ensures >= 0
     let shape = [xi * (xi - 1.0) * 0.5, xi * (xi + 1.0) * 0.5, -(xi * xi) + 1.0];
     ContactPoint { shape, tangent, normal, pressure }
 }
@@ -173,23 +174,95 @@ pub(crate) fn end_taper<T: Scalar>(xi: T, free_ends: [bool; 2]) -> T {
     }
 }
 
-/// The contact law of one slave node: its tributary area, the penalty (pressure per unit
-/// penetration), the augmented-Lagrangian multiplier, and which ends of the master surface are
-/// free (the force tapers off past them).
+/// The pressure-overclosure law: the contact pressure p (MPa) as a function of the normal gap
+/// g (mm, negative when penetrating).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Overclosure {
+    /// p = lambda - eps g: the penalty eps (MPa/mm) plus the augmented-Lagrangian multiplier
+    /// lambda (0 for a pure penalty); open where that is negative.
+    Linear { penalty: f64, multiplier: f64 },
+    /// CalculiX's exponential law (ccx 2.20 manual, *SURFACE BEHAVIOR; springforc_n2f.f):
+    /// p = p0 exp(-beta g) with beta = ln(100) / c0, so p0 at touch and p0 / 100 at the
+    /// clearance c0, rising exponentially with penetration. Not Abaqus' law of the same name,
+    /// which is zero at c0.
+    Exponential { clearance: f64, pressure: f64 },
+}
+
+/// Past this clearance, in units of c0, the exponential law is open: p < 1e-6 p0 there, and
+/// a node dropping that force is no jump Newton can see.
+const EXPONENTIAL_REACH: f64 = 3.0;
+/// Beyond an exponent of beta |g| = 30 (p = 1e13 p0, a penetration no converged state has)
+/// the exponential continues along its tangent, so a wild Newton iterate cannot overflow.
+const EXPONENT_CAP: f64 = 30.0;
+
+impl Overclosure {
+    /// beta = ln(100) / c0, the exponential law's decay rate (1/mm).
+    fn decay(clearance: f64) -> f64 {
+        100f64.ln() / clearance
+    }
+
+    /// The pressure at gap `g`, before the free-end taper; for the linear law negative where
+    /// open. Generic: its derivative enters the tangent.
+    pub fn pressure<T: Scalar>(&self, gap: T) -> T {
+        match *self {
+            Self::Linear { penalty, multiplier } => -(gap * penalty) + multiplier,
+            Self::Exponential { clearance, pressure } => {
+                let x = gap * -Self::decay(clearance);
+                if x.re() <= EXPONENT_CAP {
+                    x.exp() * pressure
+                } else {
+                    (x - (EXPONENT_CAP - 1.0)) * (pressure * EXPONENT_CAP.exp())
+                }
+            }
+        }
+    }
+
+    /// Whether the law acts at gap `g` (closed at zero gap).
+    pub fn is_closed(&self, gap: f64) -> bool {
+        match *self {
+            Self::Linear { .. } => self.pressure(gap) >= 0.0,
+            Self::Exponential { clearance, .. } => gap < EXPONENTIAL_REACH * clearance,
+        }
+    }
+
+    /// dp / d(-g) at gap `g`, MPa/mm: the normal stiffness per unit area (the scale of the
+    /// round-off in the contact forces).
+    pub fn stiffness(&self, gap: f64) -> f64 {
+        match *self {
+            Self::Linear { penalty, .. } => penalty,
+            Self::Exponential { clearance, .. } => Self::decay(clearance) * self.pressure(gap.max(-EXPONENT_CAP / Self::decay(clearance))),
+        }
+    }
+
+    /// Elastic energy stored per unit area (N/mm) at gap `g` under the (tapered) pressure
+    /// `p`: -g p / 2 for the linear law (eps g^2 / 2 for a penalty), the integral of p from g
+    /// to infinity, p / beta, for the exponential law.
+    pub fn stored_energy(&self, gap: f64, pressure: f64) -> f64 {
+        match *self {
+            Self::Linear { .. } => -0.5 * gap * pressure,
+            Self::Exponential { clearance, .. } => pressure / Self::decay(clearance),
+        }
+    }
+}
+
+/// The contact law of one slave node: its tributary area, the pressure-overclosure law, and
+/// which ends of the master surface are free (the force tapers off past them).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ContactLaw {
     pub area: f64,
-    pub penalty: f64,
-    pub multiplier: f64,
+    pub normal: Overclosure,
     pub free_ends: [bool; 2],
 }
 
 impl ContactLaw {
-    /// The contact pressure at `proj`, None when the contact is open (lambda - eps g < 0;
-    /// closed at zero gap).
+    /// The linear law p = lambda - eps g over tributary area `area`.
+    pub fn linear(area: f64, penalty: f64, multiplier: f64, free_ends: [bool; 2]) -> Self {
+        Self { area, normal: Overclosure::Linear { penalty, multiplier }, free_ends }
+    }
+
+    /// The contact pressure at `proj`, None when the contact is open (closed at zero gap).
     fn pressure(&self, proj: &EdgeProjection) -> Option<f64> {
-        let trial = self.multiplier - self.penalty * proj.gap;
-        (trial >= 0.0).then(|| trial * end_taper(proj.xi, self.free_ends))
+        self.normal.is_closed(proj.gap).then(|| self.normal.pressure(proj.gap) * end_taper(proj.xi, self.free_ends))
     }
 }
 
@@ -235,7 +308,7 @@ mod tests {
         let xs = [v[0], v[1]];
         let x = [[v[2], v[3]], [v[4], v[5]], [v[6], v[7]]];
         let p = project_on_edge(xs, &x).unwrap();
-        edge_residual_and_tangent(xs, &x, &p, &ContactLaw { area, penalty: eps, multiplier: lambda, free_ends: FREE })
+        edge_residual_and_tangent(xs, &x, &p, &ContactLaw::linear(area, eps, lambda, FREE))
     }
 
     /// Both ends of the test edges are free (the taper acts past them).
@@ -284,7 +357,7 @@ mod tests {
         for xs in [[20.9, 3.8], [22.05, 4.35], [20.9, 3.4]] {
             let p = project_on_edge(xs, &x).unwrap();
             for lambda in [0.0, 40.0] {
-                let law = ContactLaw { area: 0.8, penalty: 3e4, multiplier: lambda, free_ends: FREE };
+                let law = ContactLaw::linear(0.8, 3e4, lambda, FREE);
                 let (f, _, pressure) = edge_residual_and_tangent(xs, &x, &p, &law);
                 let (g, q) = edge_residual(xs, &x, &p, &law);
                 assert_eq!(pressure, q);
@@ -336,7 +409,7 @@ mod tests {
         let q = slideline::project(xs, x1, x2).unwrap();
         assert!((p.gap - q.gap).abs() < 1e-14 && ((1.0 + p.xi) / 2.0 - q.a).abs() < 1e-14);
         let (area, eps) = (0.7, 2e4);
-        let (f8, k8, p8) = edge_residual_and_tangent(xs, &x, &p, &ContactLaw { area, penalty: eps, multiplier: 0.0, free_ends: [false, false] });
+        let (f8, k8, p8) = edge_residual_and_tangent(xs, &x, &p, &ContactLaw::linear(area, eps, 0.0, [false, false]));
         let (f6, k6, p6) = slideline::residual_and_tangent(&q, area, eps, 0.0);
         assert!((p8 - p6).abs() < 1e-12 * p6);
         let mut tie = SMatrix::<f64, 8, 6>::zeros();
@@ -351,5 +424,59 @@ mod tests {
         let k = tie.transpose() * k8 * tie;
         assert!((f - f6).abs().max() < 1e-10 * f6.abs().max(), "{f} vs {f6}");
         assert!((k - k6).abs().max() < 1e-10 * k6.abs().max(), "{k} vs {k6}");
+    }
+
+    /// CalculiX's exponential law (ccx 2.20 manual, *SURFACE BEHAVIOR): p0 at touch, p0 / 100
+    /// at the clearance c0, 100 p0 at a penetration of c0; open past 3 c0; continued along its
+    /// tangent past the exponent cap, without a jump in value or slope there.
+    #[test]
+    fn the_exponential_law_is_calculix_s() {
+        let law = Overclosure::Exponential { clearance: 1e-4, pressure: 0.1 };
+        let p = |g: f64| law.pressure(g);
+        assert!((p(0.0) - 0.1).abs() < 1e-15);
+        assert!((p(1e-4) - 1e-3).abs() < 1e-15);
+        assert!((p(-1e-4) - 10.0).abs() < 1e-12);
+        assert!(law.is_closed(2.9e-4) && !law.is_closed(3.1e-4));
+        let beta = 100f64.ln() / 1e-4;
+        let cap = -EXPONENT_CAP / beta;
+        let h = 1e-12;
+        assert!((p(cap - h) / p(cap + h) - 1.0).abs() < 1e-6, "continuous at the cap");
+        let slope = |g: f64| (p(g - h) - p(g + h)) / (2.0 * h);
+        assert!((slope(cap - 2.0 * h) / slope(cap + 2.0 * h) - 1.0).abs() < 1e-5, "no kink at the cap");
+        assert!(p(-1.0).is_finite(), "a penetration of 1 mm stays finite: {}", p(-1.0));
+        for g in [-2e-4, 0.0, 1e-4] {
+            assert!((law.stiffness(g) / slope(g) - 1.0).abs() < 1e-5, "stiffness at {g}");
+        }
+    }
+
+    #[test]
+    fn the_exponential_tangent_matches_central_differences() {
+        let x = [[20.0, 3.0], [22.0, 4.2], [21.05, 3.85]];
+        let normal = Overclosure::Exponential { clearance: 0.02, pressure: 5.0 };
+        let law = ContactLaw { area: 0.8, normal, free_ends: FREE };
+        let at = |v: &[f64; 8]| {
+            let xs = [v[0], v[1]];
+            let x = [[v[2], v[3]], [v[4], v[5]], [v[6], v[7]]];
+            let p = project_on_edge(xs, &x).unwrap();
+            edge_residual_and_tangent(xs, &x, &p, &law)
+        };
+        // penetrating, at a small clearance (the law acts there too), and past a free end
+        for (xi, depth) in [(0.2, 0.01), (-0.5, -0.015), (1.03, 0.005)] {
+            let (pos, t, _) = curve(&x, xi);
+            let l = t[0].hypot(t[1]);
+            let v = flatten([pos[0] - depth * t[1] / l, pos[1] + depth * t[0] / l], &x);
+            let (_, k, pressure) = at(&v);
+            assert!(pressure > 0.0, "xi {xi}: pressure {pressure}");
+            let h = 1e-7;
+            let worst = (0..8)
+                .map(|j| {
+                    let (mut a, mut b) = (v, v);
+                    a[j] += h;
+                    b[j] -= h;
+                    ((at(&a).0 - at(&b).0) / (2.0 * h) - k.column(j)).abs().max() / k.abs().max()
+                })
+                .fold(0.0, f64::max);
+            assert!(worst <= 1e-6, "xi {xi}, depth {depth}: {worst:e}");
+        }
     }
 }

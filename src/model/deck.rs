@@ -53,6 +53,8 @@
 //!                                   # "node-to-segment": the paper's nodal slide line
 //! penalty = 1.0e5                   # N/mm^3 (MPa per mm of penetration); or instead
 //! # penalty_factor = 10.0           # kappa: eps = kappa E / h (master E and edge length h)
+//! # exponential = { clearance = 1e-4, pressure = 0.1 }  # or CalculiX's p = p0 exp(-ln(100) g / c0),
+//!                                   # c0 mm, p0 MPa (node-to-segment pairs)
 //! capture_distance = 1.0            # mm (default: twice the longest edge a slave node may meet)
 //! augmented_lagrangian = { penetration_tolerance = 1e-4, max_augmentations = 10 }  # optional
 //! exclude_neighbours = 2            # self-contact: segments this close along the surface
@@ -136,6 +138,7 @@ struct ContactSpec {
     integration: IntegrationSpec,
     penalty: Option<f64>,
     penalty_factor: Option<f64>,
+    exponential: Option<ExponentialSpec>,
     capture_distance: Option<f64>,
     augmented_lagrangian: Option<AugmentedSpec>,
     #[serde(default = "two")]
@@ -144,6 +147,15 @@ struct ContactSpec {
     tangential_penalty: Option<f64>,
     elastic_slip: Option<f64>,
     adjust: Option<AdjustSpec>,
+}
+
+/// `exponential = { clearance = c0, pressure = p0 }`: CalculiX's exponential
+/// pressure-overclosure law in place of a penalty.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ExponentialSpec {
+    clearance: f64,
+    pressure: f64,
 }
 
 /// `adjust = 0.01` (a clearance, mm) or `adjust = "node_set"`.
@@ -680,10 +692,15 @@ pub fn parse(text: &str, path: &Path) -> Result<Model> {
     let mut contacts = Vec::new();
     for c in &deck.contact {
         let name = c.name.clone().unwrap_or_else(|| if c.slave == c.master { c.slave.clone() } else { format!("{}-{}", c.slave, c.master) });
-        let penalty = match (c.penalty, c.penalty_factor) {
-            (Some(v), None) => Penalty::Stiffness(v),
-            (None, Some(v)) => Penalty::Factor(v),
-            _ => return Err(Error::input(format!("contact '{name}': give exactly one of penalty (N/mm^3) or penalty_factor (kappa in eps = kappa E / h)"))),
+        let penalty = match (c.penalty, c.penalty_factor, &c.exponential) {
+            (Some(v), None, None) => Penalty::Stiffness(v),
+            (None, Some(v), None) => Penalty::Factor(v),
+            (None, None, Some(e)) => Penalty::Exponential { clearance: e.clearance, pressure: e.pressure },
+            _ => {
+                return Err(Error::input(format!(
+                    "contact '{name}': give exactly one of penalty (N/mm^3), penalty_factor (kappa in eps = kappa E / h) or exponential = {{ clearance = c0, pressure = p0 }}"
+                )))
+            }
         };
         let capture_distance = match c.capture_distance {
             Some(d) => d,

@@ -84,7 +84,8 @@ pub struct Material {
 /// Isotropic hardening of a J2 material: linear, or a piecewise-linear table.
 pub use crate::material::Hardening as Plasticity;
 
-/// Penalty stiffness eps_n of a contact pair.
+/// The normal law of a contact pair: a linear penalty eps_n, or CalculiX's exponential
+/// pressure-overclosure law.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Penalty {
     /// Contact pressure per unit penetration, N/mm^3 (MPa/mm): mesh-independent.
@@ -92,6 +93,9 @@ pub enum Penalty {
     /// Dimensionless kappa: eps_n = kappa E / h, E of the master element's material and h the
     /// length of the master element edge.
     Factor(f64),
+    /// p = p0 exp(-ln(100) g / c0) (`contact::node_to_edge::Overclosure::Exponential`): the
+    /// pressure p0 (MPa) at touch and the clearance c0 (mm) where it has fallen to p0 / 100.
+    Exponential { clearance: f64, pressure: f64 },
 }
 
 /// How a pair's constraint is collocated along the slave surface.

@@ -2,7 +2,7 @@
 //! loads the steps name, the contact pairs, and the constraints (one value per degree of
 //! freedom; no body free to move along the axis).
 
-use super::{known, BodyLoad, Component, Edge, Model, Penalty, Plasticity, Temperature, MAX_INCREMENTS, MIN_YOUNGS_MODULUS};
+use super::{known, BodyLoad, Component, ContactIntegration, Edge, Model, Penalty, Plasticity, Temperature, MAX_INCREMENTS, MIN_YOUNGS_MODULUS};
 use crate::error::{Error, Result};
 use std::collections::BTreeMap;
 
@@ -78,6 +78,21 @@ impl Model {
             }
             let eps = match c.penalty {
                 Penalty::Stiffness(v) | Penalty::Factor(v) => v,
+                Penalty::Exponential { clearance, pressure } => {
+                    if !(clearance > 0.0 && clearance.is_finite() && pressure > 0.0 && pressure.is_finite()) {
+                        return Err(Error::input(format!(
+                            "contact '{}': the exponential law needs c0 > 0 (mm) and p0 > 0 (MPa), got c0 = {clearance}, p0 = {pressure}",
+                            c.name
+                        )));
+                    }
+                    if c.integration != ContactIntegration::NodeToSegment || c.augmented_lagrangian.is_some() {
+                        return Err(Error::input(format!(
+                            "contact '{}': the exponential pressure-overclosure law is built for node-to-segment pairs without augmented Lagrangian iterations",
+                            c.name
+                        )));
+                    }
+                    pressure
+                }
             };
             if !(eps > 0.0 && eps.is_finite()) {
                 return Err(Error::input(format!("contact '{}': the penalty must be > 0, got {eps}", c.name)));

@@ -82,7 +82,9 @@ struct MaterialDef {
 }
 
 struct Interaction {
-    slope: Option<f64>,
+    /// *SURFACE BEHAVIOR: the LINEAR slope (`Penalty::Stiffness`, MPa/mm) or the EXPONENTIAL
+    /// law, as one pass carrying the whole force.
+    behaviour: Option<crate::model::Penalty>,
     /// *FRICTION: mu and the stick slope (MPa/mm), if given.
     friction: properties::CalculixFriction,
 }
@@ -259,7 +261,7 @@ fn build(cards: &[Card], source_text: String) -> Result<InpModel> {
             "SURFACE INTERACTION" => {
                 card.only(&["NAME"])?;
                 let name = card.required("NAME")?.to_uppercase();
-                b.interactions.insert(name.clone(), Interaction { slope: None, friction: None });
+                b.interactions.insert(name.clone(), Interaction { behaviour: None, friction: None });
                 b.current_interaction = Some(name);
                 last_owner = "SURFACE INTERACTION";
             }

@@ -75,18 +75,35 @@ impl Builder {
         }
         card.only(&["PRESSURE-OVERCLOSURE"])?;
         let law = card.required("PRESSURE-OVERCLOSURE")?.to_uppercase();
-        if law != "LINEAR" {
-            return Err(card.error(format!("PRESSURE-OVERCLOSURE={law}: slideline's penalty contact reads LINEAR (its slope is the penalty, N/mm^3)")));
-        }
-        let d = card.data.first().ok_or_else(|| card.error("needs the slope of the pressure-overclosure line"))?;
-        let slope = d.number("SURFACE BEHAVIOR", 0, "slope (MPa/mm)", None)?;
-        if d.fields.len() > 1 && d.fields.iter().skip(1).any(|f| !f.is_empty()) {
-            self.notes.push(format!(
-                "interaction {name}: the tension at large clearance and c0 of *SURFACE BEHAVIOR ({}) are not used: slideline's penalty gives zero pressure at any clearance",
-                card.at
-            ));
-        }
-        self.interactions.get_mut(&name).expect("registered").slope = Some(slope);
+        let data = || card.data.first().ok_or_else(|| card.error(format!("needs the data line of PRESSURE-OVERCLOSURE={law}")));
+        let behaviour = match law.as_str() {
+            "LINEAR" => {
+                let d = data()?;
+                let slope = d.number("SURFACE BEHAVIOR", 0, "slope (MPa/mm)", None)?;
+                if d.fields.len() > 1 && d.fields.iter().skip(1).any(|f| !f.is_empty()) {
+                    self.notes.push(format!(
+                        "interaction {name}: the tension at large clearance and c0 of *SURFACE BEHAVIOR ({}) are not used: slideline's penalty gives zero pressure at any clearance",
+                        card.at
+                    ));
+                }
+                Penalty::Stiffness(slope)
+            }
+            "EXPONENTIAL" => {
+                let d = data()?;
+                let clearance = d.number("SURFACE BEHAVIOR", 0, "c0 (mm)", None)?;
+                let pressure = d.number("SURFACE BEHAVIOR", 1, "p0 (MPa)", None)?;
+                if !(clearance > 0.0 && clearance.is_finite() && pressure > 0.0 && pressure.is_finite()) {
+                    return Err(card.error(format!("EXPONENTIAL needs c0 > 0 (mm) and p0 > 0 (MPa), got c0 = {clearance}, p0 = {pressure}")));
+                }
+                Penalty::Exponential { clearance, pressure }
+            }
+            _ => {
+                return Err(
+                    card.error(format!("PRESSURE-OVERCLOSURE={law}: slideline reads LINEAR (its slope is the penalty, N/mm^3) and EXPONENTIAL (c0, p0)"))
+                )
+            }
+        };
+        self.interactions.get_mut(&name).expect("registered").behaviour = Some(behaviour);
         Ok(())
     }
 
@@ -146,7 +163,7 @@ impl Builder {
             let ListedPair { slave, master, interaction, integration, adjust, at } = listed;
             let found =
                 self.interactions.get(interaction).ok_or_else(|| error_at(at, "CONTACT PAIR", format!("surface interaction {interaction} is not defined")))?;
-            let slope = found.slope.ok_or_else(|| error_at(at, "CONTACT PAIR", format!("interaction {interaction} has no *SURFACE BEHAVIOR")))?;
+            let behaviour = found.behaviour.ok_or_else(|| error_at(at, "CONTACT PAIR", format!("interaction {interaction} has no *SURFACE BEHAVIOR")))?;
             let friction = found.friction;
             if let Some(first) = self.contacts[..i].iter().find(|c| &c.slave == slave && &c.master == master) {
                 return Err(error_at(at, "CONTACT PAIR", format!("the pair {slave}, {master} is already defined at {}", first.at)));
@@ -181,8 +198,16 @@ impl Builder {
             // two-pass: each direction carries half the force, so its stiffnesses are doubled
             let passes = if two_pass { 2.0 } else { 1.0 };
             let friction = pair_friction(friction, passes);
+            // the stick slope CalculiX defaults to: the normal law's slope at touch
+            let (law, slope) = match behaviour {
+                Penalty::Exponential { clearance, pressure } => (
+                    format!("exponential pressure-overclosure p = {pressure} MPa x exp(-ln(100) g / {clearance} mm) (EXPONENTIAL)"),
+                    100f64.ln() * pressure / clearance,
+                ),
+                Penalty::Stiffness(slope) | Penalty::Factor(slope) => (format!("penalty {slope} N/mm^3 (the LINEAR slope)"), slope),
+            };
             self.notes.push(format!(
-                "contact {name}: {} penalty {slope} N/mm^3 (the LINEAR slope), {}{}",
+                "contact {name}: {} {law}, {}{}",
                 match friction {
                     None => "frictionless".to_string(),
                     Some(f) => format!(
@@ -195,7 +220,7 @@ impl Builder {
                     ContactIntegration::Segment => "gap integrated along the slave surface (SURFACE TO SURFACE)",
                     ContactIntegration::NodeToSegment => "node-to-segment slide line (NODE TO SURFACE)",
                 },
-                if two_pass { "; listed both ways: one two-pass pair, each direction carrying half the force of penalty 2 x slope" } else { "" }
+                if two_pass { "; listed both ways: one two-pass pair, each direction carrying half the force of a law twice as stiff" } else { "" }
             ));
             let pair = ContactPair {
                 name,
@@ -203,7 +228,10 @@ impl Builder {
                 master: master.clone(),
                 two_pass,
                 integration: *integration,
-                penalty: Penalty::Stiffness(if two_pass { 2.0 * slope } else { slope }),
+                penalty: match behaviour {
+                    Penalty::Exponential { clearance, pressure } => Penalty::Exponential { clearance, pressure: passes * pressure },
+                    _ => Penalty::Stiffness(passes * slope),
+                },
                 capture_distance: default_capture_distance(&self.mesh, &self.surfaces[slave], &self.surfaces[master], two_pass),
                 augmented_lagrangian: None,
                 exclude_neighbours: 2,

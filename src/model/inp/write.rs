@@ -1,6 +1,6 @@
 //! A [`Model`] written as a CalculiX/Abaqus deck that both CalculiX and slideline's reader run:
 //! CAX8 mesh, node and element sets, element-face surfaces, materials (*PLASTIC as a table),
-//! one *SURFACE INTERACTION and *CONTACT PAIR per pair with its penalty as the LINEAR slope
+//! one *SURFACE INTERACTION and *CONTACT PAIR per pair with its normal law (the penalty as the LINEAR slope, or EXPONENTIAL)
 //! (and its *FRICTION: mu and the stick slope; a step's change of it as *CHANGE FRICTION),
 //! *DLOAD per loaded face label (and GRAV / CENTRIF for body loads), the steps with *STATIC (the requested increment, which both
 //! codes cut back when Newton fails and never exceed; the smallest is `min_increment`), and
@@ -126,17 +126,21 @@ pub fn to_inp(model: &Model, title: &str) -> Result<String> {
     }
 
     for c in &model.contacts {
-        let Penalty::Stiffness(penalty) = c.penalty else {
-            return Err(Error::input(format!("contact '{}': a dimensionless penalty factor has no .inp form: give the penalty in N/mm^3", c.name)));
-        };
         let two_pass = c.two_pass && c.slave != c.master;
-        let slope = if two_pass { penalty / 2.0 } else { penalty };
+        let passes = if two_pass { 2.0 } else { 1.0 };
+        let behaviour = match c.penalty {
+            Penalty::Stiffness(penalty) => format!("LINEAR\n{}", num(penalty / passes)),
+            Penalty::Exponential { clearance, pressure } => format!("EXPONENTIAL\n{}, {}", num(clearance), num(pressure / passes)),
+            Penalty::Factor(_) => {
+                return Err(Error::input(format!("contact '{}': a dimensionless penalty factor has no .inp form: give the penalty in N/mm^3", c.name)))
+            }
+        };
         let kind = match c.integration {
             ContactIntegration::Segment => "SURFACE TO SURFACE",
             ContactIntegration::NodeToSegment => "NODE TO SURFACE",
         };
         let name = checked_name(&c.name)?;
-        let _ = writeln!(w, "*SURFACE INTERACTION, NAME={name}\n*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR\n{}", num(slope));
+        let _ = writeln!(w, "*SURFACE INTERACTION, NAME={name}\n*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE={behaviour}");
         if let Some(f) = &c.friction {
             friction_card(w, &c.name, f, two_pass)?;
         }
@@ -268,6 +272,7 @@ fn checked_name(name: &str) -> Result<&str> {
 #[cfg(test)]
 mod tests {
     use crate::element::body_load::BodyForce;
+    use crate::model::Model;
     use std::path::Path;
 
     /// A deck's body loads survive the trip through a written .inp and the reader: gravity
@@ -349,5 +354,49 @@ contact_friction = [ { pair = "one", friction = 0.0 } ]
         }
         assert_eq!(model.friction_in_step(2)[0], None);
         assert_eq!(model.friction_in_step(2)[1].map(|f| f.coefficient), Some(0.3), "a change holds in the steps after it");
+    }
+
+    /// A pair's exponential pressure-overclosure law is written as CalculiX's EXPONENTIAL line
+    /// (c0, p0 per listing: a two-pass pair's p0 halved) and read back to the same law.
+    #[test]
+    fn the_exponential_law_is_written_and_read_back() {
+        let deck = r#"
+[[mesh.block]]
+name = "a"
+r = [10.0, 20.0]
+z = [0.0, 5.0]
+divisions = [2, 1]
+[[mesh.block]]
+name = "b"
+r = [10.0, 20.0]
+z = [5.0, 10.0]
+divisions = [2, 1]
+[[material]]
+name = "steel"
+youngs_modulus = 200000.0
+poissons_ratio = 0.3
+[[contact]]
+name = "one"
+slave = "b_bottom"
+master = "a_top"
+integration = "node-to-segment"
+exponential = { clearance = 2.0e-4, pressure = 0.5 }
+[[contact]]
+name = "two"
+slave = "a_outer"
+master = "b_outer"
+integration = "node-to-segment"
+two_pass = true
+exponential = { clearance = 1.0e-3, pressure = 0.2 }
+[[step]]
+boundary = [ { set = "a_bottom", uz = 0.0 } ]
+"#;
+        let model = crate::model::deck::parse(deck, Path::new("pair.toml")).unwrap();
+        let text = super::to_inp(&model, "pairs").unwrap();
+        assert!(text.contains("PRESSURE-OVERCLOSURE=EXPONENTIAL\n0.0002, 0.5\n"), "{text}");
+        assert!(text.contains("PRESSURE-OVERCLOSURE=EXPONENTIAL\n0.001, 0.1\n"), "{text}");
+        let read = crate::model::inp::parse(&text, Path::new("pairs.inp")).unwrap().model;
+        let laws = |m: &Model| m.contacts.iter().map(|c| (c.two_pass, c.penalty)).collect::<Vec<_>>();
+        assert_eq!(laws(&read), laws(&model));
     }
 }

@@ -5,7 +5,7 @@
 use super::{ContactAssembly, SlaveState, SlipPoint};
 use crate::contact::friction::{FrictionLaw, SlipReference};
 use crate::contact::integrated::weighted_gaps_into;
-use crate::contact::node_to_edge::{edge_residual, ContactLaw};
+use crate::contact::node_to_edge::{edge_residual, ContactLaw, Overclosure};
 use crate::contact::search::EdgeGrid;
 use crate::contact::surface::ContactSurface;
 use crate::model::{ContactPair, Model, Penalty};
@@ -37,10 +37,21 @@ fn friction_recipe(
 }
 
 impl ContactAssembly {
+    /// The penalty eps (MPa/mm) of the pair on master edge `edge`; for the exponential law its
+    /// slope at touch (the default stick slope and the round-off scale).
     fn penalty(model: &Model, pair: &ContactPair, master: &ContactSurface, edge: usize) -> f64 {
         match pair.penalty {
             Penalty::Stiffness(v) => v,
             Penalty::Factor(kappa) => kappa * model.materials[model.element_material[master.element[edge]]].youngs_modulus / master.edge_length[edge],
+            Penalty::Exponential { .. } => Self::overclosure(model, pair, master, edge, 0.0).stiffness(0.0),
+        }
+    }
+
+    /// The pair's pressure-overclosure law on master edge `edge`, with the node's multiplier.
+    fn overclosure(model: &Model, pair: &ContactPair, master: &ContactSurface, edge: usize, multiplier: f64) -> Overclosure {
+        match pair.penalty {
+            Penalty::Exponential { clearance, pressure } => Overclosure::Exponential { clearance, pressure },
+            _ => Overclosure::Linear { penalty: Self::penalty(model, pair, master, edge), multiplier },
         }
     }
 
@@ -75,18 +86,17 @@ impl ContactAssembly {
             let area = slave.areas[i] * pass.weight;
             let en = master.edges[edge];
             let free_ends = master.neighbours[edge].map(|n| n.is_none());
-            let multiplier = self.current[p][k];
-            let law = ContactLaw { area, penalty: eps, multiplier, free_ends };
+            let normal = Self::overclosure(model, pair, master, edge, self.current[p][k]);
+            let law = ContactLaw { area, normal, free_ends };
             let (residual, pressure) = edge_residual(xs, &en.map(x), &proj, &law);
             let mut state = SlaveState { gap: proj.gap, pressure, force: pressure * area, ..SlaveState::default() };
             // an open node's slip is measured, once it closes, from where it is now
             self.slip_trial[p][k] = Some(SlipPoint { edge, xi: proj.xi, traction: 0.0 });
-            let closed = multiplier - eps * proj.gap >= 0.0;
+            let closed = normal.is_closed(proj.gap);
             if closed {
-                self.roundoff += (ROUNDOFF_ULPS * f64::EPSILON * eps * area * xs[0].hypot(xs[1])).powi(2);
+                self.roundoff += (ROUNDOFF_ULPS * f64::EPSILON * normal.stiffness(proj.gap) * area * xs[0].hypot(xs[1])).powi(2);
                 out.next_slot().set_nodal(node, en, residual.as_slice(), xs, en.map(x), proj, law);
-                // eps g^2 A / 2 = -g F / 2 (a penalty: the multiplier's part is left out)
-                state.normal_energy = -0.5 * proj.gap * state.force;
+                state.normal_energy = normal.stored_energy(proj.gap, pressure) * area;
             }
             // a node without a reference (beyond reach when the increment started) slides freely
             // in this increment and has one from the next on
@@ -162,7 +172,7 @@ impl ContactAssembly {
             self.slip_trial[p][k] = Some(SlipPoint { edge, xi: proj.xi, traction: 0.0 });
             let (Some(f), Some(reference)) = (self.friction[pass.pair], self.slip_committed[p][k].filter(|_| trial >= 0.0)) else { continue };
             // the pressure is given (the integrated one): a law of penalty 0 and multiplier p
-            let law = ContactLaw { area: area * pass.weight, penalty: 0.0, multiplier: pressure, free_ends: [false; 2] };
+            let law = ContactLaw::linear(area * pass.weight, 0.0, pressure, [false; 2]);
             let friction = FrictionLaw { coefficient: f.coefficient, penalty: f.tangential_penalty.unwrap_or(eps), elastic_slip: f.elastic_slip };
             let recipe = friction_recipe(master, &x, xs, edge, proj.xi, reference, law, friction);
             let (residual, slip) = recipe.residual();
