@@ -17,6 +17,7 @@
 //!   contact pressure's fit p^2 = p0^2 (1 - x^2 / b^2) gives both within 2 % (measured b
 //!   +0.4 %, p0 -0.7 %).
 //! - A CPS8 strip from an .inp deck in uniaxial tension: u = s L / E, reaction s W t.
+//! - A column under its own weight (gravity on a plane body; Timoshenko & Goodier, sec. 24).
 
 mod common;
 use common::{assert_rejected, command_in, data, run_deck, Results, Run};
@@ -197,4 +198,50 @@ fn plane_input_errors_name_the_item() {
         &[],
     );
     assert_rejected(&run, &["thickness = 0", "positive"]);
+}
+
+/// Gravity on a plane body: a column x 0..20, y 0..100, standing on rollers, its left edge a
+/// symmetry plane, under its own weight (rho = 7.85e-9 t/mm^3, g = -9810 mm/s^2 along y). The
+/// exact answer (Timoshenko & Goodier, Theory of Elasticity, sec. 24, the prism under its own
+/// weight) is sigma_yy = rho g (L - y), sigma_xx = sigma_xy = 0. Its base stays flat on the
+/// rollers only without Poisson's contraction (u_y has a term nu rho g x^2 / 2E), so nu = 0
+/// here: then u_y = rho g (y^2 / 2 - L y) / E, quadratic, which the 8-node element holds
+/// exactly. Checked: the nodal sigma_yy to 1e-7 of its largest value (the solve's tolerance), sigma_xx and the out-of-
+/// plane stress zero, in plane stress and plane strain, and the base's reaction the weight
+/// rho g L W t of the thickness t (2 mm), not a ring's.
+#[test]
+fn a_plane_column_under_its_own_weight_is_timoshenkos_prism() {
+    let (rho, g, length, width, t): (f64, f64, f64, f64, f64) = (7.85e-9, -9810.0, 100.0, 20.0, 2.0);
+    for geometry in ["plane_stress", "plane_strain"] {
+        let deck = format!(
+            r#"nlgeom = false
+geometry = "{geometry}"
+thickness = {t}
+[mesh]
+rectangle = {{ r = [0.0, {width}], z = [0.0, {length}], divisions = [2, 10] }}
+{}density = {rho}
+[[step]]
+boundary = [ {{ set = "inner", ux = 0.0 }}, {{ set = "bottom", uy = 0.0 }} ]
+body_load = [ {{ elements = "all", gravity = {g} }} ]
+"#,
+            STEEL.replace("0.3", "0.0")
+        );
+        let run = run_deck(&deck, &[], 1, &[]);
+        run.assert_ok();
+        let res = Results::open(&run.h5);
+        let scale = (rho * g * length).abs();
+        for y in [0.0, 25.0, 50.0, 90.0] {
+            for x in [0.0, width] {
+                let syy = nodal_at(&res, "stress_zz", [x, y]);
+                assert!((syy - rho * g * (length - y)).abs() < 1e-7 * scale, "{geometry}: sigma_yy {syy} at ({x}, {y})");
+                let sxx = nodal_at(&res, "stress_rr", [x, y]);
+                assert!(sxx.abs() < 1e-7 * scale, "{geometry}: sigma_xx {sxx} at ({x}, {y})");
+                let szz = nodal_at(&res, "stress_tt", [x, y]);
+                assert!(szz.abs() < 1e-7 * scale, "{geometry}: sigma_zz {szz} at ({x}, {y})");
+            }
+        }
+        let weight = rho * g * length * width * t;
+        let reaction = *res.history("reaction_bottom_z").last().unwrap();
+        assert!((reaction + weight).abs() < 1e-7 * weight.abs(), "{geometry}: reaction {reaction} against the weight {weight}");
+    }
 }
