@@ -364,9 +364,10 @@ pub fn default_plot_path(r: &ResultsReader) -> PathBuf {
     PathBuf::from(format!("{}_force.png", r.path().with_extension("").display()))
 }
 
-/// A section `R1,Z1:R2,Z2` (mm) as its two ends; bad input naming it otherwise.
+/// A section `R1,Z1:R2,Z2` (mm; X1,Y1:X2,Y2 in a plane model) as its two ends; bad input
+/// naming it otherwise.
 pub fn parse_section(text: &str) -> Result<([f64; 2], [f64; 2])> {
-    let bad = || Error::input(format!("--linearize {text:?}: give a section as R1,Z1:R2,Z2 (mm), e.g. 100,5:130,5"));
+    let bad = || Error::input(format!("--linearize {text:?}: give a section as R1,Z1:R2,Z2 (mm; X1,Y1:X2,Y2 in a plane model), e.g. 100,5:130,5"));
     let (a, b) = text.split_once(':').ok_or_else(bad)?;
     let point = |s: &str| -> Result<[f64; 2]> {
         let (r, z) = s.split_once(',').ok_or_else(bad)?;
@@ -387,12 +388,14 @@ pub fn linearize(r: &ResultsReader, sections: &[String], number: usize) -> Resul
         .map_err(|_| Error::input(format!("{}: increment {number} holds no stress (the run's [output] fields)", r.path().display())))?;
     let stress: Vec<[[f64; 4]; 9]> = flat.chunks_exact(36).map(|e| std::array::from_fn(|q| std::array::from_fn(|c| e[4 * q + c]))).collect();
     let sampler = StressSampler::new(&coords, &elements, &stress);
-    let mut out = format!("stress linearisation at increment #{number} (MPa; section axes: normal along the section, meridional across it, hoop, shear)\n");
+    // a plane model's third component is the out-of-plane stress, its coordinates x, y
+    let (third, across) = if r.is_plane() { ("out-of-plane", "in-plane across it") } else { ("hoop", "meridional across it") };
+    let mut out = format!("stress linearisation at increment #{number} (MPa; section axes: normal along the section, {across}, {third}, shear)\n");
     for (a, b) in sections {
         let l = linearize(a, b, 200, |p| sampler.at(p))
             .map_err(|m| Error::input(format!("{}: section ({}, {}):({}, {}): {m}", r.path().display(), a[0], a[1], b[0], b[1])))?;
         out.push_str(&format!("section ({}, {}) -> ({}, {}), t = {:.4} mm\n", a[0], a[1], b[0], b[1], l.thickness));
-        out.push_str(&format!("  {:<26} {:>12} {:>12} {:>12} {:>12}\n", "", "normal", "meridional", "hoop", "shear"));
+        out.push_str(&format!("  {:<26} {:>12} {:>12} {:>12} {:>12}\n", "", "normal", across.split(' ').next().unwrap_or_default(), third, "shear"));
         let row = |what: &str, v: &[f64; 4]| format!("  {what:<26} {:>12.4} {:>12.4} {:>12.4} {:>12.4}\n", v[0], v[1], v[2], v[3]);
         out.push_str(&row("membrane", &l.membrane));
         out.push_str(&row("bending (at the start)", &l.bending));

@@ -243,5 +243,13 @@ body_load = [ {{ elements = "all", gravity = {g} }} ]
         let weight = rho * g * length * width * t;
         let reaction = *res.history("reaction_bottom_z").last().unwrap();
         assert!((reaction + weight).abs() < 1e-7 * weight.abs(), "{geometry}: reaction {reaction} against the weight {weight}");
+        // the linearisation across the column at mid-height names a plane model's components
+        // and finds the membrane stress rho g L / 2 across the section (printed to 4 places)
+        let post = command_in(run.dir.path(), 1).args(["post", run.h5.to_str().unwrap(), "--linearize", "0,50:20,50"]).output().unwrap();
+        let text = String::from_utf8_lossy(&post.stdout);
+        assert!(post.status.success() && text.contains("in-plane across it, out-of-plane, shear") && !text.contains("hoop"), "{text}");
+        let membrane: Vec<f64> =
+            text.lines().find(|l| l.trim_start().starts_with("membrane ")).unwrap().split_whitespace().skip(1).map(|v| v.parse().unwrap()).collect();
+        assert!((membrane[1] - rho * g * length / 2.0).abs() < 1e-4 && membrane[0].abs() < 1e-4, "{text}");
     }
 }

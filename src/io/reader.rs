@@ -387,6 +387,12 @@ impl ResultsReader {
         Ok(a.read_scalar::<VarLenUnicode>().map_err(|e| missing(&self.path, &format!("attribute {name}"), e))?.to_string())
     }
 
+    /// Whether every element of the run was a plane section (the `geometry` attribute; files
+    /// written before it existed are axisymmetric).
+    pub fn is_plane(&self) -> bool {
+        self.text_attr("geometry").is_ok_and(|g| g == "plane")
+    }
+
     /// An integer attribute of the file (ranks, steps).
     pub fn count_attr(&self, name: &str) -> Result<usize> {
         let a = self.file.attr(name).map_err(|e| missing(&self.path, &format!("attribute {name}"), e))?;

@@ -208,9 +208,15 @@ impl ResultsFile {
         } else {
             "length mm, force N, stress MPa, temperature degC, time s; a plane model (x, y stored as r, z; tt the out-of-plane component): forces and reactions over the sections' thickness, where the datasets say per radian"
         };
+        let geometry = match (model.is_axisymmetric(), model.element_section.iter().any(|s| s.is_axisymmetric())) {
+            (true, _) => "axisymmetric",
+            (false, true) => "axisymmetric and plane",
+            (false, false) => "plane",
+        };
         for (name, value) in [
             ("deck", model.source_text.as_str()),
             ("units", units),
+            ("geometry", geometry),
             ("petsc_options", &session.options().join(" ")),
             ("slideline_version", env!("CARGO_PKG_VERSION")),
             ("step_names", &model.steps.iter().map(|s| s.name.as_str()).collect::<Vec<_>>().join("\n")),
