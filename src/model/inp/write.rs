@@ -303,12 +303,9 @@ body_load = [ { elements = "all", spin = 3000.0 }, { elements = "all", gravity =
         assert_eq!(loads, vec![("ALL".to_string(), BodyForce::Gravity(-9810.0)), ("ALL".to_string(), BodyForce::Spin(9.0e6))]);
     }
 
-    /// Friction changed in steps (CalculiX's *CHANGE FRICTION) survives the trip through a
-    /// written deck and the reader: per step, every pair's friction, a two-pass pair's stick
-    /// slope included (written per listing, halved, and doubled back).
-    #[test]
-    fn friction_changes_are_written_and_read_back() {
-        let deck = r#"
+    /// Two blocks side by side (r 10..20 and 20..30, z 0..5) of one steel: the contact pairs'
+    /// tests add their pairs and steps.
+    const TWO_BLOCKS: &str = r#"
 [[mesh.block]]
 name = "a"
 r = [10.0, 20.0]
@@ -323,6 +320,15 @@ divisions = [2, 1]
 name = "steel"
 youngs_modulus = 200000.0
 poissons_ratio = 0.3
+"#;
+
+    /// Friction changed in steps (CalculiX's *CHANGE FRICTION) survives the trip through a
+    /// written deck and the reader: per step, every pair's friction, a two-pass pair's stick
+    /// slope included (written per listing, halved, and doubled back).
+    #[test]
+    fn friction_changes_are_written_and_read_back() {
+        let deck = TWO_BLOCKS.to_string()
+            + r#"
 [[contact]]
 name = "one"
 slave = "a_outer"
@@ -345,7 +351,7 @@ contact_friction = [ { pair = "one", friction = 0.1, tangential_penalty = 3.0e4 
 name = "third"
 contact_friction = [ { pair = "one", friction = 0.0 } ]
 "#;
-        let model = crate::model::deck::parse(deck, Path::new("pair.toml")).unwrap();
+        let model = crate::model::deck::parse(&deck, Path::new("pair.toml")).unwrap();
         let text = super::to_inp(&model, "pairs").unwrap();
         assert!(text.contains("*CHANGE FRICTION, INTERACTION=two\n*FRICTION\n0.3, 10000"), "{text}");
         let read = crate::model::inp::parse(&text, Path::new("pairs.inp")).unwrap().model;
@@ -360,38 +366,25 @@ contact_friction = [ { pair = "one", friction = 0.0 } ]
     /// (c0, p0 per listing: a two-pass pair's p0 halved) and read back to the same law.
     #[test]
     fn the_exponential_law_is_written_and_read_back() {
-        let deck = r#"
-[[mesh.block]]
-name = "a"
-r = [10.0, 20.0]
-z = [0.0, 5.0]
-divisions = [2, 1]
-[[mesh.block]]
-name = "b"
-r = [10.0, 20.0]
-z = [5.0, 10.0]
-divisions = [2, 1]
-[[material]]
-name = "steel"
-youngs_modulus = 200000.0
-poissons_ratio = 0.3
+        let deck = TWO_BLOCKS.to_string()
+            + r#"
 [[contact]]
 name = "one"
-slave = "b_bottom"
-master = "a_top"
+slave = "a_outer"
+master = "b_inner"
 integration = "node-to-segment"
 exponential = { clearance = 2.0e-4, pressure = 0.5 }
 [[contact]]
 name = "two"
-slave = "a_outer"
-master = "b_outer"
+slave = "b_top"
+master = "a_top"
 integration = "node-to-segment"
 two_pass = true
 exponential = { clearance = 1.0e-3, pressure = 0.2 }
 [[step]]
-boundary = [ { set = "a_bottom", uz = 0.0 } ]
+boundary = [ { set = "a_bottom", uz = 0.0 }, { set = "b_bottom", uz = 0.0 } ]
 "#;
-        let model = crate::model::deck::parse(deck, Path::new("pair.toml")).unwrap();
+        let model = crate::model::deck::parse(&deck, Path::new("pair.toml")).unwrap();
         let text = super::to_inp(&model, "pairs").unwrap();
         assert!(text.contains("PRESSURE-OVERCLOSURE=EXPONENTIAL\n0.0002, 0.5\n"), "{text}");
         assert!(text.contains("PRESSURE-OVERCLOSURE=EXPONENTIAL\n0.001, 0.1\n"), "{text}");
