@@ -3,8 +3,9 @@
 'displacements' blocks, any set) with slideline's results file, node by node, and prints one
 line: nodes compared, the largest |u_r| and |u_z| of CalculiX, the largest difference of
 each as a fraction of that, and the difference of u_r at the node where ccx's |u_r| is largest (the
-headline number). A deck that prints no displacement but element stresses (*EL PRINT, S) is
-compared by element: each element's mean stress over its integration points, and the
+headline number). Element stresses a deck prints (*EL PRINT, S) are compared by element
+too (the headline when it prints no displacement, or only prescribed ones, as pret2's
+reference node): each element's mean stress over its integration points, and the
 headline is the difference of each element's largest mean component (CalculiX's x, y, z, xy
 are slideline's r, z, t, rz). Used by scripts/calculix-test-decks.sh; needs h5py and numpy
 (Debian's python3-h5py).
@@ -58,6 +59,8 @@ def dat_element_stresses(path):
 
 def compare_stresses(dat, results):
     ccx = dat_element_stresses(dat)
+    if not ccx:
+        return
     with h5py.File(results, "r") as f:
         last = sorted(k for k in f["increments"] if f["increments"][k].attrs.get("complete", 1))[-1]
         stress = f["increments"][last]["stress"][:]
@@ -65,7 +68,7 @@ def compare_stresses(dat, results):
     ours = {int(e): stress[k].mean(axis=0) for k, e in enumerate(ids)}
     common = [e for e in ccx if e in ours]
     if not common:
-        print("no displacement or element stress printed by ccx")
+        print("no element of ccx's stresses in the results file")
         return
     parts = []
     worst = 0.0
@@ -79,10 +82,16 @@ def compare_stresses(dat, results):
 
 def main():
     ccx = dat_displacements(sys.argv[1])
+    if not ccx and not dat_element_stresses(sys.argv[1]):
+        print("no displacement or element stress printed by ccx")
+    compare_displacements(ccx, sys.argv[2])
+    compare_stresses(sys.argv[1], sys.argv[2])
+
+
+def compare_displacements(ccx, results):
     if not ccx:
-        compare_stresses(sys.argv[1], sys.argv[2])
         return
-    with h5py.File(sys.argv[2], "r") as f:
+    with h5py.File(results, "r") as f:
         last = sorted(k for k in f["increments"] if f["increments"][k].attrs.get("complete", 1))[-1]
         u = f["increments"][last]["nodal/displacement"][:, :2]
         ids = f["mesh/node_ids"][:]
@@ -95,7 +104,7 @@ def main():
     b = np.array([ours[n] for n in common])
     scale = np.abs(a).max(axis=0)
     diff = np.abs(a - b).max(axis=0)
-    rel = [d / s if s > 0 else float("nan") for d, s in zip(diff, scale)]
+    rel = [d / s if s > 0 else 0.0 for d, s in zip(diff, scale)]
     # the headline: u_r at the node of ccx's largest |u_r| (the rim of a disc, a fit's bore)
     peak = int(np.argmax(np.abs(a[:, 0])))
     at_peak = abs(a[peak, 0] - b[peak, 0]) / abs(a[peak, 0])

@@ -63,7 +63,7 @@ fn kept_output_fields_equal_a_fresh_evaluation() {
     let partition = Partition::new(&session, &model.mesh, &partition_affinity(&model)).expect("partition");
     let nodes = model.mesh.coords.len();
     let loads = StepLoads::new(&model, 0, None, &vec![[0.0; 2]; nodes]);
-    let dofs = DofMap::new(&partition, &loads.prescribed_mask(nodes)).expect("dofs");
+    let dofs = DofMap::new(&partition, &loads.prescribed_mask(&model)).expect("dofs");
     let mut x = Vector::mpi(&session, session.comm(), dofs.local_len()).expect("vector");
     {
         // a rough field: every element strained past yield somewhere, the blocks pressed together

@@ -135,6 +135,7 @@ impl Convolution {
             stepping: SteppingControls::default(),
             output: OutputControls { fields: OutputFields::from_names(&["stress".to_string()])?, ..OutputControls::default() },
             contacts: Vec::new(),
+            constraints: Vec::new(),
             steps: vec![step],
             perturbations: Vec::new(),
             source_text: format!("idealised convolution: C1 = {}, C2 = {}", 2.0 * self.rm / self.w, 1.82 * self.rm / (DM * TP).sqrt()),

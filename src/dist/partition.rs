@@ -88,6 +88,10 @@ impl Partition {
                 node_owner[n] = node_owner[n].min(element_rank[e]);
             }
         }
+        // a node of no element (a pre-tension section's reference node) goes to rank 0
+        for owner in node_owner.iter_mut().filter(|o| **o == usize::MAX) {
+            *owner = 0;
+        }
         let (node_order, node_offsets) = order_by_rank(&node_owner, size);
         let (element_order, element_offsets) = order_by_rank(&element_rank, size);
         Partition {

@@ -455,6 +455,7 @@ pub fn model(p: &BellowsParams) -> Result<Model> {
         stepping: SteppingControls { easy_iterations: 12, convergence: p.convergence, predictor: Predictor::Extrapolate, ..SteppingControls::default() },
         output: OutputControls { every: p.output_every, precision: p.output_precision, ..OutputControls::default() },
         contacts,
+        constraints: Vec::new(),
         steps,
         perturbations: Vec::new(),
         source_text,

@@ -755,6 +755,7 @@ pub fn parse(text: &str, path: &Path) -> Result<Model> {
             precision: deck.output.precision.unwrap_or_default(),
         },
         contacts,
+        constraints: Vec::new(),
         steps,
         perturbations,
         source_text: text.to_string(),

@@ -5,6 +5,7 @@
 //! Units: mm, N, MPa, degC. Coordinates are (r, z), r >= 0 the radius, z the axis.
 
 pub mod bellows;
+pub mod constraint;
 pub mod deck;
 pub mod gmsh;
 pub mod inp;
@@ -13,6 +14,7 @@ pub mod perturbation;
 pub mod temperature;
 mod validate;
 
+pub use constraint::{Constraint, Term};
 pub use mesh::{Edge, Mesh, NODES_PER_ELEMENT};
 pub use temperature::Temperature;
 
@@ -461,6 +463,8 @@ pub struct Model {
     /// What the results file keeps of each increment.
     pub output: OutputControls,
     pub contacts: Vec<ContactPair>,
+    /// Linear multi-point constraints, in force in every step.
+    pub constraints: Vec<Constraint>,
     pub steps: Vec<Step>,
     /// Linear perturbation steps after the general ones, each about the state they end in.
     pub perturbations: Vec<perturbation::Perturbation>,

@@ -188,6 +188,7 @@ impl Model {
                 }
             }
         }
+        self.validate_constraints()?;
         self.check_constraints()?;
         Ok(())
     }
@@ -300,10 +301,12 @@ impl Model {
                     .collect()
             })
             .collect();
+        // a body a multi-point constraint touches is left to it, as one contact touches to the contact
+        let constrained = self.constrained_nodes();
         self.mesh
             .bodies()
             .into_iter()
-            .filter(|body| !body.iter().any(|&n| held_z[n]))
+            .filter(|body| !body.iter().any(|&n| held_z[n] || constrained[n]))
             .map(|body| (body[0], (0..pair_nodes.len()).filter(|&p| body.iter().any(|n| pair_nodes[p].contains(n))).collect()))
             .collect()
     }

@@ -244,6 +244,15 @@ impl JacobianLayout {
         }
     }
 
+    /// Adds `value` at (row node a, component ca; column node b, component cb), a coupling
+    /// of a pair in the layout (a multi-point constraint's); nothing where a DOF is prescribed.
+    pub fn add_coupling(&mut self, a: usize, ca: usize, b: usize, cb: usize, value: f64) {
+        let at = self.place(a, b)[2 * ca + cb];
+        if at != NOWHERE {
+            self.values[at] += value;
+        }
+    }
+
     /// Places of the 2 x 2 block (row node a, column node b), row-major.
     fn place(&self, a: usize, b: usize) -> [usize; 4] {
         match self.pairs.get(&(a.min(b), a.max(b))) {

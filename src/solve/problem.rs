@@ -7,6 +7,7 @@
 //! `trial`; [`Problem::commit`] copies trial to committed after a converged increment. A failed
 //! attempt never touches `committed`, so a cutback has nothing to undo.
 
+use super::constraints::ConstraintAssembly;
 use super::contact::{ContactAssembly, ContactCarry, Need};
 use super::contact_surfaces::contact_nodes;
 pub use super::kept::ElementFields;
@@ -130,6 +131,8 @@ pub struct Problem<'s, 'm> {
     /// is formed, elastic otherwise).
     surface: SurfaceBranch,
     pub contact: Option<ContactAssembly>,
+    /// This rank's multi-point constraints.
+    constraints: Option<ConstraintAssembly>,
     load: LoadState,
     /// Counts the loads set, so what was evaluated under a load can tell it is still in force.
     load_generation: u64,
@@ -137,10 +140,15 @@ pub struct Problem<'s, 'm> {
 }
 
 /// The Jacobian's layout: the local elements' entries and this rank's contact couplings.
-fn jacobian_layout(elements: &[LocalElement], contact: Option<&ContactAssembly>, dofs: &DofMap) -> JacobianLayout {
+fn jacobian_layout(elements: &[LocalElement], contact: Option<&ContactAssembly>, constraints: Option<&ConstraintAssembly>, dofs: &DofMap) -> JacobianLayout {
     let element_dofs: Vec<[PetscInt; DOFS]> = elements.iter().map(|el| el.dofs).collect();
-    let pairs: Vec<(usize, usize)> = contact.map(|c| c.pattern().pairs().collect()).unwrap_or_default();
-    JacobianLayout::new(&element_dofs, pairs, &dofs.dof)
+    JacobianLayout::new(&element_dofs, coupled_pairs(contact, constraints), &dofs.dof)
+}
+
+/// The node pairs the Jacobian couples beyond the elements: contact's and the constraints'.
+fn coupled_pairs(contact: Option<&ContactAssembly>, constraints: Option<&ConstraintAssembly>) -> Vec<(usize, usize)> {
+    let contact = contact.into_iter().flat_map(|c| c.pattern().pairs());
+    contact.chain(constraints.into_iter().flat_map(|c| c.pairs())).collect()
 }
 
 /// The material kernel of a model material.
@@ -170,11 +178,19 @@ impl<'s, 'm> Problem<'s, 'm> {
         let StepStart { step, history, contact } = start;
         let local = partition.local_elements();
         assert_eq!(history.len(), local.len(), "one history entry per local element");
-        // Free DOFs this rank's elements touch and those of every contact node: fetched by one
-        // scatter per evaluation, and the residual added back through the same scatter
+        // Free DOFs this rank's elements touch and those of every contact and constraint node:
+        // fetched by one scatter per evaluation, and the residual added back through the same
+        // scatter
         let contact_nodes = contact_nodes(model);
-        let mut needed: Vec<PetscInt> =
-            local.iter().flat_map(|&e| model.mesh.elements[e]).chain(contact_nodes.iter().copied()).flat_map(|n| dofs.dof[n]).filter(|&d| d >= 0).collect();
+        let constraint_nodes = ConstraintAssembly::model_nodes(model);
+        let mut needed: Vec<PetscInt> = local
+            .iter()
+            .flat_map(|&e| model.mesh.elements[e])
+            .chain(contact_nodes.iter().copied())
+            .chain(constraint_nodes.iter().copied())
+            .flat_map(|n| dofs.dof[n])
+            .filter(|&d| d >= 0)
+            .collect();
         needed.sort_unstable();
         needed.dedup();
         let gathered = Vector::seq(session, needed.len())?;
@@ -230,7 +246,8 @@ impl<'s, 'm> Problem<'s, 'm> {
         let trial = history.clone();
         let contact = ContactAssembly::new(model, step, partition, dofs, slot_of, contact);
         let local_residual = gathered.duplicate()?;
-        let layout = jacobian_layout(&elements, contact.as_ref(), dofs);
+        let constraints = ConstraintAssembly::new(model, partition, dofs, slot_of);
+        let layout = jacobian_layout(&elements, contact.as_ref(), constraints.as_ref(), dofs);
         Ok(Problem {
             model,
             materials,
@@ -254,6 +271,7 @@ impl<'s, 'm> Problem<'s, 'm> {
             force_sums: [0.0, 0.0],
             surface: SurfaceBranch::Elastic,
             contact,
+            constraints,
             load: LoadState {
                 prescribed: Vec::new(),
                 temperature: model.reference_temperature.clone(),

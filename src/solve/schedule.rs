@@ -68,9 +68,10 @@ impl StepLoads {
         StepLoads { prescribed, pressures, body_loads, nodal_forces, temperature: (t0, t1), constrained_sets }
     }
 
-    /// Which DOFs are prescribed in this step.
-    pub fn prescribed_mask(&self, nodes: usize) -> Vec<[bool; 2]> {
-        let mut mask = vec![[false; 2]; nodes];
+    /// Which DOFs are prescribed in this step: the step's, and those nothing touches (held
+    /// at zero, `Model::unused_dofs`).
+    pub fn prescribed_mask(&self, model: &Model) -> Vec<[bool; 2]> {
+        let mut mask = model.unused_dofs();
         for &(n, c) in self.prescribed.keys() {
             mask[n][c] = true;
         }

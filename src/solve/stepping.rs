@@ -159,7 +159,7 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
     for (s, step) in model.steps.iter().enumerate().skip(first_step) {
         let resumed_here = resumed.take();
         let loads = StepLoads::new(model, s, previous.as_ref(), resumed_here.as_ref().map_or(&displacement, |r| &r.step_start));
-        let prescribed = loads.prescribed_mask(nodes);
+        let prescribed = loads.prescribed_mask(model);
         // a constraint released at the step's start lets go of its reaction at once
         audit.release(&prescribed);
         let dofs = DofMap::new(&partition, &prescribed)?;

@@ -94,7 +94,7 @@ impl DataLine {
 }
 
 /// Fortran-style numbers too: "1.d3", "2.E+5", "200000.".
-fn parse_number(s: &str) -> Option<f64> {
+pub(super) fn parse_number(s: &str) -> Option<f64> {
     s.parse::<f64>().ok().or_else(|| s.replace(['d', 'D'], "e").parse::<f64>().ok()).filter(|v| v.is_finite())
 }
 

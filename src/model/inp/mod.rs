@@ -17,6 +17,7 @@
 //! ring and per 2-degree segment (columns `..._2deg`).
 
 pub mod cards;
+mod constraints;
 mod mesh;
 mod properties;
 mod steps;
@@ -168,6 +169,16 @@ struct Builder {
     interactions: BTreeMap<String, Interaction>,
     current_interaction: Option<String>,
     contacts: Vec<ListedPair>,
+    /// *EQUATION, *TIE and *PRE-TENSION SECTION, as linear constraints.
+    constraints: Vec<crate::model::Constraint>,
+    /// The *TIE cards, resolved at the deck's end.
+    ties: Vec<constraints::TieDef>,
+    /// The node set names the deck defines (NSET=): a set the reader makes for a node named
+    /// by number steers clear of them.
+    deck_node_sets: BTreeSet<String>,
+    /// (node, its partner) of every pre-tension section: the partner takes the node's
+    /// temperatures.
+    section_partners: Vec<(usize, usize)>,
     amplitudes: BTreeMap<String, Vec<(f64, f64)>>,
     /// *INITIAL CONDITIONS, TYPE=TEMPERATURE lines in order, and where the first card is.
     initial_temperature: Option<(Vec<NodeTemperatures>, Location)>,
@@ -191,6 +202,7 @@ struct Builder {
 
 fn build(cards: &[Card], source_text: String) -> Result<InpModel> {
     let mut b = Builder::default();
+    b.deck_node_sets = cards.iter().filter_map(|c| c.param("NSET")).map(|n| n.to_uppercase()).collect();
     // the card a material / interaction property belongs to
     let mut last_owner = "";
     for card in cards {
@@ -292,6 +304,9 @@ fn build(cards: &[Card], source_text: String) -> Result<InpModel> {
                 b.interaction_property(card)?;
             }
             "CONTACT PAIR" => b.contact_pair(card)?,
+            "EQUATION" => b.equation(card)?,
+            "TIE" => b.tie(card)?,
+            "PRE-TENSION SECTION" => b.pretension_section(card)?,
             "AMPLITUDE" => b.amplitude(card)?,
             "INITIAL CONDITIONS" => {
                 card.only(&["TYPE"])?;
@@ -356,9 +371,6 @@ fn build(cards: &[Card], source_text: String) -> Result<InpModel> {
                         "a heat-transfer load: slideline solves no heat conduction"
                     }
                     "FLUID CONSTANTS" | "FLUID SECTION" | "SPECIFIC GAS CONSTANT" => "slideline has no fluid networks",
-                    "PRE-TENSION SECTION" => {
-                        "bolt pre-tension sections are not built: pre-load a bolt by a prescribed shortening of its shank, or a pressure on a cut face"
-                    }
                     "FREQUENCY" | "BUCKLE" => "eigenvalue steps are read from the TOML deck only (procedure = \"frequency\" / \"buckle\", docs/deck.md)",
                     _ => return Err(card.error(format!("keyword *{other} is outside the subset slideline reads (docs/inp.md lists it)"))),
                 };
@@ -415,6 +427,7 @@ impl Builder {
             return Err(error_at(at, "STEP", "has no *END STEP"));
         }
         self.join_midside_nodes_to_sets();
+        self.resolve_ties()?;
         for (kind, n) in &self.element_types {
             self.notes.push(format!("{n} {kind} elements run as {}", element_note(kind)));
         }
@@ -521,6 +534,7 @@ impl Builder {
             stepping,
             output: super::OutputControls { every: self.output_every.unwrap_or(1), ..Default::default() },
             contacts,
+            constraints: self.constraints,
             steps,
             perturbations: Vec::new(),
             source_text,

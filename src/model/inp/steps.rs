@@ -63,7 +63,9 @@ impl Builder {
     /// A nodal field from `before` (None: every node the deck names must be given) with the
     /// values in order; `Err` counts the nodes left without one.
     pub(super) fn temperature_field(&self, before: Option<&Temperature>, lines: &[(Vec<usize>, f64)]) -> std::result::Result<Temperature, usize> {
-        let values = lines.iter().flat_map(|(set, t)| set.iter().map(move |&n| (n, *t)));
+        // a pre-tension section's partner node takes its node's temperature
+        let partner = |n: usize| self.section_partners.iter().filter(move |(a, _)| *a == n).map(|&(_, p)| p);
+        let values = lines.iter().flat_map(|(set, t)| set.iter().flat_map(move |&n| std::iter::once(n).chain(partner(n))).map(move |n| (n, *t)));
         temperature_field(self.mesh.coords.len(), &self.added_midside, before, values)
     }
 
@@ -228,7 +230,12 @@ impl Builder {
             let target = d.fields.first().cloned().unwrap_or_default();
             let nodes = self.node_items(d, "BOUNDARY", 0)?;
             let set = if target.chars().all(|c| c.is_ascii_digit()) {
-                let name = format!("N{target}");
+                // "N<number>", unless the deck names a set so (CalculiX's pret2 has both a
+                // node 1 in *BOUNDARY and a set N1 of another node)
+                let mut name = format!("N{target}");
+                while self.deck_node_sets.contains(&name) {
+                    name.push('_');
+                }
                 self.node_sets.insert(name.clone(), nodes);
                 name
             } else {

@@ -89,7 +89,8 @@ impl Problem<'_, '_> {
     /// from the element tangents at `x`. The load predictor of an increment solves
     /// K_ff du = -K_fp delta, so a prescribed displacement spreads through the structure
     /// before Newton starts, instead of squashing the elements next to the moved nodes.
-    /// Contact and load-stiffness couplings of prescribed nodes are left out (a predictor).
+    /// The constraints' couplings are in; contact's and the load stiffness's are left out (a
+    /// predictor).
     pub fn prescribed_coupling(&mut self, x: &impl VecOps, delta: &[[f64; 2]], f: &mut impl VecOps) -> Result<()> {
         let gathered = self.gather(x)?;
         f.set_all(0.0)?;
@@ -113,6 +114,12 @@ impl Problem<'_, '_> {
                 rows.push(self.elements[k].dofs[i]);
                 values.push(moved.iter().map(|&j| tangent[(i, j)] * delta[conn[j / 2]][j % 2]).sum());
             }
+        }
+        if let Some(constraints) = self.constraints.as_ref() {
+            constraints.prescribed_coupling(delta, |n, c, v| {
+                rows.push(self.dofs.dof[n][c]);
+                values.push(v);
+            });
         }
         // collective, whatever happened on this rank (see `assemble_residual`)
         if result.is_ok() {
@@ -155,6 +162,9 @@ impl Problem<'_, '_> {
                 }
             }
         }
+        if let Some(constraints) = self.constraints.as_ref() {
+            constraints.tangent(|a, ca, b, cb, v| self.layout.add_coupling(a, ca, b, cb, v));
+        }
         // the engagements and their tangents at this iterate: `fit_pattern` evaluated them
         if let Some(contact) = self.contact.as_ref() {
             for e in contact.engagements() {
@@ -180,7 +190,7 @@ impl Problem<'_, '_> {
         let free = |n: usize| dof[n].iter().any(|&d| d >= 0);
         if contact.pattern_mut().synchronise(&self.session.world(), |a, b| free(a) && free(b)) {
             contact.pattern_mut().refits += 1;
-            self.layout.set_pairs(contact.pattern().pairs(), &self.dofs.dof);
+            self.layout.set_pairs(super::coupled_pairs(Some(contact), self.constraints.as_ref()), &self.dofs.dof);
             let (rows, cols) = self.layout.indices();
             jacobian.preallocate_coo(rows, cols)?;
             self.structure_changed = true;
@@ -280,6 +290,11 @@ impl Problem<'_, '_> {
                 sink(n, c, -f);
                 fields.pressure_force[n][c] += f;
             }
+        }
+        if let Some(constraints) = self.constraints.as_ref() {
+            let (sums, floor) = constraints.residual(gathered, &self.load.prescribed, &mut sink);
+            forces = [forces[0] + sums[0], forces[1] + sums[1]];
+            roundoff += floor;
         }
         let stage = self.stages.contact;
         if let Some(contact) = self.contact.as_mut() {
