@@ -19,7 +19,7 @@ fn assembly(c: &mut Criterion) {
     let partition = Partition::new(&session, &m.mesh, &partition_affinity(&m)).expect("partition");
     let nodes = m.mesh.coords.len();
     let loads = StepLoads::new(&m, 0, None, &vec![[0.0; 2]; nodes]);
-    let dofs = DofMap::new(&partition, &loads.prescribed_mask(nodes)).expect("dofs");
+    let dofs = DofMap::new(&partition, &loads.prescribed_mask(&m)).expect("dofs");
     // two nearby states, alternated, so that no evaluation is served from the contact cache
     let xa = Vector::mpi(&session, session.comm(), dofs.local_len()).expect("vector");
     let mut xb = Vector::mpi(&session, session.comm(), dofs.local_len()).expect("vector");

@@ -78,7 +78,7 @@ impl ConstraintAssembly {
     pub fn residual(&self, gathered: &[f64], prescribed: &[[f64; 2]], mut sink: impl FnMut(usize, usize, f64)) -> ([f64; 2], f64) {
         let (mut forces, mut roundoff) = ([0.0, 0.0], 0.0);
         for c in &self.local {
-            let u = |i: usize| c.slots[i].map_or(prescribed[c.terms[i].0][c.terms[i].1], |s| gathered[s]);
+            let u = |i: usize| c.slots[i].map_or_else(|| prescribed[c.terms[i].0][c.terms[i].1], |s| gathered[s]);
             let g: f64 = c.terms.iter().enumerate().map(|(i, t)| t.2 * u(i)).sum();
             let size: f64 = c.terms.iter().enumerate().map(|(i, t)| (t.2 * u(i)).abs()).sum();
             for &(n, k, a) in &c.terms {

@@ -29,10 +29,11 @@ fn component(dof: f64, card: &Card, node: u64) -> Result<Component> {
 
 /// Terms of `sum a (n . u)` over the nonzero components of the in-plane vector `n`.
 fn along(node: usize, n: [f64; 2], a: f64) -> impl Iterator<Item = Term> {
-    [Component::R, Component::Z]
-        .into_iter()
-        .filter(move |&c| n[c as usize].abs() > 1e-10)
-        .map(move |component| Term { node, component, coefficient: a * n[component as usize] })
+    [Component::R, Component::Z].into_iter().filter(move |&c| n[c as usize].abs() > 1e-10).map(move |component| Term {
+        node,
+        component,
+        coefficient: a * n[component as usize],
+    })
 }
 
 impl Builder {
@@ -76,13 +77,21 @@ impl Builder {
         }
         let name = card.required("NAME")?.to_uppercase();
         let tolerance = match card.param("POSITION TOLERANCE") {
-            Some(t) => Some(super::cards::parse_number(t).filter(|v| *v > 0.0).ok_or_else(|| card.error(format!("POSITION TOLERANCE={t}: a distance > 0 (mm)")))?),
+            Some(t) => {
+                Some(super::cards::parse_number(t).filter(|v| *v > 0.0).ok_or_else(|| card.error(format!("POSITION TOLERANCE={t}: a distance > 0 (mm)")))?)
+            }
             None => None,
         };
         let [d] = card.data.as_slice() else {
             return Err(card.error("needs one line: the slave surface, the master surface"));
         };
-        let surface = |k: usize| d.fields.get(k).filter(|s| !s.is_empty()).map(|s| s.to_uppercase()).ok_or_else(|| card.error("needs one line: the slave surface, the master surface"));
+        let surface = |k: usize| {
+            d.fields
+                .get(k)
+                .filter(|s| !s.is_empty())
+                .map(|s| s.to_uppercase())
+                .ok_or_else(|| card.error("needs one line: the slave surface, the master surface"))
+        };
         self.ties.push(TieDef { name, slave: surface(0)?, master: surface(1)?, tolerance, at: card.at.clone() });
         Ok(())
     }
@@ -165,7 +174,7 @@ impl Builder {
             None => faces.iter().map(|&e| self.outward_normal(e)).fold([0.0, 0.0], |s, n| [s[0] + n[0], s[1] + n[1]]),
         };
         let length = normal[0].hypot(normal[1]);
-        if !(length > 0.0) {
+        if length.is_nan() || length <= 0.0 {
             return Err(card.error(format!("surface {name}: the normal ({}, {}) has no direction", normal[0], normal[1])));
         }
         let n = [normal[0] / length, normal[1] / length];

@@ -201,8 +201,7 @@ struct Builder {
 }
 
 fn build(cards: &[Card], source_text: String) -> Result<InpModel> {
-    let mut b = Builder::default();
-    b.deck_node_sets = cards.iter().filter_map(|c| c.param("NSET")).map(|n| n.to_uppercase()).collect();
+    let mut b = Builder { deck_node_sets: cards.iter().filter_map(|c| c.param("NSET")).map(|n| n.to_uppercase()).collect(), ..Builder::default() };
     // the card a material / interaction property belongs to
     let mut last_owner = "";
     for card in cards {

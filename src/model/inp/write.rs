@@ -149,6 +149,16 @@ pub fn to_inp(model: &Model, title: &str) -> Result<String> {
             let _ = writeln!(w, "*CONTACT PAIR, INTERACTION={name}, TYPE={kind}\n{}, {}", c.master, c.slave);
         }
     }
+    // every multi-point constraint as an equation (a pre-tension section's and a tie's too:
+    // the mesh written holds their partner nodes)
+    for c in &model.constraints {
+        let _ = writeln!(w, "*EQUATION\n{}", c.terms.len());
+        for line in c.terms.chunks(4) {
+            let terms: Vec<String> =
+                line.iter().map(|t| format!("{}, {}, {}", model.mesh.node_ids[t.node], t.component as usize + 1, num(t.coefficient))).collect();
+            let _ = writeln!(w, "{}", terms.join(", "));
+        }
+    }
     let _ = writeln!(w, "*INITIAL CONDITIONS, TYPE=TEMPERATURE");
     temperature_lines(w, model, &model.reference_temperature);
 
@@ -364,6 +374,24 @@ contact_friction = [ { pair = "one", friction = 0.0 } ]
 
     /// A pair's exponential pressure-overclosure law is written as CalculiX's EXPONENTIAL line
     /// (c0, p0 per listing: a two-pass pair's p0 halved) and read back to the same law.
+    /// A deck's constraints (here a pre-tension section's and an equation) are written as
+    /// equations over the mesh with its partner nodes, and read back the same.
+    #[test]
+    fn constraints_are_written_as_equations_and_read_back() {
+        let deck = "*NODE\n1,0.1,2.\n2,0.1,1.\n3,1.1,1.\n4,1.1,2.\n5,0.1,1.5\n6,0.6,1.\n7,1.1,1.5\n8,0.6,2.\n9,0.1,0.\n10,1.1,0.\n11,0.1,0.5\n12,0.6,0.\n13,1.1,0.5\n14,0.,0.\n\
+            *ELEMENT, TYPE=CAX8, ELSET=EALL\n1, 1, 2, 3, 4, 5, 6, 7, 8\n2, 2, 9, 10, 3, 11, 12, 13, 6\n*MATERIAL,NAME=EL\n*ELASTIC\n210000.,.3\n\
+            *SOLID SECTION,ELSET=EALL,MATERIAL=EL\n*NSET,NSET=ENDS\n1,4,8,9,10,12\n*BOUNDARY\nENDS,2,2\n*SURFACE,NAME=CUT\n1,S2\n\
+            *PRE-TENSION SECTION,SURFACE=CUT,NODE=14\n*EQUATION\n2\n5,1,1.,7,1,-0.5\n*STEP\n*STATIC\n*BOUNDARY\n14,1,1,.01\n*END STEP\n";
+        let model = crate::model::inp::parse(deck, Path::new("pret.inp")).unwrap().model;
+        assert_eq!(model.constraints.len(), 7, "3 pairs x (tangential, normal) and the equation");
+        let text = super::to_inp(&model, "pret").unwrap();
+        let read = crate::model::inp::parse(&text, Path::new("back.inp")).unwrap().model;
+        assert_eq!(read.mesh.node_ids, model.mesh.node_ids);
+        assert_eq!(read.mesh.elements, model.mesh.elements);
+        let terms = |m: &Model| m.constraints.iter().map(|c| c.terms.clone()).collect::<Vec<_>>();
+        assert_eq!(terms(&read), terms(&model));
+    }
+
     #[test]
     fn the_exponential_law_is_written_and_read_back() {
         let deck = TWO_BLOCKS.to_string()
