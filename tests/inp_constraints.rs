@@ -182,3 +182,19 @@ TOP,2,2,0.01
     // the slave node between the master's nodes follows the master face's quadratic field
     assert!((u[&15][1] - 0.005).abs() < 1e-8 && (u[&15][0] + 0.0015 * 10.4).abs() < 1e-7, "{:?}", u[&15]);
 }
+
+/// PETSc's check of the assembled Jacobian against finite differences of the assembled
+/// residual (`-snes_test_jacobian`, as tests/snes_test_jacobian.rs) on 2 ranks, with the
+/// pre-tension section's constraints, whose reference node is loaded: ||J - J_fd|| / ||J||
+/// below 1e-6 at every Newton iterate.
+#[test]
+fn the_assembled_constraint_tangent_matches_finite_differences_on_two_ranks() {
+    let deck = PRET2.replace("LOAD\n", "*CLOAD\n14,1,3958.4\n");
+    let run = run_deck_file("pret2.inp", &deck, &[], 2, &["--", "-snes_test_jacobian"]);
+    run.assert_ok();
+    let ratios = common::jacobian_test_ratios(&run.stdout());
+    assert!(!ratios.is_empty(), "PETSc printed no Jacobian test:\n{}", run.stdout());
+    for r in &ratios {
+        assert!(*r < 1e-6, "||J - Jfd|| / ||J|| = {r:e}\n{}", run.stdout());
+    }
+}
