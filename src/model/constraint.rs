@@ -2,8 +2,13 @@
 //! CalculiX's *EQUATION, *TIE and *PRE-TENSION SECTION all reduce to them (the reader builds
 //! them); the solver enforces each by a penalty (`solve::constraints`).
 
-use super::{Component, Model};
+use super::{Component, Edge, Mesh, Model};
+use crate::contact::node_to_edge::project_on_edge;
 use crate::error::{Error, Result};
+use crate::fe::quadrature::GAUSS3;
+use crate::fe::section::Section;
+use crate::fe::shape::line3;
+use std::collections::BTreeMap;
 
 /// One term a u(node, component) of a constraint.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -32,6 +37,79 @@ impl Constraint {
         }
         nodes
     }
+}
+
+/// The constraints of a tie (CalculiX's and Abaqus's *TIE; TOML's `[[tie]]`), integrated along
+/// the slave surface as a mortar: for each slave node a and each component,
+/// int N_a (u_slave - u_master(nearest point)) m dGamma = 0 over the part of the slave faces
+/// within `tolerance` of a master face (m = r in axisymmetry, the thickness in a plane
+/// section, by `sections` of the slave faces' elements), divided by int N_a m dGamma. Each
+/// slave face is cut where a master corner projects on it, and each piece integrated with 3
+/// Gauss points, so a uniform traction passes between non-matching quadratic meshes exactly
+/// (the patch test; a tie node by node does not pass it). Also returns how many slave nodes
+/// are tied and how many are farther away, left free.
+pub fn tie(mesh: &Mesh, sections: &[Section], name: &str, slave: &[Edge], master: &[Edge], tolerance: f64) -> (Vec<Constraint>, usize, usize) {
+    let master_nodes: Vec<[usize; 3]> = master.iter().map(|&e| mesh.edge_nodes(e)).collect();
+    let nearest = |x: [f64; 2]| {
+        master_nodes
+            .iter()
+            .filter_map(|ids| project_on_edge(x, &ids.map(|n| mesh.coords[n])).map(|p| (p.distance, p.xi.clamp(-1.0, 1.0), *ids)))
+            .min_by(|a, b| a.0.total_cmp(&b.0))
+            .filter(|p| p.0 <= tolerance)
+    };
+    // per slave node: its weight int N_a m dGamma and its terms (node -> coefficient)
+    let mut rows: BTreeMap<usize, (f64, BTreeMap<usize, f64>)> = BTreeMap::new();
+    let mut seen: Vec<usize> = Vec::new();
+    for &e in slave {
+        let ids = mesh.edge_nodes(e);
+        let x = ids.map(|n| mesh.coords[n]);
+        seen.extend(ids);
+        // where the master's corners project on this face
+        let mut cuts: Vec<f64> = master_nodes
+            .iter()
+            .flat_map(|m| [m[0], m[1]])
+            .filter_map(|n| project_on_edge(mesh.coords[n], &x).filter(|p| p.distance <= tolerance && p.xi.abs() < 1.0).map(|p| p.xi))
+            .chain([-1.0, 1.0])
+            .collect();
+        cuts.sort_by(f64::total_cmp);
+        cuts.dedup_by(|a, b| (*a - *b).abs() < 1e-12);
+        for piece in cuts.windows(2) {
+            let half = 0.5 * (piece[1] - piece[0]);
+            for (g, w) in GAUSS3 {
+                let xi = 0.5 * (piece[0] + piece[1]) + half * g;
+                let (n, dn) = line3(xi);
+                let point = [0, 1].map(|c| (0..3).map(|k| n[k] * x[k][c]).sum::<f64>());
+                let tangent = [0, 1].map(|c| (0..3).map(|k| dn[k] * x[k][c]).sum::<f64>());
+                let Some((_, xi_m, m_ids)) = nearest(point) else { continue };
+                let weight = w * half * tangent[0].hypot(tangent[1]) * sections[e.element].measure(point[0]);
+                let n_m = line3(xi_m).0;
+                for a in 0..3 {
+                    let row = rows.entry(ids[a]).or_default();
+                    row.0 += weight * n[a];
+                    for b in 0..3 {
+                        *row.1.entry(ids[b]).or_default() += weight * n[a] * n[b];
+                        *row.1.entry(m_ids[b]).or_default() -= weight * n[a] * n_m[b];
+                    }
+                }
+            }
+        }
+    }
+    seen.sort_unstable();
+    seen.dedup();
+    let far = seen.iter().filter(|n| !rows.get(n).is_some_and(|r| r.0 > 0.0)).count();
+    let mut constraints = Vec::new();
+    for (&s, (area, terms)) in rows.iter().filter(|(_, r)| r.0 > 0.0) {
+        for component in [Component::R, Component::Z] {
+            let terms = terms.iter().filter(|(_, c)| c.abs() > 1e-12 * area).map(|(&node, c)| Term { node, component, coefficient: c / area }).collect();
+            constraints.push(Constraint { origin: format!("tie {name}, node {}", mesh.node_ids[s]), terms });
+        }
+    }
+    (constraints, seen.len() - far, far)
+}
+
+/// A tie's default position tolerance: 5 % of its master faces' mean length.
+pub fn default_tie_tolerance(mesh: &Mesh, master: &[Edge]) -> f64 {
+    0.05 * master.iter().map(|&e| mesh.edge_length(e)).sum::<f64>() / master.len().max(1) as f64
 }
 
 impl Model {

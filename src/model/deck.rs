@@ -77,6 +77,7 @@
 //!                                   # tangential_penalty / elastic_slip as in [[contact]])
 //! ```
 
+use super::constraint::{default_tie_tolerance, tie};
 use super::mesh::{blocks, rectangle, split_into_triangles, Block, MeshSets};
 use super::perturbation::{Analysis, HarmonicComponent, HarmonicDisplacement, Perturbation, RingMotion};
 use super::{
@@ -112,7 +113,20 @@ struct DeckFile {
     #[serde(default)]
     contact: Vec<ContactSpec>,
     #[serde(default)]
+    tie: Vec<TieSpec>,
+    #[serde(default)]
     step: Vec<StepSpec>,
+}
+
+/// `[[tie]]`: the slave surface's nodes glued to the master's faces (`model::constraint::tie`).
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct TieSpec {
+    name: Option<String>,
+    slave: String,
+    master: String,
+    /// mm; default 5 % of the master faces' mean length.
+    tolerance: Option<f64>,
 }
 
 #[derive(Deserialize, Default)]
@@ -735,6 +749,22 @@ pub fn parse(text: &str, path: &Path) -> Result<Model> {
             }),
         });
     }
+    let mut constraints = Vec::new();
+    for t in &deck.tie {
+        let name = t.name.clone().unwrap_or_else(|| format!("{}-{}", t.slave, t.master));
+        let edges = |s: &String| surfaces.get(s).map(|v| v.as_slice()).ok_or_else(|| Error::input(format!("tie '{name}': unknown surface '{s}'")));
+        let (slave, master) = (edges(&t.slave)?, edges(&t.master)?);
+        let tolerance = match t.tolerance {
+            Some(v) if v > 0.0 && v.is_finite() => v,
+            Some(v) => return Err(Error::input(format!("tie '{name}': tolerance {v}: give a distance > 0 (mm)"))),
+            None => default_tie_tolerance(&mesh, master),
+        };
+        let (tied, count, _) = tie(&mesh, &vec![deck.section()?; mesh.elements.len()], &name, slave, master, tolerance);
+        if count == 0 {
+            return Err(Error::input(format!("tie '{name}': no node of '{}' lies within {tolerance:.3e} mm of '{}'", t.slave, t.master)));
+        }
+        constraints.extend(tied);
+    }
     let kinematics = if deck.nlgeom { Kinematics::Finite } else { Kinematics::Small };
     let section = deck.section()?;
     let n_elements = mesh.elements.len();
@@ -755,7 +785,7 @@ pub fn parse(text: &str, path: &Path) -> Result<Model> {
             precision: deck.output.precision.unwrap_or_default(),
         },
         contacts,
-        constraints: Vec::new(),
+        constraints,
         steps,
         perturbations,
         source_text: text.to_string(),

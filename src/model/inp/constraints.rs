@@ -4,9 +4,9 @@
 
 use super::cards::{error_at, Card, Location};
 use super::Builder;
-use crate::contact::node_to_edge::{edge_weights, project_on_edge};
 use crate::error::Result;
 use crate::fe::shape::Shape;
+use crate::model::constraint::{default_tie_tolerance, tie};
 use crate::model::{Component, Constraint, Edge, Term};
 
 /// A *TIE, resolved once the whole deck is read (its surfaces may follow it).
@@ -96,51 +96,22 @@ impl Builder {
         Ok(())
     }
 
-    /// The ties' constraints: each slave node within the position tolerance of a master
-    /// face follows the point of the face nearest it, u_s = sum_i N_i(xi) u_i, in both
-    /// components. The tolerance defaults to 5 % of the master faces' mean length.
+    /// The ties' constraints (`model::constraint::tie`); the tolerance defaults to 5 % of the
+    /// master faces' mean length.
     pub(super) fn resolve_ties(&mut self) -> Result<()> {
-        for tie in std::mem::take(&mut self.ties) {
-            let faces = |name: &str| -> Result<Vec<Edge>> {
-                self.surfaces.get(name).cloned().ok_or_else(|| error_at(&tie.at, "TIE", format!("tie {}: surface {name} is not defined", tie.name)))
+        for t in std::mem::take(&mut self.ties) {
+            let faces = |name: &str| -> Result<&Vec<Edge>> {
+                self.surfaces.get(name).ok_or_else(|| error_at(&t.at, "TIE", format!("tie {}: surface {name} is not defined", t.name)))
             };
-            let (slave, master) = (faces(&tie.slave)?, faces(&tie.master)?);
-            let mean = master.iter().map(|&e| self.mesh.edge_length(e)).sum::<f64>() / master.len().max(1) as f64;
-            let tolerance = tie.tolerance.unwrap_or(0.05 * mean);
-            let mut nodes: Vec<usize> = slave.iter().flat_map(|&e| self.mesh.edge_nodes(e)).collect();
-            nodes.sort_unstable();
-            nodes.dedup();
-            let (mut tied, mut far) = (0, 0);
-            for s in nodes {
-                let xs = self.mesh.coords[s];
-                let nearest = master
-                    .iter()
-                    .filter_map(|&e| {
-                        let ids = self.mesh.edge_nodes(e);
-                        project_on_edge(xs, &ids.map(|n| self.mesh.coords[n])).map(|p| (p.distance, p.xi.clamp(-1.0, 1.0), ids))
-                    })
-                    .min_by(|a, b| a.0.total_cmp(&b.0));
-                match nearest {
-                    Some((distance, xi, ids)) if distance <= tolerance => {
-                        if ids.contains(&s) {
-                            continue; // the slave node is a node of the face: tied already
-                        }
-                        let w = edge_weights(xi);
-                        for component in [Component::R, Component::Z] {
-                            let mut terms = vec![Term { node: s, component, coefficient: 1.0 }];
-                            terms.extend(ids.iter().zip(w).filter(|(_, w)| w.abs() > 1e-12).map(|(&node, w)| Term { node, component, coefficient: -w }));
-                            self.constraints.push(Constraint { origin: format!("tie {}, node {}", tie.name, self.mesh.node_ids[s]), terms });
-                        }
-                        tied += 1;
-                    }
-                    _ => far += 1,
-                }
-            }
+            let (slave, master) = (faces(&t.slave)?, faces(&t.master)?);
+            let tolerance = t.tolerance.unwrap_or_else(|| default_tie_tolerance(&self.mesh, master));
+            let (constraints, tied, far) = tie(&self.mesh, &self.element_family, &t.name, slave, master, tolerance);
             if tied == 0 {
-                return Err(error_at(&tie.at, "TIE", format!("tie {}: no node of {} lies within {tolerance:.3e} mm of {}", tie.name, tie.slave, tie.master)));
+                return Err(error_at(&t.at, "TIE", format!("tie {}: no node of {} lies within {tolerance:.3e} mm of {}", t.name, t.slave, t.master)));
             }
             let beyond = if far > 0 { format!("; {far} farther than {tolerance:.3e} mm stay free") } else { String::new() };
-            self.notes.push(format!("tie {} ({}): {tied} nodes of {} follow {}{beyond}", tie.name, tie.at, tie.slave, tie.master));
+            self.notes.push(format!("tie {} ({}): {tied} nodes of {} follow {}{beyond}", t.name, t.at, t.slave, t.master));
+            self.constraints.extend(constraints);
         }
         Ok(())
     }

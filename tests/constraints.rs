@@ -1,5 +1,5 @@
-//! Multi-point constraints read from CalculiX decks (*PRE-TENSION SECTION, *EQUATION, *TIE),
-//! each against the exact solution of a tube r 10..12 (or 0.1..1.1) pulled along its axis with
+//! Multi-point constraints, read from CalculiX decks (*PRE-TENSION SECTION, *EQUATION, *TIE)
+//! and from the TOML deck (`[[tie]]`), each against the exact solution of a tube r 10..12 (or 0.1..1.1) pulled along its axis with
 //! its lateral faces free: sigma_zz = E eps uniform, u_r = -nu eps r, u_z = eps z (Timoshenko &
 //! Goodier, Theory of Elasticity, simple tension; the quadratic elements hold this linear field
 //! exactly, so only the penalty's give of ~1e-6 separates the run from it).
@@ -16,9 +16,11 @@
 //! 3. *TIE: the same tube as two blocks meshed differently (one element below z = 1, two above,
 //!    split at r = 10.8), the upper block's bottom tied to the lower block's top, pulled by 0.01
 //!    at z = 2: sigma_zz = E 0.01 / 2 = 1050 MPa in every element to 1e-5, on 2 ranks.
+//! 4. The same from a TOML deck (small strain): two `[[mesh.block]]`s of 2 x 1 and 3 x 2
+//!    elements joined by a `[[tie]]`, on 2 ranks: 1050 MPa to 1e-5.
 
 mod common;
-use common::{run_deck_file, Results};
+use common::{run_deck, run_deck_file, Results};
 use std::f64::consts::PI;
 
 const PRET2: &str = "*NODE, NSET=Nall
@@ -197,4 +199,37 @@ fn the_assembled_constraint_tangent_matches_finite_differences_on_two_ranks() {
     for r in &ratios {
         assert!(*r < 1e-6, "||J - Jfd|| / ||J|| = {r:e}\n{}", run.stdout());
     }
+}
+
+#[test]
+fn a_toml_tie_joins_two_blocks_meshed_differently() {
+    let deck = r#"
+nlgeom = false
+[mesh]
+[[mesh.block]]
+name = "low"
+r = [10.0, 12.0]
+z = [0.0, 1.0]
+divisions = [2, 1]
+[[mesh.block]]
+name = "up"
+r = [10.0, 12.0]
+z = [1.0, 2.0]
+divisions = [3, 2]
+
+[[material]]
+name = "steel"
+youngs_modulus = 210000.0
+poissons_ratio = 0.3
+
+[[tie]]
+slave = "up_bottom"
+master = "low_top"
+
+[[step]]
+boundary = [ { set = "low_bottom", uz = 0.0 }, { set = "up_top", uz = 0.01 } ]
+"#;
+    let run = run_deck(deck, &[], 2, &[]);
+    run.assert_ok();
+    assert_uniaxial(&Results::open(&run.h5), 1050.0, 0.005, "TOML tie");
 }
