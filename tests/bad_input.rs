@@ -416,3 +416,17 @@ fn output_places_that_cannot_take_a_file_are_refused_first() {
         assert_rejected(&run, &["cannot write"]);
     }
 }
+
+/// A `[[tie]]` names its unknown surface, a tolerance that is no distance, and surfaces too far
+/// apart to tie.
+#[test]
+fn a_wrong_tie_is_named() {
+    for (tie, needles) in [
+        ("slave = \"top\"\nmaster = \"topp\"\n", ["tie 'top-topp'", "unknown surface 'topp'"]),
+        ("slave = \"top\"\nmaster = \"bottom\"\ntolerance = -1.0\n", ["tie 'top-bottom'", "tolerance -1: give a distance > 0"]),
+        ("name = \"far\"\nslave = \"top\"\nmaster = \"bottom\"\n", ["tie 'far'", "no node of 'top' lies within"]),
+    ] {
+        let run = run_deck(&format!("{RECT}{MATERIAL}[[tie]]\n{tie}{STEP}"), &[], 1, &[]);
+        assert_rejected(&run, &needles);
+    }
+}
