@@ -7,7 +7,7 @@ use crate::contact::node_to_edge::project_on_edge;
 use crate::error::{Error, Result};
 use crate::fe::quadrature::GAUSS3;
 use crate::fe::section::Section;
-use crate::fe::shape::line3;
+use crate::fe::shape::{line3, Shape};
 use std::collections::BTreeMap;
 
 /// One term a u(node, component) of a constraint.
@@ -105,6 +105,71 @@ pub fn tie(mesh: &Mesh, sections: &[Section], name: &str, slave: &[Edge], master
         }
     }
     (constraints, seen.len() - far, far)
+}
+
+/// A pre-tension section built into the mesh: its constraints, each (node, partner) pair, and
+/// its unit normal.
+pub struct PretensionSection {
+    pub constraints: Vec<Constraint>,
+    pub partners: Vec<(usize, usize)>,
+    pub normal: [f64; 2],
+}
+
+/// A bolt's pre-tension section across `faces` (CalculiX's *PRE-TENSION SECTION, read from its
+/// pretensionsections.f; TOML's `[[pretension]]`): the faces' nodes are doubled, the partners
+/// (numbered on from the highest node) taking the node's place in the faces' own elements; each
+/// pair is tied across the section and opens along the normal by the same amount, the
+/// `reference` node's u_1: n . (u_node - u_partner) + u_1 = 0 for the first pair, the others'
+/// openings equal to the first's. A positive u_1 overlaps the two sides (the bolt shortens);
+/// the force on u_1 is the pre-load. The normal is `normal`, else the faces' mean outward one.
+pub fn pretension(mesh: &mut Mesh, name: &str, faces: &[Edge], reference: usize, normal: Option<[f64; 2]>) -> std::result::Result<PretensionSection, String> {
+    let normal = normal.unwrap_or_else(|| faces.iter().map(|&e| outward_normal(mesh, e)).fold([0.0, 0.0], |s, n| [s[0] + n[0], s[1] + n[1]]));
+    let length = normal[0].hypot(normal[1]);
+    if length.is_nan() || length <= 0.0 {
+        return Err(format!("pre-tension section {name}: the normal ({}, {}) has no direction", normal[0], normal[1]));
+    }
+    let n = [normal[0] / length, normal[1] / length];
+    let t = [-n[1], n[0]];
+    let along = |node: usize, v: [f64; 2], a: f64| {
+        [Component::R, Component::Z].into_iter().filter(move |&c| v[c as usize].abs() > 1e-10).map(move |component| Term {
+            node,
+            component,
+            coefficient: a * v[component as usize],
+        })
+    };
+    let (mut constraints, mut partners) = (Vec::new(), Vec::<(usize, usize)>::new());
+    for &e in faces {
+        let conn = mesh.elements[e.element];
+        for a in Shape::of(&conn).edge_nodes(e.side) {
+            let node = conn[a];
+            if let Some(&(_, p)) = partners.iter().find(|(n, _)| *n == node) {
+                mesh.elements[e.element][a] = p;
+                continue;
+            }
+            let origin = format!("pre-tension section {name}, node {}", mesh.node_ids[node]);
+            let partner = mesh.coords.len();
+            mesh.coords.push(mesh.coords[node]);
+            mesh.node_ids.push(mesh.node_ids.iter().copied().max().unwrap_or(0) + 1);
+            mesh.elements[e.element][a] = partner;
+            constraints.push(Constraint { origin: origin.clone(), terms: along(node, t, 1.0).chain(along(partner, t, -1.0)).collect() });
+            let opening = along(node, n, 1.0).chain(along(partner, n, -1.0));
+            let terms = match partners.first() {
+                None => opening.chain([Term { node: reference, component: Component::R, coefficient: 1.0 }]).collect(),
+                Some(&(n0, p0)) => opening.chain(along(n0, n, -1.0)).chain(along(p0, n, 1.0)).collect(),
+            };
+            constraints.push(Constraint { origin, terms });
+            partners.push((node, partner));
+        }
+    }
+    Ok(PretensionSection { constraints, partners, normal: n })
+}
+
+/// The outward unit normal of an element face (elements run counter-clockwise).
+fn outward_normal(mesh: &Mesh, e: Edge) -> [f64; 2] {
+    let [a, b, _] = mesh.edge_nodes(e).map(|n| mesh.coords[n]);
+    let (dr, dz) = (b[0] - a[0], b[1] - a[1]);
+    let l = dr.hypot(dz);
+    [dz / l, -dr / l]
 }
 
 /// A tie's default position tolerance: 5 % of its master faces' mean length.

@@ -5,8 +5,7 @@
 use super::cards::{error_at, Card, Location};
 use super::Builder;
 use crate::error::Result;
-use crate::fe::shape::Shape;
-use crate::model::constraint::{default_tie_tolerance, tie};
+use crate::model::constraint::{default_tie_tolerance, pretension, tie};
 use crate::model::{Component, Constraint, Edge, Term};
 
 /// A *TIE, resolved once the whole deck is read (its surfaces may follow it).
@@ -25,15 +24,6 @@ fn component(dof: f64, card: &Card, node: u64) -> Result<Component> {
         2.0 => Ok(Component::Z),
         _ => Err(card.error(format!("node {node}: degree of freedom {dof}: slideline's models have 1 (u_r, or u_x) and 2 (u_z, or u_y)"))),
     }
-}
-
-/// Terms of `sum a (n . u)` over the nonzero components of the in-plane vector `n`.
-fn along(node: usize, n: [f64; 2], a: f64) -> impl Iterator<Item = Term> {
-    [Component::R, Component::Z].into_iter().filter(move |&c| n[c as usize].abs() > 1e-10).map(move |component| Term {
-        node,
-        component,
-        coefficient: a * n[component as usize],
-    })
 }
 
 impl Builder {
@@ -116,13 +106,8 @@ impl Builder {
         Ok(())
     }
 
-    /// *PRE-TENSION SECTION, SURFACE=S, NODE=N (CalculiX's `pretensionsections.f`): the
-    /// section's nodes are doubled, the surface's own elements taking the new partner nodes;
-    /// each pair moves together across the normal n (tangentially tied), and opens along n by
-    /// the same amount, the reference node's u_1: n . (u_node - u_partner) + u_1 = 0 for the
-    /// first pair, the others' openings equal to the first's. A positive u_1 overlaps the two
-    /// sides: the bolt is shortened, its pre-load the force on u_1. The normal is the line
-    /// after the card, else the mean outward normal of the surface's faces.
+    /// *PRE-TENSION SECTION, SURFACE=S, NODE=N (`model::constraint::pretension`): the normal
+    /// is the line after the card, else the surface's mean outward normal.
     pub(super) fn pretension_section(&mut self, card: &Card) -> Result<()> {
         card.only(&["SURFACE", "NODE", "ELEMENT"])?;
         if card.has("ELEMENT") {
@@ -140,71 +125,24 @@ impl Builder {
                 if n[2] != 0.0 {
                     return Err(error_at(&d.at, "PRE-TENSION SECTION", "the normal has a third component: slideline's models lie in the r-z (x-y) plane"));
                 }
-                [n[0], n[1]]
+                Some([n[0], n[1]])
             }
-            None => faces.iter().map(|&e| self.outward_normal(e)).fold([0.0, 0.0], |s, n| [s[0] + n[0], s[1] + n[1]]),
+            None => None,
         };
-        let length = normal[0].hypot(normal[1]);
-        if length.is_nan() || length <= 0.0 {
-            return Err(card.error(format!("surface {name}: the normal ({}, {}) has no direction", normal[0], normal[1])));
-        }
-        let n = [normal[0] / length, normal[1] / length];
-        let t = [-n[1], n[0]];
-        let mut first: Option<(usize, usize)> = None;
-        let mut partners: Vec<(usize, usize)> = Vec::new();
-        for e in faces {
-            let conn = self.mesh.elements[e.element];
-            for a in Shape::of(&conn).edge_nodes(e.side) {
-                let node = conn[a];
-                if let Some(&(_, p)) = partners.iter().find(|(n, _)| *n == node) {
-                    self.mesh.elements[e.element][a] = p;
-                    continue;
-                }
-                let origin = format!("pre-tension section {name}, node {}", self.mesh.node_ids[node]);
-                let partner = self.add_partner_node(node, card)?;
-                self.mesh.elements[e.element][a] = partner;
-                partners.push((node, partner));
-                let tangential = along(node, t, 1.0).chain(along(partner, t, -1.0)).collect();
-                self.constraints.push(Constraint { origin: origin.clone(), terms: tangential });
-                let opening = along(node, n, 1.0).chain(along(partner, n, -1.0));
-                let terms = match first {
-                    None => opening.chain([Term { node: reference, component: Component::R, coefficient: 1.0 }]).collect(),
-                    Some((n0, p0)) => opening.chain(along(n0, n, -1.0)).chain(along(p0, n, 1.0)).collect(),
-                };
-                first.get_or_insert((node, partner));
-                self.constraints.push(Constraint { origin, terms });
-            }
+        let section = pretension(&mut self.mesh, &name, &faces, reference, normal).map_err(|m| card.error(m))?;
+        for &(_, p) in &section.partners {
+            self.node_index.insert(self.mesh.node_ids[p], p);
         }
         self.notes.push(format!(
             "pre-tension section {name} ({}): {} nodes doubled, normal ({:.4}, {:.4}); node {}'s u_1 is the shortening across it, its force the pre-load",
             card.at,
-            partners.len(),
-            n[0],
-            n[1],
+            section.partners.len(),
+            section.normal[0],
+            section.normal[1],
             self.mesh.node_ids[reference]
         ));
-        self.section_partners.extend(partners);
+        self.constraints.extend(section.constraints);
+        self.section_partners.extend(section.partners);
         Ok(())
-    }
-
-    /// A new node at `node`'s place, numbered after the highest number so far (as CalculiX).
-    fn add_partner_node(&mut self, node: usize, card: &Card) -> Result<usize> {
-        let id = self.mesh.node_ids.iter().copied().max().unwrap_or(0) + 1;
-        if self.node_index.contains_key(&id) {
-            return Err(card.error(format!("node number {id} for a partner node is taken")));
-        }
-        let index = self.mesh.coords.len();
-        self.node_index.insert(id, index);
-        self.mesh.coords.push(self.mesh.coords[node]);
-        self.mesh.node_ids.push(id);
-        Ok(index)
-    }
-
-    /// The outward unit normal of an element face (elements run counter-clockwise).
-    fn outward_normal(&self, e: Edge) -> [f64; 2] {
-        let [a, b, _] = self.mesh.edge_nodes(e).map(|n| self.mesh.coords[n]);
-        let (dr, dz) = (b[0] - a[0], b[1] - a[1]);
-        let l = dr.hypot(dz);
-        [dz / l, -dr / l]
     }
 }
