@@ -26,19 +26,6 @@ pub struct Constraint {
     pub terms: Vec<Term>,
 }
 
-impl Constraint {
-    /// The distinct nodes of its terms, in order of first appearance.
-    pub fn nodes(&self) -> Vec<usize> {
-        let mut nodes: Vec<usize> = Vec::with_capacity(self.terms.len());
-        for t in &self.terms {
-            if !nodes.contains(&t.node) {
-                nodes.push(t.node);
-            }
-        }
-        nodes
-    }
-}
-
 /// The constraints of a tie (CalculiX's and Abaqus's *TIE; TOML's `[[tie]]`), integrated along
 /// the slave surface as a mortar: for each slave node a and each component,
 /// int N_a (u_slave - u_master(nearest point)) m dGamma = 0 over the part of the slave faces

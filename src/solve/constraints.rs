@@ -58,15 +58,6 @@ impl ConstraintAssembly {
         Some(ConstraintAssembly { local })
     }
 
-    /// Every node of every constraint of the model (each rank gathers them all, as contact
-    /// nodes).
-    pub fn model_nodes(model: &Model) -> Vec<usize> {
-        let mut nodes: Vec<usize> = model.constraints.iter().flat_map(|c| c.terms.iter().map(|t| t.node)).collect();
-        nodes.sort_unstable();
-        nodes.dedup();
-        nodes
-    }
-
     /// The node pairs (a <= b) this rank's constraints couple in the Jacobian.
     pub fn pairs(&self) -> impl Iterator<Item = (usize, usize)> + '_ {
         self.local.iter().flat_map(|c| c.terms.iter().flat_map(move |&(a, _, _)| c.terms.iter().map(move |&(b, _, _)| (a.min(b), a.max(b)))))

@@ -182,12 +182,13 @@ impl<'s, 'm> Problem<'s, 'm> {
         // fetched by one scatter per evaluation, and the residual added back through the same
         // scatter
         let contact_nodes = contact_nodes(model);
-        let constraint_nodes = ConstraintAssembly::model_nodes(model);
+        let constrained = model.constrained_nodes();
+        let constraint_nodes = (0..constrained.len()).filter(|&n| constrained[n]);
         let mut needed: Vec<PetscInt> = local
             .iter()
             .flat_map(|&e| model.mesh.elements[e])
             .chain(contact_nodes.iter().copied())
-            .chain(constraint_nodes.iter().copied())
+            .chain(constraint_nodes)
             .flat_map(|n| dofs.dof[n])
             .filter(|&d| d >= 0)
             .collect();
