@@ -567,6 +567,20 @@ fn fail(e: &Error, print: bool) -> ExitCode {
 }
 
 fn print_summary(summary: &RunSummary) {
+    for (name, answer) in &summary.heat {
+        let [low, high] = answer.temperature.iter().fold([f64::INFINITY, f64::NEG_INFINITY], |[a, b], &t| [a.min(t), b.max(t)]);
+        println!("heat step '{name}': temperatures {low:.6e} to {high:.6e} degC");
+        match summary.plane {
+            true => println!("  heat flowing in (mW, over the plane model's thickness):"),
+            false => println!("  heat flowing in (mW):          per radian    full 360-degree ring"),
+        }
+        for f in &answer.flows {
+            match summary.plane {
+                true => println!("  {:<20} {:>14.6e}", f.set, f.flow),
+                false => println!("  {:<20} {:>14.6e}   {:>14.6e}", f.set, f.flow, std::f64::consts::TAU * f.flow),
+            }
+        }
+    }
     let Some(last) = summary.history.last() else {
         return;
     };

@@ -44,6 +44,9 @@ pub fn describe(group: &str, name: &str) -> (&'static str, String) {
             "stress amplitudes [s_rr, s_zz, s_tt, s_rz, s_rt, s_zt] at the 3 x 3 Gauss points of each element: the first four x cos n theta, the last two x sin n theta (n = 0: constant); D : strain".into(),
         ),
         ("perturbations", "displacement") => ("mm", "the perturbation's displacement at theta = 0 as a vector (u_r, u_z, u_theta) for ParaView's warp".into()),
+        ("heat", "temperature") => ("degC", "the heat step's steady temperature at each node".into()),
+        ("heat", "flux") => ("mW/mm^2", "heat flux q = -k grad T [q_r, q_z] at the Gauss points of each element (3 x 3 in a quadrilateral, 9 in a triangle)".into()),
+        ("heat", "element_flux") => ("mW/mm^2", "each element's mean heat flux [q_r, q_z, 0] over its Gauss points, a vector for ParaView".into()),
         ("mesh", "coordinates") => ("mm", "r, z of each node".into()),
         ("mesh", "connectivity") => (
             "-",

@@ -4,6 +4,7 @@
 pub mod assessment;
 pub mod describe;
 mod h5ffi;
+mod heat;
 pub mod lock;
 pub mod nodal;
 mod perturbation;

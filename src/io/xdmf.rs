@@ -239,6 +239,29 @@ pub fn write_perturbation_sidecar(
     Ok(target)
 }
 
+/// The sidecar of heat step `name` beside results file `h5`: `STEM_NAME.xmf`, one grid on the
+/// mesh with the temperature at the nodes and each element's mean heat flux. Written by one
+/// process; returns its path.
+pub fn write_heat_sidecar(h5: &Path, name: &str, (nodes, elements, topology): (usize, usize, Topology)) -> Result<PathBuf> {
+    let file = h5.file_name().map(|f| f.to_string_lossy().into_owned()).unwrap_or_default();
+    let stem = h5.file_stem().map(|f| f.to_string_lossy().into_owned()).unwrap_or_default();
+    let target = h5.with_file_name(format!("{stem}_{name}.xmf"));
+    let item = |path: &str, dims: &str| format!(r#"<DataItem Dimensions="{dims}" NumberType="Float" Precision="8" Format="HDF">{file}:{path}</DataItem>"#);
+    let mut x = String::from("<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\"><Domain>\n");
+    let _ = writeln!(x, r#"<Grid Name="heat {name}" GridType="Uniform">"#);
+    let _ = writeln!(x, "{}", topology.xml(&file, elements));
+    let _ = writeln!(x, r#"<Geometry GeometryType="XY">{}</Geometry>"#, item("/mesh/coordinates", &format!("{nodes} 2")));
+    let _ = writeln!(x, r#"<Attribute Name="temperature" AttributeType="Scalar" Center="Node">{}</Attribute>"#, item(&format!("/heat/{name}/temperature"), &nodes.to_string()));
+    let _ = writeln!(
+        x,
+        r#"<Attribute Name="heat_flux" AttributeType="Vector" Center="Cell">{}</Attribute>"#,
+        item(&format!("/heat/{name}/element_flux"), &format!("{elements} 3"))
+    );
+    x.push_str("</Grid></Domain></Xdmf>\n");
+    std::fs::write(&target, x).map_err(|e| Error::Output { path: target.clone(), message: e.to_string() })?;
+    Ok(target)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

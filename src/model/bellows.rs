@@ -359,6 +359,7 @@ pub fn model(p: &BellowsParams) -> Result<Model> {
         thermal_expansion: p.thermal_expansion,
         plasticity: Some(Plasticity::linear(p.yield_stress, p.hardening_modulus)),
         density: p.density,
+        conductivity: 0.0,
     };
     let pair = |name: &str, slave: &str, master: &str, two_pass: bool, mu: f64| ContactPair {
         name: name.to_string(),
@@ -458,6 +459,7 @@ pub fn model(p: &BellowsParams) -> Result<Model> {
         constraints: Vec::new(),
         steps,
         perturbations: Vec::new(),
+        heat_steps: Vec::new(),
         source_text,
         source_files: Vec::new(),
         reaction_segment_degrees: None,

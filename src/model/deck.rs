@@ -80,6 +80,7 @@
 use super::constraint::{default_tie_tolerance, tie};
 use super::mesh::{blocks, rectangle, split_into_triangles, Block, MeshSets};
 use super::perturbation::{Analysis, HarmonicComponent, HarmonicDisplacement, Perturbation, RingMotion};
+use super::heat::{HeatStep, HeldTemperature};
 use super::{
     default_capture_distance, gmsh, Adjust, AugmentedLagrangian, BodyLoad, Component, ContactIntegration, ContactPair, Convergence, Friction, FrictionChange,
     Kinematics, Material, Model, NodalForce, OutputControls, OutputFields, Penalty, Plasticity, Precision, Predictor, PrescribedDisplacement, Pressure, Step,
@@ -202,6 +203,34 @@ struct AugmentedSpec {
 
 fn ten() -> usize {
     10
+}
+
+/// A `procedure = "heat"` step: `temperature = [{ set = ..., value = ... }, ...]` holds those
+/// sets' temperatures; nothing else belongs in it.
+fn heat_step(s: &StepSpec, name: &str) -> Result<HeatStep> {
+    let mechanical = [
+        ("mode", s.mode.is_some()),
+        ("without_contact", s.without_contact.is_some()),
+        ("eigenvalues", s.eigenvalues.is_some()),
+        ("increments", s.increments.is_some()),
+        ("boundary", !s.boundary.is_empty()),
+        ("pressure", !s.pressure.is_empty()),
+        ("force", !s.force.is_empty()),
+        ("body_load", !s.body_load.is_empty()),
+        ("contact_friction", !s.contact_friction.is_empty()),
+    ];
+    if let Some((key, _)) = mechanical.iter().find(|(_, given)| *given) {
+        return Err(Error::input(format!("step '{name}': {key} has no meaning in a heat step (it holds temperatures alone)")));
+    }
+    let held = |t: &SetTemperatureSpec| {
+        let set = t.set.clone().ok_or_else(|| Error::input(format!("step '{name}': a heat step's temperature entries each name their node set (set = ...)")))?;
+        Ok(HeldTemperature { node_set: set, value: t.value })
+    };
+    let temperatures = match &s.temperature {
+        Some(TemperatureSpec::Sets(sets)) => sets.iter().map(held).collect::<Result<Vec<_>>>()?,
+        _ => return Err(Error::input(format!("step '{name}': a heat step holds temperatures on node sets: temperature = [{{ set = \"...\", value = ... }}, ...]"))),
+    };
+    Ok(HeatStep { name: name.to_string(), temperatures })
 }
 
 fn default_reference_temperature() -> TemperatureSpec {
@@ -336,13 +365,16 @@ struct MaterialSpec {
     name: String,
     #[serde(default = "default_kind")]
     model: MaterialKind,
-    youngs_modulus: f64,
-    poissons_ratio: f64,
+    /// MPa; a heat-conduction deck's materials may leave it and Poisson's ratio out.
+    youngs_modulus: Option<f64>,
+    poissons_ratio: Option<f64>,
     #[serde(default)]
     thermal_expansion: f64,
     /// t/mm^3.
     #[serde(default)]
     density: f64,
+    /// mW/(mm K), numerically W/(m K): heat steps need it.
+    conductivity: Option<f64>,
     yield_stress: Option<f64>,
     hardening_modulus: Option<f64>,
 }
@@ -533,13 +565,21 @@ pub fn parse(text: &str, path: &Path) -> Result<Model> {
             (MaterialKind::J2, None) => return Err(Error::input(format!("material '{}': model = \"j2\" needs yield_stress (MPa)", m.name))),
             (MaterialKind::J2, Some(yield_stress)) => Some(Plasticity::linear(yield_stress, m.hardening_modulus.unwrap_or(0.0))),
         };
+        // a heat deck needs no elastic constants: NaN marks them unused (`validate` skips them)
+        let heat = deck.step.iter().any(|s| s.procedure.as_deref() == Some("heat"));
+        let elastic = |value: Option<f64>, key: &str| match (value, heat) {
+            (Some(v), _) => Ok(v),
+            (None, true) => Ok(f64::NAN),
+            (None, false) => Err(Error::input(format!("material '{}': missing {key}", m.name))),
+        };
         materials.push(Material {
             name: m.name.clone(),
-            youngs_modulus: m.youngs_modulus,
-            poissons_ratio: m.poissons_ratio,
+            youngs_modulus: elastic(m.youngs_modulus, "youngs_modulus (MPa)")?,
+            poissons_ratio: elastic(m.poissons_ratio, "poissons_ratio")?,
             thermal_expansion: m.thermal_expansion,
             plasticity,
             density: m.density,
+            conductivity: m.conductivity.unwrap_or(0.0),
         });
     }
     if materials.is_empty() {
@@ -568,7 +608,7 @@ pub fn parse(text: &str, path: &Path) -> Result<Model> {
 
     let reference_temperature = deck.reference_temperature.field(&mesh, &node_sets, None, "reference_temperature")?;
     let mut temperature_now = reference_temperature.clone();
-    let (mut steps, mut perturbations) = (Vec::new(), Vec::new());
+    let (mut steps, mut perturbations, mut heat_steps) = (Vec::new(), Vec::new(), Vec::new());
     let plane = deck.geometry != GeometrySpec::Axisymmetric;
     for (k, s) in deck.step.iter().enumerate() {
         let name = s.name.clone().unwrap_or_else(|| format!("step-{}", k + 1));
@@ -699,7 +739,10 @@ pub fn parse(text: &str, path: &Path) -> Result<Model> {
                     analysis,
                 });
             }
-            other => return Err(Error::input(format!("step '{name}': procedure {other:?} is not one of \"static\", \"harmonic\", \"frequency\", \"buckle\""))),
+            "heat" => heat_steps.push(heat_step(s, &name)?),
+            other => {
+                return Err(Error::input(format!("step '{name}': procedure {other:?} is not one of \"static\", \"harmonic\", \"frequency\", \"buckle\", \"heat\"")))
+            }
         }
     }
 
@@ -788,6 +831,7 @@ pub fn parse(text: &str, path: &Path) -> Result<Model> {
         constraints,
         steps,
         perturbations,
+        heat_steps,
         source_text: text.to_string(),
         source_files,
         reaction_segment_degrees: None,

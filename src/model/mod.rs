@@ -8,6 +8,7 @@ pub mod bellows;
 pub mod constraint;
 pub mod deck;
 pub mod gmsh;
+pub mod heat;
 pub mod inp;
 pub mod mesh;
 pub mod perturbation;
@@ -81,6 +82,9 @@ pub struct Material {
     /// Mass density, t/mm^3 (so that N, mm and s stay consistent; steel 7.85e-9); 0 when not
     /// given (only frequency steps need it).
     pub density: f64,
+    /// Thermal conductivity, mW/(mm K) (numerically W/(m K); steel about 50); 0 when not
+    /// given (only heat steps need it).
+    pub conductivity: f64,
 }
 
 /// Isotropic hardening of a J2 material: linear, or a piecewise-linear table.
@@ -468,6 +472,8 @@ pub struct Model {
     pub steps: Vec<Step>,
     /// Linear perturbation steps after the general ones, each about the state they end in.
     pub perturbations: Vec<perturbation::Perturbation>,
+    /// Steady heat-conduction steps: a model with them has no other steps.
+    pub heat_steps: Vec<heat::HeatStep>,
     /// The text the model was read from, kept for the output file.
     pub source_text: String,
     /// The files it was read from (the deck, its mesh, its includes): a run never writes over

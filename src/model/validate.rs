@@ -18,7 +18,8 @@ impl Model {
                 "perturbation steps (harmonic loads, buckling, natural frequencies) are built for axisymmetric models only; this model has plane-strain or plane-stress elements",
             ));
         }
-        for m in &self.materials {
+        // a heat-conduction model uses its materials' conductivity alone (`heat::HeatStep`)
+        for m in self.materials.iter().filter(|_| self.heat_steps.is_empty()) {
             if !(m.youngs_modulus > 0.0 && m.youngs_modulus.is_finite()) {
                 return Err(Error::input(format!("material '{}': Young's modulus must be > 0, got {}", m.name, m.youngs_modulus)));
             }
@@ -46,6 +47,9 @@ impl Model {
         for p in &self.perturbations {
             p.validate(self)?;
         }
+        for h in &self.heat_steps {
+            h.validate(self)?;
+        }
         if self.output.every == 0 {
             return Err(Error::input("[output]: every must be at least 1 (fields of every increment)"));
         }
@@ -59,7 +63,7 @@ impl Model {
         if let Some((key, value, _, need)) = ranges.into_iter().find(|r| !r.2) {
             return Err(Error::input(format!("[stepping] {key} = {value}: need {need}")));
         }
-        let mut seen: Vec<&str> = Vec::new();
+        let mut seen: Vec<&str> = self.heat_steps.iter().map(|h| h.name.as_str()).collect();
         for (k, step) in self.steps.iter().enumerate() {
             if step.name.trim().is_empty() {
                 return Err(Error::input(format!("step {}: an empty name (a restart finds steps by name)", k + 1)));
@@ -124,7 +128,7 @@ impl Model {
         {
             return Err(Error::input(format!("a temperature field has {n} values for the mesh's {} nodes", self.mesh.coords.len())));
         }
-        if self.steps.is_empty() {
+        if self.steps.is_empty() && self.heat_steps.is_empty() {
             return Err(Error::input("the model has no steps: add a [[step]]"));
         }
         for step in &self.steps {
@@ -239,7 +243,8 @@ impl Model {
                 }
             }
         }
-        if let Some((n, _)) = self.axially_free_bodies(&held_z).into_iter().find(|(_, pairs)| pairs.is_empty()) {
+        // (a heat model moves nothing)
+        if let Some((n, _)) = self.axially_free_bodies(&held_z).into_iter().filter(|_| self.heat_steps.is_empty()).find(|(_, pairs)| pairs.is_empty()) {
             return Err(Error::input(format!(
                 "the body containing node {} (at r = {}, z = {}) has no prescribed uz and no contact: it is free to move along the axis; prescribe uz on one of its nodes",
                 self.mesh.node_ids[n], self.mesh.coords[n][0], self.mesh.coords[n][1]

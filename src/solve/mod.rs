@@ -2,6 +2,7 @@
 
 pub mod affinity;
 mod attempt;
+pub mod conduction;
 pub mod constraints;
 pub mod contact;
 mod contact_surfaces;

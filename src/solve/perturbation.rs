@@ -100,7 +100,8 @@ pub(super) enum Amplitude {
     Prescribed(f64),
 }
 
-/// An element's or an edge's matrix over its nodes' amplitudes (column-major, 3 per node).
+/// An element's or an edge's matrix over its nodes' amplitudes (column-major, 3 per node; a
+/// heat step's over their temperatures, 1 per node).
 pub(super) type Block = (Vec<usize>, Vec<f64>);
 
 /// A local element's geometry and the material tangent at its Gauss points.
@@ -183,10 +184,10 @@ pub(super) fn pressure_stiffness_blocks(model: &Model, partition: &Partition, cu
 
 /// The unknowns' matrix of `blocks` (K_ff) and the right-hand side's entries -K_fp U_p of the
 /// prescribed amplitudes (collective: PETSc sums rows from every rank).
-pub(super) fn assemble<'s>(
+pub(super) fn assemble<'s, const D: usize>(
     session: &'s PetscSession,
     blocks: &[Block],
-    amplitude: &[[Amplitude; 3]],
+    amplitude: &[[Amplitude; D]],
     local_len: usize,
 ) -> Result<(Matrix<'s>, Vec<(PetscInt, f64)>)> {
     let mut rows = Vec::new();
@@ -218,13 +219,13 @@ pub(super) fn assemble<'s>(
 
 /// Every node's amplitudes on every rank from this rank's part `solution` of the unknowns
 /// (collective).
-pub(super) fn amplitudes_of(
+pub(super) fn amplitudes_of<const D: usize>(
     world: &impl Communicator,
     partition: &Partition,
-    amplitude: &[[Amplitude; 3]],
+    amplitude: &[[Amplitude; D]],
     offsets: &[usize],
     solution: &[f64],
-) -> Vec<[f64; 3]> {
+) -> Vec<[f64; D]> {
     let first = offsets[partition.rank] as PetscInt;
     let value = |a: Amplitude| match a {
         Amplitude::Unknown(i, c) => c * solution[(i - first) as usize],
@@ -427,15 +428,15 @@ pub(super) fn number(partition: &Partition, prescribed: &[[Option<f64>; 3]], x: 
     (amplitude, offsets)
 }
 
-/// All ranks' owned amplitudes into one array in model node order.
-fn gather(world: &impl Communicator, partition: &Partition, owned: &[f64], nodes: usize) -> Vec<[f64; 3]> {
-    let counts: Vec<i32> = (0..partition.size).map(|r| 3 * (partition.node_offsets[r + 1] - partition.node_offsets[r]) as i32).collect();
-    let displs: Vec<i32> = partition.node_offsets[..partition.size].iter().map(|&o| 3 * o as i32).collect();
-    let mut all = vec![0.0; 3 * nodes];
+/// All ranks' owned values (D per node) into one array in model node order.
+fn gather<const D: usize>(world: &impl Communicator, partition: &Partition, owned: &[f64], nodes: usize) -> Vec<[f64; D]> {
+    let counts: Vec<i32> = (0..partition.size).map(|r| (D * (partition.node_offsets[r + 1] - partition.node_offsets[r])) as i32).collect();
+    let displs: Vec<i32> = partition.node_offsets[..partition.size].iter().map(|&o| (D * o) as i32).collect();
+    let mut all = vec![0.0; D * nodes];
     world.all_gather_varcount_into(owned, &mut PartitionMut::new(&mut all[..], counts, displs));
-    let mut out = vec![[0.0; 3]; nodes];
+    let mut out = vec![[0.0; D]; nodes];
     for (k, &n) in partition.node_order.iter().enumerate() {
-        out[n] = [all[3 * k], all[3 * k + 1], all[3 * k + 2]];
+        out[n] = std::array::from_fn(|c| all[D * k + c]);
     }
     out
 }

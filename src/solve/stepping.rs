@@ -62,6 +62,8 @@ pub struct RunSummary {
     pub continued: usize,
     /// Each perturbation step's name and answer, in order.
     pub perturbations: Vec<(String, super::perturbation::PerturbationAnswer)>,
+    /// Each heat step's name and answer, in order.
+    pub heat: Vec<(String, super::conduction::HeatAnswer)>,
     /// Whether the model is plane (no axisymmetric element): its forces are over its
     /// thickness, not per radian.
     pub plane: bool,
@@ -439,6 +441,13 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
         stop_all_on_write_error(&world, results.write_perturbation(p, &answer, &partition, base_group.as_deref()))?;
         perturbations.push((p.name.clone(), answer));
     }
+    // heat steps: a model with them has no other steps
+    let mut heat = Vec::new();
+    for h in &model.heat_steps {
+        let answer = super::conduction::solve(session, model, &partition, h)?;
+        stop_all_on_write_error(&world, results.write_heat(h, &answer, &partition, model.is_axisymmetric()))?;
+        heat.push((h.name.clone(), answer));
+    }
     progress.finish();
     if let Some(status) = status.as_mut() {
         status.note(&format!("completed: {} increments ({} in this run) in {:.1} s", rows.len(), rows.len() - continued, start.elapsed().as_secs_f64()));
@@ -452,6 +461,7 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
         pattern_refits,
         continued,
         perturbations,
+        heat,
         plane: !model.is_axisymmetric(),
     })
 }

@@ -80,6 +80,8 @@ struct MaterialDef {
     density: f64,
     plastic: Vec<(f64, f64)>,
     plastic_at: Option<Location>,
+    /// *CONDUCTIVITY (0 without): heat steps use it.
+    conductivity: f64,
 }
 
 struct Interaction {
@@ -138,6 +140,10 @@ struct StepDef {
     has_procedure: bool,
     /// The time points its output requests name: (times, in total time).
     time_points: Vec<(Vec<f64>, bool)>,
+    /// A *HEAT TRANSFER step, and the temperatures it holds (*BOUNDARY, degree of freedom 11):
+    /// (node set, degC) in order.
+    heat: bool,
+    held_temperatures: Vec<(String, f64)>,
     /// *CHANGE FRICTION: (interaction, its new mu and stick slope), from this step on.
     friction_changes: Vec<(String, properties::CalculixFriction)>,
 }
@@ -183,6 +189,8 @@ struct Builder {
     /// *INITIAL CONDITIONS, TYPE=TEMPERATURE lines in order, and where the first card is.
     initial_temperature: Option<(Vec<NodeTemperatures>, Location)>,
     fixed: Vec<(String, Component)>,
+    /// Model data's *BOUNDARY on degree of freedom 11: temperatures every heat step holds.
+    fixed_temperatures: Vec<(String, f64)>,
     steps: Vec<StepDef>,
     in_step: bool,
     element_types: BTreeMap<String, usize>,
@@ -224,15 +232,15 @@ fn build(cards: &[Card], source_text: String) -> Result<InpModel> {
                 if b.materials.iter().any(|m| m.name == name) {
                     return Err(card.error(format!("material {name} is defined twice")));
                 }
-                b.materials.push(MaterialDef { name, at: card.at.clone(), elastic: None, expansion: 0.0, density: 0.0, plastic: Vec::new(), plastic_at: None });
+                b.materials.push(MaterialDef { name, at: card.at.clone(), elastic: None, expansion: 0.0, density: 0.0, plastic: Vec::new(), plastic_at: None, conductivity: 0.0 });
                 last_owner = "MATERIAL";
             }
-            "CONDUCTIVITY" | "SPECIFIC HEAT" => {
+            "SPECIFIC HEAT" => {
                 if last_owner != "MATERIAL" {
                     return Err(card.error("must follow a *MATERIAL card"));
                 }
                 let material = &b.materials.last().expect("after a *MATERIAL").name;
-                b.notes.push(format!("material {material}: *{kw} ({}) has no effect in a static structural analysis", card.at));
+                b.notes.push(format!("material {material}: *{kw} ({}) has no effect in a static step or a steady heat transfer step", card.at));
             }
             "PHYSICAL CONSTANTS" => {
                 b.notes.push(format!("*PHYSICAL CONSTANTS ({}) have no effect in a static structural analysis", card.at));
@@ -250,7 +258,7 @@ fn build(cards: &[Card], source_text: String) -> Result<InpModel> {
                 entry.1 = Some(mass);
                 b.notes.push(format!("*MASS ({}): the point masses of {set} carry only the GRAV and CENTRIF loads given on them in a static step", card.at));
             }
-            "ELASTIC" | "PLASTIC" | "EXPANSION" | "DENSITY" => {
+            "ELASTIC" | "PLASTIC" | "EXPANSION" | "DENSITY" | "CONDUCTIVITY" => {
                 if last_owner != "MATERIAL" {
                     return Err(card.error("must follow a *MATERIAL card"));
                 }
@@ -319,6 +327,7 @@ fn build(cards: &[Card], source_text: String) -> Result<InpModel> {
             "BOUNDARY" => b.boundary(card)?,
             "STEP" => b.step(card)?,
             "STATIC" => b.static_procedure(card)?,
+            "HEAT TRANSFER" => b.heat_transfer_procedure(card)?,
             "DLOAD" => b.dload(card)?,
             "CLOAD" => b.cload(card)?,
             "TEMPERATURE" => {
@@ -363,11 +372,11 @@ fn build(cards: &[Card], source_text: String) -> Result<InpModel> {
             }
             other => {
                 let why = match other {
-                    "HEAT TRANSFER" | "COUPLED TEMPERATURE-DISPLACEMENT" | "UNCOUPLED TEMPERATURE-DISPLACEMENT" => {
-                        "slideline solves static structural steps, not heat conduction: give the temperatures with *TEMPERATURE"
+                    "COUPLED TEMPERATURE-DISPLACEMENT" | "UNCOUPLED TEMPERATURE-DISPLACEMENT" => {
+                        "slideline solves static structural steps and steady heat conduction (*HEAT TRANSFER, STEADY STATE) apart, not coupled: give the temperatures with *TEMPERATURE"
                     }
                     "FILM" | "RADIATE" | "VIEWFACTOR" | "GAP HEAT GENERATION" | "GAP CONDUCTANCE" | "CFLUX" | "DFLUX" => {
-                        "a heat-transfer load: slideline solves no heat conduction"
+                        "a heat-transfer load: slideline's heat steps hold temperatures (*BOUNDARY, degree of freedom 11) on insulated surfaces, nothing else"
                     }
                     "FLUID CONSTANTS" | "FLUID SECTION" | "SPECIFIC GAS CONSTANT" => "slideline has no fluid networks",
                     "FREQUENCY" | "BUCKLE" => "eigenvalue steps are read from the TOML deck only (procedure = \"frequency\" / \"buckle\", docs/deck.md)",
@@ -439,16 +448,22 @@ impl Builder {
             self.notes.push(format!("output requests ({}) are answered by the results file: {every}", list.join(", ")));
         }
 
+        // a heat deck's materials need no elastic constants: NaN marks them unused
+        let heat = self.steps.iter().any(|s| s.heat);
         let mut materials = Vec::new();
         for m in &self.materials {
-            let (youngs_modulus, poissons_ratio) = m.elastic.ok_or_else(|| error_at(&m.at, "MATERIAL", format!("material {} has no *ELASTIC", m.name)))?;
+            let (youngs_modulus, poissons_ratio) = match (m.elastic, heat) {
+                (Some(e), _) => e,
+                (None, true) => (f64::NAN, f64::NAN),
+                (None, false) => return Err(error_at(&m.at, "MATERIAL", format!("material {} has no *ELASTIC", m.name))),
+            };
             // piecewise linear through the points, flat after the last (as Abaqus): two points
             // are linear hardening exactly up to the second
             let plasticity = match (m.plastic.as_slice(), &m.plastic_at) {
                 ([], _) | (_, None) => None,
                 (points, Some(at)) => Some(Plasticity::table(points).map_err(|e| error_at(at, "PLASTIC", e))?),
             };
-            materials.push(Material { name: m.name.clone(), youngs_modulus, poissons_ratio, thermal_expansion: m.expansion, plasticity, density: m.density });
+            materials.push(Material { name: m.name.clone(), youngs_modulus, poissons_ratio, thermal_expansion: m.expansion, plasticity, density: m.density, conductivity: m.conductivity });
         }
         if materials.is_empty() {
             return Err(Error::input("the deck defines no *MATERIAL"));
@@ -482,6 +497,7 @@ impl Builder {
         if self.steps.is_empty() {
             return Err(Error::input("the deck has no *STEP"));
         }
+        let heat_steps = self.heat_steps()?;
         let kinematics = if self.steps.iter().any(|s| s.nlgeom == Some(true)) { Kinematics::Finite } else { Kinematics::Small };
         if let (Kinematics::Finite, Some(at)) = (kinematics, &self.mass_load_at) {
             return Err(error_at(
@@ -536,6 +552,7 @@ impl Builder {
             constraints: self.constraints,
             steps,
             perturbations: Vec::new(),
+            heat_steps,
             source_text,
             source_files,
             reaction_segment_degrees: axisymmetric.then_some(CALCULIX_SEGMENT_DEGREES),

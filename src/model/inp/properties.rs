@@ -55,6 +55,19 @@ impl Builder {
                 }
                 m.plastic_at = Some(card.at.clone());
             }
+            "CONDUCTIVITY" => {
+                card.only(&["TYPE"])?;
+                if card.param("TYPE").is_some_and(|t| !isotropic(t)) {
+                    return Err(card.error("only TYPE=ISO (isotropic) is supported"));
+                }
+                if card.data.len() > 1 {
+                    return Err(card.error("a conductivity that varies with temperature is not supported: give one line"));
+                }
+                m.conductivity = single(card)?.number("CONDUCTIVITY", 0, "conductivity", None)?;
+                if !(m.conductivity > 0.0 && m.conductivity.is_finite()) {
+                    return Err(card.error(format!("conductivity {} must be > 0", m.conductivity)));
+                }
+            }
             _ => {
                 card.only(&[])?;
                 m.density = single(card)?.number("DENSITY", 0, "density (t/mm^3)", None)?;

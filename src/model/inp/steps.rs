@@ -6,6 +6,7 @@ use super::properties::{pair_friction, ListedContact};
 use super::{face_side, Builder, StepDef, Target};
 use crate::element::body_load::BodyForce;
 use crate::error::{Error, Result};
+use crate::model::heat::{HeatStep, HeldTemperature};
 use crate::model::mesh::Edge;
 use crate::model::{BodyLoad, Component, FrictionChange, NodalForce, Predictor, PrescribedDisplacement, Pressure, Step, Temperature};
 use std::collections::{BTreeMap, BTreeSet};
@@ -129,6 +130,8 @@ impl Builder {
             friction_changes: Vec::new(),
             cloads: Vec::new(),
             new_cloads: false,
+            heat: false,
+            held_temperatures: Vec::new(),
         });
         self.in_step = true;
         Ok(())
@@ -155,6 +158,56 @@ impl Builder {
             step.minimum = d.fields.get(2).filter(|f| !f.is_empty()).map(|_| d.number("STATIC", 2, "minimum increment", None)).transpose()?;
         }
         Ok(())
+    }
+
+    /// *HEAT TRANSFER, STEADY STATE: a steady heat-conduction step (`model::heat`); its data
+    /// line (increments, period) has no use in a linear steady solve.
+    pub(super) fn heat_transfer_procedure(&mut self, card: &Card) -> Result<()> {
+        card.only(&["STEADY STATE", "SOLVER", "DIRECT"])?;
+        if !card.has("STEADY STATE") {
+            return Err(card.error("a transient heat transfer: slideline solves steady conduction only (add STEADY STATE)"));
+        }
+        let step = self.step_mut(card)?;
+        if step.has_procedure {
+            return Err(card.error("a step takes one procedure card"));
+        }
+        step.has_procedure = true;
+        step.heat = true;
+        Ok(())
+    }
+
+    /// The heat steps, taken out of the step list (the rest are static): each holds the model
+    /// data's temperatures and its own; a mechanical load in one is refused, a displacement
+    /// constraint noted (it has no effect on the temperatures).
+    pub(super) fn heat_steps(&mut self) -> Result<Vec<HeatStep>> {
+        let (heat, general): (Vec<StepDef>, Vec<StepDef>) = std::mem::take(&mut self.steps).into_iter().partition(|s| s.heat);
+        self.steps = general;
+        let mut out = Vec::new();
+        for s in heat {
+            if !s.pressures.is_empty() || !s.body.is_empty() || !s.cloads.is_empty() || !s.temperature.is_empty() || !s.friction_changes.is_empty() {
+                return Err(error_at(&s.at, "STEP", format!("step {}: a *HEAT TRANSFER step holds temperatures (*BOUNDARY, 11); a mechanical load or *TEMPERATURE in it has no meaning", s.name)));
+            }
+            if !s.boundaries.is_empty() {
+                self.notes.push(format!("step {}: its displacement constraints have no effect in a heat transfer step", s.name));
+            }
+            if s.nlgeom.is_some() {
+                self.notes.push(format!("step {}: NLGEOM has no effect in a heat transfer step", s.name));
+            }
+            let temperatures = self
+                .fixed_temperatures
+                .iter()
+                .chain(&s.held_temperatures)
+                .map(|(set, value)| HeldTemperature { node_set: set.clone(), value: *value })
+                .collect();
+            out.push(HeatStep { name: s.name, temperatures });
+        }
+        if out.is_empty() && !self.fixed_temperatures.is_empty() {
+            self.notes.push("temperatures held by *BOUNDARY, 11 in the model data have no effect without a *HEAT TRANSFER step".into());
+        }
+        if let Some(s) = self.steps.iter().find(|s| !s.held_temperatures.is_empty()) {
+            return Err(error_at(&s.at, "STEP", format!("step {}: a temperature (*BOUNDARY, 11) outside a *HEAT TRANSFER step: give it with *TEMPERATURE", s.name)));
+        }
+        Ok(out)
     }
 
     /// *TIME POINTS: the listed times (GENERATE: start, end, increment triples), in step time
@@ -242,6 +295,18 @@ impl Builder {
                 target.to_uppercase()
             };
             let word = d.fields.get(1).map(|s| s.to_uppercase()).unwrap_or_default();
+            // degree of freedom 11: a temperature, which heat steps hold
+            if d.fields.get(1).is_some_and(|f| f.trim() == "11") {
+                if d.fields.get(2).is_some_and(|f| !f.trim().is_empty() && f.trim() != "11") {
+                    return Err(error_at(&d.at, "BOUNDARY", "degree of freedom 11 (temperature) goes on a line of its own: 11, 11, value"));
+                }
+                let value = d.number("BOUNDARY", 3, "temperature", Some(0.0))?;
+                match self.in_step {
+                    true => self.steps.last_mut().expect("in a step").held_temperatures.push((set, value)),
+                    false => self.fixed_temperatures.push((set, value)),
+                }
+                continue;
+            }
             let (first, last, value) = match word.as_str() {
                 "ENCASTRE" | "PINNED" => (1, 2, 0.0),
                 "XSYMM" => (1, 1, 0.0),
@@ -253,7 +318,7 @@ impl Builder {
                 }
             };
             if first > last || last > 2 {
-                return Err(error_at(&d.at, "BOUNDARY", format!("degrees of freedom {first} to {last}: axisymmetric nodes have 1 (ur) and 2 (uz)")));
+                return Err(error_at(&d.at, "BOUNDARY", format!("degrees of freedom {first} to {last}: axisymmetric nodes have 1 (ur), 2 (uz) and 11 (temperature)")));
             }
             for dof in first..=last {
                 let component = if dof == 1 { Component::R } else { Component::Z };
