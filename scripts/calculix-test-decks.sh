@@ -3,7 +3,8 @@
 # ones) unchanged through slideline (2 ranks) and, where slideline runs it, through CalculiX
 # 2.20 (ccx, Debian package calculix-ccx), and prints a table: slideline's verdict (runs, or
 # its error naming the card) and, for the decks that run, the largest difference of the final
-# nodal displacements from ccx's printed ones, as a fraction of ccx's largest.
+# nodal displacements from ccx's printed ones, as a fraction of ccx's largest (a heat deck: of
+# the nodal temperatures, as a fraction of ccx's range).
 #
 # usage: scripts/calculix-test-decks.sh DIR [DECK ...]
 #   DIR   the decks (e.g. ../shared/calculix-tests/axisymmetric); work files go to
@@ -32,7 +33,10 @@ for name in "${decks[@]}"; do
         # a deck that prints neither displacements nor stresses (thread prints contact only)
         # gets *NODE PRINT of its set NALL in ccx's copy: an output request, no change to
         # what ccx solves
-        if ! grep -qiE '^\*(NODE|EL) PRINT' "$name.inp" && grep -qiE 'NSET *= *NALL' "$name.inp"; then
+        # a heat deck's temperatures likewise (ax6ht prints only the heat flux)
+        if grep -qiE '^\*HEAT TRANSFER' "$name.inp" && ! grep -qiE '^NT *$' "$name.inp" && grep -qiE 'NSET *= *NALL' "$name.inp"; then
+            "$python" -c 'import sys; s = open(sys.argv[1]).read(); i = s.lower().rfind("*end step"); open(sys.argv[1], "w").write(s[:i] + "*NODE PRINT, NSET=NALL\nNT\n" + s[i:])' "$name.inp"
+        elif ! grep -qiE '^\*(NODE|EL) PRINT' "$name.inp" && grep -qiE 'NSET *= *NALL' "$name.inp"; then
             "$python" -c 'import sys; s = open(sys.argv[1]).read(); i = s.lower().rfind("*end step"); open(sys.argv[1], "w").write(s[:i] + "*NODE PRINT, NSET=NALL\nU\n" + s[i:])' "$name.inp"
         fi
         if timeout 600 ccx "$name" > ccx.log 2>&1 && [ -f "$name.dat" ]; then

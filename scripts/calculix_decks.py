@@ -7,7 +7,7 @@ headline number). A deck that prints no displacement but element stresses (*EL P
 the displacement of one node only (pret2: its prescribed reference node), is compared by
 element too: each element's mean stress over its integration points, and the
 headline is the difference of each element's largest mean component (CalculiX's x, y, z, xy
-are slideline's r, z, t, rz). Used by scripts/calculix-test-decks.sh; needs h5py and numpy
+are slideline's r, z, t, rz). A heat deck's nodal temperatures are compared instead. Used by scripts/calculix-test-decks.sh; needs h5py and numpy
 (Debian's python3-h5py).
 
 usage: calculix_decks.py JOB.dat RESULTS.h5
@@ -80,7 +80,50 @@ def compare_stresses(dat, results):
     print(f"element-mean stresses of {len(common)} elements, largest component of each: " + "; ".join(parts) + f"; largest difference {100 * worst:.2f} %")
 
 
+def dat_temperatures(path):
+    """{node: temperature} of the last time's 'temperatures' blocks."""
+    blocks, current = {}, None
+    for line in open(path):
+        t = line.strip()
+        if t and not t[0].isdigit():
+            current = None
+            if t.startswith("temperatures") and " and time" in t:
+                current = blocks.setdefault(float(t.split(" and time")[1]), {})
+            continue
+        p = t.split()
+        if current is not None and len(p) == 2:
+            current[int(p[0])] = float(p[1])
+    return blocks[max(blocks)] if blocks else {}
+
+
+def compare_temperatures(dat, results):
+    """A heat deck: every node's temperature against ccx's, as a fraction of ccx's range."""
+    ccx = dat_temperatures(dat)
+    with h5py.File(results, "r") as f:
+        step = sorted(f["heat"])[-1]
+        t = f["heat"][step]["temperature"][:]
+        ids = f["mesh/node_ids"][:]
+    ours = {int(n): t[k] for k, n in enumerate(ids)}
+    common = [n for n in ccx if n in ours]
+    if not common:
+        print("no temperature printed by ccx")
+        return
+    a = np.array([ccx[n] for n in common])
+    b = np.array([ours[n] for n in common])
+    spread = a.max() - a.min()
+    k = int(np.argmax(np.abs(a - b)))
+    print(
+        f"{len(common)} nodes: ccx's temperatures {a.min():.4g} to {a.max():.4g}; largest difference {abs(a[k] - b[k]):.4g}"
+        f" ({100 * abs(a[k] - b[k]) / spread:.3f} % of the range) at node {common[k]}; median {100 * np.median(np.abs(a - b)) / spread:.3f} %"
+    )
+
+
 def main():
+    with h5py.File(sys.argv[2], "r") as f:
+        heat = "heat" in f
+    if heat:
+        compare_temperatures(sys.argv[1], sys.argv[2])
+        return
     ccx = dat_displacements(sys.argv[1])
     if not ccx and not dat_element_stresses(sys.argv[1]):
         print("no displacement or element stress printed by ccx")

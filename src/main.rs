@@ -84,6 +84,18 @@ fn post(args: &PostArgs) -> Result<(), Error> {
         || plot.is_some()
         || args.deck
         || !args.linearize.is_empty();
+    let heat = r.heat_steps()?;
+    if !heat.is_empty()
+        && (args.field.is_some() || args.node.is_some() || args.set.is_some() || args.csv.is_some() || plot.is_some() || !args.linearize.is_empty())
+    {
+        return Err(Error::input(format!(
+            "{}: a heat-conduction run has no increments; its fields are /heat/{}/temperature and .../flux (h5py), or the sidecar {}_{}.xmf in ParaView",
+            args.file.display(),
+            heat[0].0,
+            args.file.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default(),
+            heat[0].0
+        )));
+    }
     let mut out = String::new();
     if !detail {
         out += &format!("{}\n{}", post::summary(&r)?, post::history_table(&r, args.verbose)?);

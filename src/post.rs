@@ -21,6 +21,21 @@ pub fn summary(r: &ResultsReader) -> Result<String> {
     let options = r.text_attr("petsc_options")?;
     let _ = writeln!(s, "PETSc:       {}", if options.is_empty() { "(defaults)" } else { &options });
     let steps = r.count_attr("steps").unwrap_or(0);
+    let heat = r.heat_steps()?;
+    for (name, [low, high], flows) in &heat {
+        let _ = writeln!(
+            s,
+            "heat step '{name}': temperatures {low:.6e} to {high:.6e} degC; heat flowing in (mW, {}):",
+            if r.is_plane() { "over the thickness" } else { "full ring" }
+        );
+        for (set, flow) in flows {
+            let _ = writeln!(s, "  {set:<20} {flow:.6e}");
+        }
+    }
+    if !heat.is_empty() {
+        // a heat-conduction run has no increments
+        return Ok(s);
+    }
     let last_step = rows.last().map(|(_, row)| (row.step, row.load_factor));
     let _ = writeln!(
         s,

@@ -430,3 +430,23 @@ fn a_wrong_tie_is_named() {
         assert_rejected(&run, &needles);
     }
 }
+
+/// A heat step's mistakes: no conductivity, a mechanical entry in it, a uniform temperature
+/// (it holds temperatures on sets), a general step beside it.
+#[test]
+fn a_wrong_heat_step_is_named() {
+    let heat = "[[step]]\nname = \"h\"\nprocedure = \"heat\"\n";
+    let held = "temperature = [{ set = \"inner\", value = 100.0 }]\n";
+    let conductive = "[[material]]\nname = \"steel\"\nconductivity = 16.0\n";
+    for (deck, needles) in [
+        (format!("{RECT}{MATERIAL}{heat}{held}"), vec!["heat step 'h'", "material 'steel' has no conductivity"]),
+        (format!("{RECT}{conductive}{heat}{held}boundary = [{{ set = \"bottom\", uz = 0.0 }}]\n"), vec!["step 'h'", "boundary has no meaning in a heat step"]),
+        (format!("{RECT}{conductive}{heat}temperature = 100.0\n"), vec!["step 'h'", "holds temperatures on node sets"]),
+        (format!("{RECT}{conductive}{heat}temperature = [{{ set = \"nowhere\", value = 1.0 }}]\n"), vec!["heat step 'h'", "unknown node set 'nowhere'"]),
+        (format!("{RECT}{MATERIAL}conductivity = 16.0\n{STEP}{heat}{held}"), vec!["heat step 'h'", "has no general steps (here 'step-1')"]),
+        (format!("{RECT}{conductive}{STEP}"), vec!["material 'steel': missing youngs_modulus (MPa)"]),
+    ] {
+        let run = run_deck(&deck, &[], 1, &[]);
+        assert_rejected(&run, &needles);
+    }
+}

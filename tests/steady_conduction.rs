@@ -93,3 +93,60 @@ fn the_heat_flux_falls_as_one_over_r() {
         assert!((q[0] - expected).abs() < 2e-3 * expected, "element {e}: q_r {} against {expected} at r = {r}", q[0]);
     }
 }
+
+/// The same wall as a CalculiX deck: CAX8 elements without *ELASTIC, the bore held in the
+/// model data and the outside in the *HEAT TRANSFER, STEADY STATE step (*BOUNDARY on degree of
+/// freedom 11), on 2 ranks; and `slideline post` prints the step's range and flows.
+#[test]
+fn a_calculix_heat_transfer_deck_gives_the_same_profile() {
+    use std::fmt::Write as _;
+    let columns = 2 * 12 + 1;
+    let dr = (B - A) / 12.0;
+    let id = |row: usize, col: usize| row * columns + col + 1;
+    let mut w = String::from("*NODE, NSET=NALL\n");
+    for row in 0..3 {
+        for col in (0..columns).filter(|c| row != 1 || c % 2 == 0) {
+            let _ = writeln!(w, "{}, {:.12}, {:.12}", id(row, col), A + col as f64 * dr / 2.0, row as f64 * H / 2.0);
+        }
+    }
+    w.push_str("*ELEMENT, TYPE=CAX8, ELSET=WALL\n");
+    for e in 0..12 {
+        let c = 2 * e;
+        let _ = writeln!(
+            w,
+            "{}, {}, {}, {}, {}, {}, {}, {}, {}",
+            e + 1,
+            id(0, c),
+            id(0, c + 2),
+            id(2, c + 2),
+            id(2, c),
+            id(0, c + 1),
+            id(1, c + 2),
+            id(2, c + 1),
+            id(1, c)
+        );
+    }
+    let side = |col: usize| [id(0, col), id(1, col), id(2, col)].map(|n| n.to_string()).join(", ");
+    let _ = write!(
+        w,
+        "*NSET, NSET=BORE\n{}\n*NSET, NSET=OUTSIDE\n{}\n*MATERIAL, NAME=STEEL\n*CONDUCTIVITY\n{K}\n*SOLID SECTION, ELSET=WALL, MATERIAL=STEEL\n\
+         *INITIAL CONDITIONS, TYPE=TEMPERATURE\nNALL, 20.\n*BOUNDARY\nBORE, 11, 11, {TA}\n\
+         *STEP\n*HEAT TRANSFER, STEADY STATE\n*BOUNDARY\nOUTSIDE, 11, 11, {TB}\n*NODE PRINT, NSET=NALL\nNT\n*END STEP\n",
+        side(0),
+        side(columns - 1)
+    );
+    let run = common::run_deck_file("wall.inp", &w, &[], 2, &[]);
+    run.assert_ok();
+    let res = Results::open(&run.h5);
+    let coords = res.f64s("mesh/coordinates");
+    let t = res.f64s("heat/step-1/temperature");
+    let worst = (0..t.len()).map(|n| (t[n] - exact(coords[2 * n])).abs()).fold(0.0f64, f64::max);
+    assert!(worst < 5e-4 * (TA - TB), "a node's temperature is {worst:.4} degC off the logarithmic profile");
+    let expected = TAU * K * H * (TA - TB) / (B / A).ln();
+    let post = common::command_in(run.dir.path(), 1).arg("post").arg(&run.h5).output().unwrap();
+    let text = String::from_utf8_lossy(&post.stdout);
+    let line = text.lines().find(|l| l.trim_start().starts_with("BORE")).unwrap_or_else(|| panic!("post names the bore's flow:\n{text}"));
+    let flow: f64 = line.split_whitespace().nth(1).unwrap().parse().unwrap();
+    assert!((flow - expected).abs() < 1e-3 * expected, "post: the bore's heat flow {flow:.6e} mW, expected {expected:.6e}");
+    assert!(text.contains("heat step 'step-1': temperatures 2.000000e1 to 2.000000e2 degC"), "{text}");
+}

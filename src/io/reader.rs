@@ -259,6 +259,10 @@ impl ResultsReader {
         let Ok(every) = self.file.attr(super::results::OUTPUT_EVERY).and_then(|a| a.read_scalar::<u32>()) else {
             return Ok(Vec::new());
         };
+        if rows == 0 {
+            // no row, no column to read (a heat-conduction run, or one that converged nothing)
+            return Ok(Vec::new());
+        }
         let (step, load_factor) = (self.read_f64("history/step")?, self.read_f64("history/load_factor")?);
         let groups = self.file.group("increments").and_then(|g| g.member_names()).unwrap_or_default();
         let last_of_step = |k: usize| load_factor.get(k).is_some_and(|&l| l >= 1.0) || (k + 1 < step.len() && step[k + 1] != step[k]);
@@ -328,6 +332,28 @@ impl ResultsReader {
             };
             let eigenvalues = eigenvalues.iter().enumerate().map(|(i, &v)| (v, masses.get(i).copied())).collect();
             out.push(StoredPerturbation { name, mode, reactions: sets, analysis, eigenvalues });
+        }
+        Ok(out)
+    }
+
+    /// The heat steps the file holds: (name, [lowest, highest] temperature, each held set's
+    /// heat flow in, full ring or over the thickness, mW), sorted by name.
+    pub fn heat_steps(&self) -> Result<Vec<(String, [f64; 2], Vec<(String, f64)>)>> {
+        let Ok(top) = self.file.group("heat") else { return Ok(Vec::new()) };
+        let bad = |e: hdf5::Error| Error::input(format!("{}: /heat: {e}", self.path.display()));
+        let mut out = Vec::new();
+        for name in top.member_names().map_err(bad)? {
+            let g = top.group(&name).map_err(bad)?;
+            let t = g.dataset("temperature").and_then(|d| d.read_raw::<f64>()).map_err(bad)?;
+            let range = t.iter().fold([f64::INFINITY, f64::NEG_INFINITY], |[a, b], &v| [a.min(v), b.max(v)]);
+            let flows = g.group("flows").map_err(bad)?;
+            let mut sets = Vec::new();
+            for set in flows.member_names().map_err(bad)? {
+                let sg = flows.group(&set).map_err(bad)?;
+                let flow = sg.attr("flow_ring").or_else(|_| sg.attr("flow")).and_then(|a| a.read_scalar::<f64>()).map_err(bad)?;
+                sets.push((set, flow));
+            }
+            out.push((name, range, sets));
         }
         Ok(out)
     }
@@ -402,6 +428,10 @@ impl ResultsReader {
     /// The history as the run recorded it: (step name, row) per converged increment.
     pub fn history_rows(&self) -> Result<Vec<(String, HistoryRow)>> {
         let columns = self.history_columns()?;
+        if columns.is_empty() {
+            // no increment converged, or a heat-conduction run (it has none)
+            return Ok(Vec::new());
+        }
         let data: Vec<Vec<f64>> = columns.iter().map(|c| self.history(c)).collect::<Result<_>>()?;
         let column = |name: &str| columns.iter().position(|c| c == name).map(|k| &data[k]);
         let need = |name: &str| column(name).ok_or_else(|| Error::input(format!("{}: no history column {name}", self.path.display())));

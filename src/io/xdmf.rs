@@ -251,7 +251,11 @@ pub fn write_heat_sidecar(h5: &Path, name: &str, (nodes, elements, topology): (u
     let _ = writeln!(x, r#"<Grid Name="heat {name}" GridType="Uniform">"#);
     let _ = writeln!(x, "{}", topology.xml(&file, elements));
     let _ = writeln!(x, r#"<Geometry GeometryType="XY">{}</Geometry>"#, item("/mesh/coordinates", &format!("{nodes} 2")));
-    let _ = writeln!(x, r#"<Attribute Name="temperature" AttributeType="Scalar" Center="Node">{}</Attribute>"#, item(&format!("/heat/{name}/temperature"), &nodes.to_string()));
+    let _ = writeln!(
+        x,
+        r#"<Attribute Name="temperature" AttributeType="Scalar" Center="Node">{}</Attribute>"#,
+        item(&format!("/heat/{name}/temperature"), &nodes.to_string())
+    );
     let _ = writeln!(
         x,
         r#"<Attribute Name="heat_flux" AttributeType="Vector" Center="Cell">{}</Attribute>"#,

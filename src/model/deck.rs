@@ -78,9 +78,9 @@
 //! ```
 
 use super::constraint::{default_tie_tolerance, tie};
+use super::heat::{HeatStep, HeldTemperature};
 use super::mesh::{blocks, rectangle, split_into_triangles, Block, MeshSets};
 use super::perturbation::{Analysis, HarmonicComponent, HarmonicDisplacement, Perturbation, RingMotion};
-use super::heat::{HeatStep, HeldTemperature};
 use super::{
     default_capture_distance, gmsh, Adjust, AugmentedLagrangian, BodyLoad, Component, ContactIntegration, ContactPair, Convergence, Friction, FrictionChange,
     Kinematics, Material, Model, NodalForce, OutputControls, OutputFields, Penalty, Plasticity, Precision, Predictor, PrescribedDisplacement, Pressure, Step,
@@ -223,12 +223,17 @@ fn heat_step(s: &StepSpec, name: &str) -> Result<HeatStep> {
         return Err(Error::input(format!("step '{name}': {key} has no meaning in a heat step (it holds temperatures alone)")));
     }
     let held = |t: &SetTemperatureSpec| {
-        let set = t.set.clone().ok_or_else(|| Error::input(format!("step '{name}': a heat step's temperature entries each name their node set (set = ...)")))?;
+        let set =
+            t.set.clone().ok_or_else(|| Error::input(format!("step '{name}': a heat step's temperature entries each name their node set (set = ...)")))?;
         Ok(HeldTemperature { node_set: set, value: t.value })
     };
     let temperatures = match &s.temperature {
         Some(TemperatureSpec::Sets(sets)) => sets.iter().map(held).collect::<Result<Vec<_>>>()?,
-        _ => return Err(Error::input(format!("step '{name}': a heat step holds temperatures on node sets: temperature = [{{ set = \"...\", value = ... }}, ...]"))),
+        _ => {
+            return Err(Error::input(format!(
+                "step '{name}': a heat step holds temperatures on node sets: temperature = [{{ set = \"...\", value = ... }}, ...]"
+            )))
+        }
     };
     Ok(HeatStep { name: name.to_string(), temperatures })
 }
@@ -741,7 +746,9 @@ pub fn parse(text: &str, path: &Path) -> Result<Model> {
             }
             "heat" => heat_steps.push(heat_step(s, &name)?),
             other => {
-                return Err(Error::input(format!("step '{name}': procedure {other:?} is not one of \"static\", \"harmonic\", \"frequency\", \"buckle\", \"heat\"")))
+                return Err(Error::input(format!(
+                    "step '{name}': procedure {other:?} is not one of \"static\", \"harmonic\", \"frequency\", \"buckle\", \"heat\""
+                )))
             }
         }
     }

@@ -99,12 +99,7 @@ pub fn solve(session: &PetscSession, model: &Model, partition: &Partition, step:
             flows.push(HeatFlow { set: h.node_set.clone(), flow });
         }
     }
-    let flux = partition
-        .local_elements()
-        .iter()
-        .zip(&geometries)
-        .map(|(&e, (geo, k))| heat_flux(geo, *k, &mesh.elements[e].map(|n| temperature[n])))
-        .collect();
+    let flux = partition.local_elements().iter().zip(&geometries).map(|(&e, (geo, k))| heat_flux(geo, *k, &mesh.elements[e].map(|n| temperature[n]))).collect();
     Ok(HeatAnswer { temperature, flux, flows })
 }
 

@@ -232,7 +232,16 @@ fn build(cards: &[Card], source_text: String) -> Result<InpModel> {
                 if b.materials.iter().any(|m| m.name == name) {
                     return Err(card.error(format!("material {name} is defined twice")));
                 }
-                b.materials.push(MaterialDef { name, at: card.at.clone(), elastic: None, expansion: 0.0, density: 0.0, plastic: Vec::new(), plastic_at: None, conductivity: 0.0 });
+                b.materials.push(MaterialDef {
+                    name,
+                    at: card.at.clone(),
+                    elastic: None,
+                    expansion: 0.0,
+                    density: 0.0,
+                    plastic: Vec::new(),
+                    plastic_at: None,
+                    conductivity: 0.0,
+                });
                 last_owner = "MATERIAL";
             }
             "SPECIFIC HEAT" => {
@@ -436,10 +445,15 @@ impl Builder {
         }
         self.join_midside_nodes_to_sets();
         self.resolve_ties()?;
+        // a heat deck's materials need no elastic constants, and its output is the heat group's
+        let heat = self.steps.iter().any(|s| s.heat);
         for (kind, n) in &self.element_types {
             self.notes.push(format!("{n} {kind} elements run as {}", element_note(kind)));
         }
-        if !self.output_requests.is_empty() {
+        if heat && !self.output_requests.is_empty() {
+            let list: Vec<&str> = self.output_requests.iter().map(|s| s.as_str()).collect();
+            self.notes.push(format!("output requests ({}) are answered by the results file: each heat step's temperatures and heat flux", list.join(", ")));
+        } else if !self.output_requests.is_empty() {
             let list: Vec<&str> = self.output_requests.iter().map(|s| s.as_str()).collect();
             let every = match self.output_every {
                 Some(n) if n > 1 => format!("every field at every {n}th increment and at the end of each step (FREQUENCY={n}), the history at every increment"),
@@ -448,8 +462,6 @@ impl Builder {
             self.notes.push(format!("output requests ({}) are answered by the results file: {every}", list.join(", ")));
         }
 
-        // a heat deck's materials need no elastic constants: NaN marks them unused
-        let heat = self.steps.iter().any(|s| s.heat);
         let mut materials = Vec::new();
         for m in &self.materials {
             let (youngs_modulus, poissons_ratio) = match (m.elastic, heat) {
@@ -463,7 +475,18 @@ impl Builder {
                 ([], _) | (_, None) => None,
                 (points, Some(at)) => Some(Plasticity::table(points).map_err(|e| error_at(at, "PLASTIC", e))?),
             };
-            materials.push(Material { name: m.name.clone(), youngs_modulus, poissons_ratio, thermal_expansion: m.expansion, plasticity, density: m.density, conductivity: m.conductivity });
+            materials.push(Material {
+                name: m.name.clone(),
+                youngs_modulus,
+                poissons_ratio,
+                thermal_expansion: m.expansion,
+                plasticity,
+                density: m.density,
+                conductivity: m.conductivity,
+            });
+        }
+        for m in materials.iter().filter(|m| !heat && m.conductivity > 0.0) {
+            self.notes.push(format!("material {}: *CONDUCTIVITY has no effect in a static step (heat transfer steps use it)", m.name));
         }
         if materials.is_empty() {
             return Err(Error::input("the deck defines no *MATERIAL"));
@@ -531,7 +554,7 @@ impl Builder {
         if let Some(min) = self.steps.iter().filter_map(|s| s.minimum.map(|m| m / s.period)).reduce(f64::min) {
             stepping.min_increment = min.clamp(1e-12, 1.0);
         }
-        if axisymmetric {
+        if axisymmetric && !heat {
             self.notes.push(format!(
                 "reactions are written per radian, per full ring (_ring) and per {CALCULIX_SEGMENT_DEGREES}-degree segment (_2deg, CalculiX's axisymmetric convention)"
             ));

@@ -185,7 +185,14 @@ impl Builder {
         let mut out = Vec::new();
         for s in heat {
             if !s.pressures.is_empty() || !s.body.is_empty() || !s.cloads.is_empty() || !s.temperature.is_empty() || !s.friction_changes.is_empty() {
-                return Err(error_at(&s.at, "STEP", format!("step {}: a *HEAT TRANSFER step holds temperatures (*BOUNDARY, 11); a mechanical load or *TEMPERATURE in it has no meaning", s.name)));
+                return Err(error_at(
+                    &s.at,
+                    "STEP",
+                    format!(
+                        "step {}: a *HEAT TRANSFER step holds temperatures (*BOUNDARY, 11); a mechanical load or *TEMPERATURE in it has no meaning",
+                        s.name
+                    ),
+                ));
             }
             if !s.boundaries.is_empty() {
                 self.notes.push(format!("step {}: its displacement constraints have no effect in a heat transfer step", s.name));
@@ -205,7 +212,11 @@ impl Builder {
             self.notes.push("temperatures held by *BOUNDARY, 11 in the model data have no effect without a *HEAT TRANSFER step".into());
         }
         if let Some(s) = self.steps.iter().find(|s| !s.held_temperatures.is_empty()) {
-            return Err(error_at(&s.at, "STEP", format!("step {}: a temperature (*BOUNDARY, 11) outside a *HEAT TRANSFER step: give it with *TEMPERATURE", s.name)));
+            return Err(error_at(
+                &s.at,
+                "STEP",
+                format!("step {}: a temperature (*BOUNDARY, 11) outside a *HEAT TRANSFER step: give it with *TEMPERATURE", s.name),
+            ));
         }
         Ok(out)
     }
@@ -318,7 +329,11 @@ impl Builder {
                 }
             };
             if first > last || last > 2 {
-                return Err(error_at(&d.at, "BOUNDARY", format!("degrees of freedom {first} to {last}: axisymmetric nodes have 1 (ur), 2 (uz) and 11 (temperature)")));
+                return Err(error_at(
+                    &d.at,
+                    "BOUNDARY",
+                    format!("degrees of freedom {first} to {last}: axisymmetric nodes have 1 (ur), 2 (uz) and 11 (temperature)"),
+                ));
             }
             for dof in first..=last {
                 let component = if dof == 1 { Component::R } else { Component::Z };
