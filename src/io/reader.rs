@@ -336,9 +336,8 @@ impl ResultsReader {
         Ok(out)
     }
 
-    /// The heat steps the file holds: (name, [lowest, highest] temperature, each held set's
-    /// heat flow in, full ring or over the thickness, mW), sorted by name.
-    pub fn heat_steps(&self) -> Result<Vec<(String, [f64; 2], Vec<(String, f64)>)>> {
+    /// The heat steps the file holds, sorted by name.
+    pub fn heat_steps(&self) -> Result<Vec<StoredHeat>> {
         let Ok(top) = self.file.group("heat") else { return Ok(Vec::new()) };
         let bad = |e: hdf5::Error| Error::input(format!("{}: /heat: {e}", self.path.display()));
         let mut out = Vec::new();
@@ -534,6 +533,10 @@ impl ResultsReader {
         Ok(shortest.into_iter().min().unwrap_or(0).min(before_incomplete))
     }
 }
+
+/// A heat step as the results file keeps it: (name, [lowest, highest] temperature (degC),
+/// each held set's heat flow in (mW, full ring, or over a plane model's thickness)).
+pub type StoredHeat = (String, [f64; 2], Vec<(String, f64)>);
 
 /// A perturbation step as the results file keeps it: its name, mode and each set's full-ring
 /// resultants (name, value).
