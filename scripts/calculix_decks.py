@@ -120,8 +120,8 @@ def compare_temperatures(dat, results):
 
 def main():
     with h5py.File(sys.argv[2], "r") as f:
-        heat = "heat" in f
-    if heat:
+        heat_only = "heat" in f and not len(f["increments"])
+    if heat_only:
         compare_temperatures(sys.argv[1], sys.argv[2])
         return
     ccx = dat_displacements(sys.argv[1])

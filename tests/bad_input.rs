@@ -432,7 +432,8 @@ fn a_wrong_tie_is_named() {
 }
 
 /// A heat step's mistakes: no conductivity, a mechanical entry in it, a uniform temperature
-/// (it holds temperatures on sets), a general step beside it.
+/// (it holds temperatures on sets), a general step before it or one with its own temperature
+/// after it.
 #[test]
 fn a_wrong_heat_step_is_named() {
     let heat = "[[step]]\nname = \"h\"\nprocedure = \"heat\"\n";
@@ -443,7 +444,11 @@ fn a_wrong_heat_step_is_named() {
         (format!("{RECT}{conductive}{heat}{held}boundary = [{{ set = \"bottom\", uz = 0.0 }}]\n"), vec!["step 'h'", "boundary has no meaning in a heat step"]),
         (format!("{RECT}{conductive}{heat}temperature = 100.0\n"), vec!["step 'h'", "holds temperatures on node sets"]),
         (format!("{RECT}{conductive}{heat}temperature = [{{ set = \"nowhere\", value = 1.0 }}]\n"), vec!["heat step 'h'", "unknown node set 'nowhere'"]),
-        (format!("{RECT}{MATERIAL}conductivity = 16.0\n{STEP}{heat}{held}"), vec!["heat step 'h'", "has no general steps (here 'step-1')"]),
+        (format!("{RECT}{MATERIAL}conductivity = 16.0\n{STEP}{heat}{held}"), vec!["step 'h'", "a heat step after a general or perturbation step"]),
+        (
+            format!("{RECT}{MATERIAL}conductivity = 16.0\n{heat}{held}{STEP}temperature = 50.0\n"),
+            vec!["heat step 'h'", "general step 'step-2' gives its own temperature"],
+        ),
         (format!("{RECT}{conductive}{STEP}"), vec!["material 'steel': missing youngs_modulus (MPa)"]),
     ] {
         let run = run_deck(&deck, &[], 1, &[]);

@@ -171,14 +171,14 @@ fn cards_of_other_physics_are_refused_with_their_reason() {
 }
 
 /// Heat-transfer cards in the wrong place: a temperature held in a static step, a heat step
-/// beside a static one, a conductivity that varies with temperature.
+/// after a static one, a conductivity that varies with temperature, a transient heat step.
 #[test]
 fn a_misplaced_heat_card_is_named() {
     let heat_step = "*END STEP\n*STEP\n*HEAT TRANSFER, STEADY STATE\n*BOUNDARY\nTOP, 11, 11, 100.\n";
     for (model, step, needles) in [
         ("", "*BOUNDARY\nTOP, 11, 11, 50.\n", vec!["*STEP", "a temperature (*BOUNDARY, 11) outside a *HEAT TRANSFER step"]),
         ("*MATERIAL, NAME=HOT\n*CONDUCTIVITY\n50., 20.\n45., 200.\n", "", vec!["model.inp:19", "*CONDUCTIVITY", "varies with temperature"]),
-        ("", heat_step, vec!["heat step 'step-2'", "has no general steps (here 'step-1')"]),
+        ("", heat_step, vec!["step step-2", "a *HEAT TRANSFER step after a *STATIC step"]),
         ("", "*END STEP\n*STEP\n*HEAT TRANSFER\n", vec!["*HEAT TRANSFER", "transient heat transfer", "STEADY STATE"]),
     ] {
         let run = run_inp(model, step, &[]);

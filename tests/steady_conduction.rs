@@ -150,3 +150,82 @@ fn a_calculix_heat_transfer_deck_gives_the_same_profile() {
     assert!((flow - expected).abs() < 1e-3 * expected, "post: the bore's heat flow {flow:.6e} mW, expected {expected:.6e}");
     assert!(text.contains("heat step 'step-1': temperatures 2.000000e1 to 2.000000e2 degC"), "{text}");
 }
+
+/// The heat step's field carried into a static step, as CalculiX carries it: the same wall,
+/// 120 degC at the bore and 20 outside from 20 everywhere, its ends held axially (plane
+/// strain), against Timoshenko & Goodier, Theory of Elasticity (3rd ed., 1970), section 151,
+/// for the temperature change T(r) = 100 ln(b/r) / ln(b/a):
+///
+///   sigma_r = alpha E / ((1 - nu) r^2) [ (r^2 - a^2) / (b^2 - a^2) I(b) - I(r) ]
+///   sigma_t = alpha E / ((1 - nu) r^2) [ (r^2 + a^2) / (b^2 - a^2) I(b) + I(r) - T r^2 ]
+///   sigma_z = nu (sigma_r + sigma_t) - alpha E T,   I(r) = int_a^r T r dr
+///           = 100 / ln(b/a) [ r^2 ln(b/r) / 2 + r^2 / 4 - a^2 ln(b/a) / 2 - a^2 / 4 ].
+///
+/// E = 200 GPa, nu = 0.3, alpha = 1.2e-5 /degC: sigma_t = -186.35 MPa at the bore and +156.50 MPa
+/// outside (the closed form for this profile, alpha E T_a / (2 (1 - nu) ln(b/a)) [1 - ln(b/a) -
+/// (a^2 + b^2) / (b^2 - a^2) ln(b/a)] at the bore, gives the same), sigma_z = -295.9 MPa at the
+/// bore. Every Gauss point's stress within 0.05 % of that largest stress, on 2 ranks.
+#[test]
+fn a_heat_steps_field_is_the_temperature_of_the_static_step_after_it() {
+    const E: f64 = 200_000.0;
+    const NU: f64 = 0.3;
+    const ALPHA: f64 = 1.2e-5;
+    let change = |r: f64| 100.0 * (B / r).ln() / (B / A).ln();
+    let integral = |r: f64| 100.0 / (B / A).ln() * (r * r * (B / r).ln() / 2.0 + r * r / 4.0 - A * A * (B / A).ln() / 2.0 - A * A / 4.0);
+    let exact = |r: f64| {
+        let k = ALPHA * E / ((1.0 - NU) * r * r);
+        let sr = k * ((r * r - A * A) / (B * B - A * A) * integral(B) - integral(r));
+        let st = k * ((r * r + A * A) / (B * B - A * A) * integral(B) + integral(r) - change(r) * r * r);
+        [sr, NU * (sr + st) - ALPHA * E * change(r), st]
+    };
+    let deck = format!(
+        r#"reference_temperature = 20.0
+nlgeom = false
+[mesh]
+rectangle = {{ r = [{A}, {B}], z = [0.0, 2.0], divisions = [24, 1] }}
+[[material]]
+name = "steel"
+youngs_modulus = {E}
+poissons_ratio = {NU}
+thermal_expansion = {ALPHA}
+conductivity = {K}
+[[step]]
+name = "warm"
+procedure = "heat"
+temperature = [{{ set = "inner", value = 120.0 }}, {{ set = "outer", value = 20.0 }}]
+[[step]]
+name = "stress"
+boundary = [{{ set = "bottom", uz = 0.0 }}, {{ set = "top", uz = 0.0 }}]
+"#
+    );
+    let run = run_deck(&deck, &[], 2, &[]);
+    run.assert_ok();
+    let res = Results::open(&run.h5);
+    let last = res.last_increment();
+    assert_eq!(res.f64s(&format!("{last}/nodal/temperature")), res.f64s("heat/warm/temperature"), "the static step ends at the heat step's field");
+    let coords = res.f64s("mesh/coordinates");
+    let conn = res.u64s("mesh/connectivity");
+    let stress = res.f64s(&format!("{last}/stress"));
+    let g = 0.6f64.sqrt();
+    let (mut peak, mut worst) = ([0.0f64; 3], [0.0f64; 3]);
+    for e in 0..conn.len() / 8 {
+        let r = |slot: usize| coords[2 * conn[8 * e + slot] as usize];
+        assert!(r(1) > r(0) && (r(3) - r(0)).abs() < 1e-9, "element {e}: its first side runs along r");
+        for q in 0..9 {
+            let x = r(0) + (1.0 + [-g, 0.0, g][q % 3]) * (r(1) - r(0)) / 2.0;
+            let want = exact(x);
+            for c in 0..3 {
+                peak[c] = peak[c].max(want[c].abs());
+                worst[c] = worst[c].max((stress[(e * 9 + q) * 4 + c] - want[c]).abs());
+            }
+        }
+    }
+    assert!((exact(A)[2] + 186.35).abs() < 0.01 && (exact(B)[2] - 156.50).abs() < 0.01, "the peaks quoted: {:?} {:?}", exact(A), exact(B));
+    // (the field is the heat step's quadratic approximation of the logarithm, so each
+    // component's error is measured against the largest stress, sigma_z at the bore)
+    let largest = peak.iter().fold(0.0f64, |m, &p| m.max(p));
+    for (c, name) in ["sigma_r", "sigma_z", "sigma_t"].iter().enumerate() {
+        println!("{name}: peak {:.3} MPa, largest difference {:.4} MPa", peak[c], worst[c]);
+        assert!(worst[c] < 5e-4 * largest, "{name}: {:.4} MPa off, {:.2e} of the largest stress {largest:.3}", worst[c], worst[c] / largest);
+    }
+}

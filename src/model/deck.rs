@@ -744,6 +744,9 @@ pub fn parse(text: &str, path: &Path) -> Result<Model> {
                     analysis,
                 });
             }
+            "heat" if !steps.is_empty() || !perturbations.is_empty() => {
+                return Err(Error::input(format!("step '{name}': a heat step after a general or perturbation step (heat steps come first)")))
+            }
             "heat" => heat_steps.push(heat_step(s, &name)?),
             other => {
                 return Err(Error::input(format!(

@@ -2,8 +2,11 @@
 //! temperature field that Fourier's law gives, -div(k grad T) = 0 in the body, with the
 //! temperatures the step holds on node sets and insulated (zero-flux) surfaces elsewhere. It
 //! is linear (a temperature-independent conductivity), so a step solves once
-//! (`solve::conduction`, `element::conduction`). A deck of heat steps has no general steps:
-//! the field is written, not carried into a stress analysis.
+//! (`solve::conduction`, `element::conduction`). Heat steps come before the general steps;
+//! the last one's field is then the temperature of the general steps, reached in the first of
+//! them (ramped from the initial temperatures, as a step's own temperature is), as CalculiX
+//! carries a *HEAT TRANSFER step's temperatures into the *STATIC step after it (measured with
+//! ccx 2.20). A general step after a heat step gives no temperature of its own.
 //!
 //! Units, from slideline's mm, N, s: conductivity in mW/(mm K) = N/(s K) (numerically equal to
 //! W/(m K): steel about 50), heat flux in mW/mm^2, heat flow in mW.
@@ -31,14 +34,11 @@ impl HeatStep {
     /// material, no general step beside it.
     pub fn validate(&self, model: &Model) -> Result<()> {
         let at = |what: String| Error::input(format!("heat step '{}': {what}", self.name));
-        if let Some(s) = model.steps.first() {
+        if let Some(s) = model.steps.iter().find(|s| s.temperature.is_some()) {
             return Err(at(format!(
-                "a model with heat steps has no general steps (here '{}'): slideline solves the temperature field alone, not the stresses it causes",
+                "general step '{}' gives its own temperature: after a heat step the temperatures are the heat step's field (leave the step's temperature out)",
                 s.name
             )));
-        }
-        if !model.perturbations.is_empty() {
-            return Err(at("a model with heat steps has no perturbation steps".into()));
         }
         if self.temperatures.is_empty() {
             return Err(at("holds no temperature: give at least one node set's (without it the field is not determined)".into()));
@@ -64,5 +64,18 @@ impl HeatStep {
             }
         }
         held
+    }
+}
+
+impl Model {
+    /// This model with heat step `step`'s answer `field` (every node's temperature, degC) as the
+    /// temperature of its general steps: reached in the first (ramped from the initial
+    /// temperatures) and kept after.
+    pub fn with_heat_field(&self, field: Vec<f64>) -> Model {
+        let mut model = self.clone();
+        if let Some(first) = model.steps.first_mut() {
+            first.temperature = Some(super::Temperature::from_nodal(field));
+        }
+        model
     }
 }

@@ -18,8 +18,8 @@ impl Model {
                 "perturbation steps (harmonic loads, buckling, natural frequencies) are built for axisymmetric models only; this model has plane-strain or plane-stress elements",
             ));
         }
-        // a heat-conduction model uses its materials' conductivity alone (`heat::HeatStep`)
-        for m in self.materials.iter().filter(|_| self.heat_steps.is_empty()) {
+        // a model of heat steps alone uses its materials' conductivity alone (`heat::HeatStep`)
+        for m in self.materials.iter().filter(|_| !self.steps.is_empty()) {
             if !(m.youngs_modulus > 0.0 && m.youngs_modulus.is_finite()) {
                 return Err(Error::input(format!("material '{}': Young's modulus must be > 0, got {}", m.name, m.youngs_modulus)));
             }
@@ -243,8 +243,8 @@ impl Model {
                 }
             }
         }
-        // (a heat model moves nothing)
-        if let Some((n, _)) = self.axially_free_bodies(&held_z).into_iter().filter(|_| self.heat_steps.is_empty()).find(|(_, pairs)| pairs.is_empty()) {
+        // (a model of heat steps alone moves nothing)
+        if let Some((n, _)) = self.axially_free_bodies(&held_z).into_iter().filter(|_| !self.steps.is_empty()).find(|(_, pairs)| pairs.is_empty()) {
             return Err(Error::input(format!(
                 "the body containing node {} (at r = {}, z = {}) has no prescribed uz and no contact: it is free to move along the axis; prescribe uz on one of its nodes",
                 self.mesh.node_ids[n], self.mesh.coords[n][0], self.mesh.coords[n][1]

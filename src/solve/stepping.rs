@@ -138,6 +138,16 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
         partition.size,
         options.output.display()
     ));
+    // the heat steps, first: the last one's field is the general steps' temperature
+    let mut heat = Vec::new();
+    for h in &model.heat_steps {
+        let answer = super::conduction::solve(session, model, &partition, h)?;
+        stop_all_on_write_error(&world, results.write_heat(h, &answer, &partition, model.is_axisymmetric()))?;
+        progress.note(&format!("heat step '{}': solved", h.name));
+        heat.push((h.name.clone(), answer));
+    }
+    let heated = heat.last().filter(|_| !model.steps.is_empty()).map(|(_, a)| model.with_heat_field(a.temperature.clone()));
+    let model = heated.as_ref().unwrap_or(model);
     let (carried, mut resumed) = match resume {
         None => (Carried::fresh(model, &partition), None),
         Some(point) => {
@@ -440,13 +450,6 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
         let base_group = rows.last().map(|r| format!("{:06}", r.number));
         stop_all_on_write_error(&world, results.write_perturbation(p, &answer, &partition, base_group.as_deref()))?;
         perturbations.push((p.name.clone(), answer));
-    }
-    // heat steps: a model with them has no other steps
-    let mut heat = Vec::new();
-    for h in &model.heat_steps {
-        let answer = super::conduction::solve(session, model, &partition, h)?;
-        stop_all_on_write_error(&world, results.write_heat(h, &answer, &partition, model.is_axisymmetric()))?;
-        heat.push((h.name.clone(), answer));
     }
     progress.finish();
     if let Some(status) = status.as_mut() {

@@ -180,6 +180,10 @@ impl Builder {
     /// data's temperatures and its own; a mechanical load in one is refused, a displacement
     /// constraint noted (it has no effect on the temperatures).
     pub(super) fn heat_steps(&mut self) -> Result<Vec<HeatStep>> {
+        if let Some(k) = self.steps.iter().position(|s| s.heat).filter(|&k| self.steps[..k].iter().any(|s| !s.heat)) {
+            let s = &self.steps[k];
+            return Err(error_at(&s.at, "STEP", format!("step {}: a *HEAT TRANSFER step after a *STATIC step: slideline solves the heat steps first", s.name)));
+        }
         let (heat, general): (Vec<StepDef>, Vec<StepDef>) = std::mem::take(&mut self.steps).into_iter().partition(|s| s.heat);
         self.steps = general;
         let mut out = Vec::new();
@@ -192,6 +196,13 @@ impl Builder {
                         "step {}: a *HEAT TRANSFER step holds temperatures (*BOUNDARY, 11); a mechanical load or *TEMPERATURE in it has no meaning",
                         s.name
                     ),
+                ));
+            }
+            if !s.boundaries.is_empty() && !self.steps.is_empty() {
+                return Err(error_at(
+                    &s.at,
+                    "STEP",
+                    format!("step {}: displacement constraints in a *HEAT TRANSFER step: give them in the model data or the *STATIC step", s.name),
                 ));
             }
             if !s.boundaries.is_empty() {
