@@ -31,7 +31,7 @@ pub struct HeatStep {
 
 impl HeatStep {
     /// Checks the step against its model: known sets, finite values, a conductivity in every
-    /// material, no general step beside it.
+    /// material, no general step with a temperature of its own.
     pub fn validate(&self, model: &Model) -> Result<()> {
         let at = |what: String| Error::input(format!("heat step '{}': {what}", self.name));
         if let Some(s) = model.steps.iter().find(|s| s.temperature.is_some()) {
@@ -68,7 +68,7 @@ impl HeatStep {
 }
 
 impl Model {
-    /// This model with heat step `step`'s answer `field` (every node's temperature, degC) as the
+    /// This model with a heat step's answer `field` (every node's temperature, degC) as the
     /// temperature of its general steps: reached in the first (ramped from the initial
     /// temperatures) and kept after.
     pub fn with_heat_field(&self, field: Vec<f64>) -> Model {
