@@ -180,6 +180,11 @@ fn a_misplaced_heat_card_is_named() {
         ("*MATERIAL, NAME=HOT\n*CONDUCTIVITY\n50., 20.\n45., 200.\n", "", vec!["model.inp:19", "*CONDUCTIVITY", "varies with temperature"]),
         ("", heat_step, vec!["step step-2", "a *HEAT TRANSFER step after a *STATIC step"]),
         ("", "*END STEP\n*STEP\n*HEAT TRANSFER\n", vec!["*HEAT TRANSFER", "transient heat transfer", "STEADY STATE"]),
+        (
+            "*MATERIAL, NAME=WARM\n*CONDUCTIVITY\n50.\n*STEP\n*HEAT TRANSFER, STEADY STATE\n*BOUNDARY\nTOP, 11, 11, 100.\n*END STEP\n",
+            "",
+            vec!["material 'WARM' has no elastic constants", "*ELASTIC"],
+        ),
     ] {
         let run = run_inp(model, step, &[]);
         assert_rejected(&run, &needles);

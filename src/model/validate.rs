@@ -20,6 +20,12 @@ impl Model {
         }
         // a model of heat steps alone uses its materials' conductivity alone (`heat::HeatStep`)
         for m in self.materials.iter().filter(|_| !self.steps.is_empty()) {
+            if m.youngs_modulus.is_nan() || m.poissons_ratio.is_nan() {
+                return Err(Error::input(format!(
+                    "material '{}' has no elastic constants (Young's modulus, Poisson's ratio; *ELASTIC): the general steps need them",
+                    m.name
+                )));
+            }
             if !(m.youngs_modulus > 0.0 && m.youngs_modulus.is_finite()) {
                 return Err(Error::input(format!("material '{}': Young's modulus must be > 0, got {}", m.name, m.youngs_modulus)));
             }
