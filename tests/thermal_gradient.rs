@@ -17,7 +17,7 @@
 //! file holds is the deck's, node for node.
 
 mod common;
-use common::{command_in, Results};
+use common::{cax8_wall, command_in, node_list, Results};
 use std::fmt::Write as _;
 
 const A: f64 = 100.0;
@@ -46,37 +46,17 @@ fn exact(r: f64) -> [f64; 3] {
 
 /// The deck: a row of Q8 elements across the wall, node k at (r_k, z) with r_k = a + k dr / 2.
 fn deck() -> String {
-    let dr = (B - A) / ELEMENTS as f64;
-    let columns = 2 * ELEMENTS + 1;
-    // three rows of nodes (z = 0, h/2, h); the middle row only at the corners' columns
-    let id = |row: usize, col: usize| (row * columns + col + 1) as u64;
-    let r = |col: usize| A + col as f64 * dr / 2.0;
-    let mut w = String::from("*NODE, NSET=NALL\n");
-    for row in 0..3 {
-        for col in (0..columns).filter(|c| row != 1 || c % 2 == 0) {
-            let _ = writeln!(w, "{}, {:.12}, {:.12}", id(row, col), r(col), row as f64 * HEIGHT / 2.0);
-        }
-    }
-    w.push_str("*ELEMENT, TYPE=CAX8, ELSET=WALL\n");
-    for e in 0..ELEMENTS {
-        let c = 2 * e;
-        let corners = [id(0, c), id(0, c + 2), id(2, c + 2), id(2, c)];
-        let mids = [id(0, c + 1), id(1, c + 2), id(2, c + 1), id(1, c)];
-        let _ = writeln!(w, "{}, {}, {}, {}, {}, {}, {}, {}, {}", e + 1, corners[0], corners[1], corners[2], corners[3], mids[0], mids[1], mids[2], mids[3]);
-    }
-    let ends = |row: usize| (0..columns).map(|c| id(row, c).to_string()).collect::<Vec<_>>().join(", ");
+    let (mut w, nodes) = cax8_wall(A, B, ELEMENTS, HEIGHT);
     let _ = write!(
         w,
         "*NSET, NSET=BOTTOM\n{}\n*NSET, NSET=TOP\n{}\n*MATERIAL, NAME=STEEL\n*ELASTIC\n{E}, {NU}\n*EXPANSION\n{ALPHA}\n\
          *SOLID SECTION, ELSET=WALL, MATERIAL=STEEL\n*INITIAL CONDITIONS, TYPE=TEMPERATURE\nNALL, 20.\n\
          *BOUNDARY\nBOTTOM, 2, 2\nTOP, 2, 2\n*STEP\n*STATIC\n0.5, 1.\n*TEMPERATURE\n",
-        ends(0),
-        ends(2)
+        node_list(&nodes, |_, z| z == 0.0),
+        node_list(&nodes, |_, z| z == HEIGHT)
     );
-    for row in 0..3 {
-        for col in (0..columns).filter(|c| row != 1 || c % 2 == 0) {
-            let _ = writeln!(w, "{}, {:.12}", id(row, col), 20.0 + change(r(col)));
-        }
+    for (n, r, _) in &nodes {
+        let _ = writeln!(w, "{n}, {:.12}", 20.0 + change(*r));
     }
     w.push_str("*END STEP\n");
     w

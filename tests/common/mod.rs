@@ -372,3 +372,35 @@ pressure = [ {{ surface = "upper_top", value = 10.0 }} ]
 "#
     )
 }
+
+/// A CalculiX deck's mesh of one row of CAX8 elements across a wall r in [a, b], height `h`:
+/// `*NODE, NSET=NALL` and `*ELEMENT, TYPE=CAX8, ELSET=WALL` (elements 1..=n along r), and each
+/// node's (id, r, z). Three rows of nodes (z = 0, h/2, h), the middle one only at the corners'
+/// columns.
+pub fn cax8_wall(a: f64, b: f64, elements: usize, h: f64) -> (String, Vec<(u64, f64, f64)>) {
+    use std::fmt::Write as _;
+    let columns = 2 * elements + 1;
+    let id = |row: usize, col: usize| (row * columns + col + 1) as u64;
+    let dr = (b - a) / elements as f64;
+    let nodes: Vec<(u64, f64, f64)> = (0..3)
+        .flat_map(|row| (0..columns).filter(move |c| row != 1 || c % 2 == 0).map(move |col| (row, col)))
+        .map(|(row, col)| (id(row, col), a + col as f64 * dr / 2.0, row as f64 * h / 2.0))
+        .collect();
+    let mut w = String::from("*NODE, NSET=NALL\n");
+    for (n, r, z) in &nodes {
+        let _ = writeln!(w, "{n}, {r:.12}, {z:.12}");
+    }
+    w.push_str("*ELEMENT, TYPE=CAX8, ELSET=WALL\n");
+    for e in 0..elements {
+        let c = 2 * e;
+        let slots = [id(0, c), id(0, c + 2), id(2, c + 2), id(2, c), id(0, c + 1), id(1, c + 2), id(2, c + 1), id(1, c)];
+        let _ = writeln!(w, "{}, {}", e + 1, slots.map(|n| n.to_string()).join(", "));
+    }
+    (w, nodes)
+}
+
+/// The ids of `nodes` (as [`cax8_wall`] lists them) that `keep` selects by (r, z), joined for
+/// a *NSET line.
+pub fn node_list(nodes: &[(u64, f64, f64)], keep: impl Fn(f64, f64) -> bool) -> String {
+    nodes.iter().filter(|(_, r, z)| keep(*r, *z)).map(|(n, _, _)| n.to_string()).collect::<Vec<_>>().join(", ")
+}

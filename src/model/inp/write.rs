@@ -372,8 +372,6 @@ contact_friction = [ { pair = "one", friction = 0.0 } ]
         assert_eq!(model.friction_in_step(2)[1].map(|f| f.coefficient), Some(0.3), "a change holds in the steps after it");
     }
 
-    /// A pair's exponential pressure-overclosure law is written as CalculiX's EXPONENTIAL line
-    /// (c0, p0 per listing: a two-pass pair's p0 halved) and read back to the same law.
     /// A deck's constraints (here a pre-tension section's and an equation) are written as
     /// equations over the mesh with its partner nodes, and read back the same.
     #[test]
@@ -392,6 +390,8 @@ contact_friction = [ { pair = "one", friction = 0.0 } ]
         assert_eq!(terms(&read), terms(&model));
     }
 
+    /// A pair's exponential pressure-overclosure law is written as CalculiX's EXPONENTIAL line
+    /// (c0, p0 per listing: a two-pass pair's p0 halved) and read back to the same law.
     #[test]
     fn the_exponential_law_is_written_and_read_back() {
         let deck = TWO_BLOCKS.to_string()
