@@ -274,7 +274,7 @@ fn peak_of(p: &Peak) -> Option<(f64, &str)> {
 /// life from the elastic-plastic run's own strain range.
 pub fn assessment_section(c: &CodeCheck, fe: &FeCheck, life: Option<&StrainLife>) -> String {
     let mut t = format!(
-        "\n  design assessment: code (EJMA, coefficients {}) beside finite elements (linear elastic, the joint itself, linearised across each ply)\n",
+        "\n  design assessment: code (EJMA, coefficients {}) beside finite elements (linear elastic, the joint itself, each ply's membrane stress from its nodal forces, its bending stress linearised)\n",
         c.source.label()
     );
     t.push_str(&format!("  {:<50} {:>10} {:>10} {:>8}   {}\n", "", "code", "FE", "FE/code", "FE's largest at"));

@@ -10,13 +10,11 @@
 //! - the instability pressures by buckling analyses sit above the code's (its column formula is
 //!   factored, its in-plane pressure a yield criterion).
 //!
-//! The mesh check (the issue's, `--ply-elements 4 --ply-element-length 0.5` against the default
-//! ply mesh): S2, S4, S6, St and the rate move by less than 2 % (measured 0.0, 0.2, 0.1, 0.7,
-//! 0.02 %). The membrane stresses S3 and S5 do not: they are 2-8 % of the bending stresses
-//! beside them, and the displacement elements' stress, not in equilibrium point by point,
-//! carries an error of about 0.5 % of the bending stress into their mean across the ply (the
-//! plies' membrane forces at a root apex miss the end reaction by 20-30 %), so they move by
-//! 8 and 23 % (docs/bellows.md); the test holds that change below 1 % of the bending stress.
+//! The mesh check (`--ply-elements 4 --ply-element-length 0.5` against the default ply mesh):
+//! every finite-element value moves by less than 2 % (measured on a 1 mm stroke: S2 0.02,
+//! S3 0.37, S4 0.27, S5 0.34, S6 0.08, St 0.14, the rate 0.02 %). The membrane stresses S3 and
+//! S5 come from the elements' nodal forces (`assessment::membrane`); as the mean of the stress
+//! across a ply they had moved by 9 and 23 %.
 
 mod common;
 use common::{command_in, Results};
@@ -100,11 +98,7 @@ fn the_finite_element_values_hold_on_a_finer_ply_mesh() {
     for (k, name) in ["S2", "S3", "S4", "S5", "S6", "St", "axial rate"].iter().enumerate() {
         eprintln!("{name}: {:.4} on the default ply mesh, {:.4} on the fine one, {:+.2} %", default[k], fine[k], 100.0 * (default[k] / fine[k] - 1.0));
     }
-    for k in [0, 2, 4, 5, 6] {
+    for k in 0..default.len() {
         assert!((default[k] / fine[k] - 1.0).abs() < 0.02, "{default:?} against {fine:?}");
-    }
-    // the membrane stresses: within 1 % of the bending stress beside them
-    for (membrane, bending) in [(1, 2), (3, 4)] {
-        assert!((default[membrane] - fine[membrane]).abs() < 0.01 * fine[bending], "{default:?} against {fine:?}");
     }
 }

@@ -6,10 +6,12 @@
 //!
 //! Each is the joint's own model (mesh, contact between the plies, the sleeve) with the
 //! plasticity and the heat left out, its load applied at [`LOAD_FRACTION`] of the design value
-//! and the answers scaled back up: a linear analysis, as the codes' formulas are. The stress is
-//! linearised across each ply (`fe::linearize`) at nine stations along every piece of every
-//! convolution (crest, root, both sidewalls; the mid-sidewall, crest and root apexes among
-//! them), and the worst over the stations and the plies is reported with where it is. The
+//! and the answers scaled back up: a linear analysis, as the codes' formulas are. At nine
+//! stations along every piece of every convolution (crest, root, both sidewalls; the
+//! mid-sidewall, crest and root apexes among them) each ply's meridional membrane stress is its
+//! force over its area, from the elements' nodal forces ([`super::membrane`]), and its bending
+//! and hoop stresses are linearised across it (`fe::linearize`); the worst over the stations
+//! and the plies is reported with where it is. The
 //! quarter tori where the pack leaves the tubes are reported apart: the codes' formulas are
 //! for the convolutions between.
 //!
@@ -20,6 +22,7 @@
 //! code's elastic formulas are for) [`strain_life`] gives the life from the total strain range.
 
 use super::formulas::{cycles_as_formed_austenitic, PSI_PER_MPA};
+use super::membrane::PlyMembrane;
 use crate::error::{Error, Result};
 use crate::fe::linearize::{linearize, Linearized, StressSampler};
 use crate::io::reader::ResultsReader;
@@ -114,27 +117,16 @@ pub fn analyse(session: &PetscSession, p: &BellowsParams, stability: &super::sta
     // the stroke analysis runs without a stroke too (a pressure-only assessment), for the rate
     let nominal = if p.displacement == 0.0 { 1.0 } else { p.displacement.abs() };
     let stroke = LOAD_FRACTION * nominal;
-    let stroke_step = Step {
-        name: "stroke".into(),
-        increments: 1,
-        displacements: vec![hold("fixed_end", 0.0), hold("moving_end", -stroke)],
-        pressures: vec![],
-        temperature: None,
-        time_span: None,
-        release_constraints: false,
-        without_field_output: false,
-        friction_changes: Vec::new(),
-        nodal_forces: Vec::new(),
-        body_loads: Vec::new(),
-    };
     let pieces = convolution_pieces(p);
     super::in_scratch(session, "assess", |dir| {
         let pressed = dir.join("pressure.h5");
-        run(session, &elastic(p, pressure)?, &super::quiet_run(&pressed))?;
-        let from_pressure = stations(&pressed, p, &pieces, 1.0 / LOAD_FRACTION)?;
+        let model = elastic(p, pressure)?;
+        run(session, &model, &super::quiet_run(&pressed))?;
+        let from_pressure = stations(&pressed, &model, p, &pieces, 1.0 / LOAD_FRACTION)?;
         let stroked = dir.join("stroke.h5");
-        let summary = run(session, &elastic(p, stroke_step)?, &super::quiet_run(&stroked))?;
-        let from_stroke = stations(&stroked, p, &pieces, p.displacement.abs() / stroke)?;
+        let model = stroke_analysis(p, stroke)?;
+        let summary = run(session, &model, &super::quiet_run(&stroked))?;
+        let from_stroke = stations(&stroked, &model, p, &pieces, p.displacement.abs() / stroke)?;
         let force = summary.history.last().and_then(|row| row.reactions.iter().find(|(s, _)| s == "moving_end")).map(|(_, f)| f[1].abs() * 2.0 * PI);
         let force = force.ok_or_else(|| Error::Output { path: stroked.clone(), message: "no reaction at the moving end".into() })?;
         let mut fe = combine(p, &pieces, &from_pressure, &from_stroke, force / stroke);
@@ -142,6 +134,28 @@ pub fn analyse(session: &PetscSession, p: &BellowsParams, stability: &super::sta
         fe.in_plane_instability = stability.in_plane.unwrap_or(f64::NAN);
         Ok(fe)
     })
+}
+
+/// The joint's model for the linear analysis of the stroke alone: tube B's end moved by
+/// `stroke` towards tube A (mm), tube A's end held.
+pub fn stroke_analysis(p: &BellowsParams, stroke: f64) -> Result<crate::model::Model> {
+    let hold = |set: &str, value: f64| PrescribedDisplacement { node_set: set.into(), component: Component::Z, value };
+    elastic(
+        p,
+        Step {
+            name: "stroke".into(),
+            increments: 1,
+            displacements: vec![hold("fixed_end", 0.0), hold("moving_end", -stroke)],
+            pressures: vec![],
+            temperature: None,
+            time_span: None,
+            release_constraints: false,
+            without_field_output: false,
+            friction_changes: Vec::new(),
+            nodal_forces: Vec::new(),
+            body_loads: Vec::new(),
+        },
+    )
 }
 
 /// The joint's model with `step` alone, elastic, without the heat.
@@ -158,13 +172,24 @@ pub(super) type PieceStations = Vec<Vec<(usize, Station)>>;
 
 /// The linearised stresses of every station of every piece, through the pack's thickness ply
 /// by ply (indexed [piece][station][k], with the ply's number from 0), from the last increment
-/// of `file`, multiplied by `scale` (from the applied load to the design's).
-fn stations(file: &Path, p: &BellowsParams, pieces: &[ConvolutionPiece], scale: f64) -> Result<Vec<PieceStations>> {
+/// of `file` (a run of `model`), multiplied by `scale` (from the applied load to the
+/// design's). The membrane stress is the ply's meridional force over its area, from the
+/// elements' nodal forces ([`PlyMembrane`]); the bending and hoop stresses are linearised.
+fn stations(file: &Path, model: &crate::model::Model, p: &BellowsParams, pieces: &[ConvolutionPiece], scale: f64) -> Result<Vec<PieceStations>> {
     let r = ResultsReader::open(file)?;
     let last = r.increments()?.pop().ok_or_else(|| Error::Output { path: file.to_path_buf(), message: "no increment".into() })?;
     let stress: Vec<[[f64; 4]; 9]> =
         r.field(&last, "stress")?.chunks_exact(36).map(|c| std::array::from_fn(|q| std::array::from_fn(|k| c[4 * q + k] * scale))).collect();
-    stations_of(&r, &stress, p, pieces)
+    let membrane = PlyMembrane::from_file(&r, &last, model, p, pieces, scale)?;
+    let mut out = stations_of(&r, &stress, p, pieces)?;
+    for (i, piece) in out.iter_mut().enumerate() {
+        for (j, station) in piece.iter_mut().enumerate() {
+            for (ply, s) in station.iter_mut() {
+                s.membrane = membrane.at(*ply, i, (j as f64 + 0.5) / STATIONS as f64);
+            }
+        }
+    }
+    Ok(out)
 }
 
 /// The linearised stresses of `stress` (the Gauss points' [rr, zz, tt, rz] of every element of

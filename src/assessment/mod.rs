@@ -10,6 +10,7 @@ pub mod convolution;
 pub mod finite_element;
 pub mod flexibility;
 pub mod formulas;
+pub mod membrane;
 pub mod stability;
 pub mod vibration;
 

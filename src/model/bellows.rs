@@ -147,6 +147,17 @@ fn count(length: f64, size: f64) -> usize {
     ((length / size).round() as usize).max(1)
 }
 
+/// The plies' element columns along each piece of the mid-surface (tangent A, the
+/// convolutions' pieces, tangent B). Each ply is one mapped block, its elements numbered
+/// column by column from tangent A and through the thickness within a column
+/// (`p.ply_elements` each, from the pack's inside).
+pub fn ply_columns(p: &BellowsParams) -> Vec<usize> {
+    let pieces = mid_surface(p);
+    let n_tan = count(p.tangent_length, p.ply_element_length);
+    let last = pieces.len() - 1;
+    pieces.iter().enumerate().map(|(k, piece)| if k == 0 || k == last { n_tan } else { count(piece.length(), p.ply_element_length) }).collect()
+}
+
 /// Builds the mesh, its sets and the contact surfaces of the joint.
 pub fn mesh(p: &BellowsParams) -> Result<(Mesh, MeshSets)> {
     p.validate()?;
@@ -192,11 +203,11 @@ pub fn mesh(p: &BellowsParams) -> Result<(Mesh, MeshSets)> {
     parts.push(block("sleeve", &stations(rs, ri, n_wall), &sleeve_z));
 
     // plies: stations along the path (tangents matched to the tubes), offsets through the pack
-    let along: Vec<(usize, f64)> = pieces
+    let columns = ply_columns(p);
+    let along: Vec<(usize, f64)> = columns
         .iter()
         .enumerate()
-        .flat_map(|(k, piece)| {
-            let n = if k == 0 || k == pieces.len() - 1 { n_tan } else { count(piece.length(), hp) };
+        .flat_map(|(k, &n)| {
             let s = stations(0.0, 1.0, n);
             let skip = usize::from(k > 0);
             s.into_iter().skip(skip).map(move |s| (k, s))
