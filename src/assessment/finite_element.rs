@@ -100,27 +100,13 @@ impl From<&Linearized> for Station {
 /// calls it; the analyses' files go to a temporary directory and are removed), with the
 /// instability pressures of `stability` (the joint's buckling analyses at rest).
 pub fn analyse(session: &PetscSession, p: &BellowsParams, stability: &super::stability::Stability) -> Result<FeCheck> {
-    let hold = |set: &str, value: f64| PrescribedDisplacement { node_set: set.into(), component: Component::Z, value };
-    let pressure = Step {
-        name: "pressure".into(),
-        increments: 1,
-        displacements: vec![hold("fixed_end", 0.0), hold("moving_end", 0.0)],
-        pressures: vec![Pressure { surface: "wetted".into(), value: LOAD_FRACTION * p.pressure }],
-        temperature: None,
-        time_span: None,
-        release_constraints: false,
-        without_field_output: false,
-        friction_changes: Vec::new(),
-        nodal_forces: Vec::new(),
-        body_loads: Vec::new(),
-    };
     // the stroke analysis runs without a stroke too (a pressure-only assessment), for the rate
     let nominal = if p.displacement == 0.0 { 1.0 } else { p.displacement.abs() };
     let stroke = LOAD_FRACTION * nominal;
     let pieces = convolution_pieces(p);
     super::in_scratch(session, "assess", |dir| {
         let pressed = dir.join("pressure.h5");
-        let model = elastic(p, pressure)?;
+        let model = linear_analysis(p, "pressure", 0.0, LOAD_FRACTION * p.pressure)?;
         run(session, &model, &super::quiet_run(&pressed))?;
         let from_pressure = stations(&pressed, &model, p, &pieces, 1.0 / LOAD_FRACTION)?;
         let stroked = dir.join("stroke.h5");
@@ -139,29 +125,28 @@ pub fn analyse(session: &PetscSession, p: &BellowsParams, stability: &super::sta
 /// The joint's model for the linear analysis of the stroke alone: tube B's end moved by
 /// `stroke` towards tube A (mm), tube A's end held.
 pub fn stroke_analysis(p: &BellowsParams, stroke: f64) -> Result<crate::model::Model> {
-    let hold = |set: &str, value: f64| PrescribedDisplacement { node_set: set.into(), component: Component::Z, value };
-    elastic(
-        p,
-        Step {
-            name: "stroke".into(),
-            increments: 1,
-            displacements: vec![hold("fixed_end", 0.0), hold("moving_end", -stroke)],
-            pressures: vec![],
-            temperature: None,
-            time_span: None,
-            release_constraints: false,
-            without_field_output: false,
-            friction_changes: Vec::new(),
-            nodal_forces: Vec::new(),
-            body_loads: Vec::new(),
-        },
-    )
+    linear_analysis(p, "stroke", stroke, 0.0)
 }
 
-/// The joint's model with `step` alone, elastic, without the heat.
-fn elastic(p: &BellowsParams, step: Step) -> Result<crate::model::Model> {
+/// The joint's model, elastic and without the heat, with one step: tube A's end held, tube B's
+/// moved by `stroke` towards it (mm), `pressure` (MPa) on the wetted surface.
+fn linear_analysis(p: &BellowsParams, name: &str, stroke: f64, pressure: f64) -> Result<crate::model::Model> {
+    let hold = |set: &str, value: f64| PrescribedDisplacement { node_set: set.into(), component: Component::Z, value };
+    let pressures = if pressure == 0.0 { vec![] } else { vec![Pressure { surface: "wetted".into(), value: pressure }] };
     let mut m = super::elastic_model(p)?;
-    m.steps = vec![step];
+    m.steps = vec![Step {
+        name: name.into(),
+        increments: 1,
+        displacements: vec![hold("fixed_end", 0.0), hold("moving_end", -stroke)],
+        pressures,
+        temperature: None,
+        time_span: None,
+        release_constraints: false,
+        without_field_output: false,
+        friction_changes: Vec::new(),
+        nodal_forces: Vec::new(),
+        body_loads: Vec::new(),
+    }];
     m.output.every = 1;
     m.output.precision = crate::model::Precision::Double;
     Ok(m)

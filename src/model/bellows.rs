@@ -158,20 +158,6 @@ pub fn ply_columns(p: &BellowsParams) -> Vec<usize> {
     pieces.iter().enumerate().map(|(k, piece)| if k == 0 || k == last { n_tan } else { count(piece.length(), p.ply_element_length) }).collect()
 }
 
-/// Elements on the sleeve's free part (length `free`), about `size` long, placed so that tube
-/// B's mouth (at `mouth` along it), the first node of the sleeve pair's slave surface, lies at
-/// least a quarter of a node spacing from every sleeve node. On a node it sits where two master
-/// edges meet, whose normals differ by a kink once the sleeve deforms: Newton then alternated
-/// between the two edges in the heat step of the frictional joint (a cutback each time).
-fn sleeve_free_elements(free: f64, mouth: f64, size: f64) -> usize {
-    let n = count(free, size);
-    let clear = |m: usize| {
-        let at = mouth / free * (2 * m) as f64; // in node spacings (mid-side nodes included)
-        (at - at.round()).abs() >= 0.25
-    };
-    [n, n + 1, n.saturating_sub(1).max(1), n + 2].into_iter().find(|&m| clear(m)).unwrap_or(n)
-}
-
 /// Builds the mesh, its sets and the contact surfaces of the joint.
 pub fn mesh(p: &BellowsParams) -> Result<(Mesh, MeshSets)> {
     p.validate()?;
@@ -212,7 +198,7 @@ pub fn mesh(p: &BellowsParams) -> Result<(Mesh, MeshSets)> {
     // sleeve: matches tube A's stations on the bonded part [sa, za]
     let bonded: Vec<f64> = tube_a_z.iter().copied().filter(|&z| z >= sa - 1e-9).collect();
     let mut sleeve_z = bonded.clone();
-    let free = stations(za, sb, sleeve_free_elements(sb - za, zb - za, h));
+    let free = stations(za, sb, count(sb - za, h));
     sleeve_z.extend(&free[1..]);
     parts.push(block("sleeve", &stations(rs, ri, n_wall), &sleeve_z));
 
