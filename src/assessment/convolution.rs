@@ -191,32 +191,9 @@ pub fn compute(session: &PetscSession, c1: f64, c2: f64, fineness: Fineness) -> 
     let hold = |set: &str, value: f64| PrescribedDisplacement { node_set: set.into(), component: Component::Z, value };
     // a deflection e per convolution: the half convolution's crest plane moves e / 2
     let e = 1e-3 * w;
-    let deflect = Step {
-        name: "deflect".into(),
-        increments: 1,
-        displacements: vec![hold("root", 0.0), hold("crest", -e / 2.0)],
-        pressures: vec![],
-        temperature: None,
-        time_span: None,
-        release_constraints: false,
-        without_field_output: false,
-        friction_changes: Vec::new(),
-        nodal_forces: Vec::new(),
-        body_loads: Vec::new(),
-    };
-    let press = Step {
-        name: "press".into(),
-        increments: 1,
-        displacements: vec![hold("root", 0.0), hold("crest", 0.0)],
-        pressures: vec![Pressure { surface: "inner".into(), value: PRESSURE }],
-        temperature: None,
-        time_span: None,
-        release_constraints: false,
-        without_field_output: false,
-        friction_changes: Vec::new(),
-        nodal_forces: Vec::new(),
-        body_loads: Vec::new(),
-    };
+    let deflect = Step::new("deflect", 1, vec![hold("root", 0.0), hold("crest", -e / 2.0)]);
+    let press =
+        Step { pressures: vec![Pressure { surface: "inner".into(), value: PRESSURE }], ..Step::new("press", 1, vec![hold("root", 0.0), hold("crest", 0.0)]) };
     super::in_scratch(session, "convolution", |dir| {
         let deflected = dir.join("deflect.h5");
         let summary = run(session, &convolution.model(fineness, deflect)?, &super::quiet_run(&deflected))?;

@@ -134,19 +134,8 @@ fn linear_analysis(p: &BellowsParams, name: &str, stroke: f64, pressure: f64) ->
     let hold = |set: &str, value: f64| PrescribedDisplacement { node_set: set.into(), component: Component::Z, value };
     let pressures = if pressure == 0.0 { vec![] } else { vec![Pressure { surface: "wetted".into(), value: pressure }] };
     let mut m = super::elastic_model(p)?;
-    m.steps = vec![Step {
-        name: name.into(),
-        increments: 1,
-        displacements: vec![hold("fixed_end", 0.0), hold("moving_end", -stroke)],
-        pressures,
-        temperature: None,
-        time_span: None,
-        release_constraints: false,
-        without_field_output: false,
-        friction_changes: Vec::new(),
-        nodal_forces: Vec::new(),
-        body_loads: Vec::new(),
-    }];
+    let displacements = vec![hold("fixed_end", 0.0), hold("moving_end", -stroke)];
+    m.steps = vec![Step { pressures, ..Step::new(name, 1, displacements) }];
     m.output.every = 1;
     m.output.precision = crate::model::Precision::Double;
     Ok(m)

@@ -80,18 +80,23 @@ impl PlyMembrane {
             if set.len() != columns.iter().sum::<usize>() * per_column {
                 return Err(format!("{name} has {} elements, not a mapped block of {} columns", set.len(), columns.iter().sum::<usize>()));
             }
-            // the internal force of a column's elements at the nodes of its start or end line
-            let column_force = |c: usize, at: [usize; 3]| -> std::result::Result<[f64; 2], String> {
-                let mut sum = [0.0; 2];
-                for &e in &set[c * per_column..(c + 1) * per_column] {
-                    let force = internal_force(model, e, u)?;
-                    for a in at {
-                        sum[0] += force[2 * a];
-                        sum[1] += force[2 * a + 1];
+            // per column, its elements' internal force summed at the nodes of its start and
+            // of its end line
+            let column_forces = (0..set.len() / per_column)
+                .map(|c| {
+                    let mut sums = [[0.0; 2]; 2];
+                    for &e in &set[c * per_column..(c + 1) * per_column] {
+                        let force = internal_force(model, e, u)?;
+                        for (sum, line) in sums.iter_mut().zip([START, END]) {
+                            for a in line {
+                                sum[0] += force[2 * a];
+                                sum[1] += force[2 * a + 1];
+                            }
+                        }
                     }
-                }
-                Ok(sum)
-            };
+                    Ok(sums)
+                })
+                .collect::<std::result::Result<Vec<_>, String>>()?;
             let mut of_ply = Vec::with_capacity(pieces.len());
             for (i, piece) in pieces.iter().enumerate() {
                 let n = columns[i + 1];
@@ -105,7 +110,7 @@ impl PlyMembrane {
                             return Err(format!("{name}: elements {} and {} do not meet on a line across the ply", mesh.element_ids[a], mesh.element_ids[b]));
                         }
                     }
-                    let (fa, fb) = (column_force(c - 1, END)?, column_force(c, START)?);
+                    let (fa, fb) = (column_forces[c - 1][1], column_forces[c][0]);
                     // a line bonded to another body (the tangents, where the pack is merged
                     // with the tube) carries that body's forces on its nodes: read it from the
                     // piece's own side alone

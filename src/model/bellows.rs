@@ -407,46 +407,14 @@ pub fn model(p: &BellowsParams) -> Result<Model> {
     let hold = |set: &str, component: Component, value: f64| PrescribedDisplacement { node_set: set.into(), component, value };
     let mut steps = vec![
         Step {
-            name: "heat".into(),
-            increments: p.heat_increments,
-            displacements: vec![hold("fixed_end", Component::Z, 0.0), hold("moving_end", Component::Z, 0.0)],
             pressures: vec![Pressure { surface: "wetted".into(), value: p.pressure }],
             temperature: Some(Temperature::Uniform(p.temperature)),
-            time_span: None,
-            release_constraints: false,
-            without_field_output: false,
-            friction_changes: Vec::new(),
-            nodal_forces: Vec::new(),
-            body_loads: Vec::new(),
+            ..Step::new("heat", p.heat_increments, vec![hold("fixed_end", Component::Z, 0.0), hold("moving_end", Component::Z, 0.0)])
         },
-        Step {
-            name: "compress".into(),
-            increments: p.increments,
-            displacements: vec![hold("moving_end", Component::Z, -p.displacement)],
-            pressures: vec![],
-            temperature: None,
-            time_span: None,
-            release_constraints: false,
-            without_field_output: false,
-            friction_changes: Vec::new(),
-            nodal_forces: Vec::new(),
-            body_loads: Vec::new(),
-        },
+        Step::new("compress", p.increments, vec![hold("moving_end", Component::Z, -p.displacement)]),
     ];
     if p.cycle {
-        steps.push(Step {
-            name: "return".into(),
-            increments: p.increments,
-            displacements: vec![hold("moving_end", Component::Z, 0.0)],
-            pressures: vec![],
-            temperature: None,
-            time_span: None,
-            release_constraints: false,
-            without_field_output: false,
-            friction_changes: Vec::new(),
-            nodal_forces: Vec::new(),
-            body_loads: Vec::new(),
-        });
+        steps.push(Step::new("return", p.increments, vec![hold("moving_end", Component::Z, 0.0)]));
     }
     let source_text = p.to_toml();
     let n = mesh.elements.len();

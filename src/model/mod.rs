@@ -432,6 +432,26 @@ pub struct Step {
     pub friction_changes: Vec<FrictionChange>,
 }
 
+impl Step {
+    /// A step that prescribes `displacements` in `increments` increments and nothing else:
+    /// no pressure, force or body load, the temperature kept, field output written.
+    pub fn new(name: &str, increments: usize, displacements: Vec<PrescribedDisplacement>) -> Self {
+        Step {
+            name: name.into(),
+            increments,
+            displacements,
+            pressures: Vec::new(),
+            nodal_forces: Vec::new(),
+            temperature: None,
+            time_span: None,
+            body_loads: Vec::new(),
+            release_constraints: false,
+            without_field_output: false,
+            friction_changes: Vec::new(),
+        }
+    }
+}
+
 /// A pair's friction from a step on: `None` makes it frictionless.
 #[derive(Clone, Debug, PartialEq)]
 pub struct FrictionChange {
