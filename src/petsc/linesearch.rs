@@ -8,6 +8,12 @@
 //! as it is throughout the quadratic phase of Newton. Skipping the second evaluation there
 //! halves the residual work of most iterations and changes the iterates only where the secant
 //! would have moved the step by less than the band. `-snes_linesearch_type cp` restores PETSc's.
+//!
+//! Where a solve stalls (its residual norm has not halved over six iterations), the
+//! slope F.y is a poor guide: friction has no potential, and at a stiff tangential penalty the
+//! secant takes the same short step at every iteration while ||F|| alternates between two
+//! values. From there to the end of that solve each step is PETSc's `l2` step instead (the
+//! minimum of the parabola through ||F||^2 at 0, half and the full step), which gets through.
 
 use super::sys;
 use std::os::raw::c_void;
@@ -17,6 +23,35 @@ pub const FULL_STEP_BAND: f64 = 0.1;
 
 /// Halvings of a step that leaves the residual's domain before the line search gives up.
 const DOMAIN_HALVINGS: usize = 5;
+
+/// A solve has stalled when, for this many iterations in a row, the residual norm stayed above
+/// `STALL_RATIO` of the norm before them.
+pub const STALL_WINDOW: usize = 6;
+pub const STALL_RATIO: f64 = 0.5;
+
+/// Whether the residual norms of a solve so far (`norms[k]` at its k-th iterate) show a stall:
+/// somewhere `STALL_WINDOW` iterates in a row above `STALL_RATIO` of the iterate before them.
+/// The predictor's iterate 0 is not a reference: a penalty contact closing in the first
+/// Newton step can take ||F|| far above it, and Newton then converges from there. Once true it
+/// stays true for the solve (the history only grows), so its remaining steps are all `l2`
+/// steps rather than a return to the secant that stalled.
+pub fn stalled(norms: &[f64]) -> bool {
+    norms.get(1..).is_some_and(|n| n.windows(STALL_WINDOW + 1).any(|w| w[1..].iter().all(|&v| v > STALL_RATIO * w[0])))
+}
+
+/// PETSc's `l2` step (one iteration of its secant on d||F||^2/d lambda, as linesearchl2.c):
+/// with ||F||^2 equal to `g0`, `gmid`, `g1` at 0, lambda / 2 and lambda, the parabola's
+/// stationary point, taken downhill (a concave parabola turns the step round); a step below
+/// `steptol` becomes lambda / 2. None keeps lambda (beyond `maxstep`, or not finite).
+pub fn l2_step(g0: f64, gmid: f64, g1: f64, lambda: f64, tolerances: &Tolerances) -> Option<f64> {
+    let slope = (3.0 * g1 - 4.0 * gmid + g0) / lambda;
+    let curvature = 4.0 * (g1 - 2.0 * gmid + g0) / (lambda * lambda);
+    let mut next = if curvature > 0.0 { lambda - slope / curvature } else { lambda + slope / curvature };
+    if next < tolerances.steptol {
+        next = 0.5 * lambda;
+    }
+    (next.is_finite() && next <= tolerances.maxstep).then_some(next)
+}
 
 /// The step length of one secant step on F.y from 0 (slope `fty0`) to `lambda` (slope `fty1`),
 /// as PETSc's `cp` computes it (a wrong-signed secant is turned round; a step below `steptol`
@@ -116,10 +151,35 @@ unsafe extern "C" fn apply(ls: sys::SNESLineSearch, _ctx: *mut c_void) -> sys::P
         // (SNESComputeFunction clears the flag before it evaluates, PETSc >= 3.17)
         lambda *= 0.5;
     }
-    let mut fty1 = 0.0;
-    petsc_try!(sys::VecDot(f, y, &mut fty1));
     let mut evaluated_at_w = true;
-    if let Some(next) = secant_step(fty0, fty1, lambda, &tolerances) {
+    let (mut hist, mut hist_its, mut nhist): (*mut f64, *mut sys::PetscInt, sys::PetscInt) = (std::ptr::null_mut(), std::ptr::null_mut(), 0);
+    petsc_try!(sys::SNESGetConvergenceHistory(snes, &mut hist, &mut hist_its, &mut nhist));
+    // SAFETY: PETSc's history of this solve, `nhist` norms (the array slideline's Snes owns),
+    // read before the next iterate is logged into it.
+    let norms = if hist.is_null() || nhist <= 0 { &[][..] } else { std::slice::from_raw_parts(hist, nhist as usize) };
+    let mut step = None;
+    if stalled(norms) {
+        // ||F||^2 at the full step (in F) and at half of it (into G)
+        let (mut full, mut mid) = (0.0, 0.0);
+        petsc_try!(sys::VecNorm(f, sys::NormType_NORM_2, &mut full));
+        petsc_try!(sys::VecWAXPY(w, -0.5 * lambda, y, x));
+        petsc_try!(sys::SNESComputeFunction(snes, w, g));
+        petsc_try!(sys::SNESGetFunctionDomainError(snes, &mut domain));
+        if domain == sys::PetscBool_PETSC_FALSE {
+            petsc_try!(sys::VecNorm(g, sys::NormType_NORM_2, &mut mid));
+            step = Some(l2_step(fnorm * fnorm, mid * mid, full * full, lambda, &tolerances));
+        }
+        petsc_try!(sys::VecWAXPY(w, -lambda, y, x));
+    }
+    let step = match step {
+        Some(step) => step,
+        None => {
+            let mut fty1 = 0.0;
+            petsc_try!(sys::VecDot(f, y, &mut fty1));
+            secant_step(fty0, fty1, lambda, &tolerances)
+        }
+    };
+    if let Some(next) = step {
         lambda = next;
         petsc_try!(sys::VecWAXPY(w, -lambda, y, x));
         evaluated_at_w = false;
@@ -178,5 +238,48 @@ mod tests {
         assert_eq!(secant_step(f64::NAN, 0.5, 1.0, &T), None);
         // F.y gone below rtol of its start: cp keeps the step whatever the secant says
         assert_eq!(secant_step(1.0, -1e-9, 1.0, &T), None);
+    }
+
+    #[test]
+    fn l2_step_is_the_minimum_of_the_parabola_through_the_three_norms() {
+        // ||F||^2 = (lambda - m)^2 + c along the step: its minimum m whatever c
+        for (m, c) in [(0.4, 1.0), (0.9, 0.0), (1.7, 3.0)] {
+            let g = |l: f64| (l - m) * (l - m) + c;
+            let next = l2_step(g(0.0), g(0.5), g(1.0), 1.0, &T).unwrap();
+            assert!((next - m).abs() < 1e-12, "{next} vs {m}");
+        }
+        // a concave stretch goes downhill: from the top at 0.5 of -(lambda - 0.5)^2 PETSc's
+        // rule moves on from the full step by its slope over the curvature (to 1.5)
+        let g = |l: f64| 2.0 - (l - 0.5) * (l - 0.5);
+        let next = l2_step(g(0.0), g(0.5), g(1.0), 1.0, &T).unwrap();
+        assert!((next - 1.5).abs() < 1e-12, "{next}");
+        // a minimum behind the start is not taken: half the step instead
+        let g = |l: f64| (l + 0.3) * (l + 0.3);
+        assert_eq!(l2_step(g(0.0), g(0.5), g(1.0), 1.0, &T), Some(0.5));
+        // beyond the maximum step the full step is kept
+        let g = |l: f64| (l - 3.0) * (l - 3.0);
+        assert_eq!(l2_step(g(0.0), g(0.5), g(1.0), 1.0, &Tolerances { maxstep: 2.0, ..T }), None);
+    }
+
+    #[test]
+    fn a_solve_has_stalled_when_its_residual_has_not_halved_over_six_iterations() {
+        // Newton's quadratic phase, and a first iterate far above the predictor's
+        assert!(!stalled(&[1e6, 2e5, 1e4, 3e1, 1e-3, 1e-9, 1e-12, 1e-14]));
+        assert!(!stalled(&[1e3, 1e8, 1e7, 1e6, 1e5, 1e4, 1e3, 1e2]));
+        // slow but steady: more than half gone within every six iterations
+        let steady: Vec<f64> = (0..20).map(|k| 0.85f64.powi(k)).collect();
+        assert!(!stalled(&steady));
+        // the frictional heat increment of the default bellows' cycle, as logged: its
+        // first iterate 1.9e5, then up and back to 2e5, where it stays
+        let mut norms = vec![6.734e6, 1.949e5, 8.473e5, 4.170e5, 2.543e5, 2.090e5, 2.164e5];
+        assert!(!stalled(&norms), "five iterations are not yet a stall");
+        norms.push(2.008e5);
+        assert!(stalled(&norms));
+        // and it stays stalled for the rest of the solve, whatever follows
+        norms.extend([1e3, 1e-2]);
+        assert!(stalled(&norms));
+        // the predictor's norm is not a reference, the first iterate's is
+        assert!(!stalled(&[1.0, 5.0, 4.0, 3.0, 3.0, 2.8, 2.7]));
+        assert!(stalled(&[1.0, 5.0, 4.0, 3.0, 3.0, 2.8, 2.7, 2.6]));
     }
 }
