@@ -165,11 +165,16 @@ unsafe extern "C" fn apply(ls: sys::SNESLineSearch, _ctx: *mut c_void) -> sys::P
         petsc_try!(sys::VecWAXPY(w, -0.5 * lambda, y, x));
         petsc_try!(sys::SNESComputeFunction(snes, w, g));
         petsc_try!(sys::SNESGetFunctionDomainError(snes, &mut domain));
+        petsc_try!(sys::VecWAXPY(w, -lambda, y, x));
         if domain == sys::PetscBool_PETSC_FALSE {
             petsc_try!(sys::VecNorm(g, sys::NormType_NORM_2, &mut mid));
             step = Some(l2_step(fnorm * fnorm, mid * mid, full * full, lambda, &tolerances));
+        } else {
+            // the half step left the domain (the full one did not): back to the secant, with
+            // F evaluated at the full step again so that the half step's domain flag is cleared
+            // rather than left for the SNES to read
+            petsc_try!(sys::SNESComputeFunction(snes, w, f));
         }
-        petsc_try!(sys::VecWAXPY(w, -lambda, y, x));
     }
     let step = match step {
         Some(step) => step,
