@@ -112,7 +112,12 @@ fn a_parameter_file_sets_the_joint_and_flags_override_it() {
     };
     let typo = write("typo.toml", "plies = 2\npliess = 3\n");
     let zero = write("zero.toml", "plies = 0\nconvolutions = 5\nlength = 376.0\n");
-    for (args, needle) in [(vec!["--params", typo.as_str()], "unknown field `pliess`"), (vec!["--params", zero.as_str()], "plies")] {
+    let crown = write("crown.toml", "sleeve_crown = 5.0\n");
+    for (args, needle) in [
+        (vec!["--params", typo.as_str()], "unknown field `pliess`"),
+        (vec!["--params", zero.as_str()], "plies"),
+        (vec!["--params", crown.as_str()], "sleeve crown must be >= 0 and below half the sleeve thickness (5 mm), got 5"),
+    ] {
         let out = bellows(dir.path(), &args);
         let err = String::from_utf8_lossy(&out.stderr);
         assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");

@@ -4,11 +4,14 @@
 //! the answers must not depend on the step size, and the end reaction must rise smoothly where
 //! the frictionless curve does (no increment-to-increment zig-zag from the fit).
 //!
-//! Measured: friction dissipated 1049.3 against 1058.6 N mm (-0.9 %), loop area -0.22 %, end
-//! reaction -0.08 %; the reaction's largest departure from its neighbours' interpolation 0.26 %
-//! (the frictionless curve's 0.03 %); 8 cutbacks, all where the folds close at 98 % of the stroke.
-//! With the sleeve the fit's slave (tube B's mouth sweeping across its nodes): dissipation -12 %,
-//! zig-zag 2.5 %; with friction's slip tangent in the load predictor: 21 cutbacks.
+//! Measured: friction dissipated 873.3 against 873.2 N mm (+0.01 %), loop area -0.17 %, end
+//! reaction -0.08 %; the reaction's largest departure from its neighbours' interpolation 0.034 %
+//! (the frictionless curve's 0.03 %);
+//! 8 cutbacks, 7 where the folds close at 98 % of the stroke. With the sleeve's end sharp (it
+//! pressed into tube B's bore between two nodes 4 mm apart): dissipation -0.9 %, zig-zag
+//! 0.26 %. With the sleeve the fit's slave (tube B's mouth sweeping across its nodes):
+//! dissipation -12 %, zig-zag 2.5 %; with friction's slip tangent in the load predictor: 21
+//! cutbacks.
 
 mod common;
 use common::{command_in, Results};
@@ -42,7 +45,7 @@ fn a_cycle_with_ply_and_sleeve_friction_is_smooth_and_independent_of_the_step() 
     let dir = tempfile::tempdir().unwrap();
     let (coarse, text) = cycle(dir.path(), 40);
     let (_fine, reference) = cycle(dir.path(), 160);
-    for (label, k, tolerance) in [("end reaction at", 0, 0.005), ("cycle: loop area", 0, 0.01), ("thermal work / friction dissipated", 1, 0.02)] {
+    for (label, k, tolerance) in [("end reaction at", 0, 0.005), ("cycle: loop area", 0, 0.01), ("thermal work / friction dissipated", 1, 0.01)] {
         let (a, b) = (table_value(&text, label, k), table_value(&reference, label, k));
         println!("{label}: {a} against {b} at a quarter of the increment ({:+.2} %)", 100.0 * (a - b) / b);
         assert!((a - b).abs() <= tolerance * b.abs(), "{label}: {a} against {b}");
@@ -59,7 +62,7 @@ fn a_cycle_with_ply_and_sleeve_friction_is_smooth_and_independent_of_the_step() 
         })
         .fold(0.0, f64::max);
     println!("end reaction: largest departure from its neighbours {:.3} % over {} increments", 100.0 * worst, rows.len());
-    assert!(rows.len() > 20 && worst < 0.005, "the end reaction zig-zags by {:.2} %", 100.0 * worst);
+    assert!(rows.len() > 20 && worst < 0.002, "the end reaction zig-zags by {:.2} %", 100.0 * worst);
     let cutbacks: f64 = coarse.history("cutbacks").iter().sum();
     assert!(cutbacks <= 10.0, "{cutbacks} cutbacks");
     // the energy audit closes at the cycle's end within 2e-3 of the external work

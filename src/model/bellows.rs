@@ -200,7 +200,9 @@ pub fn mesh(p: &BellowsParams) -> Result<(Mesh, MeshSets)> {
     let mut sleeve_z = bonded.clone();
     let free = stations(za, sb, count(sb - za, h));
     sleeve_z.extend(&free[1..]);
-    parts.push(block("sleeve", &stations(rs, ri, n_wall), &sleeve_z));
+    let mut sleeve = block("sleeve", &stations(rs, ri, n_wall), &sleeve_z);
+    crown_sleeve_end(&mut sleeve.1, p, [rs, ri], sb);
+    parts.push(sleeve);
 
     // plies: stations along the path (tangents matched to the tubes), offsets through the pack
     let columns = ply_columns(p);
@@ -289,16 +291,23 @@ pub fn mesh(p: &BellowsParams) -> Result<(Mesh, MeshSets)> {
     // tube B's bore is a contact interface and carries no pressure (a film there would press
     // both faces alike). Faces are chosen in the reference configuration.
     let surface = |name: &str| sets.surfaces[name].iter().copied();
+    // the fit is tight up to the sleeve's crown, whose wedge the fluid fills: both its faces
+    // are wetted (as every face, chosen where the joint starts)
+    let fit_end = if p.sleeve_crown > 0.0 { sb - p.sleeve_crown_length } else { sb };
     let tube_bores = surface("tube_a_inner").chain(surface("tube_b_inner")).filter(|&e| {
         // tube bores are wetted only where the sleeve does not cover them
         let z = mesh.edge_nodes(e).map(|n| mesh.coords[n][1]);
-        !z.iter().all(|&z| z > sa - 1e-9 && z < sb + 1e-9)
+        !z.iter().all(|&z| z > sa - 1e-9 && z < fit_end + 1e-9)
+    });
+    let sleeve_outside = surface("sleeve_outer").filter(|&e| {
+        let z = mesh.edge_nodes(e).map(|n| mesh.coords[n][1]);
+        z.iter().all(|&z| z > za - 1e-9 && z < zb + 1e-9) || z.iter().all(|&z| z > fit_end - 1e-9)
     });
     let wetted: Vec<Edge> = tube_bores
         .chain(surface("sleeve_inner"))
         .chain(surface("sleeve_bottom"))
         .chain(surface("sleeve_top"))
-        .chain(surface("sleeve_outer").filter(|&e| mesh.edge_nodes(e).iter().all(|&n| mesh.coords[n][1] > za - 1e-9 && mesh.coords[n][1] < zb + 1e-9)))
+        .chain(sleeve_outside)
         .chain(surface("tube_a_top"))
         .chain(surface("tube_b_bottom"))
         .chain(surface("ply1_inner"))
@@ -310,6 +319,18 @@ pub fn mesh(p: &BellowsParams) -> Result<(Mesh, MeshSets)> {
 fn block(name: &str, r: &[f64], z: &[f64]) -> (String, Mesh, MeshSets) {
     let (m, s) = mapped_block([(r.len() - 1) / 2, (z.len() - 1) / 2], |i, j| [r[i], z[j]]);
     (name.to_string(), m, s)
+}
+
+/// Crowns the sleeve's entry (the wall r in `[rs, ri]`, its end at z = `end`): the outside
+/// falls by `sleeve_crown` over the last `sleeve_crown_length`, r = ri - c s^2 with s running
+/// from 0 to 1 there, tangent to the cylinder where it starts; the wall's nodes move in
+/// proportion to their distance from the bore, which stays.
+fn crown_sleeve_end(mesh: &mut Mesh, p: &BellowsParams, [rs, ri]: [f64; 2], end: f64) {
+    let start = end - p.sleeve_crown_length;
+    for c in mesh.coords.iter_mut().filter(|c| c[1] > start) {
+        let s = (c[1] - start) / p.sleeve_crown_length;
+        c[0] -= p.sleeve_crown * s * s * (c[0] - rs) / (ri - rs);
+    }
 }
 
 /// Merges nodes closer than `tol` (keeping the first) among those where `bonded(position)`
@@ -492,6 +513,13 @@ mod tests {
         assert_eq!(interface, 2, "the plies must not be welded at the first crest");
         // and the sleeve only touches tube B: two nodes at r = 150, z = 300
         assert_eq!(mesh.coords.iter().filter(|c| (c[0] - 150.0).abs() < 1e-9 && (c[1] - 300.0).abs() < 1e-9).count(), 2);
+        // its crowned end: r = 150 - 0.2 s^2 over its last 8 mm (z 304 to 312), s = 1 at the
+        // end, 1/4 at z = 306 (the default mesh's mid-side node), tangent where it starts
+        for (z, r) in [(304.0, 150.0), (306.0, 149.9875), (308.0, 149.95), (312.0, 149.8)] {
+            let sleeve = &sets.element_sets["sleeve"];
+            let at = |n: usize| (mesh.coords[n][0] - r).abs() < 1e-9 && (mesh.coords[n][1] - z).abs() < 1e-9;
+            assert!(sleeve.iter().any(|&e| mesh.elements[e].iter().any(|&n| at(n))), "no sleeve node at r {r}, z {z}");
+        }
         // the plies are one body with the tubes on the tangents: every node is used
         let mut used = vec![false; mesh.coords.len()];
         for e in &mesh.elements {
@@ -519,7 +547,9 @@ mod tests {
         open.sort_by(|a, b| a[1].total_cmp(&b[1]));
         let ri = p.tube_inner_radius;
         let (zb, sb) = (p.length - p.tube_length, p.length - p.tube_length + p.sleeve_overlap);
-        assert_eq!(open, vec![[ri, 0.0], [ri, zb], [ri, zb], [ri, sb], [ri, sb], [ri, p.length]], "the wetted boundary has gaps");
+        // the sleeve's crown, the wedge the fluid fills, starts on the bore's radius
+        let crown = sb - p.sleeve_crown_length;
+        assert_eq!(open, vec![[ri, 0.0], [ri, zb], [ri, zb], [ri, crown], [ri, crown], [ri, p.length]], "the wetted boundary has gaps");
         // the faces facing the cavity and the sleeve's ends are in it: the axial pressure
         // force on tube A and the sleeve (per radian, p = 1) is that of tube A's end annulus
         let on_a_side = |e: &Edge| sets.element_sets["tube_a"].contains(&e.element) || sets.element_sets["sleeve"].contains(&e.element);
