@@ -102,7 +102,7 @@ impl Default for BellowsParams {
             // a sharp end presses into tube B's bore between two of its nodes, and the fit's
             // force then alternates with the end's place between them: with sleeve friction
             // the quick joint's end reaction zig-zagged by 0.26 % from increment to increment
-            // (0.02 % crowned; docs/performance.md)
+            // (0.03 % crowned; docs/performance.md)
             sleeve_crown: 0.2,
             sleeve_crown_length: 8.0,
             youngs_modulus: 200_000.0,
