@@ -294,15 +294,10 @@ pub fn mesh(p: &BellowsParams) -> Result<(Mesh, MeshSets)> {
     // the fit is tight up to the sleeve's crown, whose wedge the fluid fills: both its faces
     // are wetted (as every face, chosen where the joint starts)
     let fit_end = if p.sleeve_crown > 0.0 { sb - p.sleeve_crown_length } else { sb };
-    let tube_bores = surface("tube_a_inner").chain(surface("tube_b_inner")).filter(|&e| {
-        // tube bores are wetted only where the sleeve does not cover them
-        let z = mesh.edge_nodes(e).map(|n| mesh.coords[n][1]);
-        !z.iter().all(|&z| z > sa - 1e-9 && z < fit_end + 1e-9)
-    });
-    let sleeve_outside = surface("sleeve_outer").filter(|&e| {
-        let z = mesh.edge_nodes(e).map(|n| mesh.coords[n][1]);
-        z.iter().all(|&z| z > za - 1e-9 && z < zb + 1e-9) || z.iter().all(|&z| z > fit_end - 1e-9)
-    });
+    let within = |e: Edge, lo: f64, hi: f64| mesh.edge_nodes(e).iter().all(|&n| mesh.coords[n][1] > lo - 1e-9 && mesh.coords[n][1] < hi + 1e-9);
+    // tube bores are wetted only where the sleeve does not cover them
+    let tube_bores = surface("tube_a_inner").chain(surface("tube_b_inner")).filter(|&e| !within(e, sa, fit_end));
+    let sleeve_outside = surface("sleeve_outer").filter(|&e| within(e, za, zb) || within(e, fit_end, f64::INFINITY));
     let wetted: Vec<Edge> = tube_bores
         .chain(surface("sleeve_inner"))
         .chain(surface("sleeve_bottom"))
@@ -515,8 +510,8 @@ mod tests {
         assert_eq!(mesh.coords.iter().filter(|c| (c[0] - 150.0).abs() < 1e-9 && (c[1] - 300.0).abs() < 1e-9).count(), 2);
         // its crowned end: r = 150 - 0.2 s^2 over its last 8 mm (z 304 to 312), s = 1 at the
         // end, 1/4 at z = 306 (the default mesh's mid-side node), tangent where it starts
+        let sleeve = &sets.element_sets["sleeve"];
         for (z, r) in [(304.0, 150.0), (306.0, 149.9875), (308.0, 149.95), (312.0, 149.8)] {
-            let sleeve = &sets.element_sets["sleeve"];
             let at = |n: usize| (mesh.coords[n][0] - r).abs() < 1e-9 && (mesh.coords[n][1] - z).abs() < 1e-9;
             assert!(sleeve.iter().any(|&e| mesh.elements[e].iter().any(|&n| at(n))), "no sleeve node at r {r}, z {z}");
         }
