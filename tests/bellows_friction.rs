@@ -5,7 +5,7 @@
 //! the frictionless curve does (no increment-to-increment zig-zag from the fit).
 //!
 //! Measured: friction dissipated 873.3 against 873.2 N mm (+0.01 %), loop area -0.17 %, end
-//! reaction -0.08 %; the reaction's largest departure from its neighbours' interpolation 0.034 %
+//! reaction -0.08 %; the reaction's largest departure from its neighbours' interpolation 0.030 %
 //! (the frictionless curve's 0.03 %); 8 cutbacks, 7 where the folds close at 98 % of the
 //! stroke. With the sleeve's end sharp (it pressed into tube B's bore between two nodes 4 mm
 //! apart): dissipation -0.9 %, zig-zag 0.26 %. With the sleeve the fit's slave (tube B's mouth
