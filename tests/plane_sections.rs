@@ -26,6 +26,19 @@
 //!   reproduced here) Coulomb's law holds at every node, the centre sticks and the edges slide,
 //!   and b and p0 stay within 2 % of Hertz's (the materials' mismatch, Dundurs' beta = -0.14,
 //!   couples the shear into the pressure by about 1 %).
+//! - Spence's problem in plane strain (Spence 1975, "The Hertz contact problem with finite
+//!   friction", J. Elasticity 5): a cylinder of 1000 times the block's stiffness (R = 500, a cap
+//!   25 high; tests/data/spence_cylinder.geo) pressed into a block 3000 x 3000, nu = 0.3, to a
+//!   half-width of 2 mm (a / R = 0.004) in 20 increments; Dundurs' beta = -0.2851. The central
+//!   stick zone c / a against a boundary-element solution of two half-planes
+//!   (`scripts/spence_bem_plane.py --beta -0.2851 --mu 0.4073 0.2851 0.1996`, 400 elements,
+//!   120 steps): 0.872, 0.652, 0.362 for beta / mu = -0.7, -1, -1.43; slideline within 5 %
+//!   (measured +0.2, +2.9 and +1.4 %; a node spacing is 2.5 % of a, and a mesh refined over a
+//!   slightly wider zone gave +0.1, -0.9 and -1.1 %). At a / R = 0.05 the slope of the contact surface, which
+//!   the linear theory leaves out, tilts the normal traction by up to 3 degrees and the stick
+//!   zone came out 20 to 40 % wider. For the same reasons the NAFEMS roller (a / R = 0.12, a
+//!   finite disc and block) is no Spence problem: its c / a is 0.82 against the half-planes'
+//!   0.39.
 //! - A CPS8 strip from an .inp deck in uniaxial tension: u = s L / E, reaction s W t.
 //! - A column under its own weight (gravity on a plane body; Timoshenko & Goodier, sec. 24).
 
@@ -337,5 +350,75 @@ body_load = [ {{ elements = "all", gravity = {g} }} ]
         let membrane: Vec<f64> =
             text.lines().find(|l| l.trim_start().starts_with("membrane ")).unwrap().split_whitespace().skip(1).map(|v| v.parse().unwrap()).collect();
         assert!((membrane[1] - rho * g * length / 2.0).abs() < 1e-4 && membrane[0].abs() < 1e-4, "{text}");
+    }
+}
+
+#[test]
+fn plane_frictional_indentation_sticks_inside_the_half_planes_radius() {
+    let (e_block, nu, radius, half_width) = (70e3, 0.3, 500.0, 2.0);
+    let e_cap = 1000.0 * e_block;
+    let e_star = 1.0 / ((1.0 - nu * nu) * (1.0 / e_cap + 1.0 / e_block));
+    // the load that gives Hertz's half-width, as a pressure on the cap's flat top (half model)
+    let load = half_width * half_width * std::f64::consts::PI * e_star / (4.0 * radius);
+    let top = (radius * radius - (radius - 25.0f64).powi(2)).sqrt();
+    let beta = (1.0 - 2.0 * nu) * (1.0 + nu) * (1.0 / e_cap - 1.0 / e_block) / (2.0 * (1.0 - nu * nu) * (1.0 / e_cap + 1.0 / e_block));
+    assert!((beta + 0.2851).abs() < 5e-5, "Dundurs' beta {beta}");
+    for (mu, reference) in [(0.4073, 0.872), (0.2851, 0.652), (0.1996, 0.362)] {
+        let deck = format!(
+            r#"nlgeom = false
+geometry = "plane_strain"
+[mesh]
+file = "spence_cylinder.msh"
+[[material]]
+name = "cap"
+youngs_modulus = {e_cap}
+poissons_ratio = {nu}
+[[material]]
+name = "block"
+youngs_modulus = {e_block}
+poissons_ratio = {nu}
+[[section]]
+elements = "cap"
+material = "cap"
+[[section]]
+elements = "block"
+material = "block"
+[[contact]]
+name = "spence"
+slave = "cap_surface"
+master = "block_top"
+penalty_factor = 10.0
+friction = {mu}
+[[step]]
+name = "press"
+increments = 20
+boundary = [ {{ set = "cap_axis", ux = 0.0 }}, {{ set = "block_axis", ux = 0.0 }}, {{ set = "block_bottom", ux = 0.0, uy = 0.0 }} ]
+pressure = [ {{ surface = "cap_top", value = {} }} ]
+"#,
+            load / 2.0 / top
+        );
+        let run = run_deck(&deck, &[("spence_cylinder.msh", &data("spence_cylinder.msh"))], 2, &[]);
+        run.assert_ok();
+        let res = Results::open(&run.h5);
+        let last = res.last_increment();
+        let (pressure, sliding) = (res.f64s(&format!("{last}/contact/spence/pass0/pressure")), res.u8s(&format!("{last}/contact/spence/pass0/sliding")));
+        let x = res.f64s("mesh/coordinates");
+        let mut rows: Vec<(f64, f64, u8)> =
+            res.u64s("mesh/contact/spence/pass0/nodes").iter().zip(&pressure).zip(&sliding).map(|((&n, &p), &s)| (x[2 * n as usize], p, s)).collect();
+        rows.sort_by(|a, b| a.0.total_cmp(&b.0));
+        // a and c each halfway between the last node inside and the first outside
+        let edge = rows.iter().position(|r| r.1 <= 0.0).expect("the contact ends on the cap");
+        let a = 0.5 * (rows[edge - 1].0 + rows[edge].0);
+        let first = rows[..edge].iter().position(|r| r.2 == 1).expect("no node slides");
+        assert!(first > 0, "mu {mu}: no node sticks");
+        let c = 0.5 * (rows[first - 1].0 + rows[first].0);
+        eprintln!(
+            "plane Spence, mu {mu} (beta / mu {:.3}): a {a:.4} mm, c/a {:.4} against {reference} ({:+.1} %)",
+            beta / mu,
+            c / a,
+            100.0 * (c / a / reference - 1.0)
+        );
+        assert!(rows[first..edge].iter().all(|r| r.2 == 1), "mu {mu}: a node sticks outside the central stick zone");
+        assert!((c / a / reference - 1.0).abs() < 0.05, "mu {mu}: c/a {} against the half-planes' {reference}", c / a);
     }
 }
