@@ -156,6 +156,45 @@ fn hertz_fit(res: &Results, pass: &str) -> (f64, f64, usize) {
     ((-intercept / slope).sqrt(), intercept.sqrt(), points.len())
 }
 
+/// A plane-strain deck of a body `upper` (element set, its sets `{upper}_surface` and
+/// `{upper}_axis`) pressed into `block` (`block_top`, `block_axis`, `block_bottom` held) of mesh
+/// `mesh`: Young's moduli [upper, block], the contact pair `pair` with `friction`'s lines, and
+/// the step's `increments` and load line.
+fn two_body_deck(mesh: &str, upper: &str, [e_upper, e_block]: [f64; 2], nu: f64, friction: &str, increments: usize, load: &str) -> String {
+    format!(
+        r#"nlgeom = false
+geometry = "plane_strain"
+[mesh]
+file = "{mesh}"
+[[material]]
+name = "{upper}"
+youngs_modulus = {e_upper}
+poissons_ratio = {nu}
+[[material]]
+name = "block"
+youngs_modulus = {e_block}
+poissons_ratio = {nu}
+[[section]]
+elements = "{upper}"
+material = "{upper}"
+[[section]]
+elements = "block"
+material = "block"
+[[contact]]
+name = "pair"
+slave = "{upper}_surface"
+master = "block_top"
+penalty_factor = 10.0
+{friction}
+[[step]]
+name = "press"
+increments = {increments}
+boundary = [ {{ set = "{upper}_axis", ux = 0.0 }}, {{ set = "block_axis", ux = 0.0 }}, {{ set = "block_bottom", ux = 0.0, uy = 0.0 }} ]
+{load}
+"#
+    )
+}
+
 #[test]
 fn nafems_cylinder_roller_matches_hertz_with_and_without_friction() {
     let (e_roller, e_block, nu, radius, load) = (210e3, 70e3, 0.3, 50.0, 35e3);
@@ -164,54 +203,23 @@ fn nafems_cylinder_roller_matches_hertz_with_and_without_friction() {
     let p0 = 2.0 * load / (std::f64::consts::PI * b);
     for mu in [0.0, 0.1] {
         let friction = if mu > 0.0 { format!("friction = {mu}") } else { String::new() };
-        let deck = format!(
-            r#"nlgeom = false
-geometry = "plane_strain"
-[mesh]
-file = "nafems_roller.msh"
-[[material]]
-name = "roller"
-youngs_modulus = {e_roller}
-poissons_ratio = {nu}
-[[material]]
-name = "block"
-youngs_modulus = {e_block}
-poissons_ratio = {nu}
-[[section]]
-elements = "cylinder"
-material = "roller"
-[[section]]
-elements = "block"
-material = "block"
-[[contact]]
-name = "roller"
-slave = "cylinder_surface"
-master = "block_top"
-penalty_factor = 10.0
-{friction}
-[[step]]
-name = "press"
-increments = 5
-boundary = [ {{ set = "cylinder_axis", ux = 0.0 }}, {{ set = "block_axis", ux = 0.0 }}, {{ set = "block_bottom", ux = 0.0, uy = 0.0 }} ]
-force = [ {{ set = "cylinder_top", fy = {} }} ]
-"#,
-            -load / 2.0
-        );
+        let force = format!("force = [ {{ set = \"cylinder_top\", fy = {} }} ]", -load / 2.0);
+        let deck = two_body_deck("nafems_roller.msh", "cylinder", [e_roller, e_block], nu, &friction, 5, &force);
         let run = run_deck(&deck, &[("nafems_roller.msh", &data("nafems_roller.msh"))], 2, &[]);
         run.assert_ok();
         let res = Results::open(&run.h5);
         assert!((res.history("reaction_block_bottom_z").last().unwrap() - load / 2.0).abs() < 1e-6 * load, "the block carries the half load");
-        let (b_fit, p0_fit, points) = hertz_fit(&res, "roller/pass0");
+        let (b_fit, p0_fit, points) = hertz_fit(&res, "pair/pass0");
         eprintln!("NAFEMS roller, mu {mu}: b {b_fit:.4} vs Hertz {b:.4} mm, p0 {p0_fit:.1} vs {p0:.1} MPa ({points} points)");
         assert!(points >= 15, "mu {mu}: {points} points in the contact");
         assert!((b_fit / b - 1.0).abs() < 0.02, "mu {mu}: half-width {b_fit} vs Hertz {b}");
         assert!((p0_fit / p0 - 1.0).abs() < 0.02, "mu {mu}: peak pressure {p0_fit} vs Hertz {p0}");
         if mu > 0.0 {
             let last = res.last_increment();
-            let (pressure, shear) = (res.f64s(&format!("{last}/contact/roller/pass0/pressure")), res.f64s(&format!("{last}/contact/roller/pass0/shear")));
-            let sliding = res.u8s(&format!("{last}/contact/roller/pass0/sliding"));
+            let (pressure, shear) = (res.f64s(&format!("{last}/contact/pair/pass0/pressure")), res.f64s(&format!("{last}/contact/pair/pass0/shear")));
+            let sliding = res.u8s(&format!("{last}/contact/pair/pass0/sliding"));
             let x = res.f64s("mesh/coordinates");
-            let nodes = res.u64s("mesh/contact/roller/pass0/nodes");
+            let nodes = res.u64s("mesh/contact/pair/pass0/nodes");
             let (mut first_sliding, mut slid) = (f64::INFINITY, 0);
             for k in 0..nodes.len() {
                 assert!(shear[k].abs() <= mu * pressure[k] * (1.0 + 1e-9), "node {}: |shear| {} above mu p {}", nodes[k], shear[k], mu * pressure[k]);
@@ -368,47 +376,16 @@ fn plane_frictional_indentation_sticks_inside_the_half_planes_radius() {
     let beta = (1.0 - 2.0 * nu) * (1.0 + nu) * (1.0 / e_cap - 1.0 / e_block) / (2.0 * (1.0 - nu * nu) * (1.0 / e_cap + 1.0 / e_block));
     assert!((beta + 0.2851).abs() < 5e-5, "Dundurs' beta {beta}");
     for (mu, reference) in [(0.4073, 0.872), (0.2851, 0.652), (0.1996, 0.362)] {
-        let deck = format!(
-            r#"nlgeom = false
-geometry = "plane_strain"
-[mesh]
-file = "spence_cylinder.msh"
-[[material]]
-name = "cap"
-youngs_modulus = {e_cap}
-poissons_ratio = {nu}
-[[material]]
-name = "block"
-youngs_modulus = {e_block}
-poissons_ratio = {nu}
-[[section]]
-elements = "cap"
-material = "cap"
-[[section]]
-elements = "block"
-material = "block"
-[[contact]]
-name = "spence"
-slave = "cap_surface"
-master = "block_top"
-penalty_factor = 10.0
-friction = {mu}
-[[step]]
-name = "press"
-increments = 20
-boundary = [ {{ set = "cap_axis", ux = 0.0 }}, {{ set = "block_axis", ux = 0.0 }}, {{ set = "block_bottom", ux = 0.0, uy = 0.0 }} ]
-pressure = [ {{ surface = "cap_top", value = {} }} ]
-"#,
-            load / 2.0 / top
-        );
+        let pressure = format!("pressure = [ {{ surface = \"cap_top\", value = {} }} ]", load / 2.0 / top);
+        let deck = two_body_deck("spence_cylinder.msh", "cap", [e_cap, e_block], nu, &format!("friction = {mu}"), 20, &pressure);
         let run = run_deck(&deck, &[("spence_cylinder.msh", &data("spence_cylinder.msh"))], 2, &[]);
         run.assert_ok();
         let res = Results::open(&run.h5);
         let last = res.last_increment();
-        let (pressure, sliding) = (res.f64s(&format!("{last}/contact/spence/pass0/pressure")), res.u8s(&format!("{last}/contact/spence/pass0/sliding")));
+        let (pressure, sliding) = (res.f64s(&format!("{last}/contact/pair/pass0/pressure")), res.u8s(&format!("{last}/contact/pair/pass0/sliding")));
         let x = res.f64s("mesh/coordinates");
         let mut rows: Vec<(f64, f64, u8)> =
-            res.u64s("mesh/contact/spence/pass0/nodes").iter().zip(&pressure).zip(&sliding).map(|((&n, &p), &s)| (x[2 * n as usize], p, s)).collect();
+            res.u64s("mesh/contact/pair/pass0/nodes").iter().zip(&pressure).zip(&sliding).map(|((&n, &p), &s)| (x[2 * n as usize], p, s)).collect();
         rows.sort_by(|a, b| a.0.total_cmp(&b.0));
         // a and c each halfway between the last node inside and the first outside
         let edge = rows.iter().position(|r| r.1 <= 0.0).expect("the contact ends on the cap");
