@@ -88,7 +88,8 @@ pub fn eigen_lines(name: &str, analysis: crate::model::perturbation::Analysis, m
 /// `--verbose` when `verbose`).
 pub fn history_table(r: &ResultsReader, verbose: bool) -> Result<String> {
     let steps = r.count_attr("steps")?;
-    let line = |name: &str, row: &crate::io::HistoryRow| if verbose { row.progress_line(name, steps) } else { row.short_line(name, steps) };
+    let plane = r.is_plane();
+    let line = |name: &str, row: &crate::io::HistoryRow| if verbose { row.progress_line(name, steps, plane) } else { row.short_line(name, steps, plane) };
     Ok(r.history_rows()?.iter().map(|(name, row)| line(name, row) + "\n").collect())
 }
 
@@ -187,10 +188,11 @@ pub fn field(r: &ResultsReader, name: &str, number: usize) -> Result<String> {
         values = values.chunks(3).flat_map(|v| [v[0], v[1]]).collect();
     }
     let per = values.len() / count.max(1);
+    let [a, b] = directions(r);
     let components: Vec<String> = match name {
-        "displacement" => vec!["u_r".into(), "u_z".into()],
-        "reaction_force" => vec!["F_r".into(), "F_z".into()],
-        "stress" | "element_nodal_stress" => ["s_rr", "s_zz", "s_tt", "s_rz"].iter().map(|s| s.to_string()).collect(),
+        "displacement" => vec![format!("u_{a}"), format!("u_{b}")],
+        "reaction_force" => vec![format!("F_{a}"), format!("F_{b}")],
+        "stress" | "element_nodal_stress" => vec![format!("s_{a}{a}"), format!("s_{b}{b}"), "s_tt".into(), format!("s_{a}{b}")],
         _ => vec![name.to_string()],
     };
     let points = per / components.len();
@@ -225,7 +227,7 @@ pub fn field(r: &ResultsReader, name: &str, number: usize) -> Result<String> {
             let gp = if points > 1 { format!(" point {}", at.1 + 1) } else { String::new() };
             let _ = writeln!(
                 s,
-                "  {label:<10} {what} {:>14.6e}  at {} {}{gp}, deformed (r, z) = ({:.3}, {:.3}) mm",
+                "  {label:<10} {what} {:>14.6e}  at {} {}{gp}, deformed ({a}, {b}) = ({:.3}, {:.3}) mm",
                 value(at),
                 if nodal { "node" } else { "element" },
                 ids[at.0],
@@ -242,7 +244,16 @@ pub fn node_series(r: &ResultsReader, id: u64) -> Result<String> {
     let ids = r.node_ids()?;
     let node = ids.iter().position(|&n| n == id).ok_or_else(|| Error::input(format!("{}: no node {id}", r.path().display())))?;
     let x = r.coordinates()?[node];
-    let mut s = format!("node {id} at (r, z) = ({:.4}, {:.4}) mm\n{:>10} {:>10} {:>16} {:>16}\n", x[0], x[1], "increment", "time", "u_r (mm)", "u_z (mm)");
+    let [a, b] = directions(r);
+    let mut s = format!(
+        "node {id} at ({a}, {b}) = ({:.4}, {:.4}) mm\n{:>10} {:>10} {:>16} {:>16}\n",
+        x[0],
+        x[1],
+        "increment",
+        "time",
+        format!("u_{a} (mm)"),
+        format!("u_{b} (mm)")
+    );
     for inc in r.increments()? {
         let u = r.displacement(&inc)?[node];
         let _ = writeln!(s, "{:>10} {:>10.4} {:>16.8e} {:>16.8e}", number_of(&inc), r.increment_attr(&inc, "time")?, u[0], u[1]);
@@ -259,6 +270,14 @@ pub fn set_series(r: &ResultsReader, set: &str) -> Result<String> {
     let reaction = format!("reaction_{set}_z");
     if columns.contains(&reaction) {
         let (fr, fz) = (r.history(&format!("reaction_{set}_r"))?, r.history(&reaction)?);
+        if r.is_plane() {
+            // a plane model's reactions are over its thickness: there is no ring
+            let mut s = format!("reaction of node set {set} (over the thickness)\n{:>10} {:>10} {:>16} {:>16}\n", "increment", "time", "F_x (N)", "F_y (N)");
+            for k in 0..time.len() {
+                let _ = writeln!(s, "{:>10} {:>10.4} {:>16.8e} {:>16.8e}", k + 1, time[k], fr[k], fz[k]);
+            }
+            return Ok(s);
+        }
         let mut s =
             format!("reaction of node set {set}\n{:>10} {:>10} {:>16} {:>16} {:>16}\n", "increment", "time", "F_r (N/rad)", "F_z (N/rad)", "F_z ring (N)");
         for k in 0..time.len() {
@@ -267,8 +286,15 @@ pub fn set_series(r: &ResultsReader, set: &str) -> Result<String> {
         return Ok(s);
     }
     let members = r.node_set(set)?;
-    let mut s =
-        format!("mean displacement of node set {set} ({} nodes)\n{:>10} {:>10} {:>16} {:>16}\n", members.len(), "increment", "time", "u_r (mm)", "u_z (mm)");
+    let [a, b] = directions(r);
+    let mut s = format!(
+        "mean displacement of node set {set} ({} nodes)\n{:>10} {:>10} {:>16} {:>16}\n",
+        members.len(),
+        "increment",
+        "time",
+        format!("u_{a} (mm)"),
+        format!("u_{b} (mm)")
+    );
     for inc in r.increments()? {
         let u = r.displacement(&inc)?;
         let mean = [0, 1].map(|c| members.iter().map(|&n| u[n][c]).sum::<f64>() / members.len().max(1) as f64);
@@ -306,11 +332,12 @@ pub fn compare(a: &ResultsReader, b: &ResultsReader, force: bool) -> Result<Stri
     let mut s = format!("A = {}\nB = {}\n", a.path().display(), b.path().display());
     // the largest difference over every column: (|B - A|, column, time, relative)
     let mut largest: Option<(f64, &str, f64, f64)> = None;
+    let unit = if a.is_plane() { "N over the thickness" } else { "N per radian" };
     for (k, column) in shared.iter().enumerate() {
         // relative to |A|, but never to less than a thousandth of the column's largest |A|: a
         // reaction that is zero to round-off has no meaningful relative difference
         let floor = 1e-3 * va[k].iter().fold(0.0f64, |m, v| m.max(v.abs()));
-        let _ = writeln!(s, "\n{column} (N per radian)");
+        let _ = writeln!(s, "\n{column} ({unit})");
         let _ = writeln!(s, "{:>10} {:>6} {:>6} {:>16} {:>16} {:>12} {:>10}", "time", "its A", "its B", "A", "B", "B - A", "rel");
         for &(i, j) in &matched {
             let (x, y) = (va[k][i], vb[k][j]);
@@ -323,17 +350,23 @@ pub fn compare(a: &ResultsReader, b: &ResultsReader, force: bool) -> Result<Stri
     }
     let _ = writeln!(s, "\n{} increments at common times ({} in A, {} in B)", matched.len(), ta.len(), tb.len());
     if let Some((diff, column, time, rel)) = largest {
-        let _ = writeln!(s, "largest difference: {column}, {diff:.4e} N per radian ({:.2e} relative) at time {time:.4}", rel.abs());
+        let _ = writeln!(s, "largest difference: {column}, {diff:.4e} {unit} ({:.2e} relative) at time {time:.4}", rel.abs());
     }
     let _ = writeln!(s, "rel: (B - A) / |A|, |A| taken as at least a thousandth of the column's largest |A|");
     Ok(s)
 }
 
 /// Force-displacement picture next to the file: every constrained set's axial reaction (full
-/// ring) against the total time (step - 1 + load factor). Returns its path.
+/// ring; a plane model's y reaction over its thickness) against the prescribed displacement, or
+/// the total time (step - 1 + load factor). Returns its path.
 pub fn plot(r: &ResultsReader, path: &Path) -> Result<PathBuf> {
     let columns = r.history_columns()?;
-    let sets: Vec<&str> = columns.iter().filter_map(|c| c.strip_prefix("reaction_")?.strip_suffix("_z_ring")).collect();
+    let plane = r.is_plane();
+    // the axial reactions: the full ring's, or a plane model's (it has no ring)
+    let suffix = if plane { "_z" } else { "_z_ring" };
+    let sets: Vec<&str> = columns.iter().filter_map(|c| c.strip_prefix("reaction_")?.strip_suffix(suffix)).collect();
+    let [_, b] = directions(r);
+    let force = if plane { format!("F_{b} (N, over the thickness") } else { format!("F_{b} (N, full ring") };
     // the prescribed displacement: the constrained set that moves the most along z (its mean
     // u_z at each increment); without one, the history's time
     let increments = r.increments()?;
@@ -359,18 +392,19 @@ pub fn plot(r: &ResultsReader, path: &Path) -> Result<PathBuf> {
     };
     let (x, x_label): (Vec<f64>, String) = match moving {
         Some((set, uz)) if uz.iter().any(|v| *v != 0.0) => {
-            (oriented(uz), format!("u_z of {set}, mm (the prescribed displacement, signed so its largest is positive)"))
+            (oriented(uz), format!("u_{b} of {set}, mm (the prescribed displacement, signed so its largest is positive)"))
         }
         _ => (r.history("time")?, "time (step - 1 + load factor)".into()),
     };
     let curves: Vec<Curve> = sets
         .iter()
         .map(|set| {
-            let f = oriented(&r.history(&format!("reaction_{set}_z_ring"))?);
-            Ok(Curve { label: format!("{set}: F_z (full ring)"), points: x.iter().zip(&f).filter(|(_, v)| v.is_finite()).map(|(&u, &v)| (u, v)).collect() })
+            let f = oriented(&r.history(&format!("reaction_{set}{suffix}"))?);
+            Ok(Curve { label: format!("{set}: {force})"), points: x.iter().zip(&f).filter(|(_, v)| v.is_finite()).map(|(&u, &v)| (u, v)).collect() })
         })
         .collect::<Result<_>>()?;
-    line_plot(path, "Axial reactions", &x_label, "F_z (N, full ring; each signed so its largest is positive)", &curves, &[], Axes::FromOrigin)?;
+    let title = if plane { "Reactions along y" } else { "Axial reactions" };
+    line_plot(path, title, &x_label, &format!("{force}; each signed so its largest is positive)"), &curves, &[], Axes::FromOrigin)?;
     Ok(path.to_path_buf())
 }
 
@@ -422,4 +456,14 @@ pub fn linearize(r: &ResultsReader, sections: &[String], number: usize) -> Resul
         ));
     }
     Ok(out)
+}
+
+/// The names of a results file's two in-plane directions: (r, z) about the axis, or a plane
+/// model's (x, y), which the datasets store as r and z.
+fn directions(r: &ResultsReader) -> [&'static str; 2] {
+    if r.is_plane() {
+        ["x", "y"]
+    } else {
+        ["r", "z"]
+    }
 }

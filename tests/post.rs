@@ -337,3 +337,51 @@ fn post_names_a_missing_increment_and_a_corrupt_connectivity() {
     assert_eq!(out.status.code(), Some(2), "{err}");
     assert!(err.contains("mesh/connectivity names node row 1000000 in element row 1") && !err.contains("panicked"), "{err}");
 }
+
+/// A plane model's lines and `post` name its directions x and y and give its forces over the
+/// thickness, in N, never per radian or around a ring: a plane-strain block of 2 x 1 elements
+/// on rollers, pressed 0.01 mm on its top in 2 increments (the run's short lines, the Newton
+/// monitor, `post` itself, `--set`, `--field`, `--node`, `--compare` and `--plot`).
+#[test]
+fn a_plane_model_is_reported_in_x_y_and_newtons_over_its_thickness() {
+    let dir = tempfile::tempdir().unwrap();
+    let deck = dir.path().join("block.toml");
+    std::fs::write(
+        &deck,
+        r#"geometry = "plane_strain"
+thickness = 2.0
+[mesh]
+rectangle = { r = [0.0, 20.0], z = [0.0, 10.0], divisions = [2, 1] }
+[[material]]
+name = "steel"
+youngs_modulus = 200000.0
+poissons_ratio = 0.3
+[[step]]
+increments = 2
+boundary = [ { set = "bottom", uy = 0.0 }, { set = "inner", ux = 0.0 }, { set = "top", uy = -0.01 } ]
+"#,
+    )
+    .unwrap();
+    let h5 = dir.path().join("block.h5");
+    let run = command_in(dir.path(), 1).arg("run").arg(&deck).arg("-o").arg(&h5).arg("--monitor").output().unwrap();
+    let stdout = String::from_utf8_lossy(&run.stdout).to_string();
+    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+    let line = stdout.lines().find(|l| l.starts_with("step 1/1")).expect("a progress line");
+    assert!(line.contains(" F_y ") && line.ends_with(" s") && line.contains(" N ") && !stdout.contains("N/rad"), "{stdout}");
+    assert!(stdout.lines().any(|l| l.trim_start().starts_with("newton  1") && l.contains(" N (bound")), "{stdout}");
+    let h5s = h5.to_str().unwrap();
+    for (args, wanted, unwanted) in [
+        (vec![h5s], "F_y", "N/rad"),
+        (vec![h5s, "--set", "top"], "F_y (N)", "ring"),
+        (vec![h5s, "--field", "displacement"], "deformed (x, y)", "u_r"),
+        (vec![h5s, "--field", "stress"], "s_xy", "s_rz"),
+        (vec![h5s, "--node", "1"], "u_x (mm)", "u_r"),
+        (vec![h5s, "--compare", h5s], "N over the thickness", "per radian"),
+    ] {
+        let out = post(dir.path(), &args);
+        let text = String::from_utf8_lossy(&out.stdout);
+        assert!(out.status.success() && text.contains(wanted) && !text.contains(unwanted), "{args:?}: {text}{}", String::from_utf8_lossy(&out.stderr));
+    }
+    let out = post(dir.path(), &[h5s, "--plot"]);
+    assert!(out.status.success() && dir.path().join("block_force.png").exists(), "{}", String::from_utf8_lossy(&out.stderr));
+}

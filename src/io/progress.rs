@@ -48,8 +48,9 @@ impl Progress {
         }
     }
 
-    /// A converged increment: the bar moves to it, or its line is printed.
-    pub fn increment(&self, row: &HistoryRow, step_name: &str, steps: usize) {
+    /// A converged increment: the bar moves to it, or its line is printed (a `plane` model's
+    /// reactions over its thickness).
+    pub fn increment(&self, row: &HistoryRow, step_name: &str, steps: usize, plane: bool) {
         match self {
             Progress::Bar(bar) => {
                 bar.set_position(((row.step - 1) as f64 * TICKS_PER_STEP as f64 + row.load_factor * TICKS_PER_STEP as f64).round() as u64);
@@ -59,8 +60,8 @@ impl Progress {
                     row.step, row.number, row.load_factor, row.newton_iterations, row.max_plastic_strain, penetration
                 ));
             }
-            Progress::Lines(false) => println!("{}", row.short_line(step_name, steps)),
-            Progress::Lines(true) => println!("{}", row.progress_line(step_name, steps)),
+            Progress::Lines(false) => println!("{}", row.short_line(step_name, steps, plane)),
+            Progress::Lines(true) => println!("{}", row.progress_line(step_name, steps, plane)),
             Progress::Quiet => {}
         }
     }

@@ -95,11 +95,13 @@ pub struct HistoryRow {
 impl HistoryRow {
     /// The short line the run prints for this row (and `slideline post` prints again), at most
     /// 100 characters: the step, the run-wide increment number (#N) and the step's own, the
-    /// load factor, the Newton iterations, the largest axial reaction and the wall time.
-    pub fn short_line(&self, step_name: &str, steps: usize) -> String {
+    /// load factor, the Newton iterations, the largest axial reaction (a `plane` model's largest
+    /// y reaction, over its thickness) and the wall time.
+    pub fn short_line(&self, step_name: &str, steps: usize, plane: bool) -> String {
         let name: String = step_name.chars().take(10).collect();
         let reaction = self.reactions.iter().max_by(|a, b| a.1[1].abs().total_cmp(&b.1[1].abs()));
-        let force = reaction.map_or(String::new(), |(set, f)| format!(" F_z {:<10} {:>10.3e} N/rad", set.chars().take(10).collect::<String>(), f[1]));
+        let (label, unit) = if plane { ("F_y", "N") } else { ("F_z", "N/rad") };
+        let force = reaction.map_or(String::new(), |(set, f)| format!(" {label} {:<10} {:>10.3e} {unit}", set.chars().take(10).collect::<String>(), f[1]));
         format!(
             "step {}/{} {name:<10} #{:<4} inc {:>4} lambda {:.4} newton {:>2}{force} {:>6.1} s",
             self.step, steps, self.number, self.increment, self.load_factor, self.newton_iterations, self.wall_time
@@ -107,9 +109,10 @@ impl HistoryRow {
     }
 
     /// The long line (`--verbose`) the run prints for this row (and `slideline post --verbose`):
-    /// the run-wide increment number (#N), then the step's own; the reactions; the contact
-    /// pairs summed in one field (active nodes, largest penetration).
-    pub fn progress_line(&self, step_name: &str, steps: usize) -> String {
+    /// the run-wide increment number (#N), then the step's own; the reactions (per radian, or
+    /// a `plane` model's over its thickness); the contact pairs summed in one field (active
+    /// nodes, largest penetration).
+    pub fn progress_line(&self, step_name: &str, steps: usize, plane: bool) -> String {
         let mut line = format!(
             "step {}/{} {:<10} #{:<4} inc {:>4} lambda {:.4}  newton {:>2}  ksp {:>3}  |F| {:.2e}  ep_max {:.3e}  {:>7.2} s",
             self.step,
@@ -124,8 +127,9 @@ impl HistoryRow {
             self.max_plastic_strain,
             self.wall_time
         );
+        let (labels, unit) = if plane { (["Fx", "Fy"], "N") } else { (["Fr", "Fz"], "N/rad") };
         for (set, f) in &self.reactions {
-            line.push_str(&format!("  {set} Fr {:.3e} Fz {:.3e} N/rad", f[0], f[1]));
+            line.push_str(&format!("  {set} {} {:.3e} {} {:.3e} {unit}", labels[0], f[0], labels[1], f[1]));
         }
         if !self.contacts.is_empty() {
             let active: usize = self.contacts.iter().map(|c| c.active_nodes).sum();

@@ -46,6 +46,10 @@ pub trait NonlinearProblem {
     fn force_sums(&self) -> [f64; 2] {
         [0.0, 0.0]
     }
+    /// The unit of the residual's forces, for the monitor's lines.
+    fn force_unit(&self) -> &'static str {
+        "N/rad"
+    }
 }
 
 /// Summary of one SNESSolve.

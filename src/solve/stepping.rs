@@ -410,7 +410,7 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
             if let Some(status) = status.as_mut() {
                 status.record(&row);
             }
-            progress.increment(&row, &step.name, model.steps.len());
+            progress.increment(&row, &step.name, model.steps.len(), !model.is_axisymmetric());
             rows.push(row);
             cutbacks = 0;
         }

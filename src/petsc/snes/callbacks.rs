@@ -55,7 +55,7 @@ impl FieldContext {
         let say = monitor && world.rank() == 0;
         let verdict = if it == 0 {
             if say {
-                println!("    newton {it:>2}  r_max {residual_max:.3e} N/rad");
+                println!("    newton {it:>2}  r_max {residual_max:.3e} {}", problem.force_unit());
             }
             false
         } else {
@@ -73,7 +73,8 @@ impl FieldContext {
             if say {
                 let (residual_bound, correction_bound, _) = field_bounds(&self.ratios, it, &m, self.average.with(average_force));
                 println!(
-                    "    newton {it:>2}  r_max {residual_max:.3e} N/rad (bound {residual_bound:.3e})  c_max {correction_max:.3e} mm (bound {correction_bound:.3e}){}",
+                    "    newton {it:>2}  r_max {residual_max:.3e} {} (bound {residual_bound:.3e})  c_max {correction_max:.3e} mm (bound {correction_bound:.3e}){}",
+                    problem.force_unit(),
                     if verdict { "  converged" } else { "" }
                 );
             }
@@ -227,7 +228,12 @@ pub(super) unsafe extern "C" fn convergence_trampoline<P: NonlinearProblem>(
     }
     if ctx.monitor && ctx.field.is_none() && ctx.world.rank() == 0 {
         // the residual test: ||F|| against the start's, and the round-off floor
-        println!("    newton {it:>2}  ||F|| {fnorm:.3e} N/rad ({:.2e} of the start's; round-off floor {:.2e})", fnorm / ctx.first_norm, global.sqrt());
+        println!(
+            "    newton {it:>2}  ||F|| {fnorm:.3e} {} ({:.2e} of the start's; round-off floor {:.2e})",
+            ctx.problem.force_unit(),
+            fnorm / ctx.first_norm,
+            global.sqrt()
+        );
     }
     ctx.previous_norm = fnorm;
     0

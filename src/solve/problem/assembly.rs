@@ -34,6 +34,14 @@ impl NonlinearProblem for Problem<'_, '_> {
     fn take_structure_change(&mut self) -> bool {
         std::mem::take(&mut self.structure_changed)
     }
+
+    fn force_unit(&self) -> &'static str {
+        if self.model.is_axisymmetric() {
+            "N/rad"
+        } else {
+            "N"
+        }
+    }
 }
 
 impl Problem<'_, '_> {
