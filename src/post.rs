@@ -270,18 +270,21 @@ pub fn set_series(r: &ResultsReader, set: &str) -> Result<String> {
     let reaction = format!("reaction_{set}_z");
     if columns.contains(&reaction) {
         let (fr, fz) = (r.history(&format!("reaction_{set}_r"))?, r.history(&reaction)?);
-        if r.is_plane() {
-            // a plane model's reactions are over its thickness: there is no ring
-            let mut s = format!("reaction of node set {set} (over the thickness)\n{:>10} {:>10} {:>16} {:>16}\n", "increment", "time", "F_x (N)", "F_y (N)");
-            for k in 0..time.len() {
-                let _ = writeln!(s, "{:>10} {:>10.4} {:>16.8e} {:>16.8e}", k + 1, time[k], fr[k], fz[k]);
-            }
-            return Ok(s);
-        }
-        let mut s =
-            format!("reaction of node set {set}\n{:>10} {:>10} {:>16} {:>16} {:>16}\n", "increment", "time", "F_r (N/rad)", "F_z (N/rad)", "F_z ring (N)");
+        // a plane model's reactions are over its thickness: no ring
+        let plane = r.is_plane();
+        let [a, b] = directions(r);
+        let (unit, over) = if plane { ("N", " (over the thickness)") } else { ("N/rad", "") };
+        let ring = if plane { String::new() } else { format!(" {:>16}", format!("F_{b} ring (N)")) };
+        let mut s = format!(
+            "reaction of node set {set}{over}\n{:>10} {:>10} {:>16} {:>16}{ring}\n",
+            "increment",
+            "time",
+            format!("F_{a} ({unit})"),
+            format!("F_{b} ({unit})")
+        );
         for k in 0..time.len() {
-            let _ = writeln!(s, "{:>10} {:>10.4} {:>16.8e} {:>16.8e} {:>16.8e}", k + 1, time[k], fr[k], fz[k], fz[k] * 2.0 * std::f64::consts::PI);
+            let ring = if plane { String::new() } else { format!(" {:>16.8e}", fz[k] * 2.0 * std::f64::consts::PI) };
+            let _ = writeln!(s, "{:>10} {:>10.4} {:>16.8e} {:>16.8e}{ring}", k + 1, time[k], fr[k], fz[k]);
         }
         return Ok(s);
     }
