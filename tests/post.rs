@@ -384,4 +384,11 @@ boundary = [ { set = "bottom", uy = 0.0 }, { set = "inner", ux = 0.0 }, { set = 
     }
     let out = post(dir.path(), &[h5s, "--plot"]);
     assert!(out.status.success() && dir.path().join("block_force.png").exists(), "{}", String::from_utf8_lossy(&out.stderr));
+    // the file's own units, as h5py and ParaView show them: no dataset or attribute per radian
+    let file = hdf5::File::open(&h5).unwrap();
+    let units = |path: &str| file.dataset(path).unwrap().attr("units").unwrap().read_scalar::<hdf5::types::VarLenUnicode>().unwrap().to_string();
+    let reaction = format!("increments/{:06}/nodal/reaction_force", 2);
+    assert_eq!([units("history/reaction_top_z").as_str(), units(&reaction).as_str(), units("history/energy_external_work").as_str()], ["N", "N", "N mm"]);
+    let sidecar = std::fs::read_to_string(dir.path().join("block.xmf")).unwrap();
+    assert!(sidecar.contains("reaction_force: N") && !sidecar.contains("radian"), "{sidecar}");
 }

@@ -115,6 +115,17 @@ pub fn describe(group: &str, name: &str) -> (&'static str, String) {
     }
 }
 
+/// The units of a plane model's dataset or column whose axisymmetric units are `units`: its
+/// forces, energies and areas are over the sections' thickness, not per radian.
+pub fn plane_units(units: &'static str) -> &'static str {
+    match units {
+        "N per radian" => "N",
+        "N mm per radian" => "N mm",
+        "mm^2 per radian" => "mm^2",
+        other => other,
+    }
+}
+
 /// (units, description) of history column `name`.
 pub fn describe_column(name: &str) -> (&'static str, String) {
     let per_radian = "N per radian";

@@ -195,6 +195,9 @@ pub const OUTPUT_EVERY: &str = "output_every";
 /// Root attribute of files whose increments carry [`COMPLETE`] (older files do not).
 pub const COMPLETION_MARKED: &str = "increments_marked_complete";
 
+/// The root `geometry` attribute of a model of plane sections only.
+const PLANE: &str = "plane";
+
 pub(super) fn h5err(path: &Path) -> impl Fn(hdf5::Error) -> Error + '_ {
     move |e| Error::Output { path: path.to_path_buf(), message: e.to_string() }
 }
@@ -210,12 +213,12 @@ impl ResultsFile {
         let units = if model.is_axisymmetric() {
             "length mm, force N, stress MPa, temperature degC, time s; forces and reactions per radian unless named _ring (full 360 degrees)"
         } else {
-            "length mm, force N, stress MPa, temperature degC, time s; a plane model (x, y stored as r, z; tt the out-of-plane component): forces and reactions over the sections' thickness, where the datasets say per radian"
+            "length mm, force N, stress MPa, temperature degC, time s; a plane model (x, y stored as r, z; tt the out-of-plane component): forces and reactions over the sections' thickness"
         };
         let geometry = match (model.is_axisymmetric(), model.element_section.iter().any(|s| s.is_axisymmetric())) {
             (true, _) => "axisymmetric",
             (false, true) => "axisymmetric and plane",
-            (false, false) => "plane",
+            (false, false) => PLANE,
         };
         for (name, value) in [
             ("deck", model.source_text.as_str()),
@@ -295,6 +298,7 @@ impl ResultsFile {
             contact: !model.contacts.is_empty(),
             friction: (0..model.contacts.len()).any(|p| model.pair_has_friction(p)),
             topology,
+            plane: geometry == PLANE,
         };
         let sidecar = (rank == 0).then(|| xdmf::Sidecar::new(path, nn, ne, what)).transpose();
         // rank 0 alone writes the sidecar: every rank learns whether it could
@@ -550,8 +554,11 @@ impl ResultsFile {
 /// Creates dataset `name` of `shape` in `group` (collective) and writes rows
 /// `slab.0..slab.1` (first dimension) from `data` (row-major) on this rank.
 /// Writes the `units` and `description` attributes of a dataset (collective).
-pub(super) fn describe_dataset(ds: &hdf5::Dataset, units: &str, description: &str, path: &Path) -> Result<()> {
+/// A plane model's file (its root `geometry` attribute "plane") gets the plane units.
+pub(super) fn describe_dataset(ds: &hdf5::Dataset, units: &'static str, description: &str, path: &Path) -> Result<()> {
     let err = h5err(path);
+    let geometry = ds.file().and_then(|f| f.attr("geometry")).and_then(|a| a.read_scalar::<VarLenUnicode>());
+    let units = if geometry.is_ok_and(|g| g.as_str() == PLANE) { super::describe::plane_units(units) } else { units };
     for (attr, text) in [("units", units), ("description", description)] {
         let value: VarLenUnicode = text.parse().map_err(|_| Error::Output { path: path.to_path_buf(), message: format!("attribute text {text:?}") })?;
         ds.new_attr::<VarLenUnicode>().create(attr).map_err(&err)?.write_scalar(&value).map_err(&err)?;

@@ -11,7 +11,7 @@
 //! unloaded state at t = 0 (`/initial`), so that a reader opened at its default time shows the
 //! mesh.
 
-use super::describe::describe;
+use super::describe::{describe, plane_units};
 use super::nodal::{nodal_scalar_kept, CONTACT_SCALARS, NODAL_SCALARS, NODAL_TAIL};
 use crate::error::{Error, Result};
 use crate::fe::shape::Shape;
@@ -88,6 +88,8 @@ pub struct GridFields {
     /// Some pair has friction: the nodal shear and sliding are written.
     pub friction: bool,
     pub topology: Topology,
+    /// A model of plane sections only: forces over the thickness, not per radian.
+    pub plane: bool,
 }
 
 /// The sidecar of one results file, grown by one grid per converged increment. Each grid is
@@ -196,7 +198,7 @@ impl Sidecar {
         for name in names {
             if !self.units.iter().any(|(n, _)| *n == name) {
                 let (units, _) = describe("/increments/000001/nodal", &name);
-                self.units.push((name, units));
+                self.units.push((name, if self.what.plane { plane_units(units) } else { units }));
             }
         }
     }
@@ -279,7 +281,14 @@ mod tests {
             &h5,
             10,
             2,
-            GridFields { fields: OutputFields::DEFAULT, precision: Precision::Double, contact: false, friction: false, topology: Topology::Quad8 },
+            GridFields {
+                fields: OutputFields::DEFAULT,
+                precision: Precision::Double,
+                contact: false,
+                friction: false,
+                topology: Topology::Quad8,
+                plane: false,
+            },
         )
         .unwrap();
         let text = std::fs::read_to_string(sidecar_path(&h5)).unwrap();
