@@ -488,9 +488,11 @@ fn report(params: &model::bellows::BellowsParams, before: &BeforeTheRun<'_>, sum
             pictures.push(path);
         }
     }
-    pictures.extend(report.map(|r| r.pictures(output, &reader)).transpose()?.into_iter().flatten());
     for path in pictures {
         println!("picture: {}", path.display());
+    }
+    for (path, what) in report.map(|r| r.pictures(output, &reader)).transpose()?.into_iter().flatten() {
+        println!("picture: {} ({what})", path.display());
     }
     drop(reader);
     // the code check beside the run's results (the file is closed: rank 0 alone opens it)

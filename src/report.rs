@@ -89,11 +89,33 @@ fn end_reaction(row: &HistoryRow) -> f64 {
 /// Applied compression at a row: zero in step 1, the load factor's share in step 2, back to
 /// zero through step 3 (a cycle's return).
 fn applied(row: &HistoryRow, p: &BellowsParams) -> f64 {
-    match row.step {
-        2 => row.load_factor * p.displacement,
-        3 => (1.0 - row.load_factor) * p.displacement,
+    compression(row.step, row.load_factor, p.displacement)
+}
+
+/// The compression (mm) at `load_factor` of `step` of a joint compressed by `stroke`.
+fn compression(step: usize, load_factor: f64, stroke: f64) -> f64 {
+    match step {
+        2 => load_factor * stroke,
+        3 => (1.0 - load_factor) * stroke,
         _ => 0.0,
     }
+}
+
+/// The increments the report draws, of those with fields (`written`: name, step, load
+/// factor), each with its compression (mm) and what it is: half the stroke, the stroke (the
+/// end of step 2) and the last increment (a cycle's end), as far as the run got.
+fn picture_increments(written: &[(String, usize, f64)], stroke: f64) -> Vec<(String, f64, &'static str)> {
+    let half = written.iter().find(|w| w.1 == 2 && w.2 >= 0.5).map(|w| (w, "half the stroke"));
+    let full = written.iter().rfind(|w| w.1 == 2 && w.2 >= 1.0).map(|w| (w, "the stroke"));
+    let end = written.last().map(|w| (w, if w.1 == 3 && w.2 >= 1.0 { "the cycle's end" } else { "the last increment" }));
+    let mut picks: Vec<(String, f64, &'static str)> = Vec::new();
+    // a step 2 of one increment: its half and its end are the same picture
+    for ((name, step, load_factor), what) in [half, full, end].into_iter().flatten() {
+        if picks.last().is_none_or(|last| last.0 != *name) {
+            picks.push((name.clone(), compression(*step, *load_factor, stroke), what));
+        }
+    }
+    picks
 }
 
 /// Work of the end reaction around the force-displacement curve from the end of step 1 on,
@@ -326,11 +348,12 @@ pub fn assessment_section(c: &CodeCheck, fe: &FeCheck, life: Option<&StrainLife>
 }
 
 impl BellowsReport {
-    /// Writes the pictures next to `output` (the HDF5 file); returns their paths.
-    pub fn pictures(&self, output: &Path, reader: &ResultsReader) -> Result<Vec<PathBuf>> {
+    /// Writes the pictures next to `output` (the HDF5 file); returns their paths, each with what
+    /// it shows.
+    pub fn pictures(&self, output: &Path, reader: &ResultsReader) -> Result<Vec<(PathBuf, String)>> {
         let stem = output.with_extension("");
         let name = |suffix: &str| PathBuf::from(format!("{}_{suffix}.png", stem.display()));
-        let mut written = Vec::new();
+        let mut pictures = Vec::new();
         let force = name("force_displacement");
         let mut curves = vec![Curve { label: "slideline".into(), points: self.curve.clone() }];
         if let Some(stiffness) = self.code.as_ref().map(|c| c.axial_rate * SECTOR_RADIANS / (2.0 * PI)) {
@@ -346,22 +369,20 @@ impl BellowsReport {
             &[Marker { label: format!("paper (MSC Nastran): {PAPER_REACTION} N at 70 mm"), at: (70.0, PAPER_REACTION) }],
             Axes::FromOrigin,
         )?;
-        written.push(force);
+        pictures.push((force, "the end reaction against the compression".to_string()));
         let increments = reader.increments()?;
         let (x0, conn) = (reader.coordinates()?, reader.connectivity()?);
         let mut plies: Vec<usize> = Vec::new();
         for name in reader.element_set_names()?.iter().filter(|n| n.starts_with("ply")) {
             plies.extend(reader.element_set(name)?);
         }
-        let half = increments
-            .iter()
-            .position(|inc| reader.increment_attr(inc, "step").ok() == Some(2.0) && reader.increment_attr(inc, "load_factor").unwrap_or(0.0) >= 0.5);
-        let mut picks: Vec<&String> = half.map(|k| &increments[k]).into_iter().chain(increments.last()).collect();
-        // a step 2 of one increment: its half and its end are the same picture
-        picks.dedup();
-        for inc in picks {
-            let u = reader.displacement(inc)?;
-            let vm = reader.field(inc, "von_mises_mean")?;
+        let mut written = Vec::new();
+        for inc in &increments {
+            written.push((inc.clone(), reader.increment_attr(inc, "step")? as usize, reader.increment_attr(inc, "load_factor")?));
+        }
+        for (inc, compression, what) in picture_increments(&written, self.displacement) {
+            let u = reader.displacement(&inc)?;
+            let vm = reader.field(&inc, "von_mises_mean")?;
             // zoom on the convolutions: the plies' deformed extent
             let mut zoom = ((f64::INFINITY, f64::NEG_INFINITY), (f64::INFINITY, f64::NEG_INFINITY));
             for &e in &plies {
@@ -371,20 +392,21 @@ impl BellowsReport {
                 }
             }
             let window = Some(((zoom.0 .0 - 3.0, zoom.0 .1 + 3.0), (zoom.1 .0 - 12.0, zoom.1 .1 + 2.0)));
-            let compression = reader.increment_attr(inc, "load_factor")? * if reader.increment_attr(inc, "step")? >= 2.0 { self.displacement } else { 0.0 };
             let path = name(&format!("von_mises_{inc}"));
             let picture = FieldPicture {
                 coordinates: &x0,
                 connectivity: &conn,
                 displacement: &u,
                 values: &vm,
-                title: format!("von Mises stress (element mean, MPa), deformed, at {compression:.1} mm compression (increment {inc}); below: the convolutions"),
+                title: format!(
+                    "von Mises stress (element mean, MPa), deformed, at {compression:.1} mm compression, {what} (increment {inc}); below: the convolutions"
+                ),
                 value_label: "MPa".into(),
             };
             deformed_field(&path, &picture, &[None, window])?;
-            written.push(path);
+            pictures.push((path, format!("von Mises stress at {compression:.1} mm compression, {what}")));
         }
-        Ok(written)
+        Ok(pictures)
     }
 }
 
@@ -556,4 +578,35 @@ pub fn mode_picture(reader: &ResultsReader, path: &Path, step: &str, n: u32, mod
         SegmentLayer { label: format!("mode {mode} of n = {n}, scaled"), segments: shape, width: 2 },
     ];
     outline_picture(path, title, &layers)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::picture_increments;
+
+    fn run(rows: &[(usize, f64)]) -> Vec<(String, usize, f64)> {
+        rows.iter().enumerate().map(|(k, &(step, load_factor))| (format!("{:06}", k + 1), step, load_factor)).collect()
+    }
+
+    #[test]
+    fn a_cycle_is_drawn_at_half_the_stroke_at_the_stroke_and_back_at_zero() {
+        let cycle = run(&[(1, 1.0), (2, 0.25), (2, 0.5), (2, 0.75), (2, 1.0), (3, 0.5), (3, 1.0)]);
+        let picks = picture_increments(&cycle, 70.0);
+        let got: Vec<(&str, f64)> = picks.iter().map(|p| (p.0.as_str(), p.1)).collect();
+        assert_eq!(got, [("000003", 35.0), ("000005", 70.0), ("000007", 0.0)]);
+        assert_eq!(picks[2].2, "the cycle's end");
+    }
+
+    #[test]
+    fn a_compression_is_drawn_twice_and_a_run_that_stopped_at_its_last_increment() {
+        let compression = run(&[(1, 1.0), (2, 0.5), (2, 1.0)]);
+        let got: Vec<(String, f64)> = picture_increments(&compression, 70.0).into_iter().map(|p| (p.0, p.1)).collect();
+        assert_eq!(got, [("000002".to_string(), 35.0), ("000003".to_string(), 70.0)]);
+        // stopped in step 2 at 0.6 of the stroke: no picture claims the stroke
+        let stopped = run(&[(1, 1.0), (2, 0.3), (2, 0.6)]);
+        let picks = picture_increments(&stopped, 70.0);
+        assert_eq!(picks.iter().map(|p| (p.1, p.2)).collect::<Vec<_>>(), [(42.0, "half the stroke")]);
+        let one_step = run(&[(1, 0.5), (1, 1.0)]);
+        assert_eq!(picture_increments(&one_step, 70.0).iter().map(|p| (p.1, p.2)).collect::<Vec<_>>(), [(0.0, "the last increment")]);
+    }
 }

@@ -208,6 +208,10 @@ fn a_load_cycle_with_friction_between_the_plies_closes_its_loop() {
     let area: f64 = line.split_whitespace().rev().nth(1).unwrap().parse().unwrap();
     assert!(area > 0.0, "the cycle dissipates: {line}");
     assert!(text.contains("friction mu, plies / sleeve"), "{text}");
+    // the pictures: the stroke and the cycle's end, each at its own compression
+    for caption in ["at 10.0 mm compression, half the stroke)", "at 20.0 mm compression, the stroke)", "at 0.0 mm compression, the cycle's end)"] {
+        assert!(text.lines().any(|l| l.starts_with("picture: ") && l.ends_with(caption)), "no picture {caption:?} in:\n{text}");
+    }
     let last = r.last_increment();
     let shear = r.f64s(&format!("{last}/contact/ply1_ply2/pass0/shear"));
     assert!(shear.iter().any(|s| s.abs() > 0.0), "frictional tractions between the plies");
