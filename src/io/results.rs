@@ -96,10 +96,12 @@ impl HistoryRow {
     /// The short line the run prints for this row (and `slideline post` prints again), at most
     /// 100 characters: the step, the run-wide increment number (#N) and the step's own, the
     /// load factor, the Newton iterations, the largest axial reaction (a `plane` model's largest
-    /// y reaction, over its thickness) and the wall time.
+    /// y reaction, over its thickness) and the wall time. Of sets within 1 % of the largest the
+    /// first is named, so that two ends bearing equal and opposite forces do not take turns.
     pub fn short_line(&self, step_name: &str, steps: usize, plane: bool) -> String {
         let name: String = step_name.chars().take(10).collect();
-        let reaction = self.reactions.iter().max_by(|a, b| a.1[1].abs().total_cmp(&b.1[1].abs()));
+        let largest = self.reactions.iter().map(|r| r.1[1].abs()).fold(0.0, f64::max);
+        let reaction = self.reactions.iter().find(|r| r.1[1].abs() >= 0.99 * largest);
         let (label, unit) = if plane { ("F_y", "N") } else { ("F_z", "N/rad") };
         let force = reaction.map_or(String::new(), |(set, f)| format!(" {label} {:<10} {:>10.3e} {unit}", set.chars().take(10).collect::<String>(), f[1]));
         format!(
@@ -645,4 +647,42 @@ pub(super) fn write_rows<T: hdf5::H5Type + Copy>(
         _ => unreachable!("datasets have at most 3 dimensions"),
     }
     .map_err(&err)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::HistoryRow;
+
+    fn row(reactions: &[(&str, f64)]) -> HistoryRow {
+        HistoryRow {
+            number: 8,
+            step: 2,
+            increment: 6,
+            load_factor: 0.15,
+            time: 1.15,
+            newton_iterations: 2,
+            linear_iterations: 2,
+            residual_norm: 0.0,
+            residual_norms: Vec::new(),
+            average_force: 0.0,
+            cutbacks: 0,
+            augmentations: 0,
+            contacts: Vec::new(),
+            max_plastic_strain: 0.0,
+            wall_time: 1.3,
+            reactions: reactions.iter().map(|&(set, f)| (set.to_string(), [0.0, f])).collect(),
+            energy: None,
+        }
+    }
+
+    #[test]
+    fn the_short_line_names_the_largest_reaction_and_keeps_to_one_of_two_equal_ends() {
+        // the quick joint's increments 7 and 8: its two ends within 0.3 % of each other
+        for ends in [[("moving_end", -4.972e3), ("fixed_end", 4.960e3)], [("moving_end", -5.017e3), ("fixed_end", 5.030e3)]] {
+            let line = row(&ends).short_line("compress", 3, false);
+            assert!(line.contains(" F_z moving_end ") && line.contains("N/rad"), "{line}");
+        }
+        let line = row(&[("inner", 1.0e2), ("top", -8.8e3)]).short_line("press", 1, true);
+        assert!(line.contains(" F_y top ") && line.contains("-8.800e3 N "), "{line}");
+    }
 }
