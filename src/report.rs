@@ -212,9 +212,9 @@ impl BellowsReport {
                 "-",
             );
         }
-        line("max von Mises at the end, MPa", format!("{:.2}", self.von_mises.value), &format!("{PAPER_VON_MISES}"));
+        line(&format!("max von Mises at {:.1} mm, MPa", self.displacement), format!("{:.2}", self.von_mises.value), &format!("{PAPER_VON_MISES}"));
         line("  where (part, deformed r, z mm)", format!("{} ({:.1}, {:.1})", self.von_mises.part, self.von_mises.at[0], self.von_mises.at[1]), "-");
-        line("max equivalent plastic strain", format!("{:.4}", self.plastic_strain.value), "-");
+        line(&format!("max equivalent plastic strain at {:.1} mm", self.displacement), format!("{:.4}", self.plastic_strain.value), "-");
         line(
             "  where (part, deformed r, z mm)",
             format!("{} ({:.1}, {:.1})", self.plastic_strain.part, self.plastic_strain.at[0], self.plastic_strain.at[1]),
