@@ -142,8 +142,9 @@ pub struct PostArgs {
     /// Write the history table as CSV to this file (all columns, full precision).
     #[arg(long)]
     pub csv: Option<PathBuf>,
-    /// Field to report (displacement, stress, von_mises, von_mises_mean,
-    /// equivalent_plastic_strain, equivalent_plastic_strain_max): min/max and where.
+    /// Field to report, at the Gauss points (von_mises, stress, equivalent_plastic_strain, ...)
+    /// or the nodes (contact_pressure, temperature, strain_zz, ...): min/max and where; an
+    /// unknown name lists the file's fields.
     #[arg(long)]
     pub field: Option<String>,
     /// Increment for --field and --linearize: its number (the run's #N, the file's
