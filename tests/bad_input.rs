@@ -372,11 +372,14 @@ fn toml_errors_name_the_line_and_the_key_on_one_line() {
         (format!("[stepping]\ncutback_factor = \"half\"\n{RECT}{MATERIAL}{STEP}"), vec!["deck.toml:2: [stepping] cutback_factor: invalid type"]),
         (format!("{RECT}{MATERIAL}{STEP}").replace("youngs_modulus", "youngs_modulu"), vec![":5: [[material]] youngs_modulu: unknown field"]),
         (format!("{MATERIAL}{STEP}"), vec!["deck.toml: missing field `mesh`"]),
+        // an array left open at the end of the file: the empty last line is not quoted
+        (format!("{RECT}{MATERIAL}{STEP}garbage = [\n"), vec!["deck.toml:", ": invalid array"]),
     ];
     for (deck, needles) in cases {
         let run = run_deck(&deck, &[], 1, &[]);
         assert_rejected(&run, &needles);
         assert_eq!(run.stderr().trim_end().lines().count(), 1, "{}", run.stderr());
+        assert!(!run.stderr().contains(": :"), "{}", run.stderr());
     }
 }
 

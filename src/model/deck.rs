@@ -506,7 +506,6 @@ struct PressureSpec {
     value: f64,
 }
 
-/// Reads and validates a deck file.
 /// A TOML error on one line, naming the line and the key (with its table) where there is one:
 /// `deck.toml:2: [stepping] cutback_factor: invalid type: string "half", expected f64`.
 fn toml_error(path: &Path, text: &str, e: &toml::de::Error) -> Error {
@@ -519,10 +518,12 @@ fn toml_error(path: &Path, text: &str, e: &toml::de::Error) -> Error {
     let table = text.lines().take(line_no).filter(|l| l.trim_start().starts_with('[')).last().map(|l| format!("{} ", l.trim())).unwrap_or_default();
     match line.split_once('=').map(|(key, _)| key.trim()).filter(|k| !k.is_empty() && !k.starts_with('[')) {
         Some(key) => Error::input(format!("{}:{line_no}: {table}{key}: {message}", path.display())),
+        None if line.is_empty() => Error::input(format!("{}:{line_no}: {message}", path.display())),
         None => Error::input(format!("{}:{line_no}: {line}: {message}", path.display())),
     }
 }
 
+/// Reads and validates a deck file.
 pub fn read(path: &Path) -> Result<Model> {
     let text = std::fs::read_to_string(path).map_err(|source| Error::Read { path: path.to_path_buf(), source })?;
     parse(&text, path)
