@@ -385,11 +385,18 @@ fn main() -> ExitCode {
                 model.and_then(|m| run(&session, &m, &RunOptions { output, progress: !quiet, verbose, monitor, restart: restart_from(&restart, increment) }));
             warn_unused_options(&session, root && !is_bad_input(&result));
             finish(result, root, |summary| {
-                if let (Some(degrees), Some(last)) = (segment, summary.history.last()) {
-                    // CalculiX's convention, for reading beside its .dat file
+                // CalculiX's convention, for reading beside its .dat file
+                let Some(degrees) = segment else { return Ok(()) };
+                if let Some(last) = summary.history.last() {
                     println!("final reactions per {degrees}-degree segment (N, as CalculiX prints them):");
                     for (set, f) in &last.reactions {
                         println!("  {:<20} {:>14.6e} {:>14.6e}", set, f[0] * degrees.to_radians(), f[1] * degrees.to_radians());
+                    }
+                }
+                for (name, answer) in &summary.heat {
+                    println!("heat step '{name}': heat flowing in per {degrees}-degree segment (as CalculiX prints RFL):");
+                    for f in &answer.flows {
+                        println!("  {:<20} {:>14.6e}", f.set, f.flow * degrees.to_radians());
                     }
                 }
                 Ok(())

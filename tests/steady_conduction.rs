@@ -96,7 +96,8 @@ fn the_heat_flux_falls_as_one_over_r() {
 
 /// The same wall as a CalculiX deck: CAX8 elements without *ELASTIC, the bore held in the
 /// model data and the outside in the *HEAT TRANSFER, STEADY STATE step (*BOUNDARY on degree of
-/// freedom 11), on 2 ranks; and `slideline post` prints the step's range and flows.
+/// freedom 11), on 2 ranks; the run prints the flows per 2-degree segment as CalculiX's RFL, and
+/// `slideline post` prints the step's range and flows.
 #[test]
 fn a_calculix_heat_transfer_deck_gives_the_same_profile() {
     use std::fmt::Write as _;
@@ -111,12 +112,17 @@ fn a_calculix_heat_transfer_deck_gives_the_same_profile() {
     );
     let run = common::run_deck_file("wall.inp", &w, &[], 2, &[]);
     run.assert_ok();
+    // the run prints the bore's flow per 2-degree segment too, as CalculiX's RFL
+    let expected = TAU * K * H * (TA - TB) / (B / A).ln();
+    let stdout = run.stdout();
+    let tail = stdout.split("heat flowing in per 2-degree segment (as CalculiX prints RFL):").nth(1).unwrap_or_else(|| panic!("no RFL table:\n{stdout}"));
+    let bore: f64 = tail.lines().find(|l| l.trim_start().starts_with("BORE")).and_then(|l| l.split_whitespace().nth(1)).unwrap().parse().unwrap();
+    assert!((bore - expected / 180.0).abs() < 1e-3 * expected / 180.0, "the bore's flow per 2 degrees {bore:.6e}, expected {:.6e}", expected / 180.0);
     let res = Results::open(&run.h5);
     let coords = res.f64s("mesh/coordinates");
     let t = res.f64s("heat/step-1/temperature");
     let worst = (0..t.len()).map(|n| (t[n] - exact(coords[2 * n])).abs()).fold(0.0f64, f64::max);
     assert!(worst < 5e-4 * (TA - TB), "a node's temperature is {worst:.4} degC off the logarithmic profile");
-    let expected = TAU * K * H * (TA - TB) / (B / A).ln();
     let post = common::command_in(run.dir.path(), 1).arg("post").arg(&run.h5).output().unwrap();
     let text = String::from_utf8_lossy(&post.stdout);
     let line = text.lines().find(|l| l.trim_start().starts_with("BORE")).unwrap_or_else(|| panic!("post names the bore's flow:\n{text}"));
