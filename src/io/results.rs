@@ -553,8 +553,6 @@ impl ResultsFile {
     }
 }
 
-/// Creates dataset `name` of `shape` in `group` (collective) and writes rows
-/// `slab.0..slab.1` (first dimension) from `data` (row-major) on this rank.
 /// Writes the `units` and `description` attributes of a dataset (collective).
 /// A plane model's file (its root `geometry` attribute "plane") gets the plane units.
 pub(super) fn describe_dataset(ds: &hdf5::Dataset, units: &'static str, description: &str, path: &Path) -> Result<()> {

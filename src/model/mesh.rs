@@ -42,6 +42,16 @@ impl Mesh {
         (n0, e0)
     }
 
+    /// The mesh's size: the larger side of the box around its nodes (mm).
+    pub fn largest_extent(&self) -> f64 {
+        (0..2)
+            .map(|c| {
+                let (lo, hi) = self.coords.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), x| (lo.min(x[c]), hi.max(x[c])));
+                hi - lo
+            })
+            .fold(0.0, f64::max)
+    }
+
     pub fn element_coords(&self, e: usize) -> [[f64; 2]; NODES_PER_ELEMENT] {
         self.elements[e].map(|n| self.coords[n])
     }

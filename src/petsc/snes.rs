@@ -63,18 +63,26 @@ pub struct SolveReport {
     pub residual_norms: Vec<f64>,
     /// Why the linear solve failed (DIVERGED_LINEAR_SOLVE), where the solver says.
     pub linear_failure: Option<FactorFailure>,
+    /// Why the caller refused a solve PETSc counted as converged (see [`SolveReport::refuse`]).
+    pub refused: Option<String>,
 }
 
 impl SolveReport {
     pub fn converged(&self) -> bool {
-        self.reason > 0
+        self.reason > 0 && self.refused.is_none()
+    }
+
+    /// Counts a converged solve as failed, for a reason the convergence tests cannot see.
+    pub fn refuse(&mut self, why: String) {
+        self.refused = Some(why);
     }
 
     /// The reason's name, with the linear solver's diagnosis where it failed.
     pub fn describe(&self) -> String {
-        match &self.linear_failure {
-            Some(why) => format!("{} ({})", self.reason_name(), why.text),
-            None => self.reason_name().to_string(),
+        match (&self.refused, &self.linear_failure) {
+            (Some(why), _) => why.clone(),
+            (None, Some(why)) => format!("{} ({})", self.reason_name(), why.text),
+            (None, None) => self.reason_name().to_string(),
         }
     }
 
@@ -434,6 +442,7 @@ impl<'s> Snes<'s> {
             linear_iterations: lits as usize,
             residual_norms: self.history[..n].to_vec(),
             linear_failure,
+            refused: None,
         })
     }
 }

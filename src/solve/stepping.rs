@@ -3,7 +3,7 @@
 //!
 //! Each step asks for `increments` equal increments of its load factor. An attempt that does
 //! not converge (any negative SNES reason: divergence, line-search failure, NaN, an inverted
-//! element or any other domain error) is cut back by `cutback_factor` and retried from the
+//! element or any other domain error, or a runaway: see `runaway`) is cut back by `cutback_factor` and retried from the
 //! last converged state; after an easy increment the size grows by `growth_factor`, never past
 //! the requested size. Below `min_increment` the run stops with every converged increment in
 //! the results file.
@@ -168,6 +168,7 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
     let first_step = resumed.as_ref().map_or(0, |r| r.step);
     // the base state of the perturbation steps, if any: the end of the last general step
     let mut base: Option<super::perturbation::KeptBase> = None;
+    let model_size = model.mesh.largest_extent();
     for (s, step) in model.steps.iter().enumerate().skip(first_step) {
         let resumed_here = resumed.take();
         let loads = StepLoads::new(model, s, previous.as_ref(), resumed_here.as_ref().map_or(&displacement, |r| &r.step_start));
@@ -257,7 +258,12 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
             // (see NonlinearProblem::roundoff_squares). -snes_rtol / -snes_atol override.
             snes.set_tolerances(None, Some(1e-10), Some(controls.max_newton_iterations))?;
             snes.search_after_failure(failed_in_step)?;
-            let (report, augmentations) = solve_increment(&world, model, &mut snes, &mut problem, &mut x, &mut residual, &mut jacobian)?;
+            let (mut report, augmentations) = solve_increment(&world, model, &mut snes, &mut problem, &mut x, &mut residual, &mut jacobian)?;
+            if report.converged() {
+                if let Some(why) = runaway(&x, &mut correction, (&dofs, &partition, &displacement), model_size)? {
+                    report.refuse(why);
+                }
+            }
             if !report.converged() {
                 problem.reset();
                 failed_in_step = true;
@@ -516,6 +522,18 @@ fn contact_summaries(world: &impl Communicator, model: &Model, problem: &Problem
 }
 
 /// Puts the current displacement of this rank's free DOFs into `x` (the initial guess).
+/// Why a converged solve has run away, if it has: its free displacements moved further in the
+/// increment than the model's own size (`size`, mm). Past a limit load a perfectly plastic
+/// mechanism (or a body nothing holds) moves without bound at a near-constant residual, and
+/// a relative convergence test can then pass at an absurd state (3e9 mm, measured on a thick
+/// cylinder at its collapse pressure). `work` is overwritten. Collective.
+fn runaway(x: &Vector<'_>, work: &mut Vector<'_>, (dofs, partition, converged): (&DofMap, &Partition, &[[f64; 2]]), size: f64) -> Result<Option<String>> {
+    set_free_values(work, dofs, partition, converged)?;
+    work.axpy(-1.0, x)?;
+    let moved = work.norm_max()?;
+    Ok((moved > size).then(|| format!("a runaway: the free displacements moved {moved:.3e} mm in the increment, more than the model's size ({size:.3e} mm)")))
+}
+
 fn set_free_values(x: &mut Vector<'_>, dofs: &DofMap, partition: &Partition, displacement: &[[f64; 2]]) -> Result<()> {
     let first = dofs.first() as i32;
     let mut a = x.write()?;
