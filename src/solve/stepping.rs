@@ -3,9 +3,9 @@
 //!
 //! Each step asks for `increments` equal increments of its load factor. An attempt that does
 //! not converge (any negative SNES reason: divergence, line-search failure, NaN, an inverted
-//! element or any other domain error, or a runaway: see `runaway`) is cut back by `cutback_factor` and retried from the
-//! last converged state; after an easy increment the size grows by `growth_factor`, never past
-//! the requested size. Below `min_increment` the run stops with every converged increment in
+//! element or any other domain error; or a runaway, see `runaway`) is cut back by
+//! `cutback_factor` and retried from the last converged state; after an easy increment the
+//! size grows by `growth_factor`, never past the requested size. Below `min_increment` the run stops with every converged increment in
 //! the results file.
 
 use super::attempt::{predict, solve_increment};
