@@ -243,6 +243,9 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
             // changing contact better)
             let start_load = loads.at(model, lambda);
             let moving = problem.load().prescribed != start_load.prescribed;
+            // a free DOF may follow the prescribed motion: the runaway check allows for it
+            let prescribed_motion =
+                problem.load().prescribed.iter().zip(&start_load.prescribed).flat_map(|(a, b)| [a[0] - b[0], a[1] - b[1]]).fold(0.0, |m, d| d.abs().max(m));
             let extrapolated = match (controls.predictor, &last) {
                 (Predictor::Extrapolate, Some(last)) if moving && !failed_in_step => Some(last.extrapolate(&displacement, target - lambda)),
                 _ => None,
@@ -260,7 +263,7 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
             snes.search_after_failure(failed_in_step)?;
             let (mut report, augmentations) = solve_increment(&world, model, &mut snes, &mut problem, &mut x, &mut residual, &mut jacobian)?;
             if report.converged() {
-                if let Some(why) = runaway(&x, &mut correction, (&dofs, &partition, &displacement), model_size)? {
+                if let Some(why) = runaway(&x, &mut correction, (&dofs, &partition, &displacement), model_size + prescribed_motion)? {
                     report.refuse(why);
                 }
             }
@@ -521,19 +524,22 @@ fn contact_summaries(world: &impl Communicator, model: &Model, problem: &Problem
         .collect()
 }
 
-/// Puts the current displacement of this rank's free DOFs into `x` (the initial guess).
 /// Why a converged solve has run away, if it has: its free displacements moved further in the
-/// increment than the model's own size (`size`, mm). Past a limit load a perfectly plastic
-/// mechanism (or a body nothing holds) moves without bound at a near-constant residual, and
-/// a relative convergence test can then pass at an absurd state (3e9 mm, measured on a thick
-/// cylinder at its collapse pressure). `work` is overwritten. Collective.
+/// increment than `size` (mm: the model's own size and the prescribed motion). Past a limit
+/// load a perfectly plastic mechanism (or a body nothing holds) moves without bound at a
+/// near-constant residual, and a relative convergence test can then pass at an absurd state
+/// (3e9 mm, measured on a thick cylinder at its collapse pressure). `work` is overwritten.
+/// Collective.
 fn runaway(x: &Vector<'_>, work: &mut Vector<'_>, (dofs, partition, converged): (&DofMap, &Partition, &[[f64; 2]]), size: f64) -> Result<Option<String>> {
     set_free_values(work, dofs, partition, converged)?;
     work.axpy(-1.0, x)?;
     let moved = work.norm_max()?;
-    Ok((moved > size).then(|| format!("a runaway: the free displacements moved {moved:.3e} mm in the increment, more than the model's size ({size:.3e} mm)")))
+    Ok((moved > size).then(|| {
+        format!("a runaway: the free displacements moved {moved:.3e} mm in the increment, more than the model's size and the prescribed motion ({size:.3e} mm)")
+    }))
 }
 
+/// Puts the current displacement of this rank's free DOFs into `x` (the initial guess).
 fn set_free_values(x: &mut Vector<'_>, dofs: &DofMap, partition: &Partition, displacement: &[[f64; 2]]) -> Result<()> {
     let first = dofs.first() as i32;
     let mut a = x.write()?;
