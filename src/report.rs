@@ -41,8 +41,11 @@ pub struct Extreme {
 
 #[derive(Clone, Debug)]
 pub struct BellowsReport {
-    /// Applied axial compression at the last increment, mm.
+    /// Applied axial compression at the end of the compression (the last increment of step 2),
+    /// mm.
     pub displacement: f64,
+    /// The compression step 2 asks for, mm: a run that stopped short has `displacement` less.
+    pub stroke: f64,
     /// Axial reaction at the moving end after step 1 (heat and pressure) and at the end, N per
     /// sector (compression positive).
     pub preload: f64,
@@ -170,6 +173,7 @@ impl BellowsReport {
         let last = stroke.or_else(|| written.last().cloned()).unwrap_or_default();
         Ok(BellowsReport {
             displacement,
+            stroke: p.displacement,
             preload,
             reaction,
             secant_stiffness: reaction / displacement,
@@ -380,7 +384,7 @@ impl BellowsReport {
         for inc in &increments {
             written.push((inc.clone(), reader.increment_attr(inc, "step")? as usize, reader.increment_attr(inc, "load_factor")?));
         }
-        for (inc, compression, what) in picture_increments(&written, self.displacement) {
+        for (inc, compression, what) in picture_increments(&written, self.stroke) {
             let u = reader.displacement(&inc)?;
             let vm = reader.field(&inc, "von_mises_mean")?;
             // zoom on the convolutions: the plies' deformed extent
