@@ -210,7 +210,7 @@ pub fn weighted_gaps_into(
                 hint = Some(m);
                 // surfaces in contact face each other
                 let ts = [0, 1].map(|i| (0..3).map(|a| dn[a] * xs[a][i]).sum::<f64>());
-                if ts[1] * proj.normal[0] - ts[0] * proj.normal[1] >= 0.0 || proj.gap <= -capture {
+                if ts[1] * proj.normal[0] - ts[0] * proj.normal[1] >= 0.0 || !master.reaches(m, proj.gap, capture) {
                     continue;
                 }
                 let nodes = [en[0], en[1], en[2], master.edges[m][0], master.edges[m][1], master.edges[m][2]];
@@ -259,6 +259,34 @@ mod tests {
         // find for the integration to be exact on the master side
         for (slave_divisions, master_divisions) in [(7, 5), (2, 7)] {
             uniform_gap_consistent(slave_divisions, master_divisions);
+        }
+    }
+
+    /// Two walls 1 thick, 0.5 apart, and a surface on their far sides (as the fluid sides of a
+    /// bellows' two sidewalls, back to back across the fold between them): a capture distance
+    /// of 4 reaches across both walls, 2.5, but the far side is behind the wall's element, so
+    /// no point bears on it; a face penetrated by 0.1 still is.
+    #[test]
+    fn the_back_of_a_wall_is_no_penetration_of_its_face() {
+        let wall = |name: &str, z: [f64; 2]| Block { name: name.into(), r: [0.0, 10.0], z, divisions: [5, 1], grading: [1.0, 1.0], triangles: false };
+        let (mesh, sets) = blocks(&[wall("lower", [0.0, 1.0]), wall("upper", [1.5, 2.5])]).unwrap();
+        let x = |n: usize| mesh.coords[n];
+        let gaps = |slave: &str, master: &str, shift: f64| {
+            let slave = ContactSurface::new(&mesh, &sets.surfaces[slave]);
+            let master = ContactSurface::new(&mesh, &sets.surfaces[master]);
+            assert!(master.depth.iter().all(|&d| (d - 1.0).abs() < 1e-12), "{:?}", master.depth);
+            let moved = |n: usize| if slave.index_of(n).is_some() { [x(n)[0], x(n)[1] + shift] } else { x(n) };
+            let all: Vec<usize> = (0..slave.nodes.len()).collect();
+            let mut gaps = Vec::new();
+            weighted_gaps_into(&slave, &master, &moved, &x, &all, &[], 4.0, &mut gaps);
+            gaps
+        };
+        // the upper wall's top against the lower wall's bottom: 2.5 behind it
+        assert!(gaps("upper_top", "lower_bottom", 0.0).iter().all(|g| g.samples.is_empty()));
+        // the upper wall's bottom pushed 0.6 down, 0.1 into the lower wall's top
+        for g in gaps("upper_bottom", "lower_top", -0.6) {
+            assert!(!g.samples.is_empty());
+            assert!((g.gap / g.samples.iter().map(|s| s.weight).sum::<f64>() + 0.1).abs() < 1e-9, "{}", g.gap);
         }
     }
 

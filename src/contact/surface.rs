@@ -28,6 +28,10 @@ pub struct ContactSurface {
     pub edges: Vec<[usize; 3]>,
     /// Reference length of each edge (the master element size h).
     pub edge_length: Vec<f64>,
+    /// Reference depth of each edge's element behind it: how far its farthest node lies behind
+    /// the edge's chord. A point deeper than this has passed through the element, so it lies
+    /// beyond the element's back (`reaches`).
+    pub depth: Vec<f64>,
     /// Element each edge belongs to.
     pub element: Vec<usize>,
     /// Section of each edge's element: its out-of-plane measure weights the edge.
@@ -63,6 +67,7 @@ impl ContactSurface {
         let mut mass = Vec::new();
         let mut list = Vec::with_capacity(edges.len());
         let mut edge_length = Vec::with_capacity(edges.len());
+        let mut depth = Vec::with_capacity(edges.len());
         let mut element = Vec::with_capacity(edges.len());
         let mut section = Vec::with_capacity(edges.len());
         for &edge in edges {
@@ -106,6 +111,7 @@ impl ContactSurface {
             }
             list.push(en);
             edge_length.push(length);
+            depth.push(depth_behind(x[0], x[1], mesh.elements[edge.element].iter().map(|&n| mesh.coords[n])));
             element.push(edge.element);
             section.push(element_section[edge.element]);
         }
@@ -122,7 +128,17 @@ impl ContactSurface {
                 [find(start, 1), find(end, 0)]
             })
             .collect();
-        ContactSurface { nodes, areas, hat_areas, edges: list, edge_length, element, section, neighbours, mass, node_edges }
+        ContactSurface { nodes, areas, hat_areas, edges: list, edge_length, depth, element, section, neighbours, mass, node_edges }
+    }
+
+    /// Whether a point at normal gap `gap` from master edge `edge` may bear on it: within the
+    /// pair's capture distance, and not deeper than the edge's element. Deeper, the point has
+    /// passed through the element, so it is the back of the wall that it is near, not its face.
+    /// A self-contact surface on both sides of a thin wall (the fluid sides of a bellows' two
+    /// sidewalls, back to back across their plies once the fold between them closes) would
+    /// otherwise see its far side as a penetration of the wall's whole thickness.
+    pub fn reaches(&self, edge: usize, gap: f64, capture: f64) -> bool {
+        gap > -capture.min(self.depth[edge])
     }
 
     /// Index of mesh node `node` in `nodes`.
@@ -209,6 +225,15 @@ impl ContactSurface {
         }
         p
     }
+}
+
+/// How far the farthest of `nodes` lies behind the chord from `start` to `end` (on the side
+/// opposite the outward normal, the chord turned clockwise).
+fn depth_behind(start: [f64; 2], end: [f64; 2], nodes: impl Iterator<Item = [f64; 2]>) -> f64 {
+    let t = [end[0] - start[0], end[1] - start[1]];
+    let l = t[0].hypot(t[1]).max(f64::MIN_POSITIVE);
+    let normal = [t[1] / l, -t[0] / l];
+    nodes.map(|x| -((x[0] - start[0]) * normal[0] + (x[1] - start[1]) * normal[1])).fold(0.0, f64::max)
 }
 
 /// Piecewise-linear hats of an edge's (start, end, middle) nodes at edge coordinate `xi`:
