@@ -264,8 +264,8 @@ mod tests {
 
     /// Two walls 1 thick, 0.5 apart, and a surface on their far sides (as the fluid sides of a
     /// bellows' two sidewalls, back to back across the fold between them): a capture distance
-    /// of 4 reaches across both walls, 2.5, but the far side is behind the wall's element, so
-    /// no point bears on it; a face penetrated by 0.1 still is.
+    /// of 4 reaches across both walls, 2.5, but the far side lies beyond the wall behind the
+    /// master face, so no point bears on it; a face penetrated by 0.1 still is.
     #[test]
     fn the_back_of_a_wall_is_no_penetration_of_its_face() {
         let wall = |name: &str, z: [f64; 2]| Block { name: name.into(), r: [0.0, 10.0], z, divisions: [5, 1], grading: [1.0, 1.0], triangles: false };
@@ -274,7 +274,7 @@ mod tests {
         let gaps = |slave: &str, master: &str, shift: f64| {
             let slave = ContactSurface::new(&mesh, &sets.surfaces[slave]);
             let master = ContactSurface::new(&mesh, &sets.surfaces[master]);
-            assert!(master.depth.iter().all(|&d| (d - 1.0).abs() < 1e-12), "{:?}", master.depth);
+            assert!(master.thickness.iter().all(|&d| (d - 1.0).abs() < 1e-12), "{:?}", master.thickness);
             let moved = |n: usize| if slave.index_of(n).is_some() { [x(n)[0], x(n)[1] + shift] } else { x(n) };
             let all: Vec<usize> = (0..slave.nodes.len()).collect();
             let mut gaps = Vec::new();

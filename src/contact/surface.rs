@@ -28,10 +28,10 @@ pub struct ContactSurface {
     pub edges: Vec<[usize; 3]>,
     /// Reference length of each edge (the master element size h).
     pub edge_length: Vec<f64>,
-    /// Reference depth of each edge's element behind it: how far its farthest node lies behind
-    /// the edge's chord. A point deeper than this has passed through the element, so it lies
-    /// beyond the element's back (`reaches`).
-    pub depth: Vec<f64>,
+    /// Reference thickness of the body behind each edge: from the edge's middle node along its
+    /// inward normal to the nearest other boundary edge of its body (infinite where none). A
+    /// point deeper than this has passed through the body, to its back (`reaches`).
+    pub thickness: Vec<f64>,
     /// Element each edge belongs to.
     pub element: Vec<usize>,
     /// Section of each edge's element: its out-of-plane measure weights the edge.
@@ -67,7 +67,22 @@ impl ContactSurface {
         let mut mass = Vec::new();
         let mut list = Vec::with_capacity(edges.len());
         let mut edge_length = Vec::with_capacity(edges.len());
-        let mut depth = Vec::with_capacity(edges.len());
+        let mut thickness = Vec::with_capacity(edges.len());
+        // each body's own boundary: another body overlapping it (an interference fit, a
+        // sphere started into a block) is not its back
+        let mut body = vec![usize::MAX; mesh.coords.len()];
+        for (b, nodes) in mesh.bodies().iter().enumerate() {
+            for &n in nodes {
+                body[n] = b;
+            }
+        }
+        let body_of = |element: usize| body[mesh.elements[element][0]];
+        let mut boundaries: std::collections::HashMap<usize, Vec<Edge>> = std::collections::HashMap::new();
+        for free in mesh.free_edges() {
+            boundaries.entry(body_of(free.element)).or_default().push(free);
+        }
+        let boundaries: std::collections::HashMap<usize, Vec<[[f64; 2]; 2]>> =
+            boundaries.into_iter().map(|(b, edges)| (b, mesh.edge_segments(&edges))).collect();
         let mut element = Vec::with_capacity(edges.len());
         let mut section = Vec::with_capacity(edges.len());
         for &edge in edges {
@@ -111,7 +126,7 @@ impl ContactSurface {
             }
             list.push(en);
             edge_length.push(length);
-            depth.push(depth_behind(x[0], x[1], mesh.elements[edge.element].iter().map(|&n| mesh.coords[n])));
+            thickness.push(thickness_behind(x, &boundaries[&body_of(edge.element)]));
             element.push(edge.element);
             section.push(element_section[edge.element]);
         }
@@ -128,17 +143,17 @@ impl ContactSurface {
                 [find(start, 1), find(end, 0)]
             })
             .collect();
-        ContactSurface { nodes, areas, hat_areas, edges: list, edge_length, depth, element, section, neighbours, mass, node_edges }
+        ContactSurface { nodes, areas, hat_areas, edges: list, edge_length, thickness, element, section, neighbours, mass, node_edges }
     }
 
     /// Whether a point at normal gap `gap` from master edge `edge` may bear on it: within the
-    /// pair's capture distance, and not deeper than the edge's element. Deeper, the point has
-    /// passed through the element, so it is the back of the wall that it is near, not its face.
-    /// A self-contact surface on both sides of a thin wall (the fluid sides of a bellows' two
+    /// pair's capture distance, and not deeper than the body behind the edge is thick. Deeper,
+    /// the point has passed through the body: it is near the back of the wall, not its face. A
+    /// self-contact surface on both sides of a wall (the fluid sides of a bellows' two
     /// sidewalls, back to back across their plies once the fold between them closes) would
-    /// otherwise see its far side as a penetration of the wall's whole thickness.
+    /// otherwise see its far side as a penetration of both walls' thickness.
     pub fn reaches(&self, edge: usize, gap: f64, capture: f64) -> bool {
-        gap > -capture.min(self.depth[edge])
+        gap > -capture.min(self.thickness[edge])
     }
 
     /// Index of mesh node `node` in `nodes`.
@@ -227,13 +242,28 @@ impl ContactSurface {
     }
 }
 
-/// How far the farthest of `nodes` lies behind the chord from `start` to `end` (on the side
-/// opposite the outward normal, the chord turned clockwise).
-fn depth_behind(start: [f64; 2], end: [f64; 2], nodes: impl Iterator<Item = [f64; 2]>) -> f64 {
-    let t = [end[0] - start[0], end[1] - start[1]];
+/// The distance from the middle of edge `x` (start, end, middle) along its inward normal (the
+/// chord turned anticlockwise) to the nearest of the straight `segments` it crosses, its own
+/// two excepted; infinite if it crosses none.
+fn thickness_behind(x: [[f64; 2]; 3], segments: &[[[f64; 2]; 2]]) -> f64 {
+    let t = [x[1][0] - x[0][0], x[1][1] - x[0][1]];
     let l = t[0].hypot(t[1]).max(f64::MIN_POSITIVE);
-    let normal = [t[1] / l, -t[0] / l];
-    nodes.map(|x| -((x[0] - start[0]) * normal[0] + (x[1] - start[1]) * normal[1])).fold(0.0, f64::max)
+    let inward = [-t[1] / l, t[0] / l];
+    let origin = x[2];
+    let cross = |a: [f64; 2], b: [f64; 2]| a[0] * b[1] - a[1] * b[0];
+    segments
+        .iter()
+        .filter_map(|&[p, q]| {
+            let along = [q[0] - p[0], q[1] - p[1]];
+            let denominator = cross(inward, along);
+            if denominator.abs() <= 1e-12 * along[0].hypot(along[1]) {
+                return None;
+            }
+            let to = [p[0] - origin[0], p[1] - origin[1]];
+            let (distance, s) = (cross(to, along) / denominator, cross(to, inward) / denominator);
+            (distance > 1e-9 * l && (0.0..=1.0).contains(&s)).then_some(distance)
+        })
+        .fold(f64::INFINITY, f64::min)
 }
 
 /// Piecewise-linear hats of an edge's (start, end, middle) nodes at edge coordinate `xi`:
