@@ -126,7 +126,7 @@ impl ContactSurface {
             }
             list.push(en);
             edge_length.push(length);
-            thickness.push(thickness_behind(x, &boundaries[&body_of(edge.element)]));
+            thickness.push(boundaries.get(&body_of(edge.element)).map_or(f64::INFINITY, |b| thickness_behind(x, b)));
             element.push(edge.element);
             section.push(element_section[edge.element]);
         }
