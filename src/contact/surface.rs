@@ -10,6 +10,7 @@
 //! next to it. (A corner node on the axis gets zero area: the integral of N_a r vanishes
 //! there, as it does for a pressure load; its pressure comes from the traction recovery.)
 
+use super::node_to_edge::EdgeProjection;
 use crate::fe::quadrature::GAUSS3;
 use crate::fe::section::Section;
 use crate::fe::shape::line3;
@@ -154,6 +155,13 @@ impl ContactSurface {
     /// otherwise see its far side as a penetration of both walls' thickness.
     pub fn reaches(&self, edge: usize, gap: f64, capture: f64) -> bool {
         gap > -capture.min(self.thickness[edge])
+    }
+
+    /// Whether a slave node whose outward normal is `slave_normal` bears on master edge `edge`
+    /// where it projects (`projection`): the surfaces face each other (never the back of a thin
+    /// master) and the edge `reaches` it.
+    pub fn bears(&self, edge: usize, projection: &EdgeProjection, slave_normal: [f64; 2], capture: f64) -> bool {
+        slave_normal[0] * projection.normal[0] + slave_normal[1] * projection.normal[1] < 0.0 && self.reaches(edge, projection.gap, capture)
     }
 
     /// Index of mesh node `node` in `nodes`.

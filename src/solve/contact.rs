@@ -105,7 +105,7 @@ fn initial_slip_references(model: &Model, surfaces: &[ContactSurface], passes: &
                     let excluded = if pass.slave == pass.master { slave.neighbourhood(node, pair.exclude_neighbours) } else { Vec::new() };
                     let ns = slave.node_normal(node, x);
                     grid.closest_edge(master, &x, x(node), &excluded, pair.capture_distance, None)
-                        .filter(|&(edge, proj)| ns[0] * proj.normal[0] + ns[1] * proj.normal[1] < 0.0 && master.reaches(edge, proj.gap, pair.capture_distance))
+                        .filter(|(edge, proj)| master.bears(*edge, proj, ns, pair.capture_distance))
                         .map(|(edge, proj)| SlipPoint { edge, xi: proj.xi, traction: 0.0 })
                 })
                 .collect()

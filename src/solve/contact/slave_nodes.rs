@@ -72,11 +72,7 @@ impl ContactAssembly {
             let excluded = pass.excluded.get(k).map_or(&[][..], |v| v.as_slice());
             let found = grid.closest_edge(master, &x, xs, excluded, capture, hint);
             hint = found.as_ref().map(|(e, _)| *e).or(hint);
-            let found = found.filter(|&(edge, proj)| {
-                // surfaces in contact face each other: never the back of a thin master
-                let ns = slave.node_normal(node, x);
-                ns[0] * proj.normal[0] + ns[1] * proj.normal[1] < 0.0 && master.reaches(edge, proj.gap, capture)
-            });
+            let found = found.filter(|(edge, proj)| master.bears(*edge, proj, slave.node_normal(node, x), capture));
             let Some((edge, proj)) = found else {
                 self.states[p][k] = SlaveState { gap: f64::NAN, ..SlaveState::default() };
                 self.slip_trial[p][k] = None;
@@ -161,10 +157,9 @@ impl ContactAssembly {
             let (Some(grid), false) = (grid.as_ref(), self.without_friction) else { continue };
             // the node's own projection: where its slip is measured and its friction acts
             let excluded = if pass.slave == pass.master { slave.neighbourhood(node, pair.exclude_neighbours) } else { Vec::new() };
-            let found = grid.closest_edge(master, &x, xs, &excluded, pair.capture_distance, None).filter(|&(edge, proj)| {
-                let ns = slave.node_normal(node, x);
-                ns[0] * proj.normal[0] + ns[1] * proj.normal[1] < 0.0 && master.reaches(edge, proj.gap, pair.capture_distance)
-            });
+            let found = grid
+                .closest_edge(master, &x, xs, &excluded, pair.capture_distance, None)
+                .filter(|(edge, proj)| master.bears(*edge, proj, slave.node_normal(node, x), pair.capture_distance));
             let Some((edge, proj)) = found else {
                 self.slip_trial[p][k] = None;
                 continue;
