@@ -1,12 +1,13 @@
 //! The analysis loop: steps, adaptive increments, one SNES solve per attempt, output after
 //! each converged increment.
 //!
-//! Each step asks for `increments` equal increments of its load factor. An attempt that does
-//! not converge (any negative SNES reason: divergence, line-search failure, NaN, an inverted
-//! element or any other domain error; or a runaway, see `runaway`) is cut back by
-//! `cutback_factor` and retried from the last converged state; after an easy increment the
-//! size grows by `growth_factor`, never past the requested size. Below `min_increment` the run stops with every converged increment in
-//! the results file.
+//! Each step asks for `increments` equal increments of its load factor (a step reversing the
+//! previous one's prescribed motion starts at a quarter of one). An attempt that does not
+//! converge (any negative SNES reason: divergence, line-search failure, NaN, an inverted element
+//! or any other domain error; or a runaway, see `runaway`) is cut back by `cutback_factor` and
+//! retried from the last converged state; after an easy increment the size grows by
+//! `growth_factor`, never past the requested size. Below `min_increment` the run stops with
+//! every converged increment in the results file.
 
 use super::attempt::{predict, solve_increment};
 use super::energy::{Energies, EnergyAudit};
@@ -195,7 +196,7 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
         let requested = 1.0 / step.increments as f64;
         let (mut lambda, mut size, mut increment, mut cutbacks) = match &resumed_here {
             Some(r) => (r.load_factor, r.size.min(requested), r.increment, 0usize),
-            None => (0.0f64, requested * if reverses(previous.as_ref(), &loads) { REVERSAL_START } else { 1.0 }, 0usize, 0usize),
+            None => (0.0f64, requested * if loads.reverses(previous.as_ref()) { REVERSAL_START } else { 1.0 }, 0usize, 0usize),
         };
         if problem.contact.is_some() {
             // the contact at the step's start: overlaps in the undeformed mesh (a shrink fit)
@@ -590,17 +591,6 @@ fn gather_displacement(world: &impl Communicator, partition: &Partition, owned: 
 }
 
 /// The share of the requested increment a step starts with when it reverses the previous step's
-/// prescribed motion (`reverses`); it grows back after easy increments as after a cutback.
+/// prescribed motion (`StepLoads::reverses`); it grows back after easy increments as after a
+/// cutback.
 const REVERSAL_START: f64 = 0.25;
-
-/// Whether `loads` moves the prescribed DOFs back against the motion `previous` gave them (a
-/// load cycle's return stroke). At a reversal the response changes branch at once: plastic
-/// points unload elastically, and friction's traction flips within its elastic slip, a jump of
-/// the reaction at the increment's start that the energy audit's trapezoids integrate to within
-/// half the jump times the increment (the quick bellows' return stroke with sleeve friction:
-/// 555 N mm per radian of its 4e5 at the requested increment).
-fn reverses(previous: Option<&StepLoads>, loads: &StepLoads) -> bool {
-    let Some(previous) = previous else { return false };
-    let along: f64 = loads.prescribed.iter().filter_map(|(key, &(start, end))| previous.prescribed.get(key).map(|&(a, b)| (b - a) * (end - start))).sum();
-    along < 0.0
-}
