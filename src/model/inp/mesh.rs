@@ -252,8 +252,20 @@ impl Builder {
                 if edges.is_empty() {
                     return Err(card.error(format!("node-based surface {name}: no free element face has both corners in the set")));
                 }
+                // a node of the set on none of these faces (a mid-side node of a face with one
+                // corner outside) has no area of its own: CalculiX would still press it
+                let on_faces: BTreeSet<usize> = edges.iter().flat_map(|&e| self.mesh.edge_nodes(e)).collect();
+                let left: Vec<u64> = nodes.difference(&on_faces).map(|&n| self.mesh.node_ids[n]).collect();
+                let left = match left.len() {
+                    0 => String::new(),
+                    k => format!(
+                        "; {k} of its nodes ({}{}) lie on none of them and take no part",
+                        left.iter().take(10).map(|id| id.to_string()).collect::<Vec<_>>().join(", "),
+                        if k > 10 { ", ..." } else { "" }
+                    ),
+                };
                 self.notes.push(format!(
-                    "surface {name} ({}) is node-based: slideline uses the {} free element faces whose corners belong to it",
+                    "surface {name} ({}) is node-based: slideline uses the {} free element faces whose corners belong to it, each node with its consistent share of their area (CalculiX gives each node the area of the master face it meets){left}",
                     card.at,
                     edges.len()
                 ));

@@ -730,6 +730,13 @@ mod tests {
         let m = read(deck).model;
         // faces 3-4 of element 1 and 6-3 of element 2 (S3 of both); the shared face 2-3 is not free
         assert_eq!(m.surfaces["UPPER"], vec![Edge { element: 0, side: 2 }, Edge { element: 1, side: 2 }]);
+        // node 2 is on no free face whose corners are all in the set: the note names it
+        let deck = "*SURFACE, NAME=UPPER, TYPE=NODE\nTOP\n2\n*STEP\n*STATIC\n*BOUNDARY\nBOTTOM, 2, 2\n*END STEP\n";
+        let read = read(deck);
+        assert_eq!(read.model.surfaces["UPPER"].len(), 2);
+        let note = read.notes.iter().find(|n| n.contains("surface UPPER")).unwrap();
+        assert!(note.contains("1 of its nodes (2) lie on none of them"), "{note}");
+        assert!(note.contains("CalculiX gives each node the area of the master face it meets"), "{note}");
     }
 
     #[test]
