@@ -1,6 +1,7 @@
 //! The one error type of slideline. Variants carry the offending item so a message names it;
 //! `exit_code` maps them to the CLI's codes (2 bad input, 3 not converged, 1 other).
 
+use std::fmt::Display;
 use std::path::PathBuf;
 
 #[derive(Debug, thiserror::Error)]
@@ -62,3 +63,24 @@ impl Error {
 }
 
 pub type Result<T> = std::result::Result<T, Error>;
+
+/// A list of items for a message: the first ten, comma-separated, then "and N more".
+pub fn first_ten(items: &[impl Display]) -> String {
+    let shown: Vec<String> = items.iter().take(10).map(|i| i.to_string()).collect();
+    match items.len() {
+        n if n > 10 => format!("{} and {} more", shown.join(", "), n - 10),
+        _ => shown.join(", "),
+    }
+}
+
+#[cfg(test)]
+mod list_tests {
+    use super::first_ten;
+
+    #[test]
+    fn a_long_list_shows_its_first_ten_and_counts_the_rest() {
+        assert_eq!(first_ten(&[3, 1]), "3, 1");
+        let many: Vec<u32> = (1..=13).collect();
+        assert_eq!(first_ten(&many), "1, 2, 3, 4, 5, 6, 7, 8, 9, 10 and 3 more");
+    }
+}

@@ -234,12 +234,10 @@ impl ResultsReader {
         let held = self.rows_held()?;
         let missing = self.missing_increments(held)?;
         if !missing.is_empty() {
-            let shown: Vec<String> = missing.iter().take(10).map(usize::to_string).collect();
             notes.push(format!(
-                "{}: the fields of increment(s) {}{} should be in the file and are not (their history rows are)",
+                "{}: the fields of increment(s) {} should be in the file and are not (their history rows are)",
                 self.path.display(),
-                shown.join(", "),
-                if missing.len() > 10 { format!(" and {} more", missing.len() - 10) } else { String::new() }
+                crate::error::first_ten(&missing)
             ));
         }
         if lengths.iter().any(|(_, n)| *n != held) {

@@ -258,11 +258,7 @@ impl Builder {
                 let left: Vec<u64> = nodes.difference(&on_faces).map(|&n| self.mesh.node_ids[n]).collect();
                 let left = match left.len() {
                     0 => String::new(),
-                    k => format!(
-                        "; {k} of its nodes ({}{}) lie on none of them and take no part",
-                        left.iter().take(10).map(|id| id.to_string()).collect::<Vec<_>>().join(", "),
-                        if k > 10 { ", ..." } else { "" }
-                    ),
+                    k => format!("; {k} of its nodes ({}) lie on none of them and take no part", crate::error::first_ten(&left)),
                 };
                 self.notes.push(format!(
                     "surface {name} ({}) is node-based: slideline uses the {} free element faces whose corners belong to it, each node with its consistent share of their area (CalculiX gives each node the area of the master face it meets){left}",
