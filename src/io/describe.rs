@@ -41,7 +41,7 @@ pub fn describe(group: &str, name: &str) -> (&'static str, String) {
         ("perturbations", n) if n.starts_with("mode_") => ("-", "the mode's amplitudes [U_r, U_z, U_t] of each node, largest 1".into()),
         ("perturbations", "stress") => (
             "MPa",
-            "stress amplitudes [s_rr, s_zz, s_tt, s_rz, s_rt, s_zt] at the 3 x 3 Gauss points of each element: the first four x cos n theta, the last two x sin n theta (n = 0: constant); D : strain".into(),
+            "stress amplitudes [s_rr, s_zz, s_tt, s_rz, s_rt, s_zt] at the 9 integration points of each element (a Q8's 3 x 3 Gauss points, xi fastest; a T6's conical rule): the first four x cos n theta, the last two x sin n theta (n = 0: constant); D : strain".into(),
         ),
         ("perturbations", "displacement") => ("mm", "the perturbation's displacement at theta = 0 as a vector (u_r, u_z, u_theta) for ParaView's warp".into()),
         ("heat", "temperature") => ("degC", "the heat step's steady temperature at each node".into()),
@@ -85,16 +85,16 @@ pub fn describe(group: &str, name: &str) -> (&'static str, String) {
         (_, "contact_sliding") => ("-", "1 where a slave node slides (friction at its Coulomb limit), 0 where it sticks, is open, or is no slave".into()),
         (_, "displacement") if g.ends_with("nodal") => ("mm", "u_r, u_z, 0 at each node (a 3-vector for ParaView)".into()),
         (_, "displacement") => ("mm", "u_r, u_z at each node".into()),
-        (_, "stress") => ("MPa", "Cauchy stress [s_rr, s_zz, s_tt, s_rz] at the 3 x 3 Gauss points of each element (xi fastest)".into()),
+        (_, "stress") => ("MPa", "Cauchy stress [s_rr, s_zz, s_tt, s_rz] at the 9 integration points of each element (a Q8's 3 x 3 Gauss points, xi fastest; a T6's conical rule)".into()),
         (_, "von_mises") if g.ends_with("nodal") => {
             ("MPa", "von Mises stress of the nodal stress components (Gauss values carried to the nodes and averaged; see docs/results.md)".into())
         }
-        (_, "von_mises") => ("MPa", "von Mises stress at the 3 x 3 Gauss points".into()),
+        (_, "von_mises") => ("MPa", "von Mises stress at the 9 integration points of each element".into()),
         (_, "von_mises_mean") => ("MPa", "element mean of the von Mises stress".into()),
         (_, "equivalent_plastic_strain") if g.ends_with("nodal") => {
             ("-", "equivalent plastic strain at the nodes (copied from each element's nearest Gauss point, averaged)".into())
         }
-        (_, "equivalent_plastic_strain") => ("-", "equivalent plastic strain at the 3 x 3 Gauss points".into()),
+        (_, "equivalent_plastic_strain") => ("-", "equivalent plastic strain at the 9 integration points of each element".into()),
         (_, "equivalent_plastic_strain_max") => ("-", "largest equivalent plastic strain of each element".into()),
         (_, "temperature") => ("degC", "temperature at the nodes".into()),
         (_, "contact_pressure") => ("MPa", "contact pressure at the nodes: the largest over the pairs a node is a slave of, 0 elsewhere".into()),
