@@ -26,7 +26,8 @@ pub fn adjust_slave_nodes(model: &mut Model) -> Result<Vec<String>> {
             Adjust::Clearance(c) if !(*c >= 0.0 && c.is_finite()) => {
                 return Err(Error::input(format!("contact '{name}': adjust must be a clearance >= 0 mm or a node set, got {c}")))
             }
-            Adjust::Clearance(_) => slave.nodes.clone(),
+            // a node-based slave's points are its set's nodes
+            Adjust::Clearance(_) => pair.slave_nodes.clone().unwrap_or_else(|| slave.nodes.clone()),
             Adjust::NodeSet(set) => {
                 let nodes = model.node_set(set).map_err(|e| Error::input(format!("contact '{name}': adjust: {e}")))?;
                 if let Some(&n) = nodes.iter().find(|n| slave.index_of(**n).is_none()) {

@@ -92,7 +92,7 @@ fn residual<T: Scalar>(
     let limit = point.pressure * friction.coefficient;
     let slipping = trial.re().abs() > limit.re();
     let tau = if slipping { limit * trial.re().signum() } else { trial };
-    let c = tau * law.area;
+    let c = tau * point.area;
     let mut f = [T::from_f64(0.0); 14];
     for k in 0..2 {
         f[k] = t[k] * c;
@@ -100,7 +100,7 @@ fn residual<T: Scalar>(
             f[2 + 2 * a + k] = -(point.shape[a] * t[k] * c);
         }
     }
-    let (t, a, k) = (tau.re(), law.area, stiffness.re());
+    let (t, a, k) = (tau.re(), point.area.re(), stiffness.re());
     // no stiffness (elastic slip at zero pressure): no traction, nothing stored or dissipated
     let per_stiffness = if k > 0.0 { a / k } else { 0.0 };
     (f, FrictionState { traction: t, slipping, stored: per_stiffness * t * t / 2.0, dissipated: per_stiffness * t * (trial.re() - t) })

@@ -40,7 +40,7 @@ impl Sticking {
     /// friction law (eps_T at the node's contact pressure).
     pub fn at(xs: [f64; 2], x: &[[f64; 2]; 3], xi: f64, law: &ContactLaw, friction: &FrictionLaw) -> Self {
         let point = contact_point(&xs, x, xi, law);
-        Sticking { shape: point.shape, tangent: point.tangent, stiffness: friction.stiffness(point.pressure) * law.area }
+        Sticking { shape: point.shape, tangent: point.tangent, stiffness: friction.stiffness(point.pressure) * point.area }
     }
 }
 

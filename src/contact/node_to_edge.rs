@@ -23,6 +23,7 @@
 
 use super::search::FREE_END_EXTENSION;
 use crate::ad::{Dual, Scalar};
+use crate::fe::section::Section;
 use crate::fe::shape::line3;
 use nalgebra::{SMatrix, SVector};
 
@@ -118,6 +119,10 @@ pub(crate) struct ContactPoint<T> {
     pub tangent: [T; 2],
     pub normal: [T; 2],
     pub pressure: T,
+    /// The area the pressure acts on (per radian, or over the thickness): the law's
+    /// (`ContactLaw::area`), times the master face's at the point for a node of a node-based
+    /// slave surface (`SlaveArea::MasterFace`).
+    pub area: T,
 }
 
 pub(crate) fn contact_point<T: Scalar>(xs: &[T; 2], x: &[[T; 2]; 3], xi_converged: f64, law: &ContactLaw) -> ContactPoint<T> {
@@ -131,14 +136,27 @@ pub(crate) fn contact_point<T: Scalar>(xs: &[T; 2], x: &[[T; 2]; 3], xi_converge
     let gap = (xs[0] - p[0]) * normal[0] + (xs[1] - p[1]) * normal[1];
     let pressure = law.normal.pressure(gap) * end_taper(xi, law.free_ends); // the caller ensures >= 0
     let shape = [xi * (xi - 1.0) * 0.5, xi * (xi + 1.0) * 0.5, -(xi * xi) + 1.0];
-    ContactPoint { shape, tangent, normal, pressure }
+    let area = match law.slave_area {
+        SlaveArea::Tributary => T::from_f64(law.area),
+        SlaveArea::MasterFace(section) => master_face_area(section, lt, p[0]) * law.area,
+    };
+    ContactPoint { shape, tangent, normal, pressure, area }
+}
+
+/// The area of the master face at a point of the edge where |dx/dxi| is `jacobian` and the
+/// radius `r`: 2 |dx/dxi| times the section's measure there (per radian in axisymmetry, r; the
+/// thickness in a plane section). It is the whole face's area on a straight edge with its
+/// middle node at the middle, CalculiX's 4 |dx/dxi x dx/deta| of the face it expands the edge
+/// to, per radian.
+pub fn master_face_area<T: Scalar>(section: Section, jacobian: T, r: T) -> T {
+    jacobian * 2.0 * (r * section.measure_slope() + section.measure(0.0))
 }
 
 /// Residual f = -p A [n, -N_k n] of the slave node at `xs` on the edge `x`, with `xi` the
 /// converged projection; generic so the dual version gives the tangent.
 fn residual<T: Scalar>(xs: &[T; 2], x: &[[T; 2]; 3], xi_converged: f64, law: &ContactLaw) -> [T; 8] {
-    let ContactPoint { shape, normal: n, pressure, .. } = contact_point(xs, x, xi_converged, law);
-    let c = -(pressure * law.area);
+    let ContactPoint { shape, normal: n, pressure, area, .. } = contact_point(xs, x, xi_converged, law);
+    let c = -(pressure * area);
     [
         n[0] * c,
         n[1] * c,
@@ -245,11 +263,24 @@ impl Overclosure {
     }
 }
 
-/// The contact law of one slave node: its tributary area, the pressure-overclosure law, and
-/// which ends of the master surface are free (the force tapers off past them).
+/// The area a slave node's pressure acts on.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum SlaveArea {
+    /// `ContactLaw::area`: the node's tributary area on its own surface.
+    Tributary,
+    /// The area of the master face it meets, times `ContactLaw::area`: CalculiX's rule for a
+    /// node-based slave surface (springforc_n2f.f gives a slave node without a face of its own
+    /// the master face's area). `section` is the master element's.
+    MasterFace(Section),
+}
+
+/// The contact law of one slave node: its area, the pressure-overclosure law, and which ends
+/// of the master surface are free (the force tapers off past them).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ContactLaw {
+    /// The tributary area, or the master face's multiplier (`slave_area`).
     pub area: f64,
+    pub slave_area: SlaveArea,
     pub normal: Overclosure,
     pub free_ends: [bool; 2],
 }
@@ -257,7 +288,19 @@ pub struct ContactLaw {
 impl ContactLaw {
     /// The linear law p = lambda - eps g over tributary area `area`.
     pub fn linear(area: f64, penalty: f64, multiplier: f64, free_ends: [bool; 2]) -> Self {
-        Self { area, normal: Overclosure::Linear { penalty, multiplier }, free_ends }
+        Self { area, slave_area: SlaveArea::Tributary, normal: Overclosure::Linear { penalty, multiplier }, free_ends }
+    }
+
+    /// The area the pressure acts on at edge coordinate `xi` of the master edge `x` (the
+    /// value of [`ContactPoint::area`]).
+    pub fn area_at(&self, x: &[[f64; 2]; 3], xi: f64) -> f64 {
+        match self.slave_area {
+            SlaveArea::Tributary => self.area,
+            SlaveArea::MasterFace(section) => {
+                let (p, t, _) = curve(x, xi);
+                master_face_area(section, t[0].hypot(t[1]), p[0]) * self.area
+            }
+        }
     }
 
     /// The contact pressure at `proj`, None when the contact is open (closed at zero gap).
@@ -453,7 +496,7 @@ mod tests {
     fn the_exponential_tangent_matches_central_differences() {
         let x = [[20.0, 3.0], [22.0, 4.2], [21.05, 3.85]];
         let normal = Overclosure::Exponential { clearance: 0.02, pressure: 5.0 };
-        let law = ContactLaw { area: 0.8, normal, free_ends: FREE };
+        let law = ContactLaw { area: 0.8, slave_area: SlaveArea::Tributary, normal, free_ends: FREE };
         let at = |v: &[f64; 8]| {
             let xs = [v[0], v[1]];
             let x = [[v[2], v[3]], [v[4], v[5]], [v[6], v[7]]];
@@ -477,6 +520,51 @@ mod tests {
                 })
                 .fold(0.0, f64::max);
             assert!(worst <= 1e-6, "xi {xi}, depth {depth}: {worst:e}");
+        }
+    }
+
+    /// CalculiX's node-based slave (springforc_n2f.f): a node bears with the area of the master
+    /// face it meets. On a straight edge of length L with its middle node at the middle that is
+    /// L r per radian at the point's radius r (L times the thickness in a plane section), and
+    /// the tangent, whose area now moves with the master's nodes, matches central differences.
+    #[test]
+    fn a_node_based_slave_bears_with_the_master_face_area_and_its_tangent_is_exact() {
+        let straight = [[20.0, 3.0], [22.0, 3.0], [21.0, 3.0]];
+        for (section, measure) in [(Section::Axisymmetric, 20.5), (Section::PlaneStrain { thickness: 4.0 }, 4.0)] {
+            let law = ContactLaw::linear(1.0, 3e4, 0.0, FREE);
+            let law = ContactLaw { slave_area: SlaveArea::MasterFace(section), ..law };
+            // 0.01 into the edge at r = 20.5 (xi = -0.5); its outward normal points down
+            let xs = [20.5, 3.01];
+            let p = project_on_edge(xs, &straight).unwrap();
+            let (f, _, pressure) = edge_residual_and_tangent(xs, &straight, &p, &law);
+            assert!((pressure - 300.0).abs() < 1e-9, "{pressure}");
+            assert!((law.area_at(&straight, p.xi) - 2.0 * measure).abs() < 1e-12);
+            assert!((f[1].abs() - pressure * 2.0 * measure).abs() < 1e-9, "{section:?}: the slave's force {} against p L r {}", f[1], pressure * 2.0 * measure);
+        }
+        let curved = [[20.0, 3.0], [22.0, 4.2], [21.05, 3.85]];
+        let law = ContactLaw { slave_area: SlaveArea::MasterFace(Section::Axisymmetric), ..ContactLaw::linear(0.5, 3e4, 0.0, FREE) };
+        let at = |v: &[f64; 8]| {
+            let xs = [v[0], v[1]];
+            let x = [[v[2], v[3]], [v[4], v[5]], [v[6], v[7]]];
+            let p = project_on_edge(xs, &x).unwrap();
+            edge_residual_and_tangent(xs, &x, &p, &law)
+        };
+        for xi in [0.2, -0.7, 1.03] {
+            let (pos, t, _) = curve(&curved, xi);
+            let l = t[0].hypot(t[1]);
+            let v = flatten([pos[0] - 0.01 * t[1] / l, pos[1] + 0.01 * t[0] / l], &curved);
+            let (_, k, pressure) = at(&v);
+            assert!(pressure > 0.0);
+            let h = 1e-7;
+            let worst = (0..8)
+                .map(|j| {
+                    let (mut a, mut b) = (v, v);
+                    a[j] += h;
+                    b[j] -= h;
+                    ((at(&a).0 - at(&b).0) / (2.0 * h) - k.column(j)).abs().max() / k.abs().max()
+                })
+                .fold(0.0, f64::max);
+            assert!(worst <= 1e-6, "xi {xi}: {worst:e}");
         }
     }
 }

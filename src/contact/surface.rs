@@ -47,9 +47,10 @@ pub struct ContactSurface {
 }
 
 impl ContactSurface {
-    /// Surface `name` of `model`, each edge weighted by its element's section.
+    /// Contact surface `name` of `model` (`Model::contact_edges`), each edge weighted by its
+    /// element's section.
     pub fn of_model(model: &Model, name: &str) -> Self {
-        Self::with_sections(&model.mesh, &model.surfaces[name], &model.element_section)
+        Self::with_sections(&model.mesh, &model.contact_edges(name), &model.element_section)
     }
 
     /// An axisymmetric surface.

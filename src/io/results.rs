@@ -467,6 +467,9 @@ impl ResultsFile {
             write_field(&pg, "gap", &[p.total], slab, &gap, self.precision, &self.path)?;
             write_field(&pg, "pressure", &[p.total], slab, &pressure, self.precision, &self.path)?;
             write_rows(&pg, "active", &[p.total], slab, &active, &self.path)?;
+            if let Some(area) = &p.bearing_areas {
+                write_field(&pg, "area", &[p.total], slab, area, self.precision, &self.path)?;
+            }
             if p.friction {
                 let shear: Vec<f64> = p.states.iter().map(|s| s.shear).collect();
                 let sliding: Vec<u8> = p.states.iter().map(|s| u8::from(s.sliding)).collect();

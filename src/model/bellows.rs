@@ -407,6 +407,7 @@ pub fn model(p: &BellowsParams) -> Result<Model> {
             elastic_slip: p.elastic_slip,
         }),
         adjust: None,
+        slave_nodes: None,
     };
     let mut contacts = Vec::new();
     for k in 1..p.plies {

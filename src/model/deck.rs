@@ -801,6 +801,7 @@ pub fn parse(text: &str, path: &Path) -> Result<Model> {
                 AdjustSpec::Clearance(v) => Adjust::Clearance(*v),
                 AdjustSpec::NodeSet(s) => Adjust::NodeSet(s.clone()),
             }),
+            slave_nodes: None,
         });
     }
     let mut constraints = Vec::new();

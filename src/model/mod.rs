@@ -143,6 +143,10 @@ pub struct ContactPair {
     pub friction: Option<Friction>,
     /// Slave nodes moved onto the master before the analysis (see `contact::adjust`).
     pub adjust: Option<Adjust>,
+    /// A node-based slave surface (CalculiX's `*SURFACE, TYPE=NODE`): these mesh nodes
+    /// (sorted) are the slave points, each bearing with the area of the master face it meets
+    /// (CalculiX's rule); None: the slave surface's nodes with their tributary areas.
+    pub slave_nodes: Option<Vec<usize>>,
 }
 
 /// Which slave nodes a pair's ADJUST moves onto its master.
@@ -550,6 +554,21 @@ impl Model {
 
     pub fn surface(&self, name: &str) -> Result<&[Edge]> {
         self.surfaces.get(name).map(|v| v.as_slice()).ok_or_else(|| Error::input(format!("unknown surface '{name}' (known: {})", known(self.surfaces.keys()))))
+    }
+
+    /// The edges of contact surface `name`: its faces, and where it is a pair's node-based
+    /// slave (`ContactPair::slave_nodes`) also the free faces holding two or three of those
+    /// nodes, so that a node of the set on a face with a corner outside it (a mid-side node)
+    /// has a face for its normal.
+    pub fn contact_edges(&self, name: &str) -> Vec<Edge> {
+        let mut edges = self.surfaces[name].clone();
+        for nodes in self.contacts.iter().filter(|c| c.slave == name).filter_map(|c| c.slave_nodes.as_ref()) {
+            let holds = |e: &Edge| self.mesh.edge_nodes(*e).iter().filter(|n| nodes.binary_search(n).is_ok()).count() >= 2;
+            edges.extend(self.mesh.free_edges().into_iter().filter(holds));
+        }
+        edges.sort();
+        edges.dedup();
+        edges
     }
 }
 

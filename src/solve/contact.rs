@@ -42,6 +42,9 @@ struct Pass {
     excluded: Vec<Vec<usize>>,
     /// The pair has friction in some step (its slip references are kept).
     friction: bool,
+    /// A node-based slave (`ContactPair::slave_nodes`): each owned node bears with the area of
+    /// the master face it meets, times `weight`.
+    master_face_area: bool,
 }
 
 /// What an evaluation must provide.
@@ -60,6 +63,10 @@ pub struct SlaveState {
     pub pressure: f64,
     /// Normal force per radian on the slave node (this pass's share).
     pub force: f64,
+    /// The area its pressure acts on (this pass's share), per radian: the node's tributary
+    /// area, or for a node-based slave the master face's where it projects (0 where no master
+    /// face is within reach).
+    pub area: f64,
     /// Contact traction (MPa) recovered from the total contact forces on the slave surface
     /// (both passes): the p with integral N_i p r ds = f_i.n_i at every node. Set after a
     /// converged increment.
@@ -214,7 +221,10 @@ impl ContactAssembly {
         let mut passes = Vec::new();
         for d in directions {
             let (slave, master, c) = (d.slave, d.master, &model.contacts[d.pair]);
-            let mut order: Vec<usize> = (0..surfaces[slave].nodes.len()).collect();
+            // a node-based slave's points are its set's nodes (its surface also holds the other
+            // nodes of the faces they lie on)
+            let mut order: Vec<usize> =
+                (0..surfaces[slave].nodes.len()).filter(|&i| d.slave_nodes.is_none_or(|set| set.binary_search(&surfaces[slave].nodes[i]).is_ok())).collect();
             order.sort_by_key(|&i| partition.node_position[surfaces[slave].nodes[i]]);
             let owner = |i: &usize| partition.node_owner[surfaces[slave].nodes[*i]];
             let offset = order.iter().filter(|i| owner(i) < partition.rank).count();
@@ -235,6 +245,7 @@ impl ContactAssembly {
                 total: order.len(),
                 excluded,
                 friction: model.pair_has_friction(d.pair),
+                master_face_area: d.slave_nodes.is_some(),
             });
         }
         let mut nodes: Vec<usize> = surfaces.iter().flat_map(|s| s.nodes.iter().copied()).collect();

@@ -7,25 +7,32 @@ use crate::model::Model;
 
 /// Mesh nodes of every contact surface of the model (sorted).
 pub fn contact_nodes(model: &Model) -> Vec<usize> {
-    let mut nodes: Vec<usize> =
-        model.contacts.iter().flat_map(|c| [&c.slave, &c.master]).flat_map(|s| model.surfaces[s].iter().flat_map(|&e| model.mesh.edge_nodes(e))).collect();
+    let mut nodes: Vec<usize> = model
+        .contacts
+        .iter()
+        .flat_map(|c| [&c.slave, &c.master])
+        .flat_map(|s| model.contact_edges(s).into_iter().flat_map(|e| model.mesh.edge_nodes(e)))
+        .collect();
     nodes.sort_unstable();
     nodes.dedup();
     nodes
 }
 
 /// One direction of a pair, by surface index: its slave nodes bear on its master's edges and
-/// carry `weight` of the pair's force (one half each in a two-pass pair).
-pub(super) struct Direction {
+/// carry `weight` of the pair's force (one half each in a two-pass pair). `slave_nodes`: the
+/// pair's node-based slave (its first direction only), those nodes bearing with the master
+/// face's area.
+pub(super) struct Direction<'a> {
     pub pair: usize,
     pub slave: usize,
     pub master: usize,
     pub weight: f64,
+    pub slave_nodes: Option<&'a [usize]>,
 }
 
 /// The model's contact surfaces (each once, however many pairs name it) and the directions of
 /// every pair over them.
-pub(super) fn surfaces_and_directions(model: &Model) -> (Vec<ContactSurface>, Vec<Direction>) {
+pub(super) fn surfaces_and_directions(model: &Model) -> (Vec<ContactSurface>, Vec<Direction<'_>>) {
     let mut names: Vec<&str> = Vec::new();
     for c in &model.contacts {
         for s in [c.slave.as_str(), c.master.as_str()] {
@@ -41,9 +48,9 @@ pub(super) fn surfaces_and_directions(model: &Model) -> (Vec<ContactSurface>, Ve
         let (s, m) = (index(&c.slave), index(&c.master));
         let two = c.two_pass && s != m;
         let weight = if two { 0.5 } else { 1.0 };
-        directions.push(Direction { pair, slave: s, master: m, weight });
+        directions.push(Direction { pair, slave: s, master: m, weight, slave_nodes: c.slave_nodes.as_deref() });
         if two {
-            directions.push(Direction { pair, slave: m, master: s, weight });
+            directions.push(Direction { pair, slave: m, master: s, weight, slave_nodes: None });
         }
     }
     (surfaces, directions)

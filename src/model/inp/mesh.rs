@@ -253,18 +253,20 @@ impl Builder {
                     return Err(card.error(format!("node-based surface {name}: no free element face has both corners in the set")));
                 }
                 // a node of the set on none of these faces (a mid-side node of a face with one
-                // corner outside) has no area of its own: CalculiX would still press it
+                // corner outside) has no area of its own there
                 let on_faces: BTreeSet<usize> = edges.iter().flat_map(|&e| self.mesh.edge_nodes(e)).collect();
                 let left: Vec<u64> = nodes.difference(&on_faces).map(|&n| self.mesh.node_ids[n]).collect();
                 let left = match left.len() {
                     0 => String::new(),
-                    k => format!("; {k} of its nodes ({}) lie on none of them and take no part", crate::error::first_ten(&left)),
+                    k => format!(" ({k} of its nodes, {}, lie on none of them)", crate::error::first_ten(&left)),
                 };
                 self.notes.push(format!(
-                    "surface {name} ({}) is node-based: slideline uses the {} free element faces whose corners belong to it, each node with its consistent share of their area (CalculiX gives each node the area of the master face it meets){left}",
+                    "surface {name} ({}) is node-based: as the slave of a NODE TO SURFACE pair each of its {} nodes bears on the master with the area of the master face it meets, as in CalculiX; elsewhere slideline uses the {} free element faces whose corners belong to it{left}",
                     card.at,
+                    nodes.len(),
                     edges.len()
                 ));
+                self.node_surfaces.entry(name.clone()).or_default().extend(nodes);
             }
             Some(other) => return Err(card.error(format!("TYPE={other} is not supported (ELEMENT or NODE)"))),
         }

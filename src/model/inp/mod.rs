@@ -161,6 +161,9 @@ struct Builder {
     node_sets: BTreeMap<String, Vec<usize>>,
     element_sets: BTreeMap<String, Vec<usize>>,
     surfaces: BTreeMap<String, Vec<Edge>>,
+    /// The nodes of each node-based surface (`*SURFACE, TYPE=NODE`): a node-to-surface
+    /// pair's slave points when it is the slave.
+    node_surfaces: BTreeMap<String, BTreeSet<usize>>,
     /// Point masses (type MASS) by element set: their nodes and the *MASS value (t, the whole
     /// ring's, as CalculiX's and its *CLOAD); not in the model's mesh.
     point_masses: BTreeMap<String, (Vec<usize>, Option<f64>)>,
@@ -735,8 +738,8 @@ mod tests {
         let read = read(deck);
         assert_eq!(read.model.surfaces["UPPER"].len(), 2);
         let note = read.notes.iter().find(|n| n.contains("surface UPPER")).unwrap();
-        assert!(note.contains("1 of its nodes (2) lie on none of them"), "{note}");
-        assert!(note.contains("CalculiX gives each node the area of the master face it meets"), "{note}");
+        assert!(note.contains("(1 of its nodes, 2, lie on none of them)"), "{note}");
+        assert!(note.contains("each of its 4 nodes bears on the master with the area of the master face it meets"), "{note}");
     }
 
     #[test]

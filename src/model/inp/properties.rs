@@ -250,6 +250,10 @@ impl Builder {
                 exclude_neighbours: 2,
                 friction,
                 adjust: adjust.clone(),
+                slave_nodes: match integration {
+                    ContactIntegration::NodeToSegment => self.node_surfaces.get(slave).map(|n| n.iter().copied().collect()),
+                    ContactIntegration::Segment => None,
+                },
             };
             contacts.push(ListedContact { pair, interaction: interaction.clone(), passes });
         }

@@ -73,6 +73,16 @@ pub fn to_inp(model: &Model, title: &str) -> Result<String> {
     }
     let contact_surfaces: BTreeSet<&str> = model.contacts.iter().flat_map(|c| [c.slave.as_str(), c.master.as_str()]).collect();
     for name in contact_surfaces {
+        // a node-based slave (and nothing's master) is written back as its nodes
+        let node_based = model.contacts.iter().find(|c| c.slave == name).and_then(|c| c.slave_nodes.as_ref());
+        if let (Some(nodes), false) = (node_based, model.contacts.iter().any(|c| c.master == name)) {
+            // one node a line: the line's second field would be an area
+            let _ = writeln!(w, "*SURFACE, NAME={}, TYPE=NODE", checked_name(name)?);
+            for &n in nodes {
+                let _ = writeln!(w, "{}", mesh.node_ids[n]);
+            }
+            continue;
+        }
         let _ = writeln!(w, "*SURFACE, NAME={}, TYPE=ELEMENT", checked_name(name)?);
         for e in model.surface(name)? {
             let _ = writeln!(w, "{}, S{}", mesh.element_ids[e.element], e.side + 1);
@@ -419,5 +429,26 @@ boundary = [ { set = "a_bottom", uz = 0.0 }, { set = "b_bottom", uz = 0.0 } ]
         let read = crate::model::inp::parse(&text, Path::new("pairs.inp")).unwrap().model;
         let laws = |m: &Model| m.contacts.iter().map(|c| (c.two_pass, c.penalty)).collect::<Vec<_>>();
         assert_eq!(laws(&read), laws(&model));
+    }
+
+    /// A node-based slave surface is written back as its nodes, one a line, and read back as
+    /// the same slave points.
+    #[test]
+    fn a_node_based_slave_is_written_as_its_nodes_and_read_back() {
+        let deck = "*NODE\n1,0.,0.\n2,2.,0.\n3,2.,1.\n4,0.,1.\n5,1.,0.\n6,2.,.5\n7,1.,1.\n8,0.,.5\n\
+            11,.5,1.\n12,1.5,1.\n13,1.5,2.\n14,.5,2.\n15,1.,1.\n16,1.5,1.5\n17,1.,2.\n18,.5,1.5\n\
+            *ELEMENT,TYPE=CPE8,ELSET=EALL\n1,1,2,3,4,5,6,7,8\n2,11,12,13,14,15,16,17,18\n*MATERIAL,NAME=S\n*ELASTIC\n210000.,.3\n\
+            *SOLID SECTION,ELSET=EALL,MATERIAL=S\n1.\n*SURFACE,NAME=BOTTOM,TYPE=NODE\n11\n12\n15\n18\n*SURFACE,NAME=TOP\n1,S3\n\
+            *CONTACT PAIR,INTERACTION=I,TYPE=NODE TO SURFACE\nBOTTOM,TOP\n*SURFACE INTERACTION,NAME=I\n\
+            *SURFACE BEHAVIOR,PRESSURE-OVERCLOSURE=EXPONENTIAL\n.01,1.\n*BOUNDARY\n1,1,2\n2,2,2\n*STEP\n*STATIC\n*DLOAD\n2,P3,.3\n*END STEP\n";
+        let mut model = crate::model::inp::parse(deck, Path::new("nodes.inp")).unwrap().model;
+        // the reader names a pair SLAVE-MASTER, which the writer's names may not hold
+        model.contacts[0].name = "PAIR".into();
+        let ids = |m: &Model| m.contacts[0].slave_nodes.as_ref().map(|n| n.iter().map(|&k| m.mesh.node_ids[k]).collect::<Vec<_>>());
+        assert_eq!(ids(&model), Some(vec![11, 12, 15, 18]));
+        let text = super::to_inp(&model, "nodes").unwrap();
+        assert!(text.contains("*SURFACE, NAME=BOTTOM, TYPE=NODE\n11\n12\n15\n18\n"), "{text}");
+        let read = crate::model::inp::parse(&text, Path::new("back.inp")).unwrap().model;
+        assert_eq!(ids(&read), ids(&model));
     }
 }

@@ -101,7 +101,12 @@ impl ContactAssembly {
                     offset: pass.offset,
                     total: pass.total,
                     nodes: pass.owned.iter().map(|&i| slave.nodes[i]).collect(),
-                    areas: pass.owned.iter().map(|&i| slave.areas[i] * pass.weight).collect(),
+                    // a node-based slave's area is where it bears, written with each increment
+                    areas: match pass.master_face_area {
+                        true => vec![f64::NAN; pass.owned.len()],
+                        false => pass.owned.iter().map(|&i| slave.areas[i] * pass.weight).collect(),
+                    },
+                    bearing_areas: pass.master_face_area.then(|| self.states[p].iter().map(|s| s.area).collect()),
                     states: &self.states[p],
                     friction: pass.friction,
                 }
@@ -118,6 +123,9 @@ pub struct PassOutput<'a> {
     pub total: usize,
     pub nodes: Vec<usize>,
     pub areas: Vec<f64>,
+    /// A node-based slave's areas this increment: the master face's where each node projects,
+    /// 0 where none is within reach (its `areas` are NaN).
+    pub bearing_areas: Option<Vec<f64>>,
     pub states: &'a [SlaveState],
     /// The pair has friction (its shear and sliding state are written).
     pub friction: bool,

@@ -5,7 +5,7 @@
 use super::{ContactAssembly, SlaveState, SlipPoint};
 use crate::contact::friction::{FrictionLaw, SlipReference};
 use crate::contact::integrated::weighted_gaps_into;
-use crate::contact::node_to_edge::{edge_residual, ContactLaw, Overclosure};
+use crate::contact::node_to_edge::{edge_residual, ContactLaw, Overclosure, SlaveArea};
 use crate::contact::search::EdgeGrid;
 use crate::contact::surface::ContactSurface;
 use crate::model::{ContactPair, Model, Penalty};
@@ -79,13 +79,18 @@ impl ContactAssembly {
                 continue;
             };
             let eps = Self::penalty(model, pair, master, edge);
-            let area = slave.areas[i] * pass.weight;
             let en = master.edges[edge];
             let free_ends = master.neighbours[edge].map(|n| n.is_none());
             let normal = Self::overclosure(model, pair, master, edge, self.current[p][k]);
-            let law = ContactLaw { area, normal, free_ends };
-            let (residual, pressure) = edge_residual(xs, &en.map(x), &proj, &law);
-            let mut state = SlaveState { gap: proj.gap, pressure, force: pressure * area, ..SlaveState::default() };
+            let law = match pass.master_face_area {
+                true => ContactLaw { area: pass.weight, slave_area: SlaveArea::MasterFace(master.section[edge]), normal, free_ends },
+                false => ContactLaw { area: slave.areas[i] * pass.weight, slave_area: SlaveArea::Tributary, normal, free_ends },
+            };
+            let xe = en.map(x);
+            // the area the pressure acts on here
+            let area = law.area_at(&xe, proj.xi);
+            let (residual, pressure) = edge_residual(xs, &xe, &proj, &law);
+            let mut state = SlaveState { gap: proj.gap, pressure, force: pressure * area, area, ..SlaveState::default() };
             // an open node's slip is measured, once it closes, from where it is now
             self.slip_trial[p][k] = Some(SlipPoint { edge, xi: proj.xi, traction: 0.0 });
             let closed = normal.is_closed(proj.gap);
@@ -145,6 +150,7 @@ impl ContactAssembly {
                 gap: g.gap / area,
                 pressure,
                 force: pressure * area * pass.weight,
+                area: area * pass.weight,
                 normal_energy: if trial >= 0.0 { -0.5 * (g.gap / area) * pressure * area * pass.weight } else { 0.0 },
                 ..SlaveState::default()
             };
