@@ -347,29 +347,42 @@ mod tests {
         [xs[0], xs[1], x[0][0], x[0][1], x[1][0], x[1][1], x[2][0], x[2][1]]
     }
 
-    fn eval(v: &[f64; 8], area: f64, eps: f64, lambda: f64) -> (EdgeVector, EdgeMatrix, f64) {
-        let xs = [v[0], v[1]];
-        let x = [[v[2], v[3]], [v[4], v[5]], [v[6], v[7]]];
-        let p = project_on_edge(xs, &x).unwrap();
-        edge_residual_and_tangent(xs, &x, &p, &ContactLaw::linear(area, eps, lambda, FREE))
-    }
-
     /// Both ends of the test edges are free (the taper acts past them).
     const FREE: [bool; 2] = [true, true];
 
-    fn fd_error(v: [f64; 8], lambda: f64) -> f64 {
-        let (_, k, pressure) = eval(&v, 0.8, 3e4, lambda);
-        assert!(pressure > 0.0);
-        let scale = k.abs().max();
+    /// The slave node `depth` inside the edge `x` at `xi` (outside for a negative depth), with
+    /// the edge, as the 8 unknowns.
+    fn inside(x: &[[f64; 2]; 3], xi: f64, depth: f64) -> [f64; 8] {
+        let (pos, t, _) = curve(x, xi);
+        let l = t[0].hypot(t[1]);
+        flatten([pos[0] - depth * t[1] / l, pos[1] + depth * t[0] / l], x)
+    }
+
+    /// The largest difference between a column of `law`'s tangent at `v` and its central
+    /// difference, relative to the tangent's largest entry; and the contact pressure at `v`.
+    fn law_fd_error(law: &ContactLaw, v: [f64; 8]) -> (f64, f64) {
+        let at = |v: &[f64; 8]| {
+            let xs = [v[0], v[1]];
+            let x = [[v[2], v[3]], [v[4], v[5]], [v[6], v[7]]];
+            let p = project_on_edge(xs, &x).unwrap();
+            edge_residual_and_tangent(xs, &x, &p, law)
+        };
+        let (_, k, pressure) = at(&v);
         let h = 1e-7;
-        let mut worst = 0.0f64;
-        for j in 0..8 {
-            let (mut p, mut m) = (v, v);
-            p[j] += h;
-            m[j] -= h;
-            let col = (eval(&p, 0.8, 3e4, lambda).0 - eval(&m, 0.8, 3e4, lambda).0) / (2.0 * h);
-            worst = worst.max((col - k.column(j)).abs().max() / scale);
-        }
+        let worst = (0..8)
+            .map(|j| {
+                let (mut a, mut b) = (v, v);
+                a[j] += h;
+                b[j] -= h;
+                ((at(&a).0 - at(&b).0) / (2.0 * h) - k.column(j)).abs().max() / k.abs().max()
+            })
+            .fold(0.0, f64::max);
+        (worst, pressure)
+    }
+
+    fn fd_error(v: [f64; 8], lambda: f64) -> f64 {
+        let (worst, pressure) = law_fd_error(&ContactLaw::linear(0.8, 3e4, lambda, FREE), v);
+        assert!(pressure > 0.0);
         worst
     }
 
@@ -497,28 +510,10 @@ mod tests {
         let x = [[20.0, 3.0], [22.0, 4.2], [21.05, 3.85]];
         let normal = Overclosure::Exponential { clearance: 0.02, pressure: 5.0 };
         let law = ContactLaw { area: 0.8, slave_area: SlaveArea::Tributary, normal, free_ends: FREE };
-        let at = |v: &[f64; 8]| {
-            let xs = [v[0], v[1]];
-            let x = [[v[2], v[3]], [v[4], v[5]], [v[6], v[7]]];
-            let p = project_on_edge(xs, &x).unwrap();
-            edge_residual_and_tangent(xs, &x, &p, &law)
-        };
         // penetrating, at a small clearance (the law acts there too), and past a free end
         for (xi, depth) in [(0.2, 0.01), (-0.5, -0.015), (1.03, 0.005)] {
-            let (pos, t, _) = curve(&x, xi);
-            let l = t[0].hypot(t[1]);
-            let v = flatten([pos[0] - depth * t[1] / l, pos[1] + depth * t[0] / l], &x);
-            let (_, k, pressure) = at(&v);
+            let (worst, pressure) = law_fd_error(&law, inside(&x, xi, depth));
             assert!(pressure > 0.0, "xi {xi}: pressure {pressure}");
-            let h = 1e-7;
-            let worst = (0..8)
-                .map(|j| {
-                    let (mut a, mut b) = (v, v);
-                    a[j] += h;
-                    b[j] -= h;
-                    ((at(&a).0 - at(&b).0) / (2.0 * h) - k.column(j)).abs().max() / k.abs().max()
-                })
-                .fold(0.0, f64::max);
             assert!(worst <= 1e-6, "xi {xi}, depth {depth}: {worst:e}");
         }
     }
@@ -543,27 +538,9 @@ mod tests {
         }
         let curved = [[20.0, 3.0], [22.0, 4.2], [21.05, 3.85]];
         let law = ContactLaw { slave_area: SlaveArea::MasterFace(Section::Axisymmetric), ..ContactLaw::linear(0.5, 3e4, 0.0, FREE) };
-        let at = |v: &[f64; 8]| {
-            let xs = [v[0], v[1]];
-            let x = [[v[2], v[3]], [v[4], v[5]], [v[6], v[7]]];
-            let p = project_on_edge(xs, &x).unwrap();
-            edge_residual_and_tangent(xs, &x, &p, &law)
-        };
         for xi in [0.2, -0.7, 1.03] {
-            let (pos, t, _) = curve(&curved, xi);
-            let l = t[0].hypot(t[1]);
-            let v = flatten([pos[0] - 0.01 * t[1] / l, pos[1] + 0.01 * t[0] / l], &curved);
-            let (_, k, pressure) = at(&v);
+            let (worst, pressure) = law_fd_error(&law, inside(&curved, xi, 0.01));
             assert!(pressure > 0.0);
-            let h = 1e-7;
-            let worst = (0..8)
-                .map(|j| {
-                    let (mut a, mut b) = (v, v);
-                    a[j] += h;
-                    b[j] -= h;
-                    ((at(&a).0 - at(&b).0) / (2.0 * h) - k.column(j)).abs().max() / k.abs().max()
-                })
-                .fold(0.0, f64::max);
             assert!(worst <= 1e-6, "xi {xi}: {worst:e}");
         }
     }
