@@ -743,6 +743,14 @@ mod tests {
     }
 
     #[test]
+    fn a_node_based_surface_is_no_master() {
+        let deck = "*SURFACE, NAME=UPPER, TYPE=NODE\nTOP\n*SURFACE, NAME=LOWER\nA, S1\n*CONTACT PAIR, INTERACTION=I\nLOWER, UPPER\n\
+            *SURFACE INTERACTION, NAME=I\n*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR\n1e5\n*STEP\n*STATIC\n*BOUNDARY\nBOTTOM, 2, 2\n*END STEP\n";
+        let err = parse(&format!("{MESH}{deck}"), Path::new("t.inp")).err().unwrap().to_string();
+        assert!(err.contains("surface UPPER is node-based (TYPE=NODE): a master surface must be element faces"), "{err}");
+    }
+
+    #[test]
     fn face_labels_map_to_sides_and_others_are_refused() {
         assert_eq!([face_side("S1", 'S'), face_side("S4", 'S'), face_side("P2", 'P')], [Some(0), Some(3), Some(1)]);
         for bad in ["S0", "S5", "S12", "P", "P1", "BX"] {

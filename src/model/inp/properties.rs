@@ -174,6 +174,10 @@ impl Builder {
                 continue;
             }
             let ListedPair { slave, master, interaction, integration, adjust, at } = listed;
+            // CalculiX's rule too: its node-based surfaces are slaves only
+            if self.node_surfaces.contains_key(master) {
+                return Err(error_at(at, "CONTACT PAIR", format!("surface {master} is node-based (TYPE=NODE): a master surface must be element faces")));
+            }
             let found =
                 self.interactions.get(interaction).ok_or_else(|| error_at(at, "CONTACT PAIR", format!("surface interaction {interaction} is not defined")))?;
             let behaviour = found.behaviour.ok_or_else(|| error_at(at, "CONTACT PAIR", format!("interaction {interaction} has no *SURFACE BEHAVIOR")))?;

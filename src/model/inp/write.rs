@@ -73,9 +73,8 @@ pub fn to_inp(model: &Model, title: &str) -> Result<String> {
     }
     let contact_surfaces: BTreeSet<&str> = model.contacts.iter().flat_map(|c| [c.slave.as_str(), c.master.as_str()]).collect();
     for name in contact_surfaces {
-        // a node-based slave (and nothing's master) is written back as its nodes
-        let node_based = model.contacts.iter().find(|c| c.slave == name).and_then(|c| c.slave_nodes.as_ref());
-        if let (Some(nodes), false) = (node_based, model.contacts.iter().any(|c| c.master == name)) {
+        // a node-based slave (never a master) is written back as its nodes
+        if let Some(nodes) = model.contacts.iter().find(|c| c.slave == name).and_then(|c| c.slave_nodes.as_ref()) {
             // one node a line: the line's second field would be an area
             let _ = writeln!(w, "*SURFACE, NAME={}, TYPE=NODE", checked_name(name)?);
             for &n in nodes {
