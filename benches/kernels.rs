@@ -6,6 +6,7 @@ use slideline::ad::Dual;
 use slideline::element::pressure::{compute_pressure_load, pressure_load_stiffness};
 use slideline::element::solid::{compute_solid, solid_tangent, ElementGeometry, SolidInput};
 use slideline::fe::section::Section;
+use slideline::fe::quadrature::Integration;
 use slideline::fe::shape::Shape;
 use slideline::material::{Kinematics, PointState, SurfaceBranch, J2};
 
@@ -14,7 +15,7 @@ fn kernels(c: &mut Criterion) {
     // a plastic state at every Gauss point
     let u: [[f64; 2]; 8] = std::array::from_fn(|a| [0.02 * x[a][0], -0.01 * x[a][1]]);
     let m = J2::plastic(200e3, 0.3, 1.2e-5, 300.0, 1000.0);
-    let geometry = ElementGeometry::new(Shape::Quad8, Section::Axisymmetric, &x).unwrap();
+    let geometry = ElementGeometry::new(Shape::Quad8, Integration::Full, Section::Axisymmetric, &x).unwrap();
     let committed = [PointState::initial(Kinematics::Finite); 9];
     let input = SolidInput {
         geometry: &geometry,

@@ -439,7 +439,7 @@ pub fn linearize(r: &ResultsReader, sections: &[String], number: usize) -> Resul
         .field(&name, "stress")
         .map_err(|_| Error::input(format!("{}: increment {number} holds no stress (the run's [output] fields)", r.path().display())))?;
     let stress: Vec<[[f64; 4]; 9]> = flat.chunks_exact(36).map(|e| std::array::from_fn(|q| std::array::from_fn(|c| e[4 * q + c]))).collect();
-    let sampler = StressSampler::new(&coords, &elements, &stress);
+    let sampler = StressSampler::integrated(&coords, &elements, &r.integration()?, &stress);
     // a plane model's third component is the out-of-plane stress, its coordinates x, y
     let (third, across) = if r.is_plane() { ("out-of-plane", "in-plane across it") } else { ("hoop", "meridional across it") };
     let mut out = format!("stress linearisation at increment #{number} (MPa; section axes: normal along the section, {across}, {third}, shear)\n");

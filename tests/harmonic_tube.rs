@@ -18,6 +18,7 @@
 use nalgebra::{DMatrix, DVector};
 use slideline::element::harmonic::{initial_stress_stiffness, isotropic, material_stiffness, DOFS};
 use slideline::element::solid::{ElementGeometry, QUADRATURE_POINTS};
+use slideline::fe::quadrature::Integration;
 use slideline::fe::shape::Shape;
 use slideline::model::mesh::mapped_block;
 use std::f64::consts::PI;
@@ -40,7 +41,7 @@ fn tube_under(l: f64, nr: usize, nz: usize, mode: u32, szz: f64) -> (Vec<[f64; 2
     let d = [isotropic(E, NU); QUADRATURE_POINTS];
     for e in &mesh.elements {
         let x = e.map(|a| mesh.coords[a]);
-        let geo = ElementGeometry::new(Shape::Quad8, slideline::fe::section::Section::Axisymmetric, &x).unwrap();
+        let geo = ElementGeometry::new(Shape::Quad8, Integration::Full, slideline::fe::section::Section::Axisymmetric, &x).unwrap();
         let ke = material_stiffness(&geo, mode, &d) + initial_stress_stiffness(&geo, mode, &[[0.0, szz, 0.0, 0.0]; QUADRATURE_POINTS]);
         for i in 0..DOFS {
             for j in 0..DOFS {

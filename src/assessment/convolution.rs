@@ -138,6 +138,7 @@ impl Convolution {
             }],
             element_material: vec![0; n],
             element_section: vec![crate::fe::section::Section::Axisymmetric; n],
+            element_integration: vec![crate::fe::quadrature::Integration::Full; n],
             reference_temperature: crate::model::Temperature::Uniform(20.0),
             kinematics: Kinematics::Small,
             stepping: SteppingControls::default(),

@@ -18,9 +18,8 @@
 //! exact integral of r ds over a straight line) is the membrane stress: force over area, the
 //! codes' own definition (S3 = P w / (2 tp) is the pressure's force over the metal).
 
-use crate::element::solid::{compute_solid, ElementGeometry, SolidInput, NODES};
+use crate::element::solid::{compute_solid, SolidInput, NODES};
 use crate::error::{Error, Result};
-use crate::fe::shape::Shape;
 use crate::io::reader::ResultsReader;
 use crate::material::{PointState, SurfaceBranch};
 use crate::model::bellows::{ply_columns, BellowsParams, ConvolutionPiece};
@@ -151,7 +150,7 @@ impl PlyMembrane {
 fn internal_force(model: &Model, e: usize, u: &[[f64; 2]]) -> std::result::Result<[f64; 2 * NODES], String> {
     let conn = model.mesh.elements[e];
     let x = conn.map(|n| model.mesh.coords[n]);
-    let geometry = ElementGeometry::new(Shape::of(&conn), model.element_section[e], &x)?;
+    let geometry = model.element_geometry(e, &x)?;
     let material = material_kernel(&model.materials[model.element_material[e]]);
     let committed = [PointState::initial(model.kinematics); crate::element::solid::QUADRATURE_POINTS];
     let input = SolidInput {

@@ -90,6 +90,7 @@ pub fn body_load_stiffness(geo: &ElementGeometry, rho: f64, force: BodyForce, ki
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::fe::quadrature::Integration;
     use crate::fe::shape::Shape;
 
     /// A curved, distorted Q8 between r = 20 and 31.
@@ -101,7 +102,7 @@ mod tests {
     #[test]
     fn the_spin_stiffness_is_the_derivative_of_the_centrifugal_load() {
         let x0 = element();
-        let geo = ElementGeometry::new(Shape::Quad8, crate::fe::section::Section::Axisymmetric, &x0).unwrap();
+        let geo = ElementGeometry::new(Shape::Quad8, Integration::Full, crate::fe::section::Section::Axisymmetric, &x0).unwrap();
         let (rho, force) = (7.85e-9, BodyForce::Spin(1.0e6));
         let mut u = [[0.0; 2]; NODES];
         for (a, v) in u.iter_mut().enumerate() {
@@ -131,7 +132,7 @@ mod tests {
     #[test]
     fn the_loads_add_up_to_the_weight_and_the_centrifugal_force() {
         let x0 = [[20.0, 0.0], [30.0, 0.0], [30.0, 10.0], [20.0, 10.0], [25.0, 0.0], [30.0, 5.0], [25.0, 10.0], [20.0, 5.0]];
-        let geo = ElementGeometry::new(Shape::Quad8, crate::fe::section::Section::Axisymmetric, &x0).unwrap();
+        let geo = ElementGeometry::new(Shape::Quad8, Integration::Full, crate::fe::section::Section::Axisymmetric, &x0).unwrap();
         let u = [[0.0; 2]; NODES];
         let (rho, g, w2) = (7.85e-9, -9810.0, 1.0e6);
         let volume = 10.0 * (30.0f64.powi(2) - 20.0f64.powi(2)) / 2.0;

@@ -56,6 +56,7 @@ fn gradient(p: &crate::fe::axisymmetric::PointGeometry, t: &[f64; NODES]) -> [f6
 mod tests {
     use super::*;
     use crate::fe::section::Section;
+    use crate::fe::quadrature::Integration;
     use crate::fe::shape::Shape;
 
     /// A curved Q8 off the axis and a T6, both distorted, with their nodal coordinates.
@@ -64,7 +65,7 @@ mod tests {
         let tri = [[1.0, 0.0], [2.0, 0.3], [1.2, 1.0], [1.5, 0.1], [1.6, 0.7], [1.1, 0.5]];
         let t6: [[f64; 2]; NODES] = Shape::tri6_slots([0, 1, 2, 3, 4, 5]).map(|s| tri[s]);
         [(Shape::Quad8, Section::Axisymmetric, q8), (Shape::Tri6, Section::Axisymmetric, t6), (Shape::Quad8, Section::PlaneStrain { thickness: 3.0 }, q8)]
-            .map(|(shape, section, x)| (ElementGeometry::new(shape, section, &x).unwrap(), x))
+            .map(|(shape, section, x)| (ElementGeometry::new(shape, Integration::Full, section, &x).unwrap(), x))
             .to_vec()
     }
 

@@ -192,6 +192,7 @@ pub fn initial_stress_stiffness(geo: &ElementGeometry, mode: u32, stress: &[[f64
 mod tests {
     use super::*;
     use crate::element::solid::{compute_solid, solid_tangent, MaterialTangents, SolidInput};
+    use crate::fe::quadrature::Integration;
     use crate::fe::shape::Shape;
     use crate::material::{Kinematics, PointState, SurfaceBranch, J2};
 
@@ -211,7 +212,7 @@ mod tests {
     /// (its F-bar, at u = 0) to 1e-12, and U_t couples to nothing else.
     #[test]
     fn mode_zero_is_the_axisymmetric_element() {
-        let geo = ElementGeometry::new(Shape::Quad8, crate::fe::section::Section::Axisymmetric, &ring_element()).unwrap();
+        let geo = ElementGeometry::new(Shape::Quad8, Integration::Full, crate::fe::section::Section::Axisymmetric, &ring_element()).unwrap();
         let k = material_stiffness(&geo, 0, &[isotropic(E, NU); QUADRATURE_POINTS]);
         let material = J2::elastic(E, NU, 0.0);
         let committed = [PointState::initial(Kinematics::Small); QUADRATURE_POINTS];
@@ -246,7 +247,7 @@ mod tests {
     #[test]
     fn rigid_motions_of_mode_one_strain_nothing() {
         let x = ring_element();
-        let geo = ElementGeometry::new(Shape::Quad8, crate::fe::section::Section::Axisymmetric, &x).unwrap();
+        let geo = ElementGeometry::new(Shape::Quad8, Integration::Full, crate::fe::section::Section::Axisymmetric, &x).unwrap();
         let k = material_stiffness(&geo, 1, &[isotropic(E, NU); QUADRATURE_POINTS]);
         let unit = HarmonicVector::from_fn(|i, _| if i % 3 == 0 { 1.0 } else { 0.0 });
         let reference = (k * unit).norm();
@@ -274,7 +275,7 @@ mod tests {
     /// and the twist about the axis (U_t = c r); n = 1 the two above; n = 2 none.
     #[test]
     fn null_spaces_by_mode() {
-        let geo = ElementGeometry::new(Shape::Quad8, crate::fe::section::Section::Axisymmetric, &ring_element()).unwrap();
+        let geo = ElementGeometry::new(Shape::Quad8, Integration::Full, crate::fe::section::Section::Axisymmetric, &ring_element()).unwrap();
         for (mode, zeros) in [(0, 2), (1, 2), (2, 0)] {
             let k = material_stiffness(&geo, mode, &[isotropic(E, NU); QUADRATURE_POINTS]);
             assert!((k - k.transpose()).amax() <= 1e-12 * k.amax());
@@ -295,7 +296,7 @@ mod tests {
     #[test]
     fn initial_stress_stiffness_is_the_second_variation_of_the_3d_stress_work() {
         let x = ring_element();
-        let geo = ElementGeometry::new(Shape::Quad8, crate::fe::section::Section::Axisymmetric, &x).unwrap();
+        let geo = ElementGeometry::new(Shape::Quad8, Integration::Full, crate::fe::section::Section::Axisymmetric, &x).unwrap();
         let (points, weights) = geo.points();
         let stress: [[f64; 4]; QUADRATURE_POINTS] = std::array::from_fn(|q| [120.0 + q as f64, -80.0 + 3.0 * q as f64, 45.0 - 2.0 * q as f64, 30.0 + q as f64]);
         for mode in [0u32, 1, 3] {

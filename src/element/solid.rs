@@ -39,6 +39,7 @@
 
 use crate::ad::Dual;
 use crate::fe::axisymmetric::{map_point, PointGeometry};
+use crate::fe::quadrature::Integration;
 use crate::fe::section::Section;
 use crate::fe::shape::Shape;
 use crate::material::log_exp::log_sym2;
@@ -98,22 +99,27 @@ pub type MaterialTangents = [PointTangent; QUADRATURE_POINTS];
 #[derive(Clone, Debug)]
 pub struct ElementGeometry {
     section: Section,
+    integration: Integration,
     points: [PointGeometry; QUADRATURE_POINTS],
     gradients: [GradientMap; QUADRATURE_POINTS],
     /// Reference volume of each Gauss point: w m det J, m the section's measure (R per radian
-    /// in axisymmetry, the thickness in a plane section).
+    /// in axisymmetry, the thickness in a plane section); zero in a reduced element's spare slots.
     weights: [f64; QUADRATURE_POINTS],
     /// The projection through its rank-3 basis: theta_q = basis[q] . sum_p coef[p] v_p, so the
-    /// 9 rows Theta_q are combinations of 3 rows (sum_p coef[p][k] (dv/dF)_p G_p).
+    /// 9 rows Theta_q are combinations of 3 rows (sum_p coef[p][k] (dv/dF)_p G_p). Zero in a
+    /// reduced element, which projects nothing.
     basis: [[f64; 3]; QUADRATURE_POINTS],
     coef: [[f64; 3]; QUADRATURE_POINTS],
 }
 
 impl ElementGeometry {
-    /// The geometry of an element of shape `shape` and section `section` with nodal
-    /// coordinates `x`.
-    pub fn new(shape: Shape, section: Section, x: &[[f64; 2]; NODES]) -> Result<Self, String> {
-        let rule = shape.rule();
+    /// The geometry of an element of shape `shape`, integrated as `integration`, of section
+    /// `section`, with nodal coordinates `x`.
+    pub fn new(shape: Shape, integration: Integration, section: Section, x: &[[f64; 2]; NODES]) -> Result<Self, String> {
+        if shape == Shape::Tri6 && integration == Integration::Reduced {
+            return Err("a 6-node triangle has no reduced integration".into());
+        }
+        let rule = shape.rule_for(integration);
         let mut points = [map_point(shape, x, rule[0].0)?; QUADRATURE_POINTS];
         let mut weights = [0.0; QUADRATURE_POINTS];
         let mut pos = [[0.0; 2]; QUADRATURE_POINTS];
@@ -126,6 +132,10 @@ impl ElementGeometry {
             pos[q] = [points[q].r, (0..NODES).map(|a| points[q].n[a] * x[a][1]).sum()];
         }
         let gradients = points.map(|g| GradientMap::new(&g, section));
+        if integration == Integration::Reduced {
+            let (basis, coef) = ([[0.0; 3]; QUADRATURE_POINTS], [[0.0; 3]; QUADRATURE_POINTS]);
+            return Ok(ElementGeometry { section, integration, points, gradients, weights, basis, coef });
+        }
         let vol: f64 = weights.iter().sum();
         // L2 projection (weighted by the reference volume) onto {1, R - Rc, Z - Zc}.
         let centre = [0, 1].map(|i| (0..QUADRATURE_POINTS).map(|q| weights[q] * pos[q][i]).sum::<f64>() / vol);
@@ -137,7 +147,12 @@ impl ElementGeometry {
         let m_inv = m.try_inverse().ok_or_else(|| "degenerate element: singular volume projection".to_string())?;
         let basis: [[f64; 3]; QUADRATURE_POINTS] = std::array::from_fn(|q| basis_vector(q).into());
         let coef: [[f64; 3]; QUADRATURE_POINTS] = std::array::from_fn(|p| (m_inv * basis_vector(p) * weights[p]).into());
-        Ok(ElementGeometry { section, points, gradients, weights, basis, coef })
+        Ok(ElementGeometry { section, integration, points, gradients, weights, basis, coef })
+    }
+
+    /// How many of the 9 Gauss slots are integration points (the first 9 or 4).
+    pub fn points_used(&self) -> usize {
+        self.integration.points()
     }
 
     /// The shape functions and gradients at each Gauss point, and its reference volume
@@ -146,8 +161,12 @@ impl ElementGeometry {
         (&self.points, &self.weights)
     }
 
-    /// The projected volume measure theta at every Gauss point, from its values `v` there.
+    /// The projected volume measure theta at every Gauss point, from its values `v` there
+    /// (`v` itself in a reduced element: no volumetric treatment).
     pub(crate) fn project(&self, v: &[f64; QUADRATURE_POINTS]) -> [f64; QUADRATURE_POINTS] {
+        if self.integration == Integration::Reduced {
+            return *v;
+        }
         let mut c = [0.0; 3];
         for p in 0..QUADRATURE_POINTS {
             for k in 0..3 {
@@ -280,13 +299,22 @@ pub fn compute_solid(input: &SolidInput<'_>, u: &[[f64; 2]; NODES], mut tangents
     // volume constraint); each point's theta is its own v, set with its F_33 below
     let plane_stress = matches!(geo.section, Section::PlaneStress { .. });
     let mut theta = if plane_stress { v } else { geo.project(&v) };
+    // a reduced element's theta is each point's own v: its dependence on F joins d phi / d F
+    let reduced = geo.integration == Integration::Reduced;
 
     let mut force = [0.0; DOFS];
     let mut stress = [[0.0; 4]; QUADRATURE_POINTS];
     let mut state = [PointState::initial(kin); QUADRATURE_POINTS];
     let mut energy = ElementEnergy::default();
     let mut thermal_force = [0.0; NODES];
-    for q in 0..QUADRATURE_POINTS {
+    // a reduced element's spare slots keep zero stress and tangents and their committed history
+    for q in geo.points_used()..QUADRATURE_POINTS {
+        state[q] = input.committed[q];
+        if let Some(tangents) = tangents.as_deref_mut() {
+            tangents[q] = PointTangent::default();
+        }
+    }
+    for q in 0..geo.points_used() {
         let w = geo.weights[q];
         let shape = &geo.points[q].n;
         let dt: f64 = (0..NODES).map(|a| shape[a] * input.temperature_change[a]).sum();
@@ -307,10 +335,15 @@ pub fn compute_solid(input: &SolidInput<'_>, u: &[[f64; 2]; NODES], mut tangents
         } else if let Some(tangents) = tangents.as_deref_mut() {
             let fd: [Dual<6>; 5] = std::array::from_fn(|i| Dual::variable(f[q][i], i));
             let up = input.material.update_on(input.surface, kin, &fd, Dual::variable(theta[q], 5), dt, &input.committed[q])?;
-            tangents[q] = PointTangent {
-                stress_f: std::array::from_fn(|i| std::array::from_fn(|j| up.phi[i].eps[j] * w)),
-                stress_theta: std::array::from_fn(|i| up.phi[i].eps[5] * w),
-                volume_f: dv[q],
+            tangents[q] = if reduced {
+                let along_v = |i: usize, j: usize| (up.phi[i].eps[j] + up.phi[i].eps[5] * dv[q][j]) * w;
+                PointTangent { stress_f: std::array::from_fn(|i| std::array::from_fn(|j| along_v(i, j))), ..PointTangent::default() }
+            } else {
+                PointTangent {
+                    stress_f: std::array::from_fn(|i| std::array::from_fn(|j| up.phi[i].eps[j] * w)),
+                    stress_theta: std::array::from_fn(|i| up.phi[i].eps[5] * w),
+                    volume_f: dv[q],
+                }
             };
             stress[q] = up.cauchy;
             state[q] = up.state;
@@ -410,7 +443,7 @@ pub fn solid_tangent(geo: &ElementGeometry, material: &MaterialTangents) -> Elem
             k[i][j] = c[0][i] * psi[0][j] + c[1][i] * psi[1][j] + c[2][i] * psi[2][j];
         }
     }
-    for q in 0..QUADRATURE_POINTS {
+    for q in 0..geo.points_used() {
         let (g, t) = (&geo.gradients[q], &material[q]);
         // M = A G, row i over the element DOFs
         let mut m = [[0.0; DOFS]; 5];
@@ -467,20 +500,24 @@ mod tests {
         [x[0], x[1], x[2], x[3], x[4], x[5], x[0], x[0]]
     }
 
-    /// Both shapes, the three sections; a triangle's spare slots carry no force, and moving them
-    /// changes nothing.
+    /// Both shapes, the three sections, full and reduced integration; a triangle's spare slots
+    /// carry no force, and moving them changes nothing.
     #[test]
     fn tangent_matches_central_differences_small_and_large_plastic() {
         let (strain, stress) = (Section::PlaneStrain { thickness: 2.5 }, Section::PlaneStress { thickness: 2.5 });
+        let (full, reduced) = (Integration::Full, Integration::Reduced);
         let cases = [
-            (Shape::Quad8, Section::Axisymmetric, element()),
-            (Shape::Tri6, Section::Axisymmetric, triangle()),
-            (Shape::Quad8, strain, element()),
-            (Shape::Quad8, stress, element()),
-            (Shape::Tri6, stress, triangle()),
+            (Shape::Quad8, full, Section::Axisymmetric, element()),
+            (Shape::Tri6, full, Section::Axisymmetric, triangle()),
+            (Shape::Quad8, full, strain, element()),
+            (Shape::Quad8, full, stress, element()),
+            (Shape::Tri6, full, stress, triangle()),
+            (Shape::Quad8, reduced, Section::Axisymmetric, element()),
+            (Shape::Quad8, reduced, strain, element()),
+            (Shape::Quad8, reduced, stress, element()),
         ];
-        for (shape, section, x) in cases {
-            let geometry = ElementGeometry::new(shape, section, &x).unwrap();
+        for (shape, integration, section, x) in cases {
+            let geometry = ElementGeometry::new(shape, integration, section, &x).unwrap();
             for (kin, amplitude) in [(Kinematics::Small, 2e-2), (Kinematics::Finite, 0.6)] {
                 let committed = [PointState::initial(kin); 9];
                 // a large rotation-stretch-shear field, plastic at every point
@@ -497,12 +534,15 @@ mod tests {
                     surface: SurfaceBranch::Elastic,
                 };
                 let out = compute_solid(&input, &u, None).unwrap();
-                assert!(out.state.iter().all(|s| s.ep > 0.0), "{shape:?} {section:?} {kin:?}: every point should be plastic");
+                let used = geometry.points_used();
+                assert!(out.state[..used].iter().all(|s| s.ep > 0.0), "{shape:?} {section:?} {kin:?}: every point should be plastic");
                 if section == stress {
-                    assert!(out.stress.iter().all(|s| s[2].abs() < 1e-9), "{kin:?}: sigma_33 {:?}", out.stress);
+                    assert!(out.stress[..used].iter().all(|s| s[2].abs() < 1e-9), "{kin:?}: sigma_33 {:?}", out.stress);
                 }
+                // a reduced element's spare slots stay at rest
+                assert!(out.state[used..].iter().all(|s| s.ep == 0.0) && out.stress[used..].iter().all(|s| *s == [0.0; 4]));
                 let err = tangent_error(&input, &u, if kin == Kinematics::Small { 1e-8 } else { 1e-6 });
-                assert!(err <= 1e-6, "{shape:?} {section:?} {kin:?}: tangent error {err:e}");
+                assert!(err <= 1e-6, "{shape:?} {integration:?} {section:?} {kin:?}: tangent error {err:e}");
                 if shape == Shape::Tri6 {
                     assert!((12..16).all(|i| out.internal_force[i] == 0.0));
                     let mut moved = u;
@@ -517,7 +557,7 @@ mod tests {
     #[test]
     fn a_triangle_projects_a_linear_dilatation_onto_itself_and_holds_a_linear_field() {
         let x = triangle();
-        let geometry = ElementGeometry::new(Shape::Tri6, Section::Axisymmetric, &x).unwrap();
+        let geometry = ElementGeometry::new(Shape::Tri6, Integration::Full, Section::Axisymmetric, &x).unwrap();
         let z = |q: usize| (0..NODES).map(|a| geometry.points[q].n[a] * x[a][1]).sum::<f64>();
         let v: [f64; 9] = std::array::from_fn(|q| 2.0 + 0.3 * geometry.points[q].r - 0.1 * z(q));
         let theta = geometry.project(&v);
@@ -533,7 +573,7 @@ mod tests {
     #[test]
     fn rigid_rotation_and_translation_give_no_force_at_finite_strain() {
         let x = element();
-        let geometry = ElementGeometry::new(Shape::Quad8, Section::Axisymmetric, &x).unwrap();
+        let geometry = ElementGeometry::new(Shape::Quad8, Integration::Full, Section::Axisymmetric, &x).unwrap();
         let committed = [PointState::initial(Kinematics::Finite); 9];
         let input = SolidInput {
             geometry: &geometry,
@@ -565,7 +605,7 @@ mod tests {
             (Section::PlaneStress { thickness: 3.0 }, -nu * e, [young * e, 0.0, 0.0], 1.0 - nu * e),
             (Section::PlaneStrain { thickness: 3.0 }, 0.0, [(lambda + 2.0 * g) * e, lambda * e, lambda * e], 1.0),
         ] {
-            let geometry = ElementGeometry::new(Shape::Quad8, section, &x).unwrap();
+            let geometry = ElementGeometry::new(Shape::Quad8, Integration::Full, section, &x).unwrap();
             let input = SolidInput {
                 geometry: &geometry,
                 material: &STEEL,
@@ -591,9 +631,48 @@ mod tests {
         }
     }
 
+    /// The reduced Q8 is CalculiX's CPE8R/CAX8R: 2 x 2 Gauss points and no volumetric
+    /// treatment. In plane strain its stiffness has, beside the three rigid motions, the one
+    /// zero-energy mode of the 2 x 2 eight-node element (Cook, Malkus, Plesha and Witt,
+    /// Concepts and Applications of Finite Element Analysis, 4th ed., 2002, sect. 6.8: 12
+    /// strain samples for 13 deformation modes), which a mesh of more than one element
+    /// restrains; fully integrated, only the three. A uniform strain stays exact either way.
+    #[test]
+    fn the_reduced_quadrilateral_has_the_one_spurious_mode_of_2x2_integration() {
+        let x = element();
+        let committed = [PointState::initial(Kinematics::Small); 9];
+        let section = Section::PlaneStrain { thickness: 1.0 };
+        let zero_modes = |integration: Integration| {
+            let geometry = ElementGeometry::new(Shape::Quad8, integration, section, &x).unwrap();
+            let input = SolidInput {
+                geometry: &geometry,
+                material: &STEEL,
+                kinematics: Kinematics::Small,
+                temperature_change: [0.0; NODES],
+                committed: &committed,
+                surface: SurfaceBranch::Elastic,
+            };
+            let mut tangents = MaterialTangents::default();
+            compute_solid(&input, &[[0.0; 2]; NODES], Some(&mut tangents)).unwrap();
+            let k = solid_tangent(&geometry, &tangents);
+            let eigen = k.symmetric_eigen().eigenvalues;
+            let top = eigen.abs().max();
+            // a uniform strain: e_rr = 1e-4 gives plane-strain Hooke at every point
+            let u: [[f64; 2]; 8] = std::array::from_fn(|a| [1e-4 * x[a][0], 0.0]);
+            let out = compute_solid(&input, &u, None).unwrap();
+            let (k_mod, g) = (STEEL.bulk_modulus, STEEL.shear_modulus);
+            let expected = (k_mod + 4.0 * g / 3.0) * 1e-4;
+            assert!(out.stress[..geometry.points_used()].iter().all(|s| (s[0] - expected).abs() < 1e-9 * expected), "{integration:?}");
+            eigen.iter().filter(|l| l.abs() < 1e-9 * top).count()
+        };
+        assert_eq!(zero_modes(Integration::Full), 3);
+        assert_eq!(zero_modes(Integration::Reduced), 4);
+        assert!(ElementGeometry::new(Shape::Tri6, Integration::Reduced, section, &x).unwrap_err().contains("no reduced integration"));
+    }
+
     #[test]
     fn projection_reproduces_linear_fields() {
-        let geometry = ElementGeometry::new(Shape::Quad8, Section::Axisymmetric, &element()).unwrap();
+        let geometry = ElementGeometry::new(Shape::Quad8, Integration::Full, Section::Axisymmetric, &element()).unwrap();
         let pos: Vec<[f64; 2]> = (0..9).map(|q| [geometry.points[q].r, 0.0]).collect();
         let v: [f64; 9] = std::array::from_fn(|q| 2.0 + 0.3 * pos[q][0]);
         let theta = geometry.project(&v);

@@ -10,6 +10,7 @@
 //! for thick axisymmetric sections is not used.
 
 use super::axisymmetric::von_mises;
+use super::quadrature::Integration;
 use super::recover::{Recovery, Rule};
 use super::shape::Shape;
 
@@ -110,10 +111,16 @@ pub struct StressSampler<'a> {
 }
 
 impl<'a> StressSampler<'a> {
-    /// `stress` per element: [rr, zz, tt, rz] at the 3 x 3 Gauss points.
+    /// `stress` per element: [rr, zz, tt, rz] at the Gauss points of fully integrated elements.
     pub fn new(coords: &'a [[f64; 2]], elements: &'a [[usize; 8]], stress: &[[[f64; 4]; 9]]) -> Self {
+        Self::integrated(coords, elements, &vec![Integration::Full; elements.len()], stress)
+    }
+
+    /// `stress` per element: [rr, zz, tt, rz] at the Gauss slots of elements integrated as
+    /// `integration` (a reduced element's spare slots are not read).
+    pub fn integrated(coords: &'a [[f64; 2]], elements: &'a [[usize; 8]], integration: &[Integration], stress: &[[[f64; 4]; 9]]) -> Self {
         let recovery = Recovery::default();
-        let nodal = elements.iter().zip(stress).map(|(e, g)| recovery.element_nodal(Shape::of(e), Rule::Extrapolate, g)).collect();
+        let nodal = (elements.iter().zip(integration).zip(stress)).map(|((e, &i), g)| recovery.element_nodal(Shape::of(e), i, Rule::Extrapolate, g)).collect();
         let boxes = elements
             .iter()
             .map(|e| {

@@ -16,6 +16,41 @@ pub fn square_3x3() -> [([f64; 2], f64); 9] {
     out
 }
 
+/// 2-point Gauss-Legendre abscissa (weights 1; exact for degree 3).
+pub const GAUSS2: f64 = 0.577_350_269_189_625_8;
+
+/// How an element is integrated. Full: a Q8's 3 x 3 Gauss points, a T6's 9-point rule.
+/// Reduced, a Q8 only: 2 x 2 Gauss points and no volumetric treatment, CalculiX's and Abaqus's
+/// CAX8R/CPE8R/CPS8R, read so that decks written for those elements give their answers.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Integration {
+    #[default]
+    Full,
+    Reduced,
+}
+
+impl Integration {
+    /// How many of an element's 9 Gauss slots are integration points: 9, or the first 4.
+    pub const fn points(self) -> usize {
+        match self {
+            Integration::Full => 9,
+            Integration::Reduced => 4,
+        }
+    }
+}
+
+/// The 2 x 2 Gauss rule on the reference square in the first 4 of 9 slots (xi first), the
+/// other 5 weightless at the centre, so that an element's fixed 9-slot arrays serve it and
+/// every sum over the slots is the 2 x 2 rule's.
+pub fn square_2x2() -> [([f64; 2], f64); 9] {
+    let mut out = [([0.0; 2], 0.0); 9];
+    for (q, slot) in out.iter_mut().take(4).enumerate() {
+        let sign = |k: usize| if k == 0 { -GAUSS2 } else { GAUSS2 };
+        *slot = ([sign(q % 2), sign(q / 2)], 1.0);
+    }
+    out
+}
+
 /// 3-point Gauss-Jacobi rule on [0, 1] for the weight (1 - t): abscissae and weights (exact
 /// for (1 - t) times a polynomial of degree 5). The roots of the Jacobi polynomial
 /// P_3^(1,0)(2t - 1), weights from the moments 1 / ((k + 1)(k + 2)).
@@ -53,6 +88,23 @@ mod tests {
         assert!((q - exact).abs() < 1e-14);
         let area: f64 = square_3x3().iter().map(|p| p.1).sum();
         assert!((area - 4.0).abs() < 1e-14);
+    }
+
+    #[test]
+    fn the_reduced_rule_integrates_bicubics_exactly_in_its_first_four_slots() {
+        let rule = square_2x2();
+        assert!(rule[4..].iter().all(|(p, w)| *w == 0.0 && *p == [0.0, 0.0]));
+        // int over the square of xi^a eta^b = (2 / (a + 1)) (2 / (b + 1)) for even a, b, else 0
+        let moment = |a: i32| if a % 2 == 0 { 2.0 / f64::from(a + 1) } else { 0.0 };
+        for a in 0..=3 {
+            for b in 0..=3 {
+                let q: f64 = rule.iter().map(|(p, w)| w * p[0].powi(a) * p[1].powi(b)).sum();
+                assert!((q - moment(a) * moment(b)).abs() < 1e-14, "xi^{a} eta^{b}: {q}");
+            }
+        }
+        let q4: f64 = rule.iter().map(|(p, w)| w * p[0].powi(4)).sum();
+        assert!((q4 - 0.8).abs() > 0.1, "degree 4 is not exact: {q4}");
+        assert_eq!((Integration::Full.points(), Integration::Reduced.points()), (9, 4));
     }
 
     #[test]

@@ -17,7 +17,7 @@
 //! invariants (von Mises, pressure, principal stresses) are computed afterwards from the
 //! averaged components (`io::nodal`), never averaged as scalars, so they keep their sign.
 
-use super::quadrature::{square_3x3, GAUSS3};
+use super::quadrature::{square_3x3, Integration, GAUSS2, GAUSS3};
 use super::shape::{q8_nodes, Shape};
 use nalgebra::{SMatrix, SVector};
 
@@ -51,15 +51,25 @@ fn weight(a: usize, q: usize) -> f64 {
     lagrange(q % 3, xi) * lagrange(q / 3, eta)
 }
 
-/// The 8 x 9 extrapolation matrix of a shape: row a gives node a's value from the 9 Gauss
-/// values (a T6's unused slots take its first node's row).
-pub fn gauss_to_nodes(shape: Shape) -> [[f64; 9]; 8] {
-    match shape {
-        Shape::Quad8 => {
+/// The 8 x 9 extrapolation matrix of a shape integrated as `integration`: row a gives node
+/// a's value from the 9 Gauss slots (a T6's unused slots take its first node's row; a reduced
+/// Q8's weightless slots have zero columns).
+pub fn gauss_to_nodes(shape: Shape, integration: Integration) -> [[f64; 9]; 8] {
+    match (shape, integration) {
+        (Shape::Quad8, Integration::Reduced) => {
+            // the bilinear field through the 2 x 2 points, at the node (x = +-1 lies at
+            // +-sqrt(3) in the points' own coordinates)
+            let lagrange = |k: usize, x: f64| 0.5 * (1.0 + if k == 0 { -x } else { x } / GAUSS2);
+            std::array::from_fn(|a| {
+                let [xi, eta] = q8_nodes()[a];
+                std::array::from_fn(|q| if q < 4 { lagrange(q % 2, xi) * lagrange(q / 2, eta) } else { 0.0 })
+            })
+        }
+        (Shape::Quad8, Integration::Full) => {
             debug_assert_eq!(square_3x3()[1].0, [GAUSS3[1].0, GAUSS3[0].0], "square_3x3 runs over xi first");
             std::array::from_fn(|a| std::array::from_fn(|q| weight(a, q)))
         }
-        Shape::Tri6 => {
+        (Shape::Tri6, _) => {
             // least-squares fit of {1, xi, eta, xi^2, xi eta, eta^2} to the 9 values
             let monomials = |p: [f64; 2]| SVector::<f64, 6>::from([1.0, p[0], p[1], p[0] * p[0], p[0] * p[1], p[1] * p[1]]);
             let rule = Shape::Tri6.rule();
@@ -75,39 +85,50 @@ pub fn gauss_to_nodes(shape: Shape) -> [[f64; 9]; 8] {
     }
 }
 
-/// The Gauss point (the order of the shape's rule) nearest each node: for a Q8 a corner's is
-/// the corner point of the 3 x 3 grid, a mid-side node's the point at the middle of that side.
-pub fn nearest_gauss_points(shape: Shape) -> [usize; 8] {
-    let (points, nodes) = (shape.rule(), shape.reference_nodes());
+/// The copying matrix: row a gives node a the value of its nearest Gauss point, or the mean
+/// of the points equally near it (a reduced Q8's mid-side node lies between two). For a full
+/// Q8 a corner's is the corner point of the 3 x 3 grid, a mid-side node's the point at the
+/// middle of that side.
+pub fn nearest_gauss_points(shape: Shape, integration: Integration) -> [[f64; 9]; 8] {
+    let (points, nodes) = (shape.rule_for(integration), shape.reference_nodes());
+    let used = if shape == Shape::Quad8 { integration.points() } else { 9 };
     let distance = |a: [f64; 2], b: [f64; 2]| (a[0] - b[0]).hypot(a[1] - b[1]);
-    std::array::from_fn(|a| (0..9).min_by(|&p, &q| distance(nodes[a], points[p].0).total_cmp(&distance(nodes[a], points[q].0))).unwrap_or(0))
+    std::array::from_fn(|a| {
+        let nearest = (0..used).map(|q| distance(nodes[a], points[q].0)).fold(f64::INFINITY, f64::min);
+        let tied: Vec<usize> = (0..used).filter(|&q| distance(nodes[a], points[q].0) <= nearest * (1.0 + 1e-12)).collect();
+        std::array::from_fn(|q| if tied.contains(&q) { 1.0 / tied.len() as f64 } else { 0.0 })
+    })
 }
 
-/// The shapes, in the order of [`Recovery`]'s tables.
-const SHAPES: [Shape; 2] = [Shape::Quad8, Shape::Tri6];
+/// The element kinds, in the order of [`Recovery`]'s tables.
+const KINDS: [(Shape, Integration); 3] = [(Shape::Quad8, Integration::Full), (Shape::Tri6, Integration::Full), (Shape::Quad8, Integration::Reduced)];
 
-/// Carries Gauss values to an element's nodes, for each shape.
+/// Carries Gauss values to an element's nodes, for each element kind.
 #[derive(Clone, Debug)]
 pub struct Recovery {
-    matrix: [[[f64; 9]; 8]; 2],
-    nearest: [[usize; 8]; 2],
+    extrapolate: [[[f64; 9]; 8]; 3],
+    copy: [[[f64; 9]; 8]; 3],
 }
 
 impl Default for Recovery {
     fn default() -> Self {
-        Recovery { matrix: SHAPES.map(gauss_to_nodes), nearest: SHAPES.map(nearest_gauss_points) }
+        Recovery { extrapolate: KINDS.map(|(s, i)| gauss_to_nodes(s, i)), copy: KINDS.map(|(s, i)| nearest_gauss_points(s, i)) }
     }
 }
 
 impl Recovery {
-    /// The values at the 8 node slots of an element of shape `shape` (a T6's unused slots
-    /// repeat its first node's) of the `C` quantities given at its Gauss points.
-    pub fn element_nodal<const C: usize>(&self, shape: Shape, rule: Rule, gauss: &[[f64; C]; 9]) -> [[f64; C]; 8] {
-        let s = SHAPES.iter().position(|&k| k == shape).unwrap_or(0);
-        match rule {
-            Rule::Extrapolate => std::array::from_fn(|a| std::array::from_fn(|c| (0..9).map(|q| self.matrix[s][a][q] * gauss[q][c]).sum())),
-            Rule::Copy => std::array::from_fn(|a| gauss[self.nearest[s][a]]),
-        }
+    /// The values at the 8 node slots of an element of shape `shape` integrated as
+    /// `integration` (a T6's unused slots repeat its first node's) of the `C` quantities given
+    /// at its Gauss slots (a reduced element's weightless ones are not read).
+    pub fn element_nodal<const C: usize>(&self, shape: Shape, integration: Integration, rule: Rule, gauss: &[[f64; C]; 9]) -> [[f64; C]; 8] {
+        let integration = if shape == Shape::Tri6 { Integration::Full } else { integration };
+        let k = KINDS.iter().position(|&kind| kind == (shape, integration)).unwrap_or(0);
+        let m = match rule {
+            Rule::Extrapolate => &self.extrapolate[k],
+            Rule::Copy => &self.copy[k],
+        };
+        // zero weights skip their slots outright, so that a NaN there cannot leak in
+        std::array::from_fn(|a| std::array::from_fn(|c| (0..9).filter(|&q| m[a][q] != 0.0).map(|q| m[a][q] * gauss[q][c]).sum()))
     }
 
     /// Adds an element's nodal values (`nodal[a][c]` for its node slots `nodes`) into `sums`
@@ -125,11 +146,12 @@ impl Recovery {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::fe::quadrature::square_2x2;
 
     #[test]
     fn a_biquadratic_field_is_carried_to_the_nodes_exactly() {
         let f = |p: [f64; 2]| 3.0 + 2.0 * p[0] - p[1] + 0.5 * p[0] * p[1] + 0.25 * p[0] * p[0] - 0.75 * p[1] * p[1] + 0.1 * p[0] * p[0] * p[1] * p[1];
-        let m = gauss_to_nodes(Shape::Quad8);
+        let m = gauss_to_nodes(Shape::Quad8, Integration::Full);
         let gauss = square_3x3().map(|(p, _)| f(p));
         for (a, node) in q8_nodes().iter().enumerate() {
             let value: f64 = (0..9).map(|q| m[a][q] * gauss[q]).sum();
@@ -142,9 +164,10 @@ mod tests {
     #[test]
     fn copying_takes_each_nodes_nearest_gauss_point() {
         // q = i + 3 j with i along xi, j along eta, both from -sqrt(0.6) up
-        assert_eq!(nearest_gauss_points(Shape::Quad8), [0, 2, 8, 6, 1, 5, 7, 3]);
+        let one = |q: usize| -> [f64; 9] { std::array::from_fn(|p| if p == q { 1.0 } else { 0.0 }) };
+        assert_eq!(nearest_gauss_points(Shape::Quad8, Integration::Full), [0, 2, 8, 6, 1, 5, 7, 3].map(one));
         let gauss: [[f64; 1]; 9] = std::array::from_fn(|q| [q as f64]);
-        let nodal = Recovery::default().element_nodal(Shape::Quad8, Rule::Copy, &gauss);
+        let nodal = Recovery::default().element_nodal(Shape::Quad8, Integration::Full, Rule::Copy, &gauss);
         assert_eq!(nodal.map(|v| v[0]), [0.0, 2.0, 8.0, 6.0, 1.0, 5.0, 7.0, 3.0]);
     }
 
@@ -159,9 +182,9 @@ mod tests {
         assert_eq!(Rule::for_element(&plastic), Rule::Copy);
         assert_eq!(Rule::for_element(&[0.0; 9]), Rule::Extrapolate);
         let r = Recovery::default();
-        let extrapolated = r.element_nodal(Shape::Quad8, Rule::Extrapolate, &gauss);
+        let extrapolated = r.element_nodal(Shape::Quad8, Integration::Full, Rule::Extrapolate, &gauss);
         assert!((extrapolated[1][0] - 320.0 / 0.6f64.sqrt()).abs() < 1e-9);
-        let copied = r.element_nodal(Shape::Quad8, Rule::Copy, &gauss);
+        let copied = r.element_nodal(Shape::Quad8, Integration::Full, Rule::Copy, &gauss);
         assert_eq!(copied[1][0], 320.0);
         assert!(copied.iter().all(|v| v[0].abs() <= 320.0));
     }
@@ -170,13 +193,13 @@ mod tests {
     fn a_quadratic_field_is_carried_to_a_triangles_nodes_exactly_and_its_spare_slots_repeat_node_0() {
         let f = |p: [f64; 2]| 3.0 + 2.0 * p[0] - p[1] + 0.5 * p[0] * p[1] + 0.25 * p[0] * p[0] - 0.75 * p[1] * p[1];
         let gauss: [[f64; 1]; 9] = Shape::Tri6.rule().map(|(p, _)| [f(p)]);
-        let nodal = Recovery::default().element_nodal(Shape::Tri6, Rule::Extrapolate, &gauss);
+        let nodal = Recovery::default().element_nodal(Shape::Tri6, Integration::Full, Rule::Extrapolate, &gauss);
         for (a, node) in Shape::Tri6.reference_nodes().iter().enumerate() {
             assert!((nodal[a][0] - f(*node)).abs() < 1e-12, "node {a}: {} vs {}", nodal[a][0], f(*node));
         }
         // copying: each corner takes a point near it, and the spare slots are node 0's
-        let copied = Recovery::default().element_nodal(Shape::Tri6, Rule::Copy, &std::array::from_fn(|q| [q as f64]));
-        let nearest = nearest_gauss_points(Shape::Tri6);
+        let copied = Recovery::default().element_nodal(Shape::Tri6, Integration::Full, Rule::Copy, &std::array::from_fn(|q| [q as f64]));
+        let nearest = nearest_gauss_points(Shape::Tri6, Integration::Full).map(|row| row.iter().position(|&w| w == 1.0).unwrap());
         assert_eq!(copied.map(|v| v[0] as usize), nearest);
         assert_eq!((nearest[6], nearest[7]), (nearest[0], nearest[0]));
         // its corner 0 at (0, 0) is nearest the rule's first point (small s, small t)
@@ -188,6 +211,24 @@ mod tests {
     }
 
     #[test]
+    fn a_reduced_quadrilateral_carries_a_bilinear_field_exactly_and_never_reads_its_weightless_slots() {
+        let f = |p: [f64; 2]| 3.0 + 2.0 * p[0] - p[1] + 0.5 * p[0] * p[1];
+        let mut gauss: [[f64; 1]; 9] = square_2x2().map(|(p, _)| [f(p)]);
+        for slot in &mut gauss[4..] {
+            *slot = [f64::NAN];
+        }
+        let r = Recovery::default();
+        let nodal = r.element_nodal(Shape::Quad8, Integration::Reduced, Rule::Extrapolate, &gauss);
+        for (a, node) in q8_nodes().iter().enumerate() {
+            assert!((nodal[a][0] - f(*node)).abs() < 1e-12, "node {a}: {} vs {}", nodal[a][0], f(*node));
+        }
+        // copied: a corner takes its own point, a mid-side node the mean of the two beside it
+        let gauss: [[f64; 1]; 9] = std::array::from_fn(|q| if q < 4 { [q as f64] } else { [f64::NAN] });
+        let copied = r.element_nodal(Shape::Quad8, Integration::Reduced, Rule::Copy, &gauss);
+        assert_eq!(copied.map(|v| v[0]), [0.0, 1.0, 3.0, 2.0, 0.5, 2.0, 2.5, 1.0]);
+    }
+
+    #[test]
     fn nodes_shared_by_elements_are_averaged() {
         // two elements sharing nodes 1, 2, 5: constant 1 in one, 3 in the other
         let conn = [[0, 1, 2, 3, 4, 5, 6, 7], [1, 8, 9, 2, 10, 11, 12, 5]];
@@ -195,7 +236,7 @@ mod tests {
         let (mut sums, mut counts) = (vec![0.0; 13], vec![0.0; 13]);
         let r = Recovery::default();
         for (nodes, gauss) in conn.iter().zip(&values) {
-            Recovery::accumulate(nodes, &r.element_nodal(Shape::Quad8, Rule::Extrapolate, gauss), &mut sums, &mut counts);
+            Recovery::accumulate(nodes, &r.element_nodal(Shape::Quad8, Integration::Full, Rule::Extrapolate, gauss), &mut sums, &mut counts);
         }
         let mean = |n: usize| sums[n] / counts[n];
         assert!((mean(0) - 1.0).abs() < 1e-12 && (mean(8) - 3.0).abs() < 1e-12);

@@ -16,7 +16,7 @@
 //! back from the slots; code that walks an element's nodes for anything but an interpolation
 //! (counts, outlines, output) takes `Shape::nodes` of them.
 
-use super::quadrature::{square_3x3, triangle_9};
+use super::quadrature::{square_2x2, square_3x3, triangle_9, Integration};
 
 /// An element's shape.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -93,6 +93,16 @@ impl Shape {
         }
     }
 
+    /// The rule of an element of this shape integrated as `integration`: the full rule, or
+    /// the Q8's 2 x 2 points in 9 slots (`square_2x2`). A T6 is always integrated fully (no
+    /// reduced triangle is read: CalculiX's CAX6 has none).
+    pub fn rule_for(self, integration: Integration) -> [([f64; 2], f64); 9] {
+        match (self, integration) {
+            (Shape::Quad8, Integration::Reduced) => square_2x2(),
+            _ => self.rule(),
+        }
+    }
+
     /// The local nodes around the element's outline, corner, mid-side, corner, ...
     pub const fn outline(self) -> &'static [usize] {
         match self {
@@ -114,14 +124,6 @@ impl Shape {
         match self {
             Shape::Quad8 => [0.0, 0.0],
             Shape::Tri6 => [1.0 / 3.0, 1.0 / 3.0],
-        }
-    }
-
-    /// The name CalculiX and Abaqus give the axisymmetric element of this shape.
-    pub const fn abaqus_name(self) -> &'static str {
-        match self {
-            Shape::Quad8 => "CAX8",
-            Shape::Tri6 => "CAX6",
         }
     }
 }

@@ -2,7 +2,7 @@
 //! heat flux at the Gauss points and each element's mean, and `flows/SET` with the heat flowing
 //! in through each held set as attributes; rank 0 writes its XDMF sidecar (`STEM_NAME.xmf`).
 
-use super::results::{h5err, write_rows, ResultsFile};
+use super::results::{gauss_rows, h5err, write_rows, ResultsFile};
 use crate::dist::Partition;
 use crate::element::solid::QUADRATURE_POINTS;
 use crate::error::Result;
@@ -28,14 +28,15 @@ impl ResultsFile {
         write_rows(&g, "temperature", &[nodes], slab, &owned, &path)?;
         let elements = partition.element_offsets[partition.size];
         let element_slab = (partition.element_offsets[partition.rank], partition.element_offsets[partition.rank + 1]);
-        let flux: Vec<f64> = answer.flux.iter().flatten().flatten().copied().collect();
+        let flux = gauss_rows(&answer.flux, &self.gauss_points);
         write_rows(&g, "flux", &[elements, QUADRATURE_POINTS, 2], element_slab, &flux, &path)?;
         // each element's mean as a 3-vector, for ParaView's glyphs (q_theta = 0)
         let mean: Vec<f64> = answer
             .flux
             .iter()
-            .flat_map(|points| {
-                let m = [0, 1].map(|i| points.iter().map(|q| q[i]).sum::<f64>() / QUADRATURE_POINTS as f64);
+            .zip(&self.gauss_points)
+            .flat_map(|(points, &n)| {
+                let m = [0, 1].map(|i| points[..n].iter().map(|q| q[i]).sum::<f64>() / n as f64);
                 [m[0], m[1], 0.0]
             })
             .collect();

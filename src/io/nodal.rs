@@ -14,9 +14,10 @@ use super::results::{write_field, write_rows, IncrementFields};
 use crate::dist::Partition;
 use crate::error::Result;
 use crate::fe::axisymmetric::{principal_stresses, von_mises};
+use crate::fe::quadrature::Integration;
 use crate::fe::recover::{Recovery, Rule};
 use crate::fe::shape::Shape;
-use crate::model::{Mesh, OutputControls, OutputFields, Precision};
+use crate::model::{Model, OutputFields, Precision};
 use crate::solve::contact::PassOutput;
 use mpi::collective::SystemOperation;
 use mpi::topology::SimpleCommunicator;
@@ -78,6 +79,8 @@ pub struct NodalWriter {
     world: SimpleCommunicator,
     /// Nodes (rows of /mesh/coordinates) of this rank's elements, in its element order.
     connectivity: Vec<[usize; 8]>,
+    /// How each of this rank's elements is integrated.
+    integration: Vec<Integration>,
     nodes: usize,
     node_slab: (usize, usize),
     elements: usize,
@@ -92,12 +95,15 @@ pub struct NodalWriter {
 }
 
 impl NodalWriter {
-    pub fn new(world: SimpleCommunicator, mesh: &Mesh, partition: &Partition, output: OutputControls) -> Self {
+    pub fn new(world: SimpleCommunicator, model: &Model, partition: &Partition) -> Self {
+        let (mesh, output) = (&model.mesh, model.output);
         let connectivity = partition.local_elements().iter().map(|&e| mesh.elements[e].map(|n| partition.node_position[n])).collect();
+        let integration = partition.local_elements().iter().map(|&e| model.element_integration[e]).collect();
         let rank = partition.rank;
         NodalWriter {
             world,
             connectivity,
+            integration,
             nodes: mesh.coords.len(),
             node_slab: (partition.node_offsets[rank], partition.node_offsets[rank + 1]),
             elements: mesh.elements.len(),
@@ -131,8 +137,9 @@ impl NodalWriter {
                 let p = f.plastic_strain_tensor[k][q];
                 [p[0], p[1], p[2], p[3], ep[q]]
             });
-            let shape = Shape::of(nodes);
-            let (elastic_part, plastic_part) = (self.recovery.element_nodal(shape, rule, &gauss), self.recovery.element_nodal(shape, Rule::Copy, &plastic));
+            let (shape, integration) = (Shape::of(nodes), self.integration[k]);
+            let elastic_part = self.recovery.element_nodal(shape, integration, rule, &gauss);
+            let plastic_part = self.recovery.element_nodal(shape, integration, Rule::Copy, &plastic);
             let nodal: [[f64; AVERAGED]; 8] = std::array::from_fn(|a| std::array::from_fn(|c| if c < 8 { elastic_part[a][c] } else { plastic_part[a][c - 8] }));
             Recovery::accumulate(nodes, &nodal, sums, counts);
         }
@@ -158,8 +165,8 @@ impl NodalWriter {
             self.write_contact(&g, f.contact, path)?;
         }
         if self.fields.element_nodal {
-            let stress: Vec<f64> = (self.connectivity.iter().zip(f.stress).zip(f.plastic_strain))
-                .flat_map(|((nodes, s), ep)| self.recovery.element_nodal(Shape::of(nodes), Rule::for_element(ep), s))
+            let stress: Vec<f64> = (self.connectivity.iter().zip(&self.integration).zip(f.stress).zip(f.plastic_strain))
+                .flat_map(|(((nodes, &integration), s), ep)| self.recovery.element_nodal(Shape::of(nodes), integration, Rule::for_element(ep), s))
                 .flatten()
                 .collect();
             write_field(increment, "element_nodal_stress", &[self.elements, 8, 4], self.element_slab, &stress, self.precision, path)?;

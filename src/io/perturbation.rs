@@ -4,7 +4,7 @@
 //! `reactions/SET` with each set's summed nodal forces (per radian) and full-ring resultants
 //! as attributes.
 
-use super::results::{h5err, write_rows, ResultsFile};
+use super::results::{gauss_rows, h5err, write_rows, ResultsFile};
 use crate::dist::Partition;
 use crate::element::solid::QUADRATURE_POINTS;
 use crate::error::Result;
@@ -49,7 +49,7 @@ impl ResultsFile {
         if answer.modes.is_empty() {
             let ne = partition.element_offsets[partition.size];
             let element_slab = (partition.element_offsets[partition.rank], partition.element_offsets[partition.rank + 1]);
-            let stress: Vec<f64> = answer.stress.iter().flatten().flatten().copied().collect();
+            let stress = gauss_rows(&answer.stress, &self.gauss_points);
             write_rows(&g, "stress", &[ne, QUADRATURE_POINTS, 6], element_slab, &stress, &path)?;
         } else {
             // the eigenvalues (rank 0 writes the short lists) and every mode's amplitudes

@@ -4,6 +4,7 @@
 
 use super::{ContactSummary, HistoryRow};
 use crate::error::{Error, Result};
+use crate::fe::quadrature::Integration;
 use crate::model::perturbation::Analysis;
 use crate::solve::energy::Energies;
 use hdf5::types::VarLenUnicode;
@@ -147,6 +148,26 @@ impl ResultsReader {
             )));
         }
         Ok(flat.chunks_exact(8).map(|c| std::array::from_fn(|k| c[k] as usize)).collect())
+    }
+
+    /// How each element is integrated, in file order: `mesh/gauss_points` (4 for a reduced Q8);
+    /// a file written before that dataset holds only fully integrated elements.
+    pub fn integration(&self) -> Result<Vec<Integration>> {
+        let elements = self.file.dataset("mesh/element_ids").map(|d| d.shape().first().copied().unwrap_or(0)).unwrap_or(0);
+        if !self.file.link_exists("mesh/gauss_points") {
+            return Ok(vec![Integration::Full; elements]);
+        }
+        let ds = self.file.dataset("mesh/gauss_points").map_err(|e| missing(&self.path, "mesh/gauss_points", e))?;
+        let counts = ds.read_raw::<u32>().map_err(|e| missing(&self.path, "mesh/gauss_points", e))?;
+        counts
+            .iter()
+            .enumerate()
+            .map(|(e, &n)| match n {
+                9 => Ok(Integration::Full),
+                4 => Ok(Integration::Reduced),
+                _ => Err(Error::input(format!("{}: mesh/gauss_points gives element row {e} {n} points (9 or 4)", self.path.display()))),
+            })
+            .collect()
     }
 
     /// External node numbers (Gmsh tags), in file order.

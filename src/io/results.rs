@@ -184,6 +184,9 @@ pub struct ResultsFile {
     /// radian and get full-ring columns; a plane model's are for its thickness.
     axisymmetric: bool,
     nodal: NodalWriter,
+    /// How many of each local element's Gauss slots are integration points (9, or a reduced
+    /// Q8's 4): the datasets hold NaN in the others.
+    pub(super) gauss_points: Vec<usize>,
     /// The fields written beside the displacement.
     fields: OutputFields,
     precision: Precision,
@@ -272,6 +275,9 @@ impl ResultsFile {
         write_rows(&g, "element_ids", &[ne], element_slab, &ids, path)?;
         let ranks: Vec<u32> = local.iter().map(|&e| partition.element_rank[e] as u32).collect();
         write_rows(&g, "element_rank", &[ne], element_slab, &ranks, path)?;
+        let gauss_points: Vec<usize> = local.iter().map(|&e| model.element_integration[e].points()).collect();
+        let counts: Vec<u32> = gauss_points.iter().map(|&n| n as u32).collect();
+        write_rows(&g, "gauss_points", &[ne], element_slab, &counts, path)?;
         // Sets are small and identical on every rank: rank 0 writes them.
         for (group, sets, position) in
             [("node_sets", &model.node_sets, &partition.node_position), ("element_sets", &model.element_sets, &partition.element_position)]
@@ -325,7 +331,8 @@ impl ResultsFile {
             contact_mesh_written: false,
             reaction_segment_degrees: model.reaction_segment_degrees,
             axisymmetric: model.is_axisymmetric(),
-            nodal: NodalWriter::new(world, mesh, partition, model.output),
+            nodal: NodalWriter::new(world, model, partition),
+            gauss_points,
             fields: model.output.fields,
             precision: model.output.precision,
             world: session.world(),
@@ -407,20 +414,21 @@ impl ResultsFile {
         let step_name_v: VarLenUnicode = step_name.parse().map_err(|_| Error::Output { path: self.path.clone(), message: "step name".into() })?;
         g.new_attr::<VarLenUnicode>().create("step_name").map_err(&err)?.write_scalar(&step_name_v).map_err(&err)?;
         let f = self.fields;
+        let used = &self.gauss_points;
         if f.stress {
-            let s: Vec<f64> = local_stress.iter().flatten().flatten().copied().collect();
+            let s = gauss_rows(local_stress, used);
             write_field(&g, "stress", &[self.elements, QUADRATURE_POINTS, 4], self.element_slab, &s, self.precision, &self.path)?;
         }
         if f.von_mises {
-            let vm: Vec<f64> = local_stress.iter().flatten().map(von_mises).collect();
-            write_field(&g, "von_mises", &[self.elements, QUADRATURE_POINTS], self.element_slab, &vm, self.precision, &self.path)?;
-            let mean: Vec<f64> = vm.chunks(QUADRATURE_POINTS).map(|c| c.iter().sum::<f64>() / QUADRATURE_POINTS as f64).collect();
+            let vm: Vec<[[f64; 1]; QUADRATURE_POINTS]> = local_stress.iter().map(|e| e.map(|s| [von_mises(&s)])).collect();
+            write_field(&g, "von_mises", &[self.elements, QUADRATURE_POINTS], self.element_slab, &gauss_rows(&vm, used), self.precision, &self.path)?;
+            let mean: Vec<f64> = vm.iter().zip(used).map(|(e, &n)| e[..n].iter().map(|v| v[0]).sum::<f64>() / n as f64).collect();
             write_field(&g, "von_mises_mean", &[self.elements], self.element_slab, &mean, self.precision, &self.path)?;
         }
         if f.plastic_strain {
-            let ep: Vec<f64> = local_plastic_strain.iter().flatten().copied().collect();
-            write_field(&g, "equivalent_plastic_strain", &[self.elements, QUADRATURE_POINTS], self.element_slab, &ep, self.precision, &self.path)?;
-            let ep_max: Vec<f64> = local_plastic_strain.iter().map(|c| c.iter().fold(0.0f64, |m, &v| m.max(v))).collect();
+            let ep: Vec<[[f64; 1]; QUADRATURE_POINTS]> = local_plastic_strain.iter().map(|e| e.map(|v| [v])).collect();
+            write_field(&g, "equivalent_plastic_strain", &[self.elements, QUADRATURE_POINTS], self.element_slab, &gauss_rows(&ep, used), self.precision, &self.path)?;
+            let ep_max: Vec<f64> = local_plastic_strain.iter().zip(used).map(|(c, &n)| c[..n].iter().fold(0.0f64, |m, &v| m.max(v))).collect();
             write_field(&g, "equivalent_plastic_strain_max", &[self.elements], self.element_slab, &ep_max, self.precision, &self.path)?;
         }
         self.nodal.write(&g, fields, &self.path)?;
@@ -558,6 +566,18 @@ impl ResultsFile {
 
 /// Writes the `units` and `description` attributes of a dataset (collective).
 /// A plane model's file (its root `geometry` attribute "plane") gets the plane units.
+/// Per-element Gauss-slot values (`C` numbers per slot) flattened for a dataset, with NaN in
+/// the slots that are no integration point of their element (`used`: 9, or a reduced Q8's 4).
+pub(super) fn gauss_rows<const C: usize>(values: &[[[f64; C]; QUADRATURE_POINTS]], used: &[usize]) -> Vec<f64> {
+    let mut out = Vec::with_capacity(values.len() * QUADRATURE_POINTS * C);
+    for (element, &n) in values.iter().zip(used) {
+        for (q, slot) in element.iter().enumerate() {
+            out.extend(slot.iter().map(|&v| if q < n { v } else { f64::NAN }));
+        }
+    }
+    out
+}
+
 pub(super) fn describe_dataset(ds: &hdf5::Dataset, units: &'static str, description: &str, path: &Path) -> Result<()> {
     let err = h5err(path);
     let geometry = ds.file().and_then(|f| f.attr("geometry")).and_then(|a| a.read_scalar::<VarLenUnicode>());

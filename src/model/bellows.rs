@@ -443,6 +443,7 @@ pub fn model(p: &BellowsParams) -> Result<Model> {
         materials: vec![material],
         element_material: vec![0; n],
         element_section: vec![crate::fe::section::Section::Axisymmetric; n],
+        element_integration: vec![crate::fe::quadrature::Integration::Full; n],
         reference_temperature: Temperature::Uniform(20.0),
         kinematics: Kinematics::Finite,
         // after a cutback the increment grows back after anything up to 12 Newton iterations

@@ -88,6 +88,7 @@ use super::{
 };
 use crate::element::body_load::BodyForce;
 use crate::error::{Error, Result};
+use crate::fe::quadrature::Integration;
 use crate::fe::section::Section;
 use serde::Deserialize;
 use std::path::{Path, PathBuf};
@@ -831,6 +832,7 @@ pub fn parse(text: &str, path: &Path) -> Result<Model> {
         materials,
         element_material,
         element_section: vec![section; n_elements],
+        element_integration: vec![Integration::Full; n_elements],
         reference_temperature,
         kinematics,
         stepping: deck.stepping.controls(),

@@ -20,6 +20,8 @@ pub use mesh::{Edge, Mesh, NODES_PER_ELEMENT};
 pub use temperature::Temperature;
 
 use crate::error::{Error, Result};
+use crate::element::solid::ElementGeometry;
+use crate::fe::quadrature::Integration;
 use crate::fe::section::Section;
 pub use crate::material::Kinematics;
 use std::collections::BTreeMap;
@@ -482,6 +484,8 @@ pub struct Model {
     pub element_material: Vec<usize>,
     /// Section of every element: axisymmetric, or a plane section with its thickness.
     pub element_section: Vec<Section>,
+    /// Integration of every element: full, or a Q8's reduced 2 x 2 (an .inp deck's ..8R types).
+    pub element_integration: Vec<Integration>,
     /// Temperature (degC) at which thermal strain is zero, and the initial temperature (a
     /// field where it varies from node to node).
     pub reference_temperature: Temperature,
@@ -513,6 +517,12 @@ impl Model {
     /// over its thickness).
     pub fn is_axisymmetric(&self) -> bool {
         self.element_section.iter().any(|s| s.is_axisymmetric())
+    }
+
+    /// The geometry of element `e` with nodal coordinates `x` (reference or current), of its
+    /// shape, integration and section.
+    pub fn element_geometry(&self, e: usize, x: &[[f64; 2]; 8]) -> std::result::Result<ElementGeometry, String> {
+        ElementGeometry::new(self.mesh.shape(e), self.element_integration[e], self.element_section[e], x)
     }
 
     /// Whether the temperature varies over the mesh at the start or in some step.

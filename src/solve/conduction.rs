@@ -7,7 +7,7 @@
 use super::perturbation::{amplitudes_of, assemble, Amplitude, Block};
 use crate::dist::Partition;
 use crate::element::conduction::{conduction_matrix, heat_flux};
-use crate::element::solid::{ElementGeometry, NODES, QUADRATURE_POINTS};
+use crate::element::solid::{NODES, QUADRATURE_POINTS};
 use crate::error::{Error, Result};
 use crate::model::heat::HeatStep;
 use crate::model::Model;
@@ -57,7 +57,7 @@ pub fn solve(session: &PetscSession, model: &Model, partition: &Partition, step:
     for &e in partition.local_elements() {
         let conn = mesh.elements[e];
         let x: [[f64; 2]; NODES] = conn.map(|n| mesh.coords[n]);
-        let geo = ElementGeometry::new(crate::fe::shape::Shape::of(&conn), model.element_section[e], &x)
+        let geo = model.element_geometry(e, &x)
             .map_err(|m| Error::input(format!("heat step '{}': element {}: {m}", step.name, mesh.element_ids[e])))?;
         let k = model.materials[model.element_material[e]].conductivity;
         let m = conduction_matrix(&geo, k);

@@ -131,7 +131,7 @@ pub(super) fn stiffness_blocks(
     for (k, &e) in partition.local_elements().iter().enumerate() {
         let conn = mesh.elements[e];
         let x: [[f64; 2]; NODES] = conn.map(|n| current[n]);
-        let geo = ElementGeometry::new(crate::fe::shape::Shape::of(&conn), model.element_section[e], &x)
+        let geo = model.element_geometry(e, &x)
             .map_err(|m| Error::input(format!("perturbation step '{step}': element {}: {m}", mesh.element_ids[e])))?;
         let m = &model.materials[model.element_material[e]];
         let j2 = crate::solve::problem::material_kernel(m);

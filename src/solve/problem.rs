@@ -221,7 +221,7 @@ impl<'s, 'm> Problem<'s, 'm> {
                 }
             }
             let coords = model.mesh.element_coords(e);
-            let geometry = ElementGeometry::new(Shape::of(&conn), model.element_section[e], &coords)
+            let geometry = model.element_geometry(e, &coords)
                 .map_err(|m| Error::input(format!("element {}: {m}", model.mesh.element_ids[e])))?;
             let mat = &model.materials[model.element_material[e]];
             let roundoff_scale = mat.youngs_modulus * geometry.mean_measure();

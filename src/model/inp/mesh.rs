@@ -4,6 +4,7 @@
 use super::cards::{error_at, Card, DataLine, Location};
 use super::{face_side, Builder};
 use crate::error::Result;
+use crate::fe::quadrature::Integration;
 use crate::fe::section::Section;
 use crate::fe::shape::Shape;
 use crate::model::mesh::Edge;
@@ -79,6 +80,9 @@ impl Builder {
                 return Err(card.error(format!("element type {kind}: {why}")));
             }
         };
+        // CalculiX's and Abaqus's CAX8R integrate 2 x 2; a CAX4R, read as a Q8, is not that
+        // element (one point with hourglass control) whichever way it is integrated
+        let integration = if kind.ends_with("8R") { Integration::Reduced } else { Integration::Full };
         let corners_only = per_element == shape.corners();
         // an element's node list may continue on following lines
         let mut pending: Vec<(String, Location)> = Vec::new();
@@ -115,6 +119,7 @@ impl Builder {
             self.mesh.elements.push(conn);
             self.mesh.element_ids.push(id);
             self.element_family.push(family);
+            self.element_integration.push(integration);
         }
         if let Some((_, at)) = pending.first() {
             return Err(error_at(at, "ELEMENT", format!("{kind} takes {per_element} nodes, the last element has {}", pending.len() - 1)));

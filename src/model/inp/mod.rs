@@ -28,6 +28,7 @@ pub use write::{to_inp, write};
 use super::mesh::{Edge, Mesh};
 use super::{Component, Kinematics, Material, Model, Plasticity, Predictor, SteppingControls, Temperature};
 use crate::error::{Error, Result};
+use crate::fe::quadrature::Integration;
 use crate::fe::section::Section;
 use cards::{error_at, Card, DataLine, Location};
 use properties::ListedPair;
@@ -175,6 +176,8 @@ struct Builder {
     /// Each element's section family from its type (CAX, CPE, CPS), thickness 1 until its
     /// *SOLID SECTION gives one.
     element_family: Vec<Section>,
+    /// Reduced for the ..8R types, full for the rest.
+    element_integration: Vec<Integration>,
     interactions: BTreeMap<String, Interaction>,
     current_interaction: Option<String>,
     contacts: Vec<ListedPair>,
@@ -570,6 +573,7 @@ impl Builder {
             materials,
             element_material,
             element_section,
+            element_integration: self.element_integration,
             reference_temperature,
             kinematics,
             stepping,
@@ -598,7 +602,7 @@ fn element_note(kind: &str) -> String {
     };
     match suffix {
         "8" => format!("slideline's 8-node {section} quadrilateral (3 x 3 Gauss points, {volumetric})"),
-        "8R" => format!("slideline's 8-node {section} quadrilateral with full 3 x 3 integration and {volumetric} (no reduced integration)"),
+        "8R" => format!("CalculiX's reduced 8-node {section} quadrilateral: 2 x 2 Gauss points, no F-bar (as ccx; a single element has one zero-energy mode, which its neighbours restrain)"),
         "6" => format!("slideline's 6-node {section} triangle (9 Gauss points, {volumetric})"),
         "3" => format!("{section} 6-node triangles with mid-side nodes added at the middle of each straight edge (quadratic displacements, 9 Gauss points, {volumetric})"),
         _ => format!("{section} 8-node quadrilaterals with mid-side nodes added at the middle of each straight edge (quadratic displacements, 3 x 3 Gauss points, {volumetric})"),

@@ -12,6 +12,8 @@
 
 use crate::element::body_load::BodyForce;
 use crate::error::{Error, Result};
+use crate::fe::quadrature::Integration;
+use crate::fe::section::Section;
 use crate::fe::shape::Shape;
 use crate::model::{Component, ContactIntegration, Friction, Model, Penalty, Plasticity, Predictor, Temperature};
 use std::collections::BTreeSet;
@@ -44,6 +46,21 @@ fn friction_card(w: &mut String, name: &str, f: &Friction, two_pass: bool) -> Re
     Ok(())
 }
 
+/// CalculiX's type of element `e`: CAX, CPE or CPS by its section, then 8, 8R or 6.
+fn element_type(model: &Model, e: usize) -> String {
+    let family = match model.element_section[e] {
+        Section::Axisymmetric => "CAX",
+        Section::PlaneStrain { .. } => "CPE",
+        Section::PlaneStress { .. } => "CPS",
+    };
+    let suffix = match (model.mesh.shape(e), model.element_integration[e]) {
+        (Shape::Tri6, _) => "6",
+        (Shape::Quad8, Integration::Full) => "8",
+        (Shape::Quad8, Integration::Reduced) => "8R",
+    };
+    format!("{family}{suffix}")
+}
+
 /// The deck's text.
 pub fn to_inp(model: &Model, title: &str) -> Result<String> {
     let mut out = String::new();
@@ -54,13 +71,10 @@ pub fn to_inp(model: &Model, title: &str) -> Result<String> {
     for (id, c) in mesh.node_ids.iter().zip(&mesh.coords) {
         let _ = writeln!(w, "{id}, {}, {}", num(c[0]), num(c[1]));
     }
-    for shape in [Shape::Quad8, Shape::Tri6] {
-        let of_shape: Vec<usize> = (0..mesh.elements.len()).filter(|&e| mesh.shape(e) == shape).collect();
-        if of_shape.is_empty() {
-            continue;
-        }
-        let _ = writeln!(w, "*ELEMENT, TYPE={}, ELSET=EALL", shape.abaqus_name());
-        for e in of_shape {
+    let types: BTreeSet<String> = (0..mesh.elements.len()).map(|e| element_type(model, e)).collect();
+    for kind in types {
+        let _ = writeln!(w, "*ELEMENT, TYPE={kind}, ELSET=EALL");
+        for e in (0..mesh.elements.len()).filter(|&e| element_type(model, e) == kind) {
             let nodes: Vec<String> = mesh.element_nodes(e).iter().map(|&n| mesh.node_ids[n].to_string()).collect();
             let _ = writeln!(w, "{}, {}", mesh.element_ids[e], nodes.join(", "));
         }
@@ -128,10 +142,26 @@ pub fn to_inp(model: &Model, title: &str) -> Result<String> {
                 }
             }
         }
-        let elements = (0..mesh.elements.len()).filter(|&e| model.element_material[e] == k).map(|e| mesh.element_ids[e]);
-        let elset = format!("MATERIAL_{}", checked_name(&m.name)?);
-        listing(w, &format!("*ELSET, ELSET={elset}"), elements);
-        let _ = writeln!(w, "*SOLID SECTION, ELSET={elset}, MATERIAL={}", checked_name(&m.name)?);
+        // one *SOLID SECTION per section the material's elements have
+        let of_material: Vec<usize> = (0..mesh.elements.len()).filter(|&e| model.element_material[e] == k).collect();
+        let mut sections: Vec<Section> = Vec::new();
+        for &e in &of_material {
+            if !sections.contains(&model.element_section[e]) {
+                sections.push(model.element_section[e]);
+            }
+        }
+        for (j, &section) in sections.iter().enumerate() {
+            let elements = of_material.iter().filter(|&&e| model.element_section[e] == section).map(|&e| mesh.element_ids[e]);
+            let suffix = if sections.len() > 1 { format!("_{}", j + 1) } else { String::new() };
+            let elset = format!("MATERIAL_{}{suffix}", checked_name(&m.name)?);
+            listing(w, &format!("*ELSET, ELSET={elset}"), elements);
+            let _ = writeln!(w, "*SOLID SECTION, ELSET={elset}, MATERIAL={}", checked_name(&m.name)?);
+            if let Section::PlaneStrain { thickness } | Section::PlaneStress { thickness } = section {
+                // beside axisymmetric elements the reader took thickness / 2 pi (per radian)
+                let t = if model.is_axisymmetric() { thickness * std::f64::consts::TAU } else { thickness };
+                let _ = writeln!(w, "{}", num(t));
+            }
+        }
     }
 
     for c in &model.contacts {
@@ -290,6 +320,8 @@ fn checked_name(name: &str) -> Result<&str> {
 
 #[cfg(test)]
 mod tests {
+    use crate::fe::quadrature::Integration;
+    use crate::fe::section::Section;
     use crate::element::body_load::BodyForce;
     use crate::model::Model;
     use std::path::Path;
@@ -428,6 +460,42 @@ boundary = [ { set = "a_bottom", uz = 0.0 }, { set = "b_bottom", uz = 0.0 } ]
         let read = crate::model::inp::parse(&text, Path::new("pairs.inp")).unwrap().model;
         let laws = |m: &Model| m.contacts.iter().map(|c| (c.two_pass, c.penalty)).collect::<Vec<_>>();
         assert_eq!(laws(&read), laws(&model));
+    }
+
+    /// Every element keeps its type: section family (CAX, CPE, CPS), shape and integration,
+    /// and a plane section its thickness, also beside axisymmetric elements (where the reader
+    /// holds thickness / 2 pi per radian).
+    #[test]
+    fn element_types_and_plane_thicknesses_are_written_and_read_back() {
+        let deck = "*NODE\n1,1.,0.\n2,3.,0.\n3,3.,1.\n4,1.,1.\n5,2.,0.\n6,3.,.5\n7,2.,1.\n8,1.,.5\n\
+            11,1.,2.\n12,3.,2.\n13,2.,2.\n14,1.,1.5\n15,3.,1.5\n16,2.,1.5\n\
+            21,5.,0.\n22,7.,0.\n23,5.,1.\n24,6.,0.\n25,6.,.5\n26,5.,.5\n\
+            *ELEMENT,TYPE=CAX8R,ELSET=A\n1,1,2,3,4,5,6,7,8\n*ELEMENT,TYPE=CPS8,ELSET=B\n2,4,3,12,11,7,15,13,14\n\
+            *ELEMENT,TYPE=CPE6,ELSET=C\n3,21,22,23,24,25,26\n*MATERIAL,NAME=S\n*ELASTIC\n210000.,.3\n\
+            *SOLID SECTION,ELSET=A,MATERIAL=S\n*SOLID SECTION,ELSET=B,MATERIAL=S\n2.5\n*SOLID SECTION,ELSET=C,MATERIAL=S\n4.\n\
+            *BOUNDARY\n1,1,2\n21,1,2\n*STEP\n*STATIC\n*END STEP\n";
+        let model = crate::model::inp::parse(deck, Path::new("types.inp")).unwrap().model;
+        assert_eq!(model.element_integration, [Integration::Reduced, Integration::Full, Integration::Full]);
+        let text = super::to_inp(&model, "types").unwrap();
+        for card in ["TYPE=CAX8R", "TYPE=CPS8,", "TYPE=CPE6,"] {
+            assert!(text.contains(card), "{card}: {text}");
+        }
+        let read = crate::model::inp::parse(&text, Path::new("back.inp")).unwrap().model;
+        // (the elements come back grouped by type)
+        let by_id = |m: &Model| {
+            let mut v: Vec<_> = (0..3).map(|e| (m.mesh.element_ids[e], m.element_integration[e], m.element_section[e])).collect();
+            v.sort_by_key(|k| k.0);
+            v
+        };
+        let (read, model) = (by_id(&read), by_id(&model));
+        assert_eq!(read.iter().map(|k| k.1).collect::<Vec<_>>(), model.iter().map(|k| k.1).collect::<Vec<_>>());
+        for ((_, _, a), (_, _, b)) in read.iter().zip(&model) {
+            match (a, b) {
+                (Section::PlaneStress { thickness: s }, Section::PlaneStress { thickness: t })
+                | (Section::PlaneStrain { thickness: s }, Section::PlaneStrain { thickness: t }) => assert!((s - t).abs() < 1e-12 * t, "{s} vs {t}"),
+                _ => assert_eq!(a, b),
+            }
+        }
     }
 
     /// A node-based slave surface is written back as its nodes, one a line, and read back as
