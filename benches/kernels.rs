@@ -5,8 +5,8 @@ use criterion::{black_box, criterion_group, criterion_main, Criterion, Throughpu
 use slideline::ad::Dual;
 use slideline::element::pressure::{compute_pressure_load, pressure_load_stiffness};
 use slideline::element::solid::{compute_solid, solid_tangent, ElementGeometry, SolidInput};
-use slideline::fe::section::Section;
 use slideline::fe::quadrature::Integration;
+use slideline::fe::section::Section;
 use slideline::fe::shape::Shape;
 use slideline::material::{Kinematics, PointState, SurfaceBranch, J2};
 

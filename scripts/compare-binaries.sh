@@ -40,6 +40,7 @@ for which in old new; do
 done
 "$python" - "$out" "$REPEATS" "$out/walls.txt.$$" <<'PY'
 import sys, os, statistics, h5py
+import numpy as np
 out, repeats, walls = sys.argv[1], int(sys.argv[2]), sys.argv[3]
 wall = {"old": [], "new": []}
 for line in open(walls):
@@ -58,7 +59,7 @@ def answers(path):
 def max_von_mises(path):
     f = h5py.File(path, "r")
     last = sorted(f["increments"])[-1]
-    return float(f["increments"][last]["von_mises"][:].max())
+    return float(np.nanmax(f["increments"][last]["von_mises"][:]))
 mb = lambda p: os.path.getsize(p) / 1e6
 o, n = f"{out}/old-1.h5", f"{out}/new-1.h5"
 print(f"default bellows, 2 ranks, wall s (median of {repeats}, alternating): old {statistics.median(wall['old']):.1f} {sorted(round(w, 1) for w in wall['old'])}, new {statistics.median(wall['new']):.1f} {sorted(round(w, 1) for w in wall['new'])}, new / old {statistics.median(wall['new']) / statistics.median(wall['old']):.2f}")

@@ -2,6 +2,7 @@
 //! function returns what it would print, so the CLI prints it and the tests read it.
 
 use crate::error::{Error, Result};
+use crate::fe::quadrature::Integration;
 use crate::fe::shape::Shape;
 use crate::io::plots::{line_plot, Axes, Curve};
 use crate::io::reader::ResultsReader;
@@ -196,6 +197,8 @@ pub fn field(r: &ResultsReader, name: &str, number: usize) -> Result<String> {
         _ => vec![name.to_string()],
     };
     let points = per / components.len();
+    // a reduced element's spare Gauss slots hold NaN
+    let reduced = !nodal && r.integration()?.contains(&Integration::Reduced);
     let mut s = format!(
         "{name} at increment {number} (step {}, load factor {:.4}), {} per {}{}\n",
         r.increment_attr(&inc, "step")? as usize,
@@ -205,6 +208,7 @@ pub fn field(r: &ResultsReader, name: &str, number: usize) -> Result<String> {
         match (points, name) {
             (1, _) => String::new(),
             (_, "element_nodal_stress") => format!(" ({points} nodes each)"),
+            _ if reduced => format!(" ({points} Gauss slots each, 4 of them points in a reduced element)"),
             _ => format!(" ({points} Gauss points each)"),
         }
     );
@@ -218,8 +222,8 @@ pub fn field(r: &ResultsReader, name: &str, number: usize) -> Result<String> {
         }
     };
     for (c, label) in components.iter().enumerate() {
-        let entries = (0..count).flat_map(|e| (0..points).map(move |p| (e, p)));
         let value = |(e, p): (usize, usize)| values[e * per + p * components.len() + c];
+        let entries = (0..count).flat_map(|e| (0..points).map(move |p| (e, p))).filter(|&at| !value(at).is_nan());
         let min = entries.clone().min_by(|a, b| value(*a).total_cmp(&value(*b))).unwrap_or((0, 0));
         let max = entries.max_by(|a, b| value(*a).total_cmp(&value(*b))).unwrap_or((0, 0));
         for (what, at) in [("min", min), ("max", max)] {

@@ -137,7 +137,8 @@ fn extreme(reader: &ResultsReader, increment: &str, field: &str) -> Result<Extre
     let values = reader.field(increment, field)?;
     let conn = reader.connectivity()?;
     let per_element = values.len() / conn.len().max(1);
-    let (k, &value) = values.iter().enumerate().max_by(|a, b| a.1.total_cmp(b.1)).unwrap_or((0, &f64::NAN));
+    // (a reduced element's spare Gauss slots hold NaN)
+    let (k, &value) = values.iter().enumerate().filter(|v| !v.1.is_nan()).max_by(|a, b| a.1.total_cmp(b.1)).unwrap_or((0, &f64::NAN));
     let element = k / per_element.max(1);
     let (x0, u) = (reader.coordinates()?, reader.displacement(increment)?);
     let corners = &conn[element][..Shape::of(&conn[element]).corners()];

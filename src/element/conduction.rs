@@ -55,8 +55,8 @@ fn gradient(p: &crate::fe::axisymmetric::PointGeometry, t: &[f64; NODES]) -> [f6
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::fe::section::Section;
     use crate::fe::quadrature::Integration;
+    use crate::fe::section::Section;
     use crate::fe::shape::Shape;
 
     /// A curved Q8 off the axis and a T6, both distorted, with their nodal coordinates.

@@ -32,6 +32,11 @@
 //! Theta_q = d theta_q / d u = sum_p Pi_qp (dv/dF)_p G_p.
 //! F components are ordered [F_rR, F_rZ, F_zR, F_zZ, F_tT] (t = hoop).
 //!
+//! The reduced element of .inp decks (CAX8R, CPE8R, CPS8R: `Integration::Reduced`) is the
+//! Q8 with 2 x 2 Gauss points and no projection, as CalculiX computes it: theta = v at each
+//! point, its dependence on F folded into A, so the F-bar term vanishes. Its 4 points fill the
+//! first of the 9 slots; the other 5 weigh nothing and keep zero stress.
+//!
 //! The evaluation is split in two so that the expensive part is done once per iterate: the
 //! residual evaluation may keep the material tangents A, b (and dv/dF) of every point
 //! ([`MaterialTangents`]), and [`solid_tangent`] turns them into K with products that use the

@@ -2,7 +2,8 @@
 //! (its ERESX command, key DEFA): in an element that is wholly elastic, the 3 x 3 values are
 //! fitted by the biquadratic Lagrange polynomial through the Gauss points and evaluated at the
 //! Q8's nodes (a linear or quadratic stress comes back exactly; a T6's 9 values are fitted by
-//! the complete quadratic in least squares, which also returns a quadratic exactly); in an
+//! the complete quadratic in least squares, which also returns a quadratic exactly; a reduced
+//! Q8's 2 x 2 values by the bilinear field through them); in an
 //! element with plastic
 //! strain anywhere, each node takes the value of its nearest Gauss point (copied). Plastic
 //! quantities (the equivalent plastic strain, the plastic strain tensor) are always copied.

@@ -1,6 +1,9 @@
 //! Units and a description of every dataset of a results file, written as its `units` and
 //! `description` attributes so that the file explains itself to any HDF5 reader.
 
+/// Where a Gauss-point dataset's 9 slots of an element are.
+const SLOTS: &str = "the 9 Gauss slots of each element (a Q8's 3 x 3 points, xi fastest; a T6's conical rule; a reduced Q8's 2 x 2 points, xi fastest, in the first 4 and NaN in the rest: /mesh/gauss_points)";
+
 /// (units, description) of dataset `name` in group `group` (an HDF5 path such as
 /// `/increments/000001/contact/fit/pass0`).
 pub fn describe(group: &str, name: &str) -> (&'static str, String) {
@@ -41,11 +44,11 @@ pub fn describe(group: &str, name: &str) -> (&'static str, String) {
         ("perturbations", n) if n.starts_with("mode_") => ("-", "the mode's amplitudes [U_r, U_z, U_t] of each node, largest 1".into()),
         ("perturbations", "stress") => (
             "MPa",
-            "stress amplitudes [s_rr, s_zz, s_tt, s_rz, s_rt, s_zt] at the 9 integration points of each element (a Q8's 3 x 3 Gauss points, xi fastest; a T6's conical rule): the first four x cos n theta, the last two x sin n theta (n = 0: constant); D : strain".into(),
+            format!("stress amplitudes [s_rr, s_zz, s_tt, s_rz, s_rt, s_zt] at {SLOTS}: the first four x cos n theta, the last two x sin n theta (n = 0: constant); D : strain"),
         ),
         ("perturbations", "displacement") => ("mm", "the perturbation's displacement at theta = 0 as a vector (u_r, u_z, u_theta) for ParaView's warp".into()),
         ("heat", "temperature") => ("degC", "the heat step's steady temperature at each node".into()),
-        ("heat", "flux") => ("mW/mm^2", "heat flux q = -k grad T [q_r, q_z] at the Gauss points of each element (3 x 3 in a quadrilateral, 9 in a triangle)".into()),
+        ("heat", "flux") => ("mW/mm^2", format!("heat flux q = -k grad T [q_r, q_z] at {SLOTS}")),
         ("heat", "element_flux") => ("mW/mm^2", "each element's mean heat flux [q_r, q_z, 0] over its Gauss points, a vector for ParaView".into()),
         ("mesh", "coordinates") => ("mm", "r, z of each node".into()),
         ("mesh", "connectivity") => (
@@ -59,6 +62,7 @@ pub fn describe(group: &str, name: &str) -> (&'static str, String) {
         ("mesh", "node_ids") => ("-", "external node numbers (the input's)".into()),
         ("mesh", "element_ids") => ("-", "external element numbers (the input's)".into()),
         ("mesh", "element_rank") => ("-", "MPI rank that assembled the element".into()),
+        ("mesh", "gauss_points") => ("-", "how many of each element's 9 Gauss slots are integration points: 9, or 4 in a reduced Q8 (CAX8R, CPE8R, CPS8R)".into()),
         ("mesh", "nodes") => ("-", "slave nodes of the contact pass (rows of /mesh/coordinates)".into()),
         ("mesh", "areas") => ("mm^2 per radian", "tributary area of each slave node of the contact pass (NaN for a node-based slave: its area is the increment's `area`)".into()),
         (_, "area") => ("mm^2 per radian", "a node-based slave's area: the master face's where each node projects (CalculiX's rule), 0 where none is within reach".into()),
@@ -86,16 +90,16 @@ pub fn describe(group: &str, name: &str) -> (&'static str, String) {
         (_, "contact_sliding") => ("-", "1 where a slave node slides (friction at its Coulomb limit), 0 where it sticks, is open, or is no slave".into()),
         (_, "displacement") if g.ends_with("nodal") => ("mm", "u_r, u_z, 0 at each node (a 3-vector for ParaView)".into()),
         (_, "displacement") => ("mm", "u_r, u_z at each node".into()),
-        (_, "stress") => ("MPa", "Cauchy stress [s_rr, s_zz, s_tt, s_rz] at the 9 integration points of each element (a Q8's 3 x 3 Gauss points, xi fastest; a T6's conical rule)".into()),
+        (_, "stress") => ("MPa", format!("Cauchy stress [s_rr, s_zz, s_tt, s_rz] at {SLOTS}")),
         (_, "von_mises") if g.ends_with("nodal") => {
             ("MPa", "von Mises stress of the nodal stress components (Gauss values carried to the nodes and averaged; see docs/results.md)".into())
         }
-        (_, "von_mises") => ("MPa", "von Mises stress at the 9 integration points of each element".into()),
-        (_, "von_mises_mean") => ("MPa", "element mean of the von Mises stress".into()),
+        (_, "von_mises") => ("MPa", format!("von Mises stress at {SLOTS}")),
+        (_, "von_mises_mean") => ("MPa", "element mean of the von Mises stress over its Gauss points".into()),
         (_, "equivalent_plastic_strain") if g.ends_with("nodal") => {
             ("-", "equivalent plastic strain at the nodes (copied from each element's nearest Gauss point, averaged)".into())
         }
-        (_, "equivalent_plastic_strain") => ("-", "equivalent plastic strain at the 9 integration points of each element".into()),
+        (_, "equivalent_plastic_strain") => ("-", format!("equivalent plastic strain at {SLOTS}")),
         (_, "equivalent_plastic_strain_max") => ("-", "largest equivalent plastic strain of each element".into()),
         (_, "temperature") => ("degC", "temperature at the nodes".into()),
         (_, "contact_pressure") => ("MPa", "contact pressure at the nodes: the largest over the pairs a node is a slave of, 0 elsewhere".into()),

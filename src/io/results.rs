@@ -427,7 +427,15 @@ impl ResultsFile {
         }
         if f.plastic_strain {
             let ep: Vec<[[f64; 1]; QUADRATURE_POINTS]> = local_plastic_strain.iter().map(|e| e.map(|v| [v])).collect();
-            write_field(&g, "equivalent_plastic_strain", &[self.elements, QUADRATURE_POINTS], self.element_slab, &gauss_rows(&ep, used), self.precision, &self.path)?;
+            write_field(
+                &g,
+                "equivalent_plastic_strain",
+                &[self.elements, QUADRATURE_POINTS],
+                self.element_slab,
+                &gauss_rows(&ep, used),
+                self.precision,
+                &self.path,
+            )?;
             let ep_max: Vec<f64> = local_plastic_strain.iter().zip(used).map(|(c, &n)| c[..n].iter().fold(0.0f64, |m, &v| m.max(v))).collect();
             write_field(&g, "equivalent_plastic_strain_max", &[self.elements], self.element_slab, &ep_max, self.precision, &self.path)?;
         }

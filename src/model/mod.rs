@@ -19,8 +19,8 @@ pub use constraint::{Constraint, Term};
 pub use mesh::{Edge, Mesh, NODES_PER_ELEMENT};
 pub use temperature::Temperature;
 
-use crate::error::{Error, Result};
 use crate::element::solid::ElementGeometry;
+use crate::error::{Error, Result};
 use crate::fe::quadrature::Integration;
 use crate::fe::section::Section;
 pub use crate::material::Kinematics;

@@ -57,8 +57,7 @@ pub fn solve(session: &PetscSession, model: &Model, partition: &Partition, step:
     for &e in partition.local_elements() {
         let conn = mesh.elements[e];
         let x: [[f64; 2]; NODES] = conn.map(|n| mesh.coords[n]);
-        let geo = model.element_geometry(e, &x)
-            .map_err(|m| Error::input(format!("heat step '{}': element {}: {m}", step.name, mesh.element_ids[e])))?;
+        let geo = model.element_geometry(e, &x).map_err(|m| Error::input(format!("heat step '{}': element {}: {m}", step.name, mesh.element_ids[e])))?;
         let k = model.materials[model.element_material[e]].conductivity;
         let m = conduction_matrix(&geo, k);
         blocks.push((conn.to_vec(), (0..NODES).flat_map(|j| (0..NODES).map(move |i| m[i][j])).collect()));

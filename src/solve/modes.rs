@@ -69,8 +69,7 @@ fn mass_blocks(model: &Model, partition: &Partition, current: &[[f64; 2]], mode:
         .iter()
         .map(|&e| {
             let conn = model.mesh.elements[e];
-            let geo = model.element_geometry(e, &conn.map(|n| current[n]))
-                .map_err(|m| Error::input(format!("element {}: {m}", model.mesh.element_ids[e])))?;
+            let geo = model.element_geometry(e, &conn.map(|n| current[n])).map_err(|m| Error::input(format!("element {}: {m}", model.mesh.element_ids[e])))?;
             let rho = model.materials[model.element_material[e]].density;
             let (points, weights) = geo.points();
             let size = 3 * NODES;

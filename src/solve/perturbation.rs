@@ -131,8 +131,7 @@ pub(super) fn stiffness_blocks(
     for (k, &e) in partition.local_elements().iter().enumerate() {
         let conn = mesh.elements[e];
         let x: [[f64; 2]; NODES] = conn.map(|n| current[n]);
-        let geo = model.element_geometry(e, &x)
-            .map_err(|m| Error::input(format!("perturbation step '{step}': element {}: {m}", mesh.element_ids[e])))?;
+        let geo = model.element_geometry(e, &x).map_err(|m| Error::input(format!("perturbation step '{step}': element {}: {m}", mesh.element_ids[e])))?;
         let m = &model.materials[model.element_material[e]];
         let j2 = crate::solve::problem::material_kernel(m);
         // points on the yield surface take the elastic-plastic tangent (loading), the others

@@ -221,8 +221,7 @@ impl<'s, 'm> Problem<'s, 'm> {
                 }
             }
             let coords = model.mesh.element_coords(e);
-            let geometry = model.element_geometry(e, &coords)
-                .map_err(|m| Error::input(format!("element {}: {m}", model.mesh.element_ids[e])))?;
+            let geometry = model.element_geometry(e, &coords).map_err(|m| Error::input(format!("element {}: {m}", model.mesh.element_ids[e])))?;
             let mat = &model.materials[model.element_material[e]];
             let roundoff_scale = mat.youngs_modulus * geometry.mean_measure();
             let extent = |c: usize| coords.iter().map(|x| x[c]).fold(f64::MIN, f64::max) - coords.iter().map(|x| x[c]).fold(f64::MAX, f64::min);

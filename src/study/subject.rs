@@ -8,6 +8,8 @@ use crate::model::bellows::{self, BellowsParams};
 use crate::model::{Model, Penalty};
 use crate::report::SECTOR_RADIANS;
 
+// one per study: the variants' sizes do not matter
+#[allow(clippy::large_enum_variant)]
 pub enum Subject {
     Bellows(BellowsParams),
     Deck(Model),

@@ -77,8 +77,9 @@ struct MaterialDef {
     at: Location,
     elastic: Option<(f64, f64)>,
     expansion: f64,
-    /// *DENSITY, t/mm^3 (0 without).
+    /// *DENSITY, t/mm^3 (0 without), and where it was given.
     density: f64,
+    density_at: Option<Location>,
     plastic: Vec<(f64, f64)>,
     plastic_at: Option<Location>,
     /// *CONDUCTIVITY (0 without): heat steps use it.
@@ -244,6 +245,7 @@ fn build(cards: &[Card], source_text: String) -> Result<InpModel> {
                     elastic: None,
                     expansion: 0.0,
                     density: 0.0,
+                    density_at: None,
                     plastic: Vec::new(),
                     plastic_at: None,
                     conductivity: 0.0,
@@ -553,6 +555,13 @@ impl Builder {
         };
         let contacts = self.contact_pairs()?;
         let steps = self.expand_steps(&reference_temperature, &contacts)?;
+        if steps.iter().all(|s| s.body_loads.is_empty()) {
+            for m in &self.materials {
+                if let Some(at) = &m.density_at {
+                    self.notes.push(format!("material {}: *DENSITY ({at}) has no effect: no step loads it (*DLOAD GRAV or CENTRIF)", m.name));
+                }
+            }
+        }
         let contacts = contacts.into_iter().map(|c| c.pair).collect();
         let mut stepping = SteppingControls::default();
         stepping.easy_iterations = self.easy_iterations.unwrap_or(stepping.easy_iterations);
@@ -702,6 +711,28 @@ mod tests {
         // a two-point *PLASTIC table is linear hardening up to its last point
         let h = m.materials[0].plasticity.unwrap();
         assert!((h.yield_stress(0.05) - 350.0).abs() < 1e-9 && h.yield_stress(1.0) == 400.0);
+    }
+
+    /// A density is noted as idle only where no step loads it; the reduced element says what
+    /// it runs as.
+    #[test]
+    fn a_density_is_noted_idle_only_without_a_body_load() {
+        let density = MESH
+            .replace("*Plastic", "*DENSITY\n7.85e-9\n*Plastic")
+            .replace("TYPE=CAX4,", "TYPE=CAX8R,")
+            .replace("1, 1, 2, 3, 4\n2, 2, 5, 6, 3", "1, 1, 2, 3, 4, 7, 8, 9, 10\n2, 2, 5, 6, 3, 11, 12, 13, 8")
+            .replace("6, 14., 2.\n", "6, 14., 2.\n7, 11., 0.\n8, 12., 1.\n9, 11., 2.\n10, 10., 1.\n11, 13., 0.\n12, 14., 1.\n13, 13., 2.\n");
+        let parse_with = |step: &str| parse(&format!("{density}{step}"), Path::new("t.inp")).unwrap_or_else(|e| panic!("{e}"));
+        let idle = parse_with("*STEP\n*STATIC\n*BOUNDARY\nBOTTOM, 2, 2\n*END STEP\n");
+        assert!(idle.notes.iter().any(|n| n.contains("*DENSITY (t.inp:") && n.contains("no step loads it")), "{:?}", idle.notes);
+        assert!(
+            idle.notes.iter().any(|n| n.contains("2 CAX8R elements run as CalculiX's reduced 8-node axisymmetric quadrilateral: 2 x 2 Gauss points")),
+            "{:?}",
+            idle.notes
+        );
+        assert_eq!(idle.model.element_integration, [Integration::Reduced; 2]);
+        let spun = parse_with("*STEP\n*STATIC\n*BOUNDARY\nBOTTOM, 2, 2\n*DLOAD\nA, CENTRIF, 1.e6, 0., 0., 0., 0., 1., 0.\n*END STEP\n");
+        assert!(!spun.notes.iter().any(|n| n.contains("DENSITY")), "{:?}", spun.notes);
     }
 
     #[test]

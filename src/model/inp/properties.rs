@@ -74,7 +74,7 @@ impl Builder {
                 if !(m.density >= 0.0 && m.density.is_finite()) {
                     return Err(card.error(format!("density {} must be >= 0 (t/mm^3)", m.density)));
                 }
-                self.notes.push(format!("material {}: *DENSITY ({}) has no effect in a static analysis", m.name, card.at));
+                m.density_at = Some(card.at.clone());
             }
         }
         Ok(())

@@ -320,9 +320,9 @@ fn checked_name(name: &str) -> Result<&str> {
 
 #[cfg(test)]
 mod tests {
+    use crate::element::body_load::BodyForce;
     use crate::fe::quadrature::Integration;
     use crate::fe::section::Section;
-    use crate::element::body_load::BodyForce;
     use crate::model::Model;
     use std::path::Path;
 

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Writes the CalculiX/Abaqus example decks of tests/data/inp (run from anywhere).
 
-All are axisymmetric CAX8 models in mm, N, MPa, degC, written the way an engineer writes them
+All are axisymmetric CAX8 models (spun_disc CAX8R) in mm, N, MPa, degC, written the way an engineer writes them
 by hand or exports them from a pre-processor: nodes and elements (one in an *INCLUDE file),
 sets, element-face surfaces, materials, contact pairs and steps.
 
@@ -18,6 +18,10 @@ adjusted_fit.inp  a tapered tube (outer r 59.97 at z = 0 to 60.03 at z = 10) in 
                   the bore. Face-to-face penalty contact, elastic, small strain.
 hertz.inp         the tip of a sphere R = 50 pushed 0.05 mm into a block, both elastic steel,
                   face-to-face penalty contact, small strain.
+spun_disc.inp     an annular disc r 5..100, 10 thick, of CalculiX's reduced CAX8R (2 x 2 Gauss points),
+                  five elements across, spun at 1000 rad/s (*DLOAD CENTRIF) with 10 MPa on its
+                  top face and its bottom face held axially: the coarse mesh across the bore's
+                  steep hoop-stress gradient is where reduced and full integration differ.
 small_bellows.inp one smooth convolution of two 0.5 mm plies (r 50..58, 2 x 80 elements each), J2 plasticity with a
                   three-point hardening table, heated to 200 degC with 1 MPa inside (step 1),
                   then compressed 4 mm axially (step 2), NLGEOM, contact between the plies.
@@ -155,6 +159,27 @@ def lame():
                      "*NODE FILE", "U", "*EL FILE", "S",
                      "*END STEP"]
     write("lame.inp", deck)
+
+
+def spun_disc():
+    a, b, h, ni, nj = 5.0, 100.0, 10.0, 5, 1
+    m = Mesh()
+    grid, rows = m.block(ni, nj, lambda I, J: (a + (b - a) * I / (2 * ni), h * J / (2 * nj)))
+    elements = [e for r in rows for e in r]
+    deck = ["*HEADING", "Annular disc of CAX8R spun at 1000 rad/s, 10 MPa on its top face"] + m.node_lines()
+    deck += m.element_lines(elements, "DISC", kind="CAX8R")
+    deck += listing("*NSET, NSET=BOTTOM", side(grid, ni, nj, "bottom"))
+    deck += ["*ELSET, ELSET=TOPS"] + [", ".join(str(e) for e in elements)]
+    deck += STEEL + ["*DENSITY", "7.85e-9", "*SOLID SECTION, ELSET=DISC, MATERIAL=STEEL",
+                     "*BOUNDARY", "BOTTOM, 2, 2",
+                     "*STEP", "*STATIC, DIRECT", "1., 1.",
+                     "*DLOAD", "DISC, CENTRIF, 1.e6, 0., 0., 0., 0., 1., 0.",
+                     "TOPS, P3, 10.",
+                     "*NODE PRINT, NSET=BOTTOM, TOTALS=ONLY", "RF",
+                     "*NODE PRINT, NSET=BOTTOM", "U",
+                     "*NODE FILE", "U", "*EL FILE", "S",
+                     "*END STEP"]
+    write("spun_disc.inp", deck)
 
 
 def fit_mesh(m, gi, ri, go, ro, nj):
@@ -411,3 +436,4 @@ if __name__ == "__main__":
     push_out()
     hertz()
     small_bellows()
+    spun_disc()
