@@ -7,7 +7,7 @@ nodal stresses are the Gauss-point stresses carried to the nodes, computed here 
 the biquadratic fit through the 3 x 3 points in elements where no point has yielded, the
 nearest Gauss point's value in the others (ANSYS's ERESX default; a triangle's 9 points are
 fitted by the complete quadratic in least squares, a reduced Q8's 2 x 2 by the bilinear
-field, its spare slots NaN and never read), averaged over the elements at
+field, a reduced T6's 3 by the linear one, their spare slots NaN and never read), averaged over the elements at
 a node; von Mises from the averaged components (never negative), the equivalent plastic strain
 copied (within the Gauss values' range). Prints one line per check; exits 1 on the first
 failure.
@@ -30,7 +30,7 @@ def fail(message):
 def nodal_from_gauss(conn, gauss, nodes, copied, reduced):
     """Mean over elements of each element's nodal values: the biquadratic fit through the 3 x 3
     Gauss values at the nodes, or (elements where `copied`) the nearest Gauss point's value;
-    the elements where `reduced` use their first 4 slots, the 2 x 2 points."""
+    the elements where `reduced` use their first slots: a Q8's 4 (2 x 2), a T6's 3."""
     g = np.sqrt(0.6)
     pts = np.array([-g, 0.0, g])
     natural = [(-1, -1), (1, -1), (1, 1), (-1, 1), (0, -1), (1, 0), (0, 1), (-1, 0)]
@@ -45,11 +45,15 @@ def nodal_from_gauss(conn, gauss, nodes, copied, reduced):
         nearest[a, 3 * (int(np.sign(eta)) + 1) + int(np.sign(xi)) + 1] = 1.0
     tri_fit, tri_nearest = triangle_recovery()
     reduced_fit, reduced_nearest = reduced_recovery()
+    tri3_fit, tri3_nearest = triangle3_recovery()
     sums = np.zeros(nodes)
     counts = np.zeros(nodes)
     for e in range(conn.shape[0]):
         triangle = conn[e, 6] == conn[e, 0]
-        if reduced[e]:
+        if reduced[e] and triangle:
+            values = (tri3_nearest if copied[e] else tri3_fit) @ gauss[e][:3]
+            nodes_of = conn[e, :6]
+        elif reduced[e]:
             values = (reduced_nearest if copied[e] else reduced_fit) @ gauss[e][:4]
             nodes_of = conn[e]
         elif triangle:
@@ -75,6 +79,21 @@ def reduced_recovery():
     nearest = np.zeros((8, 4))
     for a, (xi, eta) in enumerate(natural):
         d = np.hypot(pts[:, 0] - xi, pts[:, 1] - eta)
+        ties = d <= d.min() * (1.0 + 1e-12)
+        nearest[a, ties] = 1.0 / ties.sum()
+    return fit, nearest
+
+
+def triangle3_recovery():
+    """The 6 x 3 matrices of a T6 on CalculiX's 3 points (1/6, 1/6), (2/3, 1/6), (1/6, 2/3):
+    the linear field through them at the nodes, and each node's nearest point (ties averaged)."""
+    pts = np.array([(1 / 6, 1 / 6), (2 / 3, 1 / 6), (1 / 6, 2 / 3)])
+    natural = [(0, 0), (1, 0), (0, 1), (0.5, 0), (0.5, 0.5), (0, 0.5)]
+    basis = np.array([[1.0, x, y] for x, y in pts])
+    fit = np.array([[1.0, x, y] for x, y in natural]) @ np.linalg.inv(basis)
+    nearest = np.zeros((6, 3))
+    for a, (x, y) in enumerate(natural):
+        d = np.hypot(pts[:, 0] - x, pts[:, 1] - y)
         ties = d <= d.min() * (1.0 + 1e-12)
         nearest[a, ties] = 1.0 / ties.sum()
     return fit, nearest
@@ -139,10 +158,12 @@ def main():
             if field in inc and not np.array_equal(cell_data[field][0], inc[field][:]):
                 fail(f"step {k}: {field} differs")
     stress = inc["stress"][:].astype(float) if "stress" in inc else np.zeros((0, 9, 4))
-    # a reduced element (4 Gauss points) holds NaN in its last 5 slots
-    reduced = h5["mesh/gauss_points"][:] == 4 if "gauss_points" in h5["mesh"] else np.zeros(conn.shape[0], dtype=bool)
-    if "stress" in inc and not (np.all(np.isnan(stress[reduced, 4:])) and not np.any(np.isnan(stress[~reduced])) and not np.any(np.isnan(stress[:, :4]))):
-        fail("last step: the stress is NaN elsewhere than in the reduced elements' 5 spare slots")
+    # a reduced element (4 or 3 Gauss points) holds NaN in its spare slots, and only there
+    used = h5["mesh/gauss_points"][:] if "gauss_points" in h5["mesh"] else np.full(conn.shape[0], 9)
+    reduced = used < 9
+    spare = np.arange(9)[None, :] >= used[:, None]
+    if "stress" in inc and not np.array_equal(np.isnan(stress).any(axis=2), spare):
+        fail("last step: the stress is NaN elsewhere than in the reduced elements' spare slots")
     # 32-bit fields ([output] precision = "single") round each value to 6e-8 of itself
     rounding = 1e-12 if inc["nodal/von_mises"].dtype == np.float64 else 3e-7
     ep = inc["equivalent_plastic_strain"][:] if "equivalent_plastic_strain" in inc else np.zeros((conn.shape[0], 9))

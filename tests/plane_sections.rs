@@ -323,7 +323,11 @@ fn a_plane_stress_strip_from_an_inp_deck_stretches_as_hookes_law_says() {
         assert!((reaction + 100.0 * 2.0 * t).abs() < 1e-8, "{kind}: reaction {reaction} vs {}", -100.0 * 2.0 * t);
         assert!(run.stdout().contains("note: a plane model: forces and reactions are those of the sections' thickness"), "{kind}:\n{}", run.stdout());
         let section = if kind == "CPS8" { "plane-stress" } else { "plane-strain" };
-        let element = if kind == "CPS8" { format!("slideline's 8-node {section} quadrilateral") } else { format!("CalculiX's reduced 8-node {section} quadrilateral: 2 x 2 Gauss points") };
+        let element = if kind == "CPS8" {
+            format!("slideline's 8-node {section} quadrilateral")
+        } else {
+            format!("CalculiX's reduced 8-node {section} quadrilateral: 2 x 2 Gauss points")
+        };
         assert!(run.stdout().contains(&format!("5 {kind} elements run as {element}")), "{}", run.stdout());
     }
 }

@@ -32,10 +32,10 @@
 //! Theta_q = d theta_q / d u = sum_p Pi_qp (dv/dF)_p G_p.
 //! F components are ordered [F_rR, F_rZ, F_zR, F_zZ, F_tT] (t = hoop).
 //!
-//! The reduced element of .inp decks (CAX8R, CPE8R, CPS8R: `Integration::Reduced`) is the
-//! Q8 with 2 x 2 Gauss points and no projection, as CalculiX computes it: theta = v at each
-//! point, its dependence on F folded into A, so the F-bar term vanishes. Its 4 points fill the
-//! first of the 9 slots; the other 5 weigh nothing and keep zero stress.
+//! The reduced rules of .inp decks (`Integration::Reduced`: CAX8R's 2 x 2 Gauss points, CAX6's
+//! 3) have no projection, as CalculiX and Abaqus compute those elements: theta = v at each
+//! point, its dependence on F folded into A, so the F-bar term vanishes. Their points fill the
+//! first of the 9 slots; the others weigh nothing and keep zero stress.
 //!
 //! The evaluation is split in two so that the expensive part is done once per iterate: the
 //! residual evaluation may keep the material tangents A, b (and dv/dF) of every point
@@ -105,6 +105,8 @@ pub type MaterialTangents = [PointTangent; QUADRATURE_POINTS];
 pub struct ElementGeometry {
     section: Section,
     integration: Integration,
+    /// How many of the slots are integration points.
+    used: usize,
     points: [PointGeometry; QUADRATURE_POINTS],
     gradients: [GradientMap; QUADRATURE_POINTS],
     /// Reference volume of each Gauss point: w m det J, m the section's measure (R per radian
@@ -121,9 +123,6 @@ impl ElementGeometry {
     /// The geometry of an element of shape `shape`, integrated as `integration`, of section
     /// `section`, with nodal coordinates `x`.
     pub fn new(shape: Shape, integration: Integration, section: Section, x: &[[f64; 2]; NODES]) -> Result<Self, String> {
-        if shape == Shape::Tri6 && integration == Integration::Reduced {
-            return Err("a 6-node triangle has no reduced integration".into());
-        }
         let rule = shape.rule_for(integration);
         let mut points = [map_point(shape, x, rule[0].0)?; QUADRATURE_POINTS];
         let mut weights = [0.0; QUADRATURE_POINTS];
@@ -139,7 +138,7 @@ impl ElementGeometry {
         let gradients = points.map(|g| GradientMap::new(&g, section));
         if integration == Integration::Reduced {
             let (basis, coef) = ([[0.0; 3]; QUADRATURE_POINTS], [[0.0; 3]; QUADRATURE_POINTS]);
-            return Ok(ElementGeometry { section, integration, points, gradients, weights, basis, coef });
+            return Ok(ElementGeometry { section, integration, used: shape.points(integration), points, gradients, weights, basis, coef });
         }
         let vol: f64 = weights.iter().sum();
         // L2 projection (weighted by the reference volume) onto {1, R - Rc, Z - Zc}.
@@ -152,12 +151,12 @@ impl ElementGeometry {
         let m_inv = m.try_inverse().ok_or_else(|| "degenerate element: singular volume projection".to_string())?;
         let basis: [[f64; 3]; QUADRATURE_POINTS] = std::array::from_fn(|q| basis_vector(q).into());
         let coef: [[f64; 3]; QUADRATURE_POINTS] = std::array::from_fn(|p| (m_inv * basis_vector(p) * weights[p]).into());
-        Ok(ElementGeometry { section, integration, points, gradients, weights, basis, coef })
+        Ok(ElementGeometry { section, integration, used: shape.points(integration), points, gradients, weights, basis, coef })
     }
 
-    /// How many of the 9 Gauss slots are integration points (the first 9 or 4).
+    /// How many of the 9 Gauss slots are integration points (the first 9, 4 or 3).
     pub fn points_used(&self) -> usize {
-        self.integration.points()
+        self.used
     }
 
     /// The shape functions and gradients at each Gauss point, and its reference volume
@@ -520,6 +519,8 @@ mod tests {
             (Shape::Quad8, reduced, Section::Axisymmetric, element()),
             (Shape::Quad8, reduced, strain, element()),
             (Shape::Quad8, reduced, stress, element()),
+            (Shape::Tri6, reduced, Section::Axisymmetric, triangle()),
+            (Shape::Tri6, reduced, stress, triangle()),
         ];
         for (shape, integration, section, x) in cases {
             let geometry = ElementGeometry::new(shape, integration, section, &x).unwrap();
@@ -672,7 +673,6 @@ mod tests {
         };
         assert_eq!(zero_modes(Integration::Full), 3);
         assert_eq!(zero_modes(Integration::Reduced), 4);
-        assert!(ElementGeometry::new(Shape::Tri6, Integration::Reduced, section, &x).unwrap_err().contains("no reduced integration"));
     }
 
     #[test]

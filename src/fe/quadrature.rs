@@ -19,24 +19,15 @@ pub fn square_3x3() -> [([f64; 2], f64); 9] {
 /// 2-point Gauss-Legendre abscissa (weights 1; exact for degree 3).
 pub const GAUSS2: f64 = 0.577_350_269_189_625_8;
 
-/// How an element is integrated. Full: a Q8's 3 x 3 Gauss points, a T6's 9-point rule.
-/// Reduced, a Q8 only: 2 x 2 Gauss points and no volumetric treatment, CalculiX's and Abaqus's
-/// CAX8R/CPE8R/CPS8R, read so that decks written for those elements give their answers.
+/// How an element is integrated. Full: a Q8's 3 x 3 Gauss points, a T6's 9-point rule, with
+/// F-bar. Reduced: CalculiX's and Abaqus's rules with no volumetric treatment, a Q8's 2 x 2
+/// points (their CAX8R/CPE8R/CPS8R) and a T6's 3 points (their CAX6/CPE6/CPS6), read so that
+/// decks written for those elements give their answers.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum Integration {
     #[default]
     Full,
     Reduced,
-}
-
-impl Integration {
-    /// How many of an element's 9 Gauss slots are integration points: 9, or the first 4.
-    pub const fn points(self) -> usize {
-        match self {
-            Integration::Full => 9,
-            Integration::Reduced => 4,
-        }
-    }
 }
 
 /// The 2 x 2 Gauss rule on the reference square in the first 4 of 9 slots (xi first), the
@@ -47,6 +38,18 @@ pub fn square_2x2() -> [([f64; 2], f64); 9] {
     for (q, slot) in out.iter_mut().take(4).enumerate() {
         let sign = |k: usize| if k == 0 { -GAUSS2 } else { GAUSS2 };
         *slot = ([sign(q % 2), sign(q / 2)], 1.0);
+    }
+    out
+}
+
+/// The 3-point rule on the reference triangle (points (1/6, 1/6), (2/3, 1/6), (1/6, 2/3),
+/// weights 1/6; exact for degree 2), CalculiX's for its 6-node triangles (gauss3d8's triangle
+/// points) and Abaqus's, in the first 3 of 9 slots, the other 6 weightless at the centroid.
+pub fn triangle_3() -> [([f64; 2], f64); 9] {
+    let mut out = [([1.0 / 3.0; 2], 0.0); 9];
+    let (a, b) = (1.0 / 6.0, 2.0 / 3.0);
+    for (slot, p) in out.iter_mut().zip([[a, a], [b, a], [a, b]]) {
+        *slot = (p, 1.0 / 6.0);
     }
     out
 }
@@ -104,7 +107,22 @@ mod tests {
         }
         let q4: f64 = rule.iter().map(|(p, w)| w * p[0].powi(4)).sum();
         assert!((q4 - 0.8).abs() > 0.1, "degree 4 is not exact: {q4}");
-        assert_eq!((Integration::Full.points(), Integration::Reduced.points()), (9, 4));
+    }
+
+    #[test]
+    fn the_three_point_triangle_rule_is_exact_to_degree_2_only() {
+        let factorial = |n: u32| (1..=n).product::<u32>() as f64;
+        let rule = triangle_3();
+        assert!(rule[3..].iter().all(|(_, w)| *w == 0.0));
+        for a in 0..=2u32 {
+            for b in 0..=(2 - a) {
+                let exact = factorial(a) * factorial(b) / factorial(a + b + 2);
+                let q: f64 = rule.iter().map(|(p, w)| w * p[0].powi(a as i32) * p[1].powi(b as i32)).sum();
+                assert!((q - exact).abs() < 1e-15, "xi^{a} eta^{b}: {q} vs {exact}");
+            }
+        }
+        let q3: f64 = rule.iter().map(|(p, w)| w * p[0].powi(3)).sum();
+        assert!((q3 - 1.0 / 20.0).abs() > 1e-4, "degree 3 is not exact: {q3}");
     }
 
     #[test]

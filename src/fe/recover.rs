@@ -70,7 +70,19 @@ pub fn gauss_to_nodes(shape: Shape, integration: Integration) -> [[f64; 9]; 8] {
             debug_assert_eq!(square_3x3()[1].0, [GAUSS3[1].0, GAUSS3[0].0], "square_3x3 runs over xi first");
             std::array::from_fn(|a| std::array::from_fn(|q| weight(a, q)))
         }
-        (Shape::Tri6, _) => {
+        (Shape::Tri6, Integration::Reduced) => {
+            // the linear field through the 3 points: in area coordinates, each point's value
+            // weighs by the linear function that is 1 there and 0 at the other two
+            let rule = Shape::Tri6.rule_for(Integration::Reduced);
+            let m = nalgebra::Matrix3::from_fn(|q, k| [1.0, rule[q].0[0], rule[q].0[1]][k]);
+            let inverse = m.try_inverse().unwrap_or_else(nalgebra::Matrix3::zeros);
+            let nodes = Shape::Tri6.reference_nodes();
+            std::array::from_fn(|n| {
+                let row = nalgebra::RowVector3::new(1.0, nodes[n][0], nodes[n][1]) * inverse;
+                std::array::from_fn(|q| if q < 3 { row[q] } else { 0.0 })
+            })
+        }
+        (Shape::Tri6, Integration::Full) => {
             // least-squares fit of {1, xi, eta, xi^2, xi eta, eta^2} to the 9 values
             let monomials = |p: [f64; 2]| SVector::<f64, 6>::from([1.0, p[0], p[1], p[0] * p[0], p[0] * p[1], p[1] * p[1]]);
             let rule = Shape::Tri6.rule();
@@ -92,7 +104,7 @@ pub fn gauss_to_nodes(shape: Shape, integration: Integration) -> [[f64; 9]; 8] {
 /// middle of that side.
 pub fn nearest_gauss_points(shape: Shape, integration: Integration) -> [[f64; 9]; 8] {
     let (points, nodes) = (shape.rule_for(integration), shape.reference_nodes());
-    let used = if shape == Shape::Quad8 { integration.points() } else { 9 };
+    let used = shape.points(integration);
     let distance = |a: [f64; 2], b: [f64; 2]| (a[0] - b[0]).hypot(a[1] - b[1]);
     std::array::from_fn(|a| {
         let nearest = (0..used).map(|q| distance(nodes[a], points[q].0)).fold(f64::INFINITY, f64::min);
@@ -102,13 +114,14 @@ pub fn nearest_gauss_points(shape: Shape, integration: Integration) -> [[f64; 9]
 }
 
 /// The element kinds, in the order of [`Recovery`]'s tables.
-const KINDS: [(Shape, Integration); 3] = [(Shape::Quad8, Integration::Full), (Shape::Tri6, Integration::Full), (Shape::Quad8, Integration::Reduced)];
+const KINDS: [(Shape, Integration); 4] =
+    [(Shape::Quad8, Integration::Full), (Shape::Tri6, Integration::Full), (Shape::Quad8, Integration::Reduced), (Shape::Tri6, Integration::Reduced)];
 
 /// Carries Gauss values to an element's nodes, for each element kind.
 #[derive(Clone, Debug)]
 pub struct Recovery {
-    extrapolate: [[[f64; 9]; 8]; 3],
-    copy: [[[f64; 9]; 8]; 3],
+    extrapolate: [[[f64; 9]; 8]; 4],
+    copy: [[[f64; 9]; 8]; 4],
 }
 
 impl Default for Recovery {
@@ -122,7 +135,6 @@ impl Recovery {
     /// `integration` (a T6's unused slots repeat its first node's) of the `C` quantities given
     /// at its Gauss slots (a reduced element's weightless ones are not read).
     pub fn element_nodal<const C: usize>(&self, shape: Shape, integration: Integration, rule: Rule, gauss: &[[f64; C]; 9]) -> [[f64; C]; 8] {
-        let integration = if shape == Shape::Tri6 { Integration::Full } else { integration };
         let k = KINDS.iter().position(|&kind| kind == (shape, integration)).unwrap_or(0);
         let m = match rule {
             Rule::Extrapolate => &self.extrapolate[k],
@@ -227,6 +239,22 @@ mod tests {
         let gauss: [[f64; 1]; 9] = std::array::from_fn(|q| if q < 4 { [q as f64] } else { [f64::NAN] });
         let copied = r.element_nodal(Shape::Quad8, Integration::Reduced, Rule::Copy, &gauss);
         assert_eq!(copied.map(|v| v[0]), [0.0, 1.0, 3.0, 2.0, 0.5, 2.0, 2.5, 1.0]);
+    }
+
+    #[test]
+    fn a_three_point_triangle_carries_a_linear_field_exactly() {
+        let f = |p: [f64; 2]| 3.0 + 2.0 * p[0] - 5.0 * p[1];
+        let rule = Shape::Tri6.rule_for(Integration::Reduced);
+        let gauss: [[f64; 1]; 9] = std::array::from_fn(|q| if q < 3 { [f(rule[q].0)] } else { [f64::NAN] });
+        let r = Recovery::default();
+        let nodal = r.element_nodal(Shape::Tri6, Integration::Reduced, Rule::Extrapolate, &gauss);
+        for (a, node) in Shape::Tri6.reference_nodes().iter().enumerate() {
+            assert!((nodal[a][0] - f(*node)).abs() < 1e-12, "node {a}: {} vs {}", nodal[a][0], f(*node));
+        }
+        // copied: corners their own point, mid-side nodes 3 and 5 the point beside them, node
+        // 4 (between points 1 and 2) their mean
+        let copied = r.element_nodal(Shape::Tri6, Integration::Reduced, Rule::Copy, &std::array::from_fn(|q| if q < 3 { [q as f64] } else { [f64::NAN] }));
+        assert_eq!(copied.map(|v| v[0])[..6], [0.0, 1.0, 2.0, 1.0, 1.5, 2.0]);
     }
 
     #[test]

@@ -16,7 +16,7 @@
 //! back from the slots; code that walks an element's nodes for anything but an interpolation
 //! (counts, outlines, output) takes `Shape::nodes` of them.
 
-use super::quadrature::{square_2x2, square_3x3, triangle_9, Integration};
+use super::quadrature::{square_2x2, square_3x3, triangle_3, triangle_9, Integration};
 
 /// An element's shape.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -94,12 +94,22 @@ impl Shape {
     }
 
     /// The rule of an element of this shape integrated as `integration`: the full rule, or
-    /// the Q8's 2 x 2 points in 9 slots (`square_2x2`). A T6 is always integrated fully (no
-    /// reduced triangle is read: CalculiX's CAX6 has none).
+    /// the reduced one in the first of the 9 slots (a Q8's 2 x 2 points, a T6's 3).
     pub fn rule_for(self, integration: Integration) -> [([f64; 2], f64); 9] {
         match (self, integration) {
+            (_, Integration::Full) => self.rule(),
             (Shape::Quad8, Integration::Reduced) => square_2x2(),
-            _ => self.rule(),
+            (Shape::Tri6, Integration::Reduced) => triangle_3(),
+        }
+    }
+
+    /// How many of the 9 Gauss slots of an element of this shape integrated as
+    /// `integration` are integration points: 9, a reduced Q8's 4, a reduced T6's 3.
+    pub const fn points(self, integration: Integration) -> usize {
+        match (self, integration) {
+            (_, Integration::Full) => 9,
+            (Shape::Quad8, Integration::Reduced) => 4,
+            (Shape::Tri6, Integration::Reduced) => 3,
         }
     }
 

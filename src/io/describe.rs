@@ -2,7 +2,7 @@
 //! `description` attributes so that the file explains itself to any HDF5 reader.
 
 /// Where a Gauss-point dataset's 9 slots of an element are.
-const SLOTS: &str = "the 9 Gauss slots of each element (a Q8's 3 x 3 points, xi fastest; a T6's conical rule; a reduced Q8's 2 x 2 points, xi fastest, in the first 4 and NaN in the rest: /mesh/gauss_points)";
+const SLOTS: &str = "the 9 Gauss slots of each element (a Q8's 3 x 3 points, xi fastest; a T6's conical rule; a reduced Q8's 2 x 2 points, xi fastest, or a CAX6's 3 points, in the first slots and NaN in the rest: /mesh/gauss_points)";
 
 /// (units, description) of dataset `name` in group `group` (an HDF5 path such as
 /// `/increments/000001/contact/fit/pass0`).
@@ -62,7 +62,7 @@ pub fn describe(group: &str, name: &str) -> (&'static str, String) {
         ("mesh", "node_ids") => ("-", "external node numbers (the input's)".into()),
         ("mesh", "element_ids") => ("-", "external element numbers (the input's)".into()),
         ("mesh", "element_rank") => ("-", "MPI rank that assembled the element".into()),
-        ("mesh", "gauss_points") => ("-", "how many of each element's 9 Gauss slots are integration points: 9, or 4 in a reduced Q8 (CAX8R, CPE8R, CPS8R)".into()),
+        ("mesh", "gauss_points") => ("-", "how many of each element's 9 Gauss slots are integration points: 9, or 4 in a reduced Q8 (CAX8R, CPE8R, CPS8R), 3 in an .inp deck's T6 (CAX6, CPE6, CPS6)".into()),
         ("mesh", "nodes") => ("-", "slave nodes of the contact pass (rows of /mesh/coordinates)".into()),
         ("mesh", "areas") => ("mm^2 per radian", "tributary area of each slave node of the contact pass (NaN for a node-based slave: its area is the increment's `area`)".into()),
         (_, "area") => ("mm^2 per radian", "a node-based slave's area: the master face's where each node projects (CalculiX's rule), 0 where none is within reach".into()),

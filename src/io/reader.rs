@@ -164,8 +164,8 @@ impl ResultsReader {
             .enumerate()
             .map(|(e, &n)| match n {
                 9 => Ok(Integration::Full),
-                4 => Ok(Integration::Reduced),
-                _ => Err(Error::input(format!("{}: mesh/gauss_points gives element row {e} {n} points (9 or 4)", self.path.display()))),
+                4 | 3 => Ok(Integration::Reduced),
+                _ => Err(Error::input(format!("{}: mesh/gauss_points gives element row {e} {n} points (9, 4 or 3)", self.path.display()))),
             })
             .collect()
     }

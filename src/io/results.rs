@@ -185,7 +185,7 @@ pub struct ResultsFile {
     axisymmetric: bool,
     nodal: NodalWriter,
     /// How many of each local element's Gauss slots are integration points (9, or a reduced
-    /// Q8's 4): the datasets hold NaN in the others.
+    /// Q8's 4, a reduced T6's 3): the datasets hold NaN in the others.
     pub(super) gauss_points: Vec<usize>,
     /// The fields written beside the displacement.
     fields: OutputFields,
@@ -275,7 +275,7 @@ impl ResultsFile {
         write_rows(&g, "element_ids", &[ne], element_slab, &ids, path)?;
         let ranks: Vec<u32> = local.iter().map(|&e| partition.element_rank[e] as u32).collect();
         write_rows(&g, "element_rank", &[ne], element_slab, &ranks, path)?;
-        let gauss_points: Vec<usize> = local.iter().map(|&e| model.element_integration[e].points()).collect();
+        let gauss_points: Vec<usize> = local.iter().map(|&e| model.mesh.shape(e).points(model.element_integration[e])).collect();
         let counts: Vec<u32> = gauss_points.iter().map(|&n| n as u32).collect();
         write_rows(&g, "gauss_points", &[ne], element_slab, &counts, path)?;
         // Sets are small and identical on every rank: rank 0 writes them.

@@ -82,7 +82,7 @@ impl Builder {
         };
         // CalculiX's and Abaqus's CAX8R integrate 2 x 2; a CAX4R, read as a Q8, is not that
         // element (one point with hourglass control) whichever way it is integrated
-        let integration = if kind.ends_with("8R") { Integration::Reduced } else { Integration::Full };
+        let integration = if kind.ends_with("8R") || kind.ends_with('6') { Integration::Reduced } else { Integration::Full };
         let corners_only = per_element == shape.corners();
         // an element's node list may continue on following lines
         let mut pending: Vec<(String, Location)> = Vec::new();

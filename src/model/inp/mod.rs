@@ -612,7 +612,7 @@ fn element_note(kind: &str) -> String {
     match suffix {
         "8" => format!("slideline's 8-node {section} quadrilateral (3 x 3 Gauss points, {volumetric})"),
         "8R" => format!("CalculiX's reduced 8-node {section} quadrilateral: 2 x 2 Gauss points, no F-bar (as ccx; a single element has one zero-energy mode, which its neighbours restrain)"),
-        "6" => format!("slideline's 6-node {section} triangle (9 Gauss points, {volumetric})"),
+        "6" => format!("CalculiX's 6-node {section} triangle: 3 Gauss points, no F-bar (as ccx and Abaqus)"),
         "3" => format!("{section} 6-node triangles with mid-side nodes added at the middle of each straight edge (quadratic displacements, 9 Gauss points, {volumetric})"),
         _ => format!("{section} 8-node quadrilaterals with mid-side nodes added at the middle of each straight edge (quadratic displacements, 3 x 3 Gauss points, {volumetric})"),
     }

@@ -475,7 +475,7 @@ boundary = [ { set = "a_bottom", uz = 0.0 }, { set = "b_bottom", uz = 0.0 } ]
             *SOLID SECTION,ELSET=A,MATERIAL=S\n*SOLID SECTION,ELSET=B,MATERIAL=S\n2.5\n*SOLID SECTION,ELSET=C,MATERIAL=S\n4.\n\
             *BOUNDARY\n1,1,2\n21,1,2\n*STEP\n*STATIC\n*END STEP\n";
         let model = crate::model::inp::parse(deck, Path::new("types.inp")).unwrap().model;
-        assert_eq!(model.element_integration, [Integration::Reduced, Integration::Full, Integration::Full]);
+        assert_eq!(model.element_integration, [Integration::Reduced, Integration::Full, Integration::Reduced]);
         let text = super::to_inp(&model, "types").unwrap();
         for card in ["TYPE=CAX8R", "TYPE=CPS8,", "TYPE=CPE6,"] {
             assert!(text.contains(card), "{card}: {text}");
