@@ -498,6 +498,11 @@ mod tests {
         worst
     }
 
+    /// Small-strain steel with no temperature change and a fresh history, on `geometry`.
+    fn small_strain_input<'a>(geometry: &'a ElementGeometry, committed: &'a [PointState; 9]) -> SolidInput<'a> {
+        SolidInput { geometry, material: &STEEL, kinematics: Kinematics::Small, temperature_change: [0.0; NODES], committed, surface: SurfaceBranch::Elastic }
+    }
+
     /// A curved 6-node triangle in its 8 slots (the last two at its first node).
     fn triangle() -> [[f64; 2]; 8] {
         let x = [[10.0, 0.0], [12.5, 0.3], [10.4, 2.2], [11.3, 0.05], [11.5, 1.35], [10.1, 1.1]];
@@ -612,14 +617,7 @@ mod tests {
             (Section::PlaneStrain { thickness: 3.0 }, 0.0, [(lambda + 2.0 * g) * e, lambda * e, lambda * e], 1.0),
         ] {
             let geometry = ElementGeometry::new(Shape::Quad8, Integration::Full, section, &x).unwrap();
-            let input = SolidInput {
-                geometry: &geometry,
-                material: &STEEL,
-                kinematics: Kinematics::Small,
-                temperature_change: [0.0; NODES],
-                committed: &committed,
-                surface: SurfaceBranch::Elastic,
-            };
+            let input = small_strain_input(&geometry, &committed);
             let u: [[f64; 2]; 8] = std::array::from_fn(|a| [e * x[a][0], v * x[a][1]]);
             let out = compute_solid(&input, &u, None).unwrap();
             for q in 0..9 {
@@ -650,14 +648,7 @@ mod tests {
         let section = Section::PlaneStrain { thickness: 1.0 };
         let zero_modes = |integration: Integration| {
             let geometry = ElementGeometry::new(Shape::Quad8, integration, section, &x).unwrap();
-            let input = SolidInput {
-                geometry: &geometry,
-                material: &STEEL,
-                kinematics: Kinematics::Small,
-                temperature_change: [0.0; NODES],
-                committed: &committed,
-                surface: SurfaceBranch::Elastic,
-            };
+            let input = small_strain_input(&geometry, &committed);
             let mut tangents = MaterialTangents::default();
             compute_solid(&input, &[[0.0; 2]; NODES], Some(&mut tangents)).unwrap();
             let k = solid_tangent(&geometry, &tangents);
