@@ -249,6 +249,13 @@ impl Builder {
                 for d in &card.data {
                     nodes.extend(self.node_items(d, "SURFACE", 0)?);
                 }
+                // Abaqus's optional area beside each node: CalculiX does not read it either
+                if let Some(d) = card.data.iter().find(|d| d.fields.iter().skip(1).any(|f| !f.is_empty())) {
+                    self.notes.push(format!(
+                        "surface {name}: the area given beside a node ({}) is not used: a node-based slave bears with the area of the master face it meets (CalculiX's rule)",
+                        d.at
+                    ));
+                }
                 // the free faces whose two corners belong to the set (CAX4 faces have no mid-side node in it)
                 edges.extend(self.mesh.free_edges().into_iter().filter(|&e| {
                     let [a, b, _] = self.mesh.edge_nodes(e);

@@ -775,6 +775,10 @@ mod tests {
         let note = read.notes.iter().find(|n| n.contains("surface UPPER")).unwrap();
         assert!(note.contains("(1 of its nodes, 2, lie on none of them)"), "{note}");
         assert!(note.contains("each of its 4 nodes bears on the master with the area of the master face it meets"), "{note}");
+        assert!(!read.notes.iter().any(|n| n.contains("area given beside")), "{:?}", read.notes);
+        // Abaqus's area beside a node is not read, and the note says so
+        let read = self::read(&deck.replace("TOP\n2\n", "TOP\n2, 0.5\n"));
+        assert!(read.notes.iter().any(|n| n.contains("surface UPPER: the area given beside a node (t.inp:") && n.contains("is not used")), "{:?}", read.notes);
     }
 
     #[test]
