@@ -208,7 +208,7 @@ pub fn field(r: &ResultsReader, name: &str, number: usize) -> Result<String> {
         match (points, name) {
             (1, _) => String::new(),
             (_, "element_nodal_stress") => format!(" ({points} nodes each)"),
-            _ if reduced => format!(" ({points} Gauss slots each, 4 of them points in a reduced element)"),
+            _ if reduced => format!(" ({points} Gauss slots each; a reduced element uses the first 4, a CAX6 the first 3)"),
             _ => format!(" ({points} Gauss points each)"),
         }
     );
