@@ -67,6 +67,16 @@ def nodal_from_gauss(conn, gauss, nodes, copied, reduced):
     return sums / counts
 
 
+def nearest_points(natural, pts):
+    """Row a: 1 at the point nearest node `natural[a]`, or the mean of those equally near."""
+    nearest = np.zeros((len(natural), len(pts)))
+    for a, (x, y) in enumerate(natural):
+        d = np.hypot(pts[:, 0] - x, pts[:, 1] - y)
+        ties = d <= d.min() * (1.0 + 1e-12)
+        nearest[a, ties] = 1.0 / ties.sum()
+    return nearest
+
+
 def reduced_recovery():
     """The 8 x 4 matrices of a reduced Q8, its 2 x 2 Gauss points at +-1/sqrt(3) (q = 2 j + i):
     the bilinear field through them at the nodes, and each node's nearest point (a mid-side
@@ -76,12 +86,7 @@ def reduced_recovery():
     natural = [(-1, -1), (1, -1), (1, 1), (-1, 1), (0, -1), (1, 0), (0, 1), (-1, 0)]
     lag = lambda k, x: 0.5 * (1.0 + (x if k == 1 else -x) / g)
     fit = np.array([[lag(q % 2, xi) * lag(q // 2, eta) for q in range(4)] for xi, eta in natural])
-    nearest = np.zeros((8, 4))
-    for a, (xi, eta) in enumerate(natural):
-        d = np.hypot(pts[:, 0] - xi, pts[:, 1] - eta)
-        ties = d <= d.min() * (1.0 + 1e-12)
-        nearest[a, ties] = 1.0 / ties.sum()
-    return fit, nearest
+    return fit, nearest_points(natural, pts)
 
 
 def triangle3_recovery():
@@ -91,12 +96,7 @@ def triangle3_recovery():
     natural = [(0, 0), (1, 0), (0, 1), (0.5, 0), (0.5, 0.5), (0, 0.5)]
     basis = np.array([[1.0, x, y] for x, y in pts])
     fit = np.array([[1.0, x, y] for x, y in natural]) @ np.linalg.inv(basis)
-    nearest = np.zeros((6, 3))
-    for a, (x, y) in enumerate(natural):
-        d = np.hypot(pts[:, 0] - x, pts[:, 1] - y)
-        ties = d <= d.min() * (1.0 + 1e-12)
-        nearest[a, ties] = 1.0 / ties.sum()
-    return fit, nearest
+    return fit, nearest_points(natural, pts)
 
 
 def triangle_recovery():
