@@ -119,6 +119,25 @@ pub struct ElementGeometry {
     coef: [[f64; 3]; QUADRATURE_POINTS],
 }
 
+/// The (basis, coef) of [`ElementGeometry`]'s volume projection.
+type Projection = ([[f64; 3]; QUADRATURE_POINTS], [[f64; 3]; QUADRATURE_POINTS]);
+
+/// The L2 projection (weighted by the points' reference volumes `weights`) onto
+/// {1, R - Rc, Z - Zc}, the points at `pos`, through its rank-3 basis.
+fn volume_projection(weights: &[f64; QUADRATURE_POINTS], pos: &[[f64; 2]; QUADRATURE_POINTS]) -> Result<Projection, String> {
+    let vol: f64 = weights.iter().sum();
+    let centre = [0, 1].map(|i| (0..QUADRATURE_POINTS).map(|q| weights[q] * pos[q][i]).sum::<f64>() / vol);
+    let basis_vector = |q: usize| Vector3::new(1.0, pos[q][0] - centre[0], pos[q][1] - centre[1]);
+    let mut m = Matrix3::zeros();
+    for q in 0..QUADRATURE_POINTS {
+        m += basis_vector(q) * basis_vector(q).transpose() * weights[q];
+    }
+    let m_inv = m.try_inverse().ok_or_else(|| "degenerate element: singular volume projection".to_string())?;
+    let basis = std::array::from_fn(|q| basis_vector(q).into());
+    let coef = std::array::from_fn(|p| (m_inv * basis_vector(p) * weights[p]).into());
+    Ok((basis, coef))
+}
+
 impl ElementGeometry {
     /// The geometry of an element of shape `shape`, integrated as `integration`, of section
     /// `section`, with nodal coordinates `x`.
@@ -136,21 +155,10 @@ impl ElementGeometry {
             pos[q] = [points[q].r, (0..NODES).map(|a| points[q].n[a] * x[a][1]).sum()];
         }
         let gradients = points.map(|g| GradientMap::new(&g, section));
-        if integration == Integration::Reduced {
-            let (basis, coef) = ([[0.0; 3]; QUADRATURE_POINTS], [[0.0; 3]; QUADRATURE_POINTS]);
-            return Ok(ElementGeometry { section, integration, used: shape.points(integration), points, gradients, weights, basis, coef });
-        }
-        let vol: f64 = weights.iter().sum();
-        // L2 projection (weighted by the reference volume) onto {1, R - Rc, Z - Zc}.
-        let centre = [0, 1].map(|i| (0..QUADRATURE_POINTS).map(|q| weights[q] * pos[q][i]).sum::<f64>() / vol);
-        let basis_vector = |q: usize| Vector3::new(1.0, pos[q][0] - centre[0], pos[q][1] - centre[1]);
-        let mut m = Matrix3::zeros();
-        for q in 0..QUADRATURE_POINTS {
-            m += basis_vector(q) * basis_vector(q).transpose() * weights[q];
-        }
-        let m_inv = m.try_inverse().ok_or_else(|| "degenerate element: singular volume projection".to_string())?;
-        let basis: [[f64; 3]; QUADRATURE_POINTS] = std::array::from_fn(|q| basis_vector(q).into());
-        let coef: [[f64; 3]; QUADRATURE_POINTS] = std::array::from_fn(|p| (m_inv * basis_vector(p) * weights[p]).into());
+        let (basis, coef) = match integration {
+            Integration::Full => volume_projection(&weights, &pos)?,
+            Integration::Reduced => ([[0.0; 3]; QUADRATURE_POINTS], [[0.0; 3]; QUADRATURE_POINTS]),
+        };
         Ok(ElementGeometry { section, integration, used: shape.points(integration), points, gradients, weights, basis, coef })
     }
 

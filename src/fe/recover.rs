@@ -60,7 +60,7 @@ pub fn gauss_to_nodes(shape: Shape, integration: Integration) -> [[f64; 9]; 8] {
         (Shape::Quad8, Integration::Reduced) => {
             // the bilinear field through the 2 x 2 points, at the node (x = +-1 lies at
             // +-sqrt(3) in the points' own coordinates)
-            let lagrange = |k: usize, x: f64| 0.5 * (1.0 + if k == 0 { -x } else { x } / GAUSS2);
+            let lagrange = |k: usize, x: f64| 0.5 * (1.0 + (if k == 0 { -x } else { x }) / GAUSS2);
             std::array::from_fn(|a| {
                 let [xi, eta] = q8_nodes()[a];
                 std::array::from_fn(|q| if q < 4 { lagrange(q % 2, xi) * lagrange(q / 2, eta) } else { 0.0 })
