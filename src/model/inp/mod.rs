@@ -177,7 +177,7 @@ struct Builder {
     /// Each element's section family from its type (CAX, CPE, CPS), thickness 1 until its
     /// *SOLID SECTION gives one.
     element_family: Vec<Section>,
-    /// Reduced for the ..8R types, full for the rest.
+    /// Reduced (CalculiX's rules) for the ..8R and ..6 types, full for the rest.
     element_integration: Vec<Integration>,
     interactions: BTreeMap<String, Interaction>,
     current_interaction: Option<String>,

@@ -71,10 +71,10 @@ pub fn to_inp(model: &Model, title: &str) -> Result<String> {
     for (id, c) in mesh.node_ids.iter().zip(&mesh.coords) {
         let _ = writeln!(w, "{id}, {}, {}", num(c[0]), num(c[1]));
     }
-    let types: BTreeSet<String> = (0..mesh.elements.len()).map(|e| element_type(model, e)).collect();
-    for kind in types {
+    let type_of: Vec<String> = (0..mesh.elements.len()).map(|e| element_type(model, e)).collect();
+    for kind in type_of.iter().collect::<BTreeSet<_>>() {
         let _ = writeln!(w, "*ELEMENT, TYPE={kind}, ELSET=EALL");
-        for e in (0..mesh.elements.len()).filter(|&e| element_type(model, e) == kind) {
+        for e in (0..mesh.elements.len()).filter(|&e| &type_of[e] == kind) {
             let nodes: Vec<String> = mesh.element_nodes(e).iter().map(|&n| mesh.node_ids[n].to_string()).collect();
             let _ = writeln!(w, "{}, {}", mesh.element_ids[e], nodes.join(", "));
         }
