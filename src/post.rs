@@ -436,6 +436,7 @@ pub fn parse_section(text: &str) -> Result<([f64; 2], [f64; 2])> {
 /// The linearised stresses of each section at increment `number` (reference coordinates).
 pub fn linearize(r: &ResultsReader, sections: &[String], number: usize) -> Result<String> {
     use crate::fe::linearize::{linearize, StressSampler};
+    use crate::fe::recover::Rule;
     let sections: Vec<([f64; 2], [f64; 2])> = sections.iter().map(|s| parse_section(s)).collect::<Result<_>>()?;
     let name = increment_name(r, number)?;
     let (coords, elements) = (r.coordinates()?, r.connectivity()?);
@@ -443,12 +444,25 @@ pub fn linearize(r: &ResultsReader, sections: &[String], number: usize) -> Resul
         .field(&name, "stress")
         .map_err(|_| Error::input(format!("{}: increment {number} holds no stress (the run's [output] fields)", r.path().display())))?;
     let stress: Vec<[[f64; 4]; 9]> = flat.chunks_exact(36).map(|e| std::array::from_fn(|q| std::array::from_fn(|c| e[4 * q + c]))).collect();
-    let sampler = StressSampler::integrated(&coords, &elements, &r.integration()?, &stress);
+    // the nodal output's rule in each element: its nearest Gauss point's value where it has
+    // yielded (a file without the plastic strain is taken as elastic, and says so below)
+    let plastic = r.field(&name, "equivalent_plastic_strain").ok();
+    let rules: Vec<Rule> = match &plastic {
+        Some(ep) => ep.chunks_exact(9).map(|e| Rule::for_element(&std::array::from_fn(|q| e[q]))).collect(),
+        None => vec![Rule::Extrapolate; elements.len()],
+    };
+    let sampler = StressSampler::integrated(&coords, &elements, &r.integration()?, &rules, &stress);
     // a plane model's third component is the out-of-plane stress, its coordinates x, y
     let (third, across) = if r.is_plane() { ("out-of-plane", "in-plane across it") } else { ("hoop", "meridional across it") };
     let mut out = format!("stress linearisation at increment #{number} (MPa; section axes: normal along the section, {across}, {third}, shear)\n");
+    let yielded = rules.iter().filter(|&&r| r == Rule::Copy).count();
+    out += &match plastic {
+        Some(_) if yielded > 0 => format!("  the stress along a section: fitted through the Gauss points in elastic elements, held within them in the {yielded} yielded ones (never extrapolated past a yielded point)\n"),
+        Some(_) => String::new(),
+        None => "  note: the file holds no plastic strain at this increment: the stress is extrapolated from the Gauss points in every element, also where it may have yielded\n".to_string(),
+    };
     for (a, b) in sections {
-        let l = linearize(a, b, 200, |p| sampler.at(p))
+        let l = linearize(a, b, 200, |p, d| sampler.entering(p, d))
             .map_err(|m| Error::input(format!("{}: section ({}, {}):({}, {}): {m}", r.path().display(), a[0], a[1], b[0], b[1])))?;
         out.push_str(&format!("section ({}, {}) -> ({}, {}), t = {:.4} mm\n", a[0], a[1], b[0], b[1], l.thickness));
         out.push_str(&format!("  {:<26} {:>12} {:>12} {:>12} {:>12}\n", "", "normal", across.split(' ').next().unwrap_or_default(), third, "shear"));

@@ -179,6 +179,17 @@ fn no_volumetric_locking_limit_pressure_plateau_and_smooth_pressure_field() {
     eprintln!("largest nodal deviation from the fully plastic solution: {worst:.3} MPa ({:.2} % of the limit pressure)", 100.0 * worst / limit);
     assert!(worst <= 0.01 * limit, "nodal stresses off the fully plastic solution by {worst} MPa");
     assert!(ep.iter().all(|&e| e >= 0.0), "negative nodal plastic strain");
+    // The fully plastic wall's linearised hoop membrane (`post --linearize` through the wall,
+    // every element yielded) against the half cylinder's equilibrium, which holds at any
+    // state: int_a^b sigma_t dr = p a, the membrane p a / (b - a) (small strain: reference
+    // coordinates); and the membrane von Mises near the yield stress.
+    let out = common::command_in(run.dir.path(), 1).args(["post"]).arg(&run.h5).args(["--linearize", &format!("{A},0.5:{B},0.5")]).output().unwrap();
+    let text = String::from_utf8_lossy(&out.stdout).to_string();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let membrane: Vec<f64> = text.lines().find(|l| l.trim_start().starts_with("membrane ")).unwrap().split_whitespace().skip(1).map(|v| v.parse().unwrap()).collect();
+    let hoop = last * A / (B - A);
+    eprintln!("fully plastic wall: hoop membrane {:.3} MPa against p a / (b - a) = {hoop:.3}", membrane[2]);
+    assert!((membrane[2] - hoop).abs() <= 0.005 * hoop, "hoop membrane {} against {hoop}\n{text}", membrane[2]);
 }
 
 /// `[output] fields = [..., "element_nodal"]` keeps each element's own nodal stresses before

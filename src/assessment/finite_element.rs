@@ -197,7 +197,7 @@ pub(super) fn stations_of(r: &ResultsReader, stress: &[[[f64; 4]; 9]], p: &Bello
                                 path: file.to_path_buf(),
                                 message: format!("{}: no ply at {:?}", piece.label, at(0.5 * (lo + hi))),
                             })?;
-                            linearize(at(lo), at(hi), 40, |q| samplers[ply].at(q))
+                            linearize(at(lo), at(hi), 40, |q, d| samplers[ply].entering(q, d))
                                 .map(|l| Station::from(&l))
                                 .map(|s| (ply, s))
                                 .map_err(|m| Error::Output { path: file.to_path_buf(), message: format!("{}, ply {}: {m}", piece.label, ply + 1) })

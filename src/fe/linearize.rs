@@ -10,7 +10,7 @@
 //! for thick axisymmetric sections is not used.
 
 use super::axisymmetric::von_mises;
-use super::quadrature::Integration;
+use super::quadrature::{Integration, GAUSS2, GAUSS3};
 use super::recover::{Recovery, Rule};
 use super::shape::Shape;
 
@@ -47,9 +47,14 @@ fn as_tensor(c: &SectionComponents) -> [f64; 4] {
 }
 
 /// Linearises the stress along the section from `a` to `b` (r, z in mm), sampling `stress_at`
-/// (the stress [rr, zz, tt, rz] at a point, None outside the model) at `intervals` + 1 points
-/// (Simpson's rule; `intervals` even). An error names the first point outside the model.
-pub fn linearize(a: [f64; 2], b: [f64; 2], intervals: usize, stress_at: impl Fn([f64; 2]) -> Option<[f64; 4]>) -> Result<Linearized, String> {
+/// (the stress [rr, zz, tt, rz] at a point, None outside the model, given the unit direction
+/// into the section there) at `intervals` + 1 points (Simpson's rule; `intervals` even). An
+/// error names the first point outside the model.
+///
+/// The direction lets a sampler read, at a point on an interface (a section starting where one
+/// ply lies on another), the body the section runs into rather than the one behind it
+/// ([`StressSampler::entering`]).
+pub fn linearize(a: [f64; 2], b: [f64; 2], intervals: usize, stress_at: impl Fn([f64; 2], [f64; 2]) -> Option<[f64; 4]>) -> Result<Linearized, String> {
     let t = (b[0] - a[0]).hypot(b[1] - a[1]);
     if !(t > 0.0 && t.is_finite()) {
         return Err(format!("the section's ends ({}, {}) and ({}, {}) must differ", a[0], a[1], b[0], b[1]));
@@ -62,7 +67,8 @@ pub fn linearize(a: [f64; 2], b: [f64; 2], intervals: usize, stress_at: impl Fn(
     for k in 0..=n {
         let x = t * k as f64 / n as f64;
         let p = [a[0] + x * d[0], a[1] + x * d[1]];
-        let s = stress_at(p).ok_or_else(|| format!("the section point ({:.6}, {:.6}) lies in no element", p[0], p[1]))?;
+        let into = if k == n { [-d[0], -d[1]] } else { d };
+        let s = stress_at(p, into).ok_or_else(|| format!("the section point ({:.6}, {:.6}) lies in no element", p[0], p[1]))?;
         let c = section_components(&s, d);
         let w = if k == 0 || k == n {
             1.0
@@ -97,13 +103,20 @@ pub fn linearize(a: [f64; 2], b: [f64; 2], intervals: usize, stress_at: impl Fn(
     })
 }
 
-/// The stress anywhere in a mesh from its Gauss-point values: the element holding the point
-/// (reference coordinates), its Gauss values carried to its nodes (the fit the nodal output uses) and interpolated there, so within an element the field is the fitted one.
+/// The stress anywhere in a mesh from its Gauss-point values, in the element holding the point
+/// (reference coordinates), by the rule the nodal output uses:
+/// - in an elastic element its Gauss values carried to its nodes (the biquadratic fit) and
+///   interpolated there;
+/// - in a yielded quadrilateral the tensor-product polynomial through its Gauss points, held at
+///   the outer points' values beyond them: it passes through every Gauss value and never
+///   extrapolates past one (a parabola through yielded points overshoots them), and at the
+///   nodes it is the nearest point's value, the nodal output's rule there;
+/// - in a yielded triangle its nearest Gauss point's value at each node, interpolated.
 pub struct StressSampler<'a> {
     coords: &'a [[f64; 2]],
     elements: &'a [[usize; 8]],
-    /// Per element, the stress [rr, zz, tt, rz] at its 8 nodes.
-    nodal: Vec<[[f64; 4]; 8]>,
+    /// Per element, how its stress is read.
+    fields: Vec<ElementField>,
     /// Per element, its bounding box (r0, z0, r1, z1).
     boxes: Vec<[f64; 4]>,
     /// How far outside an element (in its coordinates xi, eta) a point still counts as in it.
@@ -111,16 +124,23 @@ pub struct StressSampler<'a> {
 }
 
 impl<'a> StressSampler<'a> {
-    /// `stress` per element: [rr, zz, tt, rz] at the Gauss points of fully integrated elements.
+    /// `stress` per element: [rr, zz, tt, rz] at the Gauss points of fully integrated elastic
+    /// elements.
     pub fn new(coords: &'a [[f64; 2]], elements: &'a [[usize; 8]], stress: &[[[f64; 4]; 9]]) -> Self {
-        Self::integrated(coords, elements, &vec![Integration::Full; elements.len()], stress)
+        Self::integrated(coords, elements, &vec![Integration::Full; elements.len()], &vec![Rule::Extrapolate; elements.len()], stress)
     }
 
     /// `stress` per element: [rr, zz, tt, rz] at the Gauss slots of elements integrated as
-    /// `integration` (a reduced element's spare slots are not read).
-    pub fn integrated(coords: &'a [[f64; 2]], elements: &'a [[usize; 8]], integration: &[Integration], stress: &[[[f64; 4]; 9]]) -> Self {
+    /// `integration` (a reduced element's spare slots are not read), carried to the nodes by
+    /// `rules` ([`Rule::for_element`] of each element's plastic strain).
+    pub fn integrated(coords: &'a [[f64; 2]], elements: &'a [[usize; 8]], integration: &[Integration], rules: &[Rule], stress: &[[[f64; 4]; 9]]) -> Self {
         let recovery = Recovery::default();
-        let nodal = (elements.iter().zip(integration).zip(stress)).map(|((e, &i), g)| recovery.element_nodal(Shape::of(e), i, Rule::Extrapolate, g)).collect();
+        let fields = (elements.iter().zip(integration).zip(rules).zip(stress))
+            .map(|(((e, &i), &rule), g)| match (Shape::of(e), rule) {
+                (Shape::Quad8, Rule::Copy) => ElementField::Gauss(i, *g),
+                (shape, rule) => ElementField::Nodal(recovery.element_nodal(shape, i, rule, g)),
+            })
+            .collect();
         let boxes = elements
             .iter()
             .map(|e| {
@@ -130,7 +150,7 @@ impl<'a> StressSampler<'a> {
                 })
             })
             .collect();
-        StressSampler { coords, elements, nodal, boxes, slack: 1e-9 }
+        StressSampler { coords, elements, fields, boxes, slack: 1e-9 }
     }
 
     /// Points up to `slack` outside an element (in its coordinates: 1e-2 is 0.5 % of its width)
@@ -144,19 +164,67 @@ impl<'a> StressSampler<'a> {
 
     /// The stress at `p`, None outside every element.
     pub fn at(&self, p: [f64; 2]) -> Option<[f64; 4]> {
-        for (e, bx) in self.boxes.iter().enumerate() {
+        self.holding(p).next().map(|(e, xi)| self.fields[e].at(Shape::of(&self.elements[e]), xi))
+    }
+
+    /// The stress at `p` in the element that a line leaving `p` along `direction` (unit) runs
+    /// into, where `p` lies on an interface between two; else as [`Self::at`].
+    pub fn entering(&self, p: [f64; 2], direction: [f64; 2]) -> Option<[f64; 4]> {
+        let ahead = |e: usize| {
+            let bx = self.boxes[e];
+            let step = 1e-6 * (bx[2] - bx[0]).max(bx[3] - bx[1]);
+            let x: [[f64; 2]; 8] = self.elements[e].map(|n| self.coords[n]);
+            inverse_map(Shape::of(&self.elements[e]), &x, [p[0] + step * direction[0], p[1] + step * direction[1]], self.slack).is_some()
+        };
+        let (e, xi) = self.holding(p).find(|&(e, _)| ahead(e)).or_else(|| self.holding(p).next())?;
+        Some(self.fields[e].at(Shape::of(&self.elements[e]), xi))
+    }
+
+    /// The elements holding `p`, with its coordinates in each.
+    fn holding(&self, p: [f64; 2]) -> impl Iterator<Item = (usize, [f64; 2])> + '_ {
+        self.boxes.iter().enumerate().filter_map(move |(e, bx)| {
             let tol = self.slack.max(1e-9) * (bx[2] - bx[0]).max(bx[3] - bx[1]);
             if p[0] < bx[0] - tol || p[0] > bx[2] + tol || p[1] < bx[1] - tol || p[1] > bx[3] + tol {
-                continue;
+                return None;
             }
-            let shape = Shape::of(&self.elements[e]);
             let x: [[f64; 2]; 8] = self.elements[e].map(|n| self.coords[n]);
-            if let Some(xi) = inverse_map(shape, &x, p, self.slack) {
+            inverse_map(Shape::of(&self.elements[e]), &x, p, self.slack).map(|xi| (e, xi))
+        })
+    }
+}
+
+/// How one element's stress is read.
+enum ElementField {
+    /// [rr, zz, tt, rz] at its nodes, interpolated by its shape functions.
+    Nodal([[f64; 4]; 8]),
+    /// A yielded quadrilateral's Gauss values, integrated as given: the tensor-product
+    /// Lagrange polynomial through them, its coordinates held within the outer points.
+    Gauss(Integration, [[f64; 4]; 9]),
+}
+
+impl ElementField {
+    fn at(&self, shape: Shape, xi: [f64; 2]) -> [f64; 4] {
+        match self {
+            ElementField::Nodal(nodal) => {
                 let (n, _) = shape.functions(xi);
-                return Some(std::array::from_fn(|c| (0..8).map(|a| n[a] * self.nodal[e][a][c]).sum()));
+                std::array::from_fn(|c| (0..8).map(|a| n[a] * nodal[a][c]).sum())
+            }
+            ElementField::Gauss(integration, g) => {
+                // the 1-D points of the rule (3 x 3: slot i + 3 j; 2 x 2: slot i + 2 j)
+                let points: &[f64] = match integration {
+                    Integration::Full => &[-GAUSS3[2].0, 0.0, GAUSS3[2].0],
+                    Integration::Reduced => &[-GAUSS2, GAUSS2],
+                };
+                let m = points.len();
+                let outer = points[m - 1];
+                let lagrange = |k: usize, x: f64| -> f64 {
+                    let x = x.clamp(-outer, outer);
+                    (0..m).filter(|&j| j != k).map(|j| (x - points[j]) / (points[k] - points[j])).product()
+                };
+                let (li, lj): (Vec<f64>, Vec<f64>) = ((0..m).map(|k| lagrange(k, xi[0])).collect(), (0..m).map(|k| lagrange(k, xi[1])).collect());
+                std::array::from_fn(|c| (0..m * m).map(|q| li[q % m] * lj[q / m] * g[q][c]).sum())
             }
         }
-        None
     }
 }
 
@@ -199,13 +267,13 @@ mod tests {
         // sigma_zz = 10 + 4 (r - 2) across r in [2, 4], from 10 to 18: membrane 14, bending (its
         // linear part at the start) 10 - 14 = -4
         let field = |p: [f64; 2]| Some([1.0, 10.0 + 4.0 * (p[0] - 2.0), 3.0, 0.5]);
-        let l = linearize([2.0, 1.0], [4.0, 1.0], 20, field).unwrap();
+        let l = linearize([2.0, 1.0], [4.0, 1.0], 20, |p, _| field(p)).unwrap();
         assert!((l.thickness - 2.0).abs() < 1e-15);
         // along r: normal = rr, meridional = zz, shear = rz
         assert!((l.membrane[1] - 14.0).abs() < 1e-12 && (l.bending[1] + 4.0).abs() < 1e-12, "{l:?}");
         assert!((l.membrane[0] - 1.0).abs() < 1e-12 && l.bending[0].abs() < 1e-12 && (l.membrane[3] - 0.5).abs() < 1e-12);
         // the same section walked backwards: the bending flips sign at the (new) start
-        let back = linearize([4.0, 1.0], [2.0, 1.0], 20, field).unwrap();
+        let back = linearize([4.0, 1.0], [2.0, 1.0], 20, |p, _| field(p)).unwrap();
         assert!((back.bending[1] - 4.0).abs() < 1e-12 && (back.membrane[1] - 14.0).abs() < 1e-12);
         // a section along z: the normal is zz
         let c = section_components(&[1.0, 2.0, 3.0, 0.5], [0.0, 1.0]);
@@ -252,5 +320,28 @@ mod tests {
             assert!((v[0] - r * r).abs() < 1e-12, "{r}: {v:?}");
         }
         assert!(s.at([3.5, 1.0]).is_none());
+    }
+
+    #[test]
+    fn a_yielded_element_passes_through_its_gauss_values_and_holds_the_outer_ones_beyond() {
+        // one Q8 over [1, 3] x [0, 2], yielded, Gauss values s = (r - 2)^3 (odd: no quadratic
+        // holds it); a section starting on its left edge reads the element it runs into though
+        // a neighbour over [0, 1] x [0, 2] also holds the starting point
+        let coords = [[1.0, 0.0], [3.0, 0.0], [3.0, 2.0], [1.0, 2.0], [2.0, 0.0], [3.0, 1.0], [2.0, 2.0], [1.0, 1.0], [0.0, 0.0], [0.0, 2.0], [0.5, 0.0], [0.5, 2.0], [0.0, 1.0]];
+        let elements = [[8, 0, 3, 9, 10, 7, 11, 12], [0, 1, 2, 3, 4, 5, 6, 7]];
+        let g = 0.6f64.sqrt();
+        let gauss: [[f64; 4]; 9] = std::array::from_fn(|q| [(-g + g * (q % 3) as f64).powi(3), 0.0, 0.0, 0.0]);
+        let neighbour = [[1e3, 0.0, 0.0, 0.0]; 9];
+        let s = StressSampler::integrated(&coords, &elements, &[Integration::Full; 2], &[Rule::Extrapolate, Rule::Copy], &[neighbour, gauss]);
+        for (k, r) in [2.0 - g, 2.0, 2.0 + g].into_iter().enumerate() {
+            assert!((s.at([r, 0.7]).unwrap()[0] - gauss[k][0]).abs() < 1e-12);
+        }
+        // held beyond the outer points, where a parabola would reach +-(1.0) / extrapolate
+        assert!((s.at([3.0, 1.0]).unwrap()[0] - g.powi(3)).abs() < 1e-12);
+        assert!((s.at([1.0 + 1e-3, 1.0]).unwrap()[0] + g.powi(3)).abs() < 1e-12);
+        let l = linearize([1.0, 1.0], [3.0, 1.0], 200, |p, d| s.entering(p, d)).unwrap();
+        assert!((l.total[0][0] + g.powi(3)).abs() < 1e-9 && (l.total[1][0] - g.powi(3)).abs() < 1e-9, "{l:?}");
+        // odd about the centre: no membrane
+        assert!(l.membrane[0].abs() < 1e-6, "{l:?}");
     }
 }
