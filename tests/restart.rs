@@ -305,3 +305,33 @@ fn a_file_left_truncated_by_a_killed_writer_is_repaired_and_read() {
     let continued = ok(bellows_restart(dir.path(), 1, "full.h5", &["-o", "more.h5"]));
     assert!(String::from_utf8_lossy(&continued.stdout).contains("end reaction"));
 }
+
+/// A restart continues the same problem (Abaqus's rule): restarting the plastic cylinder from
+/// increment 3 of its load step with that step's pressure changed (84 -> 90 MPa) or with the
+/// material's yield stress changed is refused (exit 2, naming what changed); changing the
+/// unload step, not begun at increment 3, is allowed, and the continued file says which deck
+/// each increment ran under.
+#[test]
+fn a_restart_may_change_only_the_steps_not_yet_begun() {
+    let dir = tempfile::tempdir().unwrap();
+    let write = |name: &str, text: String| {
+        std::fs::write(dir.path().join(name), text).unwrap();
+        name.to_string()
+    };
+    let run = |args: &[&str]| command_in(dir.path(), 1).current_dir(dir.path()).arg("run").args(args).arg("--quiet").output().unwrap();
+    let deck = write("cycle.toml", format!("{}{UNLOAD}", plastic_cylinder()));
+    ok(run(&[&deck, "-o", "cycle.h5"]));
+    let more = write("more.toml", format!("{}{}", plastic_cylinder().replace("value = 84.0", "value = 90.0"), UNLOAD));
+    refused(run(&[&more, "--restart", "cycle.h5", "--increment", "3", "-o", "more.h5"]), "the deck changes step 1 pressures of the run it continues (increment 3 is in step 1)");
+    let softer = write("softer.toml", format!("{}{UNLOAD}", plastic_cylinder().replace("yield_stress = 300.0", "yield_stress = 250.0")));
+    assert_ne!(std::fs::read_to_string(dir.path().join(&softer)).unwrap(), std::fs::read_to_string(dir.path().join(&deck)).unwrap(), "the material did not change");
+    refused(run(&[&softer, "--restart", "cycle.h5", "--increment", "3", "-o", "softer.h5"]), "the deck changes materials of the run it continues");
+    // the unload step is not begun at increment 3: it may change
+    let later = write("later.toml", format!("{}{}", plastic_cylinder(), UNLOAD.replace("increments = 3", "increments = 4")));
+    ok(run(&[&later, "--restart", "cycle.h5", "--increment", "3", "-o", "later.h5"]));
+    let f = hdf5::File::open(dir.path().join("later.h5")).unwrap();
+    let decks: hdf5::types::VarLenUnicode = f.attr("deck_of_increments").unwrap().read_scalar().unwrap();
+    assert!(decks.as_str().starts_with("increments 1 to 3: the deck of cycle.h5") && decks.as_str().ends_with("from 4: this file's deck"), "{}", decks.as_str());
+    // but once in the unload step, it may not
+    refused(run(&[&later, "--restart", "cycle.h5", "--increment", "7", "-o", "late.h5"]), "the deck changes step 2 increments");
+}

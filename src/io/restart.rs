@@ -276,6 +276,17 @@ impl RestartPoint {
                 None => return Err(bad(format!("increment {number} is in step {} ({saved:?}), the deck has {} step(s)", k + 1, model.steps.len()))),
             }
         }
+        // the model and every step begun must be the deck's (older files keep no fingerprints)
+        if let Ok(stored) = reader.text_attr("fingerprints") {
+            let changed = crate::model::fingerprint::changed(model, &stored, step);
+            if !changed.is_empty() {
+                return Err(bad(format!(
+                    "the deck changes {} of the run it continues (increment {number} is in step {}): a restart continues the same model and the steps begun; it may add steps after, or change those not yet begun",
+                    changed.join(", "),
+                    step + 1
+                )));
+            }
+        }
         // this file and those it continues (restarts of restarts), each with its node order
         let mut chain = vec![(reader, nodes.clone())];
         while chain.len() < 64 {

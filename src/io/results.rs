@@ -232,6 +232,7 @@ impl ResultsFile {
             ("petsc_options", &session.options().join(" ")),
             ("slideline_version", env!("CARGO_PKG_VERSION")),
             ("step_names", &model.steps.iter().map(|s| s.name.as_str()).collect::<Vec<_>>().join("\n")),
+            ("fingerprints", &crate::model::fingerprint::text(model)),
         ] {
             file.new_attr::<VarLenUnicode>().create(name).map_err(&err)?.write_scalar(&text(value)?).map_err(&err)?;
         }
@@ -352,6 +353,15 @@ impl ResultsFile {
             .parse()
             .map_err(|_| Error::Output { path: self.path.clone(), message: "restart file name".into() })?;
         self.file.new_attr::<VarLenUnicode>().create("restarted_from").map_err(&err)?.write_scalar(&text).map_err(&err)?;
+        let decks: VarLenUnicode = format!(
+            "increments 1 to {n}: the deck of {} (its attribute deck; a restart may add or change only the steps after increment {n}'s); from {}: this file's deck",
+            from.display(),
+            rows.len() + 1,
+            n = rows.len()
+        )
+        .parse()
+        .map_err(|_| Error::Output { path: self.path.clone(), message: "restart file name".into() })?;
+        self.file.new_attr::<VarLenUnicode>().create("deck_of_increments").map_err(&err)?.write_scalar(&decks).map_err(&err)?;
         for (_, row) in rows {
             self.append_history(row)?;
             self.increments += 1;

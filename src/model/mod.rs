@@ -7,6 +7,7 @@
 pub mod bellows;
 pub mod constraint;
 pub mod deck;
+pub mod fingerprint;
 pub mod gmsh;
 pub mod heat;
 pub mod inp;
