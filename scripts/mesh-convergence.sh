@@ -17,7 +17,7 @@ for spec in "coarse 1 2.0" "default 2 1.0" "fine 3 0.5"; do
     mpirun -n 2 target/release/slideline bellows --ply-elements "$through" --ply-element-length "$length" \
         -q -o "$out/$name.h5" "$@" >"$log" 2>&1 || { echo "$name: run failed, see $log"; continue; }
     reaction=$(awk '/end reaction at .* per 2.5-deg sector/ {print $(NF-1)}' "$log")
-    vm=$(awk '/max von Mises at [0-9.]+ mm/ {print $(NF-1)}' "$log")
+    vm=$(awk '/max von Mises \(Gauss point\) at [0-9.]+ mm/ {print $(NF-1)}' "$log")
     ep=$(awk '/max equivalent plastic strain at/ {print $(NF-1)}' "$log")
     wall=$(awk '/wall time on/ {print $(NF-1)}' "$log")
     printf '%-8s %-16s %16s %14s %12s %10s\n' "$name" "$through x $length mm" "$reaction" "$vm" "$ep" "$wall"

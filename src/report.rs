@@ -56,6 +56,10 @@ pub struct BellowsReport {
     /// The code check (EJMA) of the joint's bellows at its pressure and stroke (None where the
     /// convolution is outside the charts).
     pub code: Option<CodeCheck>,
+    /// The increment (its run-wide number) and compression (mm) the largest von Mises stress
+    /// and plastic strain are read at: the end of the compression where a file of the run
+    /// holds its fields.
+    pub fields_at: (usize, f64),
     pub von_mises: Extreme,
     pub plastic_strain: Extreme,
     /// Largest ply-to-ply and sleeve penetration over the whole history, mm.
@@ -131,6 +135,25 @@ fn largest_penetration(history: &[HistoryRow], pair: impl Fn(&str) -> bool) -> f
     history.iter().flat_map(|r| &r.contacts).filter(|c| pair(&c.name)).map(|c| c.max_penetration).fold(0.0, f64::max)
 }
 
+/// The file holding increment `number`'s fields when `reader`'s does not: the file it was
+/// restarted from, or that one's (None: `reader`'s own, or no file of the chain has them).
+fn file_holding(reader: &ResultsReader, number: usize) -> Option<Option<ResultsReader>> {
+    let name = format!("{number:06}");
+    let has = |r: &ResultsReader| r.increments().is_ok_and(|names| names.contains(&name)) && r.field(&name, "von_mises").is_ok();
+    if has(reader) {
+        return Some(None);
+    }
+    let mut from = reader.restarted_from();
+    for _ in 0..64 {
+        let earlier = ResultsReader::open(&from?.0).ok()?;
+        if has(&earlier) {
+            return Some(Some(earlier));
+        }
+        from = earlier.restarted_from();
+    }
+    None
+}
+
 /// Largest value of a per-Gauss-point field at an increment, with its element's part and
 /// deformed centre.
 fn extreme(reader: &ResultsReader, increment: &str, field: &str) -> Result<Extreme> {
@@ -168,10 +191,20 @@ impl BellowsReport {
         let &(displacement, reaction) = curve.get(compressed).unwrap_or(&(0.0, f64::NAN));
         let cycle = (p.cycle && history.last().is_some_and(|r| r.step == 3 && r.load_factor >= 1.0))
             .then(|| (loop_area(&curve, heated.unwrap_or(0)), curve.last().map_or(f64::NAN, |c| c.1)));
-        // fields at the end of the compression (always written: the last increment of a step)
-        let written = reader.increments()?;
-        let stroke = history.get(compressed).map(|r| format!("{:06}", r.number)).filter(|n| written.contains(n));
-        let last = stroke.or_else(|| written.last().cloned()).unwrap_or_default();
+        // fields at the end of the compression (always written: the last increment of a step),
+        // from the file that holds them: a restart after it (a cycle carried on) continues a
+        // file that does; else the last increment written, and the rows say which
+        let (file, fields_at) = match history.get(compressed).and_then(|r| file_holding(reader, r.number).map(|f| (f, (r.number, displacement)))) {
+            Some(found) => found,
+            None => {
+                let last = reader.increments()?.last().cloned().unwrap_or_default();
+                let number = last.parse().unwrap_or(0);
+                let at = history.iter().find(|r| r.number == number).map_or(f64::NAN, |r| applied(r, p));
+                (None, (number, at))
+            }
+        };
+        let fields = file.as_ref().unwrap_or(reader);
+        let last = format!("{:06}", fields_at.0);
         Ok(BellowsReport {
             displacement,
             stroke: p.displacement,
@@ -180,8 +213,9 @@ impl BellowsReport {
             secant_stiffness: reaction / displacement,
             initial_stiffness,
             code,
-            von_mises: extreme(reader, &last, "von_mises")?,
-            plastic_strain: extreme(reader, &last, "equivalent_plastic_strain")?,
+            von_mises: extreme(fields, &last, "von_mises")?,
+            plastic_strain: extreme(fields, &last, "equivalent_plastic_strain")?,
+            fields_at,
             ply_penetration: largest_penetration(history, |n| n.starts_with("ply")),
             sleeve_penetration: largest_penetration(history, |n| n == "sleeve"),
             ply_thickness: p.ply_thickness,
@@ -217,9 +251,10 @@ impl BellowsReport {
                 "-",
             );
         }
-        line(&format!("max von Mises at {:.1} mm, MPa", self.displacement), format!("{:.2}", self.von_mises.value), &format!("{PAPER_VON_MISES}"));
+        let (number, at) = self.fields_at;
+        line(&format!("max von Mises (Gauss point) at {at:.1} mm (#{number}), MPa"), format!("{:.2}", self.von_mises.value), &format!("{PAPER_VON_MISES}"));
         line("  where (part, deformed r, z mm)", format!("{} ({:.1}, {:.1})", self.von_mises.part, self.von_mises.at[0], self.von_mises.at[1]), "-");
-        line(&format!("max equivalent plastic strain at {:.1} mm", self.displacement), format!("{:.4}", self.plastic_strain.value), "-");
+        line(&format!("max equivalent plastic strain at {at:.1} mm (#{number})"), format!("{:.4}", self.plastic_strain.value), "-");
         line(
             "  where (part, deformed r, z mm)",
             format!("{} ({:.1}, {:.1})", self.plastic_strain.part, self.plastic_strain.at[0], self.plastic_strain.at[1]),
@@ -404,7 +439,8 @@ impl BellowsReport {
                 displacement: &u,
                 values: &vm,
                 title: format!(
-                    "von Mises stress (element mean, MPa), deformed, at {compression:.1} mm compression, {what} (increment {inc}); below: the convolutions"
+                    "von Mises stress (element means, largest {:.1} MPa; the table's maximum is a Gauss point's), deformed, at {compression:.1} mm compression, {what} (increment {inc}); below: the convolutions",
+                    vm.iter().copied().filter(|v| !v.is_nan()).fold(0.0, f64::max)
                 ),
                 value_label: "MPa".into(),
             };

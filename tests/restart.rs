@@ -205,11 +205,21 @@ fn a_finished_compression_carried_on_with_a_cycle_equals_the_cycle_run() {
     // `bellows --restart FILE --cycle`: the file's joint with a return step added, continued
     // from the end of the compression; the same as running the cycle at once
     let dir = tempfile::tempdir().unwrap();
-    ok(bellows(dir.path(), 1, &["-o", "compressed.h5"]));
-    ok(bellows(dir.path(), 1, &["--cycle", "-o", "cycle.h5"]));
-    ok(bellows_restart(dir.path(), 1, "compressed.h5", &["--cycle", "-o", "carried.h5"]));
+    let compressed = ok(bellows(dir.path(), 1, &["-o", "compressed.h5"]));
+    let cycle = ok(bellows(dir.path(), 1, &["--cycle", "-o", "cycle.h5"]));
+    let carried = ok(bellows_restart(dir.path(), 1, "compressed.h5", &["--cycle", "-o", "carried.h5"]));
     let held = Results::open(&dir.path().join("compressed.h5")).history("step").len();
     assert_continues(&dir.path().join("cycle.h5"), &dir.path().join("carried.h5"), held);
+    // the closing table's rows at the stroke are read at the stroke (#12: the fields of the
+    // file the restart continues), not at the cycle's end, and say so
+    let rows = |out: &Output| -> Vec<String> {
+        String::from_utf8_lossy(&out.stdout).lines().filter(|l| l.contains("max von Mises") || l.contains("max equivalent plastic strain")).map(str::to_string).collect()
+    };
+    let at_stroke = rows(&compressed);
+    assert_eq!(at_stroke.len(), 2, "{at_stroke:?}");
+    assert!(at_stroke[0].contains(&format!("at 20.0 mm (#{held})")), "{at_stroke:?}");
+    assert_eq!(rows(&carried), at_stroke, "the carried-on cycle's rows");
+    assert_eq!(rows(&cycle), at_stroke, "the cycle run's rows");
 }
 
 /// A restart reads nothing it has not checked: a state corrupted in any of these ways is refused
