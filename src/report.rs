@@ -467,7 +467,7 @@ pub fn flexibility_section(p: &BellowsParams, code: Option<&CodeCheck>, movement
     );
     t.push_str(&format!("  {:<52}", ""));
     for (name, _, _) in &states {
-        t.push_str(&format!(" {:>11} {:>11} {:>7}", format!("{name} FE"), "code", "FE/code"));
+        t.push_str(&format!(" {:>11} {:>11} {:>7}", format!("{name} FE"), "code (FE K)", "FE/code"));
     }
     t.push('\n');
     let cell = |v: Option<f64>, digits: usize| v.filter(|v| v.is_finite()).map_or("-".to_string(), |v| format!("{v:.digits$}"));
