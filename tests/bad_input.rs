@@ -458,3 +458,35 @@ fn a_wrong_heat_step_is_named() {
         assert_rejected(&run, &needles);
     }
 }
+
+/// Material data in other units than slideline's (E = 200 for 200 GPa: the run ended in "did
+/// not converge at load factor 0.2") get a note naming slideline's units before the run; a
+/// yield stress above E / 20 likewise; the walk-through's steel gets none.
+#[test]
+fn material_data_in_other_units_are_named() {
+    let fit = std::fs::read_to_string(std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/shrink_fit.toml")).unwrap();
+    let gpa = fit.replacen("youngs_modulus = 200000.0", "youngs_modulus = 200.0", 1);
+    assert_ne!(gpa, fit);
+    let dir = tempfile::tempdir().unwrap();
+    for (deck, noted) in [(gpa, true), (fit.clone(), false)] {
+        std::fs::write(dir.path().join("fit.toml"), deck).unwrap();
+        let out = command_in(dir.path(), 1).current_dir(dir.path()).args(["run", "fit.toml", "-o", "fit.h5"]).output().unwrap();
+        let text = String::from_utf8_lossy(&out.stdout);
+        let note = "Young's modulus 200 MPa is below 1000 MPa, softer than any metal or polymer: slideline's units are N, mm, MPa";
+        assert_eq!(text.contains(note), noted, "{text}{}", String::from_utf8_lossy(&out.stderr));
+    }
+    // a yield stress of 300 over E = 2000 (a yield strain of 15 %)
+    let m = slideline::model::Material {
+        name: "soft".into(),
+        youngs_modulus: 2000.0,
+        poissons_ratio: 0.3,
+        thermal_expansion: 0.0,
+        plasticity: Some(slideline::material::Hardening::linear(300.0, 0.0)),
+        density: 0.0,
+        conductivity: 0.0,
+    };
+    let deck = slideline::model::deck::parse(&fit, std::path::Path::new("fit.toml")).unwrap();
+    let model = slideline::model::Model { materials: vec![m], ..deck };
+    let notes = model.implausible_units();
+    assert!(notes.len() == 1 && notes[0].contains("yield stress 300 MPa is more than a twentieth of its Young's modulus 2000 MPa"), "{notes:?}");
+}

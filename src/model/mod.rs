@@ -40,6 +40,7 @@ pub fn read_deck(path: &Path) -> Result<(Model, Vec<String>)> {
     };
     notes.extend(crate::contact::adjust::adjust_slave_nodes(&mut model)?);
     notes.extend(model.never_facing_pairs());
+    notes.extend(model.implausible_units());
     Ok((model, notes))
 }
 

@@ -272,6 +272,29 @@ impl Model {
     /// A note for each contact pair whose surfaces can never face each other: no slave edge's
     /// outward normal is against any master edge's (a ring's outside listed against a tube's
     /// outside, say). Such a pair never closes; the note names it, since the run itself cannot.
+    /// A note for each material whose data look like another system of units than
+    /// slideline's (N, mm, MPa): a Young's modulus below 1000 MPa (200 for steel in GPa), or a
+    /// yield stress above a twentieth of it (a yield strain of 5 %: no metal; 300 MPa over
+    /// E = 200 GPa given as 200).
+    pub fn implausible_units(&self) -> Vec<String> {
+        let units = "slideline's units are N, mm, MPa (N/mm^2), t/mm^3, s and degC: steel has E about 200000 MPa";
+        let mut notes = Vec::new();
+        for m in &self.materials {
+            let e = m.youngs_modulus;
+            if e < 1000.0 {
+                notes.push(format!("material {}: Young's modulus {e} MPa is below 1000 MPa, softer than any metal or polymer: {units}", m.name));
+            }
+            let yield_stress = m.plasticity.as_ref().map_or(f64::INFINITY, |h| h.initial_yield_stress());
+            if yield_stress.is_finite() && yield_stress > e / 20.0 {
+                notes.push(format!(
+                    "material {}: yield stress {yield_stress} MPa is more than a twentieth of its Young's modulus {e} MPa (a yield strain above 5 %): {units}",
+                    m.name
+                ));
+            }
+        }
+        notes
+    }
+
     pub fn never_facing_pairs(&self) -> Vec<String> {
         // the outward normal of a counter-clockwise element's side from its corner a to b
         let normal = |e: Edge| {
