@@ -490,3 +490,45 @@ fn material_data_in_other_units_are_named() {
     let notes = model.implausible_units();
     assert!(notes.len() == 1 && notes[0].contains("yield stress 300 MPa is more than a twentieth of its Young's modulus 2000 MPa"), "{notes:?}");
 }
+
+/// A rerun with a bad eigensolver option (an unknown type, a tolerance <= 0, a shift that is
+/// no number) is refused with exit 2 naming it before the results file it would replace is
+/// touched (`-eps_type bogus` had replaced `out.h5` before refusing; `-eps_tol -1` and
+/// `-st_shift nan` exited 1).
+#[test]
+fn a_bad_eigensolver_option_leaves_the_results_file_alone() {
+    let deck = r#"[mesh.rectangle]
+r = [99.0, 101.0]
+z = [0.0, 6.0]
+divisions = [2, 4]
+[[material]]
+name = "steel"
+youngs_modulus = 200000.0
+poissons_ratio = 0.3
+density = 7.85e-9
+[[step]]
+name = "rest"
+boundary = [ { set = "bottom", uz = 0.0 } ]
+[[step]]
+name = "ovals"
+procedure = "frequency"
+mode = 2
+eigenvalues = 2
+"#;
+    let run = common::run_deck(deck, &[], 1, &[]);
+    run.assert_ok();
+    let before = std::fs::read(&run.h5).unwrap();
+    for (option, needle) in [
+        (&["-eps_type", "bogus"][..], "SLEPc options: Unknown EPS type given: bogus"),
+        (&["-eps_tol", "-1"], "PETSc option -eps_tol \"-1\": give a number >= 0 and < 1"),
+        (&["-eps_tol", "0"], "SLEPc options: Illegal value of tol"),
+        (&["-st_shift", "nan"], "PETSc option -st_shift \"nan\": give a finite number"),
+        (&["-st_type", "bogus"], "SLEPc options: Unable to find requested ST type bogus"),
+    ] {
+        let out = command_in(run.dir.path(), 1).arg("run").arg(run.dir.path().join("deck.toml")).arg("-o").arg(&run.h5).arg("--").args(option).output().unwrap();
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{option:?}: {stderr}");
+        assert!(stderr.contains(needle), "{option:?}: {stderr}");
+        assert!(std::fs::read(&run.h5).unwrap() == before, "{option:?} touched the results file");
+    }
+}

@@ -40,29 +40,18 @@ impl Drop for Eps<'_> {
     }
 }
 
-/// The `count` eigenpairs of A x = lambda B x nearest `target` (fewer if fewer converge;
-/// collective). `a` and `b` share their row layout, `local_rows` of them on this rank.
-pub fn nearest(
-    session: &PetscSession,
-    a: &impl MatOps,
-    b: &impl MatOps,
-    local_rows: usize,
-    pencil: Pencil,
-    count: usize,
-    target: f64,
-) -> Result<Vec<Eigenpair>> {
+/// An EPS on the session's communicator set up as the module says (Krylov-Schur, shift and
+/// invert about `target`, MUMPS), then from the options database.
+fn configured(session: &PetscSession, pencil: Pencil, nev: sys::PetscInt, target: f64) -> Result<Eps<'_>> {
     let mut eps = Eps { raw: std::ptr::null_mut(), _session: PhantomData };
-    let nev = super::to_petsc_int(count.max(1))?;
-    // SAFETY: a fresh EPS on the session's communicator; the matrices outlive the solve (they
-    // are borrowed for this call) and EPSSetOperators takes its own references to them; the
-    // ST and its KSP and PC are borrowed from the EPS, not owned.
+    let kind = match pencil {
+        Pencil::Hermitian => sys::EPSProblemType_EPS_GHEP,
+        Pencil::General => sys::EPSProblemType_EPS_GNHEP,
+    };
+    // SAFETY: a fresh EPS on the session's communicator, owned by `eps` (destroyed on drop);
+    // the ST and its KSP and PC are borrowed from the EPS, not owned.
     unsafe {
         check(sys::EPSCreate(session.comm(), &mut eps.raw), "EPSCreate")?;
-        check(sys::EPSSetOperators(eps.raw, a.raw(), b.raw()), "EPSSetOperators")?;
-        let kind = match pencil {
-            Pencil::Hermitian => sys::EPSProblemType_EPS_GHEP,
-            Pencil::General => sys::EPSProblemType_EPS_GNHEP,
-        };
         check(sys::EPSSetProblemType(eps.raw, kind), "EPSSetProblemType")?;
         check(sys::EPSSetType(eps.raw, c"krylovschur".as_ptr()), "EPSSetType")?;
         // PETSC_DEFAULT (-2) for the subspace sizes: SLEPc's choice for nev
@@ -80,6 +69,37 @@ pub fn nearest(
         check(sys::PCSetType(pc, c"lu".as_ptr()), "PCSetType")?;
         check(sys::PCFactorSetMatSolverType(pc, c"mumps".as_ptr()), "PCFactorSetMatSolverType")?;
         check(sys::EPSSetFromOptions(eps.raw), "EPSSetFromOptions")?;
+    }
+    Ok(eps)
+}
+
+/// Reads the `-eps_*` and `-st_*` options into an eigensolver set up as the solves' are, so
+/// that a bad one (an unknown type, a tolerance <= 0) is refused as bad input before a run
+/// with eigenvalue steps writes anything (collective).
+pub fn check_options(session: &PetscSession) -> Result<()> {
+    configured(session, Pencil::General, 1, 0.0).map(drop).map_err(|e| match e {
+        Error::Petsc { message, .. } => Error::input(format!("SLEPc options: {message} (`-- -help` lists what each option takes)")),
+        e => e,
+    })
+}
+
+/// The `count` eigenpairs of A x = lambda B x nearest `target` (fewer if fewer converge;
+/// collective). `a` and `b` share their row layout, `local_rows` of them on this rank.
+pub fn nearest(
+    session: &PetscSession,
+    a: &impl MatOps,
+    b: &impl MatOps,
+    local_rows: usize,
+    pencil: Pencil,
+    count: usize,
+    target: f64,
+) -> Result<Vec<Eigenpair>> {
+    let nev = super::to_petsc_int(count.max(1))?;
+    let eps = configured(session, pencil, nev, target)?;
+    // SAFETY: a configured EPS; the matrices outlive the solve (they are borrowed for this
+    // call) and EPSSetOperators takes its own references to them.
+    unsafe {
+        check(sys::EPSSetOperators(eps.raw, a.raw(), b.raw()), "EPSSetOperators")?;
         check(sys::EPSSolve(eps.raw), "EPSSolve")?;
     }
     let mut converged: sys::PetscInt = 0;

@@ -14,9 +14,11 @@ enum Takes {
     Tolerance { relative: bool },
     /// A count of at least 1.
     Count,
+    /// Any finite number.
+    Finite,
 }
 
-const NUMERIC: [(&str, Takes); 10] = [
+const NUMERIC: [(&str, Takes); 16] = [
     ("-snes_rtol", Takes::Tolerance { relative: true }),
     ("-snes_atol", Takes::Tolerance { relative: false }),
     ("-snes_stol", Takes::Tolerance { relative: true }),
@@ -27,6 +29,12 @@ const NUMERIC: [(&str, Takes); 10] = [
     ("-ksp_max_it", Takes::Count),
     ("-ksp_gmres_restart", Takes::Count),
     ("-snes_linesearch_max_it", Takes::Count),
+    ("-eps_tol", Takes::Tolerance { relative: true }),
+    ("-eps_max_it", Takes::Count),
+    ("-eps_ncv", Takes::Count),
+    ("-eps_mpd", Takes::Count),
+    ("-eps_target", Takes::Finite),
+    ("-st_shift", Takes::Finite),
 ];
 
 /// The nonlinear solvers whose solves slideline's convergence test judges: Newton with a line
@@ -50,12 +58,14 @@ pub fn check(options: &[String]) -> Result<()> {
         let ok = match takes {
             Takes::Tolerance { relative } => given.parse::<f64>().is_ok_and(|v| v.is_finite() && v >= 0.0 && (!relative || v < 1.0)),
             Takes::Count => given.parse::<i64>().is_ok_and(|v| v >= 1),
+            Takes::Finite => given.parse::<f64>().is_ok_and(f64::is_finite),
         };
         if !ok {
             let wanted = match takes {
                 Takes::Tolerance { relative: true } => "a number >= 0 and < 1",
                 Takes::Tolerance { relative: false } => "a number >= 0",
                 Takes::Count => "a whole number >= 1",
+                Takes::Finite => "a finite number",
             };
             return Err(Error::input(format!("PETSc option {name} {given:?}: give {wanted}")));
         }

@@ -124,6 +124,9 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
     // PETSc's options are read (and a bad one refused) before anything is written: a rerun
     // with a misspelt type must not destroy the results file it would replace
     drop(Snes::new(session)?);
+    if model.perturbations.iter().any(|p| p.analysis != crate::model::perturbation::Analysis::Response) {
+        crate::petsc::eigen::check_options(session)?;
+    }
     let (_lock, note) = ResultsLock::acquire(&options.output, &world)?;
     if let (true, Some(note)) = (root, note) {
         println!("note: {note}");
