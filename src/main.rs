@@ -331,6 +331,11 @@ fn main() -> ExitCode {
             };
             let root = session.world().rank() == 0;
             let fineness = slideline::assessment::convolution::Fineness { through, per_thickness };
+            // every point and the mesh checked before any analysis
+            let checked = fineness.checked().and_then(|_| c1.iter().flat_map(|&a| c2.iter().map(move |&b| (a, b))).try_for_each(|(a, b)| slideline::assessment::convolution::check_chart_point(a, b, fineness)));
+            if let Err(e) = checked {
+                return fail(&e, root);
+            }
             if root {
                 println!("chart coefficients of the idealised U-shaped convolution (computed):\n      C1       C2       Cp       Cf       Cd");
             }

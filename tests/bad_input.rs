@@ -532,3 +532,34 @@ eigenvalues = 2
         assert!(std::fs::read(&run.h5).unwrap() == before, "{option:?} touched the results file");
     }
 }
+
+/// `slideline coefficients` refuses what the codes' charts do not cover and meshes it cannot
+/// make, naming the flag and its range, before any analysis: `--c2 1e6` aborted on a 3.5 to
+/// 45 GB allocation, `--through 0` ended in "the mesh has no elements", `--per-thickness 0` in
+/// exit 1 with a temporary file's path, C1 too small for C2 in a convolution wider than Dm.
+/// And C1 = 1 (the tori meet, no sidewall) is on the charts and computes (it ended in "node
+/// 934 at (NaN, NaN)").
+#[test]
+fn chart_coefficients_outside_the_charts_or_of_no_mesh_are_refused_by_flag() {
+    let dir = tempfile::tempdir().unwrap();
+    for (args, needle) in [
+        (&["--c1", "0.5", "--c2", "1e6"][..], "--c2 1000000: the codes' charts (EJMA Figs. 4.16 to 4.18; ASME VIII-1 Appendix 26) cover 0.2 <= C2 <= 4"),
+        (&["--c1", "0.5", "--c2", "0.1"], "--c2 0.1: the codes' charts"),
+        (&["--c1", "1.5", "--c2", "1"], "--c1 1.5: the codes' charts (EJMA Figs. 4.16 to 4.18; ASME VIII-1 Appendix 26) cover 0 < C1 <= 1"),
+        (&["--c1", "nan", "--c2", "1"], "--c1 NaN: the codes' charts"),
+        (&["--c1", "0.5", "--c2", "0.5", "--through", "0"], "--through 0: give 1 to 16 elements through the ply"),
+        (&["--c1", "0.5", "--c2", "0.5", "--per-thickness", "0"], "--per-thickness 0: give 0.5 to 16 elements per ply thickness along the meridian"),
+        (&["--c1", "0.05", "--c2", "4"], "C1 = 0.05, C2 = 4: the convolution's height w = 2780.0 tp leaves no bore inside Dm"),
+        (&["--c1", "0.01", "--c2", "0.2", "--through", "16", "--per-thickness", "16"], "178928 elements, more than 50000"),
+    ] {
+        let out = command_in(dir.path(), 1).arg("coefficients").args(args).output().unwrap();
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {stderr}");
+        assert!(stderr.contains(needle) && stderr.lines().count() == 1, "{args:?}: {stderr}");
+        assert!(!String::from_utf8_lossy(&out.stdout).contains("Cp"), "{args:?}: a table was begun before the refusal");
+    }
+    let out = command_in(dir.path(), 1).args(["coefficients", "--c1", "1", "--c2", "0.5"]).output().unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let row: Vec<f64> = String::from_utf8_lossy(&out.stdout).lines().last().unwrap().split_whitespace().map(|v| v.parse().unwrap()).collect();
+    assert!(row.len() == 5 && row[2..].iter().all(|c| c.is_finite() && *c > 0.1 && *c < 10.0), "{row:?}");
+}

@@ -57,6 +57,48 @@ impl Default for Fineness {
     }
 }
 
+/// The codes' charts' domain (EJMA Figs. 4.16 to 4.18, ASME VIII-1 Appendix 26's Cp, Cf, Cd):
+/// 0 < C1 <= 1 and 0.2 <= C2 <= 4.
+pub const CHART_C1: (f64, f64) = (0.0, 1.0);
+pub const CHART_C2: (f64, f64) = (0.2, 4.0);
+
+/// The mesh fineness a coefficient analysis accepts: elements through the ply, and per ply
+/// thickness along the meridian.
+pub const THROUGH: (usize, usize) = (1, 16);
+pub const PER_THICKNESS: (f64, f64) = (0.5, 16.0);
+
+impl Fineness {
+    /// The fineness's flags checked, each named with its range.
+    pub fn checked(self) -> Result<Self> {
+        if !(THROUGH.0..=THROUGH.1).contains(&self.through) {
+            return Err(Error::input(format!("--through {}: give {} to {} elements through the ply", self.through, THROUGH.0, THROUGH.1)));
+        }
+        if !(PER_THICKNESS.0..=PER_THICKNESS.1).contains(&self.per_thickness) {
+            return Err(Error::input(format!(
+                "--per-thickness {}: give {} to {} elements per ply thickness along the meridian",
+                self.per_thickness, PER_THICKNESS.0, PER_THICKNESS.1
+            )));
+        }
+        Ok(self)
+    }
+}
+
+/// Checks that (C1, C2) lie in the codes' charts, naming the flag otherwise, and that the
+/// convolution there meshes at `fineness`.
+pub fn check_chart_point(c1: f64, c2: f64, fineness: Fineness) -> Result<()> {
+    if !(c1 > CHART_C1.0 && c1 <= CHART_C1.1) {
+        return Err(Error::input(format!("--c1 {c1}: the codes' charts (EJMA Figs. 4.16 to 4.18; ASME VIII-1 Appendix 26) cover 0 < C1 <= 1")));
+    }
+    if !(CHART_C2.0..=CHART_C2.1).contains(&c2) {
+        return Err(Error::input(format!("--c2 {c2}: the codes' charts (EJMA Figs. 4.16 to 4.18; ASME VIII-1 Appendix 26) cover 0.2 <= C2 <= 4")));
+    }
+    Convolution::new(c1, c2)?.check_size(fineness.checked()?)
+}
+
+/// Most elements a coefficient analysis meshes: the default fineness on the longest sidewall
+/// the charts allow (C1 0.01, C2 0.2) takes 11 000, and twice as fine both ways 44 000.
+pub const MAX_ELEMENTS: usize = 50_000;
+
 /// The idealised half convolution at (C1, C2).
 struct Convolution {
     rm: f64,
@@ -80,13 +122,36 @@ impl Convolution {
             )));
         }
         let root_radius = (DM - w) / 2.0;
+        if root_radius <= rm {
+            return Err(Error::input(format!(
+                "C1 = {c1}, C2 = {c2}: the convolution's height w = {w:.1} tp leaves no bore inside Dm = {DM} tp (C1 too small for this C2)"
+            )));
+        }
         let (root_c, crest_c) = (root_radius + rm, root_radius + rm + flat);
-        let pieces = vec![
-            Piece::Arc { centre: [root_c, 0.0], radius: rm, a0: PI, a1: PI / 2.0 },
-            Piece::Line { from: [root_c, rm], to: [crest_c, rm] },
-            Piece::Arc { centre: [crest_c, 2.0 * rm], radius: rm, a0: -PI / 2.0, a1: 0.0 },
-        ];
+        // C1 = 1: the tori meet, no sidewall between them (a piece of no length has no tangent)
+        let sidewall = (flat > 1e-9 * rm).then_some(Piece::Line { from: [root_c, rm], to: [crest_c, rm] });
+        let pieces = std::iter::once(Piece::Arc { centre: [root_c, 0.0], radius: rm, a0: PI, a1: PI / 2.0 })
+            .chain(sidewall)
+            .chain(std::iter::once(Piece::Arc { centre: [crest_c, 2.0 * rm], radius: rm, a0: -PI / 2.0, a1: 0.0 }))
+            .collect();
         Ok(Convolution { rm, w, pieces })
+    }
+
+    /// Refuses a mesh of more than [`MAX_ELEMENTS`] at `fineness`, counted before meshing.
+    fn check_size(&self, fineness: Fineness) -> Result<()> {
+        let h = TP / fineness.per_thickness;
+        let along: usize = self.pieces.iter().map(|piece| ((piece.length() / h).round() as usize).max(1)).sum();
+        let elements = fineness.through * along;
+        if elements > MAX_ELEMENTS {
+            return Err(Error::input(format!(
+                "C1 = {:.4}, C2 = {:.4} with --through {} --per-thickness {}: {elements} elements, more than {MAX_ELEMENTS} (a long sidewall: take fewer)",
+                2.0 * self.rm / self.w,
+                1.82 * self.rm / (DM * TP).sqrt(),
+                fineness.through,
+                fineness.per_thickness
+            )));
+        }
+        Ok(())
     }
 
     /// The half convolution loaded by `step`'s loads, one ply of `fineness`.
@@ -187,7 +252,9 @@ impl Convolution {
 /// (collective: every rank of the session calls it; the analyses' files go to a temporary
 /// directory and are removed).
 pub fn compute(session: &PetscSession, c1: f64, c2: f64, fineness: Fineness) -> Result<Coefficients> {
+    let fineness = fineness.checked()?;
     let convolution = Convolution::new(c1, c2)?;
+    convolution.check_size(fineness)?;
     let w = convolution.w;
     let hold = |set: &str, value: f64| PrescribedDisplacement { node_set: set.into(), component: Component::Z, value };
     // a deflection e per convolution: the half convolution's crest plane moves e / 2
