@@ -535,8 +535,9 @@ impl Builder {
         let mut out = Vec::new();
         let mut total_time = 0.0;
         for (k, s) in self.steps.iter_mut().enumerate() {
-            // fixed model-data constraints join the first step
-            if k == 0 {
+            // fixed model-data constraints join the first step, unless its *BOUNDARY, OP=NEW
+            // releases them (as CalculiX does: a first step's OP=NEW starts from no constraint)
+            if k == 0 && !s.new_boundaries {
                 for key in &self.fixed {
                     if !s.boundaries.iter().any(|b| &b.key == key) {
                         s.boundaries.insert(0, Target { key: key.clone(), value: 0.0, amplitude: None });
