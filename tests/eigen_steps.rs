@@ -324,3 +324,36 @@ fn tension_raises_and_compression_lowers_the_bending_frequency_as_a_beam_column_
         assert!((f / free / beam - 1.0).abs() < 0.02, "P = {share} P_E: {} against {beam}", f / free);
     }
 }
+
+/// Eigenvalue steps that cannot answer say so: a buckle step on a tube that nothing holds
+/// laterally in its mode (n = 1) is refused naming the free rigid motions (it printed a
+/// critical pressure of noise); a buckle step whose load is zero is refused (it printed "load
+/// factor inf" and "critical pressure NaN" with exit 0); a frequency step on a body free along
+/// the axis runs and names its rigid motions in a note; held, the same buckle step answers.
+#[test]
+fn eigenvalue_steps_with_free_rigid_motions_or_no_load_say_so() {
+    let deck = |steps: &str| {
+        format!(
+            "[mesh.rectangle]\nr = [95.0, 100.0]\nz = [0.0, 400.0]\ndivisions = [1, 20]\n{steel}\n[[step]]\nname = \"rest\"\nboundary = [ {{ set = \"bottom\", uz = 0.0 }} ]\n{steps}",
+            steel = steel()
+        )
+    };
+    let buckle = |name: &str, boundary: &str, value: f64| {
+        format!("[[step]]\nname = \"{name}\"\nprocedure = \"buckle\"\nmode = 1\n{boundary}pressure = [ {{ surface = \"top\", value = {value} }} ]\n")
+    };
+    let held = "boundary = [ { set = \"bottom\", ur = 0.0, uz = 0.0, ut = 0.0 } ]\n";
+    let free = run_deck(&deck(&buckle("free", "", 1.0)), &[], 1, &[]);
+    assert_eq!(free.code(), 2, "{}", free.stderr());
+    assert!(free.stderr().contains("buckle step 'free' (mode 1): nothing holds the model across the axis (the lateral offset) nor the tilt about a diameter"), "{}", free.stderr());
+    let unloaded = run_deck(&deck(&buckle("unloaded", held, 0.0)), &[], 1, &[]);
+    assert_eq!(unloaded.code(), 2, "{}", unloaded.stderr());
+    assert!(unloaded.stderr().contains("perturbation step 'unloaded': no load"), "{}", unloaded.stderr());
+    let ring = "[[step]]\nname = \"ring\"\nprocedure = \"frequency\"\nmode = 0\n";
+    let ok = run_deck(&deck(&format!("{}{ring}", buckle("held", held, 1.0))), &[], 1, &[]);
+    ok.assert_ok();
+    assert!(ok.stdout().contains("step 'ring' (mode 0): nothing holds the model along the axis (uz) nor the twist about the axis (ut)"), "{}", ok.stdout());
+    assert!(!ok.stdout().contains("step 'held' (mode 1): nothing holds"), "{}", ok.stdout());
+    let r = Results::open(&ok.h5);
+    let factor = f64s(&r, "perturbations/held/eigenvalues")[0];
+    assert!(factor.is_finite() && factor > 0.0, "{factor}");
+}

@@ -156,7 +156,7 @@ impl Perturbation {
                         r.node_set
                     )));
                 }
-                if self.pressures.is_empty() && self.displacements.iter().all(|d| d.value == 0.0) {
+                if self.pressures.iter().all(|p| p.value == 0.0) && self.displacements.iter().all(|d| d.value == 0.0) {
                     return Err(at("no load: give a pressure or nonzero ur / uz values (the load the load factors multiply)".into()));
                 }
                 return Ok(());

@@ -107,6 +107,41 @@ fn product(world: &impl Communicator, blocks: &[Block], x: &[[f64; 3]], y: &[[f6
     total
 }
 
+/// The rigid motions of harmonic `mode` that the step leaves free, by name: n = 0 along the
+/// axis and the twist about it, n = 1 across it and the tilt (U = [z, -r, -z]); free where
+/// the stiffness does not resist the motion with the step's held amplitudes zeroed (x^T K x
+/// below 1e-9 of sum K_ii x_i^2: a held node makes it about 1 / nodes; collective).
+fn free_rigid_motions(world: &impl Communicator, stiffness: &[Block], amplitude: &[[Amplitude; 3]], current: &[[f64; 2]], mode: u32) -> Vec<&'static str> {
+    let motions: Vec<(&'static str, Box<dyn Fn([f64; 2]) -> [f64; 3]>)> = match mode {
+        0 => vec![("along the axis (uz)", Box::new(|_| [0.0, 1.0, 0.0])), ("the twist about the axis (ut)", Box::new(|x: [f64; 2]| [0.0, 0.0, x[0]]))],
+        1 => vec![("across the axis (the lateral offset)", Box::new(|_| [1.0, 0.0, -1.0])), ("the tilt about a diameter", Box::new(|x: [f64; 2]| [x[1], -x[0], -x[1]]))],
+        _ => Vec::new(),
+    };
+    motions
+        .into_iter()
+        .filter(|(_, motion)| {
+            let x: Vec<[f64; 3]> = current
+                .iter()
+                .zip(amplitude)
+                .map(|(&p, held)| {
+                    let m = motion(p);
+                    std::array::from_fn(|c| if matches!(held[c], Amplitude::Prescribed(_)) { 0.0 } else { m[c] })
+                })
+                .collect();
+            let energy = product(world, stiffness, &x, &x);
+            let mut local = 0.0;
+            for (conn, k) in stiffness {
+                let size = 3 * conn.len();
+                local += (0..size).map(|i| k[i * size + i] * x[conn[i / 3]][i % 3].powi(2)).sum::<f64>();
+            }
+            let mut scale = 0.0;
+            world.all_reduce_into(&local, &mut scale, SystemOperation::sum());
+            energy.abs() <= 1e-9 * scale
+        })
+        .map(|(name, _)| name)
+        .collect()
+}
+
 /// The modes of `pairs` as every node's amplitudes, scaled to a largest amplitude of 1.
 fn modes_of(
     world: &impl Communicator,
@@ -174,6 +209,9 @@ pub fn frequency(
     let follower = model.kinematics == crate::material::Kinematics::Finite && base.pressures.iter().any(|(_, p)| *p != 0.0);
     let pencil = if follower { Pencil::General } else { Pencil::Hermitian };
     let mut modes = pencil_modes(session, model, partition, step, &current, &stiffness, &mass, pencil, count)?;
+    // a free body's rigid motions are modes of (near) zero frequency: say which they are
+    let (amplitude, _) = held_numbering(model, partition, step, &current)?;
+    let free = free_rigid_motions(&world, &stiffness, &amplitude, &current, step.mode);
     // the mode's rigid motion: n = 0 along the axis, n = 1 across it (U_r = -U_t)
     let rigid: Option<[f64; 3]> = match step.mode {
         0 => Some([0.0, 1.0, 0.0]),
@@ -188,7 +226,16 @@ pub fn frequency(
             mode.effective_mass = Some(2.0 * PI * participation * participation / generalised);
         }
     }
-    Ok(answer(step, modes, count))
+    let mut answer = answer(step, modes, count);
+    if !free.is_empty() {
+        answer.notes.push(format!(
+            "step '{}' (mode {}): nothing holds the model {}: its lowest frequencies (one per free motion) are rigid motions near 0 Hz, not vibrations",
+            step.name,
+            step.mode,
+            free.join(" nor ")
+        ));
+    }
+    Ok(answer)
 }
 
 /// A buckle step (collective).
@@ -231,6 +278,17 @@ pub fn buckle(
     }
     for (_, values) in &mut load_stiffness {
         values.iter_mut().for_each(|v| *v = -*v);
+    }
+    // a rigid motion left free makes the pencil singular: its "critical load" is noise
+    let (amplitude, _) = held_numbering(model, partition, step, &current)?;
+    let free = free_rigid_motions(&session.world(), &stiffness, &amplitude, &current, step.mode);
+    if !free.is_empty() {
+        return Err(Error::input(format!(
+            "buckle step '{}' (mode {}): nothing holds the model {} in this mode, so its buckling loads are not defined; hold the amplitude (a boundary entry with ur, uz or ut = 0, or a ring held at rest)",
+            step.name,
+            step.mode,
+            free.join(" nor ")
+        )));
     }
     let mut modes = pencil_modes(session, model, partition, step, &current, &stiffness, &load_stiffness, Pencil::General, count)?;
     for mode in &mut modes {

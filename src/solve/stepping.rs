@@ -456,8 +456,12 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
             contacts: &kept.contacts,
         };
         let answer = super::perturbation::solve(session, model, &partition, &state, p)?;
-        for note in &answer.notes {
-            progress.note(&format!("note: {note}"));
+        // notes on what an answer means belong with it, --quiet or not
+        for note in answer.notes.iter().filter(|_| root) {
+            match options.progress {
+                true => progress.note(&format!("note: {note}")),
+                false => println!("note: {note}"),
+            }
         }
         // the base state's fields: the last increment's (always written: it ends its step)
         let base_group = rows.last().map(|r| format!("{:06}", r.number));
