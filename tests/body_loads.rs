@@ -122,4 +122,10 @@ fn bad_body_loads_are_refused() {
         assert_eq!(run.code(), 2, "{needle}: {}", run.stderr());
         assert!(run.stderr().contains(needle) && run.stderr().lines().count() == 1, "{needle}: {}", run.stderr());
     }
+    // a spin ramped back to 0 leaves a base state at rest: the perturbation step runs (it was
+    // refused as "the base state spins")
+    let stopped = format!(
+        "{spin}[[step]]\nname = \"stop\"\nbody_load = [ {{ elements = \"all\", spin = 0.0 }} ]\n[[step]]\nname = \"sway\"\nprocedure = \"harmonic\"\nmode = 1\nboundary = [ {{ set = \"bottom\", ur = 1.0 }} ]\n"
+    );
+    run_deck(&stopped, &[], 1, &[]).assert_ok();
 }

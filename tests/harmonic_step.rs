@@ -300,3 +300,26 @@ boundary = [ {{ set = "lower_bottom", ur = 0.0, uz = 0.0, ut = 0.0 }}, {{ set = 
     assert_eq!(bad.code(), 2, "{}", bad.stderr());
     assert!(bad.stderr().contains("without_contact: no contact pair 'seal'"), "{}", bad.stderr());
 }
+
+/// A ring motion on every node leaves nothing to solve for: the step answers with the motion
+/// itself (a rigid rotation: no reaction beyond round-off; it ended in "stiffness is
+/// singular"); a step whose only entry is a pivot (no rotation) has no load and is refused
+/// (it ran, its reactions zero).
+#[test]
+fn a_motion_of_every_node_is_its_own_answer_and_a_pivot_alone_is_no_load() {
+    let deck = |ring: &str| {
+        format!(
+            "[mesh.rectangle]\nr = [95.0, 100.0]\nz = [0.0, 100.0]\ndivisions = [1, 10]\n[[material]]\nname = \"steel\"\nyoungs_modulus = 200000.0\npoissons_ratio = 0.3\n\
+[[step]]\nname = \"rest\"\nboundary = [ {{ set = \"bottom\", uz = 0.0 }} ]\n[[step]]\nname = \"turn\"\nprocedure = \"harmonic\"\nmode = 1\nboundary = [ {{ set = \"all\", {ring} }} ]\n"
+        )
+    };
+    let turned = common::run_deck(&deck("rotation = 0.01"), &[], 1, &[]);
+    turned.assert_ok();
+    let out = turned.stdout();
+    let moment: f64 = out.split("moment_ring ").nth(1).and_then(|t| t.split_whitespace().next()).unwrap_or_else(|| panic!("{out}")).parse().unwrap();
+    // against the moment a 1 mm tip deflection of this tube would take: E I 3 / L^2 ~ 1e9
+    assert!(moment.abs() < 1e-2, "a rigid rotation's moment {moment} N mm");
+    let pivot = common::run_deck(&deck("pivot = 5.0"), &[], 1, &[]);
+    assert_eq!(pivot.code(), 2, "{}", pivot.stderr());
+    assert!(pivot.stderr().contains("no load: every amplitude and pressure given is zero (a ring's pivot only says where it turns)"), "{}", pivot.stderr());
+}

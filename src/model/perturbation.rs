@@ -93,8 +93,20 @@ impl Perturbation {
         if model.steps.is_empty() {
             return Err(at("a perturbation step needs a general step before it (its base state)".into()));
         }
-        if let Some(s) = model.steps.iter().find(|s| s.body_loads.iter().any(|b| matches!(b.force, crate::element::body_load::BodyForce::Spin(_)))) {
-            return Err(at(format!("the base state spins (step '{}'): perturbation steps leave the spin's softening out, and are refused about it", s.name)));
+        // the spin of the base state: each set's last value, kept by the steps that do not
+        // restate it (a spin ramped back to 0 leaves a base state at rest)
+        let mut spin: std::collections::BTreeMap<&str, (f64, &str)> = std::collections::BTreeMap::new();
+        for s in &model.steps {
+            for b in &s.body_loads {
+                if let crate::element::body_load::BodyForce::Spin(omega) = b.force {
+                    spin.insert(b.elements.as_str(), (omega, s.name.as_str()));
+                }
+            }
+        }
+        if let Some((_, (omega, step))) = spin.iter().find(|(_, (omega, _))| *omega != 0.0) {
+            return Err(at(format!(
+                "the base state spins ({omega} rad/s, from step '{step}'): perturbation steps leave the spin's softening out, and are refused about it (ramp the spin to 0 in a general step first)"
+            )));
         }
         if self.mode > MAX_MODE {
             return Err(at(format!("mode {} is above {MAX_MODE}", self.mode)));
@@ -162,8 +174,10 @@ impl Perturbation {
                 return Ok(());
             }
         }
-        if self.displacements.is_empty() && self.rings.is_empty() && self.pressures.is_empty() {
-            return Err(at("no load: give amplitudes (ur, uz, ut), a ring's lateral or rotation, or a pressure".into()));
+        let moved = self.displacements.iter().any(|d| d.value != 0.0) || self.rings.iter().any(|r| r.lateral != 0.0 || r.rotation != 0.0);
+        if !moved && self.pressures.iter().all(|p| p.value == 0.0) {
+            let pivot = if self.rings.iter().any(|r| r.pivot.is_some()) { " (a ring's pivot only says where it turns)" } else { "" };
+            return Err(at(format!("no load: every amplitude and pressure given is zero{pivot}; give nonzero amplitudes (ur, uz, ut), a ring's lateral or rotation, or a pressure")));
         }
         Ok(())
     }

@@ -308,21 +308,29 @@ pub(super) fn response(
             }
         }
     }
-    let mut b = Vector::mpi(session, session.comm(), local_len)?;
-    b.set_all(0.0)?;
-    let (indices, adds): (Vec<PetscInt>, Vec<f64>) = rhs.into_iter().unzip();
-    b.add_values(&indices, &adds)?;
-    b.assemble()?;
-    let mut u = b.duplicate()?;
-    let mut snes = Snes::new(session)?;
-    if !snes.linear_solve(&matrix, &b, &mut u)? {
-        return Err(Error::NotConverged {
-            step: step.name.clone(),
-            load_factor: 1.0,
-            reason: "the linear solve failed: the perturbation's stiffness is singular (a rigid motion of its mode left free? hold it on a set)".into(),
-        });
-    }
-    let amplitudes = amplitudes_of(&world, partition, &amplitude, &offsets, &u.read()?);
+    // every amplitude prescribed (a ring motion on every node): nothing to solve for
+    let unknowns = offsets.last().copied().unwrap_or(0);
+    let solved = if unknowns == 0 {
+        Vec::new()
+    } else {
+        let mut b = Vector::mpi(session, session.comm(), local_len)?;
+        b.set_all(0.0)?;
+        let (indices, adds): (Vec<PetscInt>, Vec<f64>) = rhs.into_iter().unzip();
+        b.add_values(&indices, &adds)?;
+        b.assemble()?;
+        let mut u = b.duplicate()?;
+        let mut snes = Snes::new(session)?;
+        if !snes.linear_solve(&matrix, &b, &mut u)? {
+            return Err(Error::NotConverged {
+                step: step.name.clone(),
+                load_factor: 1.0,
+                reason: "the linear solve failed: the perturbation's stiffness is singular (a rigid motion of its mode left free? hold it on a set)".into(),
+            });
+        }
+        let values = u.read()?.to_vec();
+        values
+    };
+    let amplitudes = amplitudes_of(&world, partition, &amplitude, &offsets, &solved);
 
     // reactions: K U - f at every node, summed over ranks
     let mut force = vec![0.0; 3 * nodes];
