@@ -299,3 +299,30 @@ fn the_docs_table_of_calculix_decks_matches_the_readers_verdicts() {
         }
     }
 }
+
+/// A short *ELEMENT line is named itself, with the count it has (the reader took the next
+/// line as its continuation and blamed that one with a wrong count); a line ending with a comma
+/// still continues. An empty deck (or one of comments) is called empty (it said "no
+/// *MATERIAL"). A node far out (r = 1e308) is named at the node (the element's Jacobian was
+/// blamed).
+#[test]
+fn a_short_element_line_an_empty_deck_and_a_far_node_are_named() {
+    let short = DECK.replace("1, 1, 2, 3, 4, 5, 6, 7, 8\n", "1, 1, 2, 3, 4, 5, 6, 7\n2, 1, 2, 3, 4, 5, 6, 7, 8\n").replace("{MODEL}", "").replace("{STEP}", "");
+    let split = DECK.replace("1, 1, 2, 3, 4, 5, 6, 7, 8\n", "1, 1, 2, 3, 4,\n5, 6, 7, 8\n").replace("{MODEL}", "").replace("{STEP}", "");
+    let far = DECK.replace("3, 12., 2.\n", "3, 1e308, 2.\n").replace("{MODEL}", "").replace("{STEP}", "");
+    let dir = tempfile::tempdir().unwrap();
+    let run = |name: &str, text: &str| {
+        std::fs::write(dir.path().join(name), text).unwrap();
+        command_in(dir.path(), 1).current_dir(dir.path()).args(["run", name, "-o", "out.h5"]).output().unwrap()
+    };
+    let refused = |out: std::process::Output, needles: &[&str]| {
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{stderr}");
+        assert!(needles.iter().all(|n| stderr.contains(n)) && stderr.lines().count() == 1, "{needles:?}: {stderr}");
+    };
+    refused(run("short.inp", &short), &["short.inp:13: *ELEMENT: CAX8 takes 8 nodes after the element number, this line has 7"]);
+    assert!(run("split.inp", &split).status.success(), "a line ending with a comma continues");
+    refused(run("empty.inp", ""), &["empty.inp: the deck is empty"]);
+    refused(run("comments.inp", "** nothing\n**\n"), &["comments.inp: the deck is empty"]);
+    refused(run("far.inp", &far), &["node 3 at (1e308, 2e0): coordinates beyond 1e9 mm"]);
+}

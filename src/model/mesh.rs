@@ -140,12 +140,22 @@ impl Mesh {
     /// Checks the mesh has elements, finite coordinates, its axisymmetric elements (by
     /// `sections`) at r >= 0, and no inverted or degenerate element.
     pub fn validate_sections(&self, sections: &[Section]) -> Result<()> {
+        /// The largest coordinate accepted, mm.
+        const MAX_COORDINATE: f64 = 1e9;
         if self.elements.is_empty() {
             return Err(Error::input("the mesh has no elements (slideline needs 8-node quadrilaterals or 6-node triangles)"));
         }
         let size = self.coords.iter().fold(0.0f64, |m, c| m.max(c[0].abs()).max(c[1].abs())).max(1.0);
         if let Some((i, c)) = self.coords.iter().enumerate().find(|(_, c)| !c[0].is_finite() || !c[1].is_finite()) {
             return Err(Error::input(format!("node {} at ({}, {}): coordinates must be finite", self.node_ids[i], c[0], c[1])));
+        }
+        // beyond 1e9 mm (1000 km) the element's products overflow or lose every digit: a typo
+        // or other units, named at its node rather than as an element's odd Jacobian
+        if let Some((i, c)) = self.coords.iter().enumerate().find(|(_, c)| c[0].abs() > MAX_COORDINATE || c[1].abs() > MAX_COORDINATE) {
+            return Err(Error::input(format!(
+                "node {} at ({:e}, {:e}): coordinates beyond {MAX_COORDINATE:e} mm (lengths are in mm)",
+                self.node_ids[i], c[0], c[1]
+            )));
         }
         let axisymmetric_nodes = (0..self.elements.len()).filter(|&e| sections[e].is_axisymmetric()).flat_map(|e| self.element_nodes(e).to_vec());
         if let Some(i) = axisymmetric_nodes.into_iter().find(|&n| self.coords[n][0] < -1e-9 * size) {

@@ -26,6 +26,8 @@ impl fmt::Display for Location {
 pub struct DataLine {
     pub fields: Vec<String>,
     pub at: Location,
+    /// The line ended with a comma (its trailing empty field dropped): a list that goes on.
+    pub continues: bool,
 }
 
 #[derive(Clone, Debug)]
@@ -160,10 +162,11 @@ pub fn parse_into(text: &str, path: &Path, cards: &mut Vec<Card>, depth: usize) 
             return Err(Error::input(format!("{at}: data line '{trimmed}' before any keyword")));
         };
         let mut fields: Vec<String> = trimmed.split(',').map(|f| f.trim().to_string()).collect();
-        if fields.len() > 1 && fields.last().is_some_and(|f| f.is_empty()) {
+        let continues = fields.len() > 1 && fields.last().is_some_and(|f| f.is_empty());
+        if continues {
             fields.pop();
         }
-        card.data.push(DataLine { fields, at });
+        card.data.push(DataLine { fields, at, continues });
     }
     Ok(())
 }

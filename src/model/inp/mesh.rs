@@ -90,12 +90,21 @@ impl Builder {
         for d in &card.data {
             pending.extend(d.fields.iter().filter(|f| !f.is_empty()).map(|f| (f.clone(), d.at.clone())));
             if pending.len() < per_element + 1 {
-                continue;
+                // a line continues on the next only where it ends with a comma (Abaqus's rule;
+                // CalculiX's elements fit on one line): a short line is its own error
+                if d.continues {
+                    continue;
+                }
+                return Err(error_at(
+                    &pending[0].1,
+                    "ELEMENT",
+                    format!("{kind} takes {per_element} nodes after the element number, this line has {} (a line continues on the next only where it ends with a comma)", pending.len() - 1),
+                ));
             }
             if pending.len() > per_element + 1 {
                 return Err(error_at(&d.at, "ELEMENT", format!("{kind} takes {per_element} nodes, got {}", pending.len() - 1)));
             }
-            let line = DataLine { fields: pending.iter().map(|p| p.0.clone()).collect(), at: pending[0].1.clone() };
+            let line = DataLine { fields: pending.iter().map(|p| p.0.clone()).collect(), at: pending[0].1.clone(), continues: false };
             pending.clear();
             let id = line.id("ELEMENT", 0, "element number")?;
             if self.element_index.contains_key(&id) {

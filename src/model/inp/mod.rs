@@ -47,6 +47,9 @@ pub struct InpModel {
 /// Reads `path` (and its includes).
 pub fn read(path: &Path) -> Result<InpModel> {
     let cards = cards::read(path)?;
+    if cards.is_empty() {
+        return Err(Error::input(format!("{}: the deck is empty (no keyword card: an .inp deck is *NODE, *ELEMENT, *MATERIAL, ... and a *STEP)", path.display())));
+    }
     let text = std::fs::read_to_string(path).map_err(|source| Error::Read { path: path.to_path_buf(), source })?;
     build(&cards, text)
 }
@@ -219,8 +222,13 @@ fn build(cards: &[Card], source_text: String) -> Result<InpModel> {
     let mut b = Builder { deck_node_sets: cards.iter().filter_map(|c| c.param("NSET")).map(|n| n.to_uppercase()).collect(), ..Builder::default() };
     // the card a material / interaction property belongs to
     let mut last_owner = "";
+    let mut changing: Option<&Card> = None;
     for card in cards {
         let kw = card.keyword.as_str();
+        // *CHANGE FRICTION takes its new coefficient from the *FRICTION card right after it
+        if let Some(change) = changing.take().filter(|_| kw != "FRICTION") {
+            return Err(change.error("names no new friction: a *FRICTION card must follow it (the interaction's coefficient would stay as it was)"));
+        }
         match kw {
             "HEADING" => {
                 card.only(&[])?;
@@ -310,6 +318,7 @@ fn build(cards: &[Card], source_text: String) -> Result<InpModel> {
                 }
                 b.current_interaction = Some(name);
                 last_owner = "CHANGE FRICTION";
+                changing = Some(card);
             }
             "FRICTION" if last_owner == "CHANGE FRICTION" => {
                 let name = b.current_interaction.clone().expect("set by *CHANGE FRICTION");
@@ -402,6 +411,9 @@ fn build(cards: &[Card], source_text: String) -> Result<InpModel> {
                 return Err(card.error(why));
             }
         }
+    }
+    if let Some(change) = changing {
+        return Err(change.error("names no new friction: a *FRICTION card must follow it (the interaction's coefficient would stay as it was)"));
     }
     let mut files: Vec<std::path::PathBuf> = Vec::new();
     for card in cards {
@@ -892,6 +904,7 @@ mod tests {
             ("*CHANGE FRICTION, INTERACTION=NONE\n*FRICTION\n0.1\n", "surface interaction NONE is not defined"),
             ("*CHANGE FRICTION, INTERACTION=I\n*FRICTION\n0.1\n*CHANGE FRICTION, INTERACTION=I\n*FRICTION\n0.3\n", "changed twice"),
             ("*CHANGE FRICTION, INTERACTION=I\n*FRICTION\n-0.1\n", "friction coefficient -0.1"),
+            ("*CHANGE FRICTION, INTERACTION=I\n", "*CHANGE FRICTION: names no new friction: a *FRICTION card must follow it"),
         ] {
             let err = parse(&format!("{MESH}{pairs}{}", step(change)), Path::new("t.inp")).err().unwrap().to_string();
             assert!(err.contains(needle), "{change}: {err}");
