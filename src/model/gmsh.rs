@@ -312,6 +312,17 @@ fn parse_text(text: &str, name: &str) -> Result<RawMesh> {
 /// The mesh of a file's quadratic elements and the sets of its physical groups.
 fn assemble(raw: RawMesh, name: &str) -> Result<(Mesh, MeshSets)> {
     let RawMesh { physical_names, entity_physicals, node_coords, elements } = raw;
+    // one name, one group of a dimension: two would merge into one set without a word
+    let mut named: BTreeMap<(i32, &str), i32> = BTreeMap::new();
+    let mut groups: Vec<(&(i32, i32), &String)> = physical_names.iter().collect();
+    groups.sort();
+    for ((dim, tag), group) in groups {
+        if let Some(first) = named.insert((*dim, group.as_str()), *tag) {
+            return Err(Error::input(format!(
+                "{name}: the physical name \"{group}\" is given to two groups of dimension {dim} (tags {first} and {tag}): give each its own name"
+            )));
+        }
+    }
 
     // the 2D elements define the mesh; only their nodes are kept
     let mut mesh = Mesh::default();
@@ -472,6 +483,19 @@ $Elements\n3\n1 15 2 3 1 1\n2 8 2 2 1 1 2 5\n3 16 2 1 1 1 2 3 4 5 6 7 8\n$EndEle
         let cut = bytes.len() * 2 / 3;
         let message = binary::parse(&bytes[..cut], "cut.msh").err().expect("refused").to_string();
         assert!(message.contains("cut.msh: $"), "{message}");
+        // a header claiming 2^62 nodes (its blocks hold 37): named, not run
+        let mut claimed = bytes.clone();
+        let at = claimed.windows(7).position(|w| w == b"$Nodes\n").unwrap() + 7 + 8;
+        claimed[at..at + 8].copy_from_slice(&(1u64 << 62).to_le_bytes());
+        let message = binary::parse(&claimed, "claimed.msh").err().expect("refused").to_string();
+        assert!(message.contains("$Nodes") && message.contains("the header claims 4611686018427387904 nodes, its blocks hold 37"), "{message}");
+    }
+
+    #[test]
+    fn a_physical_name_given_to_two_groups_is_named() {
+        let twice = MSH22.replace("0 3 \"corner\"", "1 3 \"bottom\"");
+        let message = parse(&twice, "t.msh").err().expect("refused").to_string();
+        assert!(message.contains("the physical name \"bottom\" is given to two groups of dimension 1 (tags 2 and 3)"), "{message}");
     }
 
     #[test]

@@ -167,7 +167,8 @@ pub(super) fn parse(bytes: &[u8], name: &str) -> Result<RawMesh> {
             "$Nodes" => {
                 c.section = "$Nodes";
                 let blocks = c.count(16)?;
-                let (_total, _min, _max) = (c.size()?, c.size()?, c.size()?);
+                let (total, _min, _max) = (c.size()?, c.size()?, c.size()?);
+                let before = raw.node_coords.len();
                 for _ in 0..blocks {
                     let (_dim, _entity, parametric) = (c.int()?, c.int()?, c.int()?);
                     if parametric != 0 {
@@ -183,12 +184,17 @@ pub(super) fn parse(bytes: &[u8], name: &str) -> Result<RawMesh> {
                         raw.node_coords.insert(tag, [x, y]);
                     }
                 }
+                // the header's total must be what the blocks hold (a corrupt one is named)
+                if total != (raw.node_coords.len() - before) as u64 {
+                    return Err(c.error(format!("the header claims {total} nodes, its blocks hold {}", raw.node_coords.len() - before)));
+                }
                 c.expect("$EndNodes")?;
             }
             "$Elements" => {
                 c.section = "$Elements";
                 let blocks = c.count(16)?;
-                let (_total, _min, _max) = (c.size()?, c.size()?, c.size()?);
+                let (total, _min, _max) = (c.size()?, c.size()?, c.size()?);
+                let before = raw.elements.len();
                 for block in 0..blocks {
                     let (dim, entity, ty) = (c.int()?, c.int()?, c.int()?);
                     let per = nodes_of(ty).ok_or_else(|| c.error(format!("element type {ty} (block {}) is not one a 2-D mesh holds", block + 1)))?;
@@ -199,6 +205,9 @@ pub(super) fn parse(bytes: &[u8], name: &str) -> Result<RawMesh> {
                         let at = format!("{name}, $Elements block {}", block + 1);
                         raw.elements.push(RawElement { dim, entity, ty: ty as u32, tag, nodes, at });
                     }
+                }
+                if total != (raw.elements.len() - before) as u64 {
+                    return Err(c.error(format!("the header claims {total} elements, its blocks hold {}", raw.elements.len() - before)));
                 }
                 c.expect("$EndElements")?;
             }
