@@ -111,7 +111,7 @@ pub struct StudyArgs {
     #[arg(long)]
     pub augmented: bool,
     /// Reaction tolerance of the recommendation, relative to the reference.
-    #[arg(long, default_value_t = 0.01)]
+    #[arg(allow_hyphen_values = true, long, default_value_t = 0.01)]
     pub tolerance: f64,
     /// Node set whose axial reaction is compared (bellows: moving_end).
     #[arg(long)]
@@ -123,7 +123,7 @@ pub struct StudyArgs {
     #[arg(long)]
     pub increments: Option<usize>,
     /// Bellows: axial compression, mm.
-    #[arg(long)]
+    #[arg(allow_hyphen_values = true, long)]
     pub displacement: Option<f64>,
     /// The study file (HDF5); each run's results go to a directory beside it.
     #[arg(short, long, default_value = "penalty_study.h5")]
@@ -194,67 +194,67 @@ pub struct BellowsArgs {
     #[arg(long, default_value_t = 2)]
     pub plies: usize,
     /// Thickness of each ply, mm.
-    #[arg(long, default_value_t = 1.0)]
+    #[arg(allow_hyphen_values = true, long, default_value_t = 1.0)]
     pub ply_thickness: f64,
     /// Number of convolutions.
     #[arg(long, default_value_t = 6)]
     pub convolutions: usize,
     /// Convolution pitch, mm (4 x torus radius for U shapes).
-    #[arg(long, default_value_t = 24.0)]
+    #[arg(allow_hyphen_values = true, long, default_value_t = 24.0)]
     pub pitch: f64,
     /// Convolution height w (mid-surface, root to crest), mm.
-    #[arg(long, default_value_t = 20.0)]
+    #[arg(allow_hyphen_values = true, long, default_value_t = 20.0)]
     pub height: f64,
     /// Mean radius of the root and crest tori, mm.
-    #[arg(long, default_value_t = 6.0)]
+    #[arg(allow_hyphen_values = true, long, default_value_t = 6.0)]
     pub torus_radius: f64,
     /// Axial compression of the joint, mm.
-    #[arg(long, default_value_t = 70.0)]
+    #[arg(allow_hyphen_values = true, long, default_value_t = 70.0)]
     pub displacement: f64,
     /// Increments of the compression step.
     #[arg(long, default_value_t = 240)]
     pub increments: usize,
     /// Contact penalty, N/mm^3 (MPa per mm of penetration).
-    #[arg(long, default_value_t = 1.0e4)]
+    #[arg(allow_hyphen_values = true, long, default_value_t = 1.0e4)]
     pub penalty: f64,
     /// Operating temperature, degC (from 20).
-    #[arg(long, default_value_t = 200.0)]
+    #[arg(allow_hyphen_values = true, long, default_value_t = 200.0)]
     pub temperature: f64,
     /// Internal pressure, MPa (0.6 = 6 bar).
-    #[arg(long, default_value_t = 0.6)]
+    #[arg(allow_hyphen_values = true, long, default_value_t = 0.6)]
     pub pressure: f64,
     /// Initial yield stress, MPa.
-    #[arg(long, default_value_t = 300.0)]
+    #[arg(allow_hyphen_values = true, long, default_value_t = 300.0)]
     pub yield_stress: f64,
     /// Linear isotropic hardening modulus, MPa.
-    #[arg(long, default_value_t = 1000.0)]
+    #[arg(allow_hyphen_values = true, long, default_value_t = 1000.0)]
     pub hardening: f64,
     /// Mass density of the plies, tubes and sleeve, t/mm^3 (AISI 304: 8.0e-9), for
     /// --frequencies.
-    #[arg(long, default_value_t = 8.0e-9)]
+    #[arg(allow_hyphen_values = true, long, default_value_t = 8.0e-9)]
     pub density: f64,
     /// Element length along the plies, mm.
-    #[arg(long, default_value_t = 1.0)]
+    #[arg(allow_hyphen_values = true, long, default_value_t = 1.0)]
     pub ply_element_length: f64,
     /// Elements through each ply.
     #[arg(long, default_value_t = 2)]
     pub ply_elements: usize,
     /// Coulomb friction coefficient between the plies (and where a ply's folds touch).
-    #[arg(long, default_value_t = 0.0, value_name = "MU")]
+    #[arg(allow_hyphen_values = true, long, default_value_t = 0.0, value_name = "MU")]
     pub friction_plies: f64,
     /// Coulomb friction coefficient between the sleeve and tube B's bore.
-    #[arg(long, default_value_t = 0.0, value_name = "MU")]
+    #[arg(allow_hyphen_values = true, long, default_value_t = 0.0, value_name = "MU")]
     pub friction_sleeve: f64,
     /// Tangential penalty of the friction, MPa/mm of elastic slip.
-    #[arg(long, default_value_t = 300.0, value_name = "MPA_PER_MM")]
+    #[arg(allow_hyphen_values = true, long, default_value_t = 300.0, value_name = "MPA_PER_MM")]
     pub tangential_penalty: f64,
     /// Instead of --tangential-penalty, the elastic slip at the Coulomb limit (mm): the
     /// stiffness follows the pressure, eps_T = mu p / slip (Abaqus's form).
-    #[arg(long, value_name = "MM", conflicts_with = "tangential_penalty")]
+    #[arg(allow_hyphen_values = true, long, value_name = "MM", conflicts_with = "tangential_penalty")]
     pub elastic_slip: Option<f64>,
     /// The code check's chart coefficients Cp,Cf,Cd read off the code's charts (EJMA, ASME
     /// VIII-1 App. 26); without them slideline computes them from the idealised convolution.
-    #[arg(long, value_name = "CP,CF,CD", value_delimiter = ',')]
+    #[arg(allow_hyphen_values = true, long, value_name = "CP,CF,CD", value_delimiter = ',')]
     pub coefficients: Option<Vec<f64>>,
     /// The design assessment by finite elements beside the code check: linear elastic analyses
     /// of the design pressure alone and of the stroke alone, linearised across the plies, and
@@ -264,11 +264,11 @@ pub struct BellowsArgs {
     /// The lateral spring rate: tube B's end offset sideways by MM, its rotation held, by a
     /// harmonic perturbation (mode 1) of the joint at rest and of the run's end state, beside
     /// the code's beam analogy (the guide sleeve's contact left out).
-    #[arg(long, value_name = "MM")]
+    #[arg(allow_hyphen_values = true, long, value_name = "MM")]
     pub lateral: Option<f64>,
     /// The angular spring rate: tube B's end rotated by DEG about a diameter through the
     /// bellows' centre, as --lateral.
-    #[arg(long, value_name = "DEG")]
+    #[arg(allow_hyphen_values = true, long, value_name = "DEG")]
     pub angular: Option<f64>,
     /// The instability pressures by buckling analyses of the joint at rest and of the run's end
     /// state, both tubes' ends held: the column instability (squirm, mode 1) beside EJMA's

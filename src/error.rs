@@ -65,6 +65,16 @@ impl Error {
 pub type Result<T> = std::result::Result<T, Error>;
 
 /// A list of items for a message: the first ten, comma-separated, then "and N more".
+/// A number as a message shows it: plainly, or in exponent form where it is huge or tiny
+/// (1e300 is not 301 digits).
+pub fn shown(v: f64) -> String {
+    if v == 0.0 || !v.is_finite() || (1e-4..1e6).contains(&v.abs()) {
+        format!("{v}")
+    } else {
+        format!("{v:e}")
+    }
+}
+
 pub fn first_ten(items: &[impl Display]) -> String {
     let shown: Vec<String> = items.iter().take(10).map(|i| i.to_string()).collect();
     match items.len() {

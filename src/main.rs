@@ -174,11 +174,14 @@ fn main() -> ExitCode {
             let movements = match (args.lateral, args.angular) {
                 (None, None) => None,
                 (lateral, angular) => {
-                    let bad = [("--lateral", lateral, "mm"), ("--angular", angular, "degrees")]
+                    // movements the codes' beam analogy and a linear perturbation describe: an
+                    // offset up to the convoluted length, a rotation up to 45 degrees
+                    let length = params.convolutions as f64 * params.pitch;
+                    let bad = [("--lateral", lateral, "mm", length), ("--angular", angular, "degrees", 45.0)]
                         .into_iter()
-                        .find(|(_, v, _)| v.is_some_and(|v| !v.is_finite() || v == 0.0));
-                    if let Some((flag, v, units)) = bad {
-                        let e = Error::input(format!("{flag} {}: give a nonzero movement in {units}", v.unwrap_or_default()));
+                        .find(|(_, v, _, most)| v.is_some_and(|v| !v.is_finite() || v == 0.0 || v.abs() > *most));
+                    if let Some((flag, v, units, most)) = bad {
+                        let e = Error::input(format!("{flag} {}: give a nonzero movement of at most {most} {units} in size", slideline::error::shown(v.unwrap_or_default())));
                         return fail(&e, launched_as_rank_zero());
                     }
                     Some(Movements { lateral: lateral.unwrap_or(0.0), angular: angular.unwrap_or(0.0) })

@@ -216,3 +216,27 @@ fn a_load_cycle_with_friction_between_the_plies_closes_its_loop() {
     let shear = r.f64s(&format!("{last}/contact/ply1_ply2/pass0/shear"));
     assert!(shear.iter().any(|s| s.abs() > 0.0), "frictional tractions between the plies");
 }
+
+/// Flags of the newer analyses are a bad-input surface too: negative numbers in exponent form
+/// reach their flag (`--density -8e-9` was taken for an unknown argument `-8` with a tip that
+/// would hand it to PETSc), and movements and chart coefficients far off any joint or chart
+/// are refused with their range (`--lateral 1e9`, `--angular 1e6` and `--coefficients
+/// 1e300,..` ran with absurd figures); a negative offset is a movement like any other.
+#[test]
+fn absurd_movements_and_coefficients_are_refused_with_their_range() {
+    let dir = tempfile::tempdir().unwrap();
+    for (args, needle) in [
+        (&["--density", "-8e-9"][..], "bellows: density must be > 0, got -8e-9"),
+        (&["--lateral", "1e9"], "--lateral 1e9: give a nonzero movement of at most 144 mm in size"),
+        (&["--angular", "1e6"], "--angular 1e6: give a nonzero movement of at most 45 degrees in size"),
+        (&["--coefficients", "1e300,1e300,1e300"], "bellows: coefficient Cp 1e300 is off the codes' charts: give 0.1 to 10"),
+        (&["--coefficients", "0.6,1.7,0.01"], "bellows: coefficient Cd 0.01 is off the codes' charts"),
+    ] {
+        let out = bellows(dir.path(), &[&["--quick", "--mesh-only"][..], args].concat());
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {stderr}");
+        assert!(stderr.contains(needle) && stderr.lines().count() == 1, "{args:?}: {stderr}");
+    }
+    let out = bellows(dir.path(), &["--quick", "--mesh-only", "--lateral", "-5"]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+}

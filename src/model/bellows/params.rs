@@ -208,8 +208,12 @@ impl BellowsParams {
         let positive = positive.into_iter().chain(self.elastic_slip.map(|g| ("elastic slip", g))).chain(coefficients);
         for (name, v) in positive {
             if !(v > 0.0 && v.is_finite()) {
-                return Err(Error::input(format!("bellows: {name} must be > 0, got {v}")));
+                return Err(Error::input(format!("bellows: {name} must be > 0, got {}", crate::error::shown(v))));
             }
+        }
+        // the codes' charts' coefficients lie between about 0.3 and 3
+        if let Some((name, v)) = self.coefficients.into_iter().flat_map(|c| [("Cp", c[0]), ("Cf", c[1]), ("Cd", c[2])]).find(|(_, v)| !(0.1..=10.0).contains(v)) {
+            return Err(Error::input(format!("bellows: coefficient {name} {} is off the codes' charts: give 0.1 to 10 (the charts' coefficients lie between about 0.3 and 3)", crate::error::shown(v))));
         }
         for (name, v) in [
             ("temperature", self.temperature),
