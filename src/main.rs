@@ -181,7 +181,10 @@ fn main() -> ExitCode {
                         .into_iter()
                         .find(|(_, v, _, most)| v.is_some_and(|v| !v.is_finite() || v == 0.0 || v.abs() > *most));
                     if let Some((flag, v, units, most)) = bad {
-                        let e = Error::input(format!("{flag} {}: give a nonzero movement of at most {most} {units} in size", slideline::error::shown(v.unwrap_or_default())));
+                        let e = Error::input(format!(
+                            "{flag} {}: give a nonzero movement of at most {most} {units} in size",
+                            slideline::error::shown(v.unwrap_or_default())
+                        ));
                         return fail(&e, launched_as_rank_zero());
                     }
                     Some(Movements { lateral: lateral.unwrap_or(0.0), angular: angular.unwrap_or(0.0) })
@@ -335,7 +338,11 @@ fn main() -> ExitCode {
             let root = session.world().rank() == 0;
             let fineness = slideline::assessment::convolution::Fineness { through, per_thickness };
             // every point and the mesh checked before any analysis
-            let checked = fineness.checked().and_then(|_| c1.iter().flat_map(|&a| c2.iter().map(move |&b| (a, b))).try_for_each(|(a, b)| slideline::assessment::convolution::check_chart_point(a, b, fineness)));
+            let checked = fineness.checked().and_then(|_| {
+                c1.iter()
+                    .flat_map(|&a| c2.iter().map(move |&b| (a, b)))
+                    .try_for_each(|(a, b)| slideline::assessment::convolution::check_chart_point(a, b, fineness))
+            });
             if let Err(e) = checked {
                 return fail(&e, root);
             }

@@ -525,7 +525,8 @@ eigenvalues = 2
         (&["-st_shift", "nan"], "PETSc option -st_shift \"nan\": give a finite number"),
         (&["-st_type", "bogus"], "SLEPc options: Unable to find requested ST type bogus"),
     ] {
-        let out = command_in(run.dir.path(), 1).arg("run").arg(run.dir.path().join("deck.toml")).arg("-o").arg(&run.h5).arg("--").args(option).output().unwrap();
+        let out =
+            command_in(run.dir.path(), 1).arg("run").arg(run.dir.path().join("deck.toml")).arg("-o").arg(&run.h5).arg("--").args(option).output().unwrap();
         let stderr = String::from_utf8_lossy(&out.stderr);
         assert_eq!(out.status.code(), Some(2), "{option:?}: {stderr}");
         assert!(stderr.contains(needle), "{option:?}: {stderr}");

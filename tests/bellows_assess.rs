@@ -57,7 +57,10 @@ fn the_quick_joint_is_assessed_beside_the_code() {
         line.split_whitespace().find_map(|w| w.parse::<f64>().ok().filter(|_| w.contains('.'))).unwrap()
     };
     let (flexibility, stability) = (at_rest("flexibility:", "axial rate, N/mm"), at_rest("stability:", "axial rate Kb"));
-    assert!((flexibility - fe_rate).abs() <= 0.05 && (stability - fe_rate).abs() <= 0.05, "assessment {fe_rate}, flexibility {flexibility}, stability {stability}");
+    assert!(
+        (flexibility - fe_rate).abs() <= 0.05 && (stability - fe_rate).abs() <= 0.05,
+        "assessment {fe_rate}, flexibility {flexibility}, stability {stability}"
+    );
     // the instability pressures by buckling analyses: the column's above the code's factored
     // formula (measured 62.6 against 18.9 MPa), the in-plane bifurcation above the code's yield
     // criterion (89.1 against 6.34)

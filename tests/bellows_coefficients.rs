@@ -63,7 +63,9 @@ fn the_charts_are_drawn_on_request() {
 #[test]
 fn a_geometry_the_charts_do_not_cover_is_refused() {
     let dir = tempfile::tempdir().unwrap();
-    for (c1, c2, needle) in [("1.2", "0.5", "--c1 1.2: the codes' charts"), ("0", "0.5", "--c1 0: the codes' charts"), ("0.5", "0.05", "--c2 0.05: the codes' charts")] {
+    for (c1, c2, needle) in
+        [("1.2", "0.5", "--c1 1.2: the codes' charts"), ("0", "0.5", "--c1 0: the codes' charts"), ("0.5", "0.05", "--c2 0.05: the codes' charts")]
+    {
         let out = command_in(dir.path(), 1).args(["coefficients", "--c1", c1, "--c2", c2]).output().unwrap();
         let err = String::from_utf8_lossy(&out.stderr);
         assert!(out.status.code() == Some(2) && err.contains(needle) && !err.contains("panicked"), "({c1}, {c2}): {err}");

@@ -344,7 +344,11 @@ fn eigenvalue_steps_with_free_rigid_motions_or_no_load_say_so() {
     let held = "boundary = [ { set = \"bottom\", ur = 0.0, uz = 0.0, ut = 0.0 } ]\n";
     let free = run_deck(&deck(&buckle("free", "", 1.0)), &[], 1, &[]);
     assert_eq!(free.code(), 2, "{}", free.stderr());
-    assert!(free.stderr().contains("buckle step 'free' (mode 1): nothing holds the model across the axis (the lateral offset) nor the tilt about a diameter"), "{}", free.stderr());
+    assert!(
+        free.stderr().contains("buckle step 'free' (mode 1): nothing holds the model across the axis (the lateral offset) nor the tilt about a diameter"),
+        "{}",
+        free.stderr()
+    );
     let unloaded = run_deck(&deck(&buckle("unloaded", held, 0.0)), &[], 1, &[]);
     assert_eq!(unloaded.code(), 2, "{}", unloaded.stderr());
     assert!(unloaded.stderr().contains("perturbation step 'unloaded': no load"), "{}", unloaded.stderr());

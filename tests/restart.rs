@@ -213,7 +213,11 @@ fn a_finished_compression_carried_on_with_a_cycle_equals_the_cycle_run() {
     // the closing table's rows at the stroke are read at the stroke (#12: the fields of the
     // file the restart continues), not at the cycle's end, and say so
     let rows = |out: &Output| -> Vec<String> {
-        String::from_utf8_lossy(&out.stdout).lines().filter(|l| l.contains("max von Mises") || l.contains("max equivalent plastic strain")).map(str::to_string).collect()
+        String::from_utf8_lossy(&out.stdout)
+            .lines()
+            .filter(|l| l.contains("max von Mises") || l.contains("max equivalent plastic strain"))
+            .map(str::to_string)
+            .collect()
     };
     let at_stroke = rows(&compressed);
     assert_eq!(at_stroke.len(), 2, "{at_stroke:?}");
@@ -332,16 +336,27 @@ fn a_restart_may_change_only_the_steps_not_yet_begun() {
     let deck = write("cycle.toml", format!("{}{UNLOAD}", plastic_cylinder()));
     ok(run(&[&deck, "-o", "cycle.h5"]));
     let more = write("more.toml", format!("{}{}", plastic_cylinder().replace("value = 84.0", "value = 90.0"), UNLOAD));
-    refused(run(&[&more, "--restart", "cycle.h5", "--increment", "3", "-o", "more.h5"]), "the deck changes step 1 pressures of the run it continues (increment 3 is in step 1)");
+    refused(
+        run(&[&more, "--restart", "cycle.h5", "--increment", "3", "-o", "more.h5"]),
+        "the deck changes step 1 pressures of the run it continues (increment 3 is in step 1)",
+    );
     let softer = write("softer.toml", format!("{}{UNLOAD}", plastic_cylinder().replace("yield_stress = 300.0", "yield_stress = 250.0")));
-    assert_ne!(std::fs::read_to_string(dir.path().join(&softer)).unwrap(), std::fs::read_to_string(dir.path().join(&deck)).unwrap(), "the material did not change");
+    assert_ne!(
+        std::fs::read_to_string(dir.path().join(&softer)).unwrap(),
+        std::fs::read_to_string(dir.path().join(&deck)).unwrap(),
+        "the material did not change"
+    );
     refused(run(&[&softer, "--restart", "cycle.h5", "--increment", "3", "-o", "softer.h5"]), "the deck changes materials of the run it continues");
     // the unload step is not begun at increment 3: it may change
     let later = write("later.toml", format!("{}{}", plastic_cylinder(), UNLOAD.replace("increments = 3", "increments = 4")));
     ok(run(&[&later, "--restart", "cycle.h5", "--increment", "3", "-o", "later.h5"]));
     let f = hdf5::File::open(dir.path().join("later.h5")).unwrap();
     let decks: hdf5::types::VarLenUnicode = f.attr("deck_of_increments").unwrap().read_scalar().unwrap();
-    assert!(decks.as_str().starts_with("increments 1 to 3: the deck of cycle.h5") && decks.as_str().ends_with("from 4: this file's deck"), "{}", decks.as_str());
+    assert!(
+        decks.as_str().starts_with("increments 1 to 3: the deck of cycle.h5") && decks.as_str().ends_with("from 4: this file's deck"),
+        "{}",
+        decks.as_str()
+    );
     // but once in the unload step, it may not
     refused(run(&[&later, "--restart", "cycle.h5", "--increment", "7", "-o", "late.h5"]), "the deck changes step 2 increments");
 }

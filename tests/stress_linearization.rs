@@ -246,9 +246,24 @@ print(" ".join(repr(v) for v in [*mean[:2], *row[0, :2], *row[2, :2], np.abs(row
         let (membrane, total_start, total_end) = (row("membrane "), row("total at the start"), row("total at the end"));
         eprintln!("from r = {from}: membrane {membrane:?} against the Gauss mean {mean:?}; totals {total_start:?} / {total_end:?}");
         for c in 0..2 {
-            assert!((membrane[c] - mean[c]).abs() < 0.05 * scale, "from {from}, component {c}: membrane {} against the Gauss mean {} (row scale {scale})", membrane[c], mean[c]);
-            assert!((total_start[c] - start[c]).abs() < 1e-3 * scale, "from {from}, component {c}: total at the start {} against the inner point's {}", total_start[c], start[c]);
-            assert!((total_end[c] - end[c]).abs() < 1e-3 * scale, "from {from}, component {c}: total at the end {} against the outer point's {}", total_end[c], end[c]);
+            assert!(
+                (membrane[c] - mean[c]).abs() < 0.05 * scale,
+                "from {from}, component {c}: membrane {} against the Gauss mean {} (row scale {scale})",
+                membrane[c],
+                mean[c]
+            );
+            assert!(
+                (total_start[c] - start[c]).abs() < 1e-3 * scale,
+                "from {from}, component {c}: total at the start {} against the inner point's {}",
+                total_start[c],
+                start[c]
+            );
+            assert!(
+                (total_end[c] - end[c]).abs() < 1e-3 * scale,
+                "from {from}, component {c}: total at the end {} against the outer point's {}",
+                total_end[c],
+                end[c]
+            );
         }
     }
 }

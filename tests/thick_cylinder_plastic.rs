@@ -186,7 +186,8 @@ fn no_volumetric_locking_limit_pressure_plateau_and_smooth_pressure_field() {
     let out = common::command_in(run.dir.path(), 1).args(["post"]).arg(&run.h5).args(["--linearize", &format!("{A},0.5:{B},0.5")]).output().unwrap();
     let text = String::from_utf8_lossy(&out.stdout).to_string();
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
-    let membrane: Vec<f64> = text.lines().find(|l| l.trim_start().starts_with("membrane ")).unwrap().split_whitespace().skip(1).map(|v| v.parse().unwrap()).collect();
+    let membrane: Vec<f64> =
+        text.lines().find(|l| l.trim_start().starts_with("membrane ")).unwrap().split_whitespace().skip(1).map(|v| v.parse().unwrap()).collect();
     let hoop = last * A / (B - A);
     eprintln!("fully plastic wall: hoop membrane {:.3} MPa against p a / (b - a) = {hoop:.3}", membrane[2]);
     assert!((membrane[2] - hoop).abs() <= 0.005 * hoop, "hoop membrane {} against {hoop}\n{text}", membrane[2]);

@@ -240,7 +240,8 @@ impl Convolution {
                 let normal = [-tan[1], tan[0]];
                 let half = 0.5 * TP * (1.0 - 1e-4);
                 let (a, b) = ([x[0] + half * normal[0], x[1] + half * normal[1]], [x[0] - half * normal[0], x[1] - half * normal[1]]);
-                let l = linearize(a, b, 40, |p, d| sampler.entering(p, d)).map_err(|m| Error::Output { path: file.to_path_buf(), message: format!("piece {k}: {m}") })?;
+                let l = linearize(a, b, 40, |p, d| sampler.entering(p, d))
+                    .map_err(|m| Error::Output { path: file.to_path_buf(), message: format!("piece {k}: {m}") })?;
                 peak = peak.max(l.bending[1].abs());
             }
         }

@@ -327,7 +327,21 @@ mod tests {
         // one Q8 over [1, 3] x [0, 2], yielded, Gauss values s = (r - 2)^3 (odd: no quadratic
         // holds it); a section starting on its left edge reads the element it runs into though
         // a neighbour over [0, 1] x [0, 2] also holds the starting point
-        let coords = [[1.0, 0.0], [3.0, 0.0], [3.0, 2.0], [1.0, 2.0], [2.0, 0.0], [3.0, 1.0], [2.0, 2.0], [1.0, 1.0], [0.0, 0.0], [0.0, 2.0], [0.5, 0.0], [0.5, 2.0], [0.0, 1.0]];
+        let coords = [
+            [1.0, 0.0],
+            [3.0, 0.0],
+            [3.0, 2.0],
+            [1.0, 2.0],
+            [2.0, 0.0],
+            [3.0, 1.0],
+            [2.0, 2.0],
+            [1.0, 1.0],
+            [0.0, 0.0],
+            [0.0, 2.0],
+            [0.5, 0.0],
+            [0.5, 2.0],
+            [0.0, 1.0],
+        ];
         let elements = [[8, 0, 3, 9, 10, 7, 11, 12], [0, 1, 2, 3, 4, 5, 6, 7]];
         let g = 0.6f64.sqrt();
         let gauss: [[f64; 4]; 9] = std::array::from_fn(|q| [(-g + g * (q % 3) as f64).powi(3), 0.0, 0.0, 0.0]);

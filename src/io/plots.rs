@@ -20,6 +20,22 @@ fn use_bundled_font() {
     });
 }
 
+/// Writes RGB `pixels` of `size` to `path` as a PNG: a full disk or a read-only place is
+/// named in the file system's words (the bitmap backend's own writer gave its error's Debug
+/// text).
+fn write_png(path: &Path, size: (u32, u32), pixels: &[u8]) -> Result<()> {
+    let mut bytes = Vec::new();
+    let mut encoder = png::Encoder::new(&mut bytes, size.0, size.1);
+    encoder.set_color(png::ColorType::Rgb);
+    encoder.set_depth(png::BitDepth::Eight);
+    // each row's best filter: flat colour fields and lines then pack as tightly as the image
+    // crate's encoder did (uncompressed rows are five times larger)
+    encoder.set_adaptive_filter(png::AdaptiveFilterType::Adaptive);
+    let encoded = encoder.write_header().and_then(|mut w| w.write_image_data(pixels));
+    encoded.map_err(|e| Error::Output { path: path.to_path_buf(), message: format!("cannot encode the picture: {e}") })?;
+    std::fs::write(path, &bytes).map_err(|e| Error::Output { path: path.to_path_buf(), message: e.to_string() })
+}
+
 fn draw_err(path: &Path) -> impl Fn(&dyn std::fmt::Display) -> Error + '_ {
     move |e| Error::Output { path: path.to_path_buf(), message: format!("cannot draw the picture: {e}") }
 }
@@ -66,34 +82,47 @@ pub fn line_plot(path: &Path, title: &str, x_label: &str, y_label: &str, curves:
         (x0, x1, y0, y1) = (x0 - 0.05 * wx, x1 + 0.0 * wx, y0 - 0.25 * wy, y1 + 0.25 * wy);
     }
     let (dx, dy) = (0.05 * (x1 - x0), 0.08 * (y1 - y0));
-    let root = BitMapBackend::new(path, (1200, 800)).into_drawing_area();
-    root.fill(&WHITE).map_err(|e| err(&e))?;
-    let mut chart = ChartBuilder::on(&root)
-        .caption(title, ("sans-serif", 28))
-        .margin(20)
-        .x_label_area_size(60)
-        .y_label_area_size(90)
-        .build_cartesian_2d(x0..x1 + dx, y0 - if y0 < 0.0 { dy } else { 0.0 }..y1 + dy)
-        .map_err(|e| err(&e))?;
-    chart.configure_mesh().x_desc(x_label).y_desc(y_label).label_style(("sans-serif", 18)).axis_desc_style(("sans-serif", 20)).draw().map_err(|e| err(&e))?;
-    let palette = [RGBColor(31, 119, 180), RGBColor(214, 39, 40), RGBColor(44, 160, 44), RGBColor(148, 103, 189)];
-    for (k, c) in curves.iter().enumerate() {
-        let colour = palette[k % palette.len()];
+    let size = (1200, 800);
+    let mut pixels = vec![0u8; 3 * size.0 as usize * size.1 as usize];
+    {
+        let root = BitMapBackend::with_buffer(&mut pixels, size).into_drawing_area();
+        root.fill(&WHITE).map_err(|e| err(&e))?;
+        let mut chart = ChartBuilder::on(&root)
+            .caption(title, ("sans-serif", 28))
+            .margin(20)
+            .x_label_area_size(60)
+            .y_label_area_size(90)
+            .build_cartesian_2d(x0..x1 + dx, y0 - if y0 < 0.0 { dy } else { 0.0 }..y1 + dy)
+            .map_err(|e| err(&e))?;
         chart
-            .draw_series(LineSeries::new(c.points.iter().copied(), colour.stroke_width(3)))
-            .map_err(|e| err(&e))?
-            .label(c.label.as_str())
-            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 24, y)], colour.stroke_width(3)));
+            .configure_mesh()
+            .x_desc(x_label)
+            .y_desc(y_label)
+            .label_style(("sans-serif", 18))
+            .axis_desc_style(("sans-serif", 20))
+            .draw()
+            .map_err(|e| err(&e))?;
+        let palette = [RGBColor(31, 119, 180), RGBColor(214, 39, 40), RGBColor(44, 160, 44), RGBColor(148, 103, 189)];
+        for (k, c) in curves.iter().enumerate() {
+            let colour = palette[k % palette.len()];
+            chart
+                .draw_series(LineSeries::new(c.points.iter().copied(), colour.stroke_width(3)))
+                .map_err(|e| err(&e))?
+                .label(c.label.as_str())
+                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 24, y)], colour.stroke_width(3)));
+        }
+        for m in markers {
+            chart
+                .draw_series(std::iter::once(Cross::new(m.at, 10, BLACK.stroke_width(3))))
+                .map_err(|e| err(&e))?
+                .label(m.label.as_str())
+                .legend(|(x, y)| Cross::new((x + 12, y), 7, BLACK.stroke_width(2)));
+        }
+        draw_legend(&mut chart, if axes == Axes::FromOrigin { SeriesLabelPosition::UpperLeft } else { SeriesLabelPosition::UpperRight })
+            .map_err(|e| err(&e))?;
+        root.present().map_err(|e| err(&e))?;
     }
-    for m in markers {
-        chart
-            .draw_series(std::iter::once(Cross::new(m.at, 10, BLACK.stroke_width(3))))
-            .map_err(|e| err(&e))?
-            .label(m.label.as_str())
-            .legend(|(x, y)| Cross::new((x + 12, y), 7, BLACK.stroke_width(2)));
-    }
-    draw_legend(&mut chart, if axes == Axes::FromOrigin { SeriesLabelPosition::UpperLeft } else { SeriesLabelPosition::UpperRight }).map_err(|e| err(&e))?;
-    root.present().map_err(|e| err(&e))
+    write_png(path, size, &pixels)
 }
 
 /// Line segments ((r, z) ends) of one kind in an outline picture, with their legend label.
@@ -119,27 +148,32 @@ pub fn outline_picture(path: &Path, title: &str, layers: &[SegmentLayer]) -> Res
     let width = 1800u32;
     let plot_width = f64::from(width - 150);
     let height = (plot_width * (r1 - r0) / (z1 - z0)).round() as u32 + 190;
-    let root = BitMapBackend::new(path, (width, height)).into_drawing_area();
-    root.fill(&WHITE).map_err(|e| err(&e))?;
-    let mut chart = ChartBuilder::on(&root)
-        .caption(title, ("sans-serif", 26))
-        .margin(20)
-        .x_label_area_size(50)
-        .y_label_area_size(80)
-        .build_cartesian_2d(z0..z1, r0..r1)
-        .map_err(|e| err(&e))?;
-    chart.configure_mesh().disable_mesh().x_desc("z, mm").y_desc("r, mm").label_style(("sans-serif", 16)).draw().map_err(|e| err(&e))?;
-    let palette = [RGBColor(150, 150, 150), RGBColor(31, 119, 180), RGBColor(214, 39, 40), RGBColor(44, 160, 44)];
-    for (k, layer) in layers.iter().enumerate() {
-        let style = palette[k % palette.len()].stroke_width(layer.width);
-        chart
-            .draw_series(layer.segments.iter().map(|[a, b]| PathElement::new(vec![(a[1], a[0]), (b[1], b[0])], style)))
-            .map_err(|e| err(&e))?
-            .label(layer.label.as_str())
-            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 24, y)], style));
+    let size = (width, height);
+    let mut pixels = vec![0u8; 3 * size.0 as usize * size.1 as usize];
+    {
+        let root = BitMapBackend::with_buffer(&mut pixels, size).into_drawing_area();
+        root.fill(&WHITE).map_err(|e| err(&e))?;
+        let mut chart = ChartBuilder::on(&root)
+            .caption(title, ("sans-serif", 26))
+            .margin(20)
+            .x_label_area_size(50)
+            .y_label_area_size(80)
+            .build_cartesian_2d(z0..z1, r0..r1)
+            .map_err(|e| err(&e))?;
+        chart.configure_mesh().disable_mesh().x_desc("z, mm").y_desc("r, mm").label_style(("sans-serif", 16)).draw().map_err(|e| err(&e))?;
+        let palette = [RGBColor(150, 150, 150), RGBColor(31, 119, 180), RGBColor(214, 39, 40), RGBColor(44, 160, 44)];
+        for (k, layer) in layers.iter().enumerate() {
+            let style = palette[k % palette.len()].stroke_width(layer.width);
+            chart
+                .draw_series(layer.segments.iter().map(|[a, b]| PathElement::new(vec![(a[1], a[0]), (b[1], b[0])], style)))
+                .map_err(|e| err(&e))?
+                .label(layer.label.as_str())
+                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 24, y)], style));
+        }
+        draw_legend(&mut chart, SeriesLabelPosition::UpperLeft).map_err(|e| err(&e))?;
+        root.present().map_err(|e| err(&e))?;
     }
-    draw_legend(&mut chart, SeriesLabelPosition::UpperLeft).map_err(|e| err(&e))?;
-    root.present().map_err(|e| err(&e))
+    write_png(path, size, &pixels)
 }
 
 /// The series' legend, boxed, at `position`.
@@ -184,24 +218,29 @@ pub fn deformed_field(path: &Path, picture: &FieldPicture<'_>, windows: &[Option
     let hi = picture.values.iter().copied().filter(|v| v.is_finite()).fold(f64::NEG_INFINITY, f64::max);
     let span = if hi > lo { hi - lo } else { 1.0 };
     let (width, panel_height) = (1800u32, 520u32);
-    let root = BitMapBackend::new(path, (width, 70 + panel_height * windows.len() as u32)).into_drawing_area();
-    root.fill(&WHITE).map_err(|e| err(&e))?;
-    let (head, body) = root.split_vertically(70);
-    head.titled(&picture.title, ("sans-serif", 26)).map_err(|e| err(&e))?;
-    let (panels, bar) = body.split_horizontally(width - 170);
-    for (area, window) in panels.split_evenly((windows.len(), 1)).iter().zip(windows) {
-        let ((z0, z1), (r0, r1)) = window.unwrap_or_else(|| {
-            let (mut b, mut t) = ((f64::INFINITY, f64::NEG_INFINITY), (f64::INFINITY, f64::NEG_INFINITY));
-            for n in 0..picture.coordinates.len() {
-                let p = x(n);
-                (b, t) = ((b.0.min(p[1]), b.1.max(p[1])), (t.0.min(p[0]), t.1.max(p[0])));
-            }
-            (b, t)
-        });
-        draw_panel(area, &x, picture, (z0, z1), (r0, r1), |v| rainbow((v - lo) / span)).map_err(|e| err(&e))?;
+    let size = (width, 70 + panel_height * windows.len() as u32);
+    let mut pixels = vec![0u8; 3 * size.0 as usize * size.1 as usize];
+    {
+        let root = BitMapBackend::with_buffer(&mut pixels, size).into_drawing_area();
+        root.fill(&WHITE).map_err(|e| err(&e))?;
+        let (head, body) = root.split_vertically(70);
+        head.titled(&picture.title, ("sans-serif", 26)).map_err(|e| err(&e))?;
+        let (panels, bar) = body.split_horizontally(width - 170);
+        for (area, window) in panels.split_evenly((windows.len(), 1)).iter().zip(windows) {
+            let ((z0, z1), (r0, r1)) = window.unwrap_or_else(|| {
+                let (mut b, mut t) = ((f64::INFINITY, f64::NEG_INFINITY), (f64::INFINITY, f64::NEG_INFINITY));
+                for n in 0..picture.coordinates.len() {
+                    let p = x(n);
+                    (b, t) = ((b.0.min(p[1]), b.1.max(p[1])), (t.0.min(p[0]), t.1.max(p[0])));
+                }
+                (b, t)
+            });
+            draw_panel(area, &x, picture, (z0, z1), (r0, r1), |v| rainbow((v - lo) / span)).map_err(|e| err(&e))?;
+        }
+        draw_colour_bar(&bar, &picture.value_label, lo, hi).map_err(|e| err(&e))?;
+        root.present().map_err(|e| err(&e))?;
     }
-    draw_colour_bar(&bar, &picture.value_label, lo, hi).map_err(|e| err(&e))?;
-    root.present().map_err(|e| err(&e))
+    write_png(path, size, &pixels)
 }
 
 type DrawResult = std::result::Result<(), DrawingAreaErrorKind<<BitMapBackend<'static> as DrawingBackend>::ErrorType>>;

@@ -34,7 +34,19 @@ pub fn model_parts(model: &Model) -> Vec<Fingerprint> {
 /// The fingerprints of each field of step `k` (0-based), named "step K field".
 pub fn step_fields(k: usize, step: &Step) -> Vec<Fingerprint> {
     // destructured so that a new field of Step cannot be left out unnoticed
-    let Step { name, increments, displacements, pressures, nodal_forces, temperature, time_span, body_loads, release_constraints, without_field_output, friction_changes } = step;
+    let Step {
+        name,
+        increments,
+        displacements,
+        pressures,
+        nodal_forces,
+        temperature,
+        time_span,
+        body_loads,
+        release_constraints,
+        without_field_output,
+        friction_changes,
+    } = step;
     let field = |what: &str, value: &dyn std::fmt::Debug| (format!("step {} {what}", k + 1), fnv1a(&format!("{value:?}")));
     vec![
         field("name", name),

@@ -177,7 +177,9 @@ impl Perturbation {
         let moved = self.displacements.iter().any(|d| d.value != 0.0) || self.rings.iter().any(|r| r.lateral != 0.0 || r.rotation != 0.0);
         if !moved && self.pressures.iter().all(|p| p.value == 0.0) {
             let pivot = if self.rings.iter().any(|r| r.pivot.is_some()) { " (a ring's pivot only says where it turns)" } else { "" };
-            return Err(at(format!("no load: every amplitude and pressure given is zero{pivot}; give nonzero amplitudes (ur, uz, ut), a ring's lateral or rotation, or a pressure")));
+            return Err(at(format!(
+                "no load: every amplitude and pressure given is zero{pivot}; give nonzero amplitudes (ur, uz, ut), a ring's lateral or rotation, or a pressure"
+            )));
         }
         Ok(())
     }

@@ -114,7 +114,10 @@ fn product(world: &impl Communicator, blocks: &[Block], x: &[[f64; 3]], y: &[[f6
 fn free_rigid_motions(world: &impl Communicator, stiffness: &[Block], amplitude: &[[Amplitude; 3]], current: &[[f64; 2]], mode: u32) -> Vec<&'static str> {
     let motions: Vec<(&'static str, Box<dyn Fn([f64; 2]) -> [f64; 3]>)> = match mode {
         0 => vec![("along the axis (uz)", Box::new(|_| [0.0, 1.0, 0.0])), ("the twist about the axis (ut)", Box::new(|x: [f64; 2]| [0.0, 0.0, x[0]]))],
-        1 => vec![("across the axis (the lateral offset)", Box::new(|_| [1.0, 0.0, -1.0])), ("the tilt about a diameter", Box::new(|x: [f64; 2]| [x[1], -x[0], -x[1]]))],
+        1 => vec![
+            ("across the axis (the lateral offset)", Box::new(|_| [1.0, 0.0, -1.0])),
+            ("the tilt about a diameter", Box::new(|x: [f64; 2]| [x[1], -x[0], -x[1]])),
+        ],
         _ => Vec::new(),
     };
     motions

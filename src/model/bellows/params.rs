@@ -212,8 +212,12 @@ impl BellowsParams {
             }
         }
         // the codes' charts' coefficients lie between about 0.3 and 3
-        if let Some((name, v)) = self.coefficients.into_iter().flat_map(|c| [("Cp", c[0]), ("Cf", c[1]), ("Cd", c[2])]).find(|(_, v)| !(0.1..=10.0).contains(v)) {
-            return Err(Error::input(format!("bellows: coefficient {name} {} is off the codes' charts: give 0.1 to 10 (the charts' coefficients lie between about 0.3 and 3)", crate::error::shown(v))));
+        if let Some((name, v)) = self.coefficients.into_iter().flat_map(|c| [("Cp", c[0]), ("Cf", c[1]), ("Cd", c[2])]).find(|(_, v)| !(0.1..=10.0).contains(v))
+        {
+            return Err(Error::input(format!(
+                "bellows: coefficient {name} {} is off the codes' charts: give 0.1 to 10 (the charts' coefficients lie between about 0.3 and 3)",
+                crate::error::shown(v)
+            )));
         }
         for (name, v) in [
             ("temperature", self.temperature),

@@ -48,7 +48,10 @@ pub struct InpModel {
 pub fn read(path: &Path) -> Result<InpModel> {
     let cards = cards::read(path)?;
     if cards.is_empty() {
-        return Err(Error::input(format!("{}: the deck is empty (no keyword card: an .inp deck is *NODE, *ELEMENT, *MATERIAL, ... and a *STEP)", path.display())));
+        return Err(Error::input(format!(
+            "{}: the deck is empty (no keyword card: an .inp deck is *NODE, *ELEMENT, *MATERIAL, ... and a *STEP)",
+            path.display()
+        )));
     }
     let text = std::fs::read_to_string(path).map_err(|source| Error::Read { path: path.to_path_buf(), source })?;
     build(&cards, text)
