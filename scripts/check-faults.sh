@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Faults that need a file system of their own (root, tmpfs mounts), so they are not in the test
 # suite: on 2 ranks,
-#  - a disk that fills in the middle of a run (a 2 MB tmpfs): the run stops within seconds with
-#    "cannot write", and `slideline post` reads every increment completed before;
+#  - a disk that fills in the middle of a run (a 2 MB tmpfs), on 1 and 2 ranks: the run stops
+#    within seconds with exit 1 and "cannot write", its lock released, and `slideline post`
+#    reads every increment completed before; `post --plot` onto a full disk says so plainly;
 #  - a read-only mount: `run -o` and `penalty-study -o` onto it are refused with exit 2 at once
 #    (penalty-study's rank 1 used to wait forever).
 # Prints one line per check and exits 1 on the first failure.
@@ -20,20 +21,40 @@ cleanup() { umount "$mnt" 2>/dev/null || true; rm -rf "$work"; }
 trap cleanup EXIT
 fail() { echo "FAILED: $*"; exit 1; }
 
-# a disk that fills up
+# a disk that fills up, on 1 and on 2 ranks, three times each (a 1-rank run once crashed
+# after the write error, a 2-rank one hung or left its lock)
+for ranks in 1 2; do
+    for trial in 1 2 3; do
+        mount -t tmpfs -o size=2m tmpfs "$mnt"
+        start=$(date +%s.%N)
+        set +e
+        timeout 120 mpirun -n "$ranks" "$slideline" bellows --quick --quiet -o "$mnt/q.h5" > "$work/full.out" 2>&1
+        code=$?
+        set -e
+        seconds=$(awk -v a="$start" -v b="$(date +%s.%N)" 'BEGIN { printf "%.1f", b - a }')
+        what="disk full, $ranks rank(s), trial $trial"
+        [ "$code" -ne 124 ] || fail "$what: the run hung (killed after 120 s)"
+        [ "$code" -eq 1 ] || fail "$what: exit $code (a crash, or success): $(cat "$work/full.out")"
+        grep -q "^error: cannot write $mnt/q.h5" "$work/full.out" || fail "$what: no 'cannot write' line: $(cat "$work/full.out")"
+        [ ! -e "$mnt/q.lock" ] || fail "$what: the lock was left"
+        kept=$("$slideline" post "$mnt/q.h5" 2>/dev/null | grep -c '^step .* inc ') || fail "$what: post cannot read the file"
+        [ "$kept" -ge 1 ] || fail "$what: no increment kept"
+        echo "$what: stopped in ${seconds} s (exit 1) with 'cannot write', the lock released; post reads the $kept increment(s) completed before -> ok"
+        umount "$mnt"
+    done
+done
+
+# a full disk under post --plot: the file system's words, not a Debug struct
 mount -t tmpfs -o size=2m tmpfs "$mnt"
-start=$(date +%s.%N)
+mpirun -n 1 "$slideline" bellows --quick --quiet --displacement 5 --increments 2 -o "$work/small.h5" > /dev/null
+dd if=/dev/zero of="$mnt/fill" bs=1k count=2000 2> /dev/null || true
 set +e
-timeout 120 mpirun -n 2 "$slideline" bellows --quick --quiet -o "$mnt/q.h5" > "$work/full.out" 2>&1
+"$slideline" post "$work/small.h5" --plot "$mnt/p.png" > "$work/plot.out" 2>&1
 code=$?
 set -e
-seconds=$(awk -v a="$start" -v b="$(date +%s.%N)" 'BEGIN { printf "%.1f", b - a }')
-[ "$code" -ne 124 ] || fail "disk full: the run hung (killed after 120 s)"
-[ "$code" -ne 0 ] || fail "disk full: the run reported success"
-grep -q "cannot write $mnt/q.h5" "$work/full.out" || fail "disk full: no 'cannot write' message: $(cat "$work/full.out")"
-kept=$("$slideline" post "$mnt/q.h5" 2>/dev/null | grep -c '^step .* inc ') || fail "disk full: post cannot read the file"
-[ "$kept" -ge 1 ] || fail "disk full: no increment kept"
-echo "disk full: stopped in ${seconds} s (exit $code) with 'cannot write'; post reads the $kept increment(s) completed before -> ok"
+[ "$code" -eq 1 ] && grep -q "cannot write $mnt/p.png: No space left on device" "$work/plot.out" || fail "post --plot onto a full disk: exit $code: $(cat "$work/plot.out")"
+! grep -q "Custom {\|IoError(" "$work/plot.out" || fail "post --plot onto a full disk printed a Debug struct"
+echo "post --plot onto a full disk: exit 1, '$(head -1 "$work/plot.out")' -> ok"
 umount "$mnt"
 
 # a read-only mount

@@ -146,7 +146,7 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
     let mut heat = Vec::new();
     for h in &model.heat_steps {
         let answer = super::conduction::solve(session, model, &partition, h)?;
-        stop_all_on_write_error(&world, results.write_heat(h, &answer, &partition, model.is_axisymmetric()))?;
+        stop_all_on_write_error(&world, &options.output, results.write_heat(h, &answer, &partition, model.is_axisymmetric()))?;
         progress.note(&format!("heat step '{}': solved", h.name));
         heat.push((h.name.clone(), answer));
     }
@@ -418,7 +418,7 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
                 }
             });
             let written = state.as_ref().map(|state| (&increment_fields, state));
-            stop_all_on_write_error(&world, output.run(|| results.write_increment(&step.name, &row, written, &partition))?)?;
+            stop_all_on_write_error(&world, &options.output, output.run(|| results.write_increment(&step.name, &row, written, &partition))?)?;
             last_in_file = with_fields;
             if let Some(status) = status.as_mut() {
                 status.record(&row);
@@ -465,7 +465,7 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
         }
         // the base state's fields: the last increment's (always written: it ends its step)
         let base_group = rows.last().map(|r| format!("{:06}", r.number));
-        stop_all_on_write_error(&world, results.write_perturbation(p, &answer, &partition, base_group.as_deref()))?;
+        stop_all_on_write_error(&world, &options.output, results.write_perturbation(p, &answer, &partition, base_group.as_deref()))?;
         perturbations.push((p.name.clone(), answer));
     }
     progress.finish();
@@ -564,10 +564,13 @@ fn set_free_values(x: &mut Vector<'_>, dofs: &DofMap, partition: &Partition, dis
 /// A write that failed on one rank (a full disk, a vanished directory) leaves the others
 /// waiting inside HDF5's collective calls: the rank that met it prints the error and stops every
 /// rank (MPI_Abort). The increments completed before are on disk, each flushed and marked.
-fn stop_all_on_write_error<T>(world: &impl Communicator, result: Result<T>) -> Result<T> {
+fn stop_all_on_write_error<T>(world: &impl Communicator, output: &std::path::Path, result: Result<T>) -> Result<T> {
     match result {
         Err(e @ Error::Output { .. }) if world.size() > 1 => {
             eprintln!("error: {e}; every rank stops (the increments completed before are in the file)");
+            // the abort runs no destructor: the lock goes first, whichever rank holds it (a
+            // file that stays locked would refuse the next run into it)
+            let _ = std::fs::remove_file(crate::io::lock::lock_path(output));
             world.abort(1)
         }
         other => other,
