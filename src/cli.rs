@@ -297,7 +297,7 @@ pub struct BellowsArgs {
     /// displacement, restart state, history and mesh stay 64-bit.
     #[arg(long, value_enum, default_value_t = PrecisionArg::Double)]
     pub output_precision: PrecisionArg,
-    /// A coarse, quick version of the same case (about a minute).
+    /// A coarse, quick version of the same case (about 5 s on 2 ranks).
     #[arg(long)]
     pub quick: bool,
     /// Write the mesh (Gmsh .msh next to --output) and stop.
