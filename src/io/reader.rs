@@ -313,6 +313,11 @@ impl ResultsReader {
     }
 
     /// Whether increment group `increment` holds the displacement (complete or not).
+    /// Whether increment `increment` holds the dataset `name` (a path below its group).
+    pub fn has_field(&self, increment: &str, name: &str) -> bool {
+        self.file.link_exists(&format!("increments/{increment}/{name}"))
+    }
+
     pub fn has_displacement(&self, increment: &str) -> bool {
         ["nodal/displacement", "displacement"].iter().any(|d| self.file.link_exists(&format!("increments/{increment}/{d}")))
     }
