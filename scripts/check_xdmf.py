@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Reads a slideline results file's XDMF sidecar with meshio, as a user would, and checks it
 against the HDF5 file read with h5py: every increment is a step at the history's time, the
-points and cells are the mesh (Q8, or 6-node triangles), the first step is the undeformed state at t = 0, the
+points and cells are the mesh (Q8, or 6-node triangles), the first step is the undeformed state at t = 0
+(with every array of the last step, zeros), the
 displacement is (u_r, u_z, 0) of the increment, the element fields are the stored ones, and the
 nodal stresses are the Gauss-point stresses carried to the nodes, computed here independently:
 the biquadratic fit through the 3 x 3 points in elements where no point has yielded, the
@@ -141,9 +142,15 @@ def main():
     rows = len(h5["history/time"])
     if reader.num_steps != len(increments) + 1:
         fail(f"{reader.num_steps} steps for {len(increments)} increments and the t = 0 frame")
-    t, point_data, _ = reader.read_data(0)
+    t, point_data, initial_cells = reader.read_data(0)
     if t != 0.0 or np.any(point_data["displacement"] != 0.0):
         fail("the first step is not the undeformed state at t = 0")
+    # ParaView keeps one array list over time: the t = 0 frame has every array the last one has
+    _, last_points, last_cells = reader.read_data(len(increments))
+    if sorted(point_data) != sorted(last_points) or sorted(initial_cells) != sorted(last_cells):
+        fail(f"the t = 0 frame's arrays {sorted(point_data)} {sorted(initial_cells)} differ from the last frame's {sorted(last_points)} {sorted(last_cells)}")
+    if any(np.any(v[0] != 0.0) for k, v in initial_cells.items() if k != "rank") or any(np.any(v != 0.0) for k, v in point_data.items() if k != "temperature"):
+        fail("the t = 0 frame's fields are not zeros")
     for k, name in enumerate(increments):
         t, point_data, cell_data = reader.read_data(k + 1)
         inc = h5["increments"][name]

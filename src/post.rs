@@ -346,19 +346,19 @@ pub fn compare(a: &ResultsReader, b: &ResultsReader, force: bool) -> Result<Stri
     // the largest difference over every column: (|B - A|, column, time, relative)
     let mut largest: Option<(f64, &str, f64, f64)> = None;
     let unit = if a.is_plane() { "N over the thickness" } else { "N per radian" };
-    // a column whose largest |A| is below a billionth of the largest reaction compared is
-    // round-off (a free direction's reaction): no ratio between two round-off values
+    // a value below a billionth of the largest reaction compared is round-off (a free
+    // direction's reaction, an unloaded step's): no ratio between two round-off values
     let largest_of = |v: &[f64]| v.iter().fold(0.0f64, |m, x| m.max(x.abs()));
     let scale = va.iter().map(|v| largest_of(v)).fold(0.0f64, f64::max);
     for (k, column) in shared.iter().enumerate() {
         // relative to |A|, but never to less than a thousandth of the column's largest |A|: a
         // reaction that is zero to round-off has no meaningful relative difference
         let floor = 1e-3 * largest_of(&va[k]);
-        let round_off = largest_of(&va[k]) <= 1e-9 * scale;
         let _ = writeln!(s, "\n{column} ({unit})");
         let _ = writeln!(s, "{:>10} {:>6} {:>6} {:>16} {:>16} {:>12} {:>10}", "time", "its A", "its B", "A", "B", "B - A", "rel");
         for &(i, j) in &matched {
             let (x, y) = (va[k][i], vb[k][j]);
+            let round_off = x.abs().max(y.abs()) <= 1e-9 * scale;
             let rel = if floor > 0.0 && !round_off { (y - x) / x.abs().max(floor) } else { 0.0 };
             let shown = if round_off { "-".to_string() } else { format!("{rel:.2e}") };
             let _ = writeln!(s, "{:>10.4} {:>6} {:>6} {x:>16.8e} {y:>16.8e} {:>12.4e} {shown:>10}", ta[i], na[i], nb[j], y - x);
@@ -373,7 +373,7 @@ pub fn compare(a: &ResultsReader, b: &ResultsReader, force: bool) -> Result<Stri
     }
     let _ = writeln!(
         s,
-        "rel: (B - A) / |A|, |A| taken as at least a thousandth of the column's largest |A|; '-' where the whole column is round-off (below 1e-9 of the largest reaction)"
+        "rel: (B - A) / |A|, |A| taken as at least a thousandth of the column's largest |A|;\n     '-' where both are round-off (below 1e-9 of the largest reaction compared)"
     );
     Ok(s)
 }

@@ -307,6 +307,30 @@ fn post_commands_work_as_documented() {
     let widest = text.lines().filter(|l| !l.starts_with("A = ") && !l.starts_with("B = ")).map(str::len).max().unwrap();
     assert!(widest <= 120, "a {widest}-character line:\n{text}");
     assert!(text.contains("largest difference: reaction_") && text.contains("0.0000e0 N per radian"), "{text}");
+    // two round-off values (an unloaded step's reactions, both below 1e-9 of the largest
+    // reaction compared) show no ratio; every other row does
+    let two = dir.path().join("two");
+    std::fs::create_dir(&two).unwrap();
+    let (h5_two, run) = run_fit(&two, 2, &["--quiet"]);
+    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+    let out = post(dir.path(), &[h5s, "--compare", h5_two.to_str().unwrap()]);
+    let text = String::from_utf8_lossy(&out.stdout).to_string();
+    let rows: Vec<Vec<&str>> = text
+        .split("\n\n")
+        .filter(|b| b.starts_with("reaction_"))
+        .flat_map(|b| b.lines().skip(2))
+        .map(|l| l.split_whitespace().collect::<Vec<_>>())
+        .collect();
+    let value = |r: &Vec<&str>, k: usize| r[k].parse::<f64>().unwrap().abs();
+    let scale = rows.iter().map(|r| value(r, 3)).fold(0.0f64, f64::max);
+    let (tiny, loaded): (Vec<&Vec<&str>>, Vec<&Vec<&str>>) = rows.iter().partition(|r| value(r, 3).max(value(r, 4)) <= 1e-9 * scale);
+    assert!(!tiny.is_empty() && !loaded.is_empty(), "{text}");
+    assert!(tiny.iter().all(|r| r[6] == "-"), "two round-off values show a ratio:\n{text}");
+    assert!(loaded.iter().all(|r| r[6].parse::<f64>().is_ok()), "{text}");
+    // a Gauss-point field the file does not hold is named, with how to ask for it
+    let out = post(dir.path(), &[h5s, "--field", "element_nodal_stress"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.code() == Some(2) && err.contains("holds no element_nodal_stress: it is written only on request") && !err.contains("H5D"), "{err}");
 }
 
 /// A file that lost an increment's group says so (it said nothing), and a connectivity row that

@@ -291,11 +291,14 @@ impl ResultsFile {
                 write_rows(&sg, name, &[pos.len()], slab, if rank == 0 { &pos } else { &[] }, path)?;
             }
         }
-        // the t = 0 frame of the sidecar: zero vectors and scalars, the reference temperature
+        // the t = 0 frame of the sidecar: zero vectors, scalars and element values, the
+        // reference temperature
         let initial = file.create_group(xdmf::INITIAL.trim_start_matches('/')).map_err(&err)?;
         let owned_count = node_slab.1 - node_slab.0;
         write_rows(&initial, "vector", &[nn, 3], node_slab, &vec![0.0f64; 3 * owned_count], path)?;
         write_rows(&initial, "scalar", &[nn], node_slab, &vec![0.0f64; owned_count], path)?;
+        // and per element, for the element fields: ParaView keeps one array list over time
+        write_rows(&initial, "cell", &[ne], element_slab, &vec![0.0f64; element_slab.1 - element_slab.0], path)?;
         let initial_temperature: Vec<f64> = owned.iter().map(|&n| model.reference_temperature.at(n)).collect();
         write_rows(&initial, "temperature", &[nn], node_slab, &initial_temperature, path)?;
         file.create_group("increments").map_err(&err)?;

@@ -176,8 +176,9 @@ impl Sidecar {
         for (name, width) in [("displacement", 8), ("reaction_force", width)] {
             let _ = writeln!(x, "{}", attribute(name, "Vector", "Node", item(&vector_path(name), &format!("{nodes} 3"), "Float", width)));
         }
-        // contact fields only once there is contact state (not at t = 0)
-        let contact_count = match (contact && f.contact && group.is_some(), friction) {
+        // every frame carries the same arrays (ParaView keeps one list over time): the t = 0
+        // frame's contact and element fields are zeros
+        let contact_count = match (contact && f.contact, friction) {
             (false, _) => 0,
             (true, false) => 3,
             (true, true) => 5,
@@ -186,12 +187,10 @@ impl Sidecar {
         for name in scalars.chain(&CONTACT_SCALARS[..contact_count]) {
             let _ = writeln!(x, "{}", attribute(name, "Scalar", "Node", item(&scalar_path(name), &nodes.to_string(), "Float", width)));
         }
-        if let Some(g) = group {
-            let element: Vec<&str> =
-                [("von_mises_mean", f.von_mises), ("equivalent_plastic_strain_max", f.plastic_strain)].into_iter().filter(|e| e.1).map(|e| e.0).collect();
-            for name in element {
-                let _ = writeln!(x, "{}", attribute(name, "Scalar", "Cell", item(&format!("{g}/{name}"), &elements.to_string(), "Float", width)));
-            }
+        let element = [("von_mises_mean", f.von_mises), ("equivalent_plastic_strain_max", f.plastic_strain)].into_iter().filter(|e| e.1).map(|e| e.0);
+        for name in element {
+            let path = group.map_or(format!("{INITIAL}/cell"), |g| format!("{g}/{name}"));
+            let _ = writeln!(x, "{}", attribute(name, "Scalar", "Cell", item(&path, &elements.to_string(), "Float", width)));
         }
         let _ = writeln!(x, "{}", attribute("rank", "Scalar", "Cell", item("/mesh/element_rank", &elements.to_string(), "UInt", 4)));
         let _ = writeln!(x, "</Grid>");
