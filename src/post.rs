@@ -283,18 +283,33 @@ pub fn set_series(r: &ResultsReader, set: &str) -> Result<String> {
         // a plane model's reactions are over its thickness: no ring
         let plane = r.is_plane();
         let [a, b] = directions(r);
-        let (unit, over) = if plane { ("N", " (over the thickness)") } else { ("N/rad", "") };
-        let ring = if plane { String::new() } else { format!(" {:>16}", format!("F_{b} ring (N)")) };
+        // the set's mean displacement where the increment has fields (the file's restart chain
+        // and sparse output leave some without)
+        let members = r.node_set(set)?;
+        let written: std::collections::HashMap<usize, String> = r.increments()?.into_iter().map(|inc| (number_of(&inc), inc)).collect();
+        let (unit, over) = if plane { ("N", " (over the thickness)") } else { ("N ring", "") };
+        // the full ring first, as Abaqus and ANSYS report axisymmetric models; per radian beside
+        let per_radian = if plane { String::new() } else { format!(" {:>16} {:>16}", format!("F_{a} (N/rad)"), format!("F_{b} (N/rad)")) };
         let mut s = format!(
-            "reaction of node set {set}{over}\n{:>10} {:>10} {:>16} {:>16}{ring}\n",
+            "reaction of node set {set}{over}\n{:>10} {:>10} {:>16} {:>16} {:>16} {:>16}{per_radian}\n",
             "increment",
             "time",
+            format!("u_{a} (mm)"),
+            format!("u_{b} (mm)"),
             format!("F_{a} ({unit})"),
             format!("F_{b} ({unit})")
         );
+        let ring = if plane { 1.0 } else { 2.0 * std::f64::consts::PI };
         for k in 0..time.len() {
-            let ring = if plane { String::new() } else { format!(" {:>16.8e}", fz[k] * 2.0 * std::f64::consts::PI) };
-            let _ = writeln!(s, "{:>10} {:>10.4} {:>16.8e} {:>16.8e}{ring}", k + 1, time[k], fr[k], fz[k]);
+            let mean = match written.get(&(k + 1)) {
+                Some(inc) => {
+                    let u = r.displacement(inc)?;
+                    [0, 1].map(|c| format!("{:.8e}", members.iter().map(|&n| u[n][c]).sum::<f64>() / members.len().max(1) as f64))
+                }
+                None => ["-".to_string(), "-".to_string()],
+            };
+            let per_radian = if plane { String::new() } else { format!(" {:>16.8e} {:>16.8e}", fr[k], fz[k]) };
+            let _ = writeln!(s, "{:>10} {:>10.4} {:>16} {:>16} {:>16.8e} {:>16.8e}{per_radian}", k + 1, time[k], mean[0], mean[1], ring * fr[k], ring * fz[k]);
         }
         return Ok(s);
     }

@@ -29,6 +29,8 @@ fn short_lines_under_mpirun_long_ones_on_request_and_a_newton_monitor() {
     for line in &lines {
         assert!(line.len() <= 100, "a {}-character line: {line}", line.len());
         assert!(line.contains("newton") && line.contains("F_z ") && line.trim_end().ends_with(" s"), "{line}");
+        // the full ring's force, the set named whole (it was cut to 10 characters, "inner_bott")
+        assert!(line.contains(" N ring ") && line.contains("F_z inner_bottom "), "{line}");
     }
     assert!(!text.contains("    newton "), "no monitor unless asked:\n{text}");
 

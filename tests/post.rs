@@ -85,6 +85,17 @@ fn post_reproduces_the_run_and_reports_fields() {
     let out = post(dir.path(), &[h5s, "--set", "outer_top"]);
     let text = String::from_utf8_lossy(&out.stdout).into_owned();
     assert!(text.contains("reaction of node set outer_top") && text.lines().count() == 2 + 5, "{text}");
+    // the full ring first, per radian beside it (2 pi apart), and the set's mean displacement
+    // (it had only the per-radian forces and no displacement)
+    let header: Vec<&str> = text.lines().nth(1).unwrap().split("  ").map(str::trim).filter(|h| !h.is_empty()).collect();
+    assert_eq!(header, ["increment", "time", "u_r (mm)", "u_z (mm)", "F_r (N ring)", "F_z (N ring)", "F_r (N/rad)", "F_z (N/rad)"], "{text}");
+    let last: Vec<f64> = text.lines().last().unwrap().split_whitespace().map(|v| v.parse().unwrap()).collect();
+    assert!((last[5] - 2.0 * std::f64::consts::PI * last[7]).abs() <= 1e-7 * last[5].abs(), "{text}");
+    let file = hdf5::File::open(&h5).unwrap();
+    let set: Vec<u64> = file.dataset("mesh/node_sets/outer_top").unwrap().read_raw().unwrap();
+    let u: Vec<f64> = file.dataset("increments/000005/nodal/displacement").unwrap().read_raw().unwrap();
+    let uz = set.iter().map(|&n| u[3 * n as usize + 1]).sum::<f64>() / set.len() as f64;
+    assert!((last[3] - uz).abs() <= 1e-7 * uz.abs().max(1e-9), "mean u_z {} against {uz}", last[3]);
 
     // every dataset says its units and what it is
     fn undescribed(g: &hdf5::Group, out: &mut Vec<String>) {

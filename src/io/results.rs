@@ -94,18 +94,20 @@ pub struct HistoryRow {
 
 impl HistoryRow {
     /// The short line the run prints for this row (and `slideline post` prints again), at most
-    /// 100 characters: the step, the run-wide increment number (#N) and the step's own, the
+    /// 100 characters where the step and set names are short (they are never cut): the step, the run-wide increment number (#N) and the step's own, the
     /// load factor, the Newton iterations, the largest axial reaction (a `plane` model's largest
     /// y reaction, over its thickness) and the wall time. Of sets within 1 % of the largest the
     /// first is named, so that two ends bearing equal and opposite forces do not take turns.
     pub fn short_line(&self, step_name: &str, steps: usize, plane: bool) -> String {
-        let name: String = step_name.chars().take(10).collect();
+        // names whole (a cut name can name another set); an axisymmetric force for the full
+        // ring, as Abaqus and ANSYS report it (the file keeps both)
+        let name = step_name;
         let largest = self.reactions.iter().map(|r| r.1[1].abs()).fold(0.0, f64::max);
         let reaction = self.reactions.iter().find(|r| r.1[1].abs() >= 0.99 * largest);
-        let (label, unit) = if plane { ("F_y", "N") } else { ("F_z", "N/rad") };
-        let force = reaction.map_or(String::new(), |(set, f)| format!(" {label} {:<10} {:>10.3e} {unit}", set.chars().take(10).collect::<String>(), f[1]));
+        let (label, unit, factor) = if plane { ("F_y", "N", 1.0) } else { ("F_z", "N ring", 2.0 * std::f64::consts::PI) };
+        let force = reaction.map_or(String::new(), |(set, f)| format!(" {label} {set:<10} {:>9.3e} {unit}", factor * f[1]));
         format!(
-            "step {}/{} {name:<10} #{:<4} inc {:>4} lambda {:.4} newton {:>2}{force} {:>6.1} s",
+            "step {}/{} {name:<10} #{:<4} inc {:>4} lambda {:.4} newton {:>2}{force} {:>5.1} s",
             self.step, steps, self.number, self.increment, self.load_factor, self.newton_iterations, self.wall_time
         )
     }
@@ -129,9 +131,14 @@ impl HistoryRow {
             self.max_plastic_strain,
             self.wall_time
         );
-        let (labels, unit) = if plane { (["Fx", "Fy"], "N") } else { (["Fr", "Fz"], "N/rad") };
         for (set, f) in &self.reactions {
-            line.push_str(&format!("  {set} {} {:.3e} {} {:.3e} {unit}", labels[0], f[0], labels[1], f[1]));
+            if plane {
+                line.push_str(&format!("  {set} Fx {:.3e} Fy {:.3e} N", f[0], f[1]));
+            } else {
+                // the full ring first, per radian beside it
+                let ring = 2.0 * std::f64::consts::PI;
+                line.push_str(&format!("  {set} Fr {:.3e} Fz {:.3e} N ring ({:.3e} {:.3e} N/rad)", ring * f[0], ring * f[1], f[0], f[1]));
+            }
         }
         if !self.contacts.is_empty() {
             let active: usize = self.contacts.iter().map(|c| c.active_nodes).sum();
