@@ -183,7 +183,11 @@ pub fn field(r: &ResultsReader, name: &str, number: usize) -> Result<String> {
     // a Gauss-point field the run's [output] fields left out (element_nodal_stress is kept on
     // request only) is named as such, not as HDF5's missing object
     if !r.has_field(&inc, &path) {
-        let how = if name == "element_nodal_stress" { "it is written only on request: [output] fields = [..., \"element_nodal\"]" } else { "the run's [output] fields left it out" };
+        let how = if name == "element_nodal_stress" {
+            "it is written only on request: [output] fields = [..., \"element_nodal\"]"
+        } else {
+            "the run's [output] fields left it out"
+        };
         return Err(Error::input(format!("{}: increment {number} holds no {name}: {how}", r.path().display())));
     }
     let mut values = r.field(&inc, &path)?;

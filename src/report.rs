@@ -237,7 +237,7 @@ impl BellowsReport {
     pub fn table(&self) -> String {
         let ring = 2.0 * PI / SECTOR_RADIANS;
         let mut t = String::new();
-        let mut line = |what: &str, ours: String, paper: &str| t.push_str(&format!("  {what:<44} {ours:>26}   {paper:>12}\n"));
+        let mut line = |what: &str, ours: String, paper: &str| t.push_str(&format!("  {what:<52} {ours:>20}   {paper:>12}\n"));
         line("", "slideline".into(), "paper");
         line(&format!("end reaction at {:.1} mm, N per 2.5-deg sector", self.displacement), format!("{:.1}", self.reaction), &format!("{PAPER_REACTION}"));
         line("end reaction, N full ring", format!("{:.0}", self.reaction * ring), &format!("{:.0}", PAPER_REACTION * ring));

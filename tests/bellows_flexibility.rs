@@ -88,7 +88,10 @@ fn the_default_joint_at_rest_against_statics_the_beam_analogy_and_two_ranks() {
 #[test]
 fn a_zero_movement_is_refused() {
     let dir = tempfile::tempdir().unwrap();
-    for (flag, needle) in [("--lateral", "--lateral 0: give a nonzero movement of at most 144 mm in size"), ("--angular", "--angular 0: give a nonzero movement of at most 45 degrees in size")] {
+    for (flag, needle) in [
+        ("--lateral", "--lateral 0: give a nonzero movement of at most 144 mm in size"),
+        ("--angular", "--angular 0: give a nonzero movement of at most 45 degrees in size"),
+    ] {
         let out = command_in(dir.path(), 1).args(["bellows", flag, "0", "-o"]).arg(dir.path().join("x.h5")).output().unwrap();
         let stderr = String::from_utf8_lossy(&out.stderr);
         assert_eq!(out.status.code(), Some(2), "{stderr}");

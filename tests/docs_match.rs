@@ -16,7 +16,8 @@ fn the_documented_contact_history_columns_are_in_the_file() {
     let run = run_deck(&fit, &[], 1, &[]);
     run.assert_ok();
     let columns: Vec<String> = hdf5::File::open(&run.h5).unwrap().group("history").unwrap().member_names().unwrap();
-    let pair = columns.iter().find_map(|c| c.strip_prefix("contact_").and_then(|c| c.strip_suffix("_active_nodes"))).expect("a contact pair's columns").to_string();
+    let pair =
+        columns.iter().find_map(|c| c.strip_prefix("contact_").and_then(|c| c.strip_suffix("_active_nodes"))).expect("a contact pair's columns").to_string();
     let results = manual("docs/results.md");
     let documented: Vec<String> = results
         .split(|c: char| !(c.is_ascii_alphanumeric() || c == '_'))

@@ -326,12 +326,8 @@ fn post_commands_work_as_documented() {
     assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
     let out = post(dir.path(), &[h5s, "--compare", h5_two.to_str().unwrap()]);
     let text = String::from_utf8_lossy(&out.stdout).to_string();
-    let rows: Vec<Vec<&str>> = text
-        .split("\n\n")
-        .filter(|b| b.starts_with("reaction_"))
-        .flat_map(|b| b.lines().skip(2))
-        .map(|l| l.split_whitespace().collect::<Vec<_>>())
-        .collect();
+    let rows: Vec<Vec<&str>> =
+        text.split("\n\n").filter(|b| b.starts_with("reaction_")).flat_map(|b| b.lines().skip(2)).map(|l| l.split_whitespace().collect::<Vec<_>>()).collect();
     let value = |r: &Vec<&str>, k: usize| r[k].parse::<f64>().unwrap().abs();
     let scale = rows.iter().map(|r| value(r, 3)).fold(0.0f64, f64::max);
     let (tiny, loaded): (Vec<&Vec<&str>>, Vec<&Vec<&str>>) = rows.iter().partition(|r| value(r, 3).max(value(r, 4)) <= 1e-9 * scale);
