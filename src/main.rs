@@ -99,6 +99,10 @@ fn post(args: &PostArgs) -> Result<(), Error> {
     let mut out = String::new();
     if !detail {
         out += &format!("{}\n{}", post::summary(&r)?, post::history_table(&r, args.verbose)?);
+        // a bellows run's closing table, as the run printed it
+        if let Some(table) = post::bellows_table(&r)? {
+            out += &format!("\n{table}");
+        }
     }
     if args.deck {
         out += &format!("{}\n", r.text_attr("deck")?);

@@ -467,6 +467,33 @@ pub fn parse_section(text: &str) -> Result<([f64; 2], [f64; 2])> {
     Ok((point(a)?, point(b)?))
 }
 
+/// The bellows closing table (slideline beside the paper, the code check) as the run printed
+/// it, from the file alone; None for a file that is not a `slideline bellows` run's.
+pub fn bellows_table(r: &ResultsReader) -> Result<Option<String>> {
+    let deck = r.text_attr("deck")?;
+    if !deck.starts_with("# slideline bellows") || r.increments()?.is_empty() {
+        return Ok(None);
+    }
+    let Ok(params) = crate::model::bellows::BellowsParams::from_toml(&deck, &r.path().display().to_string()) else { return Ok(None) };
+    let history: Vec<crate::io::HistoryRow> = r.history_rows()?.into_iter().map(|(_, row)| row).collect();
+    // what the table reads of the run: its history, ranks and restart point (the wall time is
+    // the history's own)
+    let summary = crate::solve::RunSummary {
+        wall_time: history.last().map_or(0.0, |row| row.wall_time),
+        history,
+        ranks: r.count_attr("ranks")?,
+        displacement: Vec::new(),
+        reserved_couplings: 0,
+        pattern_refits: 0,
+        continued: r.restarted_from().map_or(0, |(_, at)| at),
+        perturbations: Vec::new(),
+        heat: Vec::new(),
+        plane: r.is_plane(),
+    };
+    let report = crate::report::BellowsReport::new(&params, r.assessment()?, &summary, r)?;
+    Ok(Some(report.table()))
+}
+
 /// The linearised stresses of each section at increment `number` (reference coordinates).
 pub fn linearize(r: &ResultsReader, sections: &[String], number: usize) -> Result<String> {
     use crate::fe::linearize::{linearize, StressSampler};

@@ -240,3 +240,25 @@ fn absurd_movements_and_coefficients_are_refused_with_their_range() {
     let out = bellows(dir.path(), &["--quick", "--mesh-only", "--lateral", "-5"]);
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
 }
+
+/// `slideline post FILE` prints a bellows run's closing table and code check again, line for
+/// line as the run printed them (it printed neither).
+#[test]
+fn post_prints_the_closing_table_as_the_run_did() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = bellows(dir.path(), &["--quick", "--displacement", "10", "--increments", "4", "--quiet"]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let table = |text: &str| -> Vec<String> {
+        text.lines()
+            .skip_while(|l| !(l.contains("slideline") && l.trim_end().ends_with("paper")))
+            .take_while(|l| !l.starts_with("picture:"))
+            .filter(|l| !l.trim().is_empty())
+            .map(str::to_string)
+            .collect()
+    };
+    let printed = table(&String::from_utf8_lossy(&out.stdout));
+    assert!(printed.len() > 25 && printed.iter().any(|l| l.contains("code check")), "{printed:#?}");
+    let post = command_in(dir.path(), 1).arg("post").arg(dir.path().join("b.h5")).output().unwrap();
+    assert!(post.status.success(), "{}", String::from_utf8_lossy(&post.stderr));
+    assert_eq!(table(&String::from_utf8_lossy(&post.stdout)), printed);
+}
