@@ -94,7 +94,33 @@ pub struct NodalWriter {
     precision: Precision,
 }
 
+/// A response step's stress amplitudes at the nodes: [rr, zz, tt, rz] x cos n theta, [rt, zt]
+/// x sin n theta.
+pub const AMPLITUDE_STRESS: [&str; 6] = ["stress_rr", "stress_zz", "stress_tt", "stress_rz", "stress_rt", "stress_zt"];
+
 impl NodalWriter {
+    /// A response step's stress amplitudes (`stress`: this rank's elements' Gauss values)
+    /// carried to the nodes and averaged, one dataset per component of [`AMPLITUDE_STRESS`]
+    /// under `step`'s `nodal/` (collective). Extrapolated in every element: the perturbation is
+    /// linear about its base state, its amplitudes a smooth field.
+    pub fn write_amplitudes(&self, step: &hdf5::Group, stress: &[[[f64; 6]; 9]], path: &Path) -> Result<()> {
+        let g = step.create_group("nodal").map_err(|e| crate::error::Error::Output { path: path.to_path_buf(), message: e.to_string() })?;
+        let mut local = vec![0.0f64; self.nodes * 7];
+        let (sums, counts) = local.split_at_mut(self.nodes * 6);
+        for ((nodes, &integration), gauss) in self.connectivity.iter().zip(&self.integration).zip(stress) {
+            let nodal = self.recovery.element_nodal(Shape::of(nodes), integration, Rule::Extrapolate, gauss);
+            Recovery::accumulate(nodes, &nodal, sums, counts);
+        }
+        let mut total = vec![0.0f64; local.len()];
+        self.world.all_reduce_into(&local[..], &mut total[..], SystemOperation::sum());
+        let (sums, counts) = total.split_at(self.nodes * 6);
+        for (c, name) in AMPLITUDE_STRESS.iter().enumerate() {
+            let column: Vec<f64> = (self.node_slab.0..self.node_slab.1).map(|n| sums[n * 6 + c] / counts[n].max(1.0)).collect();
+            write_rows(&g, name, &[self.nodes], self.node_slab, &column, path)?;
+        }
+        Ok(())
+    }
+
     pub fn new(world: SimpleCommunicator, model: &Model, partition: &Partition) -> Self {
         let (mesh, output) = (&model.mesh, model.output);
         let connectivity = partition.local_elements().iter().map(|&e| mesh.elements[e].map(|n| partition.node_position[n])).collect();

@@ -51,6 +51,8 @@ impl ResultsFile {
             let element_slab = (partition.element_offsets[partition.rank], partition.element_offsets[partition.rank + 1]);
             let stress = gauss_rows(&answer.stress, &self.gauss_points);
             write_rows(&g, "stress", &[ne, QUADRATURE_POINTS, 6], element_slab, &stress, &path)?;
+            // and at the nodes, for ParaView to colour the deformed shape by
+            self.nodal.write_amplitudes(&g, &answer.stress, &path)?;
         } else {
             // the eigenvalues (rank 0 writes the short lists) and every mode's amplitudes
             let k = answer.modes.len();
@@ -84,7 +86,7 @@ impl ResultsFile {
         self.file.flush().map_err(&err)?;
         if partition.rank == 0 {
             let elements = partition.element_offsets[partition.size];
-            super::xdmf::write_perturbation_sidecar(&path, &p.name, base, (nn, elements, self.topology), answer.modes.len())?;
+            super::xdmf::write_perturbation_sidecar(&path, &p.name, base, (nn, elements, self.topology), answer.modes.len(), answer.modes.is_empty())?;
         }
         Ok(())
     }

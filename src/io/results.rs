@@ -190,7 +190,7 @@ pub struct ResultsFile {
     /// Whether the model is axisymmetric (has an axisymmetric element): its forces are per
     /// radian and get full-ring columns; a plane model's are for its thickness.
     axisymmetric: bool,
-    nodal: NodalWriter,
+    pub(super) nodal: NodalWriter,
     /// How many of each local element's Gauss slots are integration points (9, or a reduced
     /// Q8's 4, a reduced T6's 3): the datasets hold NaN in the others.
     pub(super) gauss_points: Vec<usize>,

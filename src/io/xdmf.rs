@@ -214,6 +214,7 @@ pub fn write_perturbation_sidecar(
     base: Option<&str>,
     (nodes, elements, topology): (usize, usize, Topology),
     modes: usize,
+    nodal_stress: bool,
 ) -> Result<PathBuf> {
     let file = h5.file_name().map(|f| f.to_string_lossy().into_owned()).unwrap_or_default();
     let stem = h5.file_stem().map(|f| f.to_string_lossy().into_owned()).unwrap_or_default();
@@ -234,6 +235,11 @@ pub fn write_perturbation_sidecar(
     let _ = writeln!(x, "{}", vector("amplitudes", &format!("/perturbations/{name}/amplitudes")));
     for k in 1..=modes {
         let _ = writeln!(x, "{}", vector(&format!("mode_{k}"), &format!("/perturbations/{name}/mode_{k}")));
+    }
+    // a response step's stress amplitudes at the nodes
+    for component in super::nodal::AMPLITUDE_STRESS.iter().filter(|_| nodal_stress) {
+        let data = item(&format!("/perturbations/{name}/nodal/{component}"), &nodes.to_string());
+        let _ = writeln!(x, r#"<Attribute Name="{component}" AttributeType="Scalar" Center="Node">{data}</Attribute>"#);
     }
     x.push_str("</Grid></Domain></Xdmf>\n");
     std::fs::write(&target, x).map_err(|e| Error::Output { path: target.clone(), message: e.to_string() })?;
