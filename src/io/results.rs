@@ -729,8 +729,13 @@ mod tests {
         // the quick joint's increments 7 and 8: its two ends within 0.3 % of each other
         for ends in [[("moving_end", -4.972e3), ("fixed_end", 4.960e3)], [("moving_end", -5.017e3), ("fixed_end", 5.030e3)]] {
             let line = row(&ends).short_line("compress", 3, false);
-            assert!(line.contains(" F_z moving_end ") && line.contains("N/rad"), "{line}");
+            assert!(line.contains(" F_z moving_end ") && line.contains(" N ring "), "{line}");
+            // the full ring's force: 2 pi times the per-radian one
+            let ring = format!("{:.3e}", 2.0 * std::f64::consts::PI * ends[0].1);
+            assert!(line.contains(&ring), "{line} ({ring})");
         }
+        // a step name longer than ten characters is printed whole
+        assert!(row(&[("top", 1.0)]).short_line("compression_stroke", 3, false).contains(" compression_stroke "));
         let line = row(&[("inner", 1.0e2), ("top", -8.8e3)]).short_line("press", 1, true);
         assert!(line.contains(" F_y top ") && line.contains("-8.800e3 N "), "{line}");
     }
