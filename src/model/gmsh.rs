@@ -494,7 +494,7 @@ $Elements\n3\n1 15 2 3 1 1\n2 8 2 2 1 1 2 5\n3 16 2 1 1 1 2 3 4 5 6 7 8\n$EndEle
     #[test]
     fn a_physical_name_given_to_two_groups_is_named() {
         let twice = MSH22.replace("0 3 \"corner\"", "1 3 \"bottom\"");
-        let message = parse(&twice, "t.msh").err().expect("refused").to_string();
+        let message = parse(&twice, "t.msh").expect_err("refused").to_string();
         assert!(message.contains("the physical name \"bottom\" is given to two groups of dimension 1 (tags 2 and 3)"), "{message}");
     }
 

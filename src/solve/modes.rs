@@ -112,12 +112,11 @@ fn product(world: &impl Communicator, blocks: &[Block], x: &[[f64; 3]], y: &[[f6
 /// the stiffness does not resist the motion with the step's held amplitudes zeroed (x^T K x
 /// below 1e-9 of sum K_ii x_i^2: a held node makes it about 1 / nodes; collective).
 fn free_rigid_motions(world: &impl Communicator, stiffness: &[Block], amplitude: &[[Amplitude; 3]], current: &[[f64; 2]], mode: u32) -> Vec<&'static str> {
-    let motions: Vec<(&'static str, Box<dyn Fn([f64; 2]) -> [f64; 3]>)> = match mode {
-        0 => vec![("along the axis (uz)", Box::new(|_| [0.0, 1.0, 0.0])), ("the twist about the axis (ut)", Box::new(|x: [f64; 2]| [0.0, 0.0, x[0]]))],
-        1 => vec![
-            ("across the axis (the lateral offset)", Box::new(|_| [1.0, 0.0, -1.0])),
-            ("the tilt about a diameter", Box::new(|x: [f64; 2]| [x[1], -x[0], -x[1]])),
-        ],
+    // each motion's amplitudes [U_r, U_z, U_t] at a node (r, z)
+    type Motion = fn([f64; 2]) -> [f64; 3];
+    let motions: Vec<(&'static str, Motion)> = match mode {
+        0 => vec![("along the axis (uz)", |_| [0.0, 1.0, 0.0]), ("the twist about the axis (ut)", |x| [0.0, 0.0, x[0]])],
+        1 => vec![("across the axis (the lateral offset)", |_| [1.0, 0.0, -1.0]), ("the tilt about a diameter", |x| [x[1], -x[0], -x[1]])],
         _ => Vec::new(),
     };
     motions
