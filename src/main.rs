@@ -100,8 +100,11 @@ fn post(args: &PostArgs) -> Result<(), Error> {
     if !detail {
         out += &format!("{}\n{}", post::summary(&r)?, post::history_table(&r, args.verbose)?);
         // a bellows run's closing table, as the run printed it
-        if let Some(table) = post::bellows_table(&r)? {
-            out += &format!("\n{table}");
+        // (what a damaged file cannot give again is said, not fatal: post reads what is left)
+        match post::bellows_table(&r) {
+            Ok(Some(table)) => out += &format!("\n{table}"),
+            Ok(None) => {}
+            Err(e) => out += &format!("\nnote: the closing table cannot be printed again: {e}\n"),
         }
     }
     if args.deck {

@@ -490,8 +490,14 @@ pub fn bellows_table(r: &ResultsReader) -> Result<Option<String>> {
         heat: Vec::new(),
         plane: r.is_plane(),
     };
-    let report = crate::report::BellowsReport::new(&params, r.assessment()?, &summary, r)?;
-    Ok(Some(report.table()))
+    // a file a killed writer left may have lost its code check: the table goes without it
+    let (code, lost) = match r.assessment() {
+        Ok(code) => (code, None),
+        Err(e) => (None, Some(e)),
+    };
+    let report = crate::report::BellowsReport::new(&params, code, &summary, r)?;
+    let note = lost.map_or(String::new(), |e| format!("  note: the code check cannot be read again ({e})\n"));
+    Ok(Some(report.table() + &note))
 }
 
 /// The linearised stresses of each section at increment `number` (reference coordinates).
