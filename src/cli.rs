@@ -332,6 +332,22 @@ pub struct BellowsArgs {
 }
 
 impl BellowsArgs {
+    /// The movements of the flexibility perturbations (`--lateral`, `--angular`), if any, for
+    /// joint `p`: what the codes' beam analogy and a linear perturbation describe, an offset up
+    /// to the convoluted length and a rotation up to 45 degrees, nonzero.
+    pub fn movements(&self, p: &model::bellows::BellowsParams) -> Result<Option<slideline::assessment::flexibility::Movements>, Error> {
+        if self.lateral.is_none() && self.angular.is_none() {
+            return Ok(None);
+        }
+        let length = p.convolutions as f64 * p.pitch;
+        for (flag, v, units, most) in [("--lateral", self.lateral, "mm", length), ("--angular", self.angular, "degrees", 45.0)] {
+            if let Some(v) = v.filter(|v| !v.is_finite() || *v == 0.0 || v.abs() > most) {
+                return Err(Error::input(format!("{flag} {}: give a nonzero movement of at most {most} {units} in size", slideline::error::shown(v))));
+            }
+        }
+        Ok(Some(slideline::assessment::flexibility::Movements { lateral: self.lateral.unwrap_or(0.0), angular: self.angular.unwrap_or(0.0) }))
+    }
+
     /// The joint's parameters: the defaults (the seed case) or the `--params` file, then
     /// `--quick`, then every flag given on the command line (`given(id)`): a flag given
     /// explicitly wins over both.

@@ -178,24 +178,9 @@ fn main() -> ExitCode {
                 Err(e) => return fail(&e, launched_as_rank_zero()),
             };
             // the movements of the flexibility perturbations, if any
-            let movements = match (args.lateral, args.angular) {
-                (None, None) => None,
-                (lateral, angular) => {
-                    // movements the codes' beam analogy and a linear perturbation describe: an
-                    // offset up to the convoluted length, a rotation up to 45 degrees
-                    let length = params.convolutions as f64 * params.pitch;
-                    let bad = [("--lateral", lateral, "mm", length), ("--angular", angular, "degrees", 45.0)]
-                        .into_iter()
-                        .find(|(_, v, _, most)| v.is_some_and(|v| !v.is_finite() || v == 0.0 || v.abs() > *most));
-                    if let Some((flag, v, units, most)) = bad {
-                        let e = Error::input(format!(
-                            "{flag} {}: give a nonzero movement of at most {most} {units} in size",
-                            slideline::error::shown(v.unwrap_or_default())
-                        ));
-                        return fail(&e, launched_as_rank_zero());
-                    }
-                    Some(Movements { lateral: lateral.unwrap_or(0.0), angular: angular.unwrap_or(0.0) })
-                }
+            let movements = match args.movements(&params) {
+                Ok(m) => m,
+                Err(e) => return fail(&e, launched_as_rank_zero()),
             };
             if let Some(path) = &args.export_inp {
                 // checked before any work; never the --params file it may come from

@@ -221,7 +221,10 @@ impl ElementField {
                     let x = x.clamp(-outer, outer);
                     (0..m).filter(|&j| j != k).map(|j| (x - points[j]) / (points[k] - points[j])).product()
                 };
-                let (li, lj): (Vec<f64>, Vec<f64>) = ((0..m).map(|k| lagrange(k, xi[0])).collect(), (0..m).map(|k| lagrange(k, xi[1])).collect());
+                let (li, lj): ([f64; 3], [f64; 3]) = (
+                    std::array::from_fn(|k| if k < m { lagrange(k, xi[0]) } else { 0.0 }),
+                    std::array::from_fn(|k| if k < m { lagrange(k, xi[1]) } else { 0.0 }),
+                );
                 std::array::from_fn(|c| (0..m * m).map(|q| li[q % m] * lj[q / m] * g[q][c]).sum())
             }
         }
