@@ -11,7 +11,7 @@ use slideline::assessment::convolution::Coefficients;
 use slideline::assessment::flexibility::{Flexibility, Movements};
 use slideline::assessment::{stability::SQUIRM, vibration::LATERAL_MODES};
 use slideline::dist::Partition;
-use slideline::io::plots::{outline_picture, SegmentLayer};
+use slideline::io::plots::{outline_picture, Panel, SegmentLayer};
 use slideline::io::reader::ResultsReader;
 use slideline::io::ResultsFile;
 use slideline::petsc::PetscSession;
@@ -105,6 +105,11 @@ fn post(args: &PostArgs) -> Result<(), Error> {
             Ok(Some(table)) => out += &format!("\n{table}"),
             Ok(None) => {}
             Err(e) => out += &format!("\nnote: the closing table cannot be printed again: {e}\n"),
+        }
+        // and the tables after it (flexibility, stability, frequencies), word for word
+        match r.printed_tables() {
+            Ok(tables) => tables.iter().for_each(|(_, table)| out += &format!("{table}\n")),
+            Err(e) => out += &format!("\nnote: the tables after the closing one cannot be printed again: {e}\n"),
         }
     }
     if args.deck {
@@ -439,11 +444,11 @@ fn write_mesh(session: &PetscSession, params: &model::bellows::BellowsParams, ou
         println!("mesh written to {} and {}", msh.display(), output.display());
         // where the pressure acts, to check the load before a run
         let picture = picture_path(output, "wetted");
-        let layers = [
+        let layers = vec![
             SegmentLayer { label: "boundary".into(), segments: mesh.edge_segments(&mesh.free_edges()), width: 1 },
             SegmentLayer { label: format!("wetted: {} MPa", params.pressure), segments: mesh.edge_segments(&sets.surfaces["wetted"]), width: 4 },
         ];
-        outline_picture(&picture, "bellows joint: the faces the pressure acts on (meridian section)", &layers)?;
+        outline_picture(&picture, "bellows joint: the faces the pressure acts on (meridian section)", &[Panel { caption: None, layers }])?;
         println!("picture: {}", picture.display());
     }
     Ok(())
@@ -480,27 +485,32 @@ fn report(params: &model::bellows::BellowsParams, before: &BeforeTheRun<'_>, sum
     if let (Some(c), Some(f)) = (code, fe) {
         println!("{}", slideline::report::assessment_section(c, f, life.as_ref()));
     }
+    // the tables after the closing one, kept in the file for `slideline post FILE`
+    let mut tables: Vec<(&str, String)> = Vec::new();
     if let Some((movements, at_rest)) = rest {
         let operating = slideline::assessment::flexibility::from_run(params, *movements, &summary.perturbations, &reader)?;
-        println!("{}", slideline::report::flexibility_section(params, code, *movements, at_rest, Some(&operating)));
+        tables.push(("flexibility", slideline::report::flexibility_section(params, code, *movements, at_rest, Some(&operating))));
     }
     // the pictures of modes: the squirm's at rest (drawn from the rest run's file), the first
     // lateral mode's about the run's end
     let mut pictures: Vec<PathBuf> = Vec::new();
     if let Some(at_rest) = stable {
         let operating = slideline::assessment::stability::from_answers(&summary.perturbations)?;
-        println!("{}", slideline::report::stability_section(params, code, at_rest, &operating));
+        tables.push(("stability", slideline::report::stability_section(params, code, at_rest, &operating)));
         pictures.extend(at_rest.squirm.map(|_| picture_path(output, "squirm_mode")));
     }
     if let Some(at_rest) = vibrating {
         let operating = slideline::assessment::vibration::from_answers(params, &summary.perturbations)?;
-        println!("{}", slideline::report::frequencies_section(params, at_rest, &operating));
+        tables.push(("frequencies", slideline::report::frequencies_section(params, at_rest, &operating)));
         if let Some(m) = operating.lateral {
             let path = picture_path(output, &format!("{LATERAL_MODES}_mode"));
             let title = format!("the joint's first lateral mode (n = 1) about the end of the run, {:.1} Hz", m.frequency);
             slideline::report::mode_picture(&reader, &path, LATERAL_MODES, 1, 1, &title)?;
             pictures.push(path);
         }
+    }
+    for (_, table) in &tables {
+        println!("{table}");
     }
     for path in pictures {
         println!("picture: {}", path.display());
@@ -509,7 +519,9 @@ fn report(params: &model::bellows::BellowsParams, before: &BeforeTheRun<'_>, sum
         println!("picture: {} ({what})", path.display());
     }
     drop(reader);
-    // the code check beside the run's results (the file is closed: rank 0 alone opens it)
+    // the code check and the tables beside the run's results (the file is closed: rank 0 alone
+    // opens it)
+    slideline::io::assessment::write_tables(output, &tables)?;
     if let Some(c) = code {
         slideline::io::assessment::write(output, c)?;
     }

@@ -99,14 +99,19 @@ fn is_count(column: &str) -> bool {
     ["step", "increment", "newton_iterations", "linear_iterations", "cutbacks", "augmentations"].contains(&column) || column.ends_with("_active_nodes")
 }
 
-/// The history columns as CSV (header line, one row per increment): counts as integers, every
-/// other value in full precision (the shortest text that reads back to the same double).
+/// The history columns as CSV (a header line of "name [units]", one row per increment): counts
+/// as integers, every other value in full precision (the shortest text that reads back to the
+/// same double). The constrained sets' mean displacements (the prescribed ones) are columns
+/// `displacement_SET_r/z`, beside their reactions.
 pub fn history_csv(r: &ResultsReader) -> Result<String> {
     let columns = r.history_columns()?;
     let data: Vec<Vec<f64>> = columns.iter().map(|c| r.history(c)).collect::<Result<_>>()?;
     let mut w = csv::Writer::from_writer(Vec::new());
     let csv_err = |e: csv::Error| Error::Internal(format!("CSV: {e}"));
-    w.write_record(&columns).map_err(csv_err)?;
+    // each column's units in its name, as "name [units]" (a spreadsheet's header, and a name
+    // pandas and numpy keep whole)
+    let header: Vec<String> = columns.iter().map(|c| format!("{c} [{}]", r.units(&format!("history/{c}")))).collect();
+    w.write_record(&header).map_err(csv_err)?;
     for k in 0..data.first().map_or(0, Vec::len) {
         let row =
             columns.iter().zip(&data).map(|(name, c)| if is_count(name) && c[k].fract() == 0.0 { format!("{}", c[k] as i64) } else { format!("{:?}", c[k]) });
@@ -397,10 +402,25 @@ pub fn compare(a: &ResultsReader, b: &ResultsReader, force: bool) -> Result<Stri
     Ok(s)
 }
 
-/// Force-displacement picture next to the file: every constrained set's axial reaction (full
-/// ring; a plane model's y reaction over its thickness) against the prescribed displacement, or
-/// the total time (step - 1 + load factor). Returns its path.
+/// The force-displacement picture's content: title, axis labels and curves.
+pub struct ForcePlot {
+    pub title: &'static str,
+    pub x_label: String,
+    pub y_label: String,
+    pub curves: Vec<Curve>,
+}
+
+/// Force-displacement picture next to the file ([`force_curves`]). Returns its path.
 pub fn plot(r: &ResultsReader, path: &Path) -> Result<PathBuf> {
+    let p = force_curves(r)?;
+    line_plot(path, p.title, &p.x_label, &p.y_label, &p.curves, &[], Axes::FromOrigin)?;
+    Ok(path.to_path_buf())
+}
+
+/// Every constrained set's axial reaction (full ring; a plane model's y reaction over its
+/// thickness) against the prescribed displacement (the history's mean u_z of the set that moves
+/// the most), or the total time (step - 1 + load factor), one point per history row.
+pub fn force_curves(r: &ResultsReader) -> Result<ForcePlot> {
     let columns = r.history_columns()?;
     let plane = r.is_plane();
     // the axial reactions: the full ring's, or a plane model's (it has no ring)
@@ -409,18 +429,26 @@ pub fn plot(r: &ResultsReader, path: &Path) -> Result<PathBuf> {
     let [_, b] = directions(r);
     let force = if plane { format!("F_{b} (N, over the thickness") } else { format!("F_{b} (N, full ring") };
     // the prescribed displacement: the constrained set that moves the most along z (its mean
-    // u_z at each increment); without one, the history's time
+    // u_z, a history column; a file written before it had one: from the increments' fields, when
+    // every increment has them); without one, the history's time
     let increments = r.increments()?;
+    let rows = r.history("step")?.len();
     let mut travel: Vec<(&str, Vec<f64>)> = Vec::new();
     for &set in &sets {
-        let members = r.node_set(set)?;
-        let uz: Vec<f64> = increments
-            .iter()
-            .map(|inc| {
-                Ok(r.displacement(inc)?.iter().enumerate().filter(|(n, _)| members.binary_search(n).is_ok()).map(|(_, u)| u[1]).sum::<f64>()
-                    / members.len().max(1) as f64)
-            })
-            .collect::<Result<_>>()?;
+        let uz = match r.history(&format!("displacement_{set}_z")) {
+            Ok(uz) => uz,
+            Err(_) if increments.len() == rows => {
+                let members = r.node_set(set)?;
+                increments
+                    .iter()
+                    .map(|inc| {
+                        Ok(r.displacement(inc)?.iter().enumerate().filter(|(n, _)| members.binary_search(n).is_ok()).map(|(_, u)| u[1]).sum::<f64>()
+                            / members.len().max(1) as f64)
+                    })
+                    .collect::<Result<_>>()?
+            }
+            Err(_) => continue,
+        };
         travel.push((set, uz));
     }
     let moving = travel.iter().max_by(|a, b| a.1.iter().fold(0.0f64, |m, v| m.max(v.abs())).total_cmp(&b.1.iter().fold(0.0f64, |m, v| m.max(v.abs()))));
@@ -441,12 +469,11 @@ pub fn plot(r: &ResultsReader, path: &Path) -> Result<PathBuf> {
         .iter()
         .map(|set| {
             let f = oriented(&r.history(&format!("reaction_{set}{suffix}"))?);
-            Ok(Curve { label: format!("{set}: {force})"), points: x.iter().zip(&f).filter(|(_, v)| v.is_finite()).map(|(&u, &v)| (u, v)).collect() })
+            Ok(Curve { label: format!("{set}: {force})"), points: x.iter().zip(&f).filter(|(u, v)| u.is_finite() && v.is_finite()).map(|(&u, &v)| (u, v)).collect() })
         })
         .collect::<Result<_>>()?;
     let title = if plane { "Reactions along y" } else { "Axial reactions" };
-    line_plot(path, title, &x_label, &format!("{force}; each signed so its largest is positive)"), &curves, &[], Axes::FromOrigin)?;
-    Ok(path.to_path_buf())
+    Ok(ForcePlot { title, x_label, y_label: format!("{force}; each signed so its largest is positive)"), curves })
 }
 
 /// The picture's default name: FILE_force.png beside the results file.

@@ -92,6 +92,15 @@ fn the_quick_joint_is_assessed_beside_the_code() {
     let table = |t: &str| t.lines().filter(|l| l.contains("MPa") && l.contains('.')).map(str::to_string).collect::<Vec<_>>();
     let from_post = printed.split("design assessment:").nth(1).expect("post prints the assessment");
     assert_eq!(table(from_post)[..8], table(&section)[..8], "post --assessment:\n{printed}\nthe run:\n{section}");
+    // `post FILE` prints the flexibility and stability tables again, word for word (it printed
+    // neither before)
+    let post = command_in(dir.path(), 1).args(["post", h5.to_str().unwrap()]).output().unwrap();
+    let printed = String::from_utf8_lossy(&post.stdout);
+    for name in ["flexibility:", "stability:"] {
+        let part = |t: &str| t.split(name).nth(1).map(|p| name.to_string() + p.split("\n\n").next().unwrap());
+        let (run, again) = (part(&section).unwrap(), part(&printed));
+        assert_eq!(again.as_deref(), Some(run.as_str()), "post FILE:\n{printed}");
+    }
 }
 
 #[test]

@@ -25,6 +25,11 @@ fn frequencies(dir: &std::path::Path, ranks: usize, more: &[&str]) -> (Vec<(Stri
     let text = String::from_utf8_lossy(&out.stdout).into_owned();
     assert!(out.status.success(), "{text}\n{}", String::from_utf8_lossy(&out.stderr));
     let section = text.split("natural frequencies: the joint").nth(1).unwrap_or_else(|| panic!("no frequencies section:\n{text}"));
+    // `post FILE` prints the table again, word for word
+    let post = command_in(dir, 1).arg("post").arg(&h5).output().unwrap();
+    let again = String::from_utf8_lossy(&post.stdout);
+    let table = |t: &str| t.split("natural frequencies: the joint").nth(1).map(|p| p.split("\n\n").next().unwrap().to_string());
+    assert_eq!(table(&again), table(&text), "post FILE:\n{again}");
     // each row: its label and its at-rest value (the next to last column)
     let rows = section
         .lines()

@@ -53,10 +53,15 @@ fn post_reproduces_the_run_and_reports_fields() {
     let csv = dir.path().join("fit.csv");
     assert!(post(dir.path(), &[h5s, "--csv", csv.to_str().unwrap()]).status.success());
     let table = std::fs::read_to_string(&csv).unwrap();
-    let header: Vec<&str> = table.lines().next().unwrap().split(',').collect();
+    // each column named "name [units]", the units the dataset carries
+    let named: Vec<&str> = table.lines().next().unwrap().split(',').collect();
+    let header: Vec<&str> = named.iter().map(|h| h.split(" [").next().unwrap()).collect();
     let file = hdf5::File::open(&h5).unwrap();
     for (k, name) in header.iter().enumerate() {
-        let stored = file.dataset(&format!("history/{name}")).unwrap().read_raw::<f64>().unwrap();
+        let dataset = file.dataset(&format!("history/{name}")).unwrap();
+        let units = dataset.attr("units").unwrap().read_scalar::<hdf5::types::VarLenUnicode>().unwrap();
+        assert_eq!(named[k], format!("{name} [{units}]"));
+        let stored = dataset.read_raw::<f64>().unwrap();
         let read: Vec<f64> = table.lines().skip(1).map(|l| l.split(',').nth(k).unwrap().parse().unwrap()).collect();
         assert_eq!(stored.len(), read.len(), "{name}");
         for (a, b) in stored.iter().zip(&read) {
@@ -64,6 +69,18 @@ fn post_reproduces_the_run_and_reports_fields() {
         }
     }
     assert!(header.contains(&"contact_fit_max_penetration") && header.contains(&"reaction_outer_top_z_ring"));
+    assert!(named.contains(&"reaction_outer_top_z_ring [N]") && named.contains(&"reaction_outer_top_z [N per radian]"), "{named:?}");
+    // the full ring's reaction before the per-radian one
+    let place = |name: &str| header.iter().position(|h| *h == name).unwrap();
+    assert!(place("reaction_outer_top_z_ring") < place("reaction_outer_top_z"));
+    // the prescribed displacement beside its reaction: 0 in the fit, then -0.01 mm x the push's load factor
+    let column = |name: &str| -> Vec<f64> { table.lines().skip(1).map(|l| l.split(',').nth(place(name)).unwrap().parse().unwrap()).collect() };
+    let (uz, step, lambda) = (column("displacement_outer_top_z"), column("step"), column("load_factor"));
+    for k in 0..uz.len() {
+        let prescribed = if step[k] == 2.0 { -0.01 * lambda[k] } else { 0.0 };
+        assert!((uz[k] - prescribed).abs() < 1e-15, "row {k}: {} against {prescribed}", uz[k]);
+    }
+    assert_eq!(named[place("displacement_outer_top_z")], "displacement_outer_top_z [mm]");
     // counts are integers
     let first: Vec<&str> = table.lines().nth(1).unwrap().split(',').collect();
     let at = |name: &str| first[header.iter().position(|h| *h == name).unwrap()];
@@ -213,6 +230,17 @@ fn output_every_n_keeps_the_fields_of_every_nth_and_the_last_increment() {
         "{text}{}",
         String::from_utf8_lossy(&check.stderr)
     );
+    // the force-displacement curve has a point per history row, at the prescribed displacement
+    // (before, the 3 written increments' displacements were paired with the first 3 rows' forces)
+    let reader = slideline::io::reader::ResultsReader::open(&h5).unwrap();
+    let plot = slideline::post::force_curves(&reader).unwrap();
+    let top = plot.curves.iter().find(|c| c.label.starts_with("top:")).unwrap();
+    let reaction = file.dataset("history/reaction_top_z_ring").unwrap().read_raw::<f64>().unwrap();
+    assert_eq!(top.points.len(), 7);
+    for (k, &(u, f)) in top.points.iter().enumerate() {
+        assert!((u - 0.001 * (k + 1) as f64).abs() < 1e-15 && (f + reaction[k]).abs() <= 1e-12 * f.abs(), "point {k}: ({u}, {f})");
+    }
+    assert!(plot.x_label.starts_with("u_z of top, mm"), "{}", plot.x_label);
     std::fs::write(dir.path().join("bad.toml"), deck.replace("\"von_mises\"", "\"strains\"")).unwrap();
     let out = command_in(dir.path(), 1).arg("run").arg(dir.path().join("bad.toml")).arg("-o").arg(dir.path().join("bad.h5")).output().unwrap();
     let err = String::from_utf8_lossy(&out.stderr);

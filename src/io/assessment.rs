@@ -233,3 +233,42 @@ pub fn read_finite_element(file: &hdf5::File, path: &Path) -> Result<Option<(FeC
     };
     Ok(Some((fe, life)))
 }
+
+/// The group of the tables the run printed after its closing table.
+pub const TABLES: &str = "tables";
+
+/// Writes `tables` (name, text as printed) into the (closed) results file at `path` (one
+/// process) as `/tables/NAME` strings, replacing a restarted run's: `slideline post FILE` prints
+/// them again, word for word.
+pub fn write_tables(path: &Path, tables: &[(&str, String)]) -> Result<()> {
+    if tables.is_empty() {
+        return Ok(());
+    }
+    let err = h5err(path);
+    let file = hdf5::File::open_rw(path).map_err(&err)?;
+    if file.link_exists(TABLES) {
+        file.unlink(TABLES).map_err(&err)?;
+    }
+    let g = file.create_group(TABLES).map_err(&err)?;
+    // the order the run printed them in (HDF5 lists members alphabetically)
+    let order = tables.iter().map(|(name, _)| *name).collect::<Vec<_>>().join(",");
+    g.new_attr::<VarLenUnicode>().create("order").map_err(&err)?.write_scalar(&text(&order, path)?).map_err(&err)?;
+    for (name, table) in tables {
+        let ds = g.new_dataset::<VarLenUnicode>().create(*name).map_err(&err)?;
+        ds.write_scalar(&text(table, path)?).map_err(&err)?;
+        ds.new_attr::<VarLenUnicode>().create("description").map_err(&err)?.write_scalar(&text("the table as the run printed it", path)?).map_err(&err)?;
+    }
+    file.flush().map_err(&err)
+}
+
+/// The tables `file` holds (name, text), in the order the run printed them.
+pub fn read_tables(file: &hdf5::File, path: &Path) -> Result<Vec<(String, String)>> {
+    let Ok(g) = file.group(TABLES) else { return Ok(Vec::new()) };
+    let bad = |e: hdf5::Error| Error::input(format!("{}: /{TABLES}: {e}", path.display()));
+    let order = g.attr("order").and_then(|a| a.read_scalar::<VarLenUnicode>()).map_err(bad)?.to_string();
+    order
+        .split(',')
+        .filter(|name| !name.is_empty())
+        .map(|name| Ok((name.to_string(), g.dataset(name).and_then(|d| d.read_scalar::<VarLenUnicode>()).map_err(bad)?.to_string())))
+        .collect()
+}

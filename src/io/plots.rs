@@ -132,45 +132,63 @@ pub struct SegmentLayer {
     pub width: u32,
 }
 
-/// An (r, z) outline drawn to scale, z across and r up (a meridian section): each layer's
-/// segments in its own colour (grey first, then the palette), with a legend.
-pub fn outline_picture(path: &Path, title: &str, layers: &[SegmentLayer]) -> Result<()> {
+/// One meridian view of an outline picture: its caption (none for a single view) and layers.
+pub struct Panel {
+    pub caption: Option<String>,
+    pub layers: Vec<SegmentLayer>,
+}
+
+/// (r, z) outlines drawn to scale, z across and r up (meridian sections), one panel above the
+/// other on a common z range, each cropped to its own r range: each layer's segments in its own
+/// colour (grey first, then the palette), with a legend.
+pub fn outline_picture(path: &Path, title: &str, panels: &[Panel]) -> Result<()> {
     use_bundled_font();
     let err = draw_err(path);
-    let ends = layers.iter().flat_map(|l| l.segments.iter().flatten());
-    let (mut r0, mut r1, mut z0, mut z1) = (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY);
-    for p in ends {
-        (r0, r1, z0, z1) = (r0.min(p[0]), r1.max(p[0]), z0.min(p[1]), z1.max(p[1]));
-    }
-    let pad = 0.03 * (z1 - z0).max(r1 - r0);
-    let (r0, r1, z0, z1) = (r0 - pad, r1 + pad, z0 - pad, z1 + pad);
-    // to scale: the plot's height follows from its width and the section's proportions
+    let range = |layers: &[SegmentLayer]| {
+        layers.iter().flat_map(|l| l.segments.iter().flatten()).fold(
+            (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY),
+            |(r0, r1, z0, z1), p| (r0.min(p[0]), r1.max(p[0]), z0.min(p[1]), z1.max(p[1])),
+        )
+    };
+    let ranges: Vec<_> = panels.iter().map(|p| range(&p.layers)).collect();
+    let (z0, z1) = ranges.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), r| (a.min(r.2), b.max(r.3)));
+    let pad = 0.03 * (z1 - z0).max(ranges.iter().fold(0.0f64, |m, r| m.max(r.1 - r.0)));
+    let (z0, z1) = (z0 - pad, z1 + pad);
+    // to scale: each panel's height follows from the common width and its section's proportions
     let width = 1800u32;
     let plot_width = f64::from(width - 150);
-    let height = (plot_width * (r1 - r0) / (z1 - z0)).round() as u32 + 190;
-    let size = (width, height);
+    let heights: Vec<u32> = ranges
+        .iter()
+        .zip(panels)
+        .map(|(r, p)| (plot_width * (r.1 - r.0 + 2.0 * pad) / (z1 - z0)).round() as u32 + 110 + if p.caption.is_some() { 30 } else { 0 })
+        .collect();
+    let size = (width, heights.iter().sum::<u32>() + 50);
     let mut pixels = vec![0u8; 3 * size.0 as usize * size.1 as usize];
     {
         let root = BitMapBackend::with_buffer(&mut pixels, size).into_drawing_area();
         root.fill(&WHITE).map_err(|e| err(&e))?;
-        let mut chart = ChartBuilder::on(&root)
-            .caption(title, ("sans-serif", 26))
-            .margin(20)
-            .x_label_area_size(50)
-            .y_label_area_size(80)
-            .build_cartesian_2d(z0..z1, r0..r1)
-            .map_err(|e| err(&e))?;
-        chart.configure_mesh().disable_mesh().x_desc("z, mm").y_desc("r, mm").label_style(("sans-serif", 16)).draw().map_err(|e| err(&e))?;
-        let palette = [RGBColor(150, 150, 150), RGBColor(31, 119, 180), RGBColor(214, 39, 40), RGBColor(44, 160, 44)];
-        for (k, layer) in layers.iter().enumerate() {
-            let style = palette[k % palette.len()].stroke_width(layer.width);
-            chart
-                .draw_series(layer.segments.iter().map(|[a, b]| PathElement::new(vec![(a[1], a[0]), (b[1], b[0])], style)))
-                .map_err(|e| err(&e))?
-                .label(layer.label.as_str())
-                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 24, y)], style));
+        let mut area = root.titled(title, ("sans-serif", 26)).map_err(|e| err(&e))?;
+        for ((panel, r), &height) in panels.iter().zip(&ranges).zip(&heights) {
+            let (here, rest) = area.split_vertically(height);
+            area = rest;
+            let mut builder = ChartBuilder::on(&here);
+            builder.margin(20).x_label_area_size(50).y_label_area_size(80);
+            if let Some(caption) = &panel.caption {
+                builder.caption(caption, ("sans-serif", 20));
+            }
+            let mut chart = builder.build_cartesian_2d(z0..z1, r.0 - pad..r.1 + pad).map_err(|e| err(&e))?;
+            chart.configure_mesh().disable_mesh().x_desc("z, mm").y_desc("r, mm").label_style(("sans-serif", 16)).draw().map_err(|e| err(&e))?;
+            let palette = [RGBColor(150, 150, 150), RGBColor(31, 119, 180), RGBColor(214, 39, 40), RGBColor(44, 160, 44)];
+            for (k, layer) in panel.layers.iter().enumerate() {
+                let style = palette[k % palette.len()].stroke_width(layer.width);
+                chart
+                    .draw_series(layer.segments.iter().map(|[a, b]| PathElement::new(vec![(a[1], a[0]), (b[1], b[0])], style)))
+                    .map_err(|e| err(&e))?
+                    .label(layer.label.as_str())
+                    .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 24, y)], style));
+            }
+            draw_legend(&mut chart, SeriesLabelPosition::UpperLeft).map_err(|e| err(&e))?;
         }
-        draw_legend(&mut chart, SeriesLabelPosition::UpperLeft).map_err(|e| err(&e))?;
         root.present().map_err(|e| err(&e))?;
     }
     write_png(path, size, &pixels)

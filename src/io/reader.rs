@@ -327,6 +327,11 @@ impl ResultsReader {
         super::assessment::read(&self.file, &self.path)
     }
 
+    /// The tables a bellows run printed after its closing table (name, text), in its order.
+    pub fn printed_tables(&self) -> Result<Vec<(String, String)>> {
+        super::assessment::read_tables(&self.file, &self.path)
+    }
+
     /// The perturbation steps the file holds: (name, mode, per set its full-ring resultants
     /// (name, value)), sorted by name.
     pub fn perturbations(&self) -> Result<Vec<StoredPerturbation>> {
@@ -481,6 +486,13 @@ impl ResultsReader {
                     f[0].is_finite().then(|| (set.to_string(), f))
                 })
                 .collect();
+            let set_displacements = sets
+                .iter()
+                .filter_map(|set| {
+                    let u = [column(&format!("displacement_{set}_r"))?[k], column(&format!("displacement_{set}_z"))?[k]];
+                    u[0].is_finite().then(|| (set.to_string(), u))
+                })
+                .collect();
             let contacts = pairs
                 .iter()
                 .map(|pair| {
@@ -523,6 +535,7 @@ impl ResultsReader {
                 max_plastic_strain: ep[k],
                 wall_time: wall[k],
                 reactions,
+                set_displacements,
                 energy,
             };
             rows.push((name, row));

@@ -88,6 +88,9 @@ pub struct HistoryRow {
     pub wall_time: f64,
     /// (set name, [F_r, F_z] per radian), N/rad.
     pub reactions: Vec<(String, [f64; 2])>,
+    /// (set name, [u_r, u_z] the mean over its nodes), mm: the displacement the reactions work
+    /// on (the prescribed one, where it is the same at every node), for force-displacement curves.
+    pub set_displacements: Vec<(String, [f64; 2])>,
     /// The energy audit after the increment (None: a file written before the audit existed).
     pub energy: Option<Energies>,
 }
@@ -535,26 +538,33 @@ impl ResultsFile {
         for c in &row.contacts {
             columns.push((format!("contact_{}_active_nodes", c.name), c.active_nodes as f64));
             columns.push((format!("contact_{}_max_penetration", c.name), c.max_penetration));
-            columns.push((format!("contact_{}_force", c.name), c.normal_force));
+            // the full ring's force first, as the reactions
             if self.axisymmetric {
                 columns.push((format!("contact_{}_force_ring", c.name), c.normal_force * ring));
             }
+            columns.push((format!("contact_{}_force", c.name), c.normal_force));
         }
         for (name, value) in row.energy.map(|e| e.columns()).into_iter().flatten() {
             columns.push((name.to_string(), value));
         }
         for (set, f) in &row.reactions {
-            columns.push((format!("reaction_{set}_r"), f[0]));
-            columns.push((format!("reaction_{set}_z"), f[1]));
+            // the full ring's first (as Abaqus and ANSYS report an axisymmetric model), per
+            // radian beside it
             if self.axisymmetric {
                 columns.push((format!("reaction_{set}_r_ring"), f[0] * ring));
                 columns.push((format!("reaction_{set}_z_ring"), f[1] * ring));
             }
+            columns.push((format!("reaction_{set}_r"), f[0]));
+            columns.push((format!("reaction_{set}_z"), f[1]));
             if let Some(deg) = self.reaction_segment_degrees {
                 let seg = deg.to_radians();
                 columns.push((format!("reaction_{set}_r_{deg}deg"), f[0] * seg));
                 columns.push((format!("reaction_{set}_z_{deg}deg"), f[1] * seg));
             }
+        }
+        for (set, u) in &row.set_displacements {
+            columns.push((format!("displacement_{set}_r"), u[0]));
+            columns.push((format!("displacement_{set}_z"), u[1]));
         }
         let err = h5err(&self.path);
         let history = self.file.group("history").map_err(&err)?;
@@ -720,6 +730,7 @@ mod tests {
             max_plastic_strain: 0.0,
             wall_time: 1.3,
             reactions: reactions.iter().map(|&(set, f)| (set.to_string(), [0.0, f])).collect(),
+            set_displacements: Vec::new(),
             energy: None,
         }
     }

@@ -354,6 +354,15 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
                 .iter()
                 .map(|set| (set.clone(), model.node_sets[set].iter().fold([0.0; 2], |acc, &n| [acc[0] + force[2 * n], acc[1] + force[2 * n + 1]])))
                 .collect();
+            let set_displacements = loads
+                .constrained_sets
+                .iter()
+                .map(|set| {
+                    let nodes = &model.node_sets[set];
+                    let sum = nodes.iter().fold([0.0; 2], |acc, &n| [acc[0] + displacement[n][0], acc[1] + displacement[n][1]]);
+                    (set.clone(), sum.map(|s| s / nodes.len().max(1) as f64))
+                })
+                .collect();
             let row = HistoryRow {
                 number: rows.len() + 1,
                 step: s + 1,
@@ -374,6 +383,7 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
                 contacts,
                 wall_time: wall_before + start.elapsed().as_secs_f64(),
                 reactions,
+                set_displacements,
                 energy: Some(energy),
             };
             // the next attempt's size: kept after a hard increment, grown after an easy one

@@ -20,6 +20,9 @@ use crate::solve::RunSummary;
 use std::f64::consts::PI;
 use std::path::{Path, PathBuf};
 
+mod mode_picture;
+pub use mode_picture::mode_picture;
+
 /// The paper modelled a 2.5-degree sector; its forces are per sector.
 pub const SECTOR_RADIANS: f64 = 2.5 * PI / 180.0;
 
@@ -395,18 +398,21 @@ impl BellowsReport {
         let name = |suffix: &str| PathBuf::from(format!("{}_{suffix}.png", stem.display()));
         let mut pictures = Vec::new();
         let force = name("force_displacement");
-        let mut curves = vec![Curve { label: "slideline".into(), points: self.curve.clone() }];
-        if let Some(stiffness) = self.code.as_ref().map(|c| c.axial_rate * SECTOR_RADIANS / (2.0 * PI)) {
-            let points = [0.0, self.displacement.max(1.0) * 0.35].iter().map(|&u| (u, self.preload + stiffness * u)).collect();
-            curves.push(Curve { label: format!("EJMA elastic rate {stiffness:.2} N/mm (from the step-1 preload)"), points });
+        // in the full ring's newtons, as `post --plot` and the progress lines give forces
+        let ring = 2.0 * PI / SECTOR_RADIANS;
+        let mut curves = vec![Curve { label: "slideline".into(), points: self.curve.iter().map(|&(u, f)| (u, f * ring)).collect() }];
+        if let Some(stiffness) = self.code.as_ref().map(|c| c.axial_rate) {
+            let points = [0.0, self.displacement.max(1.0) * 0.35].iter().map(|&u| (u, self.preload * ring + stiffness * u)).collect();
+            curves.push(Curve { label: format!("EJMA elastic rate {stiffness:.1} N/mm (from the step-1 preload)"), points });
         }
+        let paper = PAPER_REACTION * ring;
         line_plot(
             &force,
-            "Bellows end reaction (2.5-degree sector) vs axial compression",
+            "Bellows end reaction vs axial compression",
             "axial compression u (mm)",
-            "end reaction F (N per 2.5-degree sector)",
+            "end reaction F (N, full ring)",
             &curves,
-            &[Marker { label: format!("paper (MSC Nastran): {PAPER_REACTION} N at 70 mm"), at: (70.0, PAPER_REACTION) }],
+            &[Marker { label: format!("paper (MSC Nastran): {paper:.0} N at 70 mm ({PAPER_REACTION} N per sector)"), at: (70.0, paper) }],
             Axes::FromOrigin,
         )?;
         pictures.push((force, "the end reaction against the compression".to_string()));
@@ -585,40 +591,6 @@ pub fn frequencies_section(p: &BellowsParams, rest: &Frequencies, operating: &Fr
         p.density
     ));
     t
-}
-
-/// A picture of an eigenmode of perturbation step `step` (mode `mode` of the harmonic `n`), to
-/// scale: the meridian section at theta = 0 and, mirrored across the axis, at theta = 180
-/// degrees, the base state (the run's last increment) in grey and the mode over it, its largest
-/// amplitude drawn as 2.5 % of the model's length.
-pub fn mode_picture(reader: &ResultsReader, path: &Path, step: &str, n: u32, mode: usize, title: &str) -> Result<()> {
-    use crate::io::plots::{outline_picture, SegmentLayer};
-    let increments = reader.increments()?;
-    let last = increments.last().ok_or_else(|| crate::error::Error::input("no increment: no base state to draw the mode on"))?;
-    let (x0, u) = (reader.coordinates()?, reader.displacement(last)?);
-    let amplitudes = reader.perturbation_field(step, &format!("mode_{mode}"))?;
-    let base: Vec<[f64; 2]> = x0.iter().zip(&u).map(|(x, u)| [x[0] + u[0], x[1] + u[1]]).collect();
-    let (z0, z1) = base.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| (a.min(x[1]), b.max(x[1])));
-    let scale = 0.025 * (z1 - z0);
-    // theta = 180 degrees: cos n theta = (-1)^n, and the radial direction points along -x
-    let sign = if n.is_multiple_of(2) { 1.0 } else { -1.0 };
-    let moved: Vec<[f64; 2]> = base.iter().enumerate().map(|(k, x)| [x[0] + scale * amplitudes[3 * k], x[1] + scale * amplitudes[3 * k + 1]]).collect();
-    let opposite: Vec<[f64; 2]> =
-        base.iter().enumerate().map(|(k, x)| [-(x[0] + sign * scale * amplitudes[3 * k]), x[1] + sign * scale * amplitudes[3 * k + 1]]).collect();
-    let mut mesh = crate::model::mesh::Mesh { coords: base.clone(), elements: reader.connectivity()?, ..Default::default() };
-    let edges = mesh.free_edges();
-    let mirror = |c: &[[f64; 2]]| c.iter().map(|x| [-x[0], x[1]]).collect::<Vec<_>>();
-    let mut outline = |coords: Vec<[f64; 2]>| {
-        mesh.coords = coords;
-        mesh.edge_segments(&edges)
-    };
-    let state = [outline(base.clone()), outline(mirror(&base))].concat();
-    let shape = [outline(moved), outline(opposite)].concat();
-    let layers = [
-        SegmentLayer { label: "base state (theta = 0 above the axis, 180 degrees below)".into(), segments: state, width: 1 },
-        SegmentLayer { label: format!("mode {mode} of n = {n}, scaled"), segments: shape, width: 2 },
-    ];
-    outline_picture(path, title, &layers)
 }
 
 #[cfg(test)]
