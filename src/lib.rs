@@ -2,6 +2,7 @@
 //! contact. Layers (see DESIGN.md): readers -> `model`; pure kernels (`fe`, `material`,
 //! `element`); parallel drivers (`dist`, `solve`, `io`) over the `petsc` binding.
 #![deny(unsafe_code)]
+#![deny(unsafe_op_in_unsafe_fn)]
 // Kernels are written in index notation, as their formulas are.
 #![allow(clippy::needless_range_loop)]
 

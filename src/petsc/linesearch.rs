@@ -92,17 +92,21 @@ pub struct Tolerances {
 /// # Safety
 /// `ls` must be a valid SNESLineSearch.
 pub(super) unsafe fn install(ls: sys::SNESLineSearch) -> sys::PetscErrorCode {
-    let code = sys::SNESLineSearchSetType(ls, c"shell".as_ptr());
+    // SAFETY: `ls` is valid (the caller's contract); the type name is a static C string.
+    let code = unsafe { sys::SNESLineSearchSetType(ls, c"shell".as_ptr()) };
     if code != 0 {
         return code;
     }
-    sys::SNESLineSearchShellSetUserFunc(ls, Some(apply), std::ptr::null_mut())
+    // SAFETY: as above; `apply` has the signature PETSc calls, and takes no context.
+    unsafe { sys::SNESLineSearchShellSetUserFunc(ls, Some(apply), std::ptr::null_mut()) }
 }
 
-/// Returns early with PETSc's error code from a failed call.
+/// Runs one PETSc call of [`apply`], returning early with its error code if it fails. Each
+/// call site says why its call is sound in a `// SAFETY:` line above it.
 macro_rules! petsc_try {
     ($call:expr) => {
-        let code = $call;
+        #[allow(clippy::macro_metavars_in_unsafe)]
+        let code = unsafe { $call };
         if code != 0 {
             return code;
         }
@@ -113,25 +117,34 @@ macro_rules! petsc_try {
 unsafe extern "C" fn apply(ls: sys::SNESLineSearch, _ctx: *mut c_void) -> sys::PetscErrorCode {
     let null = std::ptr::null_mut;
     let (mut x, mut f, mut y, mut w, mut g) = (null(), null(), null(), null(), null());
+    // SAFETY: `ls` is the line search PETSc is running (valid during this callback); the outs are locals.
     petsc_try!(sys::SNESLineSearchGetVecs(ls, &mut x, &mut f, &mut y, &mut w, &mut g));
     let mut snes: sys::SNES = std::ptr::null_mut();
+    // SAFETY: `ls` is the line search PETSc is running (valid during this callback); the outs are locals.
     petsc_try!(sys::SNESLineSearchGetSNES(ls, &mut snes));
     let mut lambda = 0.0;
+    // SAFETY: `ls` is the line search PETSc is running (valid during this callback); the outs are locals.
     petsc_try!(sys::SNESLineSearchGetLambda(ls, &mut lambda));
     let (mut steptol, mut maxstep, mut rtol, mut atol, mut ltol, mut max_it) = (0.0, 0.0, 0.0, 0.0, 0.0, 0);
+    // SAFETY: `ls` is the line search PETSc is running (valid during this callback); the outs are locals.
     petsc_try!(sys::SNESLineSearchGetTolerances(ls, &mut steptol, &mut maxstep, &mut rtol, &mut atol, &mut ltol, &mut max_it));
     let tolerances = Tolerances { steptol, maxstep, rtol, atol };
     let (mut xnorm, mut fnorm, mut ynorm) = (0.0, 0.0, 0.0);
+    // SAFETY: `ls` is the line search PETSc is running (valid during this callback); the outs are locals.
     petsc_try!(sys::SNESLineSearchGetNorms(ls, &mut xnorm, &mut fnorm, &mut ynorm));
+    // SAFETY: `ls` is the line search PETSc is running (valid during this callback); the outs are locals.
     petsc_try!(sys::SNESLineSearchSetReason(ls, sys::SNESLineSearchReason_SNES_LINESEARCH_SUCCEEDED));
     let mut changed_y = sys::PetscBool_PETSC_FALSE;
+    // SAFETY: `ls` is the line search PETSc is running (valid during this callback); the outs are locals.
     petsc_try!(sys::SNESLineSearchPreCheck(ls, x, y, &mut changed_y));
     let mut fty0 = 0.0;
+    // SAFETY: x, f, y, w, g are the line search's own vectors (SNESLineSearchGetVecs), alive while it runs.
     petsc_try!(sys::VecDot(f, y, &mut fty0));
     // as cp: no slope left along the step means the potential is at its minimum (the
     // residual at round-off), and the solve has converged where it stands
     if fty0.abs() < tolerances.atol * ynorm {
-        return sys::SNESSetConvergedReason(snes, sys::SNESConvergedReason_SNES_CONVERGED_FNORM_ABS);
+        // SAFETY: `snes` owns this line search (SNESLineSearchGetSNES) and outlives the callback; the outs are locals.
+        return unsafe { sys::SNESSetConvergedReason(snes, sys::SNESConvergedReason_SNES_CONVERGED_FNORM_ABS) };
     }
 
     // F at the full step (into F: F(X) is not needed again once F.y is known); where the full
@@ -139,40 +152,52 @@ unsafe extern "C" fn apply(ls: sys::SNESLineSearch, _ctx: *mut c_void) -> sys::P
     // contact node through its neighbours), halved until it does not
     let mut domain = sys::PetscBool_PETSC_FALSE;
     for halving in 0..=DOMAIN_HALVINGS {
+        // SAFETY: x, f, y, w, g are the line search's own vectors (SNESLineSearchGetVecs), alive while it runs.
         petsc_try!(sys::VecWAXPY(w, -lambda, y, x));
+        // SAFETY: `snes` owns this line search (SNESLineSearchGetSNES) and outlives the callback; the outs are locals.
         petsc_try!(sys::SNESComputeFunction(snes, w, f));
+        // SAFETY: `snes` owns this line search (SNESLineSearchGetSNES) and outlives the callback; the outs are locals.
         petsc_try!(sys::SNESGetFunctionDomainError(snes, &mut domain));
         if domain == sys::PetscBool_PETSC_FALSE {
             break;
         }
         if halving == DOMAIN_HALVINGS {
-            return sys::SNESLineSearchSetReason(ls, sys::SNESLineSearchReason_SNES_LINESEARCH_FAILED_DOMAIN);
+            // SAFETY: `ls` is the line search PETSc is running (valid during this callback); the outs are locals.
+            return unsafe { sys::SNESLineSearchSetReason(ls, sys::SNESLineSearchReason_SNES_LINESEARCH_FAILED_DOMAIN) };
         }
         // (SNESComputeFunction clears the flag before it evaluates, PETSc >= 3.17)
         lambda *= 0.5;
     }
     let mut evaluated_at_w = true;
     let (mut hist, mut hist_its, mut nhist): (*mut f64, *mut sys::PetscInt, sys::PetscInt) = (std::ptr::null_mut(), std::ptr::null_mut(), 0);
+    // SAFETY: `snes` owns this line search (SNESLineSearchGetSNES) and outlives the callback; the outs are locals.
     petsc_try!(sys::SNESGetConvergenceHistory(snes, &mut hist, &mut hist_its, &mut nhist));
     // SAFETY: PETSc's history of this solve, `nhist` norms (the array slideline's Snes owns),
     // read before the next iterate is logged into it.
-    let norms = if hist.is_null() || nhist <= 0 { &[][..] } else { std::slice::from_raw_parts(hist, nhist as usize) };
+    let norms = if hist.is_null() || nhist <= 0 { &[][..] } else { unsafe { std::slice::from_raw_parts(hist, nhist as usize) } };
     let mut step = None;
     if stalled(norms) {
         // ||F||^2 at the full step (in F) and at half of it (into G)
         let (mut full, mut mid) = (0.0, 0.0);
+        // SAFETY: x, f, y, w, g are the line search's own vectors (SNESLineSearchGetVecs), alive while it runs.
         petsc_try!(sys::VecNorm(f, sys::NormType_NORM_2, &mut full));
+        // SAFETY: x, f, y, w, g are the line search's own vectors (SNESLineSearchGetVecs), alive while it runs.
         petsc_try!(sys::VecWAXPY(w, -0.5 * lambda, y, x));
+        // SAFETY: `snes` owns this line search (SNESLineSearchGetSNES) and outlives the callback; the outs are locals.
         petsc_try!(sys::SNESComputeFunction(snes, w, g));
+        // SAFETY: `snes` owns this line search (SNESLineSearchGetSNES) and outlives the callback; the outs are locals.
         petsc_try!(sys::SNESGetFunctionDomainError(snes, &mut domain));
+        // SAFETY: x, f, y, w, g are the line search's own vectors (SNESLineSearchGetVecs), alive while it runs.
         petsc_try!(sys::VecWAXPY(w, -lambda, y, x));
         if domain == sys::PetscBool_PETSC_FALSE {
+            // SAFETY: x, f, y, w, g are the line search's own vectors (SNESLineSearchGetVecs), alive while it runs.
             petsc_try!(sys::VecNorm(g, sys::NormType_NORM_2, &mut mid));
             step = Some(l2_step(fnorm * fnorm, mid * mid, full * full, lambda, &tolerances));
         } else {
             // the half step left the domain (the full one did not): back to the secant, with
             // F evaluated at the full step again so that the half step's domain flag is cleared
             // rather than left for the SNES to read
+            // SAFETY: `snes` owns this line search (SNESLineSearchGetSNES) and outlives the callback; the outs are locals.
             petsc_try!(sys::SNESComputeFunction(snes, w, f));
         }
     }
@@ -180,36 +205,47 @@ unsafe extern "C" fn apply(ls: sys::SNESLineSearch, _ctx: *mut c_void) -> sys::P
         Some(step) => step,
         None => {
             let mut fty1 = 0.0;
+            // SAFETY: x, f, y, w, g are the line search's own vectors (SNESLineSearchGetVecs), alive while it runs.
             petsc_try!(sys::VecDot(f, y, &mut fty1));
             secant_step(fty0, fty1, lambda, &tolerances)
         }
     };
     if let Some(next) = step {
         lambda = next;
+        // SAFETY: x, f, y, w, g are the line search's own vectors (SNESLineSearchGetVecs), alive while it runs.
         petsc_try!(sys::VecWAXPY(w, -lambda, y, x));
         evaluated_at_w = false;
     }
 
     let (mut changed_y, mut changed_w) = (sys::PetscBool_PETSC_FALSE, sys::PetscBool_PETSC_FALSE);
+    // SAFETY: `ls` is the line search PETSc is running (valid during this callback); the outs are locals.
     petsc_try!(sys::SNESLineSearchPostCheck(ls, x, y, w, &mut changed_y, &mut changed_w));
     if changed_y == sys::PetscBool_PETSC_TRUE {
+        // SAFETY: x, f, y, w, g are the line search's own vectors (SNESLineSearchGetVecs), alive while it runs.
         petsc_try!(sys::VecWAXPY(w, -lambda, y, x));
         evaluated_at_w = false;
     }
     if changed_w == sys::PetscBool_PETSC_TRUE {
         evaluated_at_w = false;
     }
+    // SAFETY: x, f, y, w, g are the line search's own vectors (SNESLineSearchGetVecs), alive while it runs.
     petsc_try!(sys::VecCopy(w, x));
     if !evaluated_at_w {
+        // SAFETY: `snes` owns this line search (SNESLineSearchGetSNES) and outlives the callback; the outs are locals.
         petsc_try!(sys::SNESComputeFunction(snes, x, f));
+        // SAFETY: `snes` owns this line search (SNESLineSearchGetSNES) and outlives the callback; the outs are locals.
         petsc_try!(sys::SNESGetFunctionDomainError(snes, &mut domain));
         if domain == sys::PetscBool_PETSC_TRUE {
-            return sys::SNESLineSearchSetReason(ls, sys::SNESLineSearchReason_SNES_LINESEARCH_FAILED_DOMAIN);
+            // SAFETY: `ls` is the line search PETSc is running (valid during this callback); the outs are locals.
+            return unsafe { sys::SNESLineSearchSetReason(ls, sys::SNESLineSearchReason_SNES_LINESEARCH_FAILED_DOMAIN) };
         }
     }
+    // SAFETY: `ls` is the line search PETSc is running (valid during this callback); the outs are locals.
     petsc_try!(sys::SNESLineSearchComputeNorms(ls));
+    // SAFETY: `ls` is the line search PETSc is running (valid during this callback); the outs are locals.
     petsc_try!(sys::SNESLineSearchSetLambda(ls, lambda));
     if lambda <= steptol {
+        // SAFETY: `ls` is the line search PETSc is running (valid during this callback); the outs are locals.
         petsc_try!(sys::SNESLineSearchSetReason(ls, sys::SNESLineSearchReason_SNES_LINESEARCH_FAILED_REDUCT));
     }
     0

@@ -42,23 +42,30 @@ pub fn mumps_error(infog1: i64, infog2: i64) -> String {
 /// `ksp` must be a valid KSP handle.
 pub unsafe fn mumps_failure(ksp: sys::KSP) -> Result<Option<FactorFailure>> {
     let mut pc = std::ptr::null_mut();
-    check(sys::KSPGetPC(ksp, &mut pc), "KSPGetPC")?;
+    // SAFETY: `ksp` is valid (the caller's contract); `pc` is a local out-pointer.
+    check(unsafe { sys::KSPGetPC(ksp, &mut pc) }, "KSPGetPC")?;
     let mut pc_type: sys::PCType = std::ptr::null();
-    check(sys::PCGetType(pc, &mut pc_type), "PCGetType")?;
-    let is = |p: *const std::ffi::c_char, name: &str| !p.is_null() && CStr::from_ptr(p).to_str().is_ok_and(|s| s == name);
+    // SAFETY: `pc` is the KSP's own preconditioner, valid while `ksp` is.
+    check(unsafe { sys::PCGetType(pc, &mut pc_type) }, "PCGetType")?;
+    // SAFETY: a non-null type name PETSc returns is a NUL-terminated string it owns.
+    let is = |p: *const std::ffi::c_char, name: &str| !p.is_null() && unsafe { CStr::from_ptr(p) }.to_str().is_ok_and(|s| s == name);
     if !(is(pc_type, "lu") || is(pc_type, "cholesky")) {
         return Ok(None);
     }
     let mut solver: sys::MatSolverType = std::ptr::null();
-    check(sys::PCFactorGetMatSolverType(pc, &mut solver), "PCFactorGetMatSolverType")?;
+    // SAFETY: `pc` is an LU or Cholesky preconditioner (checked above), valid while `ksp` is.
+    check(unsafe { sys::PCFactorGetMatSolverType(pc, &mut solver) }, "PCFactorGetMatSolverType")?;
     if !is(solver, "mumps") {
         return Ok(None);
     }
     let mut factor = std::ptr::null_mut();
-    check(sys::PCFactorGetMatrix(pc, &mut factor), "PCFactorGetMatrix")?;
+    // SAFETY: as above; `factor` is a local out-pointer.
+    check(unsafe { sys::PCFactorGetMatrix(pc, &mut factor) }, "PCFactorGetMatrix")?;
     let (mut infog1, mut infog2): (sys::PetscInt, sys::PetscInt) = (0, 0);
-    check(sys::MatMumpsGetInfog(factor, 1, &mut infog1), "MatMumpsGetInfog")?;
-    check(sys::MatMumpsGetInfog(factor, 2, &mut infog2), "MatMumpsGetInfog")?;
+    // SAFETY: `factor` is MUMPS's factored matrix (the solver checked above); the outs are locals.
+    check(unsafe { sys::MatMumpsGetInfog(factor, 1, &mut infog1) }, "MatMumpsGetInfog")?;
+    // SAFETY: as the line before.
+    check(unsafe { sys::MatMumpsGetInfog(factor, 2, &mut infog2) }, "MatMumpsGetInfog")?;
     let (infog1, infog2) = (infog1 as i64, infog2 as i64);
     Ok((infog1 < 0).then(|| FactorFailure { text: mumps_error(infog1, infog2), retry_may_help: !memory_error(infog1) }))
 }
