@@ -19,6 +19,7 @@ pub mod fe;
 pub mod io;
 pub mod material;
 pub mod model;
+pub mod output_path;
 pub mod post;
 pub mod report;
 pub mod solve;

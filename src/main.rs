@@ -73,7 +73,7 @@ fn post(args: &PostArgs) -> Result<(), Error> {
     }
     let plot = args.plot.as_ref().map(|p| p.clone().unwrap_or_else(|| post::default_plot_path(&r)));
     for path in args.csv.iter().chain(&plot) {
-        slideline::io::check_output_path(path, Some((&args.file, "the results file")))?;
+        slideline::output_path::check_output_path(path, Some((&args.file, "the results file")))?;
     }
     let increment = args.increment.as_deref().unwrap_or("last");
     let detail = args.field.is_some()
@@ -189,7 +189,7 @@ fn main() -> ExitCode {
             };
             if let Some(path) = &args.export_inp {
                 // checked before any work; never the --params file it may come from
-                if let Err(e) = slideline::io::check_output_path(path, args.params.as_deref().map(|p| (p, "the --params file"))) {
+                if let Err(e) = slideline::output_path::check_output_path(path, args.params.as_deref().map(|p| (p, "the --params file"))) {
                     return fail(&e, launched_as_rank_zero());
                 }
                 // no MPI needed: every rank would write the same file
@@ -201,7 +201,7 @@ fn main() -> ExitCode {
                     Err(e) => fail(&e, launched_as_rank_zero()),
                 };
             }
-            if let Err(e) = slideline::io::check_output_path(&args.output, args.params.as_deref().map(|p| (p, "the --params file"))) {
+            if let Err(e) = slideline::output_path::check_output_path(&args.output, args.params.as_deref().map(|p| (p, "the --params file"))) {
                 return fail(&e, launched_as_rank_zero());
             }
             let session = match PetscSession::initialize(&args.petsc) {
@@ -371,7 +371,7 @@ fn main() -> ExitCode {
         },
         Command::Run { deck, output, quiet, verbose, monitor, restart, increment, convergence, output_precision, petsc } => {
             let output = output.unwrap_or_else(|| PathBuf::from(deck.file_stem().unwrap_or_default()).with_extension("h5"));
-            if let Err(e) = slideline::io::check_output_path(&output, Some((&deck, "the input deck"))) {
+            if let Err(e) = slideline::output_path::check_output_path(&output, Some((&deck, "the input deck"))) {
                 return fail(&e, launched_as_rank_zero());
             }
             let session = match PetscSession::initialize(&petsc) {

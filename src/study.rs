@@ -118,10 +118,10 @@ pub fn penalty_study(session: &PetscSession, spec: &StudySpec) -> Result<Vec<Stu
     if !(spec.tolerance > 0.0 && spec.tolerance.is_finite()) {
         return Err(Error::input(format!("--tolerance {}: give a relative tolerance > 0 (0.01 is 1 %)", spec.tolerance)));
     }
-    crate::io::check_output_path(&spec.output, None)?;
+    crate::output_path::check_output_path(&spec.output, None)?;
     if let Subject::Deck(model) = &spec.subject {
         for input in &model.source_files {
-            crate::io::check_output_path(&spec.output, Some((input, "an input file of the model")))?;
+            crate::output_path::check_output_path(&spec.output, Some((input, "an input file of the model")))?;
         }
     }
     // the study's file, and with it its runs directory, is one study's at a time

@@ -63,7 +63,7 @@ pub fn from_answers(answers: &[(String, PerturbationAnswer)]) -> Result<Stabilit
 
 /// The mode of the lowest positive eigenvalue of eigenvalue step `step` (a stable state's first
 /// frequency, the first load factor that buckles it).
-pub(super) fn lowest_positive_mode<'a>(answers: &'a [(String, PerturbationAnswer)], step: &str) -> Option<&'a crate::solve::modes::EigenMode> {
+pub(super) fn lowest_positive_mode<'a>(answers: &'a [(String, PerturbationAnswer)], step: &str) -> Option<&'a crate::solve::perturbation::EigenMode> {
     let (_, answer) = answers.iter().find(|(s, _)| s == step)?;
     answer.modes.iter().filter(|m| m.eigenvalue > 0.0).min_by(|x, y| x.eigenvalue.total_cmp(&y.eigenvalue))
 }

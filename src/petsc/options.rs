@@ -84,7 +84,7 @@ pub fn check(options: &[String]) -> Result<()> {
     // -log_view :FILE[:FORMAT] and the like: rank 0 writes the file at the end of the run
     for name in ["-log_view", "-log_view_memory", "-log_trace"] {
         if let Some(file) = value(options, name).and_then(|v| v.strip_prefix(':')).map(|v| v.split(':').next().unwrap_or("")).filter(|f| !f.is_empty()) {
-            crate::io::check_output_path(Path::new(file), None).map_err(|e| Error::input(format!("PETSc option {name}: {e}")))?;
+            crate::output_path::check_output_path(Path::new(file), None).map_err(|e| Error::input(format!("PETSc option {name}: {e}")))?;
         }
     }
     Ok(())

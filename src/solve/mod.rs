@@ -17,6 +17,7 @@ pub mod pattern;
 pub mod perturbation;
 pub mod problem;
 mod resume;
+mod roundoff;
 pub mod schedule;
 pub mod stepping;
 mod storage;

@@ -14,7 +14,7 @@
 
 use super::perturbation::{
     amplitudes_of, assemble, current_positions, model_size, number, prescribed_amplitudes, pressure_stiffness_blocks, response, stiffness_blocks, Amplitude,
-    BaseState, Block, PerturbationAnswer,
+    BaseState, Block, EigenMode, PerturbationAnswer,
 };
 use crate::dist::Partition;
 use crate::element::harmonic::{initial_stress_stiffness, ring_factor};
@@ -27,23 +27,6 @@ use crate::petsc::PetscSession;
 use mpi::collective::SystemOperation;
 use mpi::traits::*;
 use std::f64::consts::PI;
-
-/// One eigenmode of a frequency or buckle step.
-#[derive(Clone, Debug, PartialEq)]
-pub struct EigenMode {
-    /// omega^2 (rad^2/s^2) or the load factor lambda.
-    pub eigenvalue: f64,
-    /// [U_r, U_z, U_t] of every node (model order), scaled to a largest amplitude of 1.
-    pub amplitudes: Vec<[f64; 3]>,
-    /// Frequency steps: the mode's effective mass along its mode's rigid motion, full ring (t),
-    /// where the mode has one (n = 0 axial, n = 1 lateral).
-    pub effective_mass: Option<f64>,
-    /// SLEPc's relative residual of the eigenpair.
-    pub error: f64,
-    /// Buckle steps: the critical pressure on each surface the step loads, the base state's
-    /// pressure there plus the load factor times the step's (MPa).
-    pub critical_pressures: Vec<(String, f64)>,
-}
 
 /// Frequency (Hz) of an eigenvalue omega^2 (negative: the base state is unstable in this mode).
 pub fn frequency_hz(omega_squared: f64) -> f64 {

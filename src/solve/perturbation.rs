@@ -87,9 +87,26 @@ pub struct PerturbationAnswer {
     pub stress: Vec<[[f64; 6]; QUADRATURE_POINTS]>,
     /// Frequency and buckle steps: the eigenmodes, nearest zero first (the fields above are
     /// empty).
-    pub modes: Vec<super::modes::EigenMode>,
+    pub modes: Vec<EigenMode>,
     pub analysis: Analysis,
     pub notes: Vec<String>,
+}
+
+/// One eigenmode of a frequency or buckle step.
+#[derive(Clone, Debug, PartialEq)]
+pub struct EigenMode {
+    /// omega^2 (rad^2/s^2) or the load factor lambda.
+    pub eigenvalue: f64,
+    /// [U_r, U_z, U_t] of every node (model order), scaled to a largest amplitude of 1.
+    pub amplitudes: Vec<[f64; 3]>,
+    /// Frequency steps: the mode's effective mass along its mode's rigid motion, full ring (t),
+    /// where the mode has one (n = 0 axial, n = 1 lateral).
+    pub effective_mass: Option<f64>,
+    /// SLEPc's relative residual of the eigenpair.
+    pub error: f64,
+    /// Buckle steps: the critical pressure on each surface the step loads, the base state's
+    /// pressure there plus the load factor times the step's (MPa).
+    pub critical_pressures: Vec<(String, f64)>,
 }
 
 /// An amplitude's place in the system: an unknown (index, coefficient: an axis node's U_t of
@@ -252,15 +269,6 @@ pub(super) fn stresses(
             std::array::from_fn(|q| (d[q] * nalgebra::SVector::<f64, 6>::from(strain[q])).into())
         })
         .collect()
-}
-
-/// Solves perturbation `step` about `base` (collective).
-pub fn solve(session: &PetscSession, model: &Model, partition: &Partition, base: &BaseState<'_>, step: &Perturbation) -> Result<PerturbationAnswer> {
-    match step.analysis {
-        Analysis::Response => response(session, model, partition, base, step, false),
-        Analysis::Frequency { eigenvalues } => super::modes::frequency(session, model, partition, base, step, eigenvalues),
-        Analysis::Buckle { eigenvalues } => super::modes::buckle(session, model, partition, base, step, eigenvalues),
-    }
 }
 
 /// The response to the step's prescribed amplitudes and harmonic pressures; `hold_twist` holds

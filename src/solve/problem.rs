@@ -27,10 +27,6 @@ use crate::petsc::{LogStage, Matrix, PetscSession, Scatter, VecOps, Vector};
 
 mod assembly;
 
-/// Round-off allowance per assembled contribution, in units in the last place: the floor
-/// estimate ignores the linear solve's own error and the sums inside each kernel, so it is
-/// generous; the accuracy tests (1e-8 MPa stresses, 1e-6 contact pressures) sit far above it.
-pub const ROUNDOFF_ULPS: f64 = 100.0;
 
 /// Loads and prescribed values at the current load factor.
 #[derive(Clone, Debug)]

@@ -25,6 +25,7 @@ use crate::io::restart::{CommittedState, RestartFrom};
 use crate::io::status::StatusFile;
 use crate::io::{ContactSummary, HistoryRow, IncrementFields, ResultsFile};
 use crate::material::PointState;
+use crate::model::perturbation::Analysis;
 use crate::model::{Convergence, Model, Predictor};
 use crate::petsc::{FieldRatios, PetscSession, Snes, VecOps, Vector};
 use mpi::collective::SystemOperation;
@@ -113,12 +114,12 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
     // the deck, its mesh and its includes are never written over, whatever name leads to them
     let written = [options.output.clone(), crate::io::xdmf::sidecar_path(&options.output), crate::io::status::status_path(&options.output)];
     for (output, input) in written.iter().flat_map(|w| model.source_files.iter().map(move |i| (w, i))) {
-        crate::io::check_output_path(output, Some((input, "an input file of the model")))?;
+        crate::output_path::check_output_path(output, Some((input, "an input file of the model")))?;
     }
     // every rank sees the same file system: the sidecar and the status file, which rank 0
     // alone writes, are checked by all, so none waits for a rank that could not
     for output in &written {
-        crate::io::check_output_path(output, None)?;
+        crate::output_path::check_output_path(output, None)?;
     }
     let resume = options.restart.as_ref().map(|from| restart_point(from, &options.output, model)).transpose()?;
     // PETSc's options are read (and a bad one refused) before anything is written: a rerun
@@ -465,7 +466,13 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
             pressures: &kept.pressures,
             contacts: &kept.contacts,
         };
-        let answer = super::perturbation::solve(session, model, &partition, &state, p)?;
+        // each procedure its own driver: a response (solve::perturbation) or an eigenproblem
+        // (solve::modes)
+        let answer = match p.analysis {
+            Analysis::Response => super::perturbation::response(session, model, &partition, &state, p, false)?,
+            Analysis::Frequency { eigenvalues } => super::modes::frequency(session, model, &partition, &state, p, eigenvalues)?,
+            Analysis::Buckle { eigenvalues } => super::modes::buckle(session, model, &partition, &state, p, eigenvalues)?,
+        };
         // notes on what an answer means belong with it, --quiet or not
         for note in answer.notes.iter().filter(|_| root) {
             match options.progress {

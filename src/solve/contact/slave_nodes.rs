@@ -10,7 +10,7 @@ use crate::contact::search::EdgeGrid;
 use crate::contact::surface::ContactSurface;
 use crate::model::{ContactPair, Model, Penalty};
 use crate::solve::engagement::{Engagements, FrictionRecipe};
-use crate::solve::problem::ROUNDOFF_ULPS;
+use crate::solve::roundoff::ROUNDOFF_ULPS;
 
 /// The friction kernel's arguments for a slave node at `xs` projecting at `xi` on master edge
 /// `edge`, its slip measured from `reference`.

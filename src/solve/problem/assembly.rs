@@ -2,7 +2,8 @@
 //! follower-pressure edges and contact engagements, what SNES calls, and the load predictor's
 //! coupling to the prescribed DOFs.
 
-use super::{Problem, ROUNDOFF_ULPS};
+use super::Problem;
+use crate::solve::roundoff::ROUNDOFF_ULPS;
 use crate::element::body_load::{body_load, body_load_stiffness, BodyForce};
 use crate::element::pressure::{compute_pressure_load, pressure_load_stiffness};
 use crate::element::solid::DOFS;
