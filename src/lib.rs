@@ -21,6 +21,7 @@ pub mod material;
 pub mod model;
 pub mod output_path;
 pub mod post;
+pub mod preprocess;
 pub mod report;
 pub mod solve;
 pub mod study;

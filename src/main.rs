@@ -36,7 +36,7 @@ fn penalty_study(session: &PetscSession, args: &StudyArgs) -> Result<(), Error> 
     let subject = match &args.deck {
         // a TOML or an .inp deck, as `slideline run` reads it
         Some(d) => {
-            let (model, notes) = model::read_deck(d)?;
+            let (model, notes) = slideline::preprocess::prepared_deck(d)?;
             if session.world().rank() == 0 && !args.quiet {
                 notes.iter().for_each(|note| println!("note: {note}"));
             }
@@ -379,7 +379,7 @@ fn main() -> ExitCode {
                 Err(e) => return fail(&e, launched_as_rank_zero()),
             };
             let root = session.world().rank() == 0;
-            let model = model::read_deck(&deck).map(|(m, notes)| {
+            let model = slideline::preprocess::prepared_deck(&deck).map(|(m, notes)| {
                 if root && !quiet {
                     notes.iter().for_each(|note| println!("note: {note}"));
                 }
@@ -547,7 +547,7 @@ fn coefficient_charts(prefix: &std::path::Path, table: &[(f64, f64, Coefficients
 /// The bellows' code check (EJMA): the design pressure and the whole stroke, with the chart
 /// coefficients given (`--coefficients`) or computed for its convolution (collective).
 fn code_check(session: &PetscSession, params: &model::bellows::BellowsParams) -> Result<CodeCheck, Error> {
-    let geometry = model::bellows::code_geometry(params);
+    let geometry = slideline::assessment::code::code_geometry(params);
     let (coefficients, source) = match params.coefficients {
         Some([cp, cf, cd]) => (Coefficients { cp, cf, cd }, Source::Given),
         None => (slideline::assessment::convolution::compute(session, geometry.c1(), geometry.c2(), Default::default())?, Source::Computed),

@@ -13,7 +13,8 @@
 use super::flexibility::AXIAL;
 use super::stability::lowest_positive_mode;
 use crate::error::Result;
-use crate::model::bellows::{code_geometry, BellowsParams};
+use super::code::code_geometry;
+use crate::model::bellows::BellowsParams;
 use crate::model::perturbation::{Analysis, HarmonicComponent, HarmonicDisplacement, Perturbation};
 use crate::petsc::PetscSession;
 use crate::solve::modes::frequency_hz;

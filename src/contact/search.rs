@@ -5,7 +5,8 @@
 //! candidates of a query that cannot win are ruled out from one contiguous array, without
 //! fetching their nodes.
 
-use super::node_to_edge::{project_on_edge, EdgeProjection};
+use super::node_to_edge::FREE_END_EXTENSION;
+use crate::fe::edge_projection::{project_on_edge, EdgeProjection};
 use super::surface::ContactSurface;
 use std::collections::HashMap;
 use std::hash::{BuildHasherDefault, Hasher};
@@ -207,11 +208,6 @@ fn box_gap(a: &[[f64; 2]; 2], b: &[[f64; 2]; 2]) -> f64 {
     (gap(0) * gap(0) + gap(1) * gap(1)).sqrt()
 }
 
-/// How far (in edge coordinate; 0.1 = 5 % of the edge) a master surface reaches past its free
-/// ends. Where slave and master end together (tubes of equal length), a slave end node sits
-/// exactly on the master's end, and without this it would be lost and found again on
-/// alternate Newton iterations as the bodies slide by round-off.
-pub const FREE_END_EXTENSION: f64 = 0.1;
 
 #[cfg(test)]
 mod tests {

@@ -10,7 +10,7 @@
 //! next to it. (A corner node on the axis gets zero area: the integral of N_a r vanishes
 //! there, as it does for a pressure load; its pressure comes from the traction recovery.)
 
-use super::node_to_edge::EdgeProjection;
+use crate::fe::edge_projection::EdgeProjection;
 use crate::fe::quadrature::GAUSS3;
 use crate::fe::section::Section;
 use crate::fe::shape::line3;

@@ -3,6 +3,7 @@
 //! Pure functions over small fixed-size types; no PETSc, MPI or I/O.
 
 pub mod axisymmetric;
+pub mod edge_projection;
 pub mod linearize;
 pub mod quadrature;
 pub mod recover;

@@ -29,19 +29,15 @@ use std::collections::BTreeMap;
 use std::path::Path;
 
 /// Reads an input deck by its extension: an Abaqus/CalculiX deck (.inp), with the notes on
-/// how it was read (formulations, conventions), or a TOML deck; then the contact pairs'
-/// adjustments are made (with a note each).
+/// how it was read (formulations, conventions), or a TOML deck. The model as written: the
+/// adjustments that need contact geometry are `preprocess`'s.
 pub fn read_deck(path: &Path) -> Result<(Model, Vec<String>)> {
-    let (mut model, mut notes) = if path.extension().is_some_and(|e| e.eq_ignore_ascii_case("inp")) {
+    if path.extension().is_some_and(|e| e.eq_ignore_ascii_case("inp")) {
         let read = inp::read(path)?;
-        (read.model, read.notes)
+        Ok((read.model, read.notes))
     } else {
-        (deck::read(path)?, Vec::new())
-    };
-    notes.extend(crate::contact::adjust::adjust_slave_nodes(&mut model)?);
-    notes.extend(model.never_facing_pairs());
-    notes.extend(model.implausible_units());
-    Ok((model, notes))
+        Ok((deck::read(path)?, Vec::new()))
+    }
 }
 
 /// A contact pair's default capture distance: twice the longest edge a slave node may meet

@@ -462,7 +462,7 @@ impl BellowsReport {
 /// codes' beam analogy evaluated with the same state's axial rate (and, for the stresses, the
 /// code check's S5 + S6 at the movement's equivalent axial movement per convolution).
 pub fn flexibility_section(p: &BellowsParams, code: Option<&CodeCheck>, movements: Movements, rest: &Flexibility, operating: Option<&Flexibility>) -> String {
-    let g = crate::model::bellows::code_geometry(p);
+    let g = crate::assessment::code::code_geometry(p);
     let (dm, lb, n) = (g.mean_diameter(), g.convolutions as f64 * g.pitch, g.convolutions as f64);
     // the axial movement the operating state has taken (the codes' Lb + x)
     let stroke = if p.cycle { 0.0 } else { -p.displacement };

@@ -327,7 +327,7 @@ impl BellowsParams {
     }
 
     /// Radius of the tubes' outside surface, where the ply pack's inside sits on the tangents.
-    pub(super) fn tube_outer_radius(&self) -> f64 {
+    pub fn tube_outer_radius(&self) -> f64 {
         self.tube_inner_radius + self.tube_thickness
     }
 }
