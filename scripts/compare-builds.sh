@@ -38,7 +38,7 @@ import sys, re, glob, os
 import h5py, numpy as np
 old, new = sys.argv[1], sys.argv[2]
 name = os.path.basename(old)
-mask = lambda t: re.sub(r"\d+\.\d+ s\b|in \d+\.\d+|wall time[^\n]*|\d+\.\d+ s$", "<time>", t, flags=re.M)
+mask = lambda t: re.sub(r" *\d+\.\d+ s\b|wall time[^\n]*", " <time>", t)
 logs = [mask(open(p + ".log").read()) for p in (old, new)]
 problems = []
 if logs[0] != logs[1]:

@@ -22,6 +22,7 @@ pub mod model;
 pub mod output_path;
 pub mod post;
 pub mod preprocess;
+pub mod records;
 pub mod report;
 pub mod solve;
 pub mod study;

@@ -76,7 +76,7 @@ pub fn eigen_lines(name: &str, analysis: crate::model::perturbation::Analysis, m
         let line = match analysis {
             Analysis::Frequency { .. } => {
                 let mass = mass.map_or(String::new(), |m| format!(", effective mass {m:.4e} t (full ring)"));
-                format!("\n  mode {:>2}: {:.6e} Hz{mass}", i + 1, crate::solve::modes::frequency_hz(*value))
+                format!("\n  mode {:>2}: {:.6e} Hz{mass}", i + 1, crate::records::perturbation::frequency_hz(*value))
             }
             _ => format!("\n  mode {:>2}: load factor {value:.6e}", i + 1),
         };

@@ -142,8 +142,6 @@ mod tests {
         assert!((sector - 16.0).abs() < 2.0, "{sector}");
     }
 
-    use super::*;
-
     /// The sample EJMA report (worked-examples.md, example 2): 3 plies of 0.3 mm, Db 130, w 9.1,
     /// q 8, N 18, P 0.3 MPa, 27.5 mm equivalent axial movement, Eb 194 612 MPa, Cp 0.67, Cd 1.68
     /// and Cf 1.57 (its printed 4.58 is a misprint: S5 and the rate both imply 1.57). Printed:

@@ -21,7 +21,7 @@ use crate::io::reader::ResultsReader;
 use crate::model::bellows::{convolution_pieces, BellowsParams};
 use crate::model::perturbation::{Analysis, HarmonicComponent, HarmonicDisplacement, Perturbation, RingMotion};
 use crate::petsc::PetscSession;
-use crate::solve::perturbation::PerturbationAnswer;
+use crate::records::perturbation::PerturbationAnswer;
 
 pub const AXIAL: &str = "axial";
 pub const LATERAL: &str = "lateral";

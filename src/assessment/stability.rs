@@ -20,7 +20,7 @@ use crate::model::bellows::BellowsParams;
 use crate::model::perturbation::{Analysis, HarmonicComponent, HarmonicDisplacement, Perturbation};
 use crate::model::Pressure;
 use crate::petsc::PetscSession;
-use crate::solve::perturbation::PerturbationAnswer;
+use crate::records::perturbation::PerturbationAnswer;
 
 pub const SQUIRM: &str = "squirm";
 pub const IN_PLANE: &str = "in_plane";
@@ -63,7 +63,7 @@ pub fn from_answers(answers: &[(String, PerturbationAnswer)]) -> Result<Stabilit
 
 /// The mode of the lowest positive eigenvalue of eigenvalue step `step` (a stable state's first
 /// frequency, the first load factor that buckles it).
-pub(super) fn lowest_positive_mode<'a>(answers: &'a [(String, PerturbationAnswer)], step: &str) -> Option<&'a crate::solve::perturbation::EigenMode> {
+pub(super) fn lowest_positive_mode<'a>(answers: &'a [(String, PerturbationAnswer)], step: &str) -> Option<&'a crate::records::perturbation::EigenMode> {
     let (_, answer) = answers.iter().find(|(s, _)| s == step)?;
     answer.modes.iter().filter(|m| m.eigenvalue > 0.0).min_by(|x, y| x.eigenvalue.total_cmp(&y.eigenvalue))
 }

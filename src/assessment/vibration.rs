@@ -17,8 +17,8 @@ use super::code::code_geometry;
 use crate::model::bellows::BellowsParams;
 use crate::model::perturbation::{Analysis, HarmonicComponent, HarmonicDisplacement, Perturbation};
 use crate::petsc::PetscSession;
-use crate::solve::modes::frequency_hz;
-use crate::solve::perturbation::PerturbationAnswer;
+use crate::records::perturbation::frequency_hz;
+use crate::records::perturbation::PerturbationAnswer;
 
 pub const AXIAL_MODES: &str = "axial_modes";
 pub const LATERAL_MODES: &str = "lateral_modes";

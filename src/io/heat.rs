@@ -7,7 +7,7 @@ use crate::dist::Partition;
 use crate::element::solid::QUADRATURE_POINTS;
 use crate::error::Result;
 use crate::model::heat::HeatStep;
-use crate::solve::conduction::HeatAnswer;
+use crate::records::heat::HeatAnswer;
 
 impl ResultsFile {
     /// Writes heat step `step`'s answer (collective; every rank holds every temperature, and

@@ -18,7 +18,7 @@ use crate::fe::quadrature::Integration;
 use crate::fe::recover::{Recovery, Rule};
 use crate::fe::shape::Shape;
 use crate::model::{Model, OutputFields, Precision};
-use crate::solve::contact::PassOutput;
+use crate::records::contact::PassOutput;
 use mpi::collective::SystemOperation;
 use mpi::topology::SimpleCommunicator;
 use mpi::traits::*;

@@ -9,8 +9,8 @@ use crate::dist::Partition;
 use crate::element::solid::QUADRATURE_POINTS;
 use crate::error::Result;
 use crate::model::perturbation::{Analysis, Perturbation};
-use crate::solve::modes::frequency_hz;
-use crate::solve::perturbation::PerturbationAnswer;
+use crate::records::perturbation::frequency_hz;
+use crate::records::perturbation::PerturbationAnswer;
 
 impl ResultsFile {
     /// Writes perturbation step `p`'s answer (collective; every rank holds the whole answer),

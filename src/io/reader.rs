@@ -6,7 +6,7 @@ use super::{ContactSummary, HistoryRow};
 use crate::error::{Error, Result};
 use crate::fe::quadrature::Integration;
 use crate::model::perturbation::Analysis;
-use crate::solve::energy::Energies;
+use crate::records::energy::Energies;
 use hdf5::types::VarLenUnicode;
 use std::path::{Path, PathBuf};
 

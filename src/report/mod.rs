@@ -15,7 +15,7 @@ use crate::io::plots::{deformed_field, line_plot, Axes, Curve, FieldPicture, Mar
 use crate::io::reader::ResultsReader;
 use crate::io::HistoryRow;
 use crate::model::bellows::BellowsParams;
-use crate::solve::energy::Energies;
+use crate::records::energy::Energies;
 use crate::solve::RunSummary;
 use std::f64::consts::PI;
 use std::path::{Path, PathBuf};

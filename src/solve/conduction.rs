@@ -4,10 +4,11 @@
 //! perturbation step's). Then the heat flux at the Gauss points and the heat flowing in
 //! through each held set: the residual K T there.
 
+use crate::records::heat::{HeatAnswer, HeatFlow};
 use super::perturbation::{amplitudes_of, assemble, Amplitude, Block};
 use crate::dist::Partition;
 use crate::element::conduction::{conduction_matrix, heat_flux};
-use crate::element::solid::{NODES, QUADRATURE_POINTS};
+use crate::element::solid::NODES;
 use crate::error::{Error, Result};
 use crate::model::heat::HeatStep;
 use crate::model::Model;
@@ -16,25 +17,7 @@ use crate::petsc::{PetscSession, Snes, VecOps, Vector};
 use mpi::collective::SystemOperation;
 use mpi::traits::*;
 
-/// The heat flowing into the body through a held set's nodes: per radian in axisymmetry (the
-/// full ring's is 2 pi times), over the thickness in a plane model; mW.
-#[derive(Clone, Debug, PartialEq)]
-pub struct HeatFlow {
-    pub set: String,
-    pub flow: f64,
-}
 
-/// What a heat step gives.
-#[derive(Clone, Debug)]
-pub struct HeatAnswer {
-    /// Every node's temperature, degC (model order).
-    pub temperature: Vec<f64>,
-    /// The heat flux [q_r, q_z] (mW/mm^2) at the Gauss points of this rank's elements
-    /// (partition order).
-    pub flux: Vec<[[f64; 2]; QUADRATURE_POINTS]>,
-    /// Each held set's heat flow, in the step's order.
-    pub flows: Vec<HeatFlow>,
-}
 
 /// Solves heat step `step` (collective). A node in no element keeps the initial temperature.
 pub fn solve(session: &PetscSession, model: &Model, partition: &Partition, step: &HeatStep) -> Result<HeatAnswer> {

@@ -8,6 +8,7 @@
 //! pressure at a slave node, p = max(0, lambda - eps g), is the contact pressure in both modes.
 
 pub use super::contact_surfaces::contact_nodes;
+use crate::records::contact::{SlaveState, SlipPoint};
 use super::contact_surfaces::{edge_neighbourhood, surfaces_and_directions};
 pub use super::engagement::{BaseContact, Engagement};
 use super::engagement::{Engagements, PointHessians};
@@ -21,7 +22,6 @@ use crate::petsc::sys::PetscInt;
 
 mod output;
 mod slave_nodes;
-pub use output::PassOutput;
 
 /// One direction of a pair: slave nodes of one surface against the segments of another.
 struct Pass {
@@ -54,43 +54,7 @@ pub enum Need {
     Tangent,
 }
 
-/// State of one owned slave node after an evaluation.
-#[derive(Clone, Copy, Debug, Default)]
-pub struct SlaveState {
-    /// Normal gap (mm), NaN when no master segment is within the capture distance.
-    pub gap: f64,
-    /// Contact pressure (MPa).
-    pub pressure: f64,
-    /// Normal force per radian on the slave node (this pass's share).
-    pub force: f64,
-    /// The area its pressure acts on (this pass's share), per radian: the node's tributary
-    /// area, or for a node-based slave the master face's where it projects (0 where no master
-    /// face is within reach).
-    pub area: f64,
-    /// Contact traction (MPa) recovered from the total contact forces on the slave surface
-    /// (both passes): the p with integral N_i p r ds = f_i.n_i at every node. Set after a
-    /// converged increment.
-    pub traction: f64,
-    /// Frictional (tangential) traction, MPa, along the master's tangent (0 without friction).
-    pub shear: f64,
-    /// Whether the node slides (friction at its Coulomb limit).
-    pub sliding: bool,
-    /// Energies of the node's contact, N mm per radian: stored in the normal penalty and in the
-    /// tangential one, and dissipated by friction since the last converged increment.
-    pub normal_energy: f64,
-    pub friction_stored: f64,
-    pub friction_dissipated: f64,
-}
 
-/// Where a slave node's slip is measured from (friction): the master edge (an index into the
-/// master surface's edges) and coordinate of the material point it was at after the last
-/// converged increment, and its tangential traction then (0 when the contact was open).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct SlipPoint {
-    pub edge: usize,
-    pub xi: f64,
-    pub traction: f64,
-}
 
 /// Where each slave node of a pass with friction starts measuring its slip: its projection on
 /// the master in the undeformed mesh (none beyond the capture distance).

@@ -8,7 +8,6 @@ pub mod contact;
 mod contact_surfaces;
 pub mod energy;
 mod engagement;
-pub mod extrapolate;
 mod held;
 mod kept;
 pub mod layout;

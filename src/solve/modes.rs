@@ -14,8 +14,9 @@
 
 use super::perturbation::{
     amplitudes_of, assemble, current_positions, model_size, number, prescribed_amplitudes, pressure_stiffness_blocks, response, stiffness_blocks, Amplitude,
-    BaseState, Block, EigenMode, PerturbationAnswer,
+    BaseState, Block,
 };
+use crate::records::perturbation::{EigenMode, PerturbationAnswer};
 use crate::dist::Partition;
 use crate::element::harmonic::{initial_stress_stiffness, ring_factor};
 use crate::element::solid::{NODES, QUADRATURE_POINTS};
@@ -28,10 +29,6 @@ use mpi::collective::SystemOperation;
 use mpi::traits::*;
 use std::f64::consts::PI;
 
-/// Frequency (Hz) of an eigenvalue omega^2 (negative: the base state is unstable in this mode).
-pub fn frequency_hz(omega_squared: f64) -> f64 {
-    omega_squared.signum() * omega_squared.abs().sqrt() / (2.0 * PI)
-}
 
 /// The step's amplitudes held at zero, numbered for mode `mode`.
 fn held_numbering(model: &Model, partition: &Partition, step: &Perturbation, current: &[[f64; 2]]) -> Result<(Vec<[Amplitude; 3]>, Vec<usize>)> {

@@ -22,6 +22,7 @@
 //! there: n = 0, U_r = U_t = 0; n = 1, U_z = 0 and U_t = -U_r (one unknown, U_r); n >= 2, all
 //! zero.
 
+use crate::records::perturbation::{PerturbationAnswer, SetReaction};
 use super::contact::BaseContact;
 use crate::contact::harmonic::{normal_stiffness, sticking_stiffness};
 use crate::dist::Partition;
@@ -32,7 +33,7 @@ use crate::element::harmonic_pressure::harmonic_pressure_stiffness;
 use crate::element::pressure::compute_pressure_load;
 use crate::element::solid::{ElementGeometry, NODES, QUADRATURE_POINTS};
 use crate::error::{Error, Result};
-use crate::model::perturbation::{Analysis, Perturbation};
+use crate::model::perturbation::Perturbation;
 use crate::model::Model;
 use crate::petsc::sys::PetscInt;
 use crate::petsc::{MatOps, Matrix, PetscSession, Snes, VecOps, Vector};
@@ -63,51 +64,8 @@ pub struct KeptBase {
     pub contacts: Vec<(usize, BaseContact)>,
 }
 
-/// A set's reactions: the sums of its nodal forces per radian, and the full ring's resultants
-/// their mode has (n = 0: axial force and torque; n = 1: lateral force and the moment about the
-/// diameter through the set's centre, conjugate to a ring's `rotation`).
-#[derive(Clone, Debug, PartialEq)]
-pub struct SetReaction {
-    pub set: String,
-    pub force: [f64; 3],
-    /// (name, value, units) of each resultant.
-    pub resultants: Vec<(&'static str, f64, &'static str)>,
-}
 
-/// What a perturbation step gives.
-#[derive(Clone, Debug)]
-pub struct PerturbationAnswer {
-    /// [U_r, U_z, U_t] of every node (model order).
-    pub amplitudes: Vec<[f64; 3]>,
-    pub reactions: Vec<SetReaction>,
-    /// The stress amplitudes [rr, zz, tt, rz, rt, zt] (MPa; the first four x cos n theta, the
-    /// shears with theta x sin n theta, n = 0: constant) at the Gauss points of this rank's
-    /// elements (partition order): the material's response D : strain, as Abaqus reports a
-    /// perturbation's stress.
-    pub stress: Vec<[[f64; 6]; QUADRATURE_POINTS]>,
-    /// Frequency and buckle steps: the eigenmodes, nearest zero first (the fields above are
-    /// empty).
-    pub modes: Vec<EigenMode>,
-    pub analysis: Analysis,
-    pub notes: Vec<String>,
-}
 
-/// One eigenmode of a frequency or buckle step.
-#[derive(Clone, Debug, PartialEq)]
-pub struct EigenMode {
-    /// omega^2 (rad^2/s^2) or the load factor lambda.
-    pub eigenvalue: f64,
-    /// [U_r, U_z, U_t] of every node (model order), scaled to a largest amplitude of 1.
-    pub amplitudes: Vec<[f64; 3]>,
-    /// Frequency steps: the mode's effective mass along its mode's rigid motion, full ring (t),
-    /// where the mode has one (n = 0 axial, n = 1 lateral).
-    pub effective_mass: Option<f64>,
-    /// SLEPc's relative residual of the eigenpair.
-    pub error: f64,
-    /// Buckle steps: the critical pressure on each surface the step loads, the base state's
-    /// pressure there plus the load factor times the step's (MPa).
-    pub critical_pressures: Vec<(String, f64)>,
-}
 
 /// An amplitude's place in the system: an unknown (index, coefficient: an axis node's U_t of
 /// mode 1 is -1 times its U_r) or a prescribed value.

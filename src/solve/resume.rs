@@ -3,7 +3,7 @@
 
 use super::contact::{CarriedMultipliers, CarriedSlip, ContactCarry};
 use super::energy::EnergyAudit;
-use super::extrapolate::LastIncrement;
+use crate::records::last_increment::LastIncrement;
 use super::pattern::ContactPattern;
 use super::problem::{initial_history, History};
 use super::schedule::StepLoads;

@@ -10,8 +10,9 @@
 //! every converged increment in the results file.
 
 use super::attempt::{predict, solve_increment};
-use super::energy::{Energies, EnergyAudit};
-use super::extrapolate::LastIncrement;
+use super::energy::EnergyAudit;
+use crate::records::energy::Energies;
+use crate::records::last_increment::LastIncrement;
 use super::held;
 use super::problem::{LoadState, Problem, StepStart};
 use super::resume::{restart_point, Carried};
@@ -63,9 +64,9 @@ pub struct RunSummary {
     /// `history` holds them first, then this run's.
     pub continued: usize,
     /// Each perturbation step's name and answer, in order.
-    pub perturbations: Vec<(String, super::perturbation::PerturbationAnswer)>,
+    pub perturbations: Vec<(String, crate::records::perturbation::PerturbationAnswer)>,
     /// Each heat step's name and answer, in order.
-    pub heat: Vec<(String, super::conduction::HeatAnswer)>,
+    pub heat: Vec<(String, crate::records::heat::HeatAnswer)>,
     /// Whether the model is plane (no axisymmetric element): its forces are over its
     /// thickness, not per radian.
     pub plane: bool,

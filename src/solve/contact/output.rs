@@ -2,7 +2,8 @@
 //! tractions recovered from them, per-pair summaries for the history, and each pass's slab
 //! of slave-node states for the results file.
 
-use super::{ContactAssembly, SlaveState};
+use super::ContactAssembly;
+use crate::records::contact::PassOutput;
 use crate::model::Model;
 
 impl ContactAssembly {
@@ -115,18 +116,3 @@ impl ContactAssembly {
     }
 }
 
-/// This rank's slab of one pass, for the results file.
-pub struct PassOutput<'a> {
-    pub pair: usize,
-    pub pass: usize,
-    pub offset: usize,
-    pub total: usize,
-    pub nodes: Vec<usize>,
-    pub areas: Vec<f64>,
-    /// A node-based slave's areas this increment: the master face's where each node projects,
-    /// 0 where none is within reach (its `areas` are NaN).
-    pub bearing_areas: Option<Vec<f64>>,
-    pub states: &'a [SlaveState],
-    /// The pair has friction (its shear and sliding state are written).
-    pub friction: bool,
-}

@@ -2,7 +2,8 @@
 //! or integrated along the slave surface), the normal kernel and, with friction, the return
 //! map from the node's slip reference; the active nodes' engagements for the assembly.
 
-use super::{ContactAssembly, SlaveState, SlipPoint};
+use super::ContactAssembly;
+use crate::records::contact::{SlaveState, SlipPoint};
 use crate::contact::friction::{FrictionLaw, SlipReference};
 use crate::contact::integrated::weighted_gaps_into;
 use crate::contact::node_to_edge::{edge_residual, ContactLaw, Overclosure, SlaveArea};
