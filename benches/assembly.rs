@@ -5,8 +5,8 @@
 //! sleeve in contact). Reported per call and as elements per second; compare with the linear
 //! solve of the same iteration in scripts/profile-bellows.sh.
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
+use slideline::bellows::joint::{model, BellowsParams};
 use slideline::dist::{DofMap, Partition};
-use slideline::model::bellows::{model, BellowsParams};
 use slideline::petsc::{PetscSession, VecOps, Vector};
 use slideline::solve::affinity::partition_affinity;
 use slideline::solve::contact::contact_nodes;

@@ -50,11 +50,11 @@ fn kernels(c: &mut Criterion) {
 }
 
 fn contact(c: &mut Criterion) {
+    use slideline::bellows::joint::{mesh, BellowsParams};
     use slideline::contact::integrated::weighted_gaps_into;
     use slideline::contact::node_to_edge::{edge_residual_and_tangent, project_on_edge, ContactLaw};
     use slideline::contact::search::EdgeGrid;
     use slideline::contact::surface::ContactSurface;
-    use slideline::model::bellows::{mesh, BellowsParams};
 
     let mut g = c.benchmark_group("contact kernel");
     g.throughput(Throughput::Elements(1));

@@ -94,8 +94,10 @@ for c in cycles(modules) or [["none"]]:
             why = sorted(f"{x} -> {y}" for x, ys in edges.items() if top(x) == a for y in ys if top(y) == b)
             print(f"     {a} -> {b}: {', '.join(why[:6])}{' ...' if len(why) > 6 else ''}")
 print("import circles between files:")
-for c in cycles(edges) or [["none"]]:
+for c in cycles(edges):
     print(f"  ({len(c)}) " + ", ".join(c))
+if not cycles(edges):
+    print("  none")
 
 print("functions above 150 lines:")
 long = []

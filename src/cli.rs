@@ -1,7 +1,7 @@
 //! The command line's grammar: subcommands and their flags, with the help text users read.
 
 use clap::{Parser, Subcommand};
-use slideline::{model, Error};
+use slideline::Error;
 use std::path::PathBuf;
 
 /// Parallel nonlinear finite-element solver for axisymmetric solids in contact, on PETSc.
@@ -335,7 +335,7 @@ impl BellowsArgs {
     /// The movements of the flexibility perturbations (`--lateral`, `--angular`), if any, for
     /// joint `p`: what the codes' beam analogy and a linear perturbation describe, an offset up
     /// to the convoluted length and a rotation up to 45 degrees, nonzero.
-    pub fn movements(&self, p: &model::bellows::BellowsParams) -> Result<Option<slideline::assessment::flexibility::Movements>, Error> {
+    pub fn movements(&self, p: &slideline::bellows::joint::BellowsParams) -> Result<Option<slideline::bellows::flexibility::Movements>, Error> {
         if self.lateral.is_none() && self.angular.is_none() {
             return Ok(None);
         }
@@ -345,29 +345,29 @@ impl BellowsArgs {
                 return Err(Error::input(format!("{flag} {}: give a nonzero movement of at most {most} {units} in size", slideline::error::shown(v))));
             }
         }
-        Ok(Some(slideline::assessment::flexibility::Movements { lateral: self.lateral.unwrap_or(0.0), angular: self.angular.unwrap_or(0.0) }))
+        Ok(Some(slideline::bellows::flexibility::Movements { lateral: self.lateral.unwrap_or(0.0), angular: self.angular.unwrap_or(0.0) }))
     }
 
     /// The joint's parameters: the defaults (the seed case) or the `--params` file, then
     /// `--quick`, then every flag given on the command line (`given(id)`): a flag given
     /// explicitly wins over both.
-    pub fn params(&self, given: impl Fn(&str) -> bool) -> Result<model::bellows::BellowsParams, Error> {
+    pub fn params(&self, given: impl Fn(&str) -> bool) -> Result<slideline::bellows::joint::BellowsParams, Error> {
         if let Some(c) = self.coefficients.as_ref().filter(|c| c.len() != 3) {
             return Err(Error::input(format!("bellows: --coefficients takes three values, Cp,Cf,Cd; got {}", c.len())));
         }
         let mut p = match (&self.params, &self.restart) {
-            (Some(path), _) => model::bellows::BellowsParams::from_toml_file(path)?,
+            (Some(path), _) => slideline::bellows::joint::BellowsParams::from_toml_file(path)?,
             // a restart continues the file's own joint
             (None, Some(file)) => {
                 let deck = slideline::io::reader::ResultsReader::open(file)?.text_attr("deck")?;
-                model::bellows::BellowsParams::from_toml(&deck, &format!("{}: its deck (not a bellows run?)", file.display()))?
+                slideline::bellows::joint::BellowsParams::from_toml(&deck, &format!("{}: its deck (not a bellows run?)", file.display()))?
             }
-            (None, None) => model::bellows::BellowsParams::default(),
+            (None, None) => slideline::bellows::joint::BellowsParams::default(),
         };
         if self.quick {
             p = p.quick();
         }
-        let mut take = |id: &str, set: &mut dyn FnMut(&mut model::bellows::BellowsParams)| {
+        let mut take = |id: &str, set: &mut dyn FnMut(&mut slideline::bellows::joint::BellowsParams)| {
             if given(id) {
                 set(&mut p);
             }

@@ -7,15 +7,15 @@ use clap::{CommandFactory, FromArgMatches};
 use cli::{Cli, Command, PostArgs, StudyArgs};
 use mpi::traits::Communicator;
 use slideline::assessment::code::{CodeCheck, Duty, Source};
-use slideline::assessment::convolution::Coefficients;
-use slideline::assessment::flexibility::{Flexibility, Movements};
-use slideline::assessment::{stability::SQUIRM, vibration::LATERAL_MODES};
+use slideline::assessment::coefficients::Coefficients;
+use slideline::bellows::flexibility::{Flexibility, Movements};
+use slideline::bellows::report::BellowsReport;
+use slideline::bellows::{stability::SQUIRM, vibration::LATERAL_MODES};
 use slideline::dist::Partition;
 use slideline::io::plots::{outline_picture, Panel, SegmentLayer};
 use slideline::io::reader::ResultsReader;
 use slideline::io::ResultsFile;
 use slideline::petsc::PetscSession;
-use slideline::report::BellowsReport;
 use slideline::solve::affinity::partition_affinity;
 use slideline::solve::{run, RunOptions, RunSummary};
 use slideline::{model, Error};
@@ -26,7 +26,7 @@ use std::process::ExitCode;
 fn penalty_study(session: &PetscSession, args: &StudyArgs) -> Result<(), Error> {
     use slideline::study::{parse_penalties, StudySpec, Subject};
     let penalties = parse_penalties(&args.penalties, args.per_decade)?;
-    let mut bellows = model::bellows::BellowsParams::default();
+    let mut bellows = slideline::bellows::joint::BellowsParams::default();
     if args.quick {
         bellows = bellows.quick();
     }
@@ -118,9 +118,9 @@ fn post(args: &PostArgs) -> Result<(), Error> {
     if args.assessment {
         match r.assessment()? {
             Some(check) => {
-                out += &slideline::report::code_section(&check);
+                out += &slideline::bellows::report::code_section(&check);
                 if let Some((fe, life)) = r.finite_element_assessment()? {
-                    out += &slideline::report::assessment_section(&check, &fe, life.as_ref());
+                    out += &slideline::bellows::report::assessment_section(&check, &fe, life.as_ref());
                 }
             }
             None => return Err(Error::input(format!("{}: no code check in the file (`slideline bellows` writes one)", args.file.display()))),
@@ -193,7 +193,7 @@ fn main() -> ExitCode {
                     return fail(&e, launched_as_rank_zero());
                 }
                 // no MPI needed: every rank would write the same file
-                return match model::bellows::model(&params).and_then(|m| model::inp::write(&m, &params.title(), path)) {
+                return match slideline::bellows::joint::model(&params).and_then(|m| model::inp::write(&m, &params.title(), path)) {
                     Ok(()) => {
                         println!("deck written to {}", path.display());
                         ExitCode::SUCCESS
@@ -234,10 +234,10 @@ fn main() -> ExitCode {
                 // the squirm's mode at rest, pictured from the rest run's file (rank 0; a picture
                 // that fails is a note: the other ranks go on)
                 let picture = picture_path(&args.output, "squirm_mode");
-                slideline::assessment::stability::at_rest(&session, &params, |file, s| {
+                slideline::bellows::stability::at_rest(&session, &params, |file, s| {
                     if let (true, true, Some(p)) = (root, args.squirm, s.squirm) {
                         let title = format!("the joint's squirm at rest, {p:.1} MPa: its column buckling mode (n = 1)");
-                        let drawn = ResultsReader::open(file).and_then(|r| slideline::report::mode_picture(&r, &picture, SQUIRM, 1, 1, &title));
+                        let drawn = ResultsReader::open(file).and_then(|r| slideline::bellows::report::mode_picture(&r, &picture, SQUIRM, 1, 1, &title));
                         if let Err(e) = drawn {
                             println!("note: no picture of the squirm's mode: {e}");
                         }
@@ -250,7 +250,7 @@ fn main() -> ExitCode {
             };
             let vibrating = args.frequencies.then(|| {
                 announce("natural frequencies: the joint at rest and its frequency analyses");
-                slideline::assessment::vibration::at_rest(&session, &params)
+                slideline::bellows::vibration::at_rest(&session, &params)
             });
             let vibrating = match vibrating.transpose() {
                 Ok(v) => v,
@@ -259,11 +259,11 @@ fn main() -> ExitCode {
             // the finite-element side of the assessment, and the flexibility of the joint at rest
             let fe = stable.as_ref().filter(|_| args.assess).map(|s| {
                 announce("assessment: linear elastic analyses of the design pressure and of the stroke");
-                slideline::assessment::finite_element::analyse(&session, &params, s)
+                slideline::bellows::finite_element::analyse(&session, &params, s)
             });
             let rest = movements.map(|m| {
                 announce("flexibility: the joint at rest and its harmonic perturbations");
-                slideline::assessment::flexibility::at_rest(&session, &params, m).map(|f| (m, f))
+                slideline::bellows::flexibility::at_rest(&session, &params, m).map(|f| (m, f))
             });
             let (fe, rest) = match (fe.transpose(), rest.transpose()) {
                 (Ok(fe), Ok(rest)) => (fe, rest),
@@ -278,15 +278,15 @@ fn main() -> ExitCode {
                     params.plies, params.ply_thickness, params.convolutions, params.pitch, params.height, c.axial_rate, c.axial_rate * 2.5 / 360.0, c.c1, c.c2, k.cp, k.cf, k.cd, c.source.label()
                 );
             }
-            let result = model::bellows::model(&params).and_then(|mut m| {
+            let result = slideline::bellows::joint::model(&params).and_then(|mut m| {
                 // the same perturbations about the run's end state
                 if let Some(movements) = movements {
-                    m.perturbations = slideline::assessment::flexibility::steps(&params, movements);
+                    m.perturbations = slideline::bellows::flexibility::steps(&params, movements);
                 }
                 // the axial rate's step is shared by the flexibility's, the stability's and the
                 // frequencies'
-                let stability = args.squirm.then(|| slideline::assessment::stability::steps(&params));
-                let vibration = args.frequencies.then(|| slideline::assessment::vibration::steps(&params));
+                let stability = args.squirm.then(|| slideline::bellows::stability::steps(&params));
+                let vibration = args.frequencies.then(|| slideline::bellows::vibration::steps(&params));
                 for more in stability.into_iter().chain(vibration) {
                     let have: Vec<String> = m.perturbations.iter().map(|s| s.name.clone()).collect();
                     m.perturbations.extend(more.into_iter().filter(|s| !have.contains(&s.name)));
@@ -333,12 +333,12 @@ fn main() -> ExitCode {
                 Err(e) => return fail(&e, launched_as_rank_zero()),
             };
             let root = session.world().rank() == 0;
-            let fineness = slideline::assessment::convolution::Fineness { through, per_thickness };
+            let fineness = slideline::bellows::convolution::Fineness { through, per_thickness };
             // every point and the mesh checked before any analysis
             let checked = fineness.checked().and_then(|_| {
                 c1.iter()
                     .flat_map(|&a| c2.iter().map(move |&b| (a, b)))
-                    .try_for_each(|(a, b)| slideline::assessment::convolution::check_chart_point(a, b, fineness))
+                    .try_for_each(|(a, b)| slideline::bellows::convolution::check_chart_point(a, b, fineness))
             });
             if let Err(e) = checked {
                 return fail(&e, root);
@@ -349,7 +349,7 @@ fn main() -> ExitCode {
             let mut table = Vec::new();
             for &a in &c1 {
                 for &b in &c2 {
-                    match slideline::assessment::convolution::compute(&session, a, b, fineness) {
+                    match slideline::bellows::convolution::compute(&session, a, b, fineness) {
                         Ok(c) => {
                             if root {
                                 println!("{a:>8.4} {b:>8.4} {:>8.4} {:>8.4} {:>8.4}", c.cp, c.cf, c.cd);
@@ -430,14 +430,14 @@ fn picture_path(output: &std::path::Path, name: &str) -> PathBuf {
 
 /// `--mesh-only`: the joint's mesh and sets as Gmsh 4.1 (OUTPUT with .msh) and as a results
 /// file without increments (OUTPUT: /mesh with its sets, the layout of every results file).
-fn write_mesh(session: &PetscSession, params: &model::bellows::BellowsParams, output: &std::path::Path) -> Result<(), Error> {
+fn write_mesh(session: &PetscSession, params: &slideline::bellows::joint::BellowsParams, output: &std::path::Path) -> Result<(), Error> {
     let msh = output.with_extension("msh");
-    let (mesh, sets) = model::bellows::mesh(params)?;
+    let (mesh, sets) = slideline::bellows::joint::mesh(params)?;
     let root = session.world().rank() == 0;
     if root {
         model::gmsh::write(&mesh, &sets, &msh)?;
     }
-    let m = model::bellows::model(params)?;
+    let m = slideline::bellows::joint::model(params)?;
     let partition = Partition::new(session, &m.mesh, &partition_affinity(&m))?;
     drop(ResultsFile::create(output, session, &m, &partition)?);
     if root {
@@ -459,19 +459,19 @@ fn write_mesh(session: &PetscSession, params: &model::bellows::BellowsParams, ou
 /// joint at rest.
 struct BeforeTheRun<'a> {
     code: Option<&'a CodeCheck>,
-    fe: Option<&'a slideline::assessment::finite_element::FeCheck>,
+    fe: Option<&'a slideline::assessment::fe_check::FeCheck>,
     rest: Option<&'a (Movements, Flexibility)>,
-    stable: Option<&'a slideline::assessment::stability::Stability>,
-    vibrating: Option<&'a slideline::assessment::vibration::Frequencies>,
+    stable: Option<&'a slideline::bellows::stability::Stability>,
+    vibrating: Option<&'a slideline::bellows::vibration::Frequencies>,
 }
 
 /// The bellows closing table (slideline beside the paper) and the pictures, from the results
 /// file (rank 0, after the run).
-fn report(params: &model::bellows::BellowsParams, before: &BeforeTheRun<'_>, summary: &RunSummary, output: &std::path::Path) -> Result<(), Error> {
+fn report(params: &slideline::bellows::joint::BellowsParams, before: &BeforeTheRun<'_>, summary: &RunSummary, output: &std::path::Path) -> Result<(), Error> {
     let BeforeTheRun { code, fe, rest, stable, vibrating } = *before;
     let reader = ResultsReader::open(output)?;
     let life = match fe {
-        Some(_) => slideline::assessment::finite_element::strain_life(&reader, params.youngs_modulus)?,
+        Some(_) => slideline::bellows::finite_element::strain_life(&reader, params.youngs_modulus)?,
         None => None,
     };
     // a restart from a finished run's end writes no increment of its own: its fields are in
@@ -483,29 +483,29 @@ fn report(params: &model::bellows::BellowsParams, before: &BeforeTheRun<'_>, sum
         None => println!("\nno increment in this run: the closing table is the continued file's (`slideline post` it)"),
     }
     if let (Some(c), Some(f)) = (code, fe) {
-        println!("{}", slideline::report::assessment_section(c, f, life.as_ref()));
+        println!("{}", slideline::bellows::report::assessment_section(c, f, life.as_ref()));
     }
     // the tables after the closing one, kept in the file for `slideline post FILE`
     let mut tables: Vec<(&str, String)> = Vec::new();
     if let Some((movements, at_rest)) = rest {
-        let operating = slideline::assessment::flexibility::from_run(params, *movements, &summary.perturbations, &reader)?;
-        tables.push(("flexibility", slideline::report::flexibility_section(params, code, *movements, at_rest, Some(&operating))));
+        let operating = slideline::bellows::flexibility::from_run(params, *movements, &summary.perturbations, &reader)?;
+        tables.push(("flexibility", slideline::bellows::report::flexibility_section(params, code, *movements, at_rest, Some(&operating))));
     }
     // the pictures of modes: the squirm's at rest (drawn from the rest run's file), the first
     // lateral mode's about the run's end
     let mut pictures: Vec<PathBuf> = Vec::new();
     if let Some(at_rest) = stable {
-        let operating = slideline::assessment::stability::from_answers(&summary.perturbations)?;
-        tables.push(("stability", slideline::report::stability_section(params, code, at_rest, &operating)));
+        let operating = slideline::bellows::stability::from_answers(&summary.perturbations)?;
+        tables.push(("stability", slideline::bellows::report::stability_section(params, code, at_rest, &operating)));
         pictures.extend(at_rest.squirm.map(|_| picture_path(output, "squirm_mode")));
     }
     if let Some(at_rest) = vibrating {
-        let operating = slideline::assessment::vibration::from_answers(params, &summary.perturbations)?;
-        tables.push(("frequencies", slideline::report::frequencies_section(params, at_rest, &operating)));
+        let operating = slideline::bellows::vibration::from_answers(params, &summary.perturbations)?;
+        tables.push(("frequencies", slideline::bellows::report::frequencies_section(params, at_rest, &operating)));
         if let Some(m) = operating.lateral {
             let path = picture_path(output, &format!("{LATERAL_MODES}_mode"));
             let title = format!("the joint's first lateral mode (n = 1) about the end of the run, {:.1} Hz", m.frequency);
-            slideline::report::mode_picture(&reader, &path, LATERAL_MODES, 1, 1, &title)?;
+            slideline::bellows::report::mode_picture(&reader, &path, LATERAL_MODES, 1, 1, &title)?;
             pictures.push(path);
         }
     }
@@ -546,11 +546,11 @@ fn coefficient_charts(prefix: &std::path::Path, table: &[(f64, f64, Coefficients
 
 /// The bellows' code check (EJMA): the design pressure and the whole stroke, with the chart
 /// coefficients given (`--coefficients`) or computed for its convolution (collective).
-fn code_check(session: &PetscSession, params: &model::bellows::BellowsParams) -> Result<CodeCheck, Error> {
-    let geometry = slideline::assessment::code::code_geometry(params);
+fn code_check(session: &PetscSession, params: &slideline::bellows::joint::BellowsParams) -> Result<CodeCheck, Error> {
+    let geometry = slideline::bellows::joint::code_geometry(params);
     let (coefficients, source) = match params.coefficients {
         Some([cp, cf, cd]) => (Coefficients { cp, cf, cd }, Source::Given),
-        None => (slideline::assessment::convolution::compute(session, geometry.c1(), geometry.c2(), Default::default())?, Source::Computed),
+        None => (slideline::bellows::convolution::compute(session, geometry.c1(), geometry.c2(), Default::default())?, Source::Computed),
     };
     let p = params;
     let duty =

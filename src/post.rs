@@ -469,7 +469,10 @@ pub fn force_curves(r: &ResultsReader) -> Result<ForcePlot> {
         .iter()
         .map(|set| {
             let f = oriented(&r.history(&format!("reaction_{set}{suffix}"))?);
-            Ok(Curve { label: format!("{set}: {force})"), points: x.iter().zip(&f).filter(|(u, v)| u.is_finite() && v.is_finite()).map(|(&u, &v)| (u, v)).collect() })
+            Ok(Curve {
+                label: format!("{set}: {force})"),
+                points: x.iter().zip(&f).filter(|(u, v)| u.is_finite() && v.is_finite()).map(|(&u, &v)| (u, v)).collect(),
+            })
         })
         .collect::<Result<_>>()?;
     let title = if plane { "Reactions along y" } else { "Axial reactions" };
@@ -501,7 +504,7 @@ pub fn bellows_table(r: &ResultsReader) -> Result<Option<String>> {
     if !deck.starts_with("# slideline bellows") || r.increments()?.is_empty() {
         return Ok(None);
     }
-    let Ok(params) = crate::model::bellows::BellowsParams::from_toml(&deck, &r.path().display().to_string()) else { return Ok(None) };
+    let Ok(params) = crate::bellows::joint::BellowsParams::from_toml(&deck, &r.path().display().to_string()) else { return Ok(None) };
     let history: Vec<crate::io::HistoryRow> = r.history_rows()?.into_iter().map(|(_, row)| row).collect();
     // what the table reads of the run: its history, ranks and restart point (the wall time is
     // the history's own)
@@ -522,7 +525,7 @@ pub fn bellows_table(r: &ResultsReader) -> Result<Option<String>> {
         Ok(code) => (code, None),
         Err(e) => (None, Some(e)),
     };
-    let report = crate::report::BellowsReport::new(&params, code, &summary, r)?;
+    let report = crate::bellows::report::BellowsReport::new(&params, code, &summary, r)?;
     let note = lost.map_or(String::new(), |e| format!("  note: the code check cannot be read again ({e})\n"));
     Ok(Some(report.table() + &note))
 }

@@ -104,7 +104,7 @@ fn a_parameter_file_sets_the_joint_and_flags_override_it() {
     let dir = tempfile::tempdir().unwrap();
     // the example file is the seed case
     let example = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/bellows.toml");
-    assert_eq!(slideline::model::bellows::BellowsParams::from_toml_file(&example).unwrap(), Default::default());
+    assert_eq!(slideline::bellows::joint::BellowsParams::from_toml_file(&example).unwrap(), Default::default());
     let write = |name: &str, text: &str| {
         let path = dir.path().join(name);
         std::fs::write(&path, text).unwrap();

@@ -8,10 +8,10 @@
 //! puts an element line on every apex (10 elements per half torus of radius 6). One rank, one
 //! test function: MPI can be initialised once per process.
 
-use slideline::assessment::finite_element::stroke_analysis;
-use slideline::assessment::membrane::PlyMembrane;
+use slideline::bellows::finite_element::stroke_analysis;
+use slideline::bellows::joint::{convolution_pieces, BellowsParams};
+use slideline::bellows::membrane::PlyMembrane;
 use slideline::io::reader::ResultsReader;
-use slideline::model::bellows::{convolution_pieces, BellowsParams};
 use slideline::petsc::PetscSession;
 use slideline::solve::{run, RunOptions};
 

@@ -4,9 +4,8 @@
 //! user or computed ([`super::convolution`]), and plain notes where the formulas are outside
 //! what they are for.
 
-use super::convolution::Coefficients;
+use super::coefficients::Coefficients;
 use super::formulas::{cycles_as_formed_austenitic, stress_range, UBellows, AS_FORMED_YIELD_FACTOR, PSI_PER_MPA};
-use crate::model::bellows::BellowsParams;
 
 /// Where the chart coefficients came from.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -108,39 +107,9 @@ impl CodeCheck {
     }
 }
 
-/// EJMA theoretical axial spring rate of the whole joint (full ring), N/mm, with the chart
-/// coefficient `cf` (computed by `assessment::convolution`, or read off the chart):
-/// f = 1.7 D_m E t_p^3 n / (w^3 C_f) per convolution, divided by the number of convolutions,
-/// with D_m = D_b + w + n t and t_p = t sqrt(D_b / D_m) (EJMA 10th ed., C-3.3).
-pub fn ejma_axial_rate(p: &BellowsParams, cf: f64) -> f64 {
-    code_geometry(p).axial_rate(p.youngs_modulus, cf)
-}
-
-/// The joint's bellows as the codes describe it: the pack's inside diameter is the tubes'
-/// outside.
-pub fn code_geometry(p: &BellowsParams) -> UBellows {
-    UBellows {
-        inside_diameter: 2.0 * p.tube_outer_radius(),
-        height: p.height,
-        pitch: p.pitch,
-        ply_thickness: p.ply_thickness,
-        plies: p.plies,
-        convolutions: p.convolutions,
-        torus_radius: p.torus_radius,
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn ejma_rate_of_the_default_joint() {
-        let p = BellowsParams::default();
-        // per 2.5-degree sector with a chart value Cf ~ 1.9: about the paper's 16.16 N/mm
-        let sector = ejma_axial_rate(&p, 1.9) * 2.5 / 360.0;
-        assert!((sector - 16.0).abs() < 2.0, "{sector}");
-    }
 
     /// The sample EJMA report (worked-examples.md, example 2): 3 plies of 0.3 mm, Db 130, w 9.1,
     /// q 8, N 18, P 0.3 MPa, 27.5 mm equivalent axial movement, Eb 194 612 MPa, Cp 0.67, Cd 1.68

@@ -6,8 +6,8 @@
 //! fetching their nodes.
 
 use super::node_to_edge::FREE_END_EXTENSION;
-use crate::fe::edge_projection::{project_on_edge, EdgeProjection};
 use super::surface::ContactSurface;
+use crate::fe::edge_projection::{project_on_edge, EdgeProjection};
 use std::collections::HashMap;
 use std::hash::{BuildHasherDefault, Hasher};
 
@@ -207,7 +207,6 @@ fn box_gap(a: &[[f64; 2]; 2], b: &[[f64; 2]; 2]) -> f64 {
     let gap = |i: usize| (b[0][i] - a[1][i]).max(a[0][i] - b[1][i]).max(0.0);
     (gap(0) * gap(0) + gap(1) * gap(1)).sqrt()
 }
-
 
 #[cfg(test)]
 mod tests {

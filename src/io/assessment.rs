@@ -4,10 +4,10 @@
 //! and the notes as the group's `notes` attribute. Written by rank 0 after the run (the file
 //! is closed by then), read back by `slideline post --assessment`.
 
-use super::results::{describe_dataset, h5err};
+use super::h5::{describe_dataset, group_in, h5err};
 use crate::assessment::code::{CodeCheck, Source};
-use crate::assessment::convolution::Coefficients;
-use crate::assessment::finite_element::{FeCheck, Peak, StrainLife};
+use crate::assessment::coefficients::Coefficients;
+use crate::assessment::fe_check::{FeCheck, Peak, StrainLife};
 use crate::error::{Error, Result};
 use hdf5::types::VarLenUnicode;
 use std::path::Path;
@@ -153,9 +153,7 @@ const PEAKS: [&str; 10] = ["S2", "S3", "S4", "S5", "S6", "St", "end_S3", "end_S4
 pub fn write_finite_element(path: &Path, fe: &FeCheck, life: Option<&StrainLife>) -> Result<()> {
     let err = h5err(path);
     let file = hdf5::File::open_rw(path).map_err(&err)?;
-    if !file.link_exists(GROUP) {
-        file.create_group(GROUP).map_err(&err)?;
-    }
+    group_in(&file, GROUP, path)?;
     let g = file.create_group(FINITE_ELEMENT).map_err(&err)?;
     let nan = f64::NAN;
     let values = [

@@ -166,7 +166,9 @@ pub fn describe_column(name: &str) -> (&'static str, String) {
         n if n.ends_with("_ring") => ("N", format!("{} (full 360-degree ring)", n.replace('_', " "))),
         n if n.starts_with("reaction_") || n.ends_with("_force") => (per_radian, n.replace('_', " ")),
         n if n.ends_with("_max_penetration") => ("mm", n.replace('_', " ")),
-        n if n.starts_with("displacement_") => ("mm", format!("{}: the mean over the set's nodes (the prescribed displacement where it is uniform)", n.replace('_', " "))),
+        n if n.starts_with("displacement_") => {
+            ("mm", format!("{}: the mean over the set's nodes (the prescribed displacement where it is uniform)", n.replace('_', " ")))
+        }
         n => ("-", n.replace('_', " ")),
     }
 }

@@ -2,7 +2,8 @@
 //! heat flux at the Gauss points and each element's mean, and `flows/SET` with the heat flowing
 //! in through each held set as attributes; rank 0 writes its XDMF sidecar (`STEM_NAME.xmf`).
 
-use super::results::{gauss_rows, h5err, write_rows, ResultsFile};
+use super::h5::{gauss_rows, group_in, h5err, write_rows};
+use super::results::ResultsFile;
 use crate::dist::Partition;
 use crate::element::solid::QUADRATURE_POINTS;
 use crate::error::Result;
@@ -16,11 +17,7 @@ impl ResultsFile {
     pub fn write_heat(&mut self, step: &HeatStep, answer: &HeatAnswer, partition: &Partition, axisymmetric: bool) -> Result<()> {
         let path = self.path.clone();
         let err = h5err(&path);
-        let top = match self.file.link_exists("heat") {
-            true => self.file.group("heat"),
-            false => self.file.create_group("heat"),
-        }
-        .map_err(&err)?;
+        let top = group_in(&self.file, "heat", &path)?;
         let g = top.create_group(&step.name).map_err(&err)?;
         let nodes = answer.temperature.len();
         let slab = (partition.node_offsets[partition.rank], partition.node_offsets[partition.rank + 1]);

@@ -3,6 +3,7 @@
 
 pub mod assessment;
 pub mod describe;
+mod h5;
 mod h5ffi;
 mod heat;
 pub mod lock;
@@ -13,8 +14,7 @@ pub mod results;
 pub mod status;
 pub mod xdmf;
 
-pub use results::{ContactSummary, HistoryRow, IncrementFields, ResultsFile};
+pub use results::{ContactSummary, HistoryRow, ResultsFile};
 pub mod plots;
 pub mod progress;
 pub mod reader;
-

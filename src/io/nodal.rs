@@ -10,7 +10,7 @@
 //! scalar so that every reader names it; on request (`element_nodal`) also each element's own
 //! nodal stresses before averaging, `/increments/NNNNNN/element_nodal_stress`.
 
-use super::results::{write_field, write_rows, IncrementFields};
+use super::h5::{write_field, write_rows};
 use crate::dist::Partition;
 use crate::error::Result;
 use crate::fe::axisymmetric::{principal_stresses, von_mises};
@@ -19,6 +19,7 @@ use crate::fe::recover::{Recovery, Rule};
 use crate::fe::shape::Shape;
 use crate::model::{Model, OutputFields, Precision};
 use crate::records::contact::PassOutput;
+use crate::records::increment_fields::IncrementFields;
 use mpi::collective::SystemOperation;
 use mpi::topology::SimpleCommunicator;
 use mpi::traits::*;

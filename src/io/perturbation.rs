@@ -4,7 +4,8 @@
 //! `reactions/SET` with each set's summed nodal forces (per radian) and full-ring resultants
 //! as attributes.
 
-use super::results::{gauss_rows, h5err, write_rows, ResultsFile};
+use super::h5::{gauss_rows, group_in, h5err, write_rows};
+use super::results::ResultsFile;
 use crate::dist::Partition;
 use crate::element::solid::QUADRATURE_POINTS;
 use crate::error::Result;
@@ -19,11 +20,7 @@ impl ResultsFile {
     pub fn write_perturbation(&mut self, p: &Perturbation, answer: &PerturbationAnswer, partition: &Partition, base: Option<&str>) -> Result<()> {
         let path = self.path.clone();
         let err = h5err(&path);
-        let top = match self.file.link_exists("perturbations") {
-            true => self.file.group("perturbations"),
-            false => self.file.create_group("perturbations"),
-        }
-        .map_err(&err)?;
+        let top = group_in(&self.file, "perturbations", &path)?;
         let g = top.create_group(&p.name).map_err(&err)?;
         g.new_attr::<u32>().create("mode").map_err(&err)?.write_scalar(&p.mode).map_err(&err)?;
         let procedure = match p.analysis {

@@ -145,10 +145,12 @@ pub fn outline_picture(path: &Path, title: &str, panels: &[Panel]) -> Result<()>
     use_bundled_font();
     let err = draw_err(path);
     let range = |layers: &[SegmentLayer]| {
-        layers.iter().flat_map(|l| l.segments.iter().flatten()).fold(
-            (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY),
-            |(r0, r1, z0, z1), p| (r0.min(p[0]), r1.max(p[0]), z0.min(p[1]), z1.max(p[1])),
-        )
+        layers
+            .iter()
+            .flat_map(|l| l.segments.iter().flatten())
+            .fold((f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY), |(r0, r1, z0, z1), p| {
+                (r0.min(p[0]), r1.max(p[0]), z0.min(p[1]), z1.max(p[1]))
+            })
     };
     let ranges: Vec<_> = panels.iter().map(|p| range(&p.layers)).collect();
     let (z0, z1) = ranges.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), r| (a.min(r.2), b.max(r.3)));

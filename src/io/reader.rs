@@ -230,10 +230,10 @@ impl ResultsReader {
         let g = self.file.group("increments").map_err(|e| missing(&self.path, "increments", e))?;
         let mut names = g.member_names().map_err(|e| missing(&self.path, "increments", e))?;
         names.sort();
-        if !self.file.attr_names().is_ok_and(|a| a.iter().any(|n| n == super::results::COMPLETION_MARKED)) {
+        if !self.file.attr_names().is_ok_and(|a| a.iter().any(|n| n == super::h5::COMPLETION_MARKED)) {
             return Ok((names, Vec::new()));
         }
-        let is_complete = |n: &String| g.group(n).and_then(|inc| inc.attr_names()).is_ok_and(|a| a.iter().any(|x| x == super::results::COMPLETE));
+        let is_complete = |n: &String| g.group(n).and_then(|inc| inc.attr_names()).is_ok_and(|a| a.iter().any(|x| x == super::h5::COMPLETE));
         Ok(names.into_iter().partition(is_complete))
     }
 
@@ -275,7 +275,7 @@ impl ResultsReader {
     /// The increments among the first `rows` whose fields the run wrote (by its `output_every`
     /// and the last of each step) that have no group (none for files without the attribute).
     fn missing_increments(&self, rows: usize) -> Result<Vec<usize>> {
-        let Ok(every) = self.file.attr(super::results::OUTPUT_EVERY).and_then(|a| a.read_scalar::<u32>()) else {
+        let Ok(every) = self.file.attr(super::h5::OUTPUT_EVERY).and_then(|a| a.read_scalar::<u32>()) else {
             return Ok(Vec::new());
         };
         if rows == 0 {
@@ -392,9 +392,7 @@ impl ResultsReader {
     }
 
     /// The design assessment's finite-element figures the file holds, if any.
-    pub fn finite_element_assessment(
-        &self,
-    ) -> Result<Option<(crate::assessment::finite_element::FeCheck, Option<crate::assessment::finite_element::StrainLife>)>> {
+    pub fn finite_element_assessment(&self) -> Result<Option<(crate::assessment::fe_check::FeCheck, Option<crate::assessment::fe_check::StrainLife>)>> {
         super::assessment::read_finite_element(&self.file, &self.path)
     }
 

@@ -13,8 +13,8 @@
 //! Everything is keyed by node and element ids, so any partition can read it; the continued run
 //! is bit-identical to the uninterrupted one on the same number of ranks.
 
+use super::h5::{describe_dataset, group_in, h5err, write_rows};
 use super::reader::ResultsReader;
-use super::results::{describe_dataset, h5err, write_rows};
 use super::HistoryRow;
 use crate::element::solid::QUADRATURE_POINTS as QP;
 use crate::error::{Error, Result};
@@ -124,7 +124,7 @@ pub(super) fn write_state(
     // the pattern's new rows, gathered to every rank (resizing is collective), written by rank 0
     let local: Vec<u64> = state.fresh_pattern.iter().flat_map(|&(a, b)| [number as u64, world.rank() as u64, mesh.node_ids[a], mesh.node_ids[b]]).collect();
     let all = all_gather(world, &local);
-    let restart = if file.link_exists("restart") { file.group("restart") } else { file.create_group("restart") }.map_err(&err)?;
+    let restart = group_in(file, "restart", path)?;
     let ds = if restart.link_exists("pattern") {
         restart.dataset("pattern").map_err(&err)?
     } else {

@@ -7,6 +7,7 @@
 //! data is written by each rank for its own contiguous slab. The file is flushed after every
 //! converged increment, so a run that dies keeps everything converged before.
 
+use super::h5::{describe_dataset, gauss_rows, group_in, h5err, write_field, write_rows, COMPLETE, COMPLETION_MARKED, OUTPUT_EVERY, PLANE};
 use super::nodal::NodalWriter;
 use super::restart::{write_state, CommittedState};
 use super::xdmf;
@@ -14,34 +15,14 @@ use crate::dist::Partition;
 use crate::element::solid::QUADRATURE_POINTS;
 use crate::error::{Error, Result};
 use crate::fe::axisymmetric::von_mises;
-use crate::model::{Model, OutputFields, Precision, Temperature};
+use crate::model::{Model, OutputFields, Precision};
 use crate::petsc::PetscSession;
 use crate::records::contact::PassOutput;
 use crate::records::energy::Energies;
+use crate::records::increment_fields::IncrementFields;
 use hdf5::types::VarLenUnicode;
 use mpi::traits::{AsRaw, CommunicatorCollectives};
-use ndarray::{ArrayView1, ArrayView2, ArrayView3};
 use std::path::{Path, PathBuf};
-
-/// This rank's slabs of the fields of one converged increment.
-#[derive(Clone, Copy)]
-pub struct IncrementFields<'a> {
-    /// Displacement of the owned nodes, partition order.
-    pub displacement: &'a [[f64; 2]],
-    /// Cauchy stress at the Gauss points of the local elements.
-    pub stress: &'a [[[f64; 4]; QUADRATURE_POINTS]],
-    pub plastic_strain: &'a [[f64; QUADRATURE_POINTS]],
-    /// Total strain [rr, zz, tt, rz] (tensor shear) at the Gauss points of the local elements.
-    pub strain: &'a [[[f64; 4]; QUADRATURE_POINTS]],
-    /// Plastic strain tensor at the Gauss points of the local elements.
-    pub plastic_strain_tensor: &'a [[[f64; 4]; QUADRATURE_POINTS]],
-    /// Reaction force (r, z) of the owned nodes, per radian: zero on the free DOFs.
-    pub reaction: &'a [[f64; 2]],
-    /// The temperature of every node, degC.
-    pub temperature: &'a Temperature,
-    /// Contact slave nodes of the passes this rank owns.
-    pub contact: &'a [PassOutput<'a>],
-}
 
 /// Contact state of one pair at an increment.
 #[derive(Clone, Debug)]
@@ -201,20 +182,6 @@ pub struct ResultsFile {
     fields: OutputFields,
     precision: Precision,
     world: mpi::topology::SimpleCommunicator,
-}
-
-/// Attribute of an increment group written after everything else of the increment.
-pub const COMPLETE: &str = "complete";
-/// Root attribute: the fields of every N-th increment (and of each step's last) are written.
-pub const OUTPUT_EVERY: &str = "output_every";
-/// Root attribute of files whose increments carry [`COMPLETE`] (older files do not).
-pub const COMPLETION_MARKED: &str = "increments_marked_complete";
-
-/// The root `geometry` attribute of a model of plane sections only.
-const PLANE: &str = "plane";
-
-pub(super) fn h5err(path: &Path) -> impl Fn(hdf5::Error) -> Error + '_ {
-    move |e| Error::Output { path: path.to_path_buf(), message: e.to_string() }
 }
 
 impl ResultsFile {
@@ -480,7 +447,7 @@ impl ResultsFile {
         let err = h5err(&self.path);
         let group_of = |base: &hdf5::Group, p: &PassOutput<'_>| -> Result<hdf5::Group> {
             let pair = &row.contacts[p.pair].name;
-            let pg = if base.link_exists(pair) { base.group(pair) } else { base.create_group(pair) }.map_err(&err)?;
+            let pg = group_in(base, pair, &self.path)?;
             pg.create_group(&format!("pass{}", p.pass)).map_err(&err)
         };
         if !self.contact_mesh_written {
@@ -600,112 +567,6 @@ impl ResultsFile {
         }
         Ok(())
     }
-}
-
-/// Writes the `units` and `description` attributes of a dataset (collective).
-/// A plane model's file (its root `geometry` attribute "plane") gets the plane units.
-/// Per-element Gauss-slot values (`C` numbers per slot) flattened for a dataset, with NaN in
-/// the slots that are no integration point of their element (`used`: 9, or a reduced Q8's 4).
-pub(super) fn gauss_rows<const C: usize>(values: &[[[f64; C]; QUADRATURE_POINTS]], used: &[usize]) -> Vec<f64> {
-    let mut out = Vec::with_capacity(values.len() * QUADRATURE_POINTS * C);
-    for (element, &n) in values.iter().zip(used) {
-        for (q, slot) in element.iter().enumerate() {
-            out.extend(slot.iter().map(|&v| if q < n { v } else { f64::NAN }));
-        }
-    }
-    out
-}
-
-pub(super) fn describe_dataset(ds: &hdf5::Dataset, units: &'static str, description: &str, path: &Path) -> Result<()> {
-    let err = h5err(path);
-    let geometry = ds.file().and_then(|f| f.attr("geometry")).and_then(|a| a.read_scalar::<VarLenUnicode>());
-    let units = if geometry.is_ok_and(|g| g.as_str() == PLANE) { super::describe::plane_units(units) } else { units };
-    for (attr, text) in [("units", units), ("description", description)] {
-        let value: VarLenUnicode = text.parse().map_err(|_| Error::Output { path: path.to_path_buf(), message: format!("attribute text {text:?}") })?;
-        ds.new_attr::<VarLenUnicode>().create(attr).map_err(&err)?.write_scalar(&value).map_err(&err)?;
-    }
-    Ok(())
-}
-
-/// A visualisation field (f64 as computed), stored at the run's `precision` (collective, as
-/// [`write_rows`]).
-pub(super) fn write_field(
-    group: &hdf5::Group,
-    name: &str,
-    shape: &[usize],
-    slab: (usize, usize),
-    data: &[f64],
-    precision: Precision,
-    path: &Path,
-) -> Result<()> {
-    match precision {
-        Precision::Double => write_rows(group, name, shape, slab, data, path),
-        Precision::Single => write_rows(group, name, shape, slab, &data.iter().map(|&v| v as f32).collect::<Vec<f32>>(), path),
-    }
-}
-
-/// Whether dataset `name` is stored chunked, shuffled and deflated: the fields that are zero
-/// or constant over most of the mesh (reactions off the supports, plastic strains off the
-/// yielded zones, contact state off the contact surfaces, a uniform temperature) shrink 3 to
-/// 200 times and cost little to compress. Stresses, strains and displacements, whose doubles'
-/// low bits are noise, shrink by a sixth at most for several times the write's cost, and stay
-/// contiguous (docs/performance.md).
-fn deflated(name: &str) -> bool {
-    name == "reaction_force"
-        || name == "temperature"
-        || name == "plastic_points"
-        || name.starts_with("plastic_strain_")
-        || name.starts_with("equivalent_plastic_strain")
-        || name.starts_with("contact_")
-        || name.starts_with("friction_")
-}
-
-/// Values of a deflated dataset's chunk, at most: whole fields of meshes up to some 100 000
-/// nodes in one chunk (a chunk is the unit HDF5 compresses and reads).
-const CHUNK_VALUES: usize = 1 << 20;
-
-/// Dataset `name` of `shape`, this rank's rows `slab` from `data` (collective: every rank
-/// calls it, those without rows with an empty slab). Deflated datasets (see [`deflated`]) are
-/// written through a collective transfer, as parallel HDF5 requires of filtered data.
-pub(super) fn write_rows<T: hdf5::H5Type + Copy>(
-    group: &hdf5::Group,
-    name: &str,
-    shape: &[usize],
-    slab: (usize, usize),
-    data: &[T],
-    path: &Path,
-) -> Result<()> {
-    let err = h5err(path);
-    let values: usize = shape.iter().product();
-    let compress = deflated(name) && values >= 256;
-    let builder = group.new_dataset::<T>().shape(shape.to_vec());
-    let ds = if compress {
-        let row: usize = shape[1..].iter().product();
-        let mut chunk = shape.to_vec();
-        chunk[0] = (CHUNK_VALUES / row.max(1)).clamp(1, shape[0]);
-        builder.chunk(chunk).shuffle().deflate(1).create(name)
-    } else {
-        builder.create(name)
-    }
-    .map_err(&err)?;
-    let (units, description) = super::describe::describe(&group.name(), name);
-    describe_dataset(&ds, units, &description, path)?;
-    let rows = slab.1 - slab.0;
-    if compress {
-        return super::h5ffi::write_rows_collective(&ds, slab.0, rows, data)
-            .map_err(|message| Error::Output { path: path.to_path_buf(), message: format!("{}/{name}: {message}", group.name()) });
-    }
-    if rows == 0 {
-        return Ok(());
-    }
-    let shape_err = |e: ndarray::ShapeError| Error::Output { path: path.to_path_buf(), message: e.to_string() };
-    match shape.len() {
-        1 => ds.write_slice(ArrayView1::from(data), slab.0..slab.1),
-        2 => ds.write_slice(ArrayView2::from_shape((rows, shape[1]), data).map_err(shape_err)?, (slab.0..slab.1, ..)),
-        3 => ds.write_slice(ArrayView3::from_shape((rows, shape[1], shape[2]), data).map_err(shape_err)?, (slab.0..slab.1, .., ..)),
-        _ => unreachable!("datasets have at most 3 dimensions"),
-    }
-    .map_err(&err)
 }
 
 #[cfg(test)]

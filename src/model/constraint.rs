@@ -3,8 +3,8 @@
 //! them); the solver enforces each by a penalty (`solve::constraints`).
 
 use super::{Component, Edge, Mesh, Model};
-use crate::fe::edge_projection::project_on_edge;
 use crate::error::{Error, Result};
+use crate::fe::edge_projection::project_on_edge;
 use crate::fe::quadrature::GAUSS3;
 use crate::fe::section::Section;
 use crate::fe::shape::{line3, Shape};

@@ -4,7 +4,6 @@
 //!
 //! Units: mm, N, MPa, degC. Coordinates are (r, z), r >= 0 the radius, z the axis.
 
-pub mod bellows;
 pub mod constraint;
 pub mod deck;
 pub mod fingerprint;

@@ -5,5 +5,6 @@
 pub mod contact;
 pub mod energy;
 pub mod heat;
+pub mod increment_fields;
 pub mod last_increment;
 pub mod perturbation;

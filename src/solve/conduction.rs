@@ -4,7 +4,6 @@
 //! perturbation step's). Then the heat flux at the Gauss points and the heat flowing in
 //! through each held set: the residual K T there.
 
-use crate::records::heat::{HeatAnswer, HeatFlow};
 use super::perturbation::{amplitudes_of, assemble, Amplitude, Block};
 use crate::dist::Partition;
 use crate::element::conduction::{conduction_matrix, heat_flux};
@@ -14,10 +13,9 @@ use crate::model::heat::HeatStep;
 use crate::model::Model;
 use crate::petsc::sys::PetscInt;
 use crate::petsc::{PetscSession, Snes, VecOps, Vector};
+use crate::records::heat::{HeatAnswer, HeatFlow};
 use mpi::collective::SystemOperation;
 use mpi::traits::*;
-
-
 
 /// Solves heat step `step` (collective). A node in no element keeps the initial temperature.
 pub fn solve(session: &PetscSession, model: &Model, partition: &Partition, step: &HeatStep) -> Result<HeatAnswer> {

@@ -8,7 +8,6 @@
 //! pressure at a slave node, p = max(0, lambda - eps g), is the contact pressure in both modes.
 
 pub use super::contact_surfaces::contact_nodes;
-use crate::records::contact::{SlaveState, SlipPoint};
 use super::contact_surfaces::{edge_neighbourhood, surfaces_and_directions};
 pub use super::engagement::{BaseContact, Engagement};
 use super::engagement::{Engagements, PointHessians};
@@ -19,6 +18,7 @@ use crate::contact::surface::ContactSurface;
 use crate::dist::{DofMap, Partition};
 use crate::model::{ContactIntegration, Friction, Model};
 use crate::petsc::sys::PetscInt;
+use crate::records::contact::{SlaveState, SlipPoint};
 
 mod output;
 mod slave_nodes;
@@ -53,8 +53,6 @@ pub enum Need {
     Residual,
     Tangent,
 }
-
-
 
 /// Where each slave node of a pass with friction starts measuring its slip: its projection on
 /// the master in the undeformed mesh (none beyond the capture distance).

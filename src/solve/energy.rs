@@ -23,11 +23,8 @@
 //! return maps. It is not zero: the trapezoids integrate the path to second order in the
 //! increment (and a multiplier's part of augmented-Lagrangian contact is not counted).
 
-use crate::records::energy::{AuditPoint, Energies};
 use crate::element::solid::ElementEnergy;
-
-
-
+use crate::records::energy::{AuditPoint, Energies};
 
 /// The running audit.
 #[derive(Clone, Debug)]

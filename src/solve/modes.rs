@@ -16,7 +16,6 @@ use super::perturbation::{
     amplitudes_of, assemble, current_positions, model_size, number, prescribed_amplitudes, pressure_stiffness_blocks, response, stiffness_blocks, Amplitude,
     BaseState, Block,
 };
-use crate::records::perturbation::{EigenMode, PerturbationAnswer};
 use crate::dist::Partition;
 use crate::element::harmonic::{initial_stress_stiffness, ring_factor};
 use crate::element::solid::{NODES, QUADRATURE_POINTS};
@@ -25,10 +24,10 @@ use crate::model::perturbation::{Analysis, HarmonicComponent, Perturbation};
 use crate::model::Model;
 use crate::petsc::eigen::{nearest, Pencil};
 use crate::petsc::PetscSession;
+use crate::records::perturbation::{EigenMode, PerturbationAnswer};
 use mpi::collective::SystemOperation;
 use mpi::traits::*;
 use std::f64::consts::PI;
-
 
 /// The step's amplitudes held at zero, numbered for mode `mode`.
 fn held_numbering(model: &Model, partition: &Partition, step: &Perturbation, current: &[[f64; 2]]) -> Result<(Vec<[Amplitude; 3]>, Vec<usize>)> {

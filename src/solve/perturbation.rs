@@ -22,7 +22,6 @@
 //! there: n = 0, U_r = U_t = 0; n = 1, U_z = 0 and U_t = -U_r (one unknown, U_r); n >= 2, all
 //! zero.
 
-use crate::records::perturbation::{PerturbationAnswer, SetReaction};
 use super::contact::BaseContact;
 use crate::contact::harmonic::{normal_stiffness, sticking_stiffness};
 use crate::dist::Partition;
@@ -37,6 +36,7 @@ use crate::model::perturbation::Perturbation;
 use crate::model::Model;
 use crate::petsc::sys::PetscInt;
 use crate::petsc::{MatOps, Matrix, PetscSession, Snes, VecOps, Vector};
+use crate::records::perturbation::{PerturbationAnswer, SetReaction};
 use mpi::collective::SystemOperation;
 use mpi::datatype::PartitionMut;
 use mpi::traits::*;
@@ -63,9 +63,6 @@ pub struct KeptBase {
     pub pressures: Vec<(String, f64)>,
     pub contacts: Vec<(usize, BaseContact)>,
 }
-
-
-
 
 /// An amplitude's place in the system: an unknown (index, coefficient: an axis node's U_t of
 /// mode 1 is -1 times its U_r) or a prescribed value.

@@ -27,7 +27,6 @@ use crate::petsc::{LogStage, Matrix, PetscSession, Scatter, VecOps, Vector};
 
 mod assembly;
 
-
 /// Loads and prescribed values at the current load factor.
 #[derive(Clone, Debug)]
 pub struct LoadState {

@@ -3,7 +3,6 @@
 
 use super::contact::{CarriedMultipliers, CarriedSlip, ContactCarry};
 use super::energy::EnergyAudit;
-use crate::records::last_increment::LastIncrement;
 use super::pattern::ContactPattern;
 use super::problem::{initial_history, History};
 use super::schedule::StepLoads;
@@ -12,6 +11,7 @@ use crate::error::{Error, Result};
 use crate::io::restart::{RestartFrom, RestartPoint};
 use crate::io::{HistoryRow, ResultsFile};
 use crate::model::Model;
+use crate::records::last_increment::LastIncrement;
 
 /// What the run carries from one step to the next: the displacement of every node, this rank's
 /// elements' history, contact's committed state and pattern, the history rows, the last step's

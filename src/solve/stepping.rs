@@ -11,8 +11,6 @@
 
 use super::attempt::{predict, solve_increment};
 use super::energy::EnergyAudit;
-use crate::records::energy::Energies;
-use crate::records::last_increment::LastIncrement;
 use super::held;
 use super::problem::{LoadState, Problem, StepStart};
 use super::resume::{restart_point, Carried};
@@ -24,11 +22,14 @@ use crate::io::lock::ResultsLock;
 use crate::io::progress::Progress;
 use crate::io::restart::{CommittedState, RestartFrom};
 use crate::io::status::StatusFile;
-use crate::io::{ContactSummary, HistoryRow, IncrementFields, ResultsFile};
+use crate::io::{ContactSummary, HistoryRow, ResultsFile};
 use crate::material::PointState;
 use crate::model::perturbation::Analysis;
 use crate::model::{Convergence, Model, Predictor};
 use crate::petsc::{FieldRatios, PetscSession, Snes, VecOps, Vector};
+use crate::records::energy::Energies;
+use crate::records::increment_fields::IncrementFields;
+use crate::records::last_increment::LastIncrement;
 use mpi::collective::SystemOperation;
 use mpi::datatype::PartitionMut;
 use mpi::traits::*;

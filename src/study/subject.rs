@@ -2,11 +2,11 @@
 //! pair, and what it measures the runs by (the node set whose axial reaction is compared, how
 //! that reaction is printed, the length penetration is set against).
 
+use crate::bellows::joint::{self, BellowsParams};
+use crate::bellows::report::SECTOR_RADIANS;
 use crate::contact::surface::ContactSurface;
 use crate::error::{Error, Result};
-use crate::model::bellows::{self, BellowsParams};
 use crate::model::{Model, Penalty};
-use crate::report::SECTOR_RADIANS;
 
 // one per study: the variants' sizes do not matter
 #[allow(clippy::large_enum_variant)]
@@ -31,7 +31,7 @@ impl Subject {
     /// The model with `penalty` on every contact pair.
     pub fn model(&self, penalty: Penalty) -> Result<Model> {
         let mut m = match self {
-            Subject::Bellows(p) => bellows::model(p)?,
+            Subject::Bellows(p) => joint::model(p)?,
             Subject::Deck(m) => m.clone(),
         };
         for c in &mut m.contacts {

@@ -3,8 +3,8 @@
 //! of slave-node states for the results file.
 
 use super::ContactAssembly;
-use crate::records::contact::PassOutput;
 use crate::model::Model;
+use crate::records::contact::PassOutput;
 
 impl ContactAssembly {
     /// This rank's contact forces on every contact node (last evaluation), to be summed over
@@ -115,4 +115,3 @@ impl ContactAssembly {
             .collect()
     }
 }
-

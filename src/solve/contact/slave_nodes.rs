@@ -3,13 +3,13 @@
 //! map from the node's slip reference; the active nodes' engagements for the assembly.
 
 use super::ContactAssembly;
-use crate::records::contact::{SlaveState, SlipPoint};
 use crate::contact::friction::{FrictionLaw, SlipReference};
 use crate::contact::integrated::weighted_gaps_into;
 use crate::contact::node_to_edge::{edge_residual, ContactLaw, Overclosure, SlaveArea};
 use crate::contact::search::EdgeGrid;
 use crate::contact::surface::ContactSurface;
 use crate::model::{ContactPair, Model, Penalty};
+use crate::records::contact::{SlaveState, SlipPoint};
 use crate::solve::engagement::{Engagements, FrictionRecipe};
 use crate::solve::roundoff::ROUNDOFF_ULPS;
 

@@ -3,7 +3,6 @@
 //! coupling to the prescribed DOFs.
 
 use super::Problem;
-use crate::solve::roundoff::ROUNDOFF_ULPS;
 use crate::element::body_load::{body_load, body_load_stiffness, BodyForce};
 use crate::element::pressure::{compute_pressure_load, pressure_load_stiffness};
 use crate::element::solid::DOFS;
@@ -12,6 +11,7 @@ use crate::material::Kinematics;
 use crate::petsc::{MatOps, MatrixView, NonlinearProblem, VecOps, VectorView};
 use crate::solve::contact::Need;
 use crate::solve::kept::{ElementFields, LastEvaluation};
+use crate::solve::roundoff::ROUNDOFF_ULPS;
 use mpi::collective::{CommunicatorCollectives, SystemOperation};
 
 impl NonlinearProblem for Problem<'_, '_> {

@@ -15,8 +15,8 @@
 //! `flexibility`.
 
 use super::flexibility::AXIAL;
+use crate::bellows::joint::BellowsParams;
 use crate::error::Result;
-use crate::model::bellows::BellowsParams;
 use crate::model::perturbation::{Analysis, HarmonicComponent, HarmonicDisplacement, Perturbation};
 use crate::model::Pressure;
 use crate::petsc::PetscSession;
@@ -82,6 +82,6 @@ pub fn at_rest(session: &PetscSession, p: &BellowsParams, keep: impl FnOnce(&std
 /// EJMA's column instability pressure with both ends held, 0.34 pi Kb / (N q), and the
 /// unfactored equivalent column's, 2 pi Kb / (N q) (MPa).
 pub fn column_estimates(p: &BellowsParams, axial_rate: f64) -> (f64, f64) {
-    let code = super::code::code_geometry(p).column_instability_pressure(axial_rate);
+    let code = crate::bellows::joint::code_geometry(p).column_instability_pressure(axial_rate);
     (code, code * 2.0 / 0.34)
 }

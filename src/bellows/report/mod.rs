@@ -5,16 +5,16 @@
 //! increment). Rank 0 only, after the run: fields are read back from the results file.
 
 use crate::assessment::code::CodeCheck;
-use crate::assessment::finite_element::{FeCheck, Peak, StrainLife};
-use crate::assessment::flexibility::{Flexibility, Movements};
-use crate::assessment::stability::{column_estimates, Stability};
-use crate::assessment::vibration::{estimates, Estimates, Frequencies, Mode};
+use crate::assessment::fe_check::{FeCheck, Peak, StrainLife};
+use crate::bellows::flexibility::{Flexibility, Movements};
+use crate::bellows::joint::BellowsParams;
+use crate::bellows::stability::{column_estimates, Stability};
+use crate::bellows::vibration::{estimates, Estimates, Frequencies, Mode};
 use crate::error::Result;
 use crate::fe::shape::Shape;
 use crate::io::plots::{deformed_field, line_plot, Axes, Curve, FieldPicture, Marker};
 use crate::io::reader::ResultsReader;
 use crate::io::HistoryRow;
-use crate::model::bellows::BellowsParams;
 use crate::records::energy::Energies;
 use crate::solve::RunSummary;
 use std::f64::consts::PI;
@@ -462,7 +462,7 @@ impl BellowsReport {
 /// codes' beam analogy evaluated with the same state's axial rate (and, for the stresses, the
 /// code check's S5 + S6 at the movement's equivalent axial movement per convolution).
 pub fn flexibility_section(p: &BellowsParams, code: Option<&CodeCheck>, movements: Movements, rest: &Flexibility, operating: Option<&Flexibility>) -> String {
-    let g = crate::assessment::code::code_geometry(p);
+    let g = crate::bellows::joint::code_geometry(p);
     let (dm, lb, n) = (g.mean_diameter(), g.convolutions as f64 * g.pitch, g.convolutions as f64);
     // the axial movement the operating state has taken (the codes' Lb + x)
     let stroke = if p.cycle { 0.0 } else { -p.displacement };
@@ -497,7 +497,7 @@ pub fn flexibility_section(p: &BellowsParams, code: Option<&CodeCheck>, movement
     // the code check's S5 + S6 at the equivalent axial movement per convolution of a movement
     let code_stress = |e: f64| code.map(|c| g.s5(e, p.youngs_modulus, c.coefficients.cf) + g.s6(e, p.youngs_modulus, c.coefficients.cd));
     let (y, theta) = (movements.lateral, movements.angular.to_radians());
-    let centre = crate::assessment::flexibility::centre(p);
+    let centre = crate::bellows::flexibility::centre(p);
     if rest.lateral.is_some() {
         let lateral = |f: &Flexibility| f.lateral.clone().expect("both states have the same steps");
         t.push_str(&format!("  lateral offset {y} mm of tube B's end, its rotation held:\n"));

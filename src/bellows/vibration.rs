@@ -12,9 +12,9 @@
 
 use super::flexibility::AXIAL;
 use super::stability::lowest_positive_mode;
+use crate::bellows::joint::code_geometry;
+use crate::bellows::joint::BellowsParams;
 use crate::error::Result;
-use super::code::code_geometry;
-use crate::model::bellows::BellowsParams;
 use crate::model::perturbation::{Analysis, HarmonicComponent, HarmonicDisplacement, Perturbation};
 use crate::petsc::PetscSession;
 use crate::records::perturbation::frequency_hz;
@@ -97,7 +97,7 @@ pub struct Estimates {
 
 /// The analogies for joint `p` in state `f`: its axial rate and convolved length.
 pub fn estimates(p: &BellowsParams, f: &Frequencies) -> Estimates {
-    use super::formulas::{axial_frequency, lateral_frequency, rayleigh_lateral_frequency};
+    use crate::assessment::formulas::{axial_frequency, lateral_frequency, rayleigh_lateral_frequency};
     let g = code_geometry(p);
     let (mass, dm, lb, axial_rate) = (g.live_mass(p.density), g.mean_diameter(), f.convolved_length, f.axial_rate);
     Estimates {

@@ -21,12 +21,13 @@
 //! For the elastic-plastic run itself (the seed case's stroke yields the plies far past what the
 //! code's elastic formulas are for) [`strain_life`] gives the life from the total strain range.
 
-use super::formulas::{cycles_as_formed_austenitic, PSI_PER_MPA};
 use super::membrane::PlyMembrane;
+use super::stations::{stations_of, PieceStations, STATIONS};
+use crate::assessment::fe_check::{effective_strain_range, FeCheck, Peak, StrainLife};
+use crate::assessment::formulas::{cycles_as_formed_austenitic, PSI_PER_MPA};
+use crate::bellows::joint::{convolution_pieces, BellowsParams, ConvolutionPiece};
 use crate::error::{Error, Result};
-use crate::fe::linearize::{linearize, Linearized, StressSampler};
 use crate::io::reader::ResultsReader;
-use crate::model::bellows::{convolution_pieces, BellowsParams, ConvolutionPiece};
 use crate::model::{Component, PrescribedDisplacement, Pressure, Step};
 use crate::petsc::PetscSession;
 use crate::solve::run;
@@ -35,65 +36,6 @@ use std::path::Path;
 /// The share of the design pressure and stroke the linear analyses apply (then scaled by its
 /// inverse): small enough that the large-deformation solver answers linearly.
 pub const LOAD_FRACTION: f64 = 0.01;
-
-/// Stations per piece of the meridian (odd: the middle one is the apex or the mid-sidewall).
-const STATIONS: usize = 9;
-
-/// The largest value of a stress and where it is ("crest 1, ply 2").
-#[derive(Clone, Debug, Default, PartialEq)]
-pub struct Peak {
-    pub value: f64,
-    pub at: String,
-}
-
-impl Peak {
-    pub(super) fn offer(&mut self, value: f64, at: impl FnOnce() -> String) {
-        if value > self.value {
-            *self = Peak { value, at: at() };
-        }
-    }
-}
-
-/// The finite-element figures beside the code's (MPa, N/mm full ring).
-#[derive(Clone, Debug, PartialEq)]
-pub struct FeCheck {
-    /// Hoop membrane stress from pressure, averaged over a convolution's meridian (the code's
-    /// S2 is that average: the hoop load over the convolution's metal), worst convolution.
-    pub s2: Peak,
-    /// The largest meridional membrane and bending stresses (magnitudes), from pressure (S3,
-    /// S4) and from the stroke (S5, S6).
-    pub s3: Peak,
-    pub s4: Peak,
-    pub s5: Peak,
-    pub s6: Peak,
-    /// The largest 0.7 (|S3| + |S4|) + |S5| + |S6| at one point.
-    pub stress_range: Peak,
-    pub cycles: Option<f64>,
-    /// S3 .. S6 where the pack leaves the tubes (the quarter tori off the tangents): the codes'
-    /// formulas are for the convolutions between, so these are reported apart from the peaks
-    /// above; they sit at the corner of a bonded tangent and grow as the mesh is refined.
-    pub ends: [Peak; 4],
-    /// From the end reaction of the stroke analysis.
-    pub axial_rate: f64,
-    /// The instability pressures by buckling analyses of the joint at rest (`stability`):
-    /// column (squirm, mode 1) and in-plane (mode 0), MPa; NaN where none was found.
-    pub column_instability: f64,
-    pub in_plane_instability: f64,
-}
-
-/// The linearised meridional and hoop stresses at one station of one ply.
-#[derive(Clone, Copy, Debug)]
-pub(super) struct Station {
-    pub membrane: f64,
-    pub bending: f64,
-    pub hoop: f64,
-}
-
-impl From<&Linearized> for Station {
-    fn from(l: &Linearized) -> Self {
-        Station { membrane: l.membrane[1], bending: l.bending[1], hoop: l.membrane[2] }
-    }
-}
 
 /// The two linear analyses of joint `p` and their linearised stresses (collective: every rank
 /// calls it; the analyses' files go to a temporary directory and are removed), with the
@@ -142,9 +84,6 @@ fn linear_analysis(p: &BellowsParams, name: &str, stroke: f64, pressure: f64) ->
     Ok(m)
 }
 
-/// The linearised stresses of one piece: [station][k], each with the ply it was found in.
-pub(super) type PieceStations = Vec<Vec<(usize, Station)>>;
-
 /// The linearised stresses of every station of every piece, through the pack's thickness ply
 /// by ply (indexed [piece][station][k], with the ply's number from 0), from the last increment
 /// of `file` (a run of `model`), multiplied by `scale` (from the applied load to the
@@ -165,49 +104,6 @@ fn stations(file: &Path, model: &crate::model::Model, p: &BellowsParams, pieces:
         }
     }
     Ok(out)
-}
-
-/// The linearised stresses of `stress` (the Gauss points' [rr, zz, tt, rz] of every element of
-/// the file `r`, in its order) at every station of every piece, as [`stations`].
-pub(super) fn stations_of(r: &ResultsReader, stress: &[[[f64; 4]; 9]], p: &BellowsParams, pieces: &[ConvolutionPiece]) -> Result<Vec<PieceStations>> {
-    let file = r.path();
-    let (coords, conn) = (r.coordinates()?, r.connectivity()?);
-    // a sampler per ply: a section ends on the ply's surfaces, where the next ply begins
-    let sets: Vec<Vec<usize>> = (1..=p.plies).map(|k| r.element_set(&format!("ply{k}"))).collect::<Result<_>>()?;
-    let ply_conn: Vec<Vec<[usize; 8]>> = sets.iter().map(|set| set.iter().map(|&e| conn[e]).collect()).collect();
-    let samplers: Vec<StressSampler> = sets
-        .iter()
-        .zip(&ply_conn)
-        .map(|(set, c)| StressSampler::new(&coords, c, &set.iter().map(|&e| stress[e]).collect::<Vec<_>>()).with_slack(1e-2))
-        .collect();
-    let (t, pack) = (p.ply_thickness, p.pack_thickness());
-    pieces
-        .iter()
-        .map(|piece| {
-            (0..STATIONS)
-                .map(|j| {
-                    let (x, tan) = piece.piece.at((j as f64 + 0.5) / STATIONS as f64);
-                    let normal = [-tan[1], tan[0]];
-                    (0..p.plies)
-                        .map(|k| {
-                            // the k-th ply from the pack's side at -pack / 2 along the normal
-                            let (lo, hi) = (-pack / 2.0 + k as f64 * t, -pack / 2.0 + (k + 1) as f64 * t);
-                            let at = |d: f64| [x[0] + d * normal[0], x[1] + d * normal[1]];
-                            let ply = (0..p.plies).find(|&j| samplers[j].at(at(0.5 * (lo + hi))).is_some());
-                            let ply = ply.ok_or_else(|| Error::Output {
-                                path: file.to_path_buf(),
-                                message: format!("{}: no ply at {:?}", piece.label, at(0.5 * (lo + hi))),
-                            })?;
-                            linearize(at(lo), at(hi), 40, |q, d| samplers[ply].entering(q, d))
-                                .map(|l| Station::from(&l))
-                                .map(|s| (ply, s))
-                                .map_err(|m| Error::Output { path: file.to_path_buf(), message: format!("{}, ply {}: {m}", piece.label, ply + 1) })
-                        })
-                        .collect()
-                })
-                .collect()
-        })
-        .collect()
 }
 
 /// The worst values over the stations, and S2 as the hoop membrane averaged over each
@@ -246,28 +142,6 @@ fn combine(p: &BellowsParams, pieces: &[ConvolutionPiece], pressure: &[PieceStat
     }
     let cycles = cycles_as_formed_austenitic(st.value * PSI_PER_MPA);
     FeCheck { s2, s3, s4, s5, s6, stress_range: st, cycles, ends, axial_rate, column_instability: f64::NAN, in_plane_instability: f64::NAN }
-}
-
-/// The effective (von Mises equivalent) range of a total strain change [rr, zz, tt, rz], tensor
-/// shear: (sqrt 2 / 3) sqrt((d1 - d2)^2 + (d2 - d3)^2 + (d3 - d1)^2 + 6 d_rz^2), ASME VIII-2
-/// Part 5's effective strain range; for a uniaxial plastic (incompressible) strain it is that
-/// strain.
-pub fn effective_strain_range(d: [f64; 4]) -> f64 {
-    let [a, b, c, s] = d;
-    2f64.sqrt() / 3.0 * ((a - b).powi(2) + (b - c).powi(2) + (c - a).powi(2) + 6.0 * s * s).sqrt()
-}
-
-/// The fatigue life of the stroke from the elastic-plastic run's own strains.
-#[derive(Clone, Debug, PartialEq)]
-pub struct StrainLife {
-    /// The largest effective total strain range over the plies' nodes between the stroke's
-    /// start and its end.
-    pub strain_range: f64,
-    /// Where, in the undeformed mesh (r, z mm).
-    pub at: [f64; 2],
-    /// The pseudo-elastic stress range E x strain range, MPa: the curve's St.
-    pub pseudo_stress: f64,
-    pub cycles: Option<f64>,
 }
 
 /// The strain-based life of the run in `r` (a `slideline bellows` file): the effective total

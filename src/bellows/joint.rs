@@ -13,12 +13,12 @@
 //! Contact pairs: each ply on the next (two-pass), tube B's bore on the sleeve's outside, and
 //! self-contact of the pack's inside and outside surfaces (neighbouring convolutions closing).
 
-use super::mesh::{mapped_block, Edge, Mesh, MeshSets};
-use super::{
+use crate::error::Result;
+use crate::model::mesh::{mapped_block, Edge, Mesh, MeshSets};
+use crate::model::{
     AugmentedLagrangian, Component, ContactIntegration, ContactPair, Friction, Kinematics, Material, Model, OutputControls, Penalty, Plasticity, Predictor,
     PrescribedDisplacement, Pressure, Step, SteppingControls, Temperature,
 };
-use crate::error::Result;
 use std::collections::HashMap;
 use std::f64::consts::PI;
 
@@ -465,9 +465,39 @@ pub fn model(p: &BellowsParams) -> Result<Model> {
     Ok(model)
 }
 
+/// EJMA theoretical axial spring rate of the whole joint (full ring), N/mm, with the chart
+/// coefficient `cf` (computed by `assessment::convolution`, or read off the chart):
+/// f = 1.7 D_m E t_p^3 n / (w^3 C_f) per convolution, divided by the number of convolutions,
+/// with D_m = D_b + w + n t and t_p = t sqrt(D_b / D_m) (EJMA 10th ed., C-3.3).
+pub fn ejma_axial_rate(p: &BellowsParams, cf: f64) -> f64 {
+    code_geometry(p).axial_rate(p.youngs_modulus, cf)
+}
+
+/// The joint's bellows as the codes describe it: the pack's inside diameter is the tubes'
+/// outside.
+pub fn code_geometry(p: &BellowsParams) -> crate::assessment::formulas::UBellows {
+    crate::assessment::formulas::UBellows {
+        inside_diameter: 2.0 * p.tube_outer_radius(),
+        height: p.height,
+        pitch: p.pitch,
+        ply_thickness: p.ply_thickness,
+        plies: p.plies,
+        convolutions: p.convolutions,
+        torus_radius: p.torus_radius,
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn ejma_rate_of_the_default_joint() {
+        let p = BellowsParams::default();
+        // per 2.5-degree sector with a chart value Cf ~ 1.9: about the paper's 16.16 N/mm
+        let sector = ejma_axial_rate(&p, 1.9) * 2.5 / 360.0;
+        assert!((sector - 16.0).abs() < 2.0, "{sector}");
+    }
 
     #[test]
     fn the_default_joint_meshes_with_the_seed_dimensions() {

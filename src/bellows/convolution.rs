@@ -16,10 +16,11 @@
 //! the bending part of the stress linearised across the wall (`fe::linearize`) at stations all
 //! along the meridian.
 
+use crate::assessment::coefficients::Coefficients;
+use crate::bellows::joint::{stations, Piece};
 use crate::error::{Error, Result};
 use crate::fe::linearize::{linearize, StressSampler};
 use crate::io::reader::ResultsReader;
-use crate::model::bellows::{stations, Piece};
 use crate::model::mesh::{mapped_block, Edge};
 use crate::model::{Component, Kinematics, Material, Model, OutputControls, OutputFields, PrescribedDisplacement, Pressure, Step, SteppingControls};
 use crate::petsc::PetscSession;
@@ -33,14 +34,6 @@ const TP: f64 = 1.0;
 const E: f64 = 200_000.0;
 const NU: f64 = 0.3;
 const PRESSURE: f64 = 0.1;
-
-/// The three coefficients.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Coefficients {
-    pub cp: f64,
-    pub cf: f64,
-    pub cd: f64,
-}
 
 /// The mesh's fineness: elements through the ply and along the meridian per tp.
 #[derive(Clone, Copy, Debug)]

@@ -35,11 +35,7 @@ pub fn mode_picture(reader: &ResultsReader, path: &Path, step: &str, n: u32, mod
         caption: Some(caption.to_string()),
         layers: vec![
             SegmentLayer { label: "base state".into(), segments: state.clone(), width: 1 },
-            SegmentLayer {
-                label: format!("mode {mode} of n = {n}, drawn with its largest amplitude {scale:.2} mm"),
-                segments: outline(factor),
-                width: 2,
-            },
+            SegmentLayer { label: format!("mode {mode} of n = {n}, drawn with its largest amplitude {scale:.2} mm"), segments: outline(factor), width: 2 },
         ],
     };
     outline_picture(path, title, &[panel("theta = 0", scale), panel("theta = 180 degrees", sign * scale)])

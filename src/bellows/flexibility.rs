@@ -15,10 +15,11 @@
 //! run of its own, [`at_rest`]) or the end of the joint's own run (its last general step, the
 //! operating state: [`from_run`]).
 
-use super::finite_element::{stations_of, Peak, PieceStations};
+use super::stations::{stations_of, PieceStations};
+use crate::assessment::fe_check::Peak;
+use crate::bellows::joint::{convolution_pieces, BellowsParams};
 use crate::error::Result;
 use crate::io::reader::ResultsReader;
-use crate::model::bellows::{convolution_pieces, BellowsParams};
 use crate::model::perturbation::{Analysis, HarmonicComponent, HarmonicDisplacement, Perturbation, RingMotion};
 use crate::petsc::PetscSession;
 use crate::records::perturbation::PerturbationAnswer;
@@ -161,7 +162,7 @@ pub fn from_run(p: &BellowsParams, movements: Movements, answers: &[(String, Per
 
 /// The largest |membrane| + |bending| over the crests' and the roots' stations (the pieces at
 /// the tubes left out, as in the code check).
-fn peaks(pieces: &[crate::model::bellows::ConvolutionPiece], stations: &[PieceStations]) -> (Peak, Peak) {
+fn peaks(pieces: &[crate::bellows::joint::ConvolutionPiece], stations: &[PieceStations]) -> (Peak, Peak) {
     let (mut crest, mut root) = (Peak::default(), Peak::default());
     for (piece, stations) in pieces.iter().zip(stations).filter(|(piece, _)| !piece.end) {
         let peak = match piece.label.split(' ').next() {

@@ -18,11 +18,11 @@
 //! exact integral of r ds over a straight line) is the membrane stress: force over area, the
 //! codes' own definition (S3 = P w / (2 tp) is the pressure's force over the metal).
 
+use crate::bellows::joint::{ply_columns, BellowsParams, ConvolutionPiece};
 use crate::element::solid::{compute_solid, SolidInput, NODES};
 use crate::error::{Error, Result};
 use crate::io::reader::ResultsReader;
 use crate::material::{PointState, SurfaceBranch};
-use crate::model::bellows::{ply_columns, BellowsParams, ConvolutionPiece};
 use crate::model::Model;
 use crate::solve::problem::material_kernel;
 use std::collections::HashMap;
