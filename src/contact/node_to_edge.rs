@@ -23,7 +23,6 @@
 
 use crate::ad::{Dual, Scalar};
 use crate::fe::section::Section;
-use crate::fe::shape::line3;
 use nalgebra::{SMatrix, SVector};
 
 pub type EdgeVector = SVector<f64, 8>;
@@ -281,15 +280,11 @@ pub fn edge_residual(xs: [f64; 2], x: &[[f64; 2]; 3], proj: &EdgeProjection, law
     }
 }
 
-/// Shape functions of the master edge at the projection (reaction weights).
-pub fn edge_weights(xi: f64) -> [f64; 3] {
-    line3(xi).0
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::contact::slideline;
+    use crate::fe::shape::line3;
 
     fn flatten(xs: [f64; 2], x: &[[f64; 2]; 3]) -> [f64; 8] {
         [xs[0], xs[1], x[0][0], x[0][1], x[1][0], x[1][1], x[2][0], x[2][1]]

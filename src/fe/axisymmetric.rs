@@ -73,18 +73,6 @@ pub fn small_strain(g: &PointGeometry, u: &[[f64; 2]; 8]) -> [f64; 4] {
     e
 }
 
-/// Column of the strain-displacement matrix B for DOF (node `a`, component `c`):
-/// the strain produced by a unit value of that DOF.
-#[inline]
-pub fn b_column(g: &PointGeometry, a: usize, c: usize) -> [f64; 4] {
-    let [dr, dz] = g.grad[a];
-    if c == 0 {
-        [dr, 0.0, g.n[a] / g.r, dz]
-    } else {
-        [0.0, dz, 0.0, dr]
-    }
-}
-
 /// Von Mises equivalent stress of `[s_rr, s_zz, s_tt, s_rz]`.
 pub fn von_mises(s: &[f64; 4]) -> f64 {
     let [a, b, c, t] = *s;
