@@ -22,7 +22,7 @@ use crate::error::{Error, Result};
 use crate::fe::linearize::{linearize, StressSampler};
 use crate::io::reader::ResultsReader;
 use crate::model::mesh::{mapped_block, Edge};
-use crate::model::{Component, Kinematics, Material, Model, OutputControls, OutputFields, PrescribedDisplacement, Pressure, Step, SteppingControls};
+use crate::model::{Component, Kinematics, Material, Model, OutputControls, OutputFields, PrescribedDisplacement, Pressure, Step};
 use crate::petsc::PetscSession;
 use crate::solve::run;
 use std::f64::consts::PI;
@@ -179,9 +179,7 @@ impl Convolution {
         let crest = nodes_on(&sets.surfaces["top"]);
         sets.node_sets.insert("root".into(), root);
         sets.node_sets.insert("crest".into(), crest);
-        let n = mesh.elements.len();
         let model = Model {
-            mesh,
             node_sets: sets.node_sets,
             element_sets: sets.element_sets,
             surfaces: sets.surfaces,
@@ -194,21 +192,11 @@ impl Convolution {
                 density: 0.0,
                 conductivity: 0.0,
             }],
-            element_material: vec![0; n],
-            element_section: vec![crate::fe::section::Section::Axisymmetric; n],
-            element_integration: vec![crate::fe::quadrature::Integration::Full; n],
-            reference_temperature: crate::model::Temperature::Uniform(20.0),
             kinematics: Kinematics::Small,
-            stepping: SteppingControls::default(),
             output: OutputControls { fields: OutputFields::from_names(&["stress".to_string()])?, ..OutputControls::default() },
-            contacts: Vec::new(),
-            constraints: Vec::new(),
             steps: vec![step],
-            perturbations: Vec::new(),
-            heat_steps: Vec::new(),
             source_text: format!("idealised convolution: C1 = {}, C2 = {}", 2.0 * self.rm / self.w, 1.82 * self.rm / (DM * TP).sqrt()),
-            source_files: Vec::new(),
-            reaction_segment_degrees: None,
+            ..Model::on_mesh(mesh)
         };
         model.validate()?;
         Ok(model)

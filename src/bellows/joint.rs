@@ -16,7 +16,7 @@
 use crate::error::Result;
 use crate::model::mesh::{mapped_block, Edge, Mesh, MeshSets};
 use crate::model::{
-    AugmentedLagrangian, Component, ContactIntegration, ContactPair, Friction, Kinematics, Material, Model, OutputControls, Penalty, Plasticity, Predictor,
+    AugmentedLagrangian, Component, ContactIntegration, ContactPair, Friction, Material, Model, OutputControls, Penalty, Plasticity, Predictor,
     PrescribedDisplacement, Pressure, Step, SteppingControls, Temperature,
 };
 use std::collections::HashMap;
@@ -434,18 +434,11 @@ pub fn model(p: &BellowsParams) -> Result<Model> {
         steps.push(Step::new("return", p.increments, vec![hold("moving_end", Component::Z, 0.0)]));
     }
     let source_text = p.to_toml();
-    let n = mesh.elements.len();
     let model = Model {
-        mesh,
         node_sets: sets.node_sets,
         element_sets: sets.element_sets,
         surfaces: sets.surfaces,
         materials: vec![material],
-        element_material: vec![0; n],
-        element_section: vec![crate::fe::section::Section::Axisymmetric; n],
-        element_integration: vec![crate::fe::quadrature::Integration::Full; n],
-        reference_temperature: Temperature::Uniform(20.0),
-        kinematics: Kinematics::Finite,
         // after a cutback the increment grows back after anything up to 12 Newton iterations
         // (set when the plies took 8-11 per increment; kept, as the cycle studies were measured
         // with it)
@@ -453,13 +446,9 @@ pub fn model(p: &BellowsParams) -> Result<Model> {
         stepping: SteppingControls { easy_iterations: 12, convergence: p.convergence, predictor: Predictor::Extrapolate, ..SteppingControls::default() },
         output: OutputControls { every: p.output_every, precision: p.output_precision, ..OutputControls::default() },
         contacts,
-        constraints: Vec::new(),
         steps,
-        perturbations: Vec::new(),
-        heat_steps: Vec::new(),
         source_text,
-        source_files: Vec::new(),
-        reaction_segment_degrees: None,
+        ..Model::on_mesh(mesh)
     };
     model.validate()?;
     Ok(model)

@@ -510,6 +510,35 @@ pub struct Model {
 }
 
 impl Model {
+    /// A model of `mesh` alone, the rest to fill: no sets, materials, contacts, constraints or
+    /// steps; every element axisymmetric, fully integrated, of material 0; a uniform 20 degC;
+    /// finite kinematics; the default stepping and output controls.
+    pub fn on_mesh(mesh: Mesh) -> Model {
+        let n = mesh.elements.len();
+        Model {
+            mesh,
+            node_sets: BTreeMap::new(),
+            element_sets: BTreeMap::new(),
+            surfaces: BTreeMap::new(),
+            materials: Vec::new(),
+            element_material: vec![0; n],
+            element_section: vec![Section::Axisymmetric; n],
+            element_integration: vec![Integration::Full; n],
+            reference_temperature: Temperature::Uniform(20.0),
+            kinematics: Kinematics::Finite,
+            stepping: SteppingControls::default(),
+            output: OutputControls::default(),
+            contacts: Vec::new(),
+            constraints: Vec::new(),
+            steps: Vec::new(),
+            perturbations: Vec::new(),
+            heat_steps: Vec::new(),
+            source_text: String::new(),
+            source_files: Vec::new(),
+            reaction_segment_degrees: None,
+        }
+    }
+
     /// Whether some element is axisymmetric: forces are then per radian (a plane model's are
     /// over its thickness).
     pub fn is_axisymmetric(&self) -> bool {

@@ -4,7 +4,7 @@
 //! perturbation step's). Then the heat flux at the Gauss points and the heat flowing in
 //! through each held set: the residual K T there.
 
-use super::perturbation::{amplitudes_of, assemble, Amplitude, Block};
+use super::linear_system::{amplitudes_of, assemble, solve_once, Amplitude, Block};
 use crate::dist::Partition;
 use crate::element::conduction::{conduction_matrix, heat_flux};
 use crate::element::solid::NODES;
@@ -12,7 +12,7 @@ use crate::error::{Error, Result};
 use crate::model::heat::HeatStep;
 use crate::model::Model;
 use crate::petsc::sys::PetscInt;
-use crate::petsc::{PetscSession, Snes, VecOps, Vector};
+use crate::petsc::PetscSession;
 use crate::records::heat::{HeatAnswer, HeatFlow};
 use mpi::collective::SystemOperation;
 use mpi::traits::*;
@@ -47,21 +47,12 @@ pub fn solve(session: &PetscSession, model: &Model, partition: &Partition, step:
 
     // K_ff T_f = -K_fp T_p
     let (matrix, rhs) = assemble(session, &blocks, &numbering, local_len)?;
-    let mut b = Vector::mpi(session, session.comm(), local_len)?;
-    b.set_all(0.0)?;
-    let (indices, adds): (Vec<PetscInt>, Vec<f64>) = rhs.into_iter().unzip();
-    b.add_values(&indices, &adds)?;
-    b.assemble()?;
-    let mut t = b.duplicate()?;
-    let mut snes = Snes::new(session)?;
-    if !snes.linear_solve(&matrix, &b, &mut t)? {
-        return Err(Error::NotConverged {
-            step: step.name.clone(),
-            load_factor: 1.0,
-            reason: "the linear solve failed: the conduction matrix is singular (a body that holds no temperature? hold one on each body)".into(),
-        });
-    }
-    let temperature: Vec<f64> = amplitudes_of(&world, partition, &numbering, &offsets, &t.read()?).into_iter().map(|[v]| v).collect();
+    let t = solve_once(session, &matrix, rhs, local_len)?.ok_or_else(|| Error::NotConverged {
+        step: step.name.clone(),
+        load_factor: 1.0,
+        reason: "the linear solve failed: the conduction matrix is singular (a body that holds no temperature? hold one on each body)".into(),
+    })?;
+    let temperature: Vec<f64> = amplitudes_of(&world, partition, &numbering, &offsets, &t).into_iter().map(|[v]| v).collect();
 
     // the heat flowing in at each node: K T, summed over the ranks
     let mut inflow = vec![0.0; nodes];

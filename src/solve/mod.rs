@@ -11,6 +11,7 @@ mod engagement;
 mod held;
 mod kept;
 pub mod layout;
+mod linear_system;
 pub mod modes;
 pub mod pattern;
 pub mod perturbation;

@@ -12,10 +12,8 @@
 //!
 //! The amplitudes a step names are held at zero in the eigenproblem.
 
-use super::perturbation::{
-    amplitudes_of, assemble, current_positions, model_size, number, prescribed_amplitudes, pressure_stiffness_blocks, response, stiffness_blocks, Amplitude,
-    BaseState, Block,
-};
+use super::linear_system::{amplitudes_of, assemble, Amplitude, Block};
+use super::perturbation::{current_positions, model_size, number, prescribed_amplitudes, pressure_stiffness_blocks, response, stiffness_blocks, BaseState};
 use crate::dist::Partition;
 use crate::element::harmonic::{initial_stress_stiffness, ring_factor};
 use crate::element::solid::{NODES, QUADRATURE_POINTS};
