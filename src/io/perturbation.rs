@@ -23,12 +23,7 @@ impl ResultsFile {
         let top = group_in(&self.file, "perturbations", &path)?;
         let g = top.create_group(&p.name).map_err(&err)?;
         g.new_attr::<u32>().create("mode").map_err(&err)?.write_scalar(&p.mode).map_err(&err)?;
-        let procedure = match p.analysis {
-            Analysis::Response => "harmonic",
-            Analysis::Frequency { .. } => "frequency",
-            Analysis::Buckle { .. } => "buckle",
-        };
-        let procedure: hdf5::types::VarLenUnicode = procedure.parse().expect("no NUL");
+        let procedure: hdf5::types::VarLenUnicode = p.analysis.procedure().parse().expect("no NUL");
         g.new_attr::<hdf5::types::VarLenUnicode>().create("procedure").map_err(&err)?.write_scalar(&procedure).map_err(&err)?;
         let slab = (partition.node_offsets[partition.rank], partition.node_offsets[partition.rank + 1]);
         let owned = partition.owned_nodes();

@@ -354,11 +354,7 @@ impl ResultsReader {
             let procedure = g.attr("procedure").and_then(|a| a.read_scalar::<hdf5::types::VarLenUnicode>()).map(|v| v.as_str().to_string()).unwrap_or_default();
             let list = |name: &str| g.dataset(name).and_then(|d| d.read_raw::<f64>()).unwrap_or_default();
             let (eigenvalues, masses) = (list("eigenvalues"), list("effective_mass_ring"));
-            let analysis = match procedure.as_str() {
-                "frequency" => Analysis::Frequency { eigenvalues: eigenvalues.len() },
-                "buckle" => Analysis::Buckle { eigenvalues: eigenvalues.len() },
-                _ => Analysis::Response,
-            };
+            let analysis = Analysis::of_procedure(&procedure, eigenvalues.len()).unwrap_or(Analysis::Response);
             let eigenvalues = eigenvalues.iter().enumerate().map(|(i, &v)| (v, masses.get(i).copied())).collect();
             out.push(StoredPerturbation { name, mode, reactions: sets, analysis, eigenvalues });
         }

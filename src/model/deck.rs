@@ -702,12 +702,10 @@ pub fn parse(text: &str, path: &Path) -> Result<Model> {
             }
             procedure @ ("harmonic" | "frequency" | "buckle") => {
                 let mode = s.mode.ok_or_else(|| Error::input(format!("step '{name}': procedure = \"{procedure}\" needs its mode (mode = n)")))?;
-                let analysis = match (procedure, s.eigenvalues) {
-                    ("harmonic", None) => Analysis::Response,
-                    ("harmonic", Some(_)) => return Err(Error::input(format!("step '{name}': eigenvalues is for procedure = \"frequency\" or \"buckle\""))),
-                    ("frequency", count) => Analysis::Frequency { eigenvalues: count.unwrap_or(1) },
-                    (_, count) => Analysis::Buckle { eigenvalues: count.unwrap_or(1) },
-                };
+                if procedure == "harmonic" && s.eigenvalues.is_some() {
+                    return Err(Error::input(format!("step '{name}': eigenvalues is for procedure = \"frequency\" or \"buckle\"")));
+                }
+                let analysis = Analysis::of_procedure(procedure, s.eigenvalues.unwrap_or(1)).expect("a perturbation procedure");
                 if s.increments.is_some() || s.temperature.is_some() || !s.body_load.is_empty() || !s.contact_friction.is_empty() || !s.force.is_empty() {
                     return Err(Error::input(format!(
                         "step '{name}': a perturbation step has no increments, temperature, body loads, nodal forces or friction changes (it is linear, about the state before)"

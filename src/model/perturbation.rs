@@ -65,6 +65,28 @@ pub enum Analysis {
     Buckle { eigenvalues: usize },
 }
 
+impl Analysis {
+    /// The step's procedure as decks and the results file name it.
+    pub fn procedure(&self) -> &'static str {
+        match self {
+            Analysis::Response => "harmonic",
+            Analysis::Frequency { .. } => "frequency",
+            Analysis::Buckle { .. } => "buckle",
+        }
+    }
+
+    /// The analysis a procedure name stands for, with `eigenvalues` asked of an eigenvalue
+    /// procedure; None for a name that is no perturbation procedure.
+    pub fn of_procedure(procedure: &str, eigenvalues: usize) -> Option<Analysis> {
+        match procedure {
+            "harmonic" => Some(Analysis::Response),
+            "frequency" => Some(Analysis::Frequency { eigenvalues }),
+            "buckle" => Some(Analysis::Buckle { eigenvalues }),
+            _ => None,
+        }
+    }
+}
+
 /// The most eigenvalues a step may ask for.
 pub const MAX_EIGENVALUES: usize = 50;
 

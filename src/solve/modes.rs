@@ -182,7 +182,7 @@ pub fn frequency(
 ) -> Result<PerturbationAnswer> {
     let world = session.world();
     let current = current_positions(model, base);
-    let (stiffness, _) = stiffness_blocks(model, partition, base, &current, step.mode, &step.without_contact, &step.name)?;
+    let (stiffness, _) = stiffness_blocks(model, partition, base, &current, step)?;
     let mass = mass_blocks(model, partition, &current, step.mode)?;
     // a follower pressure's load stiffness is unsymmetric
     let follower = model.kinematics == crate::material::Kinematics::Finite && base.pressures.iter().any(|(_, p)| *p != 0.0);
@@ -238,7 +238,7 @@ pub fn buckle(
         analysis: Analysis::Response,
     };
     let increment = response(session, model, partition, base, &load, true)?;
-    let (stiffness, materials) = stiffness_blocks(model, partition, base, &current, step.mode, &step.without_contact, &step.name)?;
+    let (stiffness, materials) = stiffness_blocks(model, partition, base, &current, step)?;
     // K_D: the stress increment's initial stress, and the step's pressures' load stiffness
     // where they follow the surface; B = -K_D
     let mut load_stiffness: Vec<Block> = materials

@@ -73,18 +73,17 @@ pub(super) fn current_positions(model: &Model, base: &BaseState<'_>) -> Vec<[f64
     (0..mesh.coords.len()).map(|n| [mesh.coords[n][0] + base.displacement[n][0], mesh.coords[n][1] + base.displacement[n][1]]).collect()
 }
 
-/// The stiffness of mode `mode` about `base` on this rank: its elements' material and
+/// The stiffness of `step`'s mode about `base` on this rank: its elements' material and
 /// initial-stress matrices, the base pressures' load stiffness (finite kinematics), the closed
-/// contact nodes of the pairs not in `without_contact`; and each element's material tangent.
+/// contact nodes of the pairs the step does not leave out; and each element's material tangent.
 pub(super) fn stiffness_blocks(
     model: &Model,
     partition: &Partition,
     base: &BaseState<'_>,
     current: &[[f64; 2]],
-    mode: u32,
-    without_contact: &[String],
-    step: &str,
+    step: &Perturbation,
 ) -> Result<(Vec<Block>, Vec<ElementMaterial>)> {
+    let (mode, without_contact, step) = (step.mode, &step.without_contact, &step.name);
     let mesh = &model.mesh;
     let mut blocks: Vec<Block> = Vec::new();
     let mut materials: Vec<ElementMaterial> = Vec::new();
@@ -179,7 +178,7 @@ pub(super) fn response(
     }
     let (amplitude, offsets) = number(partition, &prescribed, &current, step.mode, model_size(&current));
     let local_len = offsets[partition.rank + 1] - offsets[partition.rank];
-    let (blocks, materials) = stiffness_blocks(model, partition, base, &current, step.mode, &step.without_contact, &step.name)?;
+    let (blocks, materials) = stiffness_blocks(model, partition, base, &current, step)?;
 
     // the step's harmonic pressure: p cos n theta, weighed by cos n theta
     let factor = ring_factor(step.mode);
