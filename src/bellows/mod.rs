@@ -14,6 +14,7 @@ pub mod report;
 pub mod stability;
 mod stations;
 pub mod vibration;
+pub mod workflow;
 
 use crate::error::{Error, Result};
 use crate::petsc::PetscSession;

@@ -1,5 +1,9 @@
 //! The command line's grammar: subcommands and their flags, with the help text users read.
 
+pub mod outcome;
+pub mod post;
+pub mod study;
+
 use clap::{Parser, Subcommand};
 use slideline::Error;
 use std::path::PathBuf;
@@ -332,6 +336,26 @@ pub struct BellowsArgs {
 }
 
 impl BellowsArgs {
+    /// The job these flags ask for, with the parameters and movements they give.
+    pub fn job(
+        &self,
+        params: slideline::bellows::joint::BellowsParams,
+        movements: Option<slideline::bellows::flexibility::Movements>,
+    ) -> slideline::bellows::workflow::BellowsJob {
+        slideline::bellows::workflow::BellowsJob {
+            params,
+            movements,
+            output: self.output.clone(),
+            quiet: self.quiet,
+            verbose: self.verbose,
+            monitor: self.monitor,
+            restart: self.restart.clone().map(|file| slideline::io::restart::RestartFrom { file, increment: self.increment }),
+            squirm: self.squirm,
+            assess: self.assess,
+            frequencies: self.frequencies,
+        }
+    }
+
     /// The movements of the flexibility perturbations (`--lateral`, `--angular`), if any, for
     /// joint `p`: what the codes' beam analogy and a linear perturbation describe, an offset up
     /// to the convoluted length and a rotation up to 45 degrees, nonzero.

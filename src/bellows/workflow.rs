@@ -1,0 +1,250 @@
+//! The `slideline bellows` command's work, in order: the code check and the analyses of the
+//! joint at rest the flags ask for ([`before_the_run`]), the elastic-plastic run with the
+//! perturbation steps about its end ([`run`]), then the closing table, the sections after it
+//! and the pictures ([`report`]); and `--mesh-only`'s mesh ([`write_mesh`]).
+
+use super::flexibility::{Flexibility, Movements};
+use super::joint::BellowsParams;
+use super::report::BellowsReport;
+use super::stability::{Stability, SQUIRM};
+use super::vibration::{Frequencies, LATERAL_MODES};
+use crate::assessment::code::{CodeCheck, Duty, Source};
+use crate::assessment::coefficients::Coefficients;
+use crate::assessment::fe_check::FeCheck;
+use crate::dist::Partition;
+use crate::error::Result;
+use crate::io::plots::{outline_picture, Panel, SegmentLayer};
+use crate::io::reader::ResultsReader;
+use crate::io::restart::RestartFrom;
+use crate::io::ResultsFile;
+use crate::petsc::PetscSession;
+use crate::solve::affinity::partition_affinity;
+use crate::solve::{RunOptions, RunSummary};
+use mpi::traits::Communicator;
+use std::path::{Path, PathBuf};
+
+/// What a `slideline bellows` command asks for, its flags checked.
+pub struct BellowsJob {
+    pub params: BellowsParams,
+    /// The flexibility's movements (`--lateral`, `--angular`), if any.
+    pub movements: Option<Movements>,
+    pub output: PathBuf,
+    pub quiet: bool,
+    pub verbose: bool,
+    pub monitor: bool,
+    pub restart: Option<RestartFrom>,
+    pub squirm: bool,
+    pub assess: bool,
+    pub frequencies: bool,
+}
+
+/// What the analyses before the main run found, for its report: the code check, the
+/// finite-element assessment, and the flexibility, stability and natural frequencies of the
+/// joint at rest.
+pub struct BeforeTheRun {
+    pub code: Option<CodeCheck>,
+    pub fe: Option<FeCheck>,
+    pub rest: Option<(Movements, Flexibility)>,
+    pub stable: Option<Stability>,
+    pub vibrating: Option<Frequencies>,
+}
+
+/// `OUTPUT_name.png` beside the output.
+pub fn picture_path(output: &Path, name: &str) -> PathBuf {
+    let stem = output.file_stem().unwrap_or_default().to_string_lossy();
+    output.with_file_name(format!("{stem}_{name}.png"))
+}
+
+/// The bellows' code check (EJMA): the design pressure and the whole stroke, with the chart
+/// coefficients given (`--coefficients`) or computed for its convolution (collective).
+pub fn code_check(session: &PetscSession, params: &BellowsParams) -> Result<CodeCheck> {
+    let geometry = super::joint::code_geometry(params);
+    let (coefficients, source) = match params.coefficients {
+        Some([cp, cf, cd]) => (Coefficients { cp, cf, cd }, Source::Given),
+        None => (super::convolution::compute(session, geometry.c1(), geometry.c2(), Default::default())?, Source::Computed),
+    };
+    let p = params;
+    let duty =
+        Duty { pressure: p.pressure, stroke: p.displacement.abs(), modulus: p.youngs_modulus, yield_stress: p.yield_stress, tangent_length: p.tangent_length };
+    Ok(CodeCheck::new(&geometry, coefficients, source, duty))
+}
+
+/// The code check (a note where it cannot be made) and the analyses of the joint at rest the
+/// job asks for, each announced (collective).
+pub fn before_the_run(session: &PetscSession, job: &BellowsJob) -> Result<BeforeTheRun> {
+    let params = &job.params;
+    let root = session.world().rank() == 0;
+    // the code check, with the chart coefficients given or computed for the joint's own
+    // convolution
+    let code = code_check(session, params);
+    if let (true, Err(e)) = (root, &code) {
+        println!("note: no code check: {e}");
+    }
+    let code = code.ok();
+    let announce = |what: &str| {
+        if root && !job.quiet {
+            println!("{what} ...");
+        }
+    };
+    // the instability pressures of the joint at rest (for --squirm and --assess, once)
+    let stable = (job.squirm || job.assess)
+        .then(|| {
+            announce("stability: the joint at rest and its buckling analyses");
+            // the squirm's mode at rest, pictured from the rest run's file (rank 0; a picture
+            // that fails is a note: the other ranks go on)
+            let picture = picture_path(&job.output, "squirm_mode");
+            super::stability::at_rest(session, params, |file, s| {
+                if let (true, true, Some(p)) = (root, job.squirm, s.squirm) {
+                    let title = format!("the joint's squirm at rest, {p:.1} MPa: its column buckling mode (n = 1)");
+                    let drawn = ResultsReader::open(file).and_then(|r| super::report::mode_picture(&r, &picture, SQUIRM, 1, 1, &title));
+                    if let Err(e) = drawn {
+                        println!("note: no picture of the squirm's mode: {e}");
+                    }
+                }
+            })
+        })
+        .transpose()?;
+    let vibrating = job
+        .frequencies
+        .then(|| {
+            announce("natural frequencies: the joint at rest and its frequency analyses");
+            super::vibration::at_rest(session, params)
+        })
+        .transpose()?;
+    // the finite-element side of the assessment, and the flexibility of the joint at rest
+    let fe = stable.as_ref().filter(|_| job.assess).map(|s| {
+        announce("assessment: linear elastic analyses of the design pressure and of the stroke");
+        super::finite_element::analyse(session, params, s)
+    });
+    let rest = job.movements.map(|m| {
+        announce("flexibility: the joint at rest and its harmonic perturbations");
+        super::flexibility::at_rest(session, params, m).map(|f| (m, f))
+    });
+    let (fe, rest) = (fe.transpose()?, rest.transpose()?);
+    // the stability section is --squirm's
+    let stable = stable.filter(|_| job.squirm);
+    if let (true, false, Some(c)) = (root, job.quiet, &code) {
+        let k = c.coefficients;
+        println!(
+            "bellows: {} plies x {} mm, {} convolutions, pitch {}, height {}; EJMA axial rate {:.1} N/mm full ring, {:.2} N/mm per 2.5-degree sector (C1 = {:.3}, C2 = {:.3}: Cp {:.3}, Cf {:.3}, Cd {:.3} {})",
+            params.plies, params.ply_thickness, params.convolutions, params.pitch, params.height, c.axial_rate, c.axial_rate * 2.5 / 360.0, c.c1, c.c2, k.cp, k.cf, k.cd, c.source.label()
+        );
+    }
+    Ok(BeforeTheRun { code, fe, rest, stable, vibrating })
+}
+
+/// The elastic-plastic run of the joint, with the perturbation steps the flags ask for about
+/// its end (collective).
+pub fn run(session: &PetscSession, job: &BellowsJob) -> Result<RunSummary> {
+    let params = &job.params;
+    let mut m = super::joint::model(params)?;
+    // the same perturbations about the run's end state
+    if let Some(movements) = job.movements {
+        m.perturbations = super::flexibility::steps(params, movements);
+    }
+    // the axial rate's step is shared by the flexibility's, the stability's and the
+    // frequencies'
+    let stability = job.squirm.then(|| super::stability::steps(params));
+    let vibration = job.frequencies.then(|| super::vibration::steps(params));
+    for more in stability.into_iter().chain(vibration) {
+        let have: Vec<String> = m.perturbations.iter().map(|s| s.name.clone()).collect();
+        m.perturbations.extend(more.into_iter().filter(|s| !have.contains(&s.name)));
+    }
+    m.validate()?;
+    crate::solve::run(
+        session,
+        &m,
+        &RunOptions { output: job.output.clone(), progress: !job.quiet, verbose: job.verbose, monitor: job.monitor, restart: job.restart.clone() },
+    )
+}
+
+/// The bellows closing table (slideline beside the paper) and the pictures, from the results
+/// file (rank 0, after the run).
+pub fn report(job: &BellowsJob, before: &BeforeTheRun, summary: &RunSummary) -> Result<()> {
+    let (params, output) = (&job.params, job.output.as_path());
+    let BeforeTheRun { code, fe, rest, stable, vibrating } = before;
+    let (code, fe, rest, stable, vibrating) = (code.as_ref(), fe.as_ref(), rest.as_ref(), stable.as_ref(), vibrating.as_ref());
+    let reader = ResultsReader::open(output)?;
+    let life = match fe {
+        Some(_) => super::finite_element::strain_life(&reader, params.youngs_modulus)?,
+        None => None,
+    };
+    // a restart from a finished run's end writes no increment of its own: its fields are in
+    // the file it continued
+    let fields = !reader.increments()?.is_empty();
+    let report = fields.then(|| BellowsReport::new(params, code.cloned(), summary, &reader)).transpose()?;
+    match &report {
+        Some(report) => println!("\n{}", report.table()),
+        None => println!("\nno increment in this run: the closing table is the continued file's (`slideline post` it)"),
+    }
+    if let (Some(c), Some(f)) = (code, fe) {
+        println!("{}", super::report::assessment_section(c, f, life.as_ref()));
+    }
+    // the tables after the closing one, kept in the file for `slideline post FILE`
+    let mut tables: Vec<(&str, String)> = Vec::new();
+    if let Some((movements, at_rest)) = rest {
+        let operating = super::flexibility::from_run(params, *movements, &summary.perturbations, &reader)?;
+        tables.push(("flexibility", super::report::flexibility_section(params, code, *movements, at_rest, Some(&operating))));
+    }
+    // the pictures of modes: the squirm's at rest (drawn from the rest run's file), the first
+    // lateral mode's about the run's end
+    let mut pictures: Vec<PathBuf> = Vec::new();
+    if let Some(at_rest) = stable {
+        let operating = super::stability::from_answers(&summary.perturbations)?;
+        tables.push(("stability", super::report::stability_section(params, code, at_rest, &operating)));
+        pictures.extend(at_rest.squirm.map(|_| picture_path(output, "squirm_mode")));
+    }
+    if let Some(at_rest) = vibrating {
+        let operating = super::vibration::from_answers(params, &summary.perturbations)?;
+        tables.push(("frequencies", super::report::frequencies_section(params, at_rest, &operating)));
+        if let Some(m) = operating.lateral {
+            let path = picture_path(output, &format!("{LATERAL_MODES}_mode"));
+            let title = format!("the joint's first lateral mode (n = 1) about the end of the run, {:.1} Hz", m.frequency);
+            super::report::mode_picture(&reader, &path, LATERAL_MODES, 1, 1, &title)?;
+            pictures.push(path);
+        }
+    }
+    for (_, table) in &tables {
+        println!("{table}");
+    }
+    for path in pictures {
+        println!("picture: {}", path.display());
+    }
+    for (path, what) in report.map(|r| r.pictures(output, &reader)).transpose()?.into_iter().flatten() {
+        println!("picture: {} ({what})", path.display());
+    }
+    drop(reader);
+    // the code check and the tables beside the run's results (the file is closed: rank 0 alone
+    // opens it)
+    crate::io::assessment::write_tables(output, &tables)?;
+    if let Some(c) = code {
+        crate::io::assessment::write(output, c)?;
+    }
+    fe.map_or(Ok(()), |f| crate::io::assessment::write_finite_element(output, f, life.as_ref()))
+}
+
+/// `--mesh-only`: the joint's mesh and sets as Gmsh 4.1 (OUTPUT with .msh) and as a results
+/// file without increments (OUTPUT: /mesh with its sets, the layout of every results file).
+pub fn write_mesh(session: &PetscSession, params: &BellowsParams, output: &Path) -> Result<()> {
+    let msh = output.with_extension("msh");
+    let (mesh, sets) = super::joint::mesh(params)?;
+    let root = session.world().rank() == 0;
+    if root {
+        crate::model::gmsh::write(&mesh, &sets, &msh)?;
+    }
+    let m = super::joint::model(params)?;
+    let partition = Partition::new(session, &m.mesh, &partition_affinity(&m))?;
+    drop(ResultsFile::create(output, session, &m, &partition)?);
+    if root {
+        println!("mesh written to {} and {}", msh.display(), output.display());
+        // where the pressure acts, to check the load before a run
+        let picture = picture_path(output, "wetted");
+        let layers = vec![
+            SegmentLayer { label: "boundary".into(), segments: mesh.edge_segments(&mesh.free_edges()), width: 1 },
+            SegmentLayer { label: format!("wetted: {} MPa", params.pressure), segments: mesh.edge_segments(&sets.surfaces["wetted"]), width: 4 },
+        ];
+        outline_picture(&picture, "bellows joint: the faces the pressure acts on (meridian section)", &[Panel { caption: None, layers }])?;
+        println!("picture: {}", picture.display());
+    }
+    Ok(())
+}

@@ -1,0 +1,60 @@
+//! `slideline penalty-study` and `slideline coefficients`: the studies the command line runs.
+
+use super::StudyArgs;
+use mpi::traits::Communicator;
+use slideline::assessment::coefficients::Coefficients;
+use slideline::petsc::PetscSession;
+use slideline::Error;
+use std::path::PathBuf;
+
+/// `slideline penalty-study`: the study spec for the bellows or a deck, then the runs.
+pub fn penalty_study(session: &PetscSession, args: &StudyArgs) -> Result<(), Error> {
+    use slideline::study::{parse_penalties, StudySpec, Subject};
+    let penalties = parse_penalties(&args.penalties, args.per_decade)?;
+    let mut bellows = slideline::bellows::joint::BellowsParams::default();
+    if args.quick {
+        bellows = bellows.quick();
+    }
+    bellows.increments = args.increments.unwrap_or(bellows.increments);
+    bellows.displacement = args.displacement.unwrap_or(bellows.displacement);
+    bellows.validate()?;
+    let subject = match &args.deck {
+        // a TOML or an .inp deck, as `slideline run` reads it
+        Some(d) => {
+            let (model, notes) = slideline::preprocess::prepared_deck(d)?;
+            if session.world().rank() == 0 && !args.quiet {
+                notes.iter().for_each(|note| println!("note: {note}"));
+            }
+            Subject::Deck(model)
+        }
+        None => Subject::Bellows(bellows),
+    };
+    let measures = subject.measures(args.reaction.clone())?;
+    let spec = StudySpec {
+        subject,
+        penalties,
+        dimensionless: args.dimensionless,
+        augmented: args.augmented,
+        measures,
+        tolerance: args.tolerance,
+        output: args.output.clone(),
+        progress: !args.quiet,
+    };
+    slideline::study::penalty_study(session, &spec).map(|_| ())
+}
+
+/// Each coefficient against C2, a curve per C1 (the codes' charts): PREFIX_cp.png, ...
+pub fn coefficient_charts(prefix: &std::path::Path, table: &[(f64, f64, Coefficients)]) -> Result<(), Error> {
+    use slideline::io::plots::{line_plot, Axes, Curve};
+    let mut c1s: Vec<f64> = table.iter().map(|t| t.0).collect();
+    c1s.dedup();
+    for (name, pick) in [("cp", (|c: &Coefficients| c.cp) as fn(&Coefficients) -> f64), ("cf", |c| c.cf), ("cd", |c| c.cd)] {
+        let curves: Vec<Curve> =
+            c1s.iter().map(|&a| Curve { label: format!("C1 = {a}"), points: table.iter().filter(|t| t.0 == a).map(|t| (t.1, pick(&t.2))).collect() }).collect();
+        let path = PathBuf::from(format!("{}_{name}.png", prefix.display()));
+        let title = format!("C{} of the idealised U-shaped convolution (computed)", &name[1..]);
+        line_plot(&path, &title, "C2 = 1.82 rm / sqrt(Dm tp)", &format!("C{}", &name[1..]), &curves, &[], Axes::FromOrigin)?;
+        println!("picture: {}", path.display());
+    }
+    Ok(())
+}
