@@ -95,38 +95,7 @@ fn main() -> ExitCode {
                 Ok(s) => s,
                 Err(e) => return fail(&e, launched_as_rank_zero()),
             };
-            let root = session.world().rank() == 0;
-            let fineness = slideline::bellows::convolution::Fineness { through, per_thickness };
-            // every point and the mesh checked before any analysis
-            let checked = fineness.checked().and_then(|_| {
-                c1.iter()
-                    .flat_map(|&a| c2.iter().map(move |&b| (a, b)))
-                    .try_for_each(|(a, b)| slideline::bellows::convolution::check_chart_point(a, b, fineness))
-            });
-            if let Err(e) = checked {
-                return fail(&e, root);
-            }
-            if root {
-                println!("chart coefficients of the idealised U-shaped convolution (computed):\n      C1       C2       Cp       Cf       Cd");
-            }
-            let mut table = Vec::new();
-            for &a in &c1 {
-                for &b in &c2 {
-                    match slideline::bellows::convolution::compute(&session, a, b, fineness) {
-                        Ok(c) => {
-                            if root {
-                                println!("{a:>8.4} {b:>8.4} {:>8.4} {:>8.4} {:>8.4}", c.cp, c.cf, c.cd);
-                            }
-                            table.push((a, b, c));
-                        }
-                        Err(e) => return fail(&e, root),
-                    }
-                }
-            }
-            match plot.filter(|_| root).map(|prefix| cli::study::coefficient_charts(&prefix, &table)) {
-                Some(Err(e)) => fail(&e, true),
-                _ => ExitCode::SUCCESS,
-            }
+            cli::study::coefficients(&session, &c1, &c2, slideline::bellows::convolution::Fineness { through, per_thickness }, plot)
         }
         Command::Post(args) => match cli::post::post(&args) {
             Ok(()) => ExitCode::SUCCESS,

@@ -1,11 +1,13 @@
 //! `slideline penalty-study` and `slideline coefficients`: the studies the command line runs.
 
+use super::outcome::fail;
 use super::StudyArgs;
 use mpi::traits::Communicator;
 use slideline::assessment::coefficients::Coefficients;
 use slideline::petsc::PetscSession;
 use slideline::Error;
 use std::path::PathBuf;
+use std::process::ExitCode;
 
 /// `slideline penalty-study`: the study spec for the bellows or a deck, then the runs.
 pub fn penalty_study(session: &PetscSession, args: &StudyArgs) -> Result<(), Error> {
@@ -57,4 +59,38 @@ pub fn coefficient_charts(prefix: &std::path::Path, table: &[(f64, f64, Coeffici
         println!("picture: {}", path.display());
     }
     Ok(())
+}
+
+/// `slideline coefficients`: every chart point (C1 x C2) checked, then each computed and printed
+/// (collective), and the charts drawn at `plot` (rank 0).
+pub fn coefficients(session: &PetscSession, c1: &[f64], c2: &[f64], fineness: slideline::bellows::convolution::Fineness, plot: Option<PathBuf>) -> ExitCode {
+    let root = session.world().rank() == 0;
+    // every point and the mesh checked before any analysis
+    let checked = fineness.checked().and_then(|_| {
+        c1.iter().flat_map(|&a| c2.iter().map(move |&b| (a, b))).try_for_each(|(a, b)| slideline::bellows::convolution::check_chart_point(a, b, fineness))
+    });
+    if let Err(e) = checked {
+        return fail(&e, root);
+    }
+    if root {
+        println!("chart coefficients of the idealised U-shaped convolution (computed):\n      C1       C2       Cp       Cf       Cd");
+    }
+    let mut table = Vec::new();
+    for &a in c1 {
+        for &b in c2 {
+            match slideline::bellows::convolution::compute(session, a, b, fineness) {
+                Ok(c) => {
+                    if root {
+                        println!("{a:>8.4} {b:>8.4} {:>8.4} {:>8.4} {:>8.4}", c.cp, c.cf, c.cd);
+                    }
+                    table.push((a, b, c));
+                }
+                Err(e) => return fail(&e, root),
+            }
+        }
+    }
+    match plot.filter(|_| root).map(|prefix| coefficient_charts(&prefix, &table)) {
+        Some(Err(e)) => fail(&e, true),
+        _ => ExitCode::SUCCESS,
+    }
 }
