@@ -93,6 +93,26 @@ for c in cycles(modules) or [["none"]]:
         for b in sorted(modules[a] & set(c)):
             why = sorted(f"{x} -> {y}" for x, ys in edges.items() if top(x) == a for y in ys if top(y) == b)
             print(f"     {a} -> {b}: {', '.join(why[:6])}{' ...' if len(why) > 6 else ''}")
+# the layers (docs/code.md), lowest first: a module imports only from its own layer or below
+LAYERS = [
+    ["error", "output_path", "ad"],
+    ["fe", "material", "element"],
+    ["model"],
+    ["contact"],
+    ["records", "assessment"],
+    ["petsc", "dist"],
+    ["io"],
+    ["solve", "preprocess"],
+    ["bellows", "post", "study"],
+    ["main", "cli", "lib"],
+]
+level = {m: k for k, layer in enumerate(LAYERS) for m in layer}
+print("imports against the layers (docs/code.md):")
+upward = sorted(f"{a} -> {b}" for a, bs in modules.items() for b in bs if level.get(a, 99) < level.get(b, 99))
+unplaced = sorted({top(m) for m in files} - set(level))
+print("\n".join("  " + u for u in upward) or "  none")
+if unplaced:
+    print("  modules in no layer: " + ", ".join(unplaced))
 print("import circles between files:")
 for c in cycles(edges):
     print(f"  ({len(c)}) " + ", ".join(c))

@@ -8,6 +8,7 @@ pub mod contact;
 mod contact_surfaces;
 pub mod energy;
 mod engagement;
+mod general_step;
 mod held;
 mod kept;
 pub mod layout;

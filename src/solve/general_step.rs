@@ -1,0 +1,575 @@
+//! The general (static) step's driver: a step's load ramped in adaptive increments, one SNES
+//! solve per attempt, a failed attempt cut back and retried from the last converged state, each
+//! converged increment recorded (history row, energy audit, fields and restart state).
+//!
+//! Each step asks for `increments` equal increments of its load factor (a step reversing the
+//! previous one's prescribed motion starts at a quarter of one). An attempt that does not
+//! converge (any negative SNES reason: divergence, line-search failure, NaN, an inverted element
+//! or any other domain error; or a runaway, see `runaway`) is cut back by `cutback_factor` and
+//! retried from the last converged state; after an easy increment the size grows by
+//! `growth_factor`, never past the requested size. Below `min_increment` the run stops with
+//! every converged increment in the results file.
+
+use super::attempt::{predict, solve_increment};
+use super::energy::EnergyAudit;
+use super::held;
+use super::perturbation::KeptBase;
+use super::problem::{LoadState, Problem, StepStart};
+use super::resume::{Carried, ResumeAt};
+use super::schedule::StepLoads;
+use crate::dist::{DofMap, Partition};
+use crate::element::solid::ElementEnergy;
+use crate::error::{Error, Result};
+use crate::io::progress::Progress;
+use crate::io::restart::CommittedState;
+use crate::io::status::StatusFile;
+use crate::io::{ContactSummary, HistoryRow, ResultsFile};
+use crate::material::PointState;
+use crate::model::{Convergence, Model, Predictor, Step};
+use crate::petsc::{FieldRatios, Matrix, PetscSession, Snes, SolveReport, VecOps, Vector};
+use crate::records::energy::Energies;
+use crate::records::increment_fields::IncrementFields;
+use crate::records::last_increment::LastIncrement;
+use mpi::collective::SystemOperation;
+use mpi::datatype::PartitionMut;
+use mpi::traits::*;
+use std::path::Path;
+use std::time::Instant;
+
+/// A step reversing the previous one's prescribed motion starts at this fraction of a
+/// requested increment (the joint's unloading: its first increments undo the plastic flow).
+const REVERSAL_START: f64 = 0.25;
+
+/// The general steps' run: what every step shares (the session, the model, the output) and
+/// what one step hands the next (the state carried, the perturbations' base).
+pub(super) struct GeneralSteps<'a, 's> {
+    pub session: &'s PetscSession,
+    pub model: &'a Model,
+    pub partition: &'a Partition,
+    /// The results file's path, and whether each Newton iteration is printed.
+    pub output: &'a Path,
+    pub monitor: bool,
+    pub progress: &'a Progress,
+    pub status: &'a mut Option<StatusFile>,
+    pub results: &'a mut ResultsFile,
+    pub start: Instant,
+    pub carried: Carried,
+    pub reserved_couplings: usize,
+    pub pattern_refits: usize,
+    /// The perturbation steps' base state: the end of the last general step.
+    pub base: Option<KeptBase>,
+}
+
+/// One step under way: its loads and unknowns, the solver's objects, where its load factor
+/// stands and the next attempt's size.
+struct StepState<'s, 'm> {
+    s: usize,
+    step: &'m Step,
+    loads: StepLoads,
+    prescribed: Vec<[bool; 2]>,
+    dofs: DofMap,
+    x: Vector<'s>,
+    residual: Vector<'s>,
+    correction: Vector<'s>,
+    problem: Problem<'s, 'm>,
+    jacobian: Matrix<'s>,
+    snes: Snes<'s>,
+    requested: f64,
+    lambda: f64,
+    size: f64,
+    increment: usize,
+    cutbacks: usize,
+    /// Once an attempt has failed, the step's remaining solves search with `l2` (see
+    /// Snes::search_after_failure); a restart finds that in the step's history.
+    failed_in_step: bool,
+    /// The step's last converged increment (the extrapolation's), and whether its displacement
+    /// is in this file (a restart there reads it; otherwise the state keeps it).
+    last: Option<LastIncrement>,
+    last_in_file: bool,
+}
+
+impl<'a, 's> GeneralSteps<'a, 's> {
+    /// Runs general step `s` to its end, from `resumed_here` for a restart inside it
+    /// (collective).
+    pub fn step(&mut self, s: usize, resumed_here: Option<ResumeAt>) -> Result<()> {
+        let mut st = self.begin(s, resumed_here)?;
+        let (model, partition, world) = (self.model, self.partition, self.session.world());
+        let controls = model.stepping;
+        let model_size = model.mesh.largest_extent();
+        while st.lambda < 1.0 {
+            // land exactly on 1 rather than leave a sliver
+            let target = if st.lambda + st.size > 1.0 - 1e-9 * st.requested { 1.0 } else { st.lambda + st.size };
+            st.problem.set_load(st.loads.at(model, target));
+            // only where prescribed DOFs move, as the tangent predictor: under a constant load
+            // the last increment's response need not go on (a shrink fit's is all in its first);
+            // and not in a step that has failed an attempt (the tangent predictor follows a
+            // changing contact better)
+            let start_load = st.loads.at(model, st.lambda);
+            let moving = st.problem.load().prescribed != start_load.prescribed;
+            // a free DOF may follow the prescribed motion: the runaway check allows for it
+            let prescribed_motion =
+                st.problem.load().prescribed.iter().zip(&start_load.prescribed).flat_map(|(a, b)| [a[0] - b[0], a[1] - b[1]]).fold(0.0, |m, d| d.abs().max(m));
+            let extrapolated = match (controls.predictor, &st.last) {
+                (Predictor::Extrapolate, Some(last)) if moving && !st.failed_in_step => Some(last.extrapolate(&self.carried.displacement, target - st.lambda)),
+                _ => None,
+            };
+            set_free_values(&mut st.x, &st.dofs, partition, extrapolated.as_deref().unwrap_or(&self.carried.displacement))?;
+            st.snes.mark_increment_start(&st.x)?;
+            if controls.predictor == Predictor::Tangent || (controls.predictor == Predictor::Extrapolate && extrapolated.is_none()) {
+                predict(&world, &mut st.snes, &mut st.problem, start_load, &mut st.x, &mut st.residual, &mut st.jacobian, &mut st.correction)?;
+            }
+            // rtol 1e-10: with quadratic convergence it costs at most one iteration more than
+            // PETSc's 1e-8; where round-off stops the residual first (a small increment, large
+            // displacements, a stiff penalty), the problem's round-off floor ends the solve
+            // (see NonlinearProblem::roundoff_squares). -snes_rtol / -snes_atol override.
+            st.snes.set_tolerances(None, Some(1e-10), Some(controls.max_newton_iterations))?;
+            st.snes.search_after_failure(st.failed_in_step)?;
+            let (mut report, augmentations) = solve_increment(&world, model, &mut st.snes, &mut st.problem, &mut st.x, &mut st.residual, &mut st.jacobian)?;
+            if report.converged() {
+                if let Some(why) = runaway(&st.x, &mut st.correction, (&st.dofs, partition, &self.carried.displacement), model_size + prescribed_motion)? {
+                    report.refuse(why);
+                }
+            }
+            if !report.converged() {
+                self.cut_back(&mut st, target, &report)?;
+                continue;
+            }
+            self.record(&mut st, target, report, augmentations)?;
+        }
+        self.end(st)
+    }
+
+    /// Sets step `s` up: its loads, unknowns and solver, the load factor it starts from, and
+    /// the contact at its start (an interference fit's overlap, bodies only open contact holds).
+    fn begin(&mut self, s: usize, resumed_here: Option<ResumeAt>) -> Result<StepState<'s, 'a>> {
+        let (session, model, partition) = (self.session, self.model, self.partition);
+        let (world, comm) = (session.world(), session.comm());
+        let root = world.rank() == 0;
+        let controls = model.stepping;
+        let step = &model.steps[s];
+        let loads = StepLoads::new(model, s, self.carried.previous.as_ref(), resumed_here.as_ref().map_or(&self.carried.displacement, |r| &r.step_start));
+        let prescribed = loads.prescribed_mask(model);
+        // a constraint released at the step's start lets go of its reaction at once
+        self.carried.audit.release(&prescribed);
+        let dofs = DofMap::new(partition, &prescribed)?;
+        let mut x = Vector::mpi(session, comm, dofs.local_len())?;
+        let residual = x.duplicate()?;
+        let correction = x.duplicate()?;
+        // every contact coupling found so far is in the new step's pattern (each Jacobian
+        // synchronises the pattern across ranks, so the carried one is complete)
+        let mut problem = Problem::new(
+            session,
+            model,
+            partition,
+            &dofs,
+            &x,
+            StepStart { step: s, history: std::mem::take(&mut self.carried.history), contact: self.carried.carry.take() },
+        )?;
+        let jacobian = problem.jacobian_matrix()?;
+        let mut snes = Snes::new(session)?;
+        snes.set_field_test((controls.convergence == Convergence::Field).then(FieldRatios::default));
+        snes.set_monitor(self.monitor);
+        if resumed_here.is_some() {
+            // the field test's time average over the step's increments before the restart
+            snes.restore_force_average(self.carried.rows.iter().filter(|r| r.step == s + 1).map(|r| r.average_force));
+        }
+        let failed_before_restart = resumed_here.is_some() && self.carried.rows.iter().any(|r| r.step == s + 1 && r.cutbacks > 0);
+
+        let requested = 1.0 / step.increments as f64;
+        let (lambda, size, increment, cutbacks) = match &resumed_here {
+            Some(r) => (r.load_factor, r.size.min(requested), r.increment, 0usize),
+            None => (0.0f64, requested * if loads.reverses(self.carried.previous.as_ref()) { REVERSAL_START } else { 1.0 }, 0usize, 0usize),
+        };
+        if problem.contact.is_some() {
+            // the contact at the step's start: overlaps in the undeformed mesh (a shrink fit)
+            // are the energy audit's input, and a body only open contact holds is worth a warning
+            problem.set_load(loads.at(model, lambda));
+            set_free_values(&mut x, &dofs, partition, &self.carried.displacement)?;
+            problem.evaluate_fields(&x)?;
+            if s == 0 && resumed_here.is_none() {
+                let local = problem.contact.as_ref().map_or(0.0, |c| {
+                    let e = c.energies();
+                    e[0] + e[1]
+                });
+                let mut total = 0.0;
+                world.all_reduce_into(&local, &mut total, SystemOperation::sum());
+                self.carried.audit.starts_overlapping = total > 0.0;
+            }
+            for hold in held::open_holds(&world, model, &problem, &prescribed) {
+                let text = format!(
+                    "warning: step '{}': {hold}; close the gap in the mesh or with the pair's adjust, or prescribe its uz in an earlier step",
+                    step.name
+                );
+                if root {
+                    eprintln!("{text}");
+                }
+                if let Some(status) = self.status.as_mut() {
+                    status.note(&text);
+                }
+            }
+        }
+        // once an attempt has failed, the step's remaining solves search with `l2` (see
+        // Snes::search_after_failure); a restart finds that in the step's history
+        let failed_in_step = failed_before_restart;
+        // the step's last converged increment (the extrapolation's), and whether its
+        // displacement is in this file (a restart there reads it; otherwise the state keeps it)
+        let last = resumed_here.as_ref().and_then(|r| r.last_increment.clone());
+        // (a restart point always has its field: the restart reads it from the file continued)
+        let last_in_file = resumed_here.is_some();
+        Ok(StepState {
+            s,
+            step,
+            loads,
+            prescribed,
+            dofs,
+            x,
+            residual,
+            correction,
+            problem,
+            jacobian,
+            snes,
+            requested,
+            lambda,
+            size,
+            increment,
+            cutbacks,
+            failed_in_step,
+            last,
+            last_in_file,
+        })
+    }
+
+    /// After a failed attempt at `target`: the increment cut back (a note of it), or the run
+    /// stopped with the reason when a smaller one cannot help.
+    fn cut_back(&mut self, st: &mut StepState<'s, 'a>, target: f64, report: &SolveReport) -> Result<()> {
+        let (model, partition, world) = (self.model, self.partition, self.session.world());
+        let controls = model.stepping;
+        let (s, step) = (st.s, st.step);
+        st.problem.reset();
+        st.failed_in_step = true;
+        st.cutbacks += 1;
+        st.size = (target - st.lambda) * controls.cutback_factor;
+        self.progress.note(&format!(
+            "step {}/{} {:<10} cutback at lambda {target:.6}: {}, {} Newton its; retry {:.3e}",
+            s + 1,
+            model.steps.len(),
+            step.name,
+            report.describe(),
+            report.newton_iterations,
+            st.size
+        ));
+        if let Some(status) = self.status.as_mut() {
+            status.note(&format!("step {} cutback at lambda {target:.6} ({} after {} Newton iterations)", s + 1, report.describe(), report.newton_iterations));
+        }
+        if st.size < controls.min_increment || !report.retry_may_help() {
+            let stop = if report.retry_may_help() { "the increment would fall below min_increment" } else { "a smaller increment cannot help" };
+            if let Some(status) = self.status.as_mut() {
+                status.note(&format!("stopped: {stop}"));
+            }
+            let stop = if report.retry_may_help() { format!("{stop} = {:e}", controls.min_increment) } else { stop.to_string() };
+            // why, where it is a body nothing holds at the last converged state
+            st.problem.set_load(st.loads.at(model, st.lambda));
+            set_free_values(&mut st.x, &st.dofs, partition, &self.carried.displacement)?;
+            st.problem.evaluate_fields(&st.x)?;
+            let why: String =
+                held::open_holds(&world, model, &st.problem, &st.prescribed).iter().map(|h| format!("; at the last converged state {h}")).collect();
+            return Err(Error::NotConverged {
+                step: step.name.clone(),
+                load_factor: target,
+                reason: format!(
+                    "{} after {} Newton iterations, and {stop}{why}; the {} converged increments before are in {}",
+                    report.describe(),
+                    report.newton_iterations,
+                    self.results.increments_written(),
+                    self.output.display()
+                ),
+            });
+        }
+        Ok(())
+    }
+
+    /// The converged increment at `target`: committed, its history row and energy audit, its
+    /// fields and restart state written (when the output asks), the next attempt's size.
+    fn record(&mut self, st: &mut StepState<'s, 'a>, target: f64, report: SolveReport, augmentations: usize) -> Result<()> {
+        let (model, partition, world) = (self.model, self.partition, self.session.world());
+        let controls = model.stepping;
+        let nodes = model.mesh.coords.len();
+        let (s, step) = (st.s, st.step);
+        let done = target - st.lambda;
+        st.lambda = target;
+        st.increment += 1;
+        let output = st.problem.stages.output;
+        let fields = output.run(|| st.problem.evaluate_fields(&st.x))??;
+        st.problem.commit();
+        let owned = owned_displacement(&st.x, &st.dofs, partition, &st.problem.load().prescribed)?;
+        // the extrapolating predictor's increment (kept only for it)
+        let before = (controls.predictor == Predictor::Extrapolate).then(|| self.carried.displacement.clone());
+        gather_displacement(&world, partition, &owned, &mut self.carried.displacement);
+        st.last = before.map(|before| LastIncrement::between(&before, &self.carried.displacement, done));
+        let mut force = vec![0.0; 2 * nodes];
+        let local: Vec<f64> = fields.nodal_force.iter().flatten().copied().collect();
+        world.all_reduce_into(&local[..], &mut force[..], SystemOperation::sum());
+        let local_max_ep = fields.plastic_strain.iter().flatten().fold(0.0f64, |m, &v| m.max(v));
+        let mut max_ep = 0.0;
+        world.all_reduce_into(&local_max_ep, &mut max_ep, SystemOperation::max());
+        if let Some(contact) = st.problem.contact.as_mut() {
+            let local = contact.nodal_forces();
+            let mut total = vec![0.0; local.len()];
+            world.all_reduce_into(&local[..], &mut total[..], SystemOperation::sum());
+            contact.recover_tractions(&total);
+        }
+        // only the end of the last general step is the perturbations' base (a run that stops
+        // before it returns before them): no copy at every increment
+        if !model.perturbations.is_empty() && s + 1 == model.steps.len() && st.lambda >= 1.0 {
+            self.base = Some(keep_base(model, &mut st.problem, &fields));
+        }
+        let contacts = contact_summaries(&world, model, &st.problem);
+        let load_now = st.loads.at(model, st.lambda);
+        let energy =
+            audit_increment(&world, model, &mut self.carried.audit, &st.problem, &fields, &force, &st.prescribed, &self.carried.displacement, &load_now);
+        let reactions = st
+            .loads
+            .constrained_sets
+            .iter()
+            .map(|set| (set.clone(), model.node_sets[set].iter().fold([0.0; 2], |acc, &n| [acc[0] + force[2 * n], acc[1] + force[2 * n + 1]])))
+            .collect();
+        let set_displacements = st
+            .loads
+            .constrained_sets
+            .iter()
+            .map(|set| {
+                let nodes = &model.node_sets[set];
+                let sum = nodes.iter().fold([0.0; 2], |acc, &n| [acc[0] + self.carried.displacement[n][0], acc[1] + self.carried.displacement[n][1]]);
+                (set.clone(), sum.map(|s| s / nodes.len().max(1) as f64))
+            })
+            .collect();
+        let row = HistoryRow {
+            number: self.carried.rows.len() + 1,
+            step: s + 1,
+            increment: st.increment,
+            load_factor: st.lambda,
+            time: match step.time_span {
+                Some([start, end]) => start + st.lambda * (end - start),
+                None => s as f64 + st.lambda,
+            },
+            newton_iterations: report.newton_iterations,
+            linear_iterations: report.linear_iterations,
+            residual_norm: report.residual_norms.last().copied().unwrap_or(f64::NAN),
+            residual_norms: report.residual_norms.clone(),
+            average_force: st.snes.accept_increment(),
+            cutbacks: st.cutbacks,
+            augmentations,
+            max_plastic_strain: max_ep,
+            contacts,
+            wall_time: self.carried.wall_before + self.start.elapsed().as_secs_f64(),
+            reactions,
+            set_displacements,
+            energy: Some(energy),
+        };
+        // the next attempt's size: kept after a hard increment, grown after an easy one
+        st.size = if report.newton_iterations <= controls.easy_iterations { (done * controls.growth_factor).min(st.requested) } else { done };
+        let with_fields = !step.without_field_output && model.output.writes_fields(row.number, st.lambda >= 1.0);
+        let fresh_pattern = match (with_fields, st.problem.contact.as_mut()) {
+            (true, Some(c)) => c.pattern_mut().take_fresh(),
+            _ => Vec::new(),
+        };
+        let contact_output = st.problem.contact.as_ref().map(|c| c.pass_outputs()).unwrap_or_default();
+        let (strain, plastic_strain_tensor) =
+            if with_fields { st.problem.strain_fields(&self.carried.displacement, &fields.thickness_stretch) } else { Default::default() };
+        let reaction: Vec<[f64; 2]> =
+            partition.owned_nodes().iter().map(|&n| std::array::from_fn(|c| if st.prescribed[n][c] { force[2 * n + c] } else { 0.0 })).collect();
+        let increment_fields = IncrementFields {
+            displacement: &owned,
+            stress: &fields.stress,
+            plastic_strain: &fields.plastic_strain,
+            strain: &strain,
+            plastic_strain_tensor: &plastic_strain_tensor,
+            reaction: &reaction,
+            temperature: &load_now.temperature,
+            contact: &contact_output,
+        };
+        let state = with_fields.then(|| {
+            let (multipliers, slip, refits) =
+                st.problem.contact.as_ref().map_or((Vec::new(), Vec::new(), 0), |c| (c.committed_by_node(), c.slip_by_node(), c.pattern().refits));
+            CommittedState {
+                mesh: &model.mesh,
+                history: st.problem.committed_history(),
+                local_elements: partition.local_elements(),
+                initial: PointState::initial(model.kinematics),
+                multipliers,
+                slip,
+                fresh_pattern,
+                next_size: st.size,
+                // the extrapolation's increment, unless the previous increment's field has it
+                predictor_increment: (st.increment > 1 && !st.last_in_file).then(|| st.last.as_ref().map(|l| l.displacement.as_slice())).flatten(),
+                audit: &self.carried.audit.last,
+                thermal_by_node: model.has_temperature_field(),
+                refits,
+            }
+        });
+        let written = state.as_ref().map(|state| (&increment_fields, state));
+        stop_all_on_write_error(&world, self.output, output.run(|| self.results.write_increment(&step.name, &row, written, partition))?)?;
+        st.last_in_file = with_fields;
+        if let Some(status) = self.status.as_mut() {
+            status.record(&row);
+        }
+        self.progress.increment(&row, &step.name, model.steps.len(), !model.is_axisymmetric());
+        self.carried.rows.push(row);
+        st.cutbacks = 0;
+        Ok(())
+    }
+
+    /// The step's end: the perturbations' base where a restart converged no increment, and what
+    /// the next step takes over.
+    fn end(&mut self, mut st: StepState<'s, 'a>) -> Result<()> {
+        let (model, partition, world) = (self.model, self.partition, self.session.world());
+        let s = st.s;
+        // a restart from the last step's end converges no increment: the state it resumes is
+        // the perturbations' base
+        if self.base.is_none() && !model.perturbations.is_empty() && s + 1 == model.steps.len() && st.lambda >= 1.0 {
+            st.problem.set_load(st.loads.at(model, st.lambda));
+            set_free_values(&mut st.x, &st.dofs, partition, &self.carried.displacement)?;
+            let fields = st.problem.evaluate_fields(&st.x)?;
+            self.base = Some(keep_base(model, &mut st.problem, &fields));
+        }
+        (self.carried.history, self.carried.carry) = st.problem.into_history();
+        // couplings are reserved per rank (each for its own engagements): report the sum
+        let (local, refits) = self.carried.carry.as_ref().map_or((0, 0), |c| (c.pattern.len() as u64, c.pattern.refits));
+        let mut total = 0u64;
+        world.all_reduce_into(&local, &mut total, SystemOperation::sum());
+        (self.reserved_couplings, self.pattern_refits) = (total as usize, refits);
+        self.carried.previous = Some(st.loads);
+        Ok(())
+    }
+}
+
+/// The energy audit's record of a converged increment (collective: the element and contact
+/// energies and the pressure loads are summed over the ranks).
+#[allow(clippy::too_many_arguments)]
+pub(super) fn audit_increment(
+    world: &impl Communicator,
+    model: &Model,
+    audit: &mut EnergyAudit,
+    problem: &Problem<'_, '_>,
+    fields: &super::problem::ElementFields,
+    residual: &[f64],
+    prescribed: &[[bool; 2]],
+    displacement: &[[f64; 2]],
+    load: &LoadState,
+) -> Energies {
+    let local: Vec<f64> = fields.pressure_force.iter().flatten().copied().collect();
+    let mut pressure = vec![0.0; local.len()];
+    world.all_reduce_into(&local[..], &mut pressure[..], SystemOperation::sum());
+    let e = fields.energy;
+    let contact = problem.contact.as_ref().map_or([0.0; 3], |c| c.energies());
+    let local = [e.elastic, e.plastic_work, contact[0], contact[1], contact[2]];
+    let mut total = [0.0; 5];
+    world.all_reduce_into(&local[..], &mut total[..], SystemOperation::sum());
+    let mut thermal_force = vec![0.0; fields.thermal_force.len()];
+    world.all_reduce_into(&fields.thermal_force[..], &mut thermal_force[..], SystemOperation::sum());
+    let elements = ElementEnergy { elastic: total[0], plastic_work: total[1] };
+    let temperature = load.temperature.nodal(model.mesh.coords.len());
+    audit.record(residual, prescribed, &pressure, displacement, elements, [total[2], total[3], total[4]], &thermal_force, &temperature)
+}
+
+/// Per pair, over all ranks: active slave nodes, largest penetration, total normal force.
+pub(super) fn contact_summaries(world: &impl Communicator, model: &Model, problem: &Problem<'_, '_>) -> Vec<ContactSummary> {
+    let Some(contact) = problem.contact.as_ref() else { return Vec::new() };
+    contact
+        .pair_summaries(model)
+        .into_iter()
+        .zip(&model.contacts)
+        .map(|((active, penetration, force), pair)| {
+            let (mut a, mut p, mut f) = (0.0, 0.0, 0.0);
+            world.all_reduce_into(&active, &mut a, SystemOperation::sum());
+            world.all_reduce_into(&penetration, &mut p, SystemOperation::max());
+            world.all_reduce_into(&force, &mut f, SystemOperation::sum());
+            ContactSummary { name: pair.name.clone(), active_nodes: a as usize, max_penetration: p, normal_force: f }
+        })
+        .collect()
+}
+
+/// All ranks' owned displacements into the replicated array (model node order).
+pub(super) fn gather_displacement(world: &impl Communicator, partition: &Partition, owned: &[[f64; 2]], displacement: &mut [[f64; 2]]) {
+    let counts: Vec<i32> = (0..partition.size).map(|r| 2 * (partition.node_offsets[r + 1] - partition.node_offsets[r]) as i32).collect();
+    let displs: Vec<i32> = partition.node_offsets[..partition.size].iter().map(|&o| 2 * o as i32).collect();
+    let flat: Vec<f64> = owned.iter().flatten().copied().collect();
+    let mut all = vec![0.0; 2 * displacement.len()];
+    world.all_gather_varcount_into(&flat[..], &mut PartitionMut::new(&mut all[..], counts, displs));
+    for (k, &n) in partition.node_order.iter().enumerate() {
+        displacement[n] = [all[2 * k], all[2 * k + 1]];
+    }
+}
+
+/// Runs every step of `model` on the session's ranks, writing `options.output` as it goes.
+/// What the perturbation steps need of the converged state `problem` is in, whose fields are
+/// `fields`: this rank's stress and plastic strain, the pressures, the closed contact nodes.
+pub(super) fn keep_base(model: &Model, problem: &mut Problem<'_, '_>, fields: &super::kept::ElementFields) -> super::perturbation::KeptBase {
+    super::perturbation::KeptBase {
+        stress: fields.stress.clone(),
+        plastic_strain: fields.plastic_strain.clone(),
+        pressures: problem.load().pressures.clone(),
+        contacts: problem.contact.as_mut().map(|c| c.base_contacts(model)).unwrap_or_default(),
+    }
+}
+
+/// Displacement of this rank's owned nodes (partition order): solved values and prescribed ones.
+pub(super) fn owned_displacement(x: &Vector<'_>, dofs: &DofMap, partition: &Partition, prescribed: &[[f64; 2]]) -> Result<Vec<[f64; 2]>> {
+    let first = dofs.first() as i32;
+    let a = x.read()?;
+    Ok(partition
+        .owned_nodes()
+        .iter()
+        .map(|&n| std::array::from_fn(|c| if dofs.dof[n][c] >= 0 { a[(dofs.dof[n][c] - first) as usize] } else { prescribed[n][c] }))
+        .collect())
+}
+
+/// Why a converged solve has run away, if it has: its free displacements moved further in the
+/// increment than `size` (mm: the model's own size and the prescribed motion). Past a limit
+/// load a perfectly plastic mechanism (or a body nothing holds) moves without bound at a
+/// near-constant residual, and a relative convergence test can then pass at an absurd state
+/// (3e9 mm, measured on a thick cylinder at its collapse pressure). `work` is overwritten.
+/// Collective.
+pub(super) fn runaway(
+    x: &Vector<'_>,
+    work: &mut Vector<'_>,
+    (dofs, partition, converged): (&DofMap, &Partition, &[[f64; 2]]),
+    size: f64,
+) -> Result<Option<String>> {
+    set_free_values(work, dofs, partition, converged)?;
+    work.axpy(-1.0, x)?;
+    let moved = work.norm_max()?;
+    Ok((moved > size).then(|| {
+        format!("a runaway: the free displacements moved {moved:.3e} mm in the increment, more than the model's size and the prescribed motion ({size:.3e} mm)")
+    }))
+}
+
+/// Puts the current displacement of this rank's free DOFs into `x` (the initial guess).
+pub(super) fn set_free_values(x: &mut Vector<'_>, dofs: &DofMap, partition: &Partition, displacement: &[[f64; 2]]) -> Result<()> {
+    let first = dofs.first() as i32;
+    let mut a = x.write()?;
+    for &n in partition.owned_nodes() {
+        for (c, &d) in dofs.dof[n].iter().enumerate() {
+            if d >= 0 {
+                a[(d - first) as usize] = displacement[n][c];
+            }
+        }
+    }
+    Ok(())
+}
+
+/// A write that failed on one rank (a full disk, a vanished directory) leaves the others
+/// waiting inside HDF5's collective calls: the rank that met it prints the error and stops every
+/// rank (MPI_Abort). The increments completed before are on disk, each flushed and marked.
+pub(super) fn stop_all_on_write_error<T>(world: &impl Communicator, output: &std::path::Path, result: Result<T>) -> Result<T> {
+    match result {
+        Err(e @ Error::Output { .. }) if world.size() > 1 => {
+            eprintln!("error: {e}; every rank stops (the increments completed before are in the file)");
+            // the abort runs no destructor: the lock goes first, whichever rank holds it (a
+            // file that stays locked would refuse the next run into it)
+            let _ = std::fs::remove_file(crate::io::lock::lock_path(output));
+            world.abort(1)
+        }
+        other => other,
+    }
+}
