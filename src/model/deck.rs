@@ -77,16 +77,14 @@
 //!                                   # tangential_penalty / elastic_slip as in [[contact]])
 //! ```
 
+mod steps;
+
 use super::constraint::{default_tie_tolerance, tie};
-use super::heat::{HeatStep, HeldTemperature};
 use super::mesh::{blocks, rectangle, split_into_triangles, Block, MeshSets};
-use super::perturbation::{Analysis, HarmonicComponent, HarmonicDisplacement, Perturbation, RingMotion};
 use super::{
-    default_capture_distance, gmsh, Adjust, AugmentedLagrangian, BodyLoad, Component, ContactIntegration, ContactPair, Convergence, Friction, FrictionChange,
-    Kinematics, Material, Model, NodalForce, OutputControls, OutputFields, Penalty, Plasticity, Precision, Predictor, PrescribedDisplacement, Pressure, Step,
-    SteppingControls, Temperature,
+    default_capture_distance, gmsh, Adjust, AugmentedLagrangian, ContactIntegration, ContactPair, Convergence, Friction, Kinematics, Material, Model,
+    OutputControls, OutputFields, Penalty, Plasticity, Precision, Predictor, Pressure, SteppingControls, Temperature,
 };
-use crate::element::body_load::BodyForce;
 use crate::error::{Error, Result};
 use crate::fe::quadrature::Integration;
 use crate::fe::section::Section;
@@ -204,39 +202,6 @@ struct AugmentedSpec {
 
 fn ten() -> usize {
     10
-}
-
-/// A `procedure = "heat"` step: `temperature = [{ set = ..., value = ... }, ...]` holds those
-/// sets' temperatures; nothing else belongs in it.
-fn heat_step(s: &StepSpec, name: &str) -> Result<HeatStep> {
-    let mechanical = [
-        ("mode", s.mode.is_some()),
-        ("without_contact", s.without_contact.is_some()),
-        ("eigenvalues", s.eigenvalues.is_some()),
-        ("increments", s.increments.is_some()),
-        ("boundary", !s.boundary.is_empty()),
-        ("pressure", !s.pressure.is_empty()),
-        ("force", !s.force.is_empty()),
-        ("body_load", !s.body_load.is_empty()),
-        ("contact_friction", !s.contact_friction.is_empty()),
-    ];
-    if let Some((key, _)) = mechanical.iter().find(|(_, given)| *given) {
-        return Err(Error::input(format!("step '{name}': {key} has no meaning in a heat step (it holds temperatures alone)")));
-    }
-    let held = |t: &SetTemperatureSpec| {
-        let set =
-            t.set.clone().ok_or_else(|| Error::input(format!("step '{name}': a heat step's temperature entries each name their node set (set = ...)")))?;
-        Ok(HeldTemperature { node_set: set, value: t.value })
-    };
-    let temperatures = match &s.temperature {
-        Some(TemperatureSpec::Sets(sets)) => sets.iter().map(held).collect::<Result<Vec<_>>>()?,
-        _ => {
-            return Err(Error::input(format!(
-                "step '{name}': a heat step holds temperatures on node sets: temperature = [{{ set = \"...\", value = ... }}, ...]"
-            )))
-        }
-    };
-    Ok(HeatStep { name: name.to_string(), temperatures })
 }
 
 fn default_reference_temperature() -> TemperatureSpec {
@@ -525,6 +490,72 @@ fn toml_error(path: &Path, text: &str, e: &toml::de::Error) -> Error {
 }
 
 /// Reads and validates a deck file.
+/// The deck's materials, by name, each checked.
+fn materials(deck: &DeckFile, path: &Path) -> Result<Vec<Material>> {
+    let mut materials = Vec::new();
+    for m in &deck.material {
+        if materials.iter().any(|x: &Material| x.name == m.name) {
+            return Err(Error::input(format!("material '{}' is defined twice", m.name)));
+        }
+        let plasticity = match (m.model, m.yield_stress) {
+            (MaterialKind::Elastic, None) if m.hardening_modulus.is_none() => None,
+            (MaterialKind::Elastic, _) => return Err(Error::input(format!("material '{}': yield_stress and hardening_modulus need model = \"j2\"", m.name))),
+            (MaterialKind::J2, None) => return Err(Error::input(format!("material '{}': model = \"j2\" needs yield_stress (MPa)", m.name))),
+            (MaterialKind::J2, Some(yield_stress)) => Some(Plasticity::linear(yield_stress, m.hardening_modulus.unwrap_or(0.0))),
+        };
+        // a heat deck needs no elastic constants: NaN marks them unused (`validate` skips them)
+        let heat = deck.step.iter().any(|s| s.procedure.as_deref() == Some("heat"));
+        let elastic = |value: Option<f64>, key: &str| match (value, heat) {
+            (Some(v), _) => Ok(v),
+            (None, true) => Ok(f64::NAN),
+            (None, false) => Err(Error::input(format!("material '{}': missing {key}", m.name))),
+        };
+        materials.push(Material {
+            name: m.name.clone(),
+            youngs_modulus: elastic(m.youngs_modulus, "youngs_modulus (MPa)")?,
+            poissons_ratio: elastic(m.poissons_ratio, "poissons_ratio")?,
+            thermal_expansion: m.thermal_expansion,
+            plasticity,
+            density: m.density,
+            conductivity: m.conductivity.unwrap_or(0.0),
+        });
+    }
+    if materials.is_empty() {
+        return Err(Error::input(format!("{}: no [[material]] defined", path.display())));
+    }
+    Ok(materials)
+}
+
+/// Each element's material (an index into `materials`), from the sections (the one material
+/// everywhere without any).
+fn element_materials(
+    deck: &DeckFile,
+    materials: &[Material],
+    mesh: &super::Mesh,
+    element_sets: &std::collections::BTreeMap<String, Vec<usize>>,
+) -> Result<Vec<usize>> {
+    let mut element_material = vec![usize::MAX; mesh.elements.len()];
+    if deck.section.is_empty() && materials.len() == 1 {
+        element_material.fill(0);
+    }
+    for s in &deck.section {
+        let mat = materials
+            .iter()
+            .position(|m| m.name == s.material)
+            .ok_or_else(|| Error::input(format!("section on '{}': unknown material '{}'", s.elements, s.material)))?;
+        let elems = element_sets.get(&s.elements).ok_or_else(|| {
+            Error::input(format!("section: unknown element set '{}' (known: {})", s.elements, element_sets.keys().cloned().collect::<Vec<_>>().join(", ")))
+        })?;
+        for &e in elems {
+            element_material[e] = mat;
+        }
+    }
+    if let Some(e) = element_material.iter().position(|&m| m == usize::MAX) {
+        return Err(Error::input(format!("element {} has no material: add a [[section]] covering it", mesh.element_ids[e])));
+    }
+    Ok(element_material)
+}
+
 pub fn read(path: &Path) -> Result<Model> {
     let text = std::fs::read_to_string(path).map_err(|source| Error::Read { path: path.to_path_buf(), source })?;
     parse(&text, path)
@@ -561,57 +592,8 @@ pub fn parse(text: &str, path: &Path) -> Result<Model> {
     };
     let MeshSets { node_sets, element_sets, surfaces } = sets;
 
-    let mut materials = Vec::new();
-    for m in &deck.material {
-        if materials.iter().any(|x: &Material| x.name == m.name) {
-            return Err(Error::input(format!("material '{}' is defined twice", m.name)));
-        }
-        let plasticity = match (m.model, m.yield_stress) {
-            (MaterialKind::Elastic, None) if m.hardening_modulus.is_none() => None,
-            (MaterialKind::Elastic, _) => return Err(Error::input(format!("material '{}': yield_stress and hardening_modulus need model = \"j2\"", m.name))),
-            (MaterialKind::J2, None) => return Err(Error::input(format!("material '{}': model = \"j2\" needs yield_stress (MPa)", m.name))),
-            (MaterialKind::J2, Some(yield_stress)) => Some(Plasticity::linear(yield_stress, m.hardening_modulus.unwrap_or(0.0))),
-        };
-        // a heat deck needs no elastic constants: NaN marks them unused (`validate` skips them)
-        let heat = deck.step.iter().any(|s| s.procedure.as_deref() == Some("heat"));
-        let elastic = |value: Option<f64>, key: &str| match (value, heat) {
-            (Some(v), _) => Ok(v),
-            (None, true) => Ok(f64::NAN),
-            (None, false) => Err(Error::input(format!("material '{}': missing {key}", m.name))),
-        };
-        materials.push(Material {
-            name: m.name.clone(),
-            youngs_modulus: elastic(m.youngs_modulus, "youngs_modulus (MPa)")?,
-            poissons_ratio: elastic(m.poissons_ratio, "poissons_ratio")?,
-            thermal_expansion: m.thermal_expansion,
-            plasticity,
-            density: m.density,
-            conductivity: m.conductivity.unwrap_or(0.0),
-        });
-    }
-    if materials.is_empty() {
-        return Err(Error::input(format!("{}: no [[material]] defined", path.display())));
-    }
-
-    let mut element_material = vec![usize::MAX; mesh.elements.len()];
-    if deck.section.is_empty() && materials.len() == 1 {
-        element_material.fill(0);
-    }
-    for s in &deck.section {
-        let mat = materials
-            .iter()
-            .position(|m| m.name == s.material)
-            .ok_or_else(|| Error::input(format!("section on '{}': unknown material '{}'", s.elements, s.material)))?;
-        let elems = element_sets.get(&s.elements).ok_or_else(|| {
-            Error::input(format!("section: unknown element set '{}' (known: {})", s.elements, element_sets.keys().cloned().collect::<Vec<_>>().join(", ")))
-        })?;
-        for &e in elems {
-            element_material[e] = mat;
-        }
-    }
-    if let Some(e) = element_material.iter().position(|&m| m == usize::MAX) {
-        return Err(Error::input(format!("element {} has no material: add a [[section]] covering it", mesh.element_ids[e])));
-    }
+    let materials = materials(&deck, path)?;
+    let element_material = element_materials(&deck, &materials, &mesh, &element_sets)?;
 
     let reference_temperature = deck.reference_temperature.field(&mesh, &node_sets, None, "reference_temperature")?;
     let mut temperature_now = reference_temperature.clone();
@@ -625,129 +607,13 @@ pub fn parse(text: &str, path: &Path) -> Result<Model> {
                 if !perturbations.is_empty() {
                     return Err(Error::input(format!("step '{name}': a general step after a perturbation step (perturbation steps come last)")));
                 }
-                if let Some(mode) = s.mode {
-                    return Err(Error::input(format!(
-                        "step '{name}': mode = {mode} is for the perturbation procedures (\"harmonic\", \"frequency\", \"buckle\")"
-                    )));
-                }
-                if s.without_contact.is_some() || s.eigenvalues.is_some() {
-                    return Err(Error::input(format!("step '{name}': without_contact and eigenvalues are for the perturbation procedures")));
-                }
-                let mut displacements = Vec::new();
-                for b in &s.boundary {
-                    if let Some(key) =
-                        [("ut", b.ut), ("lateral", b.lateral), ("rotation", b.rotation), ("pivot", b.pivot)].iter().find(|(_, v)| v.is_some()).map(|(k, _)| k)
-                    {
-                        return Err(Error::input(format!("step '{name}': boundary on '{}': {key} is for procedure = \"harmonic\"", b.set)));
-                    }
-                    if b.ur.is_none() && b.uz.is_none() {
-                        return Err(Error::input(format!("step '{name}': boundary on '{}' sets neither ur nor uz", b.set)));
-                    }
-                    for (component, value) in [(Component::R, b.ur), (Component::Z, b.uz)] {
-                        if let Some(value) = value {
-                            displacements.push(PrescribedDisplacement { node_set: b.set.clone(), component, value });
-                        }
-                    }
-                }
-                let mut nodal_forces = Vec::new();
-                for f in &s.force {
-                    let nodes = node_sets.get(&f.set).ok_or_else(|| Error::input(format!("step '{name}': force on an unknown node set '{}'", f.set)))?;
-                    if f.fr.is_none() && f.fz.is_none() {
-                        return Err(Error::input(format!("step '{name}': force on '{}' gives neither fr nor fz (N around the ring)", f.set)));
-                    }
-                    // the whole ring's force, kept per radian (a plane model's force as it is)
-                    let per = if plane { 1.0 } else { std::f64::consts::TAU };
-                    for (component, ring) in [(Component::R, f.fr), (Component::Z, f.fz)] {
-                        let Some(ring) = ring else { continue };
-                        nodal_forces.extend(nodes.iter().map(|&node| NodalForce { node, component, value: ring / per }));
-                    }
-                }
-                let mut body_loads = Vec::new();
-                for b in &s.body_load {
-                    let force = match (b.gravity, b.spin) {
-                        (Some(g), None) => BodyForce::Gravity(g),
-                        (None, Some(omega)) => BodyForce::Spin(omega * omega),
-                        _ => return Err(Error::input(format!("step '{name}': body_load on '{}': give one of gravity (mm/s^2) or spin (rad/s)", b.elements))),
-                    };
-                    body_loads.push(BodyLoad { elements: b.elements.clone(), force });
-                }
-                let increments = s.increments.unwrap_or(1);
-                let temperature =
-                    s.temperature.as_ref().map(|t| t.field(&mesh, &node_sets, Some(&temperature_now), &format!("step '{name}': temperature"))).transpose()?;
-                if let Some(t) = &temperature {
-                    temperature_now = t.clone();
-                }
-                let friction_changes = s
-                    .contact_friction
-                    .iter()
-                    .map(|c| {
-                        let friction = Friction::from_values(&c.pair, Some(c.friction), c.tangential_penalty, c.elastic_slip)
-                            .map_err(|e| Error::input(format!("step '{name}': contact_friction: {e}")))?;
-                        Ok(FrictionChange { pair: c.pair.clone(), friction })
-                    })
-                    .collect::<Result<Vec<_>>>()?;
-                steps.push(Step {
-                    name,
-                    increments,
-                    displacements,
-                    pressures,
-                    temperature,
-                    time_span: None,
-                    body_loads,
-                    release_constraints: false,
-                    without_field_output: false,
-                    friction_changes,
-                    nodal_forces,
-                });
+                steps.push(steps::general(s, name, pressures, &mesh, &node_sets, plane, &mut temperature_now)?);
             }
-            procedure @ ("harmonic" | "frequency" | "buckle") => {
-                let mode = s.mode.ok_or_else(|| Error::input(format!("step '{name}': procedure = \"{procedure}\" needs its mode (mode = n)")))?;
-                if procedure == "harmonic" && s.eigenvalues.is_some() {
-                    return Err(Error::input(format!("step '{name}': eigenvalues is for procedure = \"frequency\" or \"buckle\"")));
-                }
-                let analysis = Analysis::of_procedure(procedure, s.eigenvalues.unwrap_or(1)).expect("a perturbation procedure");
-                if s.increments.is_some() || s.temperature.is_some() || !s.body_load.is_empty() || !s.contact_friction.is_empty() || !s.force.is_empty() {
-                    return Err(Error::input(format!(
-                        "step '{name}': a perturbation step has no increments, temperature, body loads, nodal forces or friction changes (it is linear, about the state before)"
-                    )));
-                }
-                let (mut displacements, mut rings) = (Vec::new(), Vec::new());
-                for b in &s.boundary {
-                    let set = b.set.clone();
-                    let amplitudes = [(HarmonicComponent::R, b.ur), (HarmonicComponent::Z, b.uz), (HarmonicComponent::T, b.ut)];
-                    let ring = b.lateral.is_some() || b.rotation.is_some() || b.pivot.is_some();
-                    if ring && amplitudes.iter().any(|(_, v)| v.is_some()) {
-                        return Err(Error::input(format!(
-                            "step '{name}': boundary on '{set}': lateral and rotation move the ring rigidly; give them or ur, uz, ut, not both"
-                        )));
-                    }
-                    if ring {
-                        rings.push(RingMotion { node_set: set, lateral: b.lateral.unwrap_or(0.0), rotation: b.rotation.unwrap_or(0.0), pivot: b.pivot });
-                        continue;
-                    }
-                    if amplitudes.iter().all(|(_, v)| v.is_none()) {
-                        return Err(Error::input(format!("step '{name}': boundary on '{set}' sets none of ur, uz, ut, lateral, rotation")));
-                    }
-                    for (component, value) in amplitudes {
-                        if let Some(value) = value {
-                            displacements.push(HarmonicDisplacement { node_set: set.clone(), component, value });
-                        }
-                    }
-                }
-                perturbations.push(Perturbation {
-                    name,
-                    mode,
-                    displacements,
-                    rings,
-                    pressures,
-                    without_contact: s.without_contact.clone().unwrap_or_default(),
-                    analysis,
-                });
-            }
+            procedure @ ("harmonic" | "frequency" | "buckle") => perturbations.push(steps::perturbation(s, name, pressures, procedure)?),
             "heat" if !steps.is_empty() || !perturbations.is_empty() => {
                 return Err(Error::input(format!("step '{name}': a heat step after a general or perturbation step (heat steps come first)")))
             }
-            "heat" => heat_steps.push(heat_step(s, &name)?),
+            "heat" => heat_steps.push(steps::heat(s, &name)?),
             other => {
                 return Err(Error::input(format!(
                     "step '{name}': procedure {other:?} is not one of \"static\", \"harmonic\", \"frequency\", \"buckle\", \"heat\""
