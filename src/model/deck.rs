@@ -490,6 +490,27 @@ fn toml_error(path: &Path, text: &str, e: &toml::de::Error) -> Error {
 }
 
 /// Reads and validates a deck file.
+/// The deck's ties as linear constraints, each tying at least one node.
+fn ties(deck: &DeckFile, mesh: &super::Mesh, surfaces: &std::collections::BTreeMap<String, Vec<super::Edge>>) -> Result<Vec<super::constraint::Constraint>> {
+    let mut constraints = Vec::new();
+    for t in &deck.tie {
+        let name = t.name.clone().unwrap_or_else(|| format!("{}-{}", t.slave, t.master));
+        let edges = |s: &String| surfaces.get(s).map(|v| v.as_slice()).ok_or_else(|| Error::input(format!("tie '{name}': unknown surface '{s}'")));
+        let (slave, master) = (edges(&t.slave)?, edges(&t.master)?);
+        let tolerance = match t.tolerance {
+            Some(v) if v > 0.0 && v.is_finite() => v,
+            Some(v) => return Err(Error::input(format!("tie '{name}': tolerance {v}: give a distance > 0 (mm)"))),
+            None => default_tie_tolerance(mesh, master),
+        };
+        let (tied, count, _) = tie(mesh, &vec![deck.section()?; mesh.elements.len()], &name, slave, master, tolerance);
+        if count == 0 {
+            return Err(Error::input(format!("tie '{name}': no node of '{}' lies within {tolerance:.3e} mm of '{}'", t.slave, t.master)));
+        }
+        constraints.extend(tied);
+    }
+    Ok(constraints)
+}
+
 /// The deck's materials, by name, each checked.
 fn materials(deck: &DeckFile, path: &Path) -> Result<Vec<Material>> {
     let mut materials = Vec::new();
@@ -669,22 +690,7 @@ pub fn parse(text: &str, path: &Path) -> Result<Model> {
             slave_nodes: None,
         });
     }
-    let mut constraints = Vec::new();
-    for t in &deck.tie {
-        let name = t.name.clone().unwrap_or_else(|| format!("{}-{}", t.slave, t.master));
-        let edges = |s: &String| surfaces.get(s).map(|v| v.as_slice()).ok_or_else(|| Error::input(format!("tie '{name}': unknown surface '{s}'")));
-        let (slave, master) = (edges(&t.slave)?, edges(&t.master)?);
-        let tolerance = match t.tolerance {
-            Some(v) if v > 0.0 && v.is_finite() => v,
-            Some(v) => return Err(Error::input(format!("tie '{name}': tolerance {v}: give a distance > 0 (mm)"))),
-            None => default_tie_tolerance(&mesh, master),
-        };
-        let (tied, count, _) = tie(&mesh, &vec![deck.section()?; mesh.elements.len()], &name, slave, master, tolerance);
-        if count == 0 {
-            return Err(Error::input(format!("tie '{name}': no node of '{}' lies within {tolerance:.3e} mm of '{}'", t.slave, t.master)));
-        }
-        constraints.extend(tied);
-    }
+    let constraints = ties(&deck, &mesh, &surfaces)?;
     let kinematics = if deck.nlgeom { Kinematics::Finite } else { Kinematics::Small };
     let section = deck.section()?;
     let n_elements = mesh.elements.len();
