@@ -233,60 +233,7 @@ impl RestartPoint {
         let path = from.file.display().to_string();
         let bad = |message: String| Error::input(format!("cannot restart from {path}: {message}"));
         let (nodes, elements) = check_mesh(&reader, model).map_err(bad)?;
-        let with_state: Vec<String> = reader.increments()?.into_iter().filter(|name| reader.file().link_exists(&format!("increments/{name}/state"))).collect();
-        let name = match from.increment {
-            None => with_state
-                .last()
-                .cloned()
-                .ok_or_else(|| bad("it holds no increment with a restart state (written by an older slideline, or no increment converged)".into()))?,
-            Some(n) => {
-                let name = format!("{n:06}");
-                if !with_state.contains(&name) {
-                    let first = with_state.first().map(|s| s.trim_start_matches('0').to_string()).unwrap_or_default();
-                    let last = with_state.last().map(|s| s.trim_start_matches('0').to_string()).unwrap_or_default();
-                    return Err(bad(match with_state.is_empty() {
-                        true => "it holds no increment with a restart state".into(),
-                        false => format!(
-                            "increment {n} is not among its {} restartable increments ({first} .. {last}; with [output] every = N only every N-th is)",
-                            with_state.len()
-                        ),
-                    }));
-                }
-                name
-            }
-        };
-        let number: usize = name.parse().map_err(|_| bad(format!("increment group {name}")))?;
-        // every value read is checked before it is used: a corrupt file is refused by name
-        let step_attr = reader.increment_attr(&name, "step")?;
-        if !(step_attr >= 1.0 && step_attr.fract() == 0.0) {
-            return Err(bad(format!("increments/{name} attribute step is {step_attr}, not a step number")));
-        }
-        let step = step_attr as usize - 1;
-        let names: Vec<String> = reader.text_attr("step_names")?.lines().map(str::to_string).collect();
-        for (k, saved) in names.iter().enumerate().take(step + 1) {
-            match model.steps.get(k) {
-                Some(s) if s.name == *saved => {}
-                Some(s) => {
-                    return Err(bad(format!(
-                        "its step {} is {saved:?}, the deck's is {:?} (a continued run may add steps, not change those done)",
-                        k + 1,
-                        s.name
-                    )))
-                }
-                None => return Err(bad(format!("increment {number} is in step {} ({saved:?}), the deck has {} step(s)", k + 1, model.steps.len()))),
-            }
-        }
-        // the model and every step begun must be the deck's (older files keep no fingerprints)
-        if let Ok(stored) = reader.text_attr("fingerprints") {
-            let changed = crate::model::fingerprint::changed(model, &stored, step);
-            if !changed.is_empty() {
-                return Err(bad(format!(
-                    "the deck changes {} of the run it continues (increment {number} is in step {}): a restart continues the same model and the steps begun; it may add steps after, or change those not yet begun",
-                    changed.join(", "),
-                    step + 1
-                )));
-            }
-        }
+        let (name, number, step) = restart_increment(&reader, from, model, &bad)?;
         // this file and those it continues (restarts of restarts), each with its node order
         let mut chain = vec![(reader, nodes.clone())];
         while chain.len() < 64 {
@@ -332,84 +279,12 @@ impl RestartPoint {
             return Err(bad(format!("{group} attribute next_increment_size is {next_size}, not a load factor in (0, 1]")));
         }
         let refits = sg.attr("pattern_refits").and_then(|a| a.read_scalar::<u64>()).map_err(|e| bad(format!("{group}: {e}")))? as usize;
-        let read_u64 = |ds: &str| -> Result<Vec<u64>> {
-            if !sg.link_exists(ds) {
-                return Ok(Vec::new());
-            }
-            sg.dataset(ds).and_then(|d| d.read_raw::<u64>()).map_err(|e| bad(format!("{group}/{ds}: {e}")))
-        };
-        let read_f64 = |ds: &str| -> Result<Vec<f64>> {
-            if !sg.link_exists(ds) {
-                return Ok(Vec::new());
-            }
-            sg.dataset(ds).and_then(|d| d.read_raw::<f64>()).map_err(|e| bad(format!("{group}/{ds}: {e}")))
-        };
+        let state = StateGroup { sg, name: group.clone(), bad: &bad };
         let node_index: HashMap<u64, usize> = model.mesh.node_ids.iter().enumerate().map(|(k, &id)| (id, k)).collect();
         let node = |id: u64| node_index.get(&id).copied().ok_or_else(|| bad(format!("node {id} of its state is not in the mesh")));
-        let points = read_u64("plastic_points")?;
-        let states = read_f64("plastic_state")?;
-        if points.len() / 2 != states.len() / 5 || points.len() % 2 != 0 || states.len() % 5 != 0 {
-            return Err(bad(format!("{group}/plastic_points ({} values) and plastic_state ({} values) do not pair up", points.len(), states.len())));
-        }
-        let mut plastic = Vec::with_capacity(points.len() / 2);
-        for (p, s) in points.chunks_exact(2).zip(states.chunks_exact(5)) {
-            let e = elements.get(&p[0]).copied().ok_or_else(|| bad(format!("element {} of its state is not in the mesh", p[0])))?;
-            if p[1] >= 9 || !s.iter().all(|v| v.is_finite()) || s[4] < 0.0 {
-                return Err(bad(format!("{group}/plastic_points, plastic_state: Gauss point {} of element {} ({s:?}) is no state", p[1], p[0])));
-            }
-            plastic.push((e, p[1] as usize, PointState { plastic: [s[0], s[1], s[2], s[3]], ep: s[4] }));
-        }
-        let passes = sg.attr("contact_passes").and_then(|a| a.read_scalar::<u64>()).map_err(|e| bad(format!("{group}: {e}")))? as usize;
-        let master_edges = pass_master_edges(model);
-        if passes != master_edges.len() {
-            return Err(bad(format!("{group} holds {passes} contact passes, the model has {}", master_edges.len())));
-        }
-        let mut multipliers = Vec::new();
-        for p in 0..passes {
-            let ids = read_u64(&format!("multiplier_nodes_pass{p}"))?;
-            let values = read_f64(&format!("multipliers_pass{p}"))?;
-            if ids.len() != values.len() || !values.iter().all(|v| v.is_finite()) {
-                return Err(bad(format!("{group}/multipliers_pass{p}: {} values for {} nodes, or not finite", values.len(), ids.len())));
-            }
-            multipliers.push(ids.into_iter().zip(values).map(|(id, v)| Ok((node(id)?, v))).collect::<Result<Vec<_>>>()?);
-        }
-        let mut slip = Vec::new();
-        for (p, &edges) in master_edges.iter().enumerate() {
-            let ids = read_u64(&format!("slip_nodes_pass{p}"))?;
-            let values = read_f64(&format!("slip_pass{p}"))?;
-            let what = format!("{group}/slip_pass{p}");
-            if 3 * ids.len() != values.len() {
-                return Err(bad(format!("{what}: {} values for {} nodes", values.len(), ids.len())));
-            }
-            let point = |v: &[f64]| -> Result<SlipPoint> {
-                // an edge of the pass's master surface, a coordinate on it, a finite traction
-                let edge_ok = v[0] >= 0.0 && v[0].fract() == 0.0 && (v[0] as usize) < edges;
-                let xi_ok = v[1].is_finite() && v[1].abs() <= 1.5;
-                if !edge_ok || !xi_ok || !v[2].is_finite() {
-                    return Err(bad(format!("{what}: [{}, {}, {}] is no slip reference on the master's {edges} edges", v[0], v[1], v[2])));
-                }
-                Ok(SlipPoint { edge: v[0] as usize, xi: v[1], traction: v[2] })
-            };
-            slip.push(ids.into_iter().zip(values.chunks_exact(3)).map(|(id, v)| Ok((node(id)?, point(v)?))).collect::<Result<Vec<_>>>()?);
-        }
-        let count = model.mesh.coords.len();
-        let thermal = read_f64(AUDIT_THERMAL)?;
-        let (thermal_force, temperature) = if thermal.len() == 2 * count && thermal.iter().all(|v| v.is_finite()) {
-            (thermal.iter().step_by(2).copied().collect(), thermal.iter().skip(1).step_by(2).copied().collect())
-        } else if thermal.is_empty() && sg.attr("audit_temperature").is_ok() {
-            // a model at one temperature throughout: the stress power summed over it, which a
-            // uniform temperature change multiplies wherever it sits
-            let attr = |name: &str| sg.attr(name).and_then(|a| a.read_scalar::<f64>()).map_err(|e| bad(format!("{group}: {e}")));
-            let mut force = vec![0.0; count];
-            force[0] = attr("audit_thermal_power")?;
-            (force, vec![attr("audit_temperature")?; count])
-        } else {
-            return Err(bad(format!("{group}/{AUDIT_THERMAL}: {} values for {count} nodes, or not finite", thermal.len())));
-        };
-        let mut audit = AuditPoint { forces: vec![[0.0; 4]; count], displacement: displacement.clone(), thermal_force, temperature };
-        for (id, f) in read_u64("audit_nodes")?.into_iter().zip(read_f64("audit_forces")?.chunks_exact(4)) {
-            audit.forces[node(id)?] = [f[0], f[1], f[2], f[3]];
-        }
+        let plastic = plastic_points(&state, &elements)?;
+        let (multipliers, slip) = contact_state(&state, model, &node)?;
+        let audit = audit_point(&state, model, &displacement, &node)?;
         // the rows up to the increment: each continued file holds those after its restart point,
         // the file it continues those before (oldest first, the order the run reserved them)
         let mut limits = vec![number];
@@ -450,8 +325,8 @@ impl RestartPoint {
             let before = field(&previous)?;
             if let Some(before) = before {
                 Some(LastIncrement::between(&before, &displacement, size))
-            } else if sg.link_exists(PREDICTOR_INCREMENT) {
-                let values = read_f64(PREDICTOR_INCREMENT)?;
+            } else if state.sg.link_exists(PREDICTOR_INCREMENT) {
+                let values = state.f64s(PREDICTOR_INCREMENT)?;
                 if values.len() != 2 * nodes.len() || !values.iter().all(|v| v.is_finite()) {
                     return Err(bad(format!("{group}/{PREDICTOR_INCREMENT}: {} values for {} nodes, or not finite", values.len(), nodes.len())));
                 }
@@ -480,6 +355,170 @@ impl RestartPoint {
             last_increment,
         })
     }
+}
+
+/// An increment's restart state group: its datasets read (empty where absent), a refusal worded
+/// by `bad`.
+struct StateGroup<'b> {
+    sg: hdf5::Group,
+    name: String,
+    bad: &'b dyn Fn(String) -> Error,
+}
+
+impl StateGroup<'_> {
+    fn u64s(&self, ds: &str) -> Result<Vec<u64>> {
+        if !self.sg.link_exists(ds) {
+            return Ok(Vec::new());
+        }
+        self.sg.dataset(ds).and_then(|d| d.read_raw::<u64>()).map_err(|e| (self.bad)(format!("{}/{ds}: {e}", self.name)))
+    }
+
+    fn f64s(&self, ds: &str) -> Result<Vec<f64>> {
+        if !self.sg.link_exists(ds) {
+            return Ok(Vec::new());
+        }
+        self.sg.dataset(ds).and_then(|d| d.read_raw::<f64>()).map_err(|e| (self.bad)(format!("{}/{ds}: {e}", self.name)))
+    }
+}
+
+/// The Gauss points not in their initial state: (mesh element, point, state), each checked.
+fn plastic_points(state: &StateGroup<'_>, elements: &HashMap<u64, usize>) -> Result<Vec<(usize, usize, PointState)>> {
+    let (bad, group) = (state.bad, &state.name);
+    let points = state.u64s("plastic_points")?;
+    let states = state.f64s("plastic_state")?;
+    if points.len() / 2 != states.len() / 5 || points.len() % 2 != 0 || states.len() % 5 != 0 {
+        return Err(bad(format!("{group}/plastic_points ({} values) and plastic_state ({} values) do not pair up", points.len(), states.len())));
+    }
+    let mut plastic = Vec::with_capacity(points.len() / 2);
+    for (p, s) in points.chunks_exact(2).zip(states.chunks_exact(5)) {
+        let e = elements.get(&p[0]).copied().ok_or_else(|| bad(format!("element {} of its state is not in the mesh", p[0])))?;
+        if p[1] >= 9 || !s.iter().all(|v| v.is_finite()) || s[4] < 0.0 {
+            return Err(bad(format!("{group}/plastic_points, plastic_state: Gauss point {} of element {} ({s:?}) is no state", p[1], p[0])));
+        }
+        plastic.push((e, p[1] as usize, PointState { plastic: [s[0], s[1], s[2], s[3]], ep: s[4] }));
+    }
+    Ok(plastic)
+}
+
+/// Per contact pass, the slave nodes' multipliers and (friction) slip references.
+#[allow(clippy::type_complexity)]
+fn contact_state(state: &StateGroup<'_>, model: &Model, node: &dyn Fn(u64) -> Result<usize>) -> Result<(Vec<Vec<(usize, f64)>>, Vec<Vec<(usize, SlipPoint)>>)> {
+    let (bad, group, sg) = (state.bad, &state.name, &state.sg);
+    let passes = sg.attr("contact_passes").and_then(|a| a.read_scalar::<u64>()).map_err(|e| bad(format!("{group}: {e}")))? as usize;
+    let master_edges = pass_master_edges(model);
+    if passes != master_edges.len() {
+        return Err(bad(format!("{group} holds {passes} contact passes, the model has {}", master_edges.len())));
+    }
+    let mut multipliers = Vec::new();
+    for p in 0..passes {
+        let ids = state.u64s(&format!("multiplier_nodes_pass{p}"))?;
+        let values = state.f64s(&format!("multipliers_pass{p}"))?;
+        if ids.len() != values.len() || !values.iter().all(|v| v.is_finite()) {
+            return Err(bad(format!("{group}/multipliers_pass{p}: {} values for {} nodes, or not finite", values.len(), ids.len())));
+        }
+        multipliers.push(ids.into_iter().zip(values).map(|(id, v)| Ok((node(id)?, v))).collect::<Result<Vec<_>>>()?);
+    }
+    let mut slip = Vec::new();
+    for (p, &edges) in master_edges.iter().enumerate() {
+        let ids = state.u64s(&format!("slip_nodes_pass{p}"))?;
+        let values = state.f64s(&format!("slip_pass{p}"))?;
+        let what = format!("{group}/slip_pass{p}");
+        if 3 * ids.len() != values.len() {
+            return Err(bad(format!("{what}: {} values for {} nodes", values.len(), ids.len())));
+        }
+        let point = |v: &[f64]| -> Result<SlipPoint> {
+            // an edge of the pass's master surface, a coordinate on it, a finite traction
+            let edge_ok = v[0] >= 0.0 && v[0].fract() == 0.0 && (v[0] as usize) < edges;
+            let xi_ok = v[1].is_finite() && v[1].abs() <= 1.5;
+            if !edge_ok || !xi_ok || !v[2].is_finite() {
+                return Err(bad(format!("{what}: [{}, {}, {}] is no slip reference on the master's {edges} edges", v[0], v[1], v[2])));
+            }
+            Ok(SlipPoint { edge: v[0] as usize, xi: v[1], traction: v[2] })
+        };
+        slip.push(ids.into_iter().zip(values.chunks_exact(3)).map(|(id, v)| Ok((node(id)?, point(v)?))).collect::<Result<Vec<_>>>()?);
+    }
+    Ok((multipliers, slip))
+}
+
+/// The energy audit's starting point at the increment (its displacement `displacement`).
+fn audit_point(state: &StateGroup<'_>, model: &Model, displacement: &[[f64; 2]], node: &dyn Fn(u64) -> Result<usize>) -> Result<AuditPoint> {
+    let (bad, group, sg) = (state.bad, &state.name, &state.sg);
+    let count = model.mesh.coords.len();
+    let thermal = state.f64s(AUDIT_THERMAL)?;
+    let (thermal_force, temperature) = if thermal.len() == 2 * count && thermal.iter().all(|v| v.is_finite()) {
+        (thermal.iter().step_by(2).copied().collect(), thermal.iter().skip(1).step_by(2).copied().collect())
+    } else if thermal.is_empty() && sg.attr("audit_temperature").is_ok() {
+        // a model at one temperature throughout: the stress power summed over it, which a
+        // uniform temperature change multiplies wherever it sits
+        let attr = |name: &str| sg.attr(name).and_then(|a| a.read_scalar::<f64>()).map_err(|e| bad(format!("{group}: {e}")));
+        let mut force = vec![0.0; count];
+        force[0] = attr("audit_thermal_power")?;
+        (force, vec![attr("audit_temperature")?; count])
+    } else {
+        return Err(bad(format!("{group}/{AUDIT_THERMAL}: {} values for {count} nodes, or not finite", thermal.len())));
+    };
+    let mut audit = AuditPoint { forces: vec![[0.0; 4]; count], displacement: displacement.to_vec(), thermal_force, temperature };
+    for (id, f) in state.u64s("audit_nodes")?.into_iter().zip(state.f64s("audit_forces")?.chunks_exact(4)) {
+        audit.forces[node(id)?] = [f[0], f[1], f[2], f[3]];
+    }
+    Ok(audit)
+}
+
+/// The increment `from` names (or the last with a restart state) in `reader`'s file, as its
+/// group name, run-wide number and step (0-based), once the deck is shown to run the same
+/// model and the same steps up to it (`bad` words a refusal).
+fn restart_increment(reader: &ResultsReader, from: &RestartFrom, model: &Model, bad: &dyn Fn(String) -> Error) -> Result<(String, usize, usize)> {
+    let with_state: Vec<String> = reader.increments()?.into_iter().filter(|name| reader.file().link_exists(&format!("increments/{name}/state"))).collect();
+    let name = match from.increment {
+        None => with_state
+            .last()
+            .cloned()
+            .ok_or_else(|| bad("it holds no increment with a restart state (written by an older slideline, or no increment converged)".into()))?,
+        Some(n) => {
+            let name = format!("{n:06}");
+            if !with_state.contains(&name) {
+                let first = with_state.first().map(|s| s.trim_start_matches('0').to_string()).unwrap_or_default();
+                let last = with_state.last().map(|s| s.trim_start_matches('0').to_string()).unwrap_or_default();
+                return Err(bad(match with_state.is_empty() {
+                    true => "it holds no increment with a restart state".into(),
+                    false => format!(
+                        "increment {n} is not among its {} restartable increments ({first} .. {last}; with [output] every = N only every N-th is)",
+                        with_state.len()
+                    ),
+                }));
+            }
+            name
+        }
+    };
+    let number: usize = name.parse().map_err(|_| bad(format!("increment group {name}")))?;
+    // every value read is checked before it is used: a corrupt file is refused by name
+    let step_attr = reader.increment_attr(&name, "step")?;
+    if !(step_attr >= 1.0 && step_attr.fract() == 0.0) {
+        return Err(bad(format!("increments/{name} attribute step is {step_attr}, not a step number")));
+    }
+    let step = step_attr as usize - 1;
+    let names: Vec<String> = reader.text_attr("step_names")?.lines().map(str::to_string).collect();
+    for (k, saved) in names.iter().enumerate().take(step + 1) {
+        match model.steps.get(k) {
+            Some(s) if s.name == *saved => {}
+            Some(s) => {
+                return Err(bad(format!("its step {} is {saved:?}, the deck's is {:?} (a continued run may add steps, not change those done)", k + 1, s.name)))
+            }
+            None => return Err(bad(format!("increment {number} is in step {} ({saved:?}), the deck has {} step(s)", k + 1, model.steps.len()))),
+        }
+    }
+    // the model and every step begun must be the deck's (older files keep no fingerprints)
+    if let Ok(stored) = reader.text_attr("fingerprints") {
+        let changed = crate::model::fingerprint::changed(model, &stored, step);
+        if !changed.is_empty() {
+            return Err(bad(format!(
+                "the deck changes {} of the run it continues (increment {number} is in step {}): a restart continues the same model and the steps begun; it may add steps after, or change those not yet begun",
+                changed.join(", "),
+                step + 1
+            )));
+        }
+    }
+    Ok((name, number, step))
 }
 
 /// The number of master edges of each contact pass, in the order of the passes: per pair, the
