@@ -18,6 +18,7 @@
 
 pub mod cards;
 mod constraints;
+mod loads;
 mod mesh;
 mod properties;
 mod steps;

@@ -1,13 +1,12 @@
 //! The history part of a deck: *AMPLITUDE, *INITIAL CONDITIONS / *TEMPERATURE, *STEP and
 //! *STATIC, *BOUNDARY, *DLOAD, *CHANGE FRICTION, and the steps they expand to (split at amplitude points).
 
-use super::cards::{error_at, normalise, Card, DataLine};
+use super::cards::{error_at, normalise, Card};
 use super::properties::{pair_friction, ListedContact};
-use super::{face_side, Builder, StepDef, Target};
+use super::{Builder, StepDef, Target};
 use crate::element::body_load::BodyForce;
 use crate::error::{Error, Result};
 use crate::model::heat::{HeatStep, HeldTemperature};
-use crate::model::mesh::Edge;
 use crate::model::{BodyLoad, Component, FrictionChange, NodalForce, Predictor, PrescribedDisplacement, Pressure, Step, Temperature};
 use std::collections::{BTreeMap, BTreeSet};
 
@@ -363,221 +362,22 @@ impl Builder {
         Ok(())
     }
 
-    /// *CLOAD: a force on each node of a node (set), dof 1 (r) or 2 (z), kept per radian.
-    /// CalculiX takes an axisymmetric node's force as the whole ring's (measured with ccx 2.20:
-    /// a bore's consistent nodal loads given so reproduce the pressure's displacements only
-    /// when read as 360-degree totals; its reactions it prints per 2-degree segment).
-    pub(super) fn cload(&mut self, card: &Card) -> Result<()> {
-        card.only(&["OP", "AMPLITUDE"])?;
-        let new = replaces_earlier_loads(card)?;
-        let amplitude = self.amplitude_ref(card)?;
-        self.step_mut(card)?;
-        let mut loads: Vec<Target<(usize, Component)>> = Vec::new();
-        for d in &card.data {
-            let nodes = self.node_items(d, "CLOAD", 0)?;
-            let component = match d.id("CLOAD", 1, "degree of freedom")? {
-                1 => Component::R,
-                2 => Component::Z,
-                dof => return Err(error_at(&d.at, "CLOAD", format!("degree of freedom {dof}: axisymmetric nodes have 1 (r) and 2 (z)"))),
-            };
-            let value = d.number("CLOAD", 2, "magnitude", None)? / self.ring_measure();
-            for node in nodes {
-                loads.retain(|l| l.key != (node, component));
-                loads.push(Target { key: (node, component), value, amplitude: amplitude.clone() });
-            }
-        }
-        let step = self.step_mut(card)?;
-        step.new_cloads |= new;
-        for l in loads {
-            step.cloads.retain(|c| c.key != l.key);
-            step.cloads.push(l);
-        }
-        Ok(())
-    }
-
-    pub(super) fn dload(&mut self, card: &Card) -> Result<()> {
-        card.only(&["OP", "AMPLITUDE"])?;
-        let new = replaces_earlier_loads(card)?;
-        let amplitude = self.amplitude_ref(card)?;
-        self.step_mut(card)?;
-        let mut loads = Vec::new();
-        let mut body = Vec::new();
-        let mut masses = Vec::new();
-        for d in &card.data {
-            let label = d.fields.get(1).map(|s| s.to_uppercase()).unwrap_or_default();
-            if (label == "GRAV" || label == "CENTRIF") && self.point_masses.contains_key(&d.fields[0].to_uppercase()) {
-                masses.extend(self.point_mass_load(d, &label, amplitude.clone())?);
-                continue;
-            }
-            if label == "GRAV" || label == "CENTRIF" {
-                body.push(self.body_load(d, &label, amplitude.clone())?);
-                continue;
-            }
-            let side =
-                face_side(&label, 'P').ok_or_else(|| error_at(&d.at, "DLOAD", format!("load type '{label}': slideline reads face pressures P1 to P4")))?;
-            let value = d.number("DLOAD", 2, "magnitude", None)?;
-            let target = d.fields[0].to_uppercase();
-            // as CalculiX's dloads.f: an element (set) first, then an element-face surface,
-            // whose own faces are loaded (the label's face number is then not used)
-            let is_elements = target.chars().all(|c| c.is_ascii_digit()) || self.element_sets.contains_key(&target);
-            let surface = if !is_elements && self.surfaces.contains_key(&target) {
-                target
-            } else {
-                let elements = self.element_items(d, "DLOAD", 0)?;
-                if let Some(&e) = elements.iter().find(|&&e| side >= self.mesh.shape(e).corners()) {
-                    return Err(error_at(
-                        &d.at,
-                        "DLOAD",
-                        format!("load type '{label}' on element {}: a triangle has faces P1 to P3", self.mesh.element_ids[e]),
-                    ));
-                }
-                // the loaded faces as a surface named after the element set and face
-                let surface = format!("DLOAD_{target}_{label}");
-                self.surfaces.insert(surface.clone(), elements.into_iter().map(|element| Edge { element, side }).collect());
-                surface
-            };
-            if loads.iter().any(|l: &Target<String>| l.key == surface) {
-                return Err(error_at(&d.at, "DLOAD", format!("{surface} is loaded twice in one *DLOAD card: give one pressure per face")));
-            }
-            loads.push(Target { key: surface, value, amplitude: amplitude.clone() });
-        }
-        let step = self.step_mut(card)?;
-        step.new_loads |= new;
-        for l in loads {
-            step.pressures.retain(|p| p.key != l.key);
-            step.pressures.push(l);
-        }
-        for l in body {
-            step.body.retain(|b| b.key != l.key);
-            step.body.push(l);
-        }
-        for l in masses {
-            step.cloads.retain(|c| c.key != l.key);
-            step.cloads.push(l);
-        }
-        Ok(())
-    }
-
-    /// GRAV or CENTRIF on a set of point masses: each mass's force m g along the axis or
-    /// m omega^2 r outward at its node's initial radius, as a nodal force per radian (the
-    /// mass is the whole ring's). It then follows the rules of a *CLOAD.
-    fn point_mass_load(&mut self, d: &DataLine, label: &str, amplitude: Option<String>) -> Result<Vec<Target<(usize, Component)>>> {
-        let target = d.fields[0].to_uppercase();
-        let (nodes, mass) = self.point_masses[&target].clone();
-        let mass = mass.ok_or_else(|| error_at(&d.at, "DLOAD", format!("{label} on {target}: its point masses have no *MASS (define it before the step)")))?;
-        let (spin, value) = self.body_load_value(d, label)?;
-        self.mass_load_at.get_or_insert(d.at.clone());
-        Ok(nodes
-            .into_iter()
-            .map(|n| {
-                let (component, force) = if spin { (Component::R, mass * value * self.mesh.coords[n][0]) } else { (Component::Z, mass * value) };
-                Target { key: (n, component), value: force / self.ring_measure(), amplitude: amplitude.clone() }
-            })
-            .collect())
-    }
-
-    /// A *DLOAD line of type GRAV (magnitude, direction) or CENTRIF (omega^2, a point of the
-    /// axis, its direction), about slideline's axis: CalculiX's axisymmetric y (its x the
-    /// radius). Its elements: a set, or one element (as a set of its own).
-    fn body_load(&mut self, d: &DataLine, label: &str, amplitude: Option<String>) -> Result<Target<(String, bool)>> {
-        let target = d.fields[0].to_uppercase();
-        let elements = self.element_items(d, "DLOAD", 0)?;
-        let set = if self.element_sets.contains_key(&target) {
-            target
-        } else {
-            let name = format!("DLOAD_{target}");
-            self.element_sets.insert(name.clone(), elements);
-            name
-        };
-        let (spin, value) = self.body_load_value(d, label)?;
-        Ok(Target { key: (set, spin), value, amplitude })
-    }
-
-    /// A GRAV or CENTRIF line's load about slideline's axis: (spin, g along the axis or
-    /// omega^2).
-    fn body_load_value(&self, d: &DataLine, label: &str) -> Result<(bool, f64)> {
-        let magnitude = d.number("DLOAD", 2, "magnitude", None)?;
-        let numbers = |from: usize| -> Result<[f64; 3]> {
-            Ok([
-                d.number("DLOAD", from, "coordinate", Some(0.0))?,
-                d.number("DLOAD", from + 1, "coordinate", Some(0.0))?,
-                d.number("DLOAD", from + 2, "coordinate", Some(0.0))?,
-            ])
-        };
-        let along_axis = |v: [f64; 3]| -> Option<f64> {
-            let length = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
-            (length > 0.0 && (v[0].abs() + v[2].abs()) <= 1e-9 * length).then(|| v[1] / length)
-        };
-        let spin = label == "CENTRIF";
-        let value = if spin {
-            let (point, direction) = (numbers(3)?, numbers(6)?);
-            if point[0] != 0.0 || point[2] != 0.0 || along_axis(direction).is_none() {
-                return Err(error_at(&d.at, "DLOAD", "CENTRIF: the rotation axis must be the model's axis (a point with x = z = 0, direction along y)"));
-            }
-            magnitude
-        } else {
-            let direction = along_axis(numbers(3)?).ok_or_else(|| error_at(&d.at, "DLOAD", "GRAV: the direction must be along the model's axis (y)"))?;
-            magnitude * direction
-        };
-        Ok((spin, value))
-    }
-
     /// slideline steps ramp every target linearly from the previous step's value; a step whose
     /// loads follow an *AMPLITUDE is split at the amplitude's points so that the piecewise-linear
     /// history is followed exactly.
     /// The deck's steps as slideline's (`contacts`: the deck's pairs, for *CHANGE FRICTION).
     pub(super) fn expand_steps(&mut self, initial_temperature: &Temperature, contacts: &[ListedContact]) -> Result<Vec<Step>> {
-        let mut displacement_now: BTreeMap<(String, Component), f64> = self.fixed.iter().map(|k| (k.clone(), 0.0)).collect();
-        let mut pressure_now: BTreeMap<String, f64> = BTreeMap::new();
-        let mut body_now: BTreeMap<(String, bool), f64> = BTreeMap::new();
-        let mut cload_now: BTreeMap<(usize, Component), f64> = BTreeMap::new();
+        let mut now = LoadsInForce {
+            displacement: self.fixed.iter().map(|k| (k.clone(), 0.0)).collect(),
+            pressure: BTreeMap::new(),
+            body: BTreeMap::new(),
+            cload: BTreeMap::new(),
+        };
         let mut temperature_now = initial_temperature.clone();
         let mut out = Vec::new();
         let mut total_time = 0.0;
         for (k, s) in self.steps.iter_mut().enumerate() {
-            // fixed model-data constraints join the first step, unless its *BOUNDARY, OP=NEW
-            // releases them (as CalculiX does: a first step's OP=NEW starts from no constraint)
-            if k == 0 && !s.new_boundaries {
-                for key in &self.fixed {
-                    if !s.boundaries.iter().any(|b| &b.key == key) {
-                        s.boundaries.insert(0, Target { key: key.clone(), value: 0.0, amplitude: None });
-                    }
-                }
-            }
-            if s.new_boundaries {
-                // the constraints of earlier steps (and of the model data) not restated go
-                let released: Vec<String> = displacement_now
-                    .keys()
-                    .filter(|k| !s.boundaries.iter().any(|b| &b.key == *k))
-                    .map(|(set, c)| format!("{set} {}", if *c == Component::R { "u_r" } else { "u_z" }))
-                    .collect();
-                displacement_now.retain(|k, _| s.boundaries.iter().any(|b| &b.key == k));
-                if !released.is_empty() {
-                    self.notes.push(format!("{} ({}): *BOUNDARY, OP=NEW releases {} at the step's start", s.name, s.at, released.join(", ")));
-                }
-            }
-            if s.new_cloads {
-                for (key, v) in cload_now.iter_mut() {
-                    if !s.cloads.iter().any(|c| &c.key == key) {
-                        s.cloads.push(Target { key: *key, value: 0.0, amplitude: None });
-                        *v = 0.0;
-                    }
-                }
-            }
-            if s.new_loads {
-                for (surface, v) in pressure_now.iter_mut() {
-                    if !s.pressures.iter().any(|p| &p.key == surface) {
-                        s.pressures.push(Target { key: surface.clone(), value: 0.0, amplitude: None });
-                        *v = 0.0;
-                    }
-                }
-                for (key, v) in body_now.iter_mut() {
-                    if !s.body.iter().any(|b| &b.key == key) {
-                        s.body.push(Target { key: key.clone(), value: 0.0, amplitude: None });
-                        *v = 0.0;
-                    }
-                }
-            }
+            now.start_step(k, s, &self.fixed, &mut self.notes);
             let increments = ((s.period / s.initial) - 1e-9).ceil().max(1.0) as usize;
             let mut used: BTreeSet<&String> = BTreeSet::new();
             used.extend(s.boundaries.iter().filter_map(|b| b.amplitude.as_ref()));
@@ -598,8 +398,8 @@ impl Builder {
             times.sort_by(f64::total_cmp);
             times.dedup_by(|a, b| (*a - *b).abs() <= 1e-12 * s.period);
             let period = s.period;
-            let (d0, p0, b0, t0) = (displacement_now.clone(), pressure_now.clone(), body_now.clone(), temperature_now.clone());
-            let c0 = cload_now.clone();
+            let (d0, p0, b0, t0) = (now.displacement.clone(), now.pressure.clone(), now.body.clone(), temperature_now.clone());
+            let c0 = now.cload.clone();
             let mut previous_time = 0.0;
             for (j, &time) in times.iter().enumerate() {
                 let displacements = s
@@ -618,15 +418,16 @@ impl Builder {
                 let body: Vec<((String, bool), f64)> =
                     s.body.iter().map(|b| (b.key.clone(), b.at(b0.get(&b.key).copied().unwrap_or(0.0), time, period, &self.amplitudes))).collect();
                 for (key, value) in &body {
-                    body_now.insert(key.clone(), *value);
+                    now.body.insert(key.clone(), *value);
                 }
                 for c in &s.cloads {
-                    cload_now.insert(c.key, c.at(c0.get(&c.key).copied().unwrap_or(0.0), time, period, &self.amplitudes));
+                    now.cload.insert(c.key, c.at(c0.get(&c.key).copied().unwrap_or(0.0), time, period, &self.amplitudes));
                 }
                 // every nodal force in force, as the step's end values
-                let nodal_forces = cload_now.iter().map(|(&(node, component), &value)| NodalForce { node, component, value }).collect::<Vec<_>>();
+                let nodal_forces = now.cload.iter().map(|(&(node, component), &value)| NodalForce { node, component, value }).collect::<Vec<_>>();
                 // every body load in force, as the step's end values
-                let body_loads = body_now
+                let body_loads = now
+                    .body
                     .iter()
                     .map(|((set, spin), &v)| BodyLoad { elements: set.clone(), force: if *spin { BodyForce::Spin(v) } else { BodyForce::Gravity(v) } })
                     .collect::<Vec<_>>();
@@ -642,10 +443,10 @@ impl Builder {
                     )
                 };
                 for d in &displacements {
-                    displacement_now.insert((d.node_set.clone(), d.component), d.value);
+                    now.displacement.insert((d.node_set.clone(), d.component), d.value);
                 }
                 for p in &pressures {
-                    pressure_now.insert(p.surface.clone(), p.value);
+                    now.pressure.insert(p.surface.clone(), p.value);
                 }
                 if let Some(t) = &temperature {
                     temperature_now = t.clone();
@@ -700,9 +501,70 @@ impl Builder {
     }
 }
 
+/// The loads in force as the steps expand: each prescribed displacement, pressure, body load
+/// and nodal force by its key, at the last sub-step's end.
+struct LoadsInForce {
+    displacement: BTreeMap<(String, Component), f64>,
+    pressure: BTreeMap<String, f64>,
+    body: BTreeMap<(String, bool), f64>,
+    cload: BTreeMap<(usize, Component), f64>,
+}
+
+impl LoadsInForce {
+    /// Step `k` (`s`) begins: the model data's constraints join the first step (unless its
+    /// *BOUNDARY, OP=NEW releases them); an OP=NEW card releases what it does not restate, the
+    /// loads ramping to zero (a note names the constraints released).
+    fn start_step(&mut self, k: usize, s: &mut StepDef, fixed: &[(String, Component)], notes: &mut Vec<String>) {
+        // fixed model-data constraints join the first step, unless its *BOUNDARY, OP=NEW
+        // releases them (as CalculiX does: a first step's OP=NEW starts from no constraint)
+        if k == 0 && !s.new_boundaries {
+            for key in fixed {
+                if !s.boundaries.iter().any(|b| &b.key == key) {
+                    s.boundaries.insert(0, Target { key: key.clone(), value: 0.0, amplitude: None });
+                }
+            }
+        }
+        if s.new_boundaries {
+            // the constraints of earlier steps (and of the model data) not restated go
+            let released: Vec<String> = self
+                .displacement
+                .keys()
+                .filter(|k| !s.boundaries.iter().any(|b| &b.key == *k))
+                .map(|(set, c)| format!("{set} {}", if *c == Component::R { "u_r" } else { "u_z" }))
+                .collect();
+            self.displacement.retain(|k, _| s.boundaries.iter().any(|b| &b.key == k));
+            if !released.is_empty() {
+                notes.push(format!("{} ({}): *BOUNDARY, OP=NEW releases {} at the step's start", s.name, s.at, released.join(", ")));
+            }
+        }
+        if s.new_cloads {
+            for (key, v) in self.cload.iter_mut() {
+                if !s.cloads.iter().any(|c| &c.key == key) {
+                    s.cloads.push(Target { key: *key, value: 0.0, amplitude: None });
+                    *v = 0.0;
+                }
+            }
+        }
+        if s.new_loads {
+            for (surface, v) in self.pressure.iter_mut() {
+                if !s.pressures.iter().any(|p| &p.key == surface) {
+                    s.pressures.push(Target { key: surface.clone(), value: 0.0, amplitude: None });
+                    *v = 0.0;
+                }
+            }
+            for (key, v) in self.body.iter_mut() {
+                if !s.body.iter().any(|b| &b.key == key) {
+                    s.body.push(Target { key: key.clone(), value: 0.0, amplitude: None });
+                    *v = 0.0;
+                }
+            }
+        }
+    }
+}
+
 /// A load card's OP=: NEW (true) removes the earlier loads of its kind that it does not
 /// restate, MOD (the default) keeps them.
-fn replaces_earlier_loads(card: &Card) -> Result<bool> {
+pub(super) fn replaces_earlier_loads(card: &Card) -> Result<bool> {
     match card.param("OP").map(|o| o.to_uppercase()).as_deref() {
         None | Some("MOD") => Ok(false),
         Some("NEW") => Ok(true),
