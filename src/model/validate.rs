@@ -2,11 +2,50 @@
 //! loads the steps name, the contact pairs, and the constraints (one value per degree of
 //! freedom; no body free to move along the axis).
 
-use super::{known, BodyLoad, Component, ContactIntegration, Edge, Model, Penalty, Plasticity, Temperature, MAX_INCREMENTS, MIN_YOUNGS_MODULUS};
+use super::{
+    known, BodyLoad, Component, ContactIntegration, ContactPair, Edge, Material, Model, Penalty, Plasticity, Temperature, MAX_INCREMENTS, MIN_YOUNGS_MODULUS,
+};
 use crate::error::{Error, Result};
 use std::collections::BTreeMap;
 
 impl Model {
+    /// A contact pair's surfaces, penalty, capture distance and augmented Lagrangian settings.
+    fn validate_contact(&self, c: &ContactPair) -> Result<()> {
+        for surface in [&c.slave, &c.master] {
+            self.surface(surface).map_err(|e| Error::input(format!("contact '{}': {e}", c.name)))?;
+        }
+        let eps = match c.penalty {
+            Penalty::Stiffness(v) | Penalty::Factor(v) => v,
+            Penalty::Exponential { clearance, pressure } => {
+                if !(clearance > 0.0 && clearance.is_finite() && pressure > 0.0 && pressure.is_finite()) {
+                    return Err(Error::input(format!(
+                        "contact '{}': the exponential law needs c0 > 0 (mm) and p0 > 0 (MPa), got c0 = {clearance}, p0 = {pressure}",
+                        c.name
+                    )));
+                }
+                if c.integration != ContactIntegration::NodeToSegment || c.augmented_lagrangian.is_some() {
+                    return Err(Error::input(format!(
+                        "contact '{}': the exponential pressure-overclosure law is built for node-to-segment pairs without augmented Lagrangian iterations",
+                        c.name
+                    )));
+                }
+                pressure
+            }
+        };
+        if !(eps > 0.0 && eps.is_finite()) {
+            return Err(Error::input(format!("contact '{}': the penalty must be > 0, got {eps}", c.name)));
+        }
+        if !(c.capture_distance > 0.0 && c.capture_distance.is_finite()) {
+            return Err(Error::input(format!("contact '{}': capture_distance must be > 0, got {}", c.name, c.capture_distance)));
+        }
+        if let Some(al) = c.augmented_lagrangian {
+            if al.penetration_tolerance.is_nan() || al.penetration_tolerance <= 0.0 || al.max_augmentations == 0 {
+                return Err(Error::input(format!("contact '{}': augmented_lagrangian needs penetration_tolerance > 0 and max_augmentations >= 1", c.name)));
+            }
+        }
+        Ok(())
+    }
+
     /// Checks everything the solver relies on; the first problem found is reported by name.
     pub fn validate(&self) -> Result<()> {
         if self.element_section.len() != self.mesh.elements.len() {
@@ -20,35 +59,7 @@ impl Model {
         }
         // a model of heat steps alone uses its materials' conductivity alone (`heat::HeatStep`)
         for m in self.materials.iter().filter(|_| !self.steps.is_empty()) {
-            if m.youngs_modulus.is_nan() || m.poissons_ratio.is_nan() {
-                return Err(Error::input(format!(
-                    "material '{}' has no elastic constants (Young's modulus, Poisson's ratio; *ELASTIC): the general steps need them",
-                    m.name
-                )));
-            }
-            if !(m.youngs_modulus > 0.0 && m.youngs_modulus.is_finite()) {
-                return Err(Error::input(format!("material '{}': Young's modulus must be > 0, got {}", m.name, m.youngs_modulus)));
-            }
-            if m.youngs_modulus < MIN_YOUNGS_MODULUS {
-                return Err(Error::input(format!(
-                    "material '{}': Young's modulus {} MPa is below {MIN_YOUNGS_MODULUS} MPa (units are mm, N, MPa: steel is 2e5)",
-                    m.name, m.youngs_modulus
-                )));
-            }
-            if !(m.poissons_ratio > -1.0 && m.poissons_ratio < 0.5) {
-                return Err(Error::input(format!("material '{}': Poisson's ratio must lie in (-1, 0.5), got {}", m.name, m.poissons_ratio)));
-            }
-            if !m.thermal_expansion.is_finite() {
-                return Err(Error::input(format!("material '{}': thermal expansion must be finite", m.name)));
-            }
-            if let Some(Plasticity::Linear { yield_stress, modulus }) = m.plasticity {
-                if !(yield_stress > 0.0 && yield_stress.is_finite()) {
-                    return Err(Error::input(format!("material '{}': yield stress must be > 0, got {yield_stress}", m.name)));
-                }
-                if !(modulus >= 0.0 && modulus.is_finite()) {
-                    return Err(Error::input(format!("material '{}': hardening modulus must be >= 0, got {modulus}", m.name)));
-                }
-            }
+            validate_material(m)?;
         }
         for p in &self.perturbations {
             p.validate(self)?;
@@ -83,38 +94,7 @@ impl Model {
             return Err(Error::input("internal: element_material does not match the element count"));
         }
         for c in &self.contacts {
-            for surface in [&c.slave, &c.master] {
-                self.surface(surface).map_err(|e| Error::input(format!("contact '{}': {e}", c.name)))?;
-            }
-            let eps = match c.penalty {
-                Penalty::Stiffness(v) | Penalty::Factor(v) => v,
-                Penalty::Exponential { clearance, pressure } => {
-                    if !(clearance > 0.0 && clearance.is_finite() && pressure > 0.0 && pressure.is_finite()) {
-                        return Err(Error::input(format!(
-                            "contact '{}': the exponential law needs c0 > 0 (mm) and p0 > 0 (MPa), got c0 = {clearance}, p0 = {pressure}",
-                            c.name
-                        )));
-                    }
-                    if c.integration != ContactIntegration::NodeToSegment || c.augmented_lagrangian.is_some() {
-                        return Err(Error::input(format!(
-                            "contact '{}': the exponential pressure-overclosure law is built for node-to-segment pairs without augmented Lagrangian iterations",
-                            c.name
-                        )));
-                    }
-                    pressure
-                }
-            };
-            if !(eps > 0.0 && eps.is_finite()) {
-                return Err(Error::input(format!("contact '{}': the penalty must be > 0, got {eps}", c.name)));
-            }
-            if !(c.capture_distance > 0.0 && c.capture_distance.is_finite()) {
-                return Err(Error::input(format!("contact '{}': capture_distance must be > 0, got {}", c.name, c.capture_distance)));
-            }
-            if let Some(al) = c.augmented_lagrangian {
-                if al.penetration_tolerance.is_nan() || al.penetration_tolerance <= 0.0 || al.max_augmentations == 0 {
-                    return Err(Error::input(format!("contact '{}': augmented_lagrangian needs penetration_tolerance > 0 and max_augmentations >= 1", c.name)));
-                }
-            }
+            self.validate_contact(c)?;
         }
         let mut names: Vec<&str> = self.contacts.iter().map(|c| c.name.as_str()).collect();
         names.sort_unstable();
@@ -344,4 +324,38 @@ impl Model {
             .map(|body| (body[0], (0..pair_nodes.len()).filter(|&p| body.iter().any(|n| pair_nodes[p].contains(n))).collect()))
             .collect()
     }
+}
+
+/// A material's elastic constants, expansion and plasticity, for the general steps.
+fn validate_material(m: &Material) -> Result<()> {
+    if m.youngs_modulus.is_nan() || m.poissons_ratio.is_nan() {
+        return Err(Error::input(format!(
+            "material '{}' has no elastic constants (Young's modulus, Poisson's ratio; *ELASTIC): the general steps need them",
+            m.name
+        )));
+    }
+    if !(m.youngs_modulus > 0.0 && m.youngs_modulus.is_finite()) {
+        return Err(Error::input(format!("material '{}': Young's modulus must be > 0, got {}", m.name, m.youngs_modulus)));
+    }
+    if m.youngs_modulus < MIN_YOUNGS_MODULUS {
+        return Err(Error::input(format!(
+            "material '{}': Young's modulus {} MPa is below {MIN_YOUNGS_MODULUS} MPa (units are mm, N, MPa: steel is 2e5)",
+            m.name, m.youngs_modulus
+        )));
+    }
+    if !(m.poissons_ratio > -1.0 && m.poissons_ratio < 0.5) {
+        return Err(Error::input(format!("material '{}': Poisson's ratio must lie in (-1, 0.5), got {}", m.name, m.poissons_ratio)));
+    }
+    if !m.thermal_expansion.is_finite() {
+        return Err(Error::input(format!("material '{}': thermal expansion must be finite", m.name)));
+    }
+    if let Some(Plasticity::Linear { yield_stress, modulus }) = m.plasticity {
+        if !(yield_stress > 0.0 && yield_stress.is_finite()) {
+            return Err(Error::input(format!("material '{}': yield stress must be > 0, got {yield_stress}", m.name)));
+        }
+        if !(modulus >= 0.0 && modulus.is_finite()) {
+            return Err(Error::input(format!("material '{}': hardening modulus must be >= 0, got {modulus}", m.name)));
+        }
+    }
+    Ok(())
 }
