@@ -15,7 +15,7 @@ use crate::error::{Error, Result};
 use crate::fe::quadrature::Integration;
 use crate::fe::section::Section;
 use crate::fe::shape::Shape;
-use crate::model::{Component, ContactIntegration, Friction, Model, Penalty, Plasticity, Predictor, Temperature};
+use crate::model::{Component, ContactIntegration, Friction, Material, Model, Penalty, Plasticity, Predictor, Temperature};
 use std::collections::BTreeSet;
 use std::fmt::Write as _;
 use std::path::Path;
@@ -59,6 +59,98 @@ fn element_type(model: &Model, e: usize) -> String {
         (Shape::Quad8, Integration::Reduced) => "8R",
     };
     format!("{family}{suffix}")
+}
+
+/// Every multi-point constraint as an equation (a pre-tension section's and a tie's too: the
+/// mesh written holds their partner nodes).
+fn write_equations(w: &mut String, model: &Model) {
+    for c in &model.constraints {
+        let _ = writeln!(w, "*EQUATION\n{}", c.terms.len());
+        for line in c.terms.chunks(4) {
+            let terms: Vec<String> =
+                line.iter().map(|t| format!("{}, {}, {}", model.mesh.node_ids[t.node], t.component as usize + 1, num(t.coefficient))).collect();
+            let _ = writeln!(w, "{}", terms.join(", "));
+        }
+    }
+}
+
+/// A contact pair's interaction, its behaviour and friction, and the pair (both ways for two
+/// passes).
+fn write_contact(w: &mut String, c: &crate::model::ContactPair) -> Result<()> {
+    let two_pass = c.two_pass && c.slave != c.master;
+    let passes = if two_pass { 2.0 } else { 1.0 };
+    let behaviour = match c.penalty {
+        Penalty::Stiffness(penalty) => format!("LINEAR\n{}", num(penalty / passes)),
+        Penalty::Exponential { clearance, pressure } => format!("EXPONENTIAL\n{}, {}", num(clearance), num(pressure / passes)),
+        Penalty::Factor(_) => {
+            return Err(Error::input(format!("contact '{}': a dimensionless penalty factor has no .inp form: give the penalty in N/mm^3", c.name)))
+        }
+    };
+    let kind = match c.integration {
+        ContactIntegration::Segment => "SURFACE TO SURFACE",
+        ContactIntegration::NodeToSegment => "NODE TO SURFACE",
+    };
+    let name = checked_name(&c.name)?;
+    let _ = writeln!(w, "*SURFACE INTERACTION, NAME={name}\n*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE={behaviour}");
+    if let Some(f) = &c.friction {
+        friction_card(w, &c.name, f, two_pass)?;
+    }
+    let _ = writeln!(w, "*CONTACT PAIR, INTERACTION={name}, TYPE={kind}\n{}, {}", c.slave, c.master);
+    if two_pass {
+        let _ = writeln!(w, "*CONTACT PAIR, INTERACTION={name}, TYPE={kind}\n{}, {}", c.master, c.slave);
+    }
+    Ok(())
+}
+
+/// Material `k` (`m`): its cards and one *SOLID SECTION per section its elements have.
+fn write_material(w: &mut String, model: &Model, k: usize, m: &Material) -> Result<()> {
+    let mesh = &model.mesh;
+    let _ = writeln!(w, "*MATERIAL, NAME={}", checked_name(&m.name)?);
+    let _ = writeln!(w, "*ELASTIC\n{}, {}", num(m.youngs_modulus), num(m.poissons_ratio));
+    // ZERO= is the stress-free temperature of a uniform field (for a constant alpha both codes
+    // count thermal strain from the initial conditions, so a field needs none)
+    match model.reference_temperature.uniform() {
+        Some(t) => writeln!(w, "*EXPANSION, ZERO={}\n{}", num(t), num(m.thermal_expansion)),
+        None => writeln!(w, "*EXPANSION\n{}", num(m.thermal_expansion)),
+    }
+    .ok();
+    if m.density > 0.0 {
+        let _ = writeln!(w, "*DENSITY\n{}", num(m.density));
+    }
+    match m.plasticity {
+        None => {}
+        Some(Plasticity::Linear { yield_stress, modulus }) => {
+            let end = yield_stress + modulus * LINEAR_TABLE_END_STRAIN;
+            let _ = writeln!(w, "*PLASTIC\n{}, 0.\n{}, {}", num(yield_stress), num(end), num(LINEAR_TABLE_END_STRAIN));
+        }
+        Some(Plasticity::Table { points, len }) => {
+            let _ = writeln!(w, "*PLASTIC");
+            for (strain, stress) in &points[..len] {
+                let _ = writeln!(w, "{}, {}", num(*stress), num(*strain));
+            }
+        }
+    }
+    // one *SOLID SECTION per section the material's elements have
+    let of_material: Vec<usize> = (0..mesh.elements.len()).filter(|&e| model.element_material[e] == k).collect();
+    let mut sections: Vec<Section> = Vec::new();
+    for &e in &of_material {
+        if !sections.contains(&model.element_section[e]) {
+            sections.push(model.element_section[e]);
+        }
+    }
+    for (j, &section) in sections.iter().enumerate() {
+        let elements = of_material.iter().filter(|&&e| model.element_section[e] == section).map(|&e| mesh.element_ids[e]);
+        let suffix = if sections.len() > 1 { format!("_{}", j + 1) } else { String::new() };
+        let elset = format!("MATERIAL_{}{suffix}", checked_name(&m.name)?);
+        listing(w, &format!("*ELSET, ELSET={elset}"), elements);
+        let _ = writeln!(w, "*SOLID SECTION, ELSET={elset}, MATERIAL={}", checked_name(&m.name)?);
+        if let Section::PlaneStrain { thickness } | Section::PlaneStress { thickness } = section {
+            // beside axisymmetric elements the reader took thickness / 2 pi (per radian)
+            let t = if model.is_axisymmetric() { thickness * std::f64::consts::TAU } else { thickness };
+            let _ = writeln!(w, "{}", num(t));
+        }
+    }
+    Ok(())
 }
 
 /// The deck's text.
@@ -117,87 +209,13 @@ pub fn to_inp(model: &Model, title: &str) -> Result<String> {
     }
 
     for (k, m) in model.materials.iter().enumerate() {
-        let _ = writeln!(w, "*MATERIAL, NAME={}", checked_name(&m.name)?);
-        let _ = writeln!(w, "*ELASTIC\n{}, {}", num(m.youngs_modulus), num(m.poissons_ratio));
-        // ZERO= is the stress-free temperature of a uniform field (for a constant alpha both codes
-        // count thermal strain from the initial conditions, so a field needs none)
-        match model.reference_temperature.uniform() {
-            Some(t) => writeln!(w, "*EXPANSION, ZERO={}\n{}", num(t), num(m.thermal_expansion)),
-            None => writeln!(w, "*EXPANSION\n{}", num(m.thermal_expansion)),
-        }
-        .ok();
-        if m.density > 0.0 {
-            let _ = writeln!(w, "*DENSITY\n{}", num(m.density));
-        }
-        match m.plasticity {
-            None => {}
-            Some(Plasticity::Linear { yield_stress, modulus }) => {
-                let end = yield_stress + modulus * LINEAR_TABLE_END_STRAIN;
-                let _ = writeln!(w, "*PLASTIC\n{}, 0.\n{}, {}", num(yield_stress), num(end), num(LINEAR_TABLE_END_STRAIN));
-            }
-            Some(Plasticity::Table { points, len }) => {
-                let _ = writeln!(w, "*PLASTIC");
-                for (strain, stress) in &points[..len] {
-                    let _ = writeln!(w, "{}, {}", num(*stress), num(*strain));
-                }
-            }
-        }
-        // one *SOLID SECTION per section the material's elements have
-        let of_material: Vec<usize> = (0..mesh.elements.len()).filter(|&e| model.element_material[e] == k).collect();
-        let mut sections: Vec<Section> = Vec::new();
-        for &e in &of_material {
-            if !sections.contains(&model.element_section[e]) {
-                sections.push(model.element_section[e]);
-            }
-        }
-        for (j, &section) in sections.iter().enumerate() {
-            let elements = of_material.iter().filter(|&&e| model.element_section[e] == section).map(|&e| mesh.element_ids[e]);
-            let suffix = if sections.len() > 1 { format!("_{}", j + 1) } else { String::new() };
-            let elset = format!("MATERIAL_{}{suffix}", checked_name(&m.name)?);
-            listing(w, &format!("*ELSET, ELSET={elset}"), elements);
-            let _ = writeln!(w, "*SOLID SECTION, ELSET={elset}, MATERIAL={}", checked_name(&m.name)?);
-            if let Section::PlaneStrain { thickness } | Section::PlaneStress { thickness } = section {
-                // beside axisymmetric elements the reader took thickness / 2 pi (per radian)
-                let t = if model.is_axisymmetric() { thickness * std::f64::consts::TAU } else { thickness };
-                let _ = writeln!(w, "{}", num(t));
-            }
-        }
+        write_material(w, model, k, m)?;
     }
 
     for c in &model.contacts {
-        let two_pass = c.two_pass && c.slave != c.master;
-        let passes = if two_pass { 2.0 } else { 1.0 };
-        let behaviour = match c.penalty {
-            Penalty::Stiffness(penalty) => format!("LINEAR\n{}", num(penalty / passes)),
-            Penalty::Exponential { clearance, pressure } => format!("EXPONENTIAL\n{}, {}", num(clearance), num(pressure / passes)),
-            Penalty::Factor(_) => {
-                return Err(Error::input(format!("contact '{}': a dimensionless penalty factor has no .inp form: give the penalty in N/mm^3", c.name)))
-            }
-        };
-        let kind = match c.integration {
-            ContactIntegration::Segment => "SURFACE TO SURFACE",
-            ContactIntegration::NodeToSegment => "NODE TO SURFACE",
-        };
-        let name = checked_name(&c.name)?;
-        let _ = writeln!(w, "*SURFACE INTERACTION, NAME={name}\n*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE={behaviour}");
-        if let Some(f) = &c.friction {
-            friction_card(w, &c.name, f, two_pass)?;
-        }
-        let _ = writeln!(w, "*CONTACT PAIR, INTERACTION={name}, TYPE={kind}\n{}, {}", c.slave, c.master);
-        if two_pass {
-            let _ = writeln!(w, "*CONTACT PAIR, INTERACTION={name}, TYPE={kind}\n{}, {}", c.master, c.slave);
-        }
+        write_contact(w, c)?;
     }
-    // every multi-point constraint as an equation (a pre-tension section's and a tie's too:
-    // the mesh written holds their partner nodes)
-    for c in &model.constraints {
-        let _ = writeln!(w, "*EQUATION\n{}", c.terms.len());
-        for line in c.terms.chunks(4) {
-            let terms: Vec<String> =
-                line.iter().map(|t| format!("{}, {}, {}", model.mesh.node_ids[t.node], t.component as usize + 1, num(t.coefficient))).collect();
-            let _ = writeln!(w, "{}", terms.join(", "));
-        }
-    }
+    write_equations(w, model);
     let _ = writeln!(w, "*INITIAL CONDITIONS, TYPE=TEMPERATURE");
     temperature_lines(w, model, &model.reference_temperature);
 
