@@ -494,6 +494,34 @@ impl Builder {
         }
     }
 
+    /// The deck's materials as the model's (`heat`: a heat deck's need no elastic constants).
+    fn material_list(&self, heat: bool) -> Result<Vec<Material>> {
+        let mut materials = Vec::new();
+        for m in &self.materials {
+            let (youngs_modulus, poissons_ratio) = match (m.elastic, heat) {
+                (Some(e), _) => e,
+                (None, true) => (f64::NAN, f64::NAN),
+                (None, false) => return Err(error_at(&m.at, "MATERIAL", format!("material {} has no *ELASTIC", m.name))),
+            };
+            // piecewise linear through the points, flat after the last (as Abaqus): two points
+            // are linear hardening exactly up to the second
+            let plasticity = match (m.plastic.as_slice(), &m.plastic_at) {
+                ([], _) | (_, None) => None,
+                (points, Some(at)) => Some(Plasticity::table(points).map_err(|e| error_at(at, "PLASTIC", e))?),
+            };
+            materials.push(Material {
+                name: m.name.clone(),
+                youngs_modulus,
+                poissons_ratio,
+                thermal_expansion: m.expansion,
+                plasticity,
+                density: m.density,
+                conductivity: m.conductivity,
+            });
+        }
+        Ok(materials)
+    }
+
     fn finish(mut self, source_text: String, source_files: Vec<std::path::PathBuf>) -> Result<InpModel> {
         if self.in_step {
             let at = &self.steps.last().expect("in a step").at;
@@ -518,29 +546,7 @@ impl Builder {
             self.notes.push(format!("output requests ({}) are answered by the results file: {every}", list.join(", ")));
         }
 
-        let mut materials = Vec::new();
-        for m in &self.materials {
-            let (youngs_modulus, poissons_ratio) = match (m.elastic, heat) {
-                (Some(e), _) => e,
-                (None, true) => (f64::NAN, f64::NAN),
-                (None, false) => return Err(error_at(&m.at, "MATERIAL", format!("material {} has no *ELASTIC", m.name))),
-            };
-            // piecewise linear through the points, flat after the last (as Abaqus): two points
-            // are linear hardening exactly up to the second
-            let plasticity = match (m.plastic.as_slice(), &m.plastic_at) {
-                ([], _) | (_, None) => None,
-                (points, Some(at)) => Some(Plasticity::table(points).map_err(|e| error_at(at, "PLASTIC", e))?),
-            };
-            materials.push(Material {
-                name: m.name.clone(),
-                youngs_modulus,
-                poissons_ratio,
-                thermal_expansion: m.expansion,
-                plasticity,
-                density: m.density,
-                conductivity: m.conductivity,
-            });
-        }
+        let materials = self.material_list(heat)?;
         for m in materials.iter().filter(|m| !heat && m.conductivity > 0.0) {
             self.notes.push(format!("material {}: *CONDUCTIVITY has no effect in a static step (heat transfer steps use it)", m.name));
         }
