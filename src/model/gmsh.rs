@@ -131,6 +131,76 @@ pub fn parse(text: &str, name: &str) -> Result<(Mesh, MeshSets)> {
     assemble(parse_text(text, name)?, name)
 }
 
+/// A format 4.1 $Nodes section (after its header line): every block's tags, then their
+/// coordinates, the counts checked against the header.
+fn nodes_41(lines: &mut Lines<'_>, node_coords: &mut HashMap<u64, [f64; 2]>) -> Result<()> {
+    let h: Vec<u64> = lines.numbers("$Nodes header")?;
+    need(&h, 4, lines, "$Nodes header")?;
+    let mut read = 0u64;
+    for _ in 0..h[0] {
+        let b: Vec<i64> = lines.numbers("node block header")?;
+        need(&b, 4, lines, "node block header")?;
+        if b[2] != 0 {
+            return Err(lines.error("parametric node coordinates are not supported"));
+        }
+        if b[3] < 0 || b[3] as u64 > h[1] - read.min(h[1]) {
+            return Err(lines.error(format!("a node block of {} nodes, past the {} the $Nodes header gives", b[3], h[1])));
+        }
+        let n = b[3] as usize;
+        read += n as u64;
+        // the count comes from the file: reserve no more than a line can hold
+        let mut tags = Vec::with_capacity(n.min(1 << 16));
+        for _ in 0..n {
+            let t: Vec<u64> = lines.numbers("node tag")?;
+            need(&t, 1, lines, "node tag")?;
+            tags.push(t[0]);
+        }
+        for tag in tags {
+            let c: Vec<f64> = lines.numbers("node coordinates")?;
+            need(&c, 3, lines, "node coordinates")?;
+            if c[2] != 0.0 {
+                return Err(lines.error(format!("node {tag} has z = {}: the mesh must lie in the x-y plane (x = r, y = z)", c[2])));
+            }
+            insert_node(node_coords, tag, [c[0], c[1]], lines)?;
+        }
+    }
+    if read != h[1] {
+        return Err(lines.error(format!("the $Nodes header gives {} nodes, its blocks hold {read}", h[1])));
+    }
+    lines.expect("$EndNodes")?;
+    Ok(())
+}
+
+/// A format 4.1 $Elements section: every block's elements, no tag twice, the counts checked
+/// against the header.
+fn elements_41(lines: &mut Lines<'_>, elements: &mut Vec<RawElement>, element_tags: &mut std::collections::HashSet<u64>) -> Result<()> {
+    let h: Vec<u64> = lines.numbers("$Elements header")?;
+    need(&h, 4, lines, "$Elements header")?;
+    let mut read = 0u64;
+    for _ in 0..h[0] {
+        let b: Vec<i64> = lines.numbers("element block header")?;
+        need(&b, 4, lines, "element block header")?;
+        let (dim, entity, ty) = (b[0] as i32, b[1] as i32, b[2] as u32);
+        if b[3] < 0 || b[3] as u64 > h[1] - read.min(h[1]) {
+            return Err(lines.error(format!("an element block of {} elements, past the {} the $Elements header gives", b[3], h[1])));
+        }
+        read += b[3] as u64;
+        for _ in 0..b[3] {
+            let v: Vec<u64> = lines.numbers("element")?;
+            need(&v, 2, lines, "element")?;
+            if !element_tags.insert(v[0]) {
+                return Err(lines.error(format!("element {} is given twice", v[0])));
+            }
+            elements.push(RawElement { dim, entity, ty, tag: v[0], nodes: v[1..].to_vec(), at: format!("{}:{}", lines.name, lines.line) });
+        }
+    }
+    if read != h[1] {
+        return Err(lines.error(format!("the $Elements header gives {} elements, its blocks hold {read}", h[1])));
+    }
+    lines.expect("$EndElements")?;
+    Ok(())
+}
+
 fn parse_text(text: &str, name: &str) -> Result<RawMesh> {
     let mut lines = Lines { name, lines: text.lines().enumerate(), line: 0 };
     let mut raw = RawMesh::default();
@@ -232,68 +302,8 @@ fn parse_text(text: &str, name: &str) -> Result<RawMesh> {
                 }
                 lines.expect("$EndElements")?;
             }
-            "$Nodes" => {
-                let h: Vec<u64> = lines.numbers("$Nodes header")?;
-                need(&h, 4, &lines, "$Nodes header")?;
-                let mut read = 0u64;
-                for _ in 0..h[0] {
-                    let b: Vec<i64> = lines.numbers("node block header")?;
-                    need(&b, 4, &lines, "node block header")?;
-                    if b[2] != 0 {
-                        return Err(lines.error("parametric node coordinates are not supported"));
-                    }
-                    if b[3] < 0 || b[3] as u64 > h[1] - read.min(h[1]) {
-                        return Err(lines.error(format!("a node block of {} nodes, past the {} the $Nodes header gives", b[3], h[1])));
-                    }
-                    let n = b[3] as usize;
-                    read += n as u64;
-                    // the count comes from the file: reserve no more than a line can hold
-                    let mut tags = Vec::with_capacity(n.min(1 << 16));
-                    for _ in 0..n {
-                        let t: Vec<u64> = lines.numbers("node tag")?;
-                        need(&t, 1, &lines, "node tag")?;
-                        tags.push(t[0]);
-                    }
-                    for tag in tags {
-                        let c: Vec<f64> = lines.numbers("node coordinates")?;
-                        need(&c, 3, &lines, "node coordinates")?;
-                        if c[2] != 0.0 {
-                            return Err(lines.error(format!("node {tag} has z = {}: the mesh must lie in the x-y plane (x = r, y = z)", c[2])));
-                        }
-                        insert_node(node_coords, tag, [c[0], c[1]], &lines)?;
-                    }
-                }
-                if read != h[1] {
-                    return Err(lines.error(format!("the $Nodes header gives {} nodes, its blocks hold {read}", h[1])));
-                }
-                lines.expect("$EndNodes")?;
-            }
-            "$Elements" => {
-                let h: Vec<u64> = lines.numbers("$Elements header")?;
-                need(&h, 4, &lines, "$Elements header")?;
-                let mut read = 0u64;
-                for _ in 0..h[0] {
-                    let b: Vec<i64> = lines.numbers("element block header")?;
-                    need(&b, 4, &lines, "element block header")?;
-                    let (dim, entity, ty) = (b[0] as i32, b[1] as i32, b[2] as u32);
-                    if b[3] < 0 || b[3] as u64 > h[1] - read.min(h[1]) {
-                        return Err(lines.error(format!("an element block of {} elements, past the {} the $Elements header gives", b[3], h[1])));
-                    }
-                    read += b[3] as u64;
-                    for _ in 0..b[3] {
-                        let v: Vec<u64> = lines.numbers("element")?;
-                        need(&v, 2, &lines, "element")?;
-                        if !element_tags.insert(v[0]) {
-                            return Err(lines.error(format!("element {} is given twice", v[0])));
-                        }
-                        elements.push(RawElement { dim, entity, ty, tag: v[0], nodes: v[1..].to_vec(), at: format!("{name}:{}", lines.line) });
-                    }
-                }
-                if read != h[1] {
-                    return Err(lines.error(format!("the $Elements header gives {} elements, its blocks hold {read}", h[1])));
-                }
-                lines.expect("$EndElements")?;
-            }
+            "$Nodes" => nodes_41(&mut lines, node_coords)?,
+            "$Elements" => elements_41(&mut lines, elements, &mut element_tags)?,
             other if other.starts_with("$End") => return Err(lines.error(format!("unexpected {other}"))),
             other if other.starts_with('$') => {
                 // A section slideline does not use ($Periodic, $NodeData, ...): skip it whole.
