@@ -158,6 +158,27 @@ pub fn ply_columns(p: &BellowsParams) -> Vec<usize> {
     pieces.iter().enumerate().map(|(k, piece)| if k == 0 || k == last { n_tan } else { count(piece.length(), p.ply_element_length) }).collect()
 }
 
+/// The parts as one mesh (no node shared yet), each part's sets prefixed with its name, its
+/// faces as surfaces (a ply's inner and outer faces over the convolutions by
+/// `convoluted_edges`).
+fn assemble_parts(parts: &[(String, Mesh, MeshSets)], convoluted_edges: impl Fn(&MeshSets, &Mesh, &str) -> Vec<Edge>) -> (Mesh, MeshSets) {
+    let mut mesh = Mesh::default();
+    let mut sets = MeshSets::default();
+    for (name, m, s) in parts {
+        let (n0, e0) = (mesh.coords.len(), mesh.elements.len());
+        mesh.coords.extend(&m.coords);
+        mesh.elements.extend(m.elements.iter().map(|c| c.map(|n| n + n0)));
+        sets.element_sets.insert(name.clone(), (e0..mesh.elements.len()).collect());
+        for side in ["inner", "outer", "bottom", "top"] {
+            let key = format!("{name}_{side}");
+            let edges: Vec<Edge> =
+                if name.starts_with("ply") && (side == "inner" || side == "outer") { convoluted_edges(s, m, side) } else { s.surfaces[side].clone() };
+            sets.surfaces.insert(key, edges.iter().map(|e| Edge { element: e.element + e0, side: e.side }).collect());
+        }
+    }
+    (mesh, sets)
+}
+
 /// Builds the mesh, its sets and the contact surfaces of the joint.
 pub fn mesh(p: &BellowsParams) -> Result<(Mesh, MeshSets)> {
     p.validate()?;
@@ -242,22 +263,7 @@ pub fn mesh(p: &BellowsParams) -> Result<(Mesh, MeshSets)> {
     };
 
     // assemble the parts as one mesh, prefixing their sets
-    let mut mesh = Mesh::default();
-    let mut sets = MeshSets::default();
-    let mut offsets = Vec::new();
-    for (name, m, s) in &parts {
-        let (n0, e0) = (mesh.coords.len(), mesh.elements.len());
-        offsets.push((n0, e0));
-        mesh.coords.extend(&m.coords);
-        mesh.elements.extend(m.elements.iter().map(|c| c.map(|n| n + n0)));
-        sets.element_sets.insert(name.clone(), (e0..mesh.elements.len()).collect());
-        for side in ["inner", "outer", "bottom", "top"] {
-            let key = format!("{name}_{side}");
-            let edges: Vec<Edge> =
-                if name.starts_with("ply") && (side == "inner" || side == "outer") { convoluted_edges(s, m, side) } else { s.surfaces[side].clone() };
-            sets.surfaces.insert(key, edges.iter().map(|e| Edge { element: e.element + e0, side: e.side }).collect());
-        }
-    }
+    let (mut mesh, sets) = assemble_parts(&parts, convoluted_edges);
     // bond: merge coincident nodes where the parts are joined (the tangents: plies to each
     // other and to the tubes; the sleeve to tube A), never where they only touch (the plies
     // over the convolutions, the sleeve in tube B's bore: those are contact pairs)
