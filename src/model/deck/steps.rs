@@ -1,7 +1,7 @@
 //! The TOML deck's steps, each by its procedure: a general (static) step, a perturbation step
 //! (harmonic, frequency, buckle), a heat step.
 
-use super::{SetTemperatureSpec, StepSpec, TemperatureSpec};
+use super::spec::{SetTemperatureSpec, StepSpec, TemperatureSpec};
 use crate::element::body_load::BodyForce;
 use crate::error::{Error, Result};
 use crate::model::heat::{HeatStep, HeldTemperature};
