@@ -208,11 +208,7 @@ impl<'a, 's> GeneralSteps<'a, 's> {
                 }
             }
         }
-        // once an attempt has failed, the step's remaining solves search with `l2` (see
-        // Snes::search_after_failure); a restart finds that in the step's history
         let failed_in_step = failed_before_restart;
-        // the step's last converged increment (the extrapolation's), and whether its
-        // displacement is in this file (a restart there reads it; otherwise the state keeps it)
         let last = resumed_here.as_ref().and_then(|r| r.last_increment.clone());
         // (a restart point always has its field: the restart reads it from the file continued)
         let last_in_file = resumed_here.is_some();
