@@ -2,7 +2,8 @@
 # Two slideline binaries on the same cases, 1 rank, for a change that must not change behaviour
 # (a refactoring): the default bellows, the quick joint with every analysis
 # (--assess --lateral 5 --angular 1 --squirm --frequencies), the shrink-fit walk-through and
-# three CalculiX decks (push_out, adjusted_fit, spun_disc). Every dataset and attribute of each
+# three CalculiX decks (push_out, adjusted_fit, spun_disc) and a deck of every procedure (a heat,
+# a general and a frequency step: warm_wall). Every dataset and attribute of each
 # results file must be bit-identical (save the wall times), and the printed output identical
 # once its seconds are masked. Prints one line per case and exits 1 on the first difference
 # in any.
@@ -22,6 +23,7 @@ cases=(
     "push_out|run $PWD/tests/data/inp/push_out.inp -o CASE.h5"
     "adjusted_fit|run $PWD/tests/data/inp/adjusted_fit.inp -o CASE.h5"
     "spun_disc|run $PWD/tests/data/inp/spun_disc.inp -o CASE.h5"
+    "warm_wall|run $PWD/tests/data/warm_wall.toml -o CASE.h5"
 )
 status=0
 for c in "${cases[@]}"; do

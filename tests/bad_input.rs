@@ -447,7 +447,10 @@ fn a_wrong_heat_step_is_named() {
         (format!("{RECT}{conductive}{heat}{held}boundary = [{{ set = \"bottom\", uz = 0.0 }}]\n"), vec!["step 'h'", "boundary has no meaning in a heat step"]),
         (format!("{RECT}{conductive}{heat}temperature = 100.0\n"), vec!["step 'h'", "holds temperatures on node sets"]),
         (format!("{RECT}{conductive}{heat}temperature = [{{ set = \"nowhere\", value = 1.0 }}]\n"), vec!["heat step 'h'", "unknown node set 'nowhere'"]),
-        (format!("{RECT}{MATERIAL}conductivity = 16.0\n{STEP}{heat}{held}"), vec!["step 'h'", "a heat step after a general or perturbation step"]),
+        (
+            format!("{RECT}{MATERIAL}conductivity = 16.0\n{STEP}{heat}{held}"),
+            vec!["step 'h'", "a heat step after the general step 'step-1'", "heat steps first"],
+        ),
         (
             format!("{RECT}{MATERIAL}conductivity = 16.0\n{heat}{held}{STEP}temperature = 50.0\n"),
             vec!["heat step 'h'", "general step 'step-2' gives its own temperature"],
@@ -457,6 +460,16 @@ fn a_wrong_heat_step_is_named() {
         let run = run_deck(&deck, &[], 1, &[]);
         assert_rejected(&run, &needles);
     }
+}
+
+/// The steps run in one order, heat, general, perturbation: a step out of it is named with the
+/// step it follows.
+#[test]
+fn a_step_out_of_the_order_steps_run_in_is_named() {
+    let frequency = "[[step]]\nname = \"modes\"\nprocedure = \"frequency\"\nmode = 2\neigenvalues = 2\n";
+    let deck = format!("{RECT}{MATERIAL}density = 7.85e-9\n{STEP}{frequency}[[step]]\nname = \"more\"\nboundary = [ {{ set = \"bottom\", uz = 0.0 }} ]\n");
+    let run = run_deck(&deck, &[], 1, &[]);
+    assert_rejected(&run, &["step 'more': a general step after the perturbation step 'modes'", "then the perturbation steps"]);
 }
 
 /// Material data in other units than slideline's (E = 200 for 200 GPa: the run ended in "did

@@ -22,7 +22,7 @@ use crate::error::{Error, Result};
 use crate::fe::linearize::{linearize, StressSampler};
 use crate::io::reader::ResultsReader;
 use crate::model::mesh::{mapped_block, Edge};
-use crate::model::{Component, Kinematics, Material, Model, OutputControls, OutputFields, PrescribedDisplacement, Pressure, Step};
+use crate::model::{Component, GeneralStep, Kinematics, Material, Model, OutputControls, OutputFields, PrescribedDisplacement, Pressure, Step};
 use crate::petsc::PetscSession;
 use crate::solve::run;
 use std::f64::consts::PI;
@@ -148,7 +148,7 @@ impl Convolution {
     }
 
     /// The half convolution loaded by `step`'s loads, one ply of `fineness`.
-    fn model(&self, fineness: Fineness, step: Step) -> Result<Model> {
+    fn model(&self, fineness: Fineness, step: GeneralStep) -> Result<Model> {
         let h = TP / fineness.per_thickness;
         let along: Vec<(usize, f64)> = self
             .pieces
@@ -194,7 +194,7 @@ impl Convolution {
             }],
             kinematics: Kinematics::Small,
             output: OutputControls { fields: OutputFields::from_names(&["stress".to_string()])?, ..OutputControls::default() },
-            steps: vec![step],
+            steps: vec![Step::General(step)],
             source_text: format!("idealised convolution: C1 = {}, C2 = {}", 2.0 * self.rm / self.w, 1.82 * self.rm / (DM * TP).sqrt()),
             ..Model::on_mesh(mesh)
         };
@@ -241,9 +241,11 @@ pub fn compute(session: &PetscSession, c1: f64, c2: f64, fineness: Fineness) -> 
     let hold = |set: &str, value: f64| PrescribedDisplacement { node_set: set.into(), component: Component::Z, value };
     // a deflection e per convolution: the half convolution's crest plane moves e / 2
     let e = 1e-3 * w;
-    let deflect = Step::new("deflect", 1, vec![hold("root", 0.0), hold("crest", -e / 2.0)]);
-    let press =
-        Step { pressures: vec![Pressure { surface: "inner".into(), value: PRESSURE }], ..Step::new("press", 1, vec![hold("root", 0.0), hold("crest", 0.0)]) };
+    let deflect = GeneralStep::new("deflect", 1, vec![hold("root", 0.0), hold("crest", -e / 2.0)]);
+    let press = GeneralStep {
+        pressures: vec![Pressure { surface: "inner".into(), value: PRESSURE }],
+        ..GeneralStep::new("press", 1, vec![hold("root", 0.0), hold("crest", 0.0)])
+    };
     super::in_scratch(session, "convolution", |dir| {
         let deflected = dir.join("deflect.h5");
         let summary = run(session, &convolution.model(fineness, deflect)?, &super::quiet_run(&deflected))?;

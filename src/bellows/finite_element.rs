@@ -28,7 +28,7 @@ use crate::assessment::formulas::{cycles_as_formed_austenitic, PSI_PER_MPA};
 use crate::bellows::joint::{convolution_pieces, BellowsParams, ConvolutionPiece};
 use crate::error::{Error, Result};
 use crate::io::reader::ResultsReader;
-use crate::model::{Component, PrescribedDisplacement, Pressure, Step};
+use crate::model::{Component, GeneralStep, PrescribedDisplacement, Pressure, Step};
 use crate::petsc::PetscSession;
 use crate::solve::run;
 use std::path::Path;
@@ -78,7 +78,7 @@ fn linear_analysis(p: &BellowsParams, name: &str, stroke: f64, pressure: f64) ->
     let pressures = if pressure == 0.0 { vec![] } else { vec![Pressure { surface: "wetted".into(), value: pressure }] };
     let mut m = super::elastic_model(p)?;
     let displacements = vec![hold("fixed_end", 0.0), hold("moving_end", -stroke)];
-    m.steps = vec![Step { pressures, ..Step::new(name, 1, displacements) }];
+    m.steps = vec![Step::General(GeneralStep { pressures, ..GeneralStep::new(name, 1, displacements) })];
     m.output.every = 1;
     m.output.precision = crate::model::Precision::Double;
     Ok(m)

@@ -16,7 +16,7 @@
 use crate::error::Result;
 use crate::model::mesh::{mapped_block, Edge, Mesh, MeshSets};
 use crate::model::{
-    AugmentedLagrangian, Component, ContactIntegration, ContactPair, Friction, Material, Model, OutputControls, Penalty, Plasticity, Predictor,
+    AugmentedLagrangian, Component, ContactIntegration, ContactPair, Friction, GeneralStep, Material, Model, OutputControls, Penalty, Plasticity, Predictor,
     PrescribedDisplacement, Pressure, Step, SteppingControls, Temperature,
 };
 use std::collections::HashMap;
@@ -429,15 +429,15 @@ pub fn model(p: &BellowsParams) -> Result<Model> {
     contacts.push(pair("inside_folds", "ply1_inner", "ply1_inner", false, p.friction_plies));
     let hold = |set: &str, component: Component, value: f64| PrescribedDisplacement { node_set: set.into(), component, value };
     let mut steps = vec![
-        Step {
+        GeneralStep {
             pressures: vec![Pressure { surface: "wetted".into(), value: p.pressure }],
             temperature: Some(Temperature::Uniform(p.temperature)),
-            ..Step::new("heat", p.heat_increments, vec![hold("fixed_end", Component::Z, 0.0), hold("moving_end", Component::Z, 0.0)])
+            ..GeneralStep::new("heat", p.heat_increments, vec![hold("fixed_end", Component::Z, 0.0), hold("moving_end", Component::Z, 0.0)])
         },
-        Step::new("compress", p.increments, vec![hold("moving_end", Component::Z, -p.displacement)]),
+        GeneralStep::new("compress", p.increments, vec![hold("moving_end", Component::Z, -p.displacement)]),
     ];
     if p.cycle {
-        steps.push(Step::new("return", p.increments, vec![hold("moving_end", Component::Z, 0.0)]));
+        steps.push(GeneralStep::new("return", p.increments, vec![hold("moving_end", Component::Z, 0.0)]));
     }
     let source_text = p.to_toml();
     let model = Model {
@@ -452,7 +452,7 @@ pub fn model(p: &BellowsParams) -> Result<Model> {
         stepping: SteppingControls { easy_iterations: 12, convergence: p.convergence, predictor: Predictor::Extrapolate, ..SteppingControls::default() },
         output: OutputControls { every: p.output_every, precision: p.output_precision, ..OutputControls::default() },
         contacts,
-        steps,
+        steps: steps.into_iter().map(Step::General).collect(),
         source_text,
         ..Model::on_mesh(mesh)
     };

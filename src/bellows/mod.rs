@@ -45,7 +45,7 @@ fn at_rest<T>(
 ) -> Result<T> {
     let rest = crate::bellows::joint::BellowsParams { pressure: 0.0, displacement: 0.0, heat_increments: 1, increments: 1, cycle: false, ..p.clone() };
     let mut model = elastic_model(&rest)?;
-    model.perturbations = steps(&rest);
+    model.set_perturbations(steps(&rest));
     model.validate()?;
     in_scratch(session, name, |dir| {
         let file = dir.join("rest.h5");

@@ -17,6 +17,7 @@ use crate::io::plots::{outline_picture, Panel, SegmentLayer};
 use crate::io::reader::ResultsReader;
 use crate::io::restart::RestartFrom;
 use crate::io::ResultsFile;
+use crate::model::Step;
 use crate::petsc::PetscSession;
 use crate::solve::affinity::partition_affinity;
 use crate::solve::{RunOptions, RunSummary};
@@ -140,15 +141,15 @@ pub fn run(session: &PetscSession, job: &BellowsJob) -> Result<RunSummary> {
     let mut m = super::joint::model(params)?;
     // the same perturbations about the run's end state
     if let Some(movements) = job.movements {
-        m.perturbations = super::flexibility::steps(params, movements);
+        m.set_perturbations(super::flexibility::steps(params, movements));
     }
     // the axial rate's step is shared by the flexibility's, the stability's and the
     // frequencies'
     let stability = job.squirm.then(|| super::stability::steps(params));
     let vibration = job.frequencies.then(|| super::vibration::steps(params));
     for more in stability.into_iter().chain(vibration) {
-        let have: Vec<String> = m.perturbations.iter().map(|s| s.name.clone()).collect();
-        m.perturbations.extend(more.into_iter().filter(|s| !have.contains(&s.name)));
+        let have: Vec<String> = m.perturbations().map(|s| s.name.clone()).collect();
+        m.steps.extend(more.into_iter().filter(|s| !have.contains(&s.name)).map(Step::Perturbation));
     }
     m.validate()?;
     crate::solve::run(

@@ -499,12 +499,12 @@ fn restart_increment(reader: &ResultsReader, from: &RestartFrom, model: &Model, 
     let step = step_attr as usize - 1;
     let names: Vec<String> = reader.text_attr("step_names")?.lines().map(str::to_string).collect();
     for (k, saved) in names.iter().enumerate().take(step + 1) {
-        match model.steps.get(k) {
+        match model.general_steps().nth(k) {
             Some(s) if s.name == *saved => {}
             Some(s) => {
                 return Err(bad(format!("its step {} is {saved:?}, the deck's is {:?} (a continued run may add steps, not change those done)", k + 1, s.name)))
             }
-            None => return Err(bad(format!("increment {number} is in step {} ({saved:?}), the deck has {} step(s)", k + 1, model.steps.len()))),
+            None => return Err(bad(format!("increment {number} is in step {} ({saved:?}), the deck has {} step(s)", k + 1, model.general_step_count()))),
         }
     }
     // the model and every step begun must be the deck's (older files keep no fingerprints)

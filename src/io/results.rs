@@ -208,7 +208,7 @@ impl ResultsFile {
             ("geometry", geometry),
             ("petsc_options", &session.options().join(" ")),
             ("slideline_version", env!("CARGO_PKG_VERSION")),
-            ("step_names", &model.steps.iter().map(|s| s.name.as_str()).collect::<Vec<_>>().join("\n")),
+            ("step_names", &model.general_steps().map(|s| s.name.as_str()).collect::<Vec<_>>().join("\n")),
             ("fingerprints", &crate::model::fingerprint::text(model)),
         ] {
             file.new_attr::<VarLenUnicode>().create(name).map_err(&err)?.write_scalar(&text(value)?).map_err(&err)?;
@@ -216,7 +216,7 @@ impl ResultsFile {
         file.new_attr::<u32>().create("ranks").map_err(&err)?.write_scalar(&(partition.size as u32)).map_err(&err)?;
         // readers trust only increments marked complete (a run that dies mid-write leaves one unmarked)
         file.new_attr::<u8>().create(COMPLETION_MARKED).map_err(&err)?.write_scalar(&1u8).map_err(&err)?;
-        file.new_attr::<u32>().create("steps").map_err(&err)?.write_scalar(&(model.steps.len() as u32)).map_err(&err)?;
+        file.new_attr::<u32>().create("steps").map_err(&err)?.write_scalar(&(model.general_step_count() as u32)).map_err(&err)?;
         // which increments have fields, so that a reader can tell one that went missing
         file.new_attr::<u32>().create(OUTPUT_EVERY).map_err(&err)?.write_scalar(&(model.output.every as u32)).map_err(&err)?;
 

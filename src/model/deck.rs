@@ -84,7 +84,7 @@ use super::constraint::{default_tie_tolerance, tie};
 use super::mesh::{blocks, rectangle, split_into_triangles, Block, MeshSets};
 use super::{
     default_capture_distance, gmsh, Adjust, AugmentedLagrangian, ContactIntegration, ContactPair, Friction, Kinematics, Material, Model, OutputControls,
-    OutputFields, Penalty, Plasticity, Pressure,
+    OutputFields, Penalty, Plasticity, Pressure, Step,
 };
 use crate::error::{Error, Result};
 use crate::fe::quadrature::Integration;
@@ -237,23 +237,16 @@ pub fn parse(text: &str, path: &Path) -> Result<Model> {
 
     let reference_temperature = deck.reference_temperature.field(&mesh, &node_sets, None, "reference_temperature")?;
     let mut temperature_now = reference_temperature.clone();
-    let (mut steps, mut perturbations, mut heat_steps) = (Vec::new(), Vec::new(), Vec::new());
+    let mut steps = Vec::new();
     let plane = deck.geometry != GeometrySpec::Axisymmetric;
     for (k, s) in deck.step.iter().enumerate() {
         let name = s.name.clone().unwrap_or_else(|| format!("step-{}", k + 1));
         let pressures: Vec<Pressure> = s.pressure.iter().map(|p| Pressure { surface: p.surface.clone(), value: p.value }).collect();
         match s.procedure.as_deref().unwrap_or("static") {
-            "static" => {
-                if !perturbations.is_empty() {
-                    return Err(Error::input(format!("step '{name}': a general step after a perturbation step (perturbation steps come last)")));
-                }
-                steps.push(steps::general(s, name, pressures, &mesh, &node_sets, plane, &mut temperature_now)?);
-            }
-            procedure @ ("harmonic" | "frequency" | "buckle") => perturbations.push(steps::perturbation(s, name, pressures, procedure)?),
-            "heat" if !steps.is_empty() || !perturbations.is_empty() => {
-                return Err(Error::input(format!("step '{name}': a heat step after a general or perturbation step (heat steps come first)")))
-            }
-            "heat" => heat_steps.push(steps::heat(s, &name)?),
+            // in the deck's order (the model's validation holds them to the order they run in)
+            "static" => steps.push(Step::General(steps::general(s, name, pressures, &mesh, &node_sets, plane, &mut temperature_now)?)),
+            procedure @ ("harmonic" | "frequency" | "buckle") => steps.push(Step::Perturbation(steps::perturbation(s, name, pressures, procedure)?)),
+            "heat" => steps.push(Step::Heat(steps::heat(s, &name)?)),
             other => {
                 return Err(Error::input(format!(
                     "step '{name}': procedure {other:?} is not one of \"static\", \"harmonic\", \"frequency\", \"buckle\", \"heat\""
@@ -333,8 +326,6 @@ pub fn parse(text: &str, path: &Path) -> Result<Model> {
         contacts,
         constraints,
         steps,
-        perturbations,
-        heat_steps,
         source_text: text.to_string(),
         source_files,
         reaction_segment_degrees: None,

@@ -6,7 +6,7 @@
 //! A fingerprint is the 64-bit FNV-1a hash of the part's `Debug` text: stable across builds
 //! (unlike std's hasher), and short enough to keep every field of every step.
 
-use super::{Model, Step};
+use super::{GeneralStep, Model};
 
 /// One fingerprint: what it covers ("materials", "step 2 pressures") and its hash.
 pub type Fingerprint = (String, u64);
@@ -32,9 +32,9 @@ pub fn model_parts(model: &Model) -> Vec<Fingerprint> {
 }
 
 /// The fingerprints of each field of step `k` (0-based), named "step K field".
-pub fn step_fields(k: usize, step: &Step) -> Vec<Fingerprint> {
+pub fn step_fields(k: usize, step: &GeneralStep) -> Vec<Fingerprint> {
     // destructured so that a new field of Step cannot be left out unnoticed
-    let Step {
+    let GeneralStep {
         name,
         increments,
         displacements,
@@ -65,7 +65,7 @@ pub fn step_fields(k: usize, step: &Step) -> Vec<Fingerprint> {
 
 /// Every fingerprint of `model` as the text stored in the results file: one "what hex" per line.
 pub fn text(model: &Model) -> String {
-    let steps = model.steps.iter().enumerate().flat_map(|(k, s)| step_fields(k, s));
+    let steps = model.general_steps().enumerate().flat_map(|(k, s)| step_fields(k, s));
     model_parts(model).into_iter().chain(steps).map(|(what, h)| format!("{what}\t{h:016x}\n")).collect()
 }
 
@@ -73,7 +73,7 @@ pub fn text(model: &Model) -> String {
 /// step `step` (0-based, the step of the restart increment): the parts that differ, by name.
 pub fn changed(model: &Model, stored: &str, step: usize) -> Vec<String> {
     let stored: std::collections::HashMap<&str, &str> = stored.lines().filter_map(|l| l.split_once('\t')).collect();
-    let steps = model.steps.iter().enumerate().take(step + 1).flat_map(|(k, s)| step_fields(k, s));
+    let steps = model.general_steps().enumerate().take(step + 1).flat_map(|(k, s)| step_fields(k, s));
     model_parts(model)
         .into_iter()
         .chain(steps)

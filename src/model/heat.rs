@@ -34,7 +34,7 @@ impl HeatStep {
     /// material, no general step with a temperature of its own.
     pub fn validate(&self, model: &Model) -> Result<()> {
         let at = |what: String| Error::input(format!("heat step '{}': {what}", self.name));
-        if let Some(s) = model.steps.iter().find(|s| s.temperature.is_some()) {
+        if let Some(s) = model.general_steps().find(|s| s.temperature.is_some()) {
             return Err(at(format!(
                 "general step '{}' gives its own temperature: after a heat step the temperatures are the heat step's field (leave the step's temperature out)",
                 s.name
@@ -73,7 +73,7 @@ impl Model {
     /// temperatures) and kept after.
     pub fn with_heat_field(&self, field: Vec<f64>) -> Model {
         let mut model = self.clone();
-        if let Some(first) = model.steps.first_mut() {
+        if let Some(super::Step::General(first)) = model.steps.iter_mut().find(|s| matches!(s, super::Step::General(_))) {
             first.temperature = Some(super::Temperature::from_nodal(field));
         }
         model

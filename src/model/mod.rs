@@ -223,10 +223,43 @@ pub struct NodalForce {
     pub value: f64,
 }
 
-/// One load step: targets at its end, reached in `increments` equal increments. What a step
-/// does not mention keeps its value from the previous step (constraints persist, as in Abaqus).
+/// One step of the analysis, of one procedure. A model keeps its steps in one list, in the
+/// order they run: heat steps first (the last one's temperature field is the general steps'),
+/// then the general steps, then the linear perturbation steps about the last general step's end.
+#[derive(Clone, Debug)]
+pub enum Step {
+    /// Steady heat conduction.
+    Heat(heat::HeatStep),
+    /// A general (nonlinear static) step: the results file's increments and step numbers.
+    General(GeneralStep),
+    /// A linear perturbation: a harmonic response, buckling or natural frequencies.
+    Perturbation(perturbation::Perturbation),
+}
+
+impl Step {
+    pub fn name(&self) -> &str {
+        match self {
+            Step::Heat(h) => &h.name,
+            Step::General(g) => &g.name,
+            Step::Perturbation(p) => &p.name,
+        }
+    }
+
+    /// The procedure's name in the deck's terms, for messages.
+    pub fn procedure(&self) -> &'static str {
+        match self {
+            Step::Heat(_) => "heat",
+            Step::General(_) => "general",
+            Step::Perturbation(_) => "perturbation",
+        }
+    }
+}
+
+/// A general load step: targets at its end, reached in `increments` equal increments. What a
+/// step does not mention keeps its value from the previous step (constraints persist, as in
+/// Abaqus).
 #[derive(Clone, Debug, PartialEq)]
-pub struct Step {
+pub struct GeneralStep {
     pub name: String,
     pub increments: usize,
     pub displacements: Vec<PrescribedDisplacement>,
@@ -252,11 +285,11 @@ pub struct Step {
     pub friction_changes: Vec<FrictionChange>,
 }
 
-impl Step {
+impl GeneralStep {
     /// A step that prescribes `displacements` in `increments` increments and nothing else:
     /// no pressure, force or body load, the temperature kept, field output written.
     pub fn new(name: &str, increments: usize, displacements: Vec<PrescribedDisplacement>) -> Self {
-        Step {
+        GeneralStep {
             name: name.into(),
             increments,
             displacements,
@@ -311,11 +344,8 @@ pub struct Model {
     pub contacts: Vec<ContactPair>,
     /// Linear multi-point constraints, in force in every step.
     pub constraints: Vec<Constraint>,
+    /// Every step, in the order they run (see [`Step`]).
     pub steps: Vec<Step>,
-    /// Linear perturbation steps after the general ones, each about the state they end in.
-    pub perturbations: Vec<perturbation::Perturbation>,
-    /// Steady heat-conduction steps: a model with them has no other steps.
-    pub heat_steps: Vec<heat::HeatStep>,
     /// The text the model was read from, kept for the output file.
     pub source_text: String,
     /// The files it was read from (the deck, its mesh, its includes): a run never writes over
@@ -348,8 +378,6 @@ impl Model {
             contacts: Vec::new(),
             constraints: Vec::new(),
             steps: Vec::new(),
-            perturbations: Vec::new(),
-            heat_steps: Vec::new(),
             source_text: String::new(),
             source_files: Vec::new(),
             reaction_segment_degrees: None,
@@ -368,16 +396,53 @@ impl Model {
         ElementGeometry::new(self.mesh.shape(e), self.element_integration[e], self.element_section[e], x)
     }
 
+    /// The general steps, in order: the results file's steps are numbered by them alone.
+    pub fn general_steps(&self) -> impl Iterator<Item = &GeneralStep> + Clone {
+        self.steps.iter().filter_map(|s| match s {
+            Step::General(g) => Some(g),
+            _ => None,
+        })
+    }
+
+    /// General step `k` (0-based, the results file's step k + 1).
+    pub fn general_step(&self, k: usize) -> &GeneralStep {
+        self.general_steps().nth(k).expect("a general step of the model")
+    }
+
+    pub fn general_step_count(&self) -> usize {
+        self.general_steps().count()
+    }
+
+    pub fn heat_steps(&self) -> impl Iterator<Item = &heat::HeatStep> {
+        self.steps.iter().filter_map(|s| match s {
+            Step::Heat(h) => Some(h),
+            _ => None,
+        })
+    }
+
+    pub fn perturbations(&self) -> impl Iterator<Item = &perturbation::Perturbation> {
+        self.steps.iter().filter_map(|s| match s {
+            Step::Perturbation(p) => Some(p),
+            _ => None,
+        })
+    }
+
+    /// Replaces the model's perturbation steps by `perturbations` (after the general steps).
+    pub fn set_perturbations(&mut self, perturbations: impl IntoIterator<Item = perturbation::Perturbation>) {
+        self.steps.retain(|s| !matches!(s, Step::Perturbation(_)));
+        self.steps.extend(perturbations.into_iter().map(Step::Perturbation));
+    }
+
     /// Whether the temperature varies over the mesh at the start or in some step.
     pub fn has_temperature_field(&self) -> bool {
-        std::iter::once(&self.reference_temperature).chain(self.steps.iter().filter_map(|s| s.temperature.as_ref())).any(|t| t.uniform().is_none())
+        std::iter::once(&self.reference_temperature).chain(self.general_steps().filter_map(|s| s.temperature.as_ref())).any(|t| t.uniform().is_none())
     }
 
     /// The friction of every contact pair (in `contacts` order) in step `step`: the pair's
     /// own, changed by the friction changes of that step and the steps before it.
     pub fn friction_in_step(&self, step: usize) -> Vec<Option<Friction>> {
         let mut friction: Vec<Option<Friction>> = self.contacts.iter().map(|c| c.friction).collect();
-        for change in self.steps.iter().take(step + 1).flat_map(|s| &s.friction_changes) {
+        for change in self.general_steps().take(step + 1).flat_map(|s| &s.friction_changes) {
             if let Some(p) = self.contacts.iter().position(|c| c.name == change.pair) {
                 friction[p] = change.friction;
             }
@@ -388,7 +453,7 @@ impl Model {
     /// Whether contact pair `pair` has friction in some step.
     pub fn pair_has_friction(&self, pair: usize) -> bool {
         self.contacts[pair].friction.is_some()
-            || self.steps.iter().flat_map(|s| &s.friction_changes).any(|c| c.pair == self.contacts[pair].name && c.friction.is_some())
+            || self.general_steps().flat_map(|s| &s.friction_changes).any(|c| c.pair == self.contacts[pair].name && c.friction.is_some())
     }
 
     pub fn node_set(&self, name: &str) -> Result<&[usize]> {

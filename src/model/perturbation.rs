@@ -112,13 +112,13 @@ impl Perturbation {
     /// values, a general step before it.
     pub fn validate(&self, model: &Model) -> Result<()> {
         let at = |what: String| Error::input(format!("perturbation step '{}': {what}", self.name));
-        if model.steps.is_empty() {
+        if model.general_step_count() == 0 {
             return Err(at("a perturbation step needs a general step before it (its base state)".into()));
         }
         // the spin of the base state: each set's last value, kept by the steps that do not
         // restate it (a spin ramped back to 0 leaves a base state at rest)
         let mut spin: std::collections::BTreeMap<&str, (f64, &str)> = std::collections::BTreeMap::new();
-        for s in &model.steps {
+        for s in model.general_steps() {
             for b in &s.body_loads {
                 if let crate::element::body_load::BodyForce::Spin(omega) = b.force {
                     spin.insert(b.elements.as_str(), (omega, s.name.as_str()));

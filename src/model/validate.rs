@@ -3,7 +3,8 @@
 //! freedom; no body free to move along the axis).
 
 use super::{
-    known, BodyLoad, Component, ContactIntegration, ContactPair, Edge, Material, Model, Penalty, Plasticity, Temperature, MAX_INCREMENTS, MIN_YOUNGS_MODULUS,
+    known, BodyLoad, Component, ContactIntegration, ContactPair, Edge, Material, Model, Penalty, Plasticity, Step, Temperature, MAX_INCREMENTS,
+    MIN_YOUNGS_MODULUS,
 };
 use crate::error::{Error, Result};
 use std::collections::BTreeMap;
@@ -52,19 +53,19 @@ impl Model {
             return Err(Error::input("internal: element_section does not match the element count"));
         }
         self.mesh.validate_sections(&self.element_section)?;
-        if !self.perturbations.is_empty() && self.element_section.iter().any(|s| !s.is_axisymmetric()) {
+        if self.perturbations().next().is_some() && self.element_section.iter().any(|s| !s.is_axisymmetric()) {
             return Err(Error::input(
                 "perturbation steps (harmonic loads, buckling, natural frequencies) are built for axisymmetric models only; this model has plane-strain or plane-stress elements",
             ));
         }
         // a model of heat steps alone uses its materials' conductivity alone (`heat::HeatStep`)
-        for m in self.materials.iter().filter(|_| !self.steps.is_empty()) {
+        for m in self.materials.iter().filter(|_| self.general_step_count() > 0) {
             validate_material(m)?;
         }
-        for p in &self.perturbations {
+        for p in self.perturbations() {
             p.validate(self)?;
         }
-        for h in &self.heat_steps {
+        for h in self.heat_steps() {
             h.validate(self)?;
         }
         if self.output.every == 0 {
@@ -80,8 +81,9 @@ impl Model {
         if let Some((key, value, _, need)) = ranges.into_iter().find(|r| !r.2) {
             return Err(Error::input(format!("[stepping] {key} = {value}: need {need}")));
         }
-        let mut seen: Vec<&str> = self.heat_steps.iter().map(|h| h.name.as_str()).collect();
-        for (k, step) in self.steps.iter().enumerate() {
+        self.validate_step_order()?;
+        let mut seen: Vec<&str> = self.heat_steps().map(|h| h.name.as_str()).collect();
+        for (k, step) in self.general_steps().enumerate() {
             if step.name.trim().is_empty() {
                 return Err(Error::input(format!("step {}: an empty name (a restart finds steps by name)", k + 1)));
             }
@@ -104,7 +106,7 @@ impl Model {
         if let Some(t) = self.reference_temperature.non_finite() {
             return Err(Error::input(format!("the reference temperature must be finite, got {t}")));
         }
-        let fields = std::iter::once(&self.reference_temperature).chain(self.steps.iter().filter_map(|s| s.temperature.as_ref()));
+        let fields = std::iter::once(&self.reference_temperature).chain(self.general_steps().filter_map(|s| s.temperature.as_ref()));
         if let Some(n) = fields
             .filter_map(|t| match t {
                 Temperature::Nodal(v) => Some(v.len()),
@@ -114,10 +116,10 @@ impl Model {
         {
             return Err(Error::input(format!("a temperature field has {n} values for the mesh's {} nodes", self.mesh.coords.len())));
         }
-        if self.steps.is_empty() && self.heat_steps.is_empty() {
+        if self.general_step_count() == 0 && self.heat_steps().next().is_none() {
             return Err(Error::input("the model has no steps: add a [[step]]"));
         }
-        for step in &self.steps {
+        for step in self.general_steps() {
             if step.increments == 0 || step.increments > MAX_INCREMENTS {
                 return Err(Error::input(format!("step '{}': increments must lie in 1..={MAX_INCREMENTS}, got {}", step.name, step.increments)));
             }
@@ -183,6 +185,26 @@ impl Model {
         Ok(())
     }
 
+    /// The steps run in one order: heat steps first (their field is the general steps'
+    /// temperature), then the general steps, then the perturbation steps about their end.
+    fn validate_step_order(&self) -> Result<()> {
+        let rank = |s: &Step| match s {
+            Step::Heat(_) => 0,
+            Step::General(_) => 1,
+            Step::Perturbation(_) => 2,
+        };
+        match self.steps.windows(2).find(|w| rank(&w[0]) > rank(&w[1])) {
+            Some(w) => Err(Error::input(format!(
+                "step '{}': a {} step after the {} step '{}': the steps run heat steps first, then the general steps, then the perturbation steps",
+                w[1].name(),
+                w[1].procedure(),
+                w[0].procedure(),
+                w[0].name()
+            ))),
+            None => Ok(()),
+        }
+    }
+
     /// Refuses two different values prescribed on one degree of freedom (by two entries of
     /// the constraints in force in a step: a step's own and those kept from earlier steps),
     /// and a body that no constraint holds axially (a rigid-body motion along z, which the
@@ -192,7 +214,7 @@ impl Model {
         let mut in_force: BTreeMap<(String, Component), f64> = BTreeMap::new();
         let mut held_z = vec![false; self.mesh.coords.len()];
         let mut held_r = vec![false; self.mesh.coords.len()];
-        for step in &self.steps {
+        for step in self.general_steps() {
             for (k, d) in step.displacements.iter().enumerate() {
                 if let Some(e) = step.displacements[..k].iter().find(|e| e.node_set == d.node_set && e.component == d.component && e.value != d.value) {
                     return Err(Error::input(format!(
@@ -230,7 +252,7 @@ impl Model {
             }
         }
         // (a model of heat steps alone moves nothing)
-        if let Some((n, _)) = self.axially_free_bodies(&held_z).into_iter().filter(|_| !self.steps.is_empty()).find(|(_, pairs)| pairs.is_empty()) {
+        if let Some((n, _)) = self.axially_free_bodies(&held_z).into_iter().filter(|_| self.general_step_count() > 0).find(|(_, pairs)| pairs.is_empty()) {
             return Err(Error::input(format!(
                 "the body containing node {} (at r = {}, z = {}) has no prescribed uz and no contact: it is free to move along the axis; prescribe uz on one of its nodes",
                 self.mesh.node_ids[n], self.mesh.coords[n][0], self.mesh.coords[n][1]

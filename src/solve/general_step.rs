@@ -25,7 +25,7 @@ use crate::io::restart::CommittedState;
 use crate::io::status::StatusFile;
 use crate::io::{ContactSummary, HistoryRow, ResultsFile};
 use crate::material::PointState;
-use crate::model::{Convergence, Model, Predictor, Step};
+use crate::model::{Convergence, GeneralStep, Model, Predictor};
 use crate::petsc::{FieldRatios, Matrix, PetscSession, Snes, SolveReport, VecOps, Vector};
 use crate::records::energy::Energies;
 use crate::records::increment_fields::IncrementFields;
@@ -64,7 +64,7 @@ pub(super) struct GeneralSteps<'a, 's> {
 /// stands and the next attempt's size.
 struct StepState<'s, 'm> {
     s: usize,
-    step: &'m Step,
+    step: &'m GeneralStep,
     loads: StepLoads,
     prescribed: Vec<[bool; 2]>,
     dofs: DofMap,
@@ -146,7 +146,7 @@ impl<'a, 's> GeneralSteps<'a, 's> {
         let (world, comm) = (session.world(), session.comm());
         let root = world.rank() == 0;
         let controls = model.stepping;
-        let step = &model.steps[s];
+        let step = model.general_step(s);
         let loads = StepLoads::new(model, s, self.carried.previous.as_ref(), resumed_here.as_ref().map_or(&self.carried.displacement, |r| &r.step_start));
         let prescribed = loads.prescribed_mask(model);
         // a constraint released at the step's start lets go of its reaction at once
@@ -248,7 +248,7 @@ impl<'a, 's> GeneralSteps<'a, 's> {
         self.progress.note(&format!(
             "step {}/{} {:<10} cutback at lambda {target:.6}: {}, {} Newton its; retry {:.3e}",
             s + 1,
-            model.steps.len(),
+            model.general_step_count(),
             step.name,
             report.describe(),
             report.newton_iterations,
@@ -316,7 +316,7 @@ impl<'a, 's> GeneralSteps<'a, 's> {
         }
         // only the end of the last general step is the perturbations' base (a run that stops
         // before it returns before them): no copy at every increment
-        if !model.perturbations.is_empty() && s + 1 == model.steps.len() && st.lambda >= 1.0 {
+        if model.perturbations().next().is_some() && s + 1 == model.general_step_count() && st.lambda >= 1.0 {
             self.base = Some(keep_base(model, &mut st.problem, &fields));
         }
         let contacts = contact_summaries(&world, model, &st.problem);
@@ -409,7 +409,7 @@ impl<'a, 's> GeneralSteps<'a, 's> {
         if let Some(status) = self.status.as_mut() {
             status.record(&row);
         }
-        self.progress.increment(&row, &step.name, model.steps.len(), !model.is_axisymmetric());
+        self.progress.increment(&row, &step.name, model.general_step_count(), !model.is_axisymmetric());
         self.carried.rows.push(row);
         st.cutbacks = 0;
         Ok(())
@@ -422,7 +422,7 @@ impl<'a, 's> GeneralSteps<'a, 's> {
         let s = st.s;
         // a restart from the last step's end converges no increment: the state it resumes is
         // the perturbations' base
-        if self.base.is_none() && !model.perturbations.is_empty() && s + 1 == model.steps.len() && st.lambda >= 1.0 {
+        if self.base.is_none() && model.perturbations().next().is_some() && s + 1 == model.general_step_count() && st.lambda >= 1.0 {
             st.problem.set_load(st.loads.at(model, st.lambda));
             set_free_values(&mut st.x, &st.dofs, partition, &self.carried.displacement)?;
             let fields = st.problem.evaluate_fields(&st.x)?;

@@ -232,7 +232,7 @@ impl<'s, 'm> Problem<'s, 'm> {
             .iter()
             .map(|(name, edges)| (name.clone(), edges.iter().filter(|e| position[e.element] != usize::MAX).map(|e| (position[e.element], e.side)).collect()))
             .collect();
-        let loaded: std::collections::BTreeSet<&String> = model.steps.iter().flat_map(|s| s.body_loads.iter().map(|b| &b.elements)).collect();
+        let loaded: std::collections::BTreeSet<&String> = model.general_steps().flat_map(|s| s.body_loads.iter().map(|b| &b.elements)).collect();
         let loaded_elements = loaded
             .into_iter()
             .map(|name| (name.clone(), model.element_sets[name].iter().filter(|&&e| position[e] != usize::MAX).map(|&e| position[e]).collect()))

@@ -27,7 +27,7 @@ impl StepLoads {
     /// Loads of step `index`, given the previous step's loads (None for the first) and the
     /// current nodal displacements (a newly prescribed DOF ramps from where it is).
     pub fn new(model: &Model, index: usize, previous: Option<&StepLoads>, displacement: &[[f64; 2]]) -> Self {
-        let step = &model.steps[index];
+        let step = model.general_step(index);
         // what earlier steps prescribed holds, unless this step releases what it does not restate
         let earlier = previous.filter(|_| !step.release_constraints);
         let mut prescribed: BTreeMap<(usize, usize), (f64, f64)> =

@@ -13,9 +13,10 @@ use crate::io::progress::Progress;
 use crate::io::restart::RestartFrom;
 use crate::io::status::StatusFile;
 use crate::io::{HistoryRow, ResultsFile};
-use crate::model::perturbation::Analysis;
-use crate::model::Model;
+use crate::model::perturbation::{Analysis, Perturbation};
+use crate::model::{Model, Step};
 use crate::petsc::{PetscSession, Snes};
+use crate::records::perturbation::PerturbationAnswer;
 use mpi::traits::*;
 use std::path::PathBuf;
 use std::time::Instant;
@@ -49,7 +50,7 @@ pub struct RunSummary {
     /// `history` holds them first, then this run's.
     pub continued: usize,
     /// Each perturbation step's name and answer, in order.
-    pub perturbations: Vec<(String, crate::records::perturbation::PerturbationAnswer)>,
+    pub perturbations: Vec<(String, PerturbationAnswer)>,
     /// Each heat step's name and answer, in order.
     pub heat: Vec<(String, crate::records::heat::HeatAnswer)>,
     /// Whether the model is plane (no axisymmetric element): its forces are over its
@@ -97,7 +98,7 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
     // PETSc's options are read (and a bad one refused) before anything is written: a rerun
     // with a misspelt type must not destroy the results file it would replace
     drop(Snes::new(session)?);
-    if model.perturbations.iter().any(|p| p.analysis != crate::model::perturbation::Analysis::Response) {
+    if model.perturbations().any(|p| p.analysis != Analysis::Response) {
         crate::petsc::eigen::check_options(session)?;
     }
     let (_lock, note) = ResultsLock::acquire(&options.output, &world)?;
@@ -115,15 +116,16 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
         partition.size,
         options.output.display()
     ));
-    // the heat steps, first: the last one's field is the general steps' temperature
+    // the heat steps run first (validated: they lead the list): the last one's field is the
+    // general steps' temperature, and so part of the model the rest runs on
     let mut heat = Vec::new();
-    for h in &model.heat_steps {
+    for h in model.heat_steps() {
         let answer = super::conduction::solve(session, model, &partition, h)?;
         stop_all_on_write_error(&world, &options.output, results.write_heat(h, &answer, &partition, model.is_axisymmetric()))?;
         progress.note(&format!("heat step '{}': solved", h.name));
         heat.push((h.name.clone(), answer));
     }
-    let heated = heat.last().filter(|_| !model.steps.is_empty()).map(|(_, a)| model.with_heat_field(a.temperature.clone()));
+    let heated = heat.last().filter(|_| model.general_step_count() > 0).map(|(_, a)| model.with_heat_field(a.temperature.clone()));
     let model = heated.as_ref().unwrap_or(model);
     let (carried, mut resumed) = match resume {
         None => (Carried::fresh(model, &partition), None),
@@ -156,41 +158,24 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
         pattern_refits: 0,
         base: None,
     };
-    for s in first_step..model.steps.len() {
-        general.step(s, resumed.take())?;
-    }
-    let GeneralSteps { carried: Carried { displacement, rows, .. }, reserved_couplings, pattern_refits, base, .. } = general;
+    // each step to its procedure's driver, in the list's order; the general steps are
+    // numbered among themselves (the results file's steps), and a restart skips those before
+    // its own
     let mut perturbations = Vec::new();
-    for p in &model.perturbations {
-        let Some(kept) = base.as_ref() else {
-            return Err(Error::input(format!("perturbation step '{}': this run converged no increment of a general step to be its base state", p.name)));
-        };
-        let state = super::perturbation::BaseState {
-            displacement: &displacement,
-            stress: &kept.stress,
-            plastic_strain: &kept.plastic_strain,
-            pressures: &kept.pressures,
-            contacts: &kept.contacts,
-        };
-        // each procedure its own driver: a response (solve::perturbation) or an eigenproblem
-        // (solve::modes)
-        let answer = match p.analysis {
-            Analysis::Response => super::perturbation::response(session, model, &partition, &state, p, false)?,
-            Analysis::Frequency { eigenvalues } => super::modes::frequency(session, model, &partition, &state, p, eigenvalues)?,
-            Analysis::Buckle { eigenvalues } => super::modes::buckle(session, model, &partition, &state, p, eigenvalues)?,
-        };
-        // notes on what an answer means belong with it, --quiet or not
-        for note in answer.notes.iter().filter(|_| root) {
-            match options.progress {
-                true => progress.note(&format!("note: {note}")),
-                false => println!("note: {note}"),
+    let mut general_index = 0;
+    for step in &model.steps {
+        match step {
+            Step::Heat(_) => {}
+            Step::General(_) => {
+                if general_index >= first_step {
+                    general.step(general_index, resumed.take())?;
+                }
+                general_index += 1;
             }
+            Step::Perturbation(p) => perturbations.push((p.name.clone(), perturbation(&mut general, p, options.progress)?)),
         }
-        // the base state's fields: the last increment's (always written: it ends its step)
-        let base_group = rows.last().map(|r| format!("{:06}", r.number));
-        stop_all_on_write_error(&world, &options.output, results.write_perturbation(p, &answer, &partition, base_group.as_deref()))?;
-        perturbations.push((p.name.clone(), answer));
     }
+    let GeneralSteps { carried: Carried { displacement, rows, .. }, reserved_couplings, pattern_refits, .. } = general;
     progress.finish();
     if let Some(status) = status.as_mut() {
         status.note(&format!("completed: {} increments ({} in this run) in {:.1} s", rows.len(), rows.len() - continued, start.elapsed().as_secs_f64()));
@@ -207,4 +192,38 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
         heat,
         plane: !model.is_axisymmetric(),
     })
+}
+
+/// Perturbation step `p` about the state the general steps ended in, by its procedure's
+/// driver (`perturbation` for a response, `modes` for an eigenproblem), its answer written
+/// (collective).
+fn perturbation(general: &mut GeneralSteps, p: &Perturbation, progress_lines: bool) -> Result<PerturbationAnswer> {
+    let (session, model, partition) = (general.session, general.model, general.partition);
+    let Some(kept) = general.base.as_ref() else {
+        return Err(Error::input(format!("perturbation step '{}': this run converged no increment of a general step to be its base state", p.name)));
+    };
+    let state = super::perturbation::BaseState {
+        displacement: &general.carried.displacement,
+        stress: &kept.stress,
+        plastic_strain: &kept.plastic_strain,
+        pressures: &kept.pressures,
+        contacts: &kept.contacts,
+    };
+    let answer = match p.analysis {
+        Analysis::Response => super::perturbation::response(session, model, partition, &state, p, false)?,
+        Analysis::Frequency { eigenvalues } => super::modes::frequency(session, model, partition, &state, p, eigenvalues)?,
+        Analysis::Buckle { eigenvalues } => super::modes::buckle(session, model, partition, &state, p, eigenvalues)?,
+    };
+    // notes on what an answer means belong with it, --quiet or not
+    for note in answer.notes.iter().filter(|_| session.world().rank() == 0) {
+        match progress_lines {
+            true => general.progress.note(&format!("note: {note}")),
+            false => println!("note: {note}"),
+        }
+    }
+    // the base state's fields: the last increment's (always written: it ends its step)
+    let base_group = general.carried.rows.last().map(|r| format!("{:06}", r.number));
+    let written = general.results.write_perturbation(p, &answer, partition, base_group.as_deref());
+    stop_all_on_write_error(&session.world(), general.output, written)?;
+    Ok(answer)
 }

@@ -7,7 +7,7 @@ use crate::error::{Error, Result};
 use crate::model::heat::{HeatStep, HeldTemperature};
 use crate::model::mesh::Mesh;
 use crate::model::perturbation::{Analysis, HarmonicComponent, HarmonicDisplacement, Perturbation, RingMotion};
-use crate::model::{BodyLoad, Component, Friction, FrictionChange, NodalForce, PrescribedDisplacement, Pressure, Step, Temperature};
+use crate::model::{BodyLoad, Component, Friction, FrictionChange, GeneralStep, NodalForce, PrescribedDisplacement, Pressure, Temperature};
 use std::collections::BTreeMap;
 
 /// General step `s` named `name` with its `pressures`; a temperature it sets becomes
@@ -20,7 +20,7 @@ pub(super) fn general(
     node_sets: &BTreeMap<String, Vec<usize>>,
     plane: bool,
     temperature_now: &mut Temperature,
-) -> Result<Step> {
+) -> Result<GeneralStep> {
     if let Some(mode) = s.mode {
         return Err(Error::input(format!("step '{name}': mode = {mode} is for the perturbation procedures (\"harmonic\", \"frequency\", \"buckle\")")));
     }
@@ -79,7 +79,7 @@ pub(super) fn general(
             Ok(FrictionChange { pair: c.pair.clone(), friction })
         })
         .collect::<Result<Vec<_>>>()?;
-    Ok(Step {
+    Ok(GeneralStep {
         name,
         increments,
         displacements,

@@ -28,7 +28,7 @@ mod write;
 pub use write::{to_inp, write};
 
 use super::mesh::{Edge, Mesh};
-use super::{Component, Kinematics, Material, Model, Plasticity, Predictor, SteppingControls, Temperature};
+use super::{Component, Kinematics, Material, Model, Plasticity, Predictor, Step, SteppingControls, Temperature};
 use crate::error::{Error, Result};
 use crate::fe::quadrature::Integration;
 use crate::fe::section::Section;
@@ -510,9 +510,7 @@ impl Builder {
             output: super::OutputControls { every: self.output_every.unwrap_or(1), ..Default::default() },
             contacts,
             constraints: self.constraints,
-            steps,
-            perturbations: Vec::new(),
-            heat_steps,
+            steps: heat_steps.into_iter().map(Step::Heat).chain(steps.into_iter().map(Step::General)).collect(),
             source_text,
             source_files,
             reaction_segment_degrees: axisymmetric.then_some(CALCULIX_SEGMENT_DEGREES),
@@ -586,7 +584,7 @@ fn interpolate(points: &[(f64, f64)], t: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::model::Step;
+    use crate::model::GeneralStep;
 
     const MESH: &str = "*NODE
 1, 10., 0.
@@ -660,16 +658,16 @@ mod tests {
     fn an_amplitude_splits_its_step_at_its_points_and_time_follows_the_deck() {
         let deck = "*AMPLITUDE, NAME=UP\n0., 0., 1., 1., 2., 1.\n*STEP\n*STATIC\n0.5, 4.\n*BOUNDARY\nBOTTOM, 2, 2\n*BOUNDARY, AMPLITUDE=UP\nTOP, 2, 2, -0.1\n*DLOAD\nA, P1, 5.\n*END STEP\n";
         let read = read(deck);
-        let steps = &read.model.steps;
+        let steps: Vec<&GeneralStep> = read.model.general_steps().collect();
         // amplitude points at step times 1 and 2 (of 4): sub-steps ending at 1, 2, 4
         assert_eq!(steps.len(), 3);
         assert_eq!(steps.iter().map(|s| s.increments).collect::<Vec<_>>(), vec![2, 2, 4]);
         assert_eq!(steps.iter().map(|s| s.time_span.unwrap()).collect::<Vec<_>>(), vec![[0.0, 1.0], [1.0, 2.0], [2.0, 4.0]]);
-        let top = |s: &Step| s.displacements.iter().find(|d| d.node_set == "TOP").unwrap().value;
-        assert_eq!(steps.iter().map(top).collect::<Vec<_>>(), vec![-0.1, -0.1, -0.1]);
+        let top = |s: &GeneralStep| s.displacements.iter().find(|d| d.node_set == "TOP").unwrap().value;
+        assert_eq!(steps.iter().copied().map(top).collect::<Vec<_>>(), vec![-0.1, -0.1, -0.1]);
         // the pressure without an amplitude ramps over the whole step
-        let p = |s: &Step| s.pressures[0].value;
-        assert_eq!(steps.iter().map(p).collect::<Vec<_>>(), vec![1.25, 2.5, 5.0]);
+        let p = |s: &GeneralStep| s.pressures[0].value;
+        assert_eq!(steps.iter().copied().map(p).collect::<Vec<_>>(), vec![1.25, 2.5, 5.0]);
         assert!(read.notes.iter().any(|n| n.contains("3 sub-steps")), "{:?}", read.notes);
     }
 
@@ -677,10 +675,10 @@ mod tests {
     fn an_amplitude_ramp_is_followed_through_its_interior_point() {
         let deck = "*AMPLITUDE, NAME=TRI\n0., 0., 0.5, 1., 1., 0.\n*BOUNDARY\nBOTTOM, 2, 2\n*STEP\n*STATIC\n0.1, 1.\n*BOUNDARY, AMPLITUDE=TRI\nTOP, 2, 2, -0.1\n*END STEP\n";
         let m = read(deck).model;
-        let top: Vec<f64> = m.steps.iter().map(|s| s.displacements.iter().find(|d| d.node_set == "TOP").unwrap().value).collect();
+        let top: Vec<f64> = m.general_steps().map(|s| s.displacements.iter().find(|d| d.node_set == "TOP").unwrap().value).collect();
         assert_eq!(top, vec![-0.1, 0.0]);
         // the model-data constraint joins the first step
-        assert!(m.steps[0].displacements.iter().any(|d| d.node_set == "BOTTOM" && d.value == 0.0));
+        assert!(m.general_step(0).displacements.iter().any(|d| d.node_set == "BOTTOM" && d.value == 0.0));
     }
 
     #[test]
@@ -731,7 +729,7 @@ mod tests {
         let m = read(deck).model;
         let (top, bottom) = (&m.node_sets["TOP"], &m.node_sets["BOTTOM"]);
         assert!(top.iter().all(|&n| m.reference_temperature.at(n) == 40.0) && bottom.iter().all(|&n| m.reference_temperature.at(n) == 20.0));
-        let end = m.steps[0].temperature.as_ref().unwrap();
+        let end = m.general_step(0).temperature.as_ref().unwrap();
         assert!(top.iter().all(|&n| end.at(n) == 100.0), "{end:?}");
         let node = |id: u64| m.mesh.node_ids.iter().position(|&i| i == id).unwrap();
         assert_eq!([1, 2, 5].map(|id| end.at(node(id))), [60.0, 20.0, 20.0]);
@@ -747,7 +745,7 @@ mod tests {
         // whatever the label's face number)
         let deck = "*SURFACE, NAME=UPPER\nA, S3\n*STEP\n*STATIC\n*BOUNDARY\nBOTTOM, 2, 2\n*DLOAD\nUPPER, P1, 50.\n*END STEP\n";
         let m = read(deck).model;
-        let p = &m.steps[0].pressures;
+        let p = &m.general_step(0).pressures;
         assert_eq!((p.len(), p[0].surface.as_str(), p[0].value), (1, "UPPER", 50.0));
         assert_eq!(m.surfaces["UPPER"], vec![Edge { element: 0, side: 2 }, Edge { element: 1, side: 2 }]);
     }
@@ -762,11 +760,11 @@ mod tests {
         assert_eq!(controlled.model.stepping.easy_iterations, 12);
         assert_eq!(read.model.stepping.easy_iterations, 4, "CalculiX's default I_G is slideline's");
         // 4 increments of 0.25 and a time point at 0.3: sub-steps ending at 0.3 and 1
-        let ends: Vec<f64> = read.model.steps.iter().map(|s| s.time_span.unwrap()[1]).collect();
+        let ends: Vec<f64> = read.model.general_steps().map(|s| s.time_span.unwrap()[1]).collect();
         assert_eq!(ends, vec![0.3, 1.0]);
         let generated =
             "*TIME POINTS, NAME=T2, GENERATE\n0., 1., 0.5\n*STEP\n*STATIC\n0.1, 1.\n*BOUNDARY\nBOTTOM, 2, 2\n*NODE FILE, TIME POINTS=T2\nU\n*END STEP\n";
-        let ends: Vec<f64> = self::read(generated).model.steps.iter().map(|s| s.time_span.unwrap()[1]).collect();
+        let ends: Vec<f64> = self::read(generated).model.general_steps().map(|s| s.time_span.unwrap()[1]).collect();
         assert_eq!(ends, vec![0.5, 1.0]);
         let err = parse(&format!("{MESH}*STEP\n*BOUNDARY\nBOTTOM, 2, 2\n*END STEP\n"), Path::new("t.inp")).err().unwrap().to_string();
         assert!(err.contains("t.inp:24") && err.contains("no procedure card"), "{err}");
@@ -832,7 +830,7 @@ mod tests {
         // writes, fields as before
         let two = "*STEP\n*STATIC\n*BOUNDARY\nBOTTOM, 2, 2\n*NODE FILE, FREQUENCY=0\nU\n*END STEP\n*STEP\n*STATIC\n*NODE FILE, FREQUENCY=0\nU\n*EL FILE\nS\n*END STEP\n";
         let m = self::read(two).model;
-        assert_eq!(m.steps.iter().map(|s| s.without_field_output).collect::<Vec<_>>(), vec![true, false]);
+        assert_eq!(m.general_steps().map(|s| s.without_field_output).collect::<Vec<_>>(), vec![true, false]);
         let err = parse(&format!("{MESH}*STEP\n*STATIC\n*NODE FILE, FREQUENCY=-1\nU\n*END STEP\n"), Path::new("t.inp")).err().unwrap().to_string();
         assert!(err.contains("FREQUENCY=-1"), "{err}");
     }
@@ -844,7 +842,7 @@ mod tests {
 *STEP\n*STATIC\n*BOUNDARY, OP=NEW\nTOP, 2, 2, 0.2\n*BOUNDARY, OP=NEW\nTOP, 1, 1\n*END STEP\n";
         let given = read(deck);
         let m = &given.model;
-        assert_eq!(m.steps.iter().map(|s| s.release_constraints).collect::<Vec<_>>(), vec![false, true]);
+        assert_eq!(m.general_steps().map(|s| s.release_constraints).collect::<Vec<_>>(), vec![false, true]);
         assert!(given.notes.iter().any(|n| n.contains("OP=NEW releases BOTTOM u_z")), "{:?}", given.notes);
         assert!(given.notes.iter().any(|n| n.contains("later *BOUNDARY card has no effect")), "{:?}", given.notes);
         let err = parse(&format!("{MESH}*BOUNDARY, OP=NEW\nBOTTOM, 2, 2\n*STEP\n*STATIC\n*END STEP\n"), Path::new("t.inp")).err().unwrap().to_string();
@@ -852,8 +850,8 @@ mod tests {
         // in the first step OP=NEW releases the model data's constraints too (CalculiX: the
         // reaction there is zero; they were kept, 3.0e5 N/rad)
         let first = read("*BOUNDARY\nBOTTOM, 2, 2\n*STEP\n*STATIC\n*BOUNDARY, OP=NEW\nTOP, 2, 2, 0.1\n*END STEP\n");
-        let held: Vec<&str> = first.model.steps[0].displacements.iter().map(|d| d.node_set.as_str()).collect();
-        assert!(first.model.steps[0].release_constraints && !held.iter().any(|s| s.eq_ignore_ascii_case("bottom")), "{held:?}");
+        let held: Vec<&str> = first.model.general_step(0).displacements.iter().map(|d| d.node_set.as_str()).collect();
+        assert!(first.model.general_step(0).release_constraints && !held.iter().any(|s| s.eq_ignore_ascii_case("bottom")), "{held:?}");
         assert!(first.notes.iter().any(|n| n.contains("OP=NEW releases BOTTOM u_z")), "{:?}", first.notes);
     }
 }

@@ -7,7 +7,7 @@ use super::{Builder, StepDef, Target};
 use crate::element::body_load::BodyForce;
 use crate::error::{Error, Result};
 use crate::model::heat::{HeatStep, HeldTemperature};
-use crate::model::{BodyLoad, Component, FrictionChange, NodalForce, Predictor, PrescribedDisplacement, Pressure, Step, Temperature};
+use crate::model::{BodyLoad, Component, FrictionChange, GeneralStep, NodalForce, Predictor, PrescribedDisplacement, Pressure, Temperature};
 use std::collections::{BTreeMap, BTreeSet};
 
 impl Builder {
@@ -366,7 +366,7 @@ impl Builder {
     /// loads follow an *AMPLITUDE is split at the amplitude's points so that the piecewise-linear
     /// history is followed exactly.
     /// The deck's steps as slideline's (`contacts`: the deck's pairs, for *CHANGE FRICTION).
-    pub(super) fn expand_steps(&mut self, initial_temperature: &Temperature, contacts: &[ListedContact]) -> Result<Vec<Step>> {
+    pub(super) fn expand_steps(&mut self, initial_temperature: &Temperature, contacts: &[ListedContact]) -> Result<Vec<GeneralStep>> {
         let mut now = LoadsInForce {
             displacement: self.fixed.iter().map(|k| (k.clone(), 0.0)).collect(),
             pressure: BTreeMap::new(),
@@ -471,7 +471,7 @@ impl Builder {
                         })
                         .collect()
                 };
-                out.push(Step {
+                out.push(GeneralStep {
                     name,
                     increments: share,
                     displacements,

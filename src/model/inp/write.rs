@@ -195,7 +195,7 @@ pub fn to_inp(model: &Model, title: &str) -> Result<String> {
     }
     // loaded faces: an element set per surface and face label, the form every reader knows
     let mut loaded: Vec<(String, Vec<(String, usize)>)> = Vec::new();
-    for surface in model.steps.iter().flat_map(|s| s.pressures.iter().map(|p| p.surface.as_str())).collect::<BTreeSet<_>>() {
+    for surface in model.general_steps().flat_map(|s| s.pressures.iter().map(|p| p.surface.as_str())).collect::<BTreeSet<_>>() {
         let mut labels = Vec::new();
         for side in 0..4 {
             let elements: Vec<u64> = model.surface(surface)?.iter().filter(|e| e.side == side).map(|e| mesh.element_ids[e.element]).collect();
@@ -219,9 +219,9 @@ pub fn to_inp(model: &Model, title: &str) -> Result<String> {
     let _ = writeln!(w, "*INITIAL CONDITIONS, TYPE=TEMPERATURE");
     temperature_lines(w, model, &model.reference_temperature);
 
-    let constrained: BTreeSet<&str> = model.steps.iter().flat_map(|s| s.displacements.iter().map(|d| d.node_set.as_str())).collect();
+    let constrained: BTreeSet<&str> = model.general_steps().flat_map(|s| s.displacements.iter().map(|d| d.node_set.as_str())).collect();
     let mut time = 0.0;
-    for step in &model.steps {
+    for step in model.general_steps() {
         let period = step.time_span.map_or(1.0, |[a, b]| b - a);
         if let Some([start, _]) = step.time_span {
             if (start - time).abs() > 1e-12 * period.max(1.0) {
@@ -367,7 +367,7 @@ body_load = [ { elements = "all", spin = 3000.0 }, { elements = "all", gravity =
         let model = crate::model::deck::parse(deck, Path::new("disc.toml")).unwrap();
         let text = super::to_inp(&model, "disc").unwrap();
         let read = crate::model::inp::parse(&text, Path::new("disc.inp")).unwrap().model;
-        let mut loads: Vec<(String, BodyForce)> = read.steps[0].body_loads.iter().map(|b| (b.elements.clone(), b.force)).collect();
+        let mut loads: Vec<(String, BodyForce)> = read.general_step(0).body_loads.iter().map(|b| (b.elements.clone(), b.force)).collect();
         loads.sort_by(|a, b| a.1.value().total_cmp(&b.1.value()));
         assert_eq!(loads, vec![("ALL".to_string(), BodyForce::Gravity(-9810.0)), ("ALL".to_string(), BodyForce::Spin(9.0e6))]);
     }
