@@ -30,8 +30,15 @@ fn main() -> ExitCode {
         Command::Bellows(args) => {
             let sub = matches.subcommand_matches("bellows");
             let given = |id: &str| sub.and_then(|m| m.value_source(id)) == Some(clap::parser::ValueSource::CommandLine);
-            // bad flags and parameter files are reported before MPI and PETSc start
-            let params = match args.params(given).and_then(|p| p.validate().map(|()| p)) {
+            // bad flags, specifications and parameter files are reported before MPI and PETSc start
+            let spec = match args.spec.as_deref().map(slideline::bellows::spec::DesignSpec::from_file).transpose() {
+                Ok(s) => s,
+                Err(e) => return fail(&e, launched_as_rank_zero()),
+            };
+            if let (Some(spec), true) = (&spec, args.check_only) {
+                return cli::check_only(spec, &args.petsc);
+            }
+            let params = match args.params(given, spec.as_ref()).and_then(|p| p.validate().map(|()| p)) {
                 Ok(p) => p,
                 Err(e) => return fail(&e, launched_as_rank_zero()),
             };
@@ -68,7 +75,7 @@ fn main() -> ExitCode {
                 };
             }
             let root = session.world().rank() == 0;
-            let job = args.job(params, movements);
+            let job = args.job(params, movements, spec);
             let before = match workflow::before_the_run(&session, &job) {
                 Ok(before) => before,
                 Err(e) => return fail(&e, root),

@@ -11,6 +11,7 @@ pub mod flexibility;
 pub mod joint;
 pub mod membrane;
 pub mod report;
+pub mod spec;
 pub mod stability;
 mod stations;
 pub mod vibration;

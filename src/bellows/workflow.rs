@@ -9,6 +9,8 @@ use super::report::BellowsReport;
 use super::stability::{Stability, SQUIRM};
 use super::vibration::{Frequencies, LATERAL_MODES};
 use crate::assessment::code::{CodeCheck, Duty, Source};
+use crate::assessment::verdict::{Forming, Verdict};
+use super::spec::DesignSpec;
 use crate::assessment::coefficients::Coefficients;
 use crate::assessment::fe_check::FeCheck;
 use crate::dist::Partition;
@@ -27,6 +29,9 @@ use std::path::{Path, PathBuf};
 /// What a `slideline bellows` command asks for, its flags checked.
 pub struct BellowsJob {
     pub params: BellowsParams,
+    /// The design specification the joint comes from (`--spec`), if any: its code verdict is
+    /// printed before the analyses.
+    pub spec: Option<DesignSpec>,
     /// The flexibility's movements (`--lateral`, `--angular`), if any.
     pub movements: Option<Movements>,
     pub output: PathBuf,
@@ -66,8 +71,17 @@ pub fn code_check(session: &PetscSession, params: &BellowsParams) -> Result<Code
     };
     let p = params;
     let duty =
-        Duty { pressure: p.pressure, stroke: p.displacement.abs(), modulus: p.youngs_modulus, yield_stress: p.yield_stress, tangent_length: p.tangent_length };
+        Duty { pressure: p.pressure, stroke: p.displacement.abs(), modulus: p.youngs_modulus, yield_stress: p.yield_stress, tangent_length: p.tangent_length, forming: Forming::AsFormed };
     Ok(CodeCheck::new(&geometry, coefficients, source, duty))
+}
+
+/// The code check of design specification `spec` and its verdict, with the table that prints
+/// them; the chart coefficients given or computed for its convolution (collective).
+pub fn code_verdict(session: &PetscSession, spec: &DesignSpec) -> Result<(CodeCheck, Verdict, String)> {
+    let check = spec.code_check(|b| super::convolution::compute(session, b.c1(), b.c2(), Default::default()))?;
+    let verdict = spec.verdict(&check)?;
+    let table = super::report::verdict_table(spec, &check, &verdict)?;
+    Ok((check, verdict, table))
 }
 
 /// The code check (a note where it cannot be made) and the analyses of the joint at rest the
@@ -82,6 +96,12 @@ pub fn before_the_run(session: &PetscSession, job: &BellowsJob) -> Result<Before
         println!("note: no code check: {e}");
     }
     let code = code.ok();
+    if let Some(spec) = &job.spec {
+        let (_, _, table) = code_verdict(session, spec)?;
+        if root {
+            print!("{table}");
+        }
+    }
     let announce = |what: &str| {
         if root && !job.quiet {
             println!("{what} ...");

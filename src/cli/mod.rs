@@ -194,6 +194,14 @@ pub struct BellowsArgs {
     /// flags given on the command line override it.
     #[arg(long)]
     pub params: Option<PathBuf>,
+    /// A design specification in a data sheet's terms (docs/bellows-spec.md): the bellows, its
+    /// material at the design temperature, the design conditions and the code's choices. Prints
+    /// the code's verdict, then runs the joint it describes (flags given override it).
+    #[arg(long, value_name = "FILE.toml", conflicts_with_all = ["params", "restart"])]
+    pub spec: Option<PathBuf>,
+    /// With --spec: print the code's verdict and stop (no finite-element analysis).
+    #[arg(long, requires = "spec")]
+    pub check_only: bool,
     /// Number of plies in the pack.
     #[arg(long, default_value_t = 2)]
     pub plies: usize,
@@ -341,9 +349,11 @@ impl BellowsArgs {
         &self,
         params: slideline::bellows::joint::BellowsParams,
         movements: Option<slideline::bellows::flexibility::Movements>,
+        spec: Option<slideline::bellows::spec::DesignSpec>,
     ) -> slideline::bellows::workflow::BellowsJob {
         slideline::bellows::workflow::BellowsJob {
             params,
+            spec,
             movements,
             output: self.output.clone(),
             quiet: self.quiet,
@@ -372,14 +382,15 @@ impl BellowsArgs {
         Ok(Some(slideline::bellows::flexibility::Movements { lateral: self.lateral.unwrap_or(0.0), angular: self.angular.unwrap_or(0.0) }))
     }
 
-    /// The joint's parameters: the defaults (the seed case) or the `--params` file, then
+    /// The joint's parameters: the defaults (the seed case), the `--spec` or `--params` file, then
     /// `--quick`, then every flag given on the command line (`given(id)`): a flag given
     /// explicitly wins over both.
-    pub fn params(&self, given: impl Fn(&str) -> bool) -> Result<slideline::bellows::joint::BellowsParams, Error> {
+    pub fn params(&self, given: impl Fn(&str) -> bool, spec: Option<&slideline::bellows::spec::DesignSpec>) -> Result<slideline::bellows::joint::BellowsParams, Error> {
         if let Some(c) = self.coefficients.as_ref().filter(|c| c.len() != 3) {
             return Err(Error::input(format!("bellows: --coefficients takes three values, Cp,Cf,Cd; got {}", c.len())));
         }
         let mut p = match (&self.params, &self.restart) {
+            _ if spec.is_some() => spec.expect("given").joint_params()?,
             (Some(path), _) => slideline::bellows::joint::BellowsParams::from_toml_file(path)?,
             // a restart continues the file's own joint
             (None, Some(file)) => {
@@ -454,5 +465,25 @@ impl From<ConvergenceArg> for crate::model::Convergence {
             ConvergenceArg::Field => crate::model::Convergence::Field,
             ConvergenceArg::Residual => crate::model::Convergence::Residual,
         }
+    }
+}
+
+/// `bellows --spec FILE --check-only`: the code's verdict on the specification, printed (rank
+/// 0); PETSc starts only to compute chart coefficients the file does not give.
+pub fn check_only(spec: &slideline::bellows::spec::DesignSpec, petsc: &[String]) -> std::process::ExitCode {
+    use mpi::traits::Communicator;
+    let session = match slideline::petsc::PetscSession::initialize(petsc) {
+        Ok(s) => s,
+        Err(e) => return outcome::fail(&e, outcome::launched_as_rank_zero()),
+    };
+    let root = session.world().rank() == 0;
+    match slideline::bellows::workflow::code_verdict(&session, spec) {
+        Ok((_, _, table)) => {
+            if root {
+                print!("{table}");
+            }
+            std::process::ExitCode::SUCCESS
+        }
+        Err(e) => outcome::fail(&e, root),
     }
 }

@@ -92,11 +92,12 @@ use spec::{AdjustSpec, DeckFile, GeometrySpec, IntegrationSpec, MaterialKind};
 use std::path::Path;
 
 /// A TOML error on one line, naming the line and the key (with its table) where there is one:
-/// `deck.toml:2: [stepping] cutback_factor: invalid type: string "half", expected f64`.
-fn toml_error(path: &Path, text: &str, e: &toml::de::Error) -> Error {
+/// `deck.toml:2: [stepping] cutback_factor: invalid type: string "half", expected f64`; `doc`
+/// names the page that lists the keys (for an error with no place in the text).
+pub(crate) fn toml_error(path: &Path, text: &str, e: &toml::de::Error, doc: &str) -> Error {
     let message = e.message().trim().replace('\n', " ");
     let Some(span) = e.span().filter(|s| s.start > 0 || !message.starts_with("missing field")) else {
-        return Error::input(format!("{}: {message} (see docs/deck.md)", path.display()));
+        return Error::input(format!("{}: {message} (see {doc})", path.display()));
     };
     let line_no = text[..span.start.min(text.len())].matches('\n').count() + 1;
     let line = text.lines().nth(line_no - 1).unwrap_or("").trim();
@@ -203,7 +204,7 @@ pub fn read(path: &Path) -> Result<Model> {
 
 /// Parses deck `text`; `path` names it in messages and anchors relative mesh paths.
 pub fn parse(text: &str, path: &Path) -> Result<Model> {
-    let deck: DeckFile = toml::from_str(text).map_err(|e| toml_error(path, text, &e))?;
+    let deck: DeckFile = toml::from_str(text).map_err(|e| toml_error(path, text, &e, "docs/deck.md"))?;
     let mut source_files = vec![path.to_path_buf()];
     let (mesh, sets) = match (&deck.mesh.file, &deck.mesh.rectangle, deck.mesh.block.is_empty()) {
         (Some(file), None, true) => {

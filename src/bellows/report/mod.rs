@@ -20,7 +20,9 @@ use crate::solve::RunSummary;
 use std::f64::consts::PI;
 use std::path::{Path, PathBuf};
 
+mod code_verdict;
 mod mode_picture;
+pub use code_verdict::{verdict_table, EDITION};
 pub use mode_picture::mode_picture;
 
 /// The paper modelled a 2.5-degree sector; its forces are per sector.

@@ -1,0 +1,100 @@
+//! The code's verdict as a table: the specification it was made for in one paragraph, then each
+//! check with its value, limit, utilisation, PASS or FAIL and rule, and the verdict line naming
+//! the failing checks.
+
+use crate::assessment::code::CodeCheck;
+use crate::assessment::verdict::{Sense, Verdict};
+use crate::bellows::spec::DesignSpec;
+use crate::error::Result;
+
+/// Where the rules come from, said once above the table.
+pub const EDITION: &str = "ASME VIII-1 Mandatory Appendix 26 (2013 edition), unreinforced U-shaped bellows; EJMA's equation numbers";
+
+/// The verdict table of `spec`, whose code check is `check` and verdict `verdict`.
+pub fn verdict_table(spec: &DesignSpec, check: &CodeCheck, verdict: &Verdict) -> Result<String> {
+    let b = spec.geometry();
+    let (modulus, yield_stress, allowable) = spec.at_temperature()?;
+    let allowables = spec.allowables()?;
+    let (rc, rr) = spec.mid_surface_radii();
+    let mut out = String::new();
+    let mut line = |s: String| {
+        out.push_str(&s);
+        out.push('\n');
+    };
+    if !spec.title.is_empty() {
+        line(spec.title.clone());
+    }
+    line(format!("code check: {EDITION}"));
+    let bs = &spec.bellows;
+    line(format!(
+        "  bellows: Db {} mm, w {}, q {}, N {}, {} plies x {} mm, crest and root radii {} and {} mm inside (rm {:.3} mid-surface), {}; Dm {:.2} mm, tp {:.4} mm",
+        bs.inside_diameter,
+        bs.convolution_height,
+        bs.pitch,
+        bs.convolutions,
+        bs.plies,
+        bs.ply_thickness,
+        bs.crest_radius,
+        bs.root_radius,
+        (rc + rr) / 2.0,
+        bs.forming.label(),
+        b.mean_diameter(),
+        b.formed_thickness()
+    ));
+    let m = &spec.material;
+    let source = if m.source.is_empty() { String::new() } else { format!(" ({})", m.source) };
+    line(format!(
+        "  material: {} at {} degC: Eb {modulus:.0} MPa (Eo {:.0}), Sy {yield_stress:.1} MPa, allowable S {allowable:.1} MPa{source}",
+        m.name, spec.design.temperature, allowables.room_modulus
+    ));
+    let k = check.coefficients;
+    line(format!("  chart coefficients (C1 {:.3}, C2 {:.3}): Cp {:.4}, Cf {:.4}, Cd {:.4} {}", check.c1, check.c2, k.cp, k.cf, k.cd, check.source.label()));
+    let d = &spec.design;
+    let axial = match spec.axial() {
+        x if x < 0.0 => format!("axial compression {} mm", -x),
+        x => format!("axial extension {x} mm"),
+    };
+    line(format!(
+        "  movements: {axial}, lateral {} mm, angular {} deg: equivalent axial movement {:.4} mm per convolution, {:.2} mm in all",
+        d.lateral, d.angular, verdict.movement_per_convolution, verdict.equivalent_movement
+    ));
+    line(format!(
+        "  effective area {:.0} mm^2; pressure thrust {:.0} N at {} MPa; stresses S1 {:.1}, S2 {:.1}, S3 {:.2}, S4 {:.1}, S5 {:.1}, S6 {:.1} MPa, St {:.1} MPa",
+        verdict.effective_area, verdict.pressure_thrust, d.pressure, check.s1, check.s2, check.s3, check.s4, check.s5, check.s6, check.stress_range
+    ));
+    line(format!("  {:<30} {:>11} {:>13} {:<7} {:>6}  {:<7} rule", "check", "value", "limit", "unit", "ratio", "verdict"));
+    for c in &verdict.checks {
+        let limit = match c.sense {
+            Sense::AtMost => format!("<= {}", figure(c.limit)),
+            Sense::AtLeast => format!(">= {}", figure(c.limit)),
+        };
+        let pass = if c.passes() { "PASS" } else { "FAIL" };
+        line(format!("  {:<30} {:>11} {:>13} {:<7} {:>6.2}  {:<7} {}", c.name, figure(c.value), limit, c.unit, c.ratio(), pass, c.rule));
+    }
+    line(format!(
+        "  the design's life is the fatigue check's: {} with Kg {} and Eo / Eb {:.3}; {}",
+        allowables.fatigue_curve.name(),
+        allowables.fatigue_factor,
+        allowables.room_modulus / modulus,
+        allowables.fatigue_curve.basis()
+    ));
+    for outside in &verdict.outside {
+        line(format!("  note: outside the code's conditions of applicability: {outside}"));
+    }
+    line(format!("verdict: {}", verdict.summary()));
+    Ok(out)
+}
+
+/// A figure for the table: four significant digits, whole numbers as they are.
+fn figure(v: f64) -> String {
+    if !v.is_finite() {
+        return "unlimited".into();
+    }
+    if v.abs() >= 1000.0 {
+        format!("{v:.0}")
+    } else if v.abs() >= 10.0 {
+        format!("{v:.1}")
+    } else {
+        format!("{v:.3}")
+    }
+}
