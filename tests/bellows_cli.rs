@@ -40,7 +40,8 @@ fn bad_flags_are_refused_before_any_solve() {
 }
 
 /// The code check in the closing table takes the chart coefficients as given (`--coefficients`),
-/// labelled so, and says plainly that the seed stroke is far beyond the code's elastic formulas.
+/// labelled so, and gives the stroke's stresses far above yield no note: the codes' formulas and
+/// fatigue curves are pseudo-elastic, written for them.
 /// The figures with Cp 0.68, Cf 1.65, Cd 1.63 (the joint: Db 320 (the tubes' outside), w 20,
 /// 2 plies of 1 mm, Dm 342, tp 0.9673, N 6, 0.6 MPa, E 200 GPa): S4 = 0.6 / 4 (20 / 0.9673)^2
 /// 0.68 = 43.6 MPa, the rate 1.7 x 342 x 200 000 x 0.9673^3 x 2 / (8000 x 1.65) / 6 = 2657.6
@@ -70,7 +71,7 @@ fn the_code_check_takes_given_coefficients() {
         post.status.success() && section.lines().filter(|l| l.starts_with("  ")).all(|l| printed.contains(l)),
         "post --assessment:\n{printed}\nthe run:\n{section}"
     );
-    assert!(text.contains("far beyond the elastic range"), "{text}");
+    assert!(!text.contains("far beyond the elastic range") && !text.contains("note: the stroke"), "{text}");
 }
 
 #[test]

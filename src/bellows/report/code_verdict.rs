@@ -27,12 +27,13 @@ pub fn verdict_table(spec: &DesignSpec, check: &CodeCheck, verdict: &Verdict) ->
     line(format!("code check: {EDITION}"));
     let bs = &spec.bellows;
     line(format!(
-        "  bellows: Db {} mm, w {}, q {}, N {}, {} plies x {} mm, crest and root radii {} and {} mm inside (rm {:.3} mid-surface), {}; Dm {:.2} mm, tp {:.4} mm",
+        "  bellows: Db {} mm, w {}, q {}, N {}, {} {} x {} mm, crest and root radii {} and {} mm inside (rm {:.3} mid-surface), {}; Dm {:.2} mm, tp {:.4} mm",
         bs.inside_diameter,
         bs.convolution_height,
         bs.pitch,
         bs.convolutions,
         bs.plies,
+        if bs.plies == 1 { "ply" } else { "plies" },
         bs.ply_thickness,
         bs.crest_radius,
         bs.root_radius,
