@@ -525,7 +525,10 @@ pub fn bellows_table(r: &ResultsReader) -> Result<Option<String>> {
         Ok(code) => (code, None),
         Err(e) => (None, Some(e)),
     };
-    let report = crate::bellows::report::BellowsReport::new(&params, code, &summary, r)?;
+    let mut report = crate::bellows::report::BellowsReport::new(&params, code, &summary, r)?;
+    // a specification's verdict (among the tables reprinted after this one) replaces the
+    // code section, as the run printed it
+    report.code_section = !r.printed_tables()?.iter().any(|(name, _)| name == crate::bellows::workflow::CODE_VERDICT);
     let note = lost.map_or(String::new(), |e| format!("  note: the code check cannot be read again ({e})\n"));
     Ok(Some(report.table() + &note))
 }

@@ -127,3 +127,43 @@ fn the_seed_specification_is_the_default_joint() {
     let spec = DesignSpec::from_file(&Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/seed_joint.toml")).unwrap();
     assert_eq!(spec.joint_params().unwrap(), slideline::bellows::joint::BellowsParams::default());
 }
+
+/// A joint of one's own from its specification (examples/dn200_joint.toml: DN200, 4
+/// convolutions of 3 x 0.5 mm, q = 5 rm with tapered sidewalls, crest radius 3.5 and root 2.5
+/// mm inside) is meshed and run (quick, 2 ranks): the mesh spans the bellows it describes (ply
+/// pack outside at the crest top r = Db / 2 + w + n t = 127.05 mm, innermost on the tangents at
+/// Db / 2 = 109.55 mm, the pack outside its tangents (r > 111.05) over N q = 75 mm), the run prints the verdict, its
+/// closing table has no paper column, sentence or 2.5-degree sector, and `post` prints the same.
+#[test]
+fn a_joint_of_ones_own_runs_from_its_specification_with_a_report_of_its_own() {
+    let spec = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/dn200_joint.toml");
+    let dir = tempfile::tempdir().unwrap();
+    let mesh = command_in(dir.path(), 1).current_dir(dir.path()).args(["bellows", "--spec", spec.to_str().unwrap(), "--quick", "--mesh-only", "-o", "m.h5"]).output().unwrap();
+    assert!(mesh.status.success(), "{}", String::from_utf8_lossy(&mesh.stderr));
+    let file = hdf5::File::open(dir.path().join("m.h5")).unwrap();
+    let coords = file.dataset("mesh/coordinates").unwrap().read_raw::<f64>().unwrap();
+    let plies: Vec<usize> = (1..=3).flat_map(|k| file.dataset(&format!("mesh/element_sets/ply{k}")).unwrap().read_raw::<u64>().unwrap()).map(|e| e as usize).collect();
+    let conn = file.dataset("mesh/connectivity").unwrap().read_raw::<u64>().unwrap();
+    let ply_nodes: Vec<[f64; 2]> = plies.iter().flat_map(|&e| conn[8 * e..8 * e + 8].to_vec()).map(|n| [coords[2 * n as usize], coords[2 * n as usize + 1]]).collect();
+    let (r_max, r_min) = ply_nodes.iter().fold((f64::MIN, f64::MAX), |(hi, lo), p| (hi.max(p[0]), lo.min(p[0])));
+    within(r_max, 127.05, 1e-6, "the crest top's outside, mm");
+    within(r_min, 109.55, 1e-6, "the plies' inside on the tangents, mm");
+    let convoluted: Vec<f64> = ply_nodes.iter().filter(|p| p[0] > 111.05 + 1e-6).map(|p| p[1]).collect();
+    let span = convoluted.iter().cloned().fold(f64::MIN, f64::max) - convoluted.iter().cloned().fold(f64::MAX, f64::min);
+    assert!(span > 75.0 - 2.0 && span < 75.0 + 1e-6, "the convolutions span {span} mm of N q = 75");
+
+    let run = command_in(dir.path(), 2).current_dir(dir.path()).args(["bellows", "--spec", spec.to_str().unwrap(), "--quick", "--quiet", "-o", "r.h5"]).output().unwrap();
+    let text = String::from_utf8_lossy(&run.stdout).to_string();
+    assert!(run.status.success(), "{text}{}", String::from_utf8_lossy(&run.stderr));
+    assert!(text.contains("DN200 axial expansion joint") && text.contains("\nverdict: "), "{text}");
+    let table = &text[text.find("slideline\n").expect("the closing table")..];
+    for seed_only in ["paper", "1131", "MSC Nastran", "why they differ", "sector"] {
+        assert!(!table.contains(seed_only), "{seed_only:?} in a joint of one's own:\n{table}");
+    }
+    assert!(table.contains("stiffness (F - F1)/u, N/mm full ring"), "{table}");
+    let post = command_in(dir.path(), 1).current_dir(dir.path()).args(["post", "r.h5"]).output().unwrap();
+    let printed = String::from_utf8_lossy(&post.stdout);
+    for line in table.lines().filter(|l| !l.starts_with("picture") && !l.trim().is_empty()) {
+        assert!(printed.contains(line), "post lacks {line:?}:\n{printed}");
+    }
+}

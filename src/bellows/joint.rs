@@ -65,29 +65,39 @@ impl Piece {
     }
 }
 
-/// The mid-surface from the start of tangent A to the end of tangent B.
+/// The mid-surface from the start of tangent A to the end of tangent B. The root tori (radius
+/// rr) are centred at the tangents' mid-surface plus rr, the crest tori (rc) at the crest top
+/// minus rc, q / 2 apart axially; each sidewall is their common tangent, radial at
+/// q = 2 (rr + rc) and tapered (leaning with the convolution's opening) in a wider pitch. In
+/// (r, z) angles the upward sidewall leaves a root torus at pi/2 - psi and meets the crest
+/// torus at -pi/2 - psi, psi = phi - alpha the tilt of the sidewall's normal from the axis: phi
+/// the angle of the line of centres, cos alpha = (rr + rc) / its length.
 fn mid_surface(p: &BellowsParams) -> Vec<Piece> {
-    let rm = p.torus_radius;
+    let (rr, rc) = (p.torus_radius, p.crest());
     let r0 = p.tube_outer_radius() + p.pack_thickness() / 2.0; // mid-surface on the tangents
-    let (root_c, crest_c) = (r0 + rm, r0 + rm + p.sidewall());
+    let (root_c, crest_c) = (r0 + rr, r0 + p.height - rc);
+    let half = p.pitch / 2.0;
+    let (phi, d) = ((crest_c - root_c).atan2(half), (crest_c - root_c).hypot(half));
+    // radial sidewalls exactly (their angles then the familiar multiples of pi / 2)
+    let radial = (half - (rr + rc)).abs() <= 1e-12 * half;
+    let psi = if radial { 0.0 } else { phi - ((rr + rc) / d).min(1.0).acos() };
+    let (leave, meet) = (PI / 2.0 - psi, -PI / 2.0 - psi); // on the root, on the crest
+    let on = |centre: [f64; 2], radius: f64, a: f64| [centre[0] + radius * a.cos(), centre[1] + radius * a.sin()];
     let z_a = p.tube_length; // end of tube A, start of the convolutions
     let mut pieces = vec![Piece::Line { from: [r0, z_a - p.tangent_length], to: [r0, z_a] }];
-    // quarter torus up into the first sidewall
-    pieces.push(Piece::Arc { centre: [root_c, z_a], radius: rm, a0: PI, a1: PI / 2.0 });
-    let mut z = z_a + rm; // z of the current (upward) sidewall
+    // part of a torus up into the first sidewall
+    pieces.push(Piece::Arc { centre: [root_c, z_a], radius: rr, a0: PI, a1: leave });
     for k in 0..p.convolutions {
-        pieces.push(Piece::Line { from: [root_c, z], to: [crest_c, z] });
-        pieces.push(Piece::Arc { centre: [crest_c, z + rm], radius: rm, a0: -PI / 2.0, a1: PI / 2.0 });
-        z += 2.0 * rm;
-        pieces.push(Piece::Line { from: [crest_c, z], to: [root_c, z] });
-        if k + 1 < p.convolutions {
-            pieces.push(Piece::Arc { centre: [root_c, z + rm], radius: rm, a0: 3.0 * PI / 2.0, a1: PI / 2.0 });
-            z += 2.0 * rm;
-        }
+        let z_root = z_a + k as f64 * p.pitch;
+        let (root, crest, next) = ([root_c, z_root], [crest_c, z_root + half], [root_c, z_root + p.pitch]);
+        pieces.push(Piece::Line { from: on(root, rr, leave), to: on(crest, rc, meet) });
+        pieces.push(Piece::Arc { centre: crest, radius: rc, a0: meet, a1: -meet });
+        pieces.push(Piece::Line { from: on(crest, rc, -meet), to: on(next, rr, -leave) });
+        // the next root, or the part of a torus down onto tangent B
+        let a1 = if k + 1 < p.convolutions { leave } else { PI };
+        pieces.push(Piece::Arc { centre: next, radius: rr, a0: 3.0 * PI / 2.0 + psi, a1 });
     }
-    // quarter torus down onto tangent B
-    pieces.push(Piece::Arc { centre: [root_c, z + rm], radius: rm, a0: 3.0 * PI / 2.0, a1: PI });
-    let z_b = z + rm;
+    let z_b = z_a + p.convolutions as f64 * p.pitch;
     pieces.push(Piece::Line { from: [r0, z_b], to: [r0, z_b + p.tangent_length] });
     pieces
 }
@@ -469,7 +479,7 @@ pub fn ejma_axial_rate(p: &BellowsParams, cf: f64) -> f64 {
 }
 
 /// The joint's bellows as the codes describe it: the pack's inside diameter is the tubes'
-/// outside.
+/// outside, rm the mean of the root's and crest's mid-surface radii.
 pub fn code_geometry(p: &BellowsParams) -> crate::assessment::formulas::UBellows {
     crate::assessment::formulas::UBellows {
         inside_diameter: 2.0 * p.tube_outer_radius(),
@@ -478,7 +488,7 @@ pub fn code_geometry(p: &BellowsParams) -> crate::assessment::formulas::UBellows
         ply_thickness: p.ply_thickness,
         plies: p.plies,
         convolutions: p.convolutions,
-        torus_radius: p.torus_radius,
+        torus_radius: (p.torus_radius + p.crest()) / 2.0,
     }
 }
 

@@ -358,18 +358,10 @@ impl DesignSpec {
 
     /// The finite-element joint of this specification: the bellows on pipes of the seed joint's
     /// proportions (scaled with Db, or as `[joint]` gives them), the design pressure and
-    /// temperature, the axial movement as the stroke. The finite-element joint is built for
-    /// U-shaped convolutions of one torus radius with radial sidewalls (q = 4 rm) so far.
+    /// temperature, the axial movement as the stroke.
     pub fn joint_params(&self) -> Result<BellowsParams> {
         let b = &self.bellows;
         let (rc, rr) = self.mid_surface_radii();
-        if (rc - rr).abs() > 1e-9 || (b.pitch - 2.0 * (rc + rr)).abs() > 1e-9 {
-            return Err(Error::input(format!(
-                "spec: the finite-element joint is built for convolutions of one torus radius with radial sidewalls (crest_radius = root_radius, pitch = 2 (rc + rr) = {} mm) so far; this bellows has rc = {rc}, rr = {rr}, q = {} mm: its code check runs (--check-only)",
-                2.0 * (rc + rr),
-                b.pitch
-            )));
-        }
         let (modulus, yield_stress, _) = self.at_temperature()?;
         let seed = BellowsParams::default();
         let scale = b.inside_diameter / SEED_INSIDE_DIAMETER;
@@ -385,7 +377,8 @@ impl DesignSpec {
             convolutions: b.convolutions,
             pitch: b.pitch,
             height: b.convolution_height,
-            torus_radius: rc,
+            torus_radius: rr,
+            crest_radius: (rc != rr).then_some(rc),
             plies: b.plies,
             ply_thickness: b.ply_thickness,
             tangent_length: b.tangent_length,

@@ -49,6 +49,8 @@ pub struct BellowsJob {
 /// joint at rest.
 pub struct BeforeTheRun {
     pub code: Option<CodeCheck>,
+    /// A design specification's verdict table (`--spec`).
+    pub verdict: Option<String>,
     pub fe: Option<FeCheck>,
     pub rest: Option<(Movements, Flexibility)>,
     pub stable: Option<Stability>,
@@ -56,6 +58,9 @@ pub struct BeforeTheRun {
 }
 
 /// `OUTPUT_name.png` beside the output.
+/// The name of a specification's verdict among the tables a results file keeps.
+pub const CODE_VERDICT: &str = "code_verdict";
+
 pub fn picture_path(output: &Path, name: &str) -> PathBuf {
     let stem = output.file_stem().unwrap_or_default().to_string_lossy();
     output.with_file_name(format!("{stem}_{name}.png"))
@@ -96,12 +101,17 @@ pub fn before_the_run(session: &PetscSession, job: &BellowsJob) -> Result<Before
         println!("note: no code check: {e}");
     }
     let code = code.ok();
-    if let Some(spec) = &job.spec {
-        let (_, _, table) = code_verdict(session, spec)?;
-        if root {
-            print!("{table}");
+    // a specification's code check is for its equivalent movement: it replaces the stroke's
+    let (code, verdict) = match &job.spec {
+        Some(spec) => {
+            let (check, _, table) = code_verdict(session, spec)?;
+            if root {
+                print!("{table}");
+            }
+            (Some(check), Some(table))
         }
-    }
+        None => (code, None),
+    };
     let announce = |what: &str| {
         if root && !job.quiet {
             println!("{what} ...");
@@ -151,7 +161,7 @@ pub fn before_the_run(session: &PetscSession, job: &BellowsJob) -> Result<Before
             params.plies, params.ply_thickness, params.convolutions, params.pitch, params.height, c.axial_rate, c.axial_rate * 2.5 / 360.0, c.c1, c.c2, k.cp, k.cf, k.cd, c.source.label()
         );
     }
-    Ok(BeforeTheRun { code, fe, rest, stable, vibrating })
+    Ok(BeforeTheRun { code, verdict, fe, rest, stable, vibrating })
 }
 
 /// The elastic-plastic run of the joint, with the perturbation steps the flags ask for about
@@ -183,7 +193,7 @@ pub fn run(session: &PetscSession, job: &BellowsJob) -> Result<RunSummary> {
 /// file (rank 0, after the run).
 pub fn report(job: &BellowsJob, before: &BeforeTheRun, summary: &RunSummary) -> Result<()> {
     let (params, output) = (&job.params, job.output.as_path());
-    let BeforeTheRun { code, fe, rest, stable, vibrating } = before;
+    let BeforeTheRun { code, verdict, fe, rest, stable, vibrating } = before;
     let (code, fe, rest, stable, vibrating) = (code.as_ref(), fe.as_ref(), rest.as_ref(), stable.as_ref(), vibrating.as_ref());
     let reader = ResultsReader::open(output)?;
     let life = match fe {
@@ -193,7 +203,10 @@ pub fn report(job: &BellowsJob, before: &BeforeTheRun, summary: &RunSummary) -> 
     // a restart from a finished run's end writes no increment of its own: its fields are in
     // the file it continued
     let fields = !reader.increments()?.is_empty();
-    let report = fields.then(|| BellowsReport::new(params, code.cloned(), summary, &reader)).transpose()?;
+    let mut report = fields.then(|| BellowsReport::new(params, code.cloned(), summary, &reader)).transpose()?;
+    if let Some(r) = report.as_mut() {
+        r.code_section = verdict.is_none();
+    }
     match &report {
         Some(report) => println!("\n{}", report.table()),
         None => println!("\nno increment in this run: the closing table is the continued file's (`slideline post` it)"),
@@ -203,6 +216,9 @@ pub fn report(job: &BellowsJob, before: &BeforeTheRun, summary: &RunSummary) -> 
     }
     // the tables after the closing one, kept in the file for `slideline post FILE`
     let mut tables: Vec<(&str, String)> = Vec::new();
+    if let Some(v) = verdict {
+        tables.push((CODE_VERDICT, v.clone()));
+    }
     if let Some((movements, at_rest)) = rest {
         let operating = super::flexibility::from_run(params, *movements, &summary.perturbations, &reader)?;
         tables.push(("flexibility", super::report::flexibility_section(params, code, *movements, at_rest, Some(&operating))));

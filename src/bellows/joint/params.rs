@@ -19,8 +19,11 @@ pub struct BellowsParams {
     /// Convolution height w: radial extent of the ply-pack mid-surface (root bottom to crest
     /// top), 2 torus radii plus the sidewall.
     pub height: f64,
-    /// Mean radius of the root and crest tori (ply-pack mid-surface).
+    /// Mid-surface radius of the root tori (and of the crest tori, unless `crest_radius`).
     pub torus_radius: f64,
+    /// Mid-surface radius of the crest tori where it differs from the root's.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub crest_radius: Option<f64>,
     pub plies: usize,
     pub ply_thickness: f64,
     /// Length of each cylindrical tangent.
@@ -94,6 +97,7 @@ impl Default for BellowsParams {
             pitch: 24.0,
             height: 20.0,
             torus_radius: 6.0,
+            crest_radius: None,
             plies: 2,
             ply_thickness: 1.0,
             tangent_length: 20.0,
@@ -141,6 +145,35 @@ impl Default for BellowsParams {
 }
 
 impl BellowsParams {
+    /// Whether this is the seed paper's joint: its geometry, material and loads, whatever the
+    /// mesh, stepping, contact, friction and output parameters (a penalty study or a quick mesh
+    /// of the seed is still the seed).
+    pub fn is_seed_joint(&self) -> bool {
+        let seed = BellowsParams {
+            sleeve_crown: self.sleeve_crown,
+            sleeve_crown_length: self.sleeve_crown_length,
+            density: self.density,
+            heat_increments: self.heat_increments,
+            increments: self.increments,
+            penalty: self.penalty,
+            friction_plies: self.friction_plies,
+            friction_sleeve: self.friction_sleeve,
+            tangential_penalty: self.tangential_penalty,
+            elastic_slip: self.elastic_slip,
+            cycle: self.cycle,
+            coefficients: self.coefficients,
+            convergence: self.convergence,
+            ply_elements: self.ply_elements,
+            ply_element_length: self.ply_element_length,
+            wall_elements: self.wall_elements,
+            wall_element_length: self.wall_element_length,
+            output_every: self.output_every,
+            output_precision: self.output_precision,
+            ..BellowsParams::default()
+        };
+        *self == seed
+    }
+
     /// Total thickness of the ply pack.
     pub fn pack_thickness(&self) -> f64 {
         self.plies as f64 * self.ply_thickness
@@ -193,6 +226,7 @@ impl BellowsParams {
             ("pitch", self.pitch),
             ("convolution height", self.height),
             ("torus radius", self.torus_radius),
+            ("crest radius", self.crest()),
             ("ply thickness", self.ply_thickness),
             ("tangent length", self.tangent_length),
             ("sleeve thickness", self.sleeve_thickness),
@@ -249,20 +283,27 @@ impl BellowsParams {
                 return Err(Error::input(format!("bellows: {name} must be at least 1")));
             }
         }
-        let rm = self.torus_radius;
+        let (rr, rc) = (self.torus_radius, self.crest());
         let pack = self.pack_thickness();
-        if rm <= pack / 2.0 {
+        for (name, r) in [("torus radius", rr), ("crest radius", rc)] {
+            if r <= pack / 2.0 {
+                return Err(Error::input(format!(
+                    "bellows: {name} {r} must exceed half the ply pack ({}): the inner ply would fold onto itself",
+                    pack / 2.0
+                )));
+            }
+        }
+        // radial sidewalls at q = 2 (rr + rc), tapered ones wider; narrower would fold them back
+        if self.pitch < 2.0 * (rr + rc) - 1e-9 {
             return Err(Error::input(format!(
-                "bellows: torus radius {rm} must exceed half the ply pack ({}): the inner ply would fold onto itself",
-                pack / 2.0
+                "bellows: a pitch of {} is less than 2 (root radius + crest radius) = {}: U-shaped convolutions' sidewalls would fold back over each other",
+                self.pitch,
+                2.0 * (rr + rc)
             )));
         }
-        if (self.pitch - 4.0 * rm).abs() > 1e-9 {
-            return Err(Error::input(format!("bellows: U-shaped convolutions of torus radius {rm} have pitch 4 x {rm} = {}, not {}", 4.0 * rm, self.pitch)));
-        }
-        let sidewall = self.sidewall();
-        if sidewall < 0.0 {
-            return Err(Error::input(format!("bellows: convolution height {} is less than two torus radii ({})", self.height, 2.0 * rm)));
+        if self.sidewall() < 0.0 {
+            let torus = if self.crest_radius.is_some() { "the root and crest radii" } else { "two torus radii" };
+            return Err(Error::input(format!("bellows: convolution height {} is less than {torus} ({})", self.height, rr + rc)));
         }
         let convoluted = self.convolutions as f64 * self.pitch;
         let gap = self.length - 2.0 * self.tube_length;
@@ -316,14 +357,29 @@ impl BellowsParams {
     /// About how many elements the joint's mesh has: the plies along their developed meridian
     /// (tangents, tori and sidewalls) and the three walls (tubes and sleeve) along the joint.
     fn element_estimate(&self) -> f64 {
-        let meridian = 2.0 * self.tangent_length + self.convolutions as f64 * (2.0 * std::f64::consts::PI * self.torus_radius + 2.0 * self.sidewall());
+        let tori = std::f64::consts::PI * (self.torus_radius + self.crest());
+        let meridian = 2.0 * self.tangent_length + self.convolutions as f64 * (tori + 2.0 * self.sidewall_length());
         let plies = (self.plies * self.ply_elements) as f64 * (meridian / self.ply_element_length).ceil();
         let walls = 3.0 * self.wall_elements as f64 * (self.length / self.wall_element_length).ceil();
         plies + walls
     }
 
+    /// The crest tori's mid-surface radius.
+    pub fn crest(&self) -> f64 {
+        self.crest_radius.unwrap_or(self.torus_radius)
+    }
+
+    /// The radial distance between the root's and the crest's torus centres: a radial
+    /// sidewall's length.
     pub(super) fn sidewall(&self) -> f64 {
-        self.height - 2.0 * self.torus_radius
+        self.height - self.torus_radius - self.crest()
+    }
+
+    /// The length of a sidewall, radial or tapered: the common tangent of the root and crest
+    /// tori, whose centres lie q / 2 apart axially.
+    pub(super) fn sidewall_length(&self) -> f64 {
+        let d2 = (self.pitch / 2.0).powi(2) + self.sidewall().powi(2);
+        (d2 - (self.torus_radius + self.crest()).powi(2)).max(0.0).sqrt()
     }
 
     /// Radius of the tubes' outside surface, where the ply pack's inside sits on the tangents.
