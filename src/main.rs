@@ -31,7 +31,7 @@ fn main() -> ExitCode {
             let sub = matches.subcommand_matches("bellows");
             let given = |id: &str| sub.and_then(|m| m.value_source(id)) == Some(clap::parser::ValueSource::CommandLine);
             // bad flags, specifications and parameter files are reported before MPI and PETSc start
-            let spec = match args.spec.as_deref().map(slideline::bellows::spec::DesignSpec::from_file).transpose() {
+            let spec = match args.spec(given) {
                 Ok(s) => s,
                 Err(e) => return fail(&e, launched_as_rank_zero()),
             };

@@ -22,11 +22,15 @@ fn spec_file(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/specs").join(name)
 }
 
-/// `bellows --spec FILE --check-only` in a scratch directory.
-fn check_only(spec: &Path) -> Run {
+/// `bellows --spec FILE --check-only [flags]` in a scratch directory.
+fn check_only_with(spec: &Path, flags: &[&str]) -> Run {
     let dir = tempfile::tempdir().unwrap();
-    let output = command_in(dir.path(), 1).args(["bellows", "--spec", spec.to_str().unwrap(), "--check-only"]).output().unwrap();
+    let output = command_in(dir.path(), 1).args(["bellows", "--spec", spec.to_str().unwrap(), "--check-only"]).args(flags).output().unwrap();
     Run { output, dir, h5: PathBuf::new() }
+}
+
+fn check_only(spec: &Path) -> Run {
+    check_only_with(spec, &[])
 }
 
 /// The specification `name` with `from` replaced by `to`, written beside a scratch directory.
@@ -77,6 +81,10 @@ fn the_sample_report_fails_by_name_on_more_cycles_and_above_its_squirm_pressure(
     let pressed = check_only(&changed("ejma_sample_report.toml", "pressure = 0.3", "pressure = 1.5", dir.path()));
     pressed.assert_ok();
     assert!(pressed.stdout().lines().last().unwrap() == "verdict: FAIL: column instability (squirm)", "{}", pressed.stdout());
+    // the flag for a common value gives the specification's value: the same verdict
+    let flagged = check_only_with(&spec_file("ejma_sample_report.toml"), &["--pressure", "1.5"]);
+    flagged.assert_ok();
+    assert_eq!(flagged.stdout(), pressed.stdout());
 }
 
 #[test]
@@ -111,13 +119,20 @@ fn bad_specifications_are_named() {
         ("convolution_height = 9.1", "convolution_height = 3.0", vec!["bellows.convolution_height", "the tori overlap"]),
         ("crest_radius = 0.85", "crest_radius = -0.2", vec!["bellows.crest_radius", "must be > 0"]),
         ("lateral = 1.0", "lateral = 1.0\naxial_compression = 3.0", vec!["design.axial_compression", "give one of"]),
-        ("youngs_modulus = 194612.0", "youngs_modulus = [[20.0, 195000.0], [25.0, 194800.0]]", vec!["material.youngs_modulus", "30 degC is outside the table (20 to 25 degC)"]),
+        (
+            "youngs_modulus = 194612.0",
+            "youngs_modulus = [[20.0, 195000.0], [25.0, 194800.0]]",
+            vec!["material.youngs_modulus", "30 degC is outside the table (20 to 25 degC)"],
+        ),
         ("pressure = 0.3", "pressure = -0.1", vec!["design.pressure", "external pressure is not checked yet"]),
         ("fatigue_curve = \"ejma\"", "fatigue_curve = \"best\"", vec!["[code] fatigue_curve", "unknown variant"]),
     ] {
         let run = check_only(&changed(name, from, to, dir.path()));
         assert_rejected(&run, &needles);
     }
+    // a flag a specification has no value for; a flag's value checked as the file's
+    assert_rejected(&check_only_with(&spec_file(name), &["--torus-radius", "1.3"]), &["--torus-radius with --spec", "crest_radius, root_radius"]);
+    assert_rejected(&check_only_with(&spec_file(name), &["--pitch", "5"]), &["bellows.pitch", "overlap"]);
 }
 
 /// The seed joint written as a specification (examples/seed_joint.toml) is the joint
@@ -138,13 +153,19 @@ fn the_seed_specification_is_the_default_joint() {
 fn a_joint_of_ones_own_runs_from_its_specification_with_a_report_of_its_own() {
     let spec = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/dn200_joint.toml");
     let dir = tempfile::tempdir().unwrap();
-    let mesh = command_in(dir.path(), 1).current_dir(dir.path()).args(["bellows", "--spec", spec.to_str().unwrap(), "--quick", "--mesh-only", "-o", "m.h5"]).output().unwrap();
+    let mesh = command_in(dir.path(), 1)
+        .current_dir(dir.path())
+        .args(["bellows", "--spec", spec.to_str().unwrap(), "--quick", "--mesh-only", "-o", "m.h5"])
+        .output()
+        .unwrap();
     assert!(mesh.status.success(), "{}", String::from_utf8_lossy(&mesh.stderr));
     let file = hdf5::File::open(dir.path().join("m.h5")).unwrap();
     let coords = file.dataset("mesh/coordinates").unwrap().read_raw::<f64>().unwrap();
-    let plies: Vec<usize> = (1..=3).flat_map(|k| file.dataset(&format!("mesh/element_sets/ply{k}")).unwrap().read_raw::<u64>().unwrap()).map(|e| e as usize).collect();
+    let plies: Vec<usize> =
+        (1..=3).flat_map(|k| file.dataset(&format!("mesh/element_sets/ply{k}")).unwrap().read_raw::<u64>().unwrap()).map(|e| e as usize).collect();
     let conn = file.dataset("mesh/connectivity").unwrap().read_raw::<u64>().unwrap();
-    let ply_nodes: Vec<[f64; 2]> = plies.iter().flat_map(|&e| conn[8 * e..8 * e + 8].to_vec()).map(|n| [coords[2 * n as usize], coords[2 * n as usize + 1]]).collect();
+    let ply_nodes: Vec<[f64; 2]> =
+        plies.iter().flat_map(|&e| conn[8 * e..8 * e + 8].to_vec()).map(|n| [coords[2 * n as usize], coords[2 * n as usize + 1]]).collect();
     let (r_max, r_min) = ply_nodes.iter().fold((f64::MIN, f64::MAX), |(hi, lo), p| (hi.max(p[0]), lo.min(p[0])));
     within(r_max, 127.05, 1e-6, "the crest top's outside, mm");
     within(r_min, 109.55, 1e-6, "the plies' inside on the tangents, mm");
@@ -152,7 +173,11 @@ fn a_joint_of_ones_own_runs_from_its_specification_with_a_report_of_its_own() {
     let span = convoluted.iter().cloned().fold(f64::MIN, f64::max) - convoluted.iter().cloned().fold(f64::MAX, f64::min);
     assert!(span > 75.0 - 2.0 && span < 75.0 + 1e-6, "the convolutions span {span} mm of N q = 75");
 
-    let run = command_in(dir.path(), 2).current_dir(dir.path()).args(["bellows", "--spec", spec.to_str().unwrap(), "--quick", "--quiet", "-o", "r.h5"]).output().unwrap();
+    let run = command_in(dir.path(), 2)
+        .current_dir(dir.path())
+        .args(["bellows", "--spec", spec.to_str().unwrap(), "--quick", "--quiet", "-o", "r.h5"])
+        .output()
+        .unwrap();
     let text = String::from_utf8_lossy(&run.stdout).to_string();
     assert!(run.status.success(), "{text}{}", String::from_utf8_lossy(&run.stderr));
     assert!(text.contains("DN200 axial expansion joint") && text.contains("\nverdict: "), "{text}");

@@ -176,7 +176,10 @@ fn bad_perturbation_steps_are_refused() {
             ),
             "only in mode 1",
         ),
-        (deck("", &format!("{SIDEWAYS}\n[[step]]\nname = \"late\"\nboundary = [ {{ set = \"top\", uz = 1.0 }} ]\n")), "a general step after the perturbation step"),
+        (
+            deck("", &format!("{SIDEWAYS}\n[[step]]\nname = \"late\"\nboundary = [ {{ set = \"top\", uz = 1.0 }} ]\n")),
+            "a general step after the perturbation step",
+        ),
         (deck("", &SIDEWAYS.replace("procedure = \"harmonic\"\nmode = 1", "procedure = \"modal\"\nmode = 1")), "procedure \"modal\""),
         (deck("", &SIDEWAYS.replace("procedure = \"harmonic\"\nmode = 1", "procedure = \"buckle\"\nmode = 1")), "a buckle step's load is axisymmetric"),
         (

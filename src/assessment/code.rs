@@ -117,7 +117,12 @@ mod tests {
     fn the_sample_report_is_checked_as_printed() {
         let b = UBellows { inside_diameter: 130.0, height: 9.1, pitch: 8.0, ply_thickness: 0.3, plies: 3, convolutions: 18, torus_radius: 1.3 };
         let c = Coefficients { cp: 0.67, cf: 1.57, cd: 1.68 };
-        let check = CodeCheck::new(&b, c, Source::Given, Duty { pressure: 0.3, stroke: 27.5, modulus: 194_612.0, yield_stress: 206.8, tangent_length: 30.0, forming: Forming::AsFormed });
+        let check = CodeCheck::new(
+            &b,
+            c,
+            Source::Given,
+            Duty { pressure: 0.3, stroke: 27.5, modulus: 194_612.0, yield_stress: 206.8, tangent_length: 30.0, forming: Forming::AsFormed },
+        );
         for (value, printed) in [(check.s4, 33.4), (check.s5, 10.6), (check.s6, 1034.9), (check.axial_rate, 159.0), (check.column_instability, 1.18)] {
             assert!((value - printed).abs() <= 0.01 * printed, "{value} against the printed {printed}");
         }

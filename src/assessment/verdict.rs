@@ -209,7 +209,14 @@ pub fn verdict(b: &UBellows, check: &CodeCheck, conditions: &Conditions, allowab
     let allowable_cycles = a.fatigue_curve.allowable_cycles(check.stress_range, a.fatigue_factor, a.room_modulus, modulus);
     let p = conditions.pressure;
     let checks = vec![
-        Check { name: "S1 tangent hoop membrane", rule: "S1 <= Cwb S (App. 26, 26-6.3.2)", value: check.s1, limit: a.weld_factor * s, unit: "MPa", sense: Sense::AtMost },
+        Check {
+            name: "S1 tangent hoop membrane",
+            rule: "S1 <= Cwb S (App. 26, 26-6.3.2)",
+            value: check.s1,
+            limit: a.weld_factor * s,
+            unit: "MPa",
+            sense: Sense::AtMost,
+        },
         Check {
             name: "S2 convolution hoop membrane",
             rule: "S2 <= Cwb S (App. 26, 26-6.3.2; EJMA Eq. 4-29)",

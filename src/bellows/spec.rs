@@ -270,7 +270,8 @@ impl DesignSpec {
         };
         let (modulus, yield_stress, _) = self.at_temperature()?;
         let stroke = verdict::movement_per_convolution(&b, &self.conditions()) * b.convolutions as f64;
-        let duty = Duty { pressure: self.design.pressure, stroke, modulus, yield_stress, tangent_length: self.bellows.tangent_length, forming: self.bellows.forming };
+        let duty =
+            Duty { pressure: self.design.pressure, stroke, modulus, yield_stress, tangent_length: self.bellows.tangent_length, forming: self.bellows.forming };
         Ok(CodeCheck::new(&b, coefficients, source, duty))
     }
 
@@ -311,7 +312,10 @@ impl DesignSpec {
             }
         }
         if !(self.design.pressure >= 0.0 && self.design.pressure.is_finite()) {
-            return bad("design.pressure", format!("{}: give the internal design pressure, >= 0 MPa (external pressure is not checked yet)", self.design.pressure));
+            return bad(
+                "design.pressure",
+                format!("{}: give the internal design pressure, >= 0 MPa (external pressure is not checked yet)", self.design.pressure),
+            );
         }
         if !self.design.temperature.is_finite() {
             return bad("design.temperature", "must be a finite number (degC)".into());

@@ -6,13 +6,13 @@
 use super::flexibility::{Flexibility, Movements};
 use super::joint::BellowsParams;
 use super::report::BellowsReport;
+use super::spec::DesignSpec;
 use super::stability::{Stability, SQUIRM};
 use super::vibration::{Frequencies, LATERAL_MODES};
 use crate::assessment::code::{CodeCheck, Duty, Source};
-use crate::assessment::verdict::{Forming, Verdict};
-use super::spec::DesignSpec;
 use crate::assessment::coefficients::Coefficients;
 use crate::assessment::fe_check::FeCheck;
+use crate::assessment::verdict::{Forming, Verdict};
 use crate::dist::Partition;
 use crate::error::Result;
 use crate::io::plots::{outline_picture, Panel, SegmentLayer};
@@ -75,8 +75,14 @@ pub fn code_check(session: &PetscSession, params: &BellowsParams) -> Result<Code
         None => (super::convolution::compute(session, geometry.c1(), geometry.c2(), Default::default())?, Source::Computed),
     };
     let p = params;
-    let duty =
-        Duty { pressure: p.pressure, stroke: p.displacement.abs(), modulus: p.youngs_modulus, yield_stress: p.yield_stress, tangent_length: p.tangent_length, forming: Forming::AsFormed };
+    let duty = Duty {
+        pressure: p.pressure,
+        stroke: p.displacement.abs(),
+        modulus: p.youngs_modulus,
+        yield_stress: p.yield_stress,
+        tangent_length: p.tangent_length,
+        forming: Forming::AsFormed,
+    };
     Ok(CodeCheck::new(&geometry, coefficients, source, duty))
 }
 

@@ -382,10 +382,46 @@ impl BellowsArgs {
         Ok(Some(slideline::bellows::flexibility::Movements { lateral: self.lateral.unwrap_or(0.0), angular: self.angular.unwrap_or(0.0) }))
     }
 
+    /// The design specification (`--spec`), with the flags that give its values applied: the
+    /// bellows' dimensions, the design pressure, temperature and compression, the yield stress
+    /// and the chart coefficients (`--torus-radius` has no meaning beside its crest and root
+    /// radii, and is refused).
+    pub fn spec(&self, given: impl Fn(&str) -> bool) -> Result<Option<slideline::bellows::spec::DesignSpec>, Error> {
+        let Some(path) = &self.spec else { return Ok(None) };
+        let mut spec = slideline::bellows::spec::DesignSpec::from_file(path)?;
+        if given("torus_radius") {
+            return Err(Error::input(
+                "bellows: --torus-radius with --spec: give the crest and root radii in the specification ([bellows] crest_radius, root_radius)",
+            ));
+        }
+        let (b, d) = (&mut spec.bellows, &mut spec.design);
+        let take = |id: &str, set: &mut dyn FnMut()| {
+            if given(id) {
+                set();
+            }
+        };
+        take("plies", &mut || b.plies = self.plies);
+        take("ply_thickness", &mut || b.ply_thickness = self.ply_thickness);
+        take("convolutions", &mut || b.convolutions = self.convolutions);
+        take("pitch", &mut || b.pitch = self.pitch);
+        take("height", &mut || b.convolution_height = self.height);
+        take("coefficients", &mut || b.coefficients = self.coefficients.as_ref().filter(|c| c.len() == 3).map(|c| [c[0], c[1], c[2]]));
+        take("pressure", &mut || d.pressure = self.pressure);
+        take("temperature", &mut || d.temperature = self.temperature);
+        take("displacement", &mut || (d.axial_compression, d.axial_extension) = (Some(self.displacement), None));
+        take("yield_stress", &mut || spec.material.yield_stress = slideline::bellows::spec::Property::Value(self.yield_stress));
+        spec.validate()?;
+        Ok(Some(spec))
+    }
+
     /// The joint's parameters: the defaults (the seed case), the `--spec` or `--params` file, then
     /// `--quick`, then every flag given on the command line (`given(id)`): a flag given
     /// explicitly wins over both.
-    pub fn params(&self, given: impl Fn(&str) -> bool, spec: Option<&slideline::bellows::spec::DesignSpec>) -> Result<slideline::bellows::joint::BellowsParams, Error> {
+    pub fn params(
+        &self,
+        given: impl Fn(&str) -> bool,
+        spec: Option<&slideline::bellows::spec::DesignSpec>,
+    ) -> Result<slideline::bellows::joint::BellowsParams, Error> {
         if let Some(c) = self.coefficients.as_ref().filter(|c| c.len() != 3) {
             return Err(Error::input(format!("bellows: --coefficients takes three values, Cp,Cf,Cd; got {}", c.len())));
         }
@@ -402,6 +438,8 @@ impl BellowsArgs {
         if self.quick {
             p = p.quick();
         }
+        // a specification's values are in it already (`spec`)
+        let given = |id: &str| given(id) && !(spec.is_some() && SPEC_FLAGS.contains(&id));
         let mut take = |id: &str, set: &mut dyn FnMut(&mut slideline::bellows::joint::BellowsParams)| {
             if given(id) {
                 set(&mut p);
@@ -435,6 +473,11 @@ impl BellowsArgs {
         Ok(p)
     }
 }
+
+/// The flags that give a design specification's values (applied to it by
+/// [`BellowsArgs::spec`]).
+const SPEC_FLAGS: [&str; 10] =
+    ["plies", "ply_thickness", "convolutions", "pitch", "height", "coefficients", "pressure", "temperature", "displacement", "yield_stress"];
 
 /// The `--output-precision` choices.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]

@@ -287,10 +287,7 @@ impl BellowsParams {
         let pack = self.pack_thickness();
         for (name, r) in [("torus radius", rr), ("crest radius", rc)] {
             if r <= pack / 2.0 {
-                return Err(Error::input(format!(
-                    "bellows: {name} {r} must exceed half the ply pack ({}): the inner ply would fold onto itself",
-                    pack / 2.0
-                )));
+                return Err(Error::input(format!("bellows: {name} {r} must exceed half the ply pack ({}): the inner ply would fold onto itself", pack / 2.0)));
             }
         }
         // radial sidewalls at q = 2 (rr + rc), tapered ones wider; narrower would fold them back

@@ -263,7 +263,11 @@ impl BellowsReport {
         if seed {
             line(&format!("end reaction at {:.1} mm, N per 2.5-deg sector", self.displacement), format!("{:.1}", self.reaction), &format!("{PAPER_REACTION}"));
         }
-        line(&format!("end reaction at {:.1} mm, N full ring", self.displacement), format!("{:.0}", self.reaction * ring), &format!("{:.0}", PAPER_REACTION * ring));
+        line(
+            &format!("end reaction at {:.1} mm, N full ring", self.displacement),
+            format!("{:.0}", self.reaction * ring),
+            &format!("{:.0}", PAPER_REACTION * ring),
+        );
         line(&format!("  step 1's part (temperature, pressure), N {per}"), format!("{:.1}", self.preload * scale), "-");
         line(&format!("stiffness (F - F1)/u, N/mm {per}"), format!("{:.2}", self.secant_stiffness * scale), &format!("{PAPER_STIFFNESS}"));
         line(&format!("initial stiffness, N/mm {per}"), format!("{:.2}", self.initial_stiffness * scale), "-");
@@ -425,8 +429,11 @@ impl BellowsReport {
         }
         // the paper's point for the seed joint alone: any other joint's axes are its own
         let paper = PAPER_REACTION * ring;
-        let markers: Vec<Marker> =
-            self.seed.then(|| Marker { label: format!("paper (MSC Nastran): {paper:.0} N at 70 mm ({PAPER_REACTION} N per sector)"), at: (70.0, paper) }).into_iter().collect();
+        let markers: Vec<Marker> = self
+            .seed
+            .then(|| Marker { label: format!("paper (MSC Nastran): {paper:.0} N at 70 mm ({PAPER_REACTION} N per sector)"), at: (70.0, paper) })
+            .into_iter()
+            .collect();
         line_plot(
             &force,
             "Bellows end reaction vs axial compression",
