@@ -41,3 +41,17 @@ fn the_quick_joint_takes_one_stated_time() {
     assert!(manual("README.md").contains(&format!("coarse mesh in {stated}")), "README");
     assert!(manual("docs/bellows.md").contains(&format!("({stated} on 2 ranks)")), "docs/bellows.md");
 }
+
+/// The README's verdict table is what `slideline bellows --spec examples/dn200_joint.toml
+/// --check-only` prints, line for line.
+#[test]
+fn the_readme_verdict_table_is_the_programs() {
+    let readme = manual("README.md");
+    let block = readme.split("```text\n").find(|b| b.contains("code check: ASME VIII-1")).expect("a verdict table in the README");
+    let block = &block[..block.find("```").unwrap()];
+    let dir = tempfile::tempdir().unwrap();
+    let spec = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/dn200_joint.toml");
+    let out = command_in(dir.path(), 1).args(["bellows", "--spec", spec.to_str().unwrap(), "--check-only"]).output().unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert_eq!(String::from_utf8_lossy(&out.stdout), block, "the README's table against the program's");
+}
