@@ -7,8 +7,42 @@
 //! gets no note. The verdict against allowables is [`super::verdict`]'s.
 
 use super::coefficients::Coefficients;
-use super::formulas::{cycles_as_formed_austenitic, stress_range, UBellows, PSI_PER_MPA};
-use super::verdict::Forming;
+use super::formulas::{cycles_as_formed_austenitic, stress_range, UBellows, AS_FORMED_YIELD_FACTOR, PSI_PER_MPA};
+
+/// How the bellows was made: as formed (cold-worked) or annealed after forming.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Deserialize, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Forming {
+    AsFormed,
+    Annealed,
+}
+
+impl Forming {
+    pub fn label(self) -> &'static str {
+        match self {
+            Forming::AsFormed => "as formed",
+            Forming::Annealed => "annealed",
+        }
+    }
+
+    /// Km, the factor on the allowable stress of the meridional pressure stresses S3 + S4
+    /// (ASME VIII-1 App. 26: 3.0 as formed, 1.5 annealed).
+    pub fn meridional_factor(self) -> f64 {
+        match self {
+            Forming::AsFormed => 3.0,
+            Forming::Annealed => 1.5,
+        }
+    }
+
+    /// Sy* / Sy, the effective yield stress of the in-plane instability (2.3 for as-formed
+    /// austenitic bellows, the cold work of forming; 1 annealed).
+    pub fn yield_factor(self) -> f64 {
+        match self {
+            Forming::AsFormed => AS_FORMED_YIELD_FACTOR,
+            Forming::Annealed => 1.0,
+        }
+    }
+}
 
 /// Where the chart coefficients came from.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -11,43 +11,9 @@
 //! of the formulas, however far above yield it lies.
 
 use super::code::CodeCheck;
+pub use super::code::Forming;
 use super::formulas::{cycles_as_formed_austenitic, UBellows, PSI_PER_MPA};
 use std::f64::consts::PI;
-
-/// How the bellows was made: as formed (cold-worked) or annealed after forming.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Deserialize, serde::Serialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum Forming {
-    AsFormed,
-    Annealed,
-}
-
-impl Forming {
-    pub fn label(self) -> &'static str {
-        match self {
-            Forming::AsFormed => "as formed",
-            Forming::Annealed => "annealed",
-        }
-    }
-
-    /// Km, the factor on the allowable stress of the meridional pressure stresses S3 + S4
-    /// (ASME VIII-1 App. 26: 3.0 as formed, 1.5 annealed).
-    pub fn meridional_factor(self) -> f64 {
-        match self {
-            Forming::AsFormed => 3.0,
-            Forming::Annealed => 1.5,
-        }
-    }
-
-    /// Sy* / Sy, the effective yield stress of the in-plane instability (2.3 for as-formed
-    /// austenitic bellows, the cold work of forming; 1 annealed).
-    pub fn yield_factor(self) -> f64 {
-        match self {
-            Forming::AsFormed => super::formulas::AS_FORMED_YIELD_FACTOR,
-            Forming::Annealed => 1.0,
-        }
-    }
-}
 
 /// The design fatigue curve the allowable cycles are read from.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Deserialize, serde::Serialize)]

@@ -20,9 +20,9 @@ use crate::solve::RunSummary;
 use std::f64::consts::PI;
 use std::path::{Path, PathBuf};
 
-mod code_verdict;
+mod code_tables;
 mod mode_picture;
-pub use code_verdict::{verdict_table, EDITION};
+pub use code_tables::{code_section, verdict_table, EDITION};
 pub use mode_picture::mode_picture;
 
 /// The paper modelled a 2.5-degree sector; its forces are per sector.
@@ -327,29 +327,6 @@ impl BellowsReport {
         }
         t
     }
-}
-
-/// The code check's section of the closing table: the EJMA figures at the joint's pressure and
-/// stroke, and the notes on where they do not apply.
-pub fn code_section(c: &CodeCheck) -> String {
-    let k = c.coefficients;
-    let mut t = format!("\n  code check (EJMA; C1 {:.3}, C2 {:.3}; Cp {:.3}, Cf {:.3}, Cd {:.3} {}):\n", c.c1, c.c2, k.cp, k.cf, k.cd, c.source.label());
-    let mut line = |what: &str, value: String| t.push_str(&format!("  {what:<50} {value:>20}\n"));
-    line("S1 hoop membrane in the tangent, pressure, MPa", format!("{:.1}", c.s1));
-    // files written before S2 and the in-plane instability were computed hold NaN for them
-    let known = |v: f64, digits: usize| if v.is_nan() { "-".to_string() } else { format!("{v:.digits$}") };
-    line("S2 hoop membrane in the convolutions, pressure, MPa", known(c.s2, 1));
-    line("S3 / S4 meridional membrane / bending, pressure, MPa", format!("{:.1} / {:.1}", c.s3, c.s4));
-    line("S5 / S6 meridional membrane / bending, stroke, MPa", format!("{:.1} / {:.0}", c.s5, c.s6));
-    line("St = 0.7 (S3 + S4) + S5 + S6, MPa", format!("{:.0}", c.stress_range));
-    line("allowable cycles (as-formed austenitic curve)", c.cycles.map_or("endurance".into(), |n| format!("{n:.0}")));
-    line("axial rate, N/mm full ring", format!("{:.1}", c.axial_rate));
-    line("column instability pressure, MPa", format!("{:.2}", c.column_instability));
-    line("in-plane instability pressure (Sy* = 2.3 Sy), MPa", known(c.in_plane_instability, 2));
-    for note in &c.notes {
-        t.push_str(&format!("  note: {note}\n"));
-    }
-    t
 }
 
 fn peak_of(p: &Peak) -> Option<(f64, &str)> {
