@@ -130,8 +130,9 @@ fn a_restart_gives_the_same_perturbations() {
 /// `--squirm` on the default joint at rest: the column instability by a buckling analysis lies
 /// between EJMA's factored column formula and the unfactored equivalent column it comes from
 /// (measured 22.1 < 63.0 < 129.8 MPa: the code is conservative here, by 2.9), the code column
-/// recomputed from the printed Kb; 1 and 2 ranks agree to 1e-8 (the follower-pressure buckling
-/// itself is checked against Palmer & Baldry's pipe in tests/eigen_steps.rs).
+/// recomputed from the printed Kb; the harmonics above, n = 2 to 4, each with its pressure and
+/// the lowest of all named; 1 and 2 ranks agree to 1e-8 (the follower-pressure buckling itself
+/// is checked against Palmer & Baldry's pipe in tests/eigen_steps.rs).
 #[test]
 fn the_default_joint_squirms_between_the_code_and_the_equivalent_column() {
     let dir = tempfile::tempdir().unwrap();
@@ -152,6 +153,15 @@ fn the_default_joint_squirms_between_the_code_and_the_equivalent_column() {
     assert!((code / (0.34 * std::f64::consts::PI * kb / (n * q)) - 1.0).abs() < 1e-3, "{code} against Kb {kb}");
     assert!((column / code - 2.0 / 0.34).abs() < 1e-2, "{column} {code}");
     assert!(code < squirm && squirm < column, "squirm {squirm} MPa against the code's {code} and the equivalent column's {column}\n{section}");
+    // every harmonic that can govern, n = 0 to 4, and the lowest of them named
+    let mut harmonics = vec![(1, squirm), (0, row(&section, "in-plane instability, mode 0")[0])];
+    for n in 2..=3 {
+        harmonics.push((n, row(&section, &format!("crest and sidewall mode n = {n}"))[0]));
+    }
+    assert!(section.contains("crest and sidewall mode n = 4"), "{section}");
+    let (n, p) = harmonics.iter().copied().min_by(|a, b| a.1.total_cmp(&b.1)).unwrap();
+    let lowest = section.lines().find(|l| l.contains("the lowest over the harmonics")).unwrap();
+    assert!(lowest.contains(&format!("n = {n}: {p:.2}")), "{lowest} against {harmonics:?}");
     let (_, r2) = run(2);
     let p = |r: &Results| r.f64s("perturbations/squirm/critical_pressure_wetted")[0];
     assert!((p(&r) - p(&r2)).abs() < 1e-8 * p(&r), "{} on one rank, {} on two", p(&r), p(&r2));

@@ -10,6 +10,11 @@
 //!   of it;
 //! - the code's in-plane instability pressure (the code check's).
 //!
+//! And the harmonics above them, n = 2 to [`HIGHEST_HARMONIC`]: the crest and sidewall modes,
+//! which on a thin bellows with both ends held can buckle below the column; the lowest pressure
+//! of all the harmonics governs, and the section names its harmonic (and says so when the
+//! pressures still fall at the highest one asked).
+//!
 //! The step's load is 1 MPa on the wetted surface: the critical pressure is the state's
 //! pressure plus the load factor. The axial rate comes from the `axial` perturbation of
 //! `flexibility`.
@@ -26,6 +31,13 @@ pub const SQUIRM: &str = "squirm";
 pub const IN_PLANE: &str = "in_plane";
 /// Eigenvalues asked of each buckle step: the lowest positive one is the answer.
 const EIGENVALUES: usize = 3;
+/// The highest harmonic of the buckle steps above the column's (n = 2, 3, ...).
+pub const HIGHEST_HARMONIC: u32 = 4;
+
+/// The buckle step of harmonic `n` >= 2.
+fn higher_step(n: u32) -> String {
+    format!("buckle_n{n}")
+}
 
 /// The critical pressures about one state (MPa) and the state's axial rate (N/mm, full ring).
 #[derive(Clone, Debug, PartialEq)]
@@ -33,6 +45,20 @@ pub struct Stability {
     pub axial_rate: f64,
     pub squirm: Option<f64>,
     pub in_plane: Option<f64>,
+    /// The harmonics n = 2 to [`HIGHEST_HARMONIC`] and their critical pressures.
+    pub higher: Vec<(u32, Option<f64>)>,
+    /// For a harmonic whose eigenvalues found were all negative (buckling under an external
+    /// pressure), the pressure its internal critical pressure lies above: the state's pressure
+    /// plus the largest of their magnitudes (the solver finds those nearest zero).
+    pub above: Vec<(u32, f64)>,
+}
+
+impl Stability {
+    /// The lowest critical pressure over every harmonic, with its harmonic.
+    pub fn governing(&self) -> Option<(u32, f64)> {
+        let all = [(1, self.squirm), (0, self.in_plane)].into_iter().chain(self.higher.iter().copied());
+        all.filter_map(|(n, p)| p.map(|p| (n, p))).min_by(|a, b| a.1.total_cmp(&b.1))
+    }
 }
 
 /// The buckle steps (and the axial rate's step) on joint `p`.
@@ -50,7 +76,8 @@ pub fn steps(p: &BellowsParams) -> Vec<Perturbation> {
         analysis: Analysis::Buckle { eigenvalues: EIGENVALUES },
     };
     let axial = super::flexibility::steps(p, super::flexibility::Movements { lateral: 0.0, angular: 0.0 }).into_iter().filter(|s| s.name == AXIAL);
-    axial.chain([buckle(SQUIRM, 1), buckle(IN_PLANE, 0)]).collect()
+    let higher = (2..=HIGHEST_HARMONIC).map(|n| buckle(&higher_step(n), n));
+    axial.chain([buckle(SQUIRM, 1), buckle(IN_PLANE, 0)]).chain(higher).collect()
 }
 
 /// The critical pressures from a run's answers to [`steps`].
@@ -58,7 +85,17 @@ pub fn from_answers(answers: &[(String, PerturbationAnswer)]) -> Result<Stabilit
     let axial_rate = super::flexibility::axial_rate(answers)?;
     // the lowest positive load factor's critical pressure
     let critical = |name: &str| lowest_positive_mode(answers, name).and_then(|m| m.critical_pressures.first().map(|c| c.1));
-    Ok(Stability { axial_rate, squirm: critical(SQUIRM), in_plane: critical(IN_PLANE) })
+    let higher: Vec<(u32, Option<f64>)> = (2..=HIGHEST_HARMONIC).map(|n| (n, critical(&higher_step(n)))).collect();
+    let above = higher.iter().filter(|(_, p)| p.is_none()).filter_map(|&(n, _)| lower_bound(answers, &higher_step(n)).map(|b| (n, b))).collect();
+    Ok(Stability { axial_rate, squirm: critical(SQUIRM), in_plane: critical(IN_PLANE), higher, above })
+}
+
+/// The pressure a buckle step's internal critical pressure lies above when every eigenvalue
+/// found is negative: base + |lambda| of the largest, from its critical pressure base + lambda.
+fn lower_bound(answers: &[(String, PerturbationAnswer)], step: &str) -> Option<f64> {
+    let (_, answer) = answers.iter().find(|(s, _)| s == step)?;
+    let farthest = answer.modes.iter().filter(|m| m.eigenvalue < 0.0).max_by(|x, y| x.eigenvalue.abs().total_cmp(&y.eigenvalue.abs()))?;
+    farthest.critical_pressures.first().map(|c| c.1 - 2.0 * farthest.eigenvalue)
 }
 
 /// The mode of the lowest positive eigenvalue of eigenvalue step `step` (a stable state's first

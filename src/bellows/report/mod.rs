@@ -549,6 +549,21 @@ pub fn stability_section(p: &BellowsParams, code: Option<&CodeCheck>, rest: &Sta
     row("in-plane instability, mode 0, finite elements", &|s| s.in_plane);
     let in_plane_code = code.map(|c| c.in_plane_instability);
     row("  the code's in-plane formula (the code check's)", &|_| in_plane_code);
+    for (k, &(n, _)) in rest.higher.iter().enumerate() {
+        // a harmonic whose nearest eigenvalues were all external pressures: its bound
+        let cell = |s: &Stability| match (s.higher.get(k).and_then(|h| h.1), s.above.iter().find(|a| a.0 == n)) {
+            (Some(p), _) => format!("{p:.2}"),
+            (None, Some(&(_, b))) => format!("> {b:.1}"),
+            (None, None) => "-".into(),
+        };
+        t.push_str(&format!("  {:<58} {:>12} {:>12}\n", format!("crest and sidewall mode n = {n}, finite elements"), cell(rest), cell(operating)));
+    }
+    let governing = |s: &Stability| s.governing().map_or("-".to_string(), |(n, p)| format!("n = {n}: {p:.2}"));
+    t.push_str(&format!("  {:<58} {:>12} {:>12}\n", "the lowest over the harmonics, finite elements", governing(rest), governing(operating)));
+    let highest = super::stability::HIGHEST_HARMONIC;
+    if [rest, operating].iter().any(|s| s.governing().is_some_and(|(n, _)| n == highest)) {
+        t.push_str(&format!("  note: the lowest pressure is the highest harmonic's (n = {highest}): those above it were not analysed\n"));
+    }
     t.push_str(
         "  EJMA's 0.34 is 0.17 of the equivalent column's 2: the code's formula carries that margin on the beam analogy;\n  \
          the finite elements give the joint's own elastic buckling pressure, unfactored (the state's pressure plus the load factor);\n  \
