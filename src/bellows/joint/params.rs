@@ -145,14 +145,18 @@ impl Default for BellowsParams {
 }
 
 impl BellowsParams {
-    /// Whether this is the seed paper's joint: its geometry, material and loads, whatever the
-    /// mesh, stepping, contact, friction and output parameters (a penalty study or a quick mesh
-    /// of the seed is still the seed).
+    /// Whether this is the seed paper's joint: its geometry and material, whatever the loads,
+    /// mesh, stepping, contact, friction and output parameters (a shorter stroke, a penalty
+    /// study or a quick mesh of the seed is still the seed, and its table keeps the paper's
+    /// column, each row saying where it is read).
     pub fn is_seed_joint(&self) -> bool {
         let seed = BellowsParams {
             sleeve_crown: self.sleeve_crown,
             sleeve_crown_length: self.sleeve_crown_length,
             density: self.density,
+            temperature: self.temperature,
+            pressure: self.pressure,
+            displacement: self.displacement,
             heat_increments: self.heat_increments,
             increments: self.increments,
             penalty: self.penalty,
