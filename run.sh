@@ -14,8 +14,9 @@ export OMPI_MCA_rmaps_base_oversubscribe=1
 
 PACKAGES=(petsc-dev libslepc-real3.18-dev libopenmpi-dev openmpi-bin libhdf5-openmpi-dev hdf5-tools libclang-dev pkg-config libopenblas0-pthread)
 # the tests read results as users do, with meshio and h5py: Debian's own, for Debian's python3
-# (which refuses pip installs), called by its path whatever python3 comes first on PATH
-TEST_PACKAGES=(python3-meshio python3-h5py python3-numpy)
+# (which refuses pip installs), called by its path whatever python3 comes first on PATH; and
+# Chromium, which renders the design report headless as a person would see it
+TEST_PACKAGES=(python3-meshio python3-h5py python3-numpy chromium)
 export SLIDELINE_PYTHON=/usr/bin/python3
 
 install_missing() {

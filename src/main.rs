@@ -61,8 +61,12 @@ fn main() -> ExitCode {
                     Err(e) => fail(&e, launched_as_rank_zero()),
                 };
             }
-            if let Err(e) = slideline::output_path::check_output_path(&args.output, args.params.as_deref().map(|p| (p, "the --params file"))) {
-                return fail(&e, launched_as_rank_zero());
+            // the results file and the report, checked before any work; never an input file
+            let inputs = args.params.as_deref().map(|p| (p, "the --params file")).or(args.spec.as_deref().map(|p| (p, "the --spec file")));
+            for path in std::iter::once(&args.output).chain(&args.report) {
+                if let Err(e) = slideline::output_path::check_output_path(path, inputs) {
+                    return fail(&e, launched_as_rank_zero());
+                }
             }
             let session = match PetscSession::initialize(&args.petsc) {
                 Ok(s) => s,

@@ -497,42 +497,6 @@ pub fn parse_section(text: &str) -> Result<([f64; 2], [f64; 2])> {
     Ok((point(a)?, point(b)?))
 }
 
-/// The bellows closing table (slideline beside the paper, the code check) as the run printed
-/// it, from the file alone; None for a file that is not a `slideline bellows` run's.
-pub fn bellows_table(r: &ResultsReader) -> Result<Option<String>> {
-    let deck = r.text_attr("deck")?;
-    if !deck.starts_with("# slideline bellows") || r.increments()?.is_empty() {
-        return Ok(None);
-    }
-    let Ok(params) = crate::bellows::joint::BellowsParams::from_toml(&deck, &r.path().display().to_string()) else { return Ok(None) };
-    let history: Vec<crate::io::HistoryRow> = r.history_rows()?.into_iter().map(|(_, row)| row).collect();
-    // what the table reads of the run: its history, ranks and restart point (the wall time is
-    // the history's own)
-    let summary = crate::solve::RunSummary {
-        wall_time: history.last().map_or(0.0, |row| row.wall_time),
-        history,
-        ranks: r.count_attr("ranks")?,
-        displacement: Vec::new(),
-        reserved_couplings: 0,
-        pattern_refits: 0,
-        continued: r.restarted_from().map_or(0, |(_, at)| at),
-        perturbations: Vec::new(),
-        heat: Vec::new(),
-        plane: r.is_plane(),
-    };
-    // a file a killed writer left may have lost its code check: the table goes without it
-    let (code, lost) = match r.assessment() {
-        Ok(code) => (code, None),
-        Err(e) => (None, Some(e)),
-    };
-    let mut report = crate::bellows::report::BellowsReport::new(&params, code, &summary, r)?;
-    // a specification's verdict (among the tables reprinted after this one) replaces the
-    // code section, as the run printed it
-    report.code_section = !r.printed_tables()?.iter().any(|(name, _)| name == crate::bellows::workflow::CODE_VERDICT);
-    let note = lost.map_or(String::new(), |e| format!("  note: the code check cannot be read again ({e})\n"));
-    Ok(Some(report.table() + &note))
-}
-
 /// The linearised stresses of each section at increment `number` (reference coordinates).
 pub fn linearize(r: &ResultsReader, sections: &[String], number: usize) -> Result<String> {
     use crate::fe::linearize::{linearize, StressSampler};

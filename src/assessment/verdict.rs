@@ -100,12 +100,12 @@ pub enum Sense {
 #[derive(Clone, Debug, PartialEq)]
 pub struct Check {
     /// What is checked, for a table ("S2 convolution hoop membrane").
-    pub name: &'static str,
+    pub name: String,
     /// The rule in symbols and where it is written ("S2 <= Cwb S; App. 26, 26-6.3.2").
-    pub rule: &'static str,
+    pub rule: String,
     pub value: f64,
     pub limit: f64,
-    pub unit: &'static str,
+    pub unit: String,
     pub sense: Sense,
 }
 
@@ -143,8 +143,8 @@ pub struct Verdict {
 
 impl Verdict {
     /// The checks that fail, by name.
-    pub fn failed(&self) -> Vec<&'static str> {
-        self.checks.iter().filter(|c| !c.passes()).map(|c| c.name).collect()
+    pub fn failed(&self) -> Vec<&str> {
+        self.checks.iter().filter(|c| !c.passes()).map(|c| c.name.as_str()).collect()
     }
 
     /// PASS, or FAIL with the failing checks named; a bellows outside the conditions of
@@ -174,55 +174,29 @@ pub fn verdict(b: &UBellows, check: &CodeCheck, conditions: &Conditions, allowab
     let e = movement_per_convolution(b, conditions);
     let allowable_cycles = a.fatigue_curve.allowable_cycles(check.stress_range, a.fatigue_factor, a.room_modulus, modulus);
     let p = conditions.pressure;
+    let check_of = |name: &str, rule: &str, value: f64, limit: f64, unit: &str, sense: Sense| Check {
+        name: name.into(),
+        rule: rule.into(),
+        value,
+        limit,
+        unit: unit.into(),
+        sense,
+    };
+    let (most, least) = (Sense::AtMost, Sense::AtLeast);
     let checks = vec![
-        Check {
-            name: "S1 tangent hoop membrane",
-            rule: "S1 <= Cwb S (App. 26, 26-6.3.2)",
-            value: check.s1,
-            limit: a.weld_factor * s,
-            unit: "MPa",
-            sense: Sense::AtMost,
-        },
-        Check {
-            name: "S2 convolution hoop membrane",
-            rule: "S2 <= Cwb S (App. 26, 26-6.3.2; EJMA Eq. 4-29)",
-            value: check.s2,
-            limit: a.weld_factor * s,
-            unit: "MPa",
-            sense: Sense::AtMost,
-        },
-        Check {
-            name: "S3 + S4 meridional, pressure",
-            rule: "S3 + S4 <= Km S (App. 26, 26-6.3.2; EJMA Eqs. 4-30, 4-31)",
-            value: check.s3 + check.s4,
-            limit: a.meridional_factor * s,
-            unit: "MPa",
-            sense: Sense::AtMost,
-        },
-        Check {
-            name: "column instability (squirm)",
-            rule: "P <= Psc = 0.34 pi Kb / (N q) (App. 26, 26-6.3.3)",
-            value: p,
-            limit: check.column_instability,
-            unit: "MPa",
-            sense: Sense::AtMost,
-        },
-        Check {
-            name: "in-plane instability",
-            rule: "P <= Psi (App. 26, 26-6.3.3)",
-            value: p,
-            limit: check.in_plane_instability,
-            unit: "MPa",
-            sense: Sense::AtMost,
-        },
-        Check {
-            name: "fatigue",
-            rule: "Nspe <= Nalw (App. 26, 26-6.5; St = 0.7 (S3 + S4) + S5 + S6)",
-            value: allowable_cycles,
-            limit: conditions.cycles,
-            unit: "cycles",
-            sense: Sense::AtLeast,
-        },
+        check_of("S1 tangent hoop membrane", "S1 <= Cwb S (App. 26, 26-6.3.2)", check.s1, a.weld_factor * s, "MPa", most),
+        check_of("S2 convolution hoop membrane", "S2 <= Cwb S (App. 26, 26-6.3.2; EJMA Eq. 4-29)", check.s2, a.weld_factor * s, "MPa", most),
+        check_of(
+            "S3 + S4 meridional, pressure",
+            "S3 + S4 <= Km S (App. 26, 26-6.3.2; EJMA Eqs. 4-30, 4-31)",
+            check.s3 + check.s4,
+            a.meridional_factor * s,
+            "MPa",
+            most,
+        ),
+        check_of("column instability (squirm)", "P <= Psc = 0.34 pi Kb / (N q) (App. 26, 26-6.3.3)", p, check.column_instability, "MPa", most),
+        check_of("in-plane instability", "P <= Psi (App. 26, 26-6.3.3)", p, check.in_plane_instability, "MPa", most),
+        check_of("fatigue", "Nspe <= Nalw (App. 26, 26-6.5; St = 0.7 (S3 + S4) + S5 + S6)", allowable_cycles, conditions.cycles, "cycles", least),
     ];
     let effective_area = PI * b.mean_diameter().powi(2) / 4.0;
     Verdict {
@@ -258,7 +232,7 @@ mod tests {
     /// The utilisation of an upper limit is value / limit, of a lower one limit / value.
     #[test]
     fn a_check_passes_at_a_ratio_of_one_or_less() {
-        let c = |value, limit, sense| Check { name: "x", rule: "x", value, limit, unit: "", sense };
+        let c = |value, limit, sense| Check { name: "x".into(), rule: "x".into(), value, limit, unit: String::new(), sense };
         assert!(c(1.0, 1.0, Sense::AtMost).passes() && !c(1.01, 1.0, Sense::AtMost).passes());
         assert!(c(10_000.0, 9_000.0, Sense::AtLeast).passes() && !c(8_000.0, 9_000.0, Sense::AtLeast).passes());
         assert_eq!(c(20_000.0, 10_000.0, Sense::AtLeast).ratio(), 0.5);

@@ -20,6 +20,9 @@ pub struct DesignSpec {
     /// A line naming the joint (the report's title).
     #[serde(default)]
     pub title: String,
+    /// The file's text, as read (kept with the results, hashed in the report).
+    #[serde(skip)]
+    pub text: String,
     pub bellows: BellowsSpec,
     pub material: MaterialSpec,
     pub design: DesignConditions,
@@ -204,9 +207,21 @@ const SEED_INSIDE_DIAMETER: f64 = 320.0;
 impl DesignSpec {
     pub fn from_file(path: &std::path::Path) -> Result<Self> {
         let text = std::fs::read_to_string(path).map_err(|source| Error::Read { path: path.to_path_buf(), source })?;
-        let spec: DesignSpec = toml::from_str(&text).map_err(|e| crate::model::deck::toml_error(path, &text, &e, "docs/bellows-spec.md"))?;
+        Self::from_text(&text, path)
+    }
+
+    /// The specification in `text`, read from `path` (named in errors).
+    pub fn from_text(text: &str, path: &std::path::Path) -> Result<Self> {
+        let mut spec: DesignSpec = toml::from_str(text).map_err(|e| crate::model::deck::toml_error(path, text, &e, "docs/bellows-spec.md"))?;
+        spec.text = text.to_string();
         spec.validate()?;
         Ok(spec)
+    }
+
+    /// The SHA-256 of the specification's text, in hex: what a report names its input by.
+    pub fn sha256(&self) -> String {
+        use sha2::Digest;
+        sha2::Sha256::digest(self.text.as_bytes()).iter().map(|b| format!("{b:02x}")).collect()
     }
 
     /// The mid-surface radii of the crest and the root (the inside radii plus half the pack).

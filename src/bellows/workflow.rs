@@ -32,6 +32,8 @@ pub struct BellowsJob {
     /// The design specification the joint comes from (`--spec`), if any: its code verdict is
     /// printed before the analyses.
     pub spec: Option<DesignSpec>,
+    /// Write the design report here (`--report`), after the run.
+    pub report: Option<PathBuf>,
     /// The flexibility's movements (`--lateral`, `--angular`), if any.
     pub movements: Option<Movements>,
     pub output: PathBuf,
@@ -49,8 +51,8 @@ pub struct BellowsJob {
 /// joint at rest.
 pub struct BeforeTheRun {
     pub code: Option<CodeCheck>,
-    /// A design specification's verdict table (`--spec`).
-    pub verdict: Option<String>,
+    /// A design specification's verdict and its table (`--spec`).
+    pub verdict: Option<(Verdict, String)>,
     pub fe: Option<FeCheck>,
     pub rest: Option<(Movements, Flexibility)>,
     pub stable: Option<Stability>,
@@ -110,11 +112,11 @@ pub fn before_the_run(session: &PetscSession, job: &BellowsJob) -> Result<Before
     // a specification's code check is for its equivalent movement: it replaces the stroke's
     let (code, verdict) = match &job.spec {
         Some(spec) => {
-            let (check, _, table) = code_verdict(session, spec)?;
+            let (check, verdict, table) = code_verdict(session, spec)?;
             if root {
                 print!("{table}");
             }
-            (Some(check), Some(table))
+            (Some(check), Some((verdict, table)))
         }
         None => (code, None),
     };
@@ -222,8 +224,8 @@ pub fn report(job: &BellowsJob, before: &BeforeTheRun, summary: &RunSummary) -> 
     }
     // the tables after the closing one, kept in the file for `slideline post FILE`
     let mut tables: Vec<(&str, String)> = Vec::new();
-    if let Some(v) = verdict {
-        tables.push((CODE_VERDICT, v.clone()));
+    if let Some((_, table)) = verdict {
+        tables.push((CODE_VERDICT, table.clone()));
     }
     if let Some((movements, at_rest)) = rest {
         let operating = super::flexibility::from_run(params, *movements, &summary.perturbations, &reader)?;
@@ -263,7 +265,21 @@ pub fn report(job: &BellowsJob, before: &BeforeTheRun, summary: &RunSummary) -> 
     if let Some(c) = code {
         crate::io::assessment::write(output, c)?;
     }
-    fe.map_or(Ok(()), |f| crate::io::assessment::write_finite_element(output, f, life.as_ref()))
+    if let (Some(spec), Some((v, _))) = (&job.spec, verdict) {
+        crate::io::assessment::write_verdict(output, v, &spec.text, &spec.sha256())?;
+    }
+    if let Some(f) = fe {
+        crate::io::assessment::write_finite_element(output, f, life.as_ref())?;
+    }
+    // the design report, from the file alone (as `post FILE --report` writes it again)
+    if let Some(path) = &job.report {
+        let reader = ResultsReader::open(output)?;
+        let closing = super::report::closing_table_from_file(&reader)?;
+        let html = super::report::html::design_report(&reader, closing.as_deref())?;
+        std::fs::write(path, html).map_err(|e| crate::error::Error::Output { path: path.clone(), message: e.to_string() })?;
+        println!("report: {}", path.display());
+    }
+    Ok(())
 }
 
 /// `--mesh-only`: the joint's mesh and sets as Gmsh 4.1 (OUTPUT with .msh) and as a results

@@ -176,6 +176,9 @@ pub struct PostArgs {
     /// Print the bellows code check stored in the file (`slideline bellows` writes it).
     #[arg(long)]
     pub assessment: bool,
+    /// Write a bellows run's design report again (self-contained HTML), from the file alone.
+    #[arg(long, value_name = "FILE.html")]
+    pub report: Option<std::path::PathBuf>,
     /// The history's long lines (every reaction, the contact, the residual norm).
     #[arg(long)]
     pub verbose: bool,
@@ -202,6 +205,10 @@ pub struct BellowsArgs {
     /// With --spec: print the code's verdict and stop (no finite-element analysis).
     #[arg(long, requires = "spec")]
     pub check_only: bool,
+    /// After the run, write the design report: one self-contained HTML file (the
+    /// specification, the code's verdict, the finite-element tables, the mesh, the pictures).
+    #[arg(long, value_name = "FILE.html", conflicts_with = "check_only")]
+    pub report: Option<PathBuf>,
     /// Number of plies in the pack.
     #[arg(long, default_value_t = 2)]
     pub plies: usize,
@@ -354,6 +361,7 @@ impl BellowsArgs {
         slideline::bellows::workflow::BellowsJob {
             params,
             spec,
+            report: self.report.clone(),
             movements,
             output: self.output.clone(),
             quiet: self.quiet,

@@ -18,7 +18,7 @@ pub fn post(args: &PostArgs) -> Result<(), Error> {
         return Err(Error::input("--force goes with --compare"));
     }
     let plot = args.plot.as_ref().map(|p| p.clone().unwrap_or_else(|| post::default_plot_path(&r)));
-    for path in args.csv.iter().chain(&plot) {
+    for path in args.csv.iter().chain(&plot).chain(&args.report) {
         slideline::output_path::check_output_path(path, Some((&args.file, "the results file")))?;
     }
     let increment = args.increment.as_deref().unwrap_or("last");
@@ -29,6 +29,7 @@ pub fn post(args: &PostArgs) -> Result<(), Error> {
         || args.csv.is_some()
         || plot.is_some()
         || args.deck
+        || args.report.is_some()
         || !args.linearize.is_empty();
     let heat = r.heat_steps()?;
     if !heat.is_empty()
@@ -43,11 +44,20 @@ pub fn post(args: &PostArgs) -> Result<(), Error> {
         )));
     }
     let mut out = String::new();
+    if let Some(path) = &args.report {
+        let closing = slideline::bellows::report::closing_table_from_file(&r)?;
+        if closing.is_none() {
+            return Err(Error::input(format!("{}: not a `slideline bellows` run's file: it has no design report", args.file.display())));
+        }
+        let html = slideline::bellows::report::html::design_report(&r, closing.as_deref())?;
+        std::fs::write(path, html).map_err(|e| Error::Output { path: path.clone(), message: e.to_string() })?;
+        out += &format!("report: {}\n", path.display());
+    }
     if !detail {
         out += &format!("{}\n{}", post::summary(&r)?, post::history_table(&r, args.verbose)?);
         // a bellows run's closing table, as the run printed it
         // (what a damaged file cannot give again is said, not fatal: post reads what is left)
-        match post::bellows_table(&r) {
+        match slideline::bellows::report::closing_table_from_file(&r) {
             Ok(Some(table)) => out += &format!("\n{table}"),
             Ok(None) => {}
             Err(e) => out += &format!("\nnote: the closing table cannot be printed again: {e}\n"),

@@ -8,6 +8,7 @@ use super::h5::{describe_dataset, group_in, h5err};
 use crate::assessment::code::{CodeCheck, Source};
 use crate::assessment::coefficients::Coefficients;
 use crate::assessment::fe_check::{FeCheck, Peak, StrainLife};
+use crate::assessment::verdict::{Check, Sense, Verdict};
 use crate::error::{Error, Result};
 use hdf5::types::VarLenUnicode;
 use std::path::Path;
@@ -269,4 +270,106 @@ pub fn read_tables(file: &hdf5::File, path: &Path) -> Result<Vec<(String, String
         .filter(|name| !name.is_empty())
         .map(|name| Ok((name.to_string(), g.dataset(name).and_then(|d| d.read_scalar::<VarLenUnicode>()).map_err(bad)?.to_string())))
         .collect()
+}
+
+/// A design specification's verdict, `/assessment/verdict`: per check (in the table's order)
+/// its `name`, `rule`, `value`, `limit`, `unit`, `sense` ("at most", "at least"), `ratio` and
+/// `verdict` as one-dimensional datasets; the figures beside them as scalar datasets with their
+/// units; the verdict line, the conditions of applicability violated, and the specification's
+/// text with its SHA-256 as the group's attributes.
+pub const VERDICT: &str = "verdict";
+
+/// The verdict's scalar figures: (attribute, units, what it is).
+const VERDICT_FIGURES: [(&str, &str, &str); 5] = [
+    ("movement_per_convolution", "mm", "equivalent axial movement per convolution"),
+    ("equivalent_movement", "mm", "equivalent axial movement of the whole bellows"),
+    ("effective_area", "mm^2", "effective area pi Dm^2 / 4"),
+    ("pressure_thrust", "N", "pressure thrust P x effective area"),
+    ("allowable_cycles", "-", "allowable cycles of the fatigue check"),
+];
+
+fn verdict_figures(v: &Verdict) -> [f64; 5] {
+    [v.movement_per_convolution, v.equivalent_movement, v.effective_area, v.pressure_thrust, v.allowable_cycles]
+}
+
+/// Writes `verdict` of the specification `spec` (its text) into the (closed) results file at
+/// `path` (one process), replacing a restarted run's.
+pub fn write_verdict(path: &Path, verdict: &Verdict, spec: &str, sha256: &str) -> Result<()> {
+    let err = h5err(path);
+    let file = hdf5::File::open_rw(path).map_err(&err)?;
+    let parent = group_in(&file, GROUP, path)?;
+    if parent.link_exists(VERDICT) {
+        parent.unlink(VERDICT).map_err(&err)?;
+    }
+    let g = parent.create_group(VERDICT).map_err(&err)?;
+    let strings = |name: &str, values: Vec<String>| -> Result<()> {
+        let values: Vec<VarLenUnicode> = values.iter().map(|s| text(s, path)).collect::<Result<_>>()?;
+        g.new_dataset_builder().with_data(&values).create(name).map_err(&err)?;
+        Ok(())
+    };
+    let checks = &verdict.checks;
+    strings("name", checks.iter().map(|c| c.name.clone()).collect())?;
+    strings("rule", checks.iter().map(|c| c.rule.clone()).collect())?;
+    strings("unit", checks.iter().map(|c| c.unit.clone()).collect())?;
+    strings("sense", checks.iter().map(|c| if c.sense == Sense::AtMost { "at most" } else { "at least" }.to_string()).collect())?;
+    strings("verdict", checks.iter().map(|c| if c.passes() { "PASS" } else { "FAIL" }.to_string()).collect())?;
+    for (name, values) in [
+        ("value", checks.iter().map(|c| c.value).collect::<Vec<_>>()),
+        ("limit", checks.iter().map(|c| c.limit).collect()),
+        ("ratio", checks.iter().map(|c| c.ratio()).collect()),
+    ] {
+        g.new_dataset_builder().with_data(&values).create(name).map_err(&err)?;
+    }
+    for ((name, units, what), value) in VERDICT_FIGURES.iter().zip(verdict_figures(verdict)) {
+        let ds = g.new_dataset::<f64>().create(*name).map_err(&err)?;
+        ds.write_scalar(&value).map_err(&err)?;
+        describe_dataset(&ds, units, what, path)?;
+    }
+    for (name, value) in [
+        ("summary", verdict.summary()),
+        ("outside", verdict.outside.join("\n")),
+        ("specification", spec.to_string()),
+        ("specification_sha256", sha256.to_string()),
+    ] {
+        g.new_attr::<VarLenUnicode>().create(name).map_err(&err)?.write_scalar(&text(&value, path)?).map_err(&err)?;
+    }
+    file.flush().map_err(&err)
+}
+
+/// The verdict `file` holds with the specification's text and SHA-256, None where it has none.
+pub fn read_verdict(file: &hdf5::File, path: &Path) -> Result<Option<(Verdict, String, String)>> {
+    let name = format!("{GROUP}/{VERDICT}");
+    if !file.link_exists(GROUP) || !file.link_exists(&name) {
+        return Ok(None);
+    }
+    let bad = |e: hdf5::Error| Error::input(format!("{}: /{name}: {e}", path.display()));
+    let g = file.group(&name).map_err(bad)?;
+    let strings =
+        |n: &str| -> Result<Vec<String>> { Ok(g.dataset(n).and_then(|d| d.read_raw::<VarLenUnicode>()).map_err(bad)?.iter().map(|s| s.to_string()).collect()) };
+    let numbers = |n: &str| g.dataset(n).and_then(|d| d.read_raw::<f64>()).map_err(bad);
+    let attr = |n: &str| g.attr(n).and_then(|a| a.read_scalar::<VarLenUnicode>()).map(|s| s.to_string()).map_err(bad);
+    let (names, rules, units, senses) = (strings("name")?, strings("rule")?, strings("unit")?, strings("sense")?);
+    let (values, limits) = (numbers("value")?, numbers("limit")?);
+    let checks = (0..names.len())
+        .map(|k| Check {
+            name: names[k].clone(),
+            rule: rules[k].clone(),
+            value: values[k],
+            limit: limits[k],
+            unit: units[k].clone(),
+            sense: if senses[k] == "at most" { Sense::AtMost } else { Sense::AtLeast },
+        })
+        .collect();
+    let figure = |n: &str| g.dataset(n).and_then(|d| d.read_scalar::<f64>()).map_err(bad);
+    let outside = attr("outside")?;
+    let verdict = Verdict {
+        checks,
+        movement_per_convolution: figure("movement_per_convolution")?,
+        equivalent_movement: figure("equivalent_movement")?,
+        effective_area: figure("effective_area")?,
+        pressure_thrust: figure("pressure_thrust")?,
+        allowable_cycles: figure("allowable_cycles")?,
+        outside: outside.lines().map(str::to_string).filter(|l| !l.is_empty()).collect(),
+    };
+    Ok(Some((verdict, attr("specification")?, attr("specification_sha256")?)))
 }

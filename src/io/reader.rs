@@ -327,6 +327,12 @@ impl ResultsReader {
         super::assessment::read(&self.file, &self.path)
     }
 
+    /// A design specification's verdict the file holds, with the specification's text and its
+    /// SHA-256 (`/assessment/verdict`), if any.
+    pub fn verdict(&self) -> Result<Option<(crate::assessment::verdict::Verdict, String, String)>> {
+        super::assessment::read_verdict(&self.file, &self.path)
+    }
+
     /// The tables a bellows run printed after its closing table (name, text), in its order.
     pub fn printed_tables(&self) -> Result<Vec<(String, String)>> {
         super::assessment::read_tables(&self.file, &self.path)

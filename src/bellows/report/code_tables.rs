@@ -88,7 +88,7 @@ pub fn verdict_table(spec: &DesignSpec, check: &CodeCheck, verdict: &Verdict) ->
 }
 
 /// A figure for the table: four significant digits, whole numbers as they are.
-fn figure(v: f64) -> String {
+pub(super) fn figure(v: f64) -> String {
     if !v.is_finite() {
         return "unlimited".into();
     }
