@@ -75,7 +75,13 @@ fn the_report_renders_and_its_numbers_are_the_files() {
     let rows = table_rows(&html, "checks");
     assert_eq!(rows.len(), values.len(), "{rows:?}");
     for (k, row) in rows.iter().enumerate() {
-        assert!(shown_as(&row[1], values[k]) && shown_as(&row[2], limits[k]) && shown_as(&row[4], ratios[k]), "{row:?} against {} {} {}", values[k], limits[k], ratios[k]);
+        assert!(
+            shown_as(&row[1], values[k]) && shown_as(&row[2], limits[k]) && shown_as(&row[4], ratios[k]),
+            "{row:?} against {} {} {}",
+            values[k],
+            limits[k],
+            ratios[k]
+        );
         assert_eq!(row[5], if ratios[k] <= 1.0 { "PASS" } else { "FAIL" }, "{row:?}");
     }
     let figures = table_rows(&html, "figures");

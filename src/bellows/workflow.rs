@@ -60,9 +60,6 @@ pub struct BeforeTheRun {
 }
 
 /// `OUTPUT_name.png` beside the output.
-/// The name of a specification's verdict among the tables a results file keeps.
-pub const CODE_VERDICT: &str = "code_verdict";
-
 pub fn picture_path(output: &Path, name: &str) -> PathBuf {
     let stem = output.file_stem().unwrap_or_default().to_string_lossy();
     output.with_file_name(format!("{stem}_{name}.png"))
@@ -225,7 +222,7 @@ pub fn report(job: &BellowsJob, before: &BeforeTheRun, summary: &RunSummary) -> 
     // the tables after the closing one, kept in the file for `slideline post FILE`
     let mut tables: Vec<(&str, String)> = Vec::new();
     if let Some((_, table)) = verdict {
-        tables.push((CODE_VERDICT, table.clone()));
+        tables.push((super::report::CODE_VERDICT, table.clone()));
     }
     if let Some((movements, at_rest)) = rest {
         let operating = super::flexibility::from_run(params, *movements, &summary.perturbations, &reader)?;

@@ -8,6 +8,9 @@ use crate::assessment::verdict::{Sense, Verdict};
 use crate::bellows::spec::DesignSpec;
 use crate::error::Result;
 
+/// The name of a specification's verdict among the tables a results file keeps.
+pub const CODE_VERDICT: &str = "code_verdict";
+
 /// Where the rules come from, said once above the table.
 pub const EDITION: &str = "ASME VIII-1 Mandatory Appendix 26 (2013 edition), unreinforced U-shaped bellows; EJMA's equation numbers";
 

@@ -59,7 +59,7 @@ pub fn design_report(reader: &ResultsReader, closing: Option<&str>) -> Result<St
     if let Some(t) = closing {
         h += &format!("<h3>The run's closing table</h3>\n<pre id=\"closing\">{}</pre>\n", escape(t.trim_end()));
     }
-    for (name, text) in reader.printed_tables()?.iter().filter(|(n, _)| n != crate::bellows::workflow::CODE_VERDICT) {
+    for (name, text) in reader.printed_tables()?.iter().filter(|(n, _)| n != super::CODE_VERDICT) {
         h += &format!("<h3>{}</h3>\n<pre id=\"table-{}\">{}</pre>\n", escape(name), escape(name), escape(text.trim_matches('\n')));
     }
     h += &mesh_section(reader)?;
