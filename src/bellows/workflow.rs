@@ -100,13 +100,8 @@ pub fn before_the_run(session: &PetscSession, job: &BellowsJob) -> Result<Before
     let params = &job.params;
     let root = session.world().rank() == 0;
     // the code check, with the chart coefficients given or computed for the joint's own
-    // convolution
-    let code = code_check(session, params);
-    if let (true, Err(e)) = (root, &code) {
-        println!("note: no code check: {e}");
-    }
-    let code = code.ok();
-    // a specification's code check is for its equivalent movement: it replaces the stroke's
+    // convolution: a specification's, for its equivalent movement, with its verdict; else the
+    // stroke's
     let (code, verdict) = match &job.spec {
         Some(spec) => {
             let (check, verdict, table) = code_verdict(session, spec)?;
@@ -115,7 +110,13 @@ pub fn before_the_run(session: &PetscSession, job: &BellowsJob) -> Result<Before
             }
             (Some(check), Some((verdict, table)))
         }
-        None => (code, None),
+        None => {
+            let code = code_check(session, params);
+            if let (true, Err(e)) = (root, &code) {
+                println!("note: no code check: {e}");
+            }
+            (code.ok(), None)
+        }
     };
     let announce = |what: &str| {
         if root && !job.quiet {
