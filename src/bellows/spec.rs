@@ -118,21 +118,14 @@ pub struct MaterialSpec {
     /// The finite-element plies' linear hardening (0: perfectly plastic).
     #[serde(default)]
     pub hardening_modulus: f64,
-    #[serde(default)]
-    pub thermal_expansion: Property0,
+    #[serde(default = "no_expansion")]
+    pub thermal_expansion: Property,
     #[serde(default)]
     pub density: Option<f64>,
 }
 
-/// A property that may be left out (zero).
-#[derive(Clone, Debug, Deserialize)]
-#[serde(transparent)]
-pub struct Property0(pub Property);
-
-impl Default for Property0 {
-    fn default() -> Self {
-        Property0(Property::Value(0.0))
-    }
+fn no_expansion() -> Property {
+    Property::Value(0.0)
 }
 
 fn poisson() -> f64 {
@@ -337,8 +330,11 @@ impl DesignSpec {
         }
         match (self.design.axial_compression, self.design.axial_extension) {
             (Some(_), Some(_)) => return bad("design.axial_compression", "give one of axial_compression and axial_extension".into()),
-            (Some(x), None) | (None, Some(x)) if !(x >= 0.0 && x.is_finite()) => {
+            (Some(x), None) if !(x >= 0.0 && x.is_finite()) => {
                 return bad("design.axial_compression", format!("a movement is given by its size, >= 0 mm; got {}", crate::error::shown(x)))
+            }
+            (None, Some(x)) if !(x >= 0.0 && x.is_finite()) => {
+                return bad("design.axial_extension", format!("a movement is given by its size, >= 0 mm; got {}", crate::error::shown(x)))
             }
             _ => {}
         }
@@ -405,7 +401,7 @@ impl DesignSpec {
             sleeve_overlap: j.sleeve_overlap.unwrap_or(seed.sleeve_overlap * scale),
             youngs_modulus: modulus,
             poissons_ratio: self.material.poissons_ratio,
-            thermal_expansion: self.material.thermal_expansion.0.at(self.design.temperature, "thermal_expansion")?,
+            thermal_expansion: self.material.thermal_expansion.at(self.design.temperature, "thermal_expansion")?,
             yield_stress,
             hardening_modulus: self.material.hardening_modulus,
             density: self.material.density.unwrap_or(seed.density),
