@@ -192,3 +192,21 @@ fn a_joint_of_ones_own_runs_from_its_specification_with_a_report_of_its_own() {
         assert!(printed.contains(line), "post lacks {line:?}:\n{printed}");
     }
 }
+
+/// The EJMA 9th edition report, DN250 Alloy 625 (worked-examples.md, example 4; allowable
+/// 202.7 MPa): its effective area, 690.0 cm^2, to the printed digits, and its per-convolution
+/// rate fiu 8708.3 N/mm within 0.5 % with the chart coefficients computed by finite elements
+/// (the report prints none): Kb N = 1737.9 x 5 = 8689.5, -0.22 %.
+#[test]
+fn the_ejma9_report_gives_its_area_and_rate_with_computed_coefficients() {
+    let run = check_only(&spec_file("ejma9_dn250.toml"));
+    run.assert_ok();
+    let text = run.stdout();
+    let after = |key: &str| -> f64 {
+        let at = text.find(key).unwrap_or_else(|| panic!("no {key:?} in\n{text}")) + key.len();
+        text[at..].split_whitespace().next().unwrap().trim_end_matches(';').parse().unwrap()
+    };
+    within(after("effective area ") / 100.0, 690.0, 0.05, "effective area, cm^2");
+    within(after("axial rate Kb ") * 5.0, 8708.3, 0.005 * 8708.3, "fiu, N/mm per convolution");
+    assert!(text.contains("<= 202.7 MPa") && text.contains("computed"), "{text}");
+}

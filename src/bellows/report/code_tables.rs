@@ -64,8 +64,18 @@ pub fn verdict_table(spec: &DesignSpec, check: &CodeCheck, verdict: &Verdict) ->
         d.lateral, d.angular, verdict.movement_per_convolution, verdict.equivalent_movement
     ));
     line(format!(
-        "  effective area {:.0} mm^2; pressure thrust {:.0} N at {} MPa; stresses S1 {:.1}, S2 {:.1}, S3 {:.2}, S4 {:.1}, S5 {:.1}, S6 {:.1} MPa, St {:.1} MPa",
-        verdict.effective_area, verdict.pressure_thrust, d.pressure, check.s1, check.s2, check.s3, check.s4, check.s5, check.s6, check.stress_range
+        "  effective area {:.0} mm^2; pressure thrust {:.0} N at {} MPa; axial rate Kb {:.1} N/mm; stresses S1 {:.1}, S2 {:.1}, S3 {:.2}, S4 {:.1}, S5 {:.1}, S6 {:.1} MPa, St {:.1} MPa",
+        verdict.effective_area,
+        verdict.pressure_thrust,
+        d.pressure,
+        check.axial_rate,
+        check.s1,
+        check.s2,
+        check.s3,
+        check.s4,
+        check.s5,
+        check.s6,
+        check.stress_range
     ));
     line(format!("  {:<30} {:>11} {:>13} {:<7} {:>6}  {:<7} rule", "check", "value", "limit", "unit", "ratio", "verdict"));
     for c in &verdict.checks {
