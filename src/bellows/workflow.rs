@@ -269,8 +269,10 @@ pub fn report(job: &BellowsJob, before: &BeforeTheRun, summary: &RunSummary) -> 
     if let Some(f) = fe {
         crate::io::assessment::write_finite_element(output, f, life.as_ref())?;
     }
-    // the design report, from the file alone (as `post FILE --report` writes it again)
+    // the design report, from the file alone (as `post FILE --report` writes it again), with
+    // the picture of the joint beside the run's
     if let Some(path) = &job.report {
+        println!("picture: {}", joint_picture(params, output)?.display());
         let reader = ResultsReader::open(output)?;
         let closing = super::report::closing_table_from_file(&reader)?;
         let html = super::report::html::design_report(&reader, closing.as_deref())?;
@@ -280,8 +282,8 @@ pub fn report(job: &BellowsJob, before: &BeforeTheRun, summary: &RunSummary) -> 
     Ok(())
 }
 
-/// `--mesh-only`: the joint's mesh and sets as Gmsh 4.1 (OUTPUT with .msh) and as a results
-/// file without increments (OUTPUT: /mesh with its sets, the layout of every results file).
+/// Writes the joint's mesh (Gmsh .msh next to `output`, and the results file's /mesh) and a
+/// picture of where the pressure acts (collective).
 pub fn write_mesh(session: &PetscSession, params: &BellowsParams, output: &Path) -> Result<()> {
     let msh = output.with_extension("msh");
     let (mesh, sets) = super::joint::mesh(params)?;
@@ -294,14 +296,20 @@ pub fn write_mesh(session: &PetscSession, params: &BellowsParams, output: &Path)
     drop(ResultsFile::create(output, session, &m, &partition)?);
     if root {
         println!("mesh written to {} and {}", msh.display(), output.display());
-        // where the pressure acts, to check the load before a run
-        let picture = picture_path(output, "wetted");
-        let layers = vec![
-            SegmentLayer { label: "boundary".into(), segments: mesh.edge_segments(&mesh.free_edges()), width: 1 },
-            SegmentLayer { label: format!("wetted: {} MPa", params.pressure), segments: mesh.edge_segments(&sets.surfaces["wetted"]), width: 4 },
-        ];
-        outline_picture(&picture, "bellows joint: the faces the pressure acts on (meridian section)", &[Panel { caption: None, layers }])?;
-        println!("picture: {}", picture.display());
+        println!("picture: {}", joint_picture(params, output)?.display());
     }
     Ok(())
+}
+
+/// The joint's meridian section with the faces the pressure acts on, next to `output`
+/// (`STEM_wetted.png`): to check the load before a run, and the report's picture of the joint.
+fn joint_picture(params: &BellowsParams, output: &Path) -> Result<PathBuf> {
+    let (mesh, sets) = super::joint::mesh(params)?;
+    let picture = picture_path(output, "wetted");
+    let layers = vec![
+        SegmentLayer { label: "boundary".into(), segments: mesh.edge_segments(&mesh.free_edges()), width: 1 },
+        SegmentLayer { label: format!("wetted: {} MPa", params.pressure), segments: mesh.edge_segments(&sets.surfaces["wetted"]), width: 4 },
+    ];
+    outline_picture(&picture, "bellows joint: the faces the pressure acts on (meridian section)", &[Panel { caption: None, layers }])?;
+    Ok(picture)
 }
