@@ -152,17 +152,14 @@ pub struct DesignConditions {
 }
 
 /// The code's choices: the fatigue curve and its strength reduction factor Kg, the
-/// longitudinal weld's factor Cwb, and Km (by the forming when not given).
+/// longitudinal weld's factor Cwb, and Km (by the forming when not given); a key left out
+/// takes its default.
 #[derive(Clone, Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
+#[serde(default, deny_unknown_fields)]
 pub struct CodeChoices {
-    #[serde(default = "asme_curve")]
     pub fatigue_curve: FatigueCurve,
-    #[serde(default = "one")]
     pub fatigue_factor: f64,
-    #[serde(default = "one")]
     pub weld_factor: f64,
-    #[serde(default)]
     pub meridional_factor: Option<f64>,
 }
 
@@ -170,14 +167,6 @@ impl Default for CodeChoices {
     fn default() -> Self {
         CodeChoices { fatigue_curve: FatigueCurve::Asme, fatigue_factor: 1.0, weld_factor: 1.0, meridional_factor: None }
     }
-}
-
-fn asme_curve() -> FatigueCurve {
-    FatigueCurve::Asme
-}
-
-fn one() -> f64 {
-    1.0
 }
 
 /// The finite-element joint around the bellows: the pipes the tangents sit on, the guide sleeve
@@ -193,9 +182,6 @@ pub struct JointSpec {
     pub increments: Option<usize>,
     pub penalty: Option<f64>,
 }
-
-/// The seed joint's bellows inside diameter, mm: the joint's other lengths scale from it.
-const SEED_INSIDE_DIAMETER: f64 = 320.0;
 
 impl DesignSpec {
     pub fn from_file(path: &std::path::Path) -> Result<Self> {
@@ -379,7 +365,8 @@ impl DesignSpec {
         let (rc, rr) = self.mid_surface_radii();
         let (modulus, yield_stress, _) = self.at_temperature()?;
         let seed = BellowsParams::default();
-        let scale = b.inside_diameter / SEED_INSIDE_DIAMETER;
+        // the joint's other lengths scale with the seed's bellows inside diameter
+        let scale = b.inside_diameter / (2.0 * seed.tube_outer_radius());
         let j = &self.joint;
         let tube_thickness = j.tube_thickness.unwrap_or(seed.tube_thickness * scale);
         let tube_length = j.tube_length.unwrap_or((seed.tube_length * scale).max(b.tangent_length + seed.sleeve_overlap * scale));

@@ -404,6 +404,8 @@ impl BellowsArgs {
         }
         let (b, d) = (&mut spec.bellows, &mut spec.design);
         let take = |id: &str, set: &mut dyn FnMut()| {
+            // `params` leaves these to the specification: the two lists must agree
+            assert!(SPEC_FLAGS.contains(&id), "{id} is not among SPEC_FLAGS");
             if given(id) {
                 set();
             }
