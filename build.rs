@@ -175,6 +175,8 @@ fn main() {
         .blocklist_type("MPI_.*")
         .blocklist_type("ompi_.*")
         .raw_line("pub use mpi::ffi::MPI_Comm;")
+        // set to a study's group before PetscInitialize (the manual page's way to run PETSc on a subset)
+        .allowlist_var("PETSC_COMM_WORLD")
         .layout_tests(false)
         .generate_comments(false);
     for f in FUNCTIONS {

@@ -25,6 +25,10 @@ pub enum Error {
     #[error("step {step} did not converge at load factor {load_factor:.6}: {reason}")]
     NotConverged { step: String, load_factor: f64, reason: String },
 
+    /// SIGINT or SIGTERM stopped the run after a converged increment (its file complete).
+    #[error("stopped by {signal} after {what}: every converged increment is in {}", path.display())]
+    Interrupted { signal: &'static str, what: String, path: PathBuf },
+
     #[error("cannot write {path}: {message}")]
     Output { path: PathBuf, message: String },
 
@@ -57,6 +61,9 @@ impl Error {
             // type, a factorisation the matrix type lacks) is bad input, as an unknown flag is
             Error::Petsc { code, .. } if PETSC_OPTION_ERRORS.contains(code) => 2,
             Error::NotConverged { .. } => 3,
+            // the shell's convention for a process ended by a signal
+            Error::Interrupted { signal: "SIGINT", .. } => 130,
+            Error::Interrupted { .. } => 143,
             _ => 1,
         }
     }

@@ -17,6 +17,7 @@ pub mod contact;
 pub mod dist;
 pub mod element;
 pub mod fe;
+pub mod interrupt;
 pub mod io;
 pub mod material;
 pub mod model;

@@ -21,7 +21,7 @@ use crate::records::contact::PassOutput;
 use crate::records::energy::Energies;
 use crate::records::increment_fields::IncrementFields;
 use hdf5::types::VarLenUnicode;
-use mpi::traits::{AsRaw, CommunicatorCollectives};
+use mpi::traits::{AsRaw, Communicator, CommunicatorCollectives};
 use std::path::{Path, PathBuf};
 
 /// Contact state of one pair at an increment.
@@ -312,11 +312,11 @@ impl ResultsFile {
             contact_mesh_written: false,
             reaction_segment_degrees: model.reaction_segment_degrees,
             axisymmetric: model.is_axisymmetric(),
-            nodal: NodalWriter::new(world, model, partition),
+            nodal: NodalWriter::new(world.duplicate(), model, partition),
             gauss_points,
             fields: model.output.fields,
             precision: model.output.precision,
-            world: session.world(),
+            world: session.world().duplicate(),
         })
     }
 

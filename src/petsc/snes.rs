@@ -130,7 +130,7 @@ fn option_error(e: Error) -> Error {
 pub struct Snes<'s> {
     raw: sys::SNES,
     /// The communicator the SNES lives on (the session's world).
-    world: SimpleCommunicator,
+    world: &'s SimpleCommunicator,
     // PETSc writes the residual history into these; boxed so the addresses never move.
     history: Box<[f64]>,
     history_its: Box<[sys::PetscInt]>,
@@ -392,7 +392,7 @@ impl<'s> Snes<'s> {
             _ => None,
         };
         let mut ctx =
-            CallbackContext { problem, world: &self.world, failure: None, first_norm: 0.0, first_floor: 0.0, previous_norm: 0.0, field, monitor: self.monitor };
+            CallbackContext { problem, world: self.world, failure: None, first_norm: 0.0, first_floor: 0.0, previous_norm: 0.0, field, monitor: self.monitor };
         let ctx_ptr = &mut ctx as *mut CallbackContext<'_, P> as *mut c_void;
         // SAFETY: ctx outlives SNESSolve; the callbacks are cleared again (context NULL) below
         // so PETSc never holds a dangling pointer after this function returns.

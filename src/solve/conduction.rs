@@ -52,7 +52,7 @@ pub fn solve(session: &PetscSession, model: &Model, partition: &Partition, step:
         load_factor: 1.0,
         reason: "the linear solve failed: the conduction matrix is singular (a body that holds no temperature? hold one on each body)".into(),
     })?;
-    let temperature: Vec<f64> = amplitudes_of(&world, partition, &numbering, &offsets, &t).into_iter().map(|[v]| v).collect();
+    let temperature: Vec<f64> = amplitudes_of(world, partition, &numbering, &offsets, &t).into_iter().map(|[v]| v).collect();
 
     // the heat flowing in at each node: K T, summed over the ranks
     let mut inflow = vec![0.0; nodes];

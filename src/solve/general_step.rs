@@ -97,6 +97,16 @@ impl<'a, 's> GeneralSteps<'a, 's> {
         let controls = model.stepping;
         let model_size = model.mesh.largest_extent();
         while st.lambda < 1.0 {
+            if let Some(signal) = stop_requested(world) {
+                if let Some(status) = self.status.as_mut() {
+                    status.note(&format!("stopped by {} at lambda {:.6}", crate::interrupt::name(signal), st.lambda));
+                }
+                return Err(Error::Interrupted {
+                    signal: crate::interrupt::name(signal),
+                    what: format!("{} converged increments (step '{}' at load factor {:.6})", self.results.increments_written(), st.step.name, st.lambda),
+                    path: self.output.to_path_buf(),
+                });
+            }
             // land exactly on 1 rather than leave a sliver
             let target = if st.lambda + st.size > 1.0 - 1e-9 * st.requested { 1.0 } else { st.lambda + st.size };
             st.problem.set_load(st.loads.at(model, target));
@@ -116,7 +126,7 @@ impl<'a, 's> GeneralSteps<'a, 's> {
             set_free_values(&mut st.x, &st.dofs, partition, extrapolated.as_deref().unwrap_or(&self.carried.displacement))?;
             st.snes.mark_increment_start(&st.x)?;
             if controls.predictor == Predictor::Tangent || (controls.predictor == Predictor::Extrapolate && extrapolated.is_none()) {
-                predict(&world, &mut st.snes, &mut st.problem, start_load, &mut st.x, &mut st.residual, &mut st.jacobian, &mut st.correction)?;
+                predict(world, &mut st.snes, &mut st.problem, start_load, &mut st.x, &mut st.residual, &mut st.jacobian, &mut st.correction)?;
             }
             // rtol 1e-10: with quadratic convergence it costs at most one iteration more than
             // PETSc's 1e-8; where round-off stops the residual first (a small increment, large
@@ -124,7 +134,7 @@ impl<'a, 's> GeneralSteps<'a, 's> {
             // (see NonlinearProblem::roundoff_squares). -snes_rtol / -snes_atol override.
             st.snes.set_tolerances(None, Some(1e-10), Some(controls.max_newton_iterations))?;
             st.snes.search_after_failure(st.failed_in_step)?;
-            let (mut report, augmentations) = solve_increment(&world, model, &mut st.snes, &mut st.problem, &mut st.x, &mut st.residual, &mut st.jacobian)?;
+            let (mut report, augmentations) = solve_increment(world, model, &mut st.snes, &mut st.problem, &mut st.x, &mut st.residual, &mut st.jacobian)?;
             if report.converged() {
                 if let Some(why) = runaway(&st.x, &mut st.correction, (&st.dofs, partition, &self.carried.displacement), model_size + prescribed_motion)? {
                     report.refuse(why);
@@ -195,7 +205,7 @@ impl<'a, 's> GeneralSteps<'a, 's> {
                 world.all_reduce_into(&local, &mut total, SystemOperation::sum());
                 self.carried.audit.starts_overlapping = total > 0.0;
             }
-            for hold in held::open_holds(&world, model, &problem, &prescribed) {
+            for hold in held::open_holds(world, model, &problem, &prescribed) {
                 let text = format!(
                     "warning: step '{}': {hold}; close the gap in the mesh or with the pair's adjust, or prescribe its uz in an earlier step",
                     step.name
@@ -268,7 +278,7 @@ impl<'a, 's> GeneralSteps<'a, 's> {
             set_free_values(&mut st.x, &st.dofs, partition, &self.carried.displacement)?;
             st.problem.evaluate_fields(&st.x)?;
             let why: String =
-                held::open_holds(&world, model, &st.problem, &st.prescribed).iter().map(|h| format!("; at the last converged state {h}")).collect();
+                held::open_holds(world, model, &st.problem, &st.prescribed).iter().map(|h| format!("; at the last converged state {h}")).collect();
             return Err(Error::NotConverged {
                 step: step.name.clone(),
                 load_factor: target,
@@ -300,7 +310,7 @@ impl<'a, 's> GeneralSteps<'a, 's> {
         let owned = owned_displacement(&st.x, &st.dofs, partition, &st.problem.load().prescribed)?;
         // the extrapolating predictor's increment (kept only for it)
         let before = (controls.predictor == Predictor::Extrapolate).then(|| self.carried.displacement.clone());
-        gather_displacement(&world, partition, &owned, &mut self.carried.displacement);
+        gather_displacement(world, partition, &owned, &mut self.carried.displacement);
         st.last = before.map(|before| LastIncrement::between(&before, &self.carried.displacement, done));
         let mut force = vec![0.0; 2 * nodes];
         let local: Vec<f64> = fields.nodal_force.iter().flatten().copied().collect();
@@ -319,10 +329,10 @@ impl<'a, 's> GeneralSteps<'a, 's> {
         if model.perturbations().next().is_some() && s + 1 == model.general_step_count() && st.lambda >= 1.0 {
             self.base = Some(keep_base(model, &mut st.problem, &fields));
         }
-        let contacts = contact_summaries(&world, model, &st.problem);
+        let contacts = contact_summaries(world, model, &st.problem);
         let load_now = st.loads.at(model, st.lambda);
         let energy =
-            audit_increment(&world, model, &mut self.carried.audit, &st.problem, &fields, &force, &st.prescribed, &self.carried.displacement, &load_now);
+            audit_increment(world, model, &mut self.carried.audit, &st.problem, &fields, &force, &st.prescribed, &self.carried.displacement, &load_now);
         let reactions = st
             .loads
             .constrained_sets
@@ -404,7 +414,7 @@ impl<'a, 's> GeneralSteps<'a, 's> {
             }
         });
         let written = state.as_ref().map(|state| (&increment_fields, state));
-        stop_all_on_write_error(&world, self.output, output.run(|| self.results.write_increment(&step.name, &row, written, partition))?)?;
+        stop_all_on_write_error(world, self.output, output.run(|| self.results.write_increment(&step.name, &row, written, partition))?)?;
         st.last_in_file = with_fields;
         if let Some(status) = self.status.as_mut() {
             status.record(&row);
@@ -442,6 +452,15 @@ impl<'a, 's> GeneralSteps<'a, 's> {
 /// The energy audit's record of a converged increment (collective: the element and contact
 /// energies and the pressure loads are summed over the ranks).
 #[allow(clippy::too_many_arguments)]
+/// Whether any rank of the run was asked to stop by a signal, and by which (collective: every
+/// rank stops after the same increment).
+fn stop_requested(world: &impl Communicator) -> Option<i32> {
+    let mine = crate::interrupt::requested().unwrap_or(0);
+    let mut any = 0;
+    world.all_reduce_into(&mine, &mut any, SystemOperation::max());
+    (any != 0).then_some(any)
+}
+
 pub(super) fn audit_increment(
     world: &impl Communicator,
     model: &Model,

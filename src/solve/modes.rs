@@ -161,7 +161,7 @@ fn pencil_modes(
     let (a, _) = assemble(session, a, &amplitude, local_len)?;
     let (b, _) = assemble(session, b, &amplitude, local_len)?;
     let pairs = nearest(session, &a, &b, local_len, pencil, count, 0.0)?;
-    Ok(modes_of(&session.world(), partition, &amplitude, &offsets, pairs))
+    Ok(modes_of(session.world(), partition, &amplitude, &offsets, pairs))
 }
 
 /// An eigenvalue step's answer, with a note where fewer modes converged than asked for.
@@ -190,7 +190,7 @@ pub fn frequency(
     let mut modes = pencil_modes(session, model, partition, step, &current, &stiffness, &mass, pencil, count)?;
     // a free body's rigid motions are modes of (near) zero frequency: say which they are
     let (amplitude, _) = held_numbering(model, partition, step, &current)?;
-    let free = free_rigid_motions(&world, &stiffness, &amplitude, &current, step.mode);
+    let free = free_rigid_motions(world, &stiffness, &amplitude, &current, step.mode);
     // the mode's rigid motion: n = 0 along the axis, n = 1 across it (U_r = -U_t)
     let rigid: Option<[f64; 3]> = match step.mode {
         0 => Some([0.0, 1.0, 0.0]),
@@ -200,8 +200,8 @@ pub fn frequency(
     if let Some(r) = rigid {
         let r = vec![r; current.len()];
         for mode in &mut modes {
-            let generalised = product(&world, &mass, &mode.amplitudes, &mode.amplitudes);
-            let participation = product(&world, &mass, &mode.amplitudes, &r);
+            let generalised = product(world, &mass, &mode.amplitudes, &mode.amplitudes);
+            let participation = product(world, &mass, &mode.amplitudes, &r);
             mode.effective_mass = Some(2.0 * PI * participation * participation / generalised);
         }
     }
@@ -260,7 +260,7 @@ pub fn buckle(
     }
     // a rigid motion left free makes the pencil singular: its "critical load" is noise
     let (amplitude, _) = held_numbering(model, partition, step, &current)?;
-    let free = free_rigid_motions(&session.world(), &stiffness, &amplitude, &current, step.mode);
+    let free = free_rigid_motions(session.world(), &stiffness, &amplitude, &current, step.mode);
     if !free.is_empty() {
         return Err(Error::input(format!(
             "buckle step '{}' (mode {}): nothing holds the model {} in this mode, so its buckling loads are not defined; hold the amplitude (a boundary entry with ur, uz or ut = 0, or a ring held at rest)",

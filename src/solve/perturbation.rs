@@ -215,7 +215,7 @@ pub(super) fn response(
             reason: "the linear solve failed: the perturbation's stiffness is singular (a rigid motion of its mode left free? hold it on a set)".into(),
         })?
     };
-    let amplitudes = amplitudes_of(&world, partition, &amplitude, &offsets, &solved);
+    let amplitudes = amplitudes_of(world, partition, &amplitude, &offsets, &solved);
 
     // reactions: K U - f at every node, summed over ranks
     let mut force = vec![0.0; 3 * nodes];

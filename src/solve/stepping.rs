@@ -121,7 +121,7 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
     let mut heat = Vec::new();
     for h in model.heat_steps() {
         let answer = super::conduction::solve(session, model, &partition, h)?;
-        stop_all_on_write_error(&world, &options.output, results.write_heat(h, &answer, &partition, model.is_axisymmetric()))?;
+        stop_all_on_write_error(world, &options.output, results.write_heat(h, &answer, &partition, model.is_axisymmetric()))?;
         progress.note(&format!("heat step '{}': solved", h.name));
         heat.push((h.name.clone(), answer));
     }
@@ -224,6 +224,6 @@ fn perturbation(general: &mut GeneralSteps, p: &Perturbation, progress_lines: bo
     // the base state's fields: the last increment's (always written: it ends its step)
     let base_group = general.carried.rows.last().map(|r| format!("{:06}", r.number));
     let written = general.results.write_perturbation(p, &answer, partition, base_group.as_deref());
-    stop_all_on_write_error(&session.world(), general.output, written)?;
+    stop_all_on_write_error(session.world(), general.output, written)?;
     Ok(answer)
 }

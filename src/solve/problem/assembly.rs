@@ -197,7 +197,7 @@ impl Problem<'_, '_> {
         stage.run(|| contact.evaluate(self.model, Need::Tangent))?;
         let dof = &self.dofs.dof;
         let free = |n: usize| dof[n].iter().any(|&d| d >= 0);
-        if contact.pattern_mut().synchronise(&self.session.world(), |a, b| free(a) && free(b)) {
+        if contact.pattern_mut().synchronise(self.session.world(), |a, b| free(a) && free(b)) {
             contact.pattern_mut().refits += 1;
             self.layout.set_pairs(super::coupled_pairs(Some(contact), self.constraints.as_ref()), &self.dofs.dof);
             let (rows, cols) = self.layout.indices();
