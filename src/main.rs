@@ -89,11 +89,11 @@ fn main() -> ExitCode {
             finish(result, root, |summary| workflow::report(&job, &before, summary))
         }
         Command::PenaltyStudy(args) => {
-            let session = match PetscSession::initialize(&args.petsc) {
+            let session = match PetscSession::initialize_groups(&args.petsc, args.runs.ranks_per_run) {
                 Ok(s) => s,
                 Err(e) => return fail(&e, launched_as_rank_zero()),
             };
-            let root = session.world().rank() == 0;
+            let root = session.everyone().rank() == 0;
             let result = cli::study::penalty_study(&session, &args);
             warn_unused_options(&session, root && !is_bad_input(&result));
             match result {

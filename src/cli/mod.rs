@@ -132,11 +132,25 @@ pub struct StudyArgs {
     /// The study file (HDF5); each run's results go to a directory beside it.
     #[arg(short, long, default_value = "penalty_study.h5")]
     pub output: PathBuf,
+    #[command(flatten)]
+    pub runs: StudyRuns,
     #[arg(short, long)]
     pub quiet: bool,
     /// PETSc options (after `--`).
     #[arg(last = true, allow_hyphen_values = true)]
     pub petsc: Vec<String>,
+}
+
+/// How a study shares its runs out over the ranks, and what each keeps.
+#[derive(clap::Args)]
+pub struct StudyRuns {
+    /// Ranks each run uses: the ranks given to mpirun are split into groups of this many, each
+    /// taking the next run as it comes free (it must divide the ranks).
+    #[arg(long, default_value_t = 1, value_name = "G")]
+    pub ranks_per_run: usize,
+    /// Keep every increment's fields in each run's file (else its history and each step's end).
+    #[arg(long)]
+    pub full_output: bool,
 }
 
 #[derive(clap::Args)]

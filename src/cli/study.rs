@@ -24,7 +24,7 @@ pub fn penalty_study(session: &PetscSession, args: &StudyArgs) -> Result<(), Err
         // a TOML or an .inp deck, as `slideline run` reads it
         Some(d) => {
             let (model, notes) = slideline::preprocess::prepared_deck(d)?;
-            if session.world().rank() == 0 && !args.quiet {
+            if session.everyone().rank() == 0 && !args.quiet {
                 notes.iter().for_each(|note| println!("note: {note}"));
             }
             Subject::Deck(model)
@@ -41,6 +41,7 @@ pub fn penalty_study(session: &PetscSession, args: &StudyArgs) -> Result<(), Err
         tolerance: args.tolerance,
         output: args.output.clone(),
         progress: !args.quiet,
+        full_output: args.runs.full_output,
     };
     slideline::study::penalty_study(session, &spec).map(|_| ())
 }
