@@ -101,6 +101,24 @@ fn main() -> ExitCode {
                 Err(e) => fail(&e, root),
             }
         }
+        Command::BellowsSweep(args) => {
+            // a bad sweep is refused before MPI and PETSc start
+            let spec = match cli::study::sweep_spec(&args) {
+                Ok(s) => s,
+                Err(e) => return fail(&e, launched_as_rank_zero()),
+            };
+            let session = match PetscSession::initialize_groups(&args.petsc, args.runs.ranks_per_run) {
+                Ok(s) => s,
+                Err(e) => return fail(&e, launched_as_rank_zero()),
+            };
+            let root = session.everyone().rank() == 0;
+            let result = slideline::study::sweep::bellows_sweep(&session, &spec);
+            warn_unused_options(&session, root && !is_bad_input(&result));
+            match result {
+                Ok(_) => ExitCode::SUCCESS,
+                Err(e) => fail(&e, root),
+            }
+        }
         Command::Coefficients { c1, c2, through, per_thickness, plot, petsc } => {
             let session = match PetscSession::initialize(&petsc) {
                 Ok(s) => s,

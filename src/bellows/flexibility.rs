@@ -39,6 +39,27 @@ pub struct Movements {
     pub angular: f64,
 }
 
+impl Movements {
+    /// The movements asked (`--lateral` mm, `--angular` degrees), if any, for joint `p`: what
+    /// the codes' beam analogy and a linear perturbation describe, an offset up to the
+    /// convoluted length and a rotation up to 45 degrees, nonzero.
+    pub fn checked(lateral: Option<f64>, angular: Option<f64>, p: &BellowsParams) -> Result<Option<Self>> {
+        if lateral.is_none() && angular.is_none() {
+            return Ok(None);
+        }
+        let length = p.convolutions as f64 * p.pitch;
+        for (flag, v, units, most) in [("--lateral", lateral, "mm", length), ("--angular", angular, "degrees", 45.0)] {
+            if let Some(v) = v.filter(|v| !v.is_finite() || *v == 0.0 || v.abs() > most) {
+                return Err(crate::error::Error::input(format!(
+                    "{flag} {}: give a nonzero movement of at most {most} {units} in size",
+                    crate::error::shown(v)
+                )));
+            }
+        }
+        Ok(Some(Movements { lateral: lateral.unwrap_or(0.0), angular: angular.unwrap_or(0.0) }))
+    }
+}
+
 /// One movement's answers (full ring).
 #[derive(Clone, Debug, PartialEq)]
 pub struct MovementResponse {

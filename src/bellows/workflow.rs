@@ -105,7 +105,7 @@ pub fn before_the_run(session: &PetscSession, job: &BellowsJob) -> Result<Before
     let (code, verdict) = match &job.spec {
         Some(spec) => {
             let (check, verdict, table) = code_verdict(session, spec)?;
-            if root {
+            if root && !job.quiet {
                 print!("{table}");
             }
             (Some(check), Some((verdict, table)))

@@ -73,6 +73,11 @@ pub enum Command {
     /// Run one model for a range of penalty values (and with the augmented Lagrangian) and
     /// compare iterations, penetration and reaction: the bellows (default) or a deck.
     PenaltyStudy(StudyArgs),
+    /// Variants of a bellows design specification (every combination of the values given to
+    /// its keys), each through the code check and the analyses asked, the runs shared out to
+    /// groups of ranks: one study file and CSV, a table sorted by a figure, a picture of the
+    /// trade-off.
+    BellowsSweep(SweepArgs),
     /// The bellows codes' chart coefficients Cp, Cf, Cd (EJMA, ASME VIII-1 App. 26) computed
     /// by elastic analyses of the idealised U-shaped convolution at each (C1, C2) given.
     Coefficients {
@@ -131,6 +136,51 @@ pub struct StudyArgs {
     pub displacement: Option<f64>,
     /// The study file (HDF5); each run's results go to a directory beside it.
     #[arg(short, long, default_value = "penalty_study.h5")]
+    pub output: PathBuf,
+    #[command(flatten)]
+    pub runs: StudyRuns,
+    #[arg(short, long)]
+    pub quiet: bool,
+    /// PETSc options (after `--`).
+    #[arg(last = true, allow_hyphen_values = true)]
+    pub petsc: Vec<String>,
+}
+
+#[derive(clap::Args)]
+pub struct SweepArgs {
+    /// The design specification every variant starts from (docs/bellows-spec.md).
+    #[arg(long, value_name = "FILE.toml")]
+    pub spec: PathBuf,
+    /// A key of the specification and its values: KEY=a,b,c (a list), KEY=a..b (the integers
+    /// a to b) or KEY=a..b:n (n values from a to b); KEY is section.key, or a key found in one
+    /// section. Repeat for more keys: the variants are every combination.
+    #[arg(long = "vary", value_name = "KEY=VALUES", required = true)]
+    pub vary: Vec<String>,
+    /// The finite-element assessment beside the code check (as `bellows --assess`).
+    #[arg(long)]
+    pub assess: bool,
+    /// The instability pressures by buckling analyses (as `bellows --squirm`).
+    #[arg(long)]
+    pub squirm: bool,
+    /// The natural frequencies (as `bellows --frequencies`).
+    #[arg(long)]
+    pub frequencies: bool,
+    /// The lateral spring rate for an offset of MM (as `bellows --lateral`).
+    #[arg(allow_hyphen_values = true, long, value_name = "MM")]
+    pub lateral: Option<f64>,
+    /// The angular spring rate for a rotation of DEG (as `bellows --angular`).
+    #[arg(allow_hyphen_values = true, long, value_name = "DEG")]
+    pub angular: Option<f64>,
+    /// The code check and the analyses of the joint at rest only: no elastic-plastic run of
+    /// the design movement.
+    #[arg(long)]
+    pub elastic_only: bool,
+    /// The figure the printed table is sorted by (a column of the study: axial_rate,
+    /// allowable_cycles, fe_squirm_pressure, end_force, ..., or a varied key).
+    #[arg(long, default_value = "axial_rate", value_name = "FIGURE")]
+    pub sort: String,
+    /// The study file (HDF5, a CSV beside it); each variant's results go to a directory beside it.
+    #[arg(short, long, default_value = "bellows_sweep.h5")]
     pub output: PathBuf,
     #[command(flatten)]
     pub runs: StudyRuns,
@@ -389,19 +439,9 @@ impl BellowsArgs {
     }
 
     /// The movements of the flexibility perturbations (`--lateral`, `--angular`), if any, for
-    /// joint `p`: what the codes' beam analogy and a linear perturbation describe, an offset up
-    /// to the convoluted length and a rotation up to 45 degrees, nonzero.
+    /// joint `p`.
     pub fn movements(&self, p: &slideline::bellows::joint::BellowsParams) -> Result<Option<slideline::bellows::flexibility::Movements>, Error> {
-        if self.lateral.is_none() && self.angular.is_none() {
-            return Ok(None);
-        }
-        let length = p.convolutions as f64 * p.pitch;
-        for (flag, v, units, most) in [("--lateral", self.lateral, "mm", length), ("--angular", self.angular, "degrees", 45.0)] {
-            if let Some(v) = v.filter(|v| !v.is_finite() || *v == 0.0 || v.abs() > most) {
-                return Err(Error::input(format!("{flag} {}: give a nonzero movement of at most {most} {units} in size", slideline::error::shown(v))));
-            }
-        }
-        Ok(Some(slideline::bellows::flexibility::Movements { lateral: self.lateral.unwrap_or(0.0), angular: self.angular.unwrap_or(0.0) }))
+        slideline::bellows::flexibility::Movements::checked(self.lateral, self.angular, p)
     }
 
     /// The design specification (`--spec`), with the flags that give its values applied: the

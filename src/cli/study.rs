@@ -1,7 +1,7 @@
 //! `slideline penalty-study` and `slideline coefficients`: the studies the command line runs.
 
 use super::outcome::fail;
-use super::StudyArgs;
+use super::{StudyArgs, SweepArgs};
 use mpi::traits::Communicator;
 use slideline::assessment::coefficients::Coefficients;
 use slideline::petsc::PetscSession;
@@ -44,6 +44,36 @@ pub fn penalty_study(session: &PetscSession, args: &StudyArgs) -> Result<(), Err
         full_output: args.runs.full_output,
     };
     slideline::study::penalty_study(session, &spec).map(|_| ())
+}
+
+/// `slideline bellows-sweep`: the keys and their values checked against the specification
+/// (before MPI starts: a bad sweep is refused by rank 0 alone), then the sweep.
+pub fn sweep_spec(args: &SweepArgs) -> Result<slideline::study::sweep::SweepSpec, Error> {
+    use slideline::study::sweep::{parse_vary, Analyses, SweepSpec};
+    // the specification itself must stand before its variants are made
+    let base = slideline::bellows::spec::DesignSpec::from_file(&args.spec)?.text;
+    let vary = args.vary.iter().map(|v| parse_vary(v, &base, &args.spec)).collect::<Result<Vec<_>, _>>()?;
+    if let Some(v) = vary.iter().enumerate().find_map(|(k, v)| vary[..k].iter().any(|w| w.name() == v.name()).then_some(v)) {
+        return Err(Error::input(format!("--vary {}: given twice", v.name())));
+    }
+    let analyses = Analyses {
+        assess: args.assess,
+        squirm: args.squirm,
+        frequencies: args.frequencies,
+        lateral: args.lateral,
+        angular: args.angular,
+        elastic_only: args.elastic_only,
+    };
+    Ok(SweepSpec {
+        base,
+        path: args.spec.clone(),
+        vary,
+        analyses,
+        sort: args.sort.clone(),
+        output: args.output.clone(),
+        progress: !args.quiet,
+        full_output: args.runs.full_output,
+    })
 }
 
 /// Each coefficient against C2, a curve per C1 (the codes' charts): PREFIX_cp.png, ...

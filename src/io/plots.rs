@@ -65,6 +65,16 @@ pub enum Axes {
 }
 
 pub fn line_plot(path: &Path, title: &str, x_label: &str, y_label: &str, curves: &[Curve], markers: &[Marker], axes: Axes) -> Result<()> {
+    xy_plot(path, (title, x_label, y_label), curves, markers, axes, false)
+}
+
+/// As [`line_plot`], each curve's points drawn as unjoined dots (a study's variants, one
+/// colour per kind).
+pub fn point_plot(path: &Path, title: &str, x_label: &str, y_label: &str, kinds: &[Curve], axes: Axes) -> Result<()> {
+    xy_plot(path, (title, x_label, y_label), kinds, &[], axes, true)
+}
+
+fn xy_plot(path: &Path, (title, x_label, y_label): (&str, &str, &str), curves: &[Curve], markers: &[Marker], axes: Axes, dots: bool) -> Result<()> {
     use_bundled_font();
     let err = draw_err(path);
     let points: Vec<(f64, f64)> =
@@ -105,6 +115,15 @@ pub fn line_plot(path: &Path, title: &str, x_label: &str, y_label: &str, curves:
         let palette = [RGBColor(31, 119, 180), RGBColor(214, 39, 40), RGBColor(44, 160, 44), RGBColor(148, 103, 189)];
         for (k, c) in curves.iter().enumerate() {
             let colour = palette[k % palette.len()];
+            if dots {
+                let finite = c.points.iter().copied().filter(|p| p.0.is_finite() && p.1.is_finite());
+                chart
+                    .draw_series(finite.map(|p| Circle::new(p, 7, colour.filled())))
+                    .map_err(|e| err(&e))?
+                    .label(c.label.as_str())
+                    .legend(move |(x, y)| Circle::new((x + 12, y), 6, colour.filled()));
+                continue;
+            }
             chart
                 .draw_series(LineSeries::new(c.points.iter().copied(), colour.stroke_width(3)))
                 .map_err(|e| err(&e))?
