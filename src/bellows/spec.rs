@@ -82,7 +82,7 @@ impl Property {
         if table.is_empty() {
             return Err(bad("an empty table: give [[temperature, value], ...]".into()));
         }
-        if table.windows(2).any(|w| !(w[1][0] > w[0][0])) {
+        if table.windows(2).any(|w| w[1][0].partial_cmp(&w[0][0]) != Some(std::cmp::Ordering::Greater)) {
             return Err(bad("the table's temperatures must rise from row to row".into()));
         }
         let (first, last) = (table[0][0], table[table.len() - 1][0]);

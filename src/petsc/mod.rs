@@ -110,7 +110,7 @@ impl PetscSession {
         }
         let everyone = universe.world();
         let size = everyone.size() as usize;
-        if ranks_per_group == 0 || size % ranks_per_group != 0 {
+        if ranks_per_group == 0 || !size.is_multiple_of(ranks_per_group) {
             return Err(Error::input(format!(
                 "--ranks-per-run {ranks_per_group}: it must divide the {size} ranks given (mpirun -n {size}) into whole groups"
             )));

@@ -449,9 +449,6 @@ impl<'a, 's> GeneralSteps<'a, 's> {
     }
 }
 
-/// The energy audit's record of a converged increment (collective: the element and contact
-/// energies and the pressure loads are summed over the ranks).
-#[allow(clippy::too_many_arguments)]
 /// Whether any rank of the run was asked to stop by a signal, and by which (collective: every
 /// rank stops after the same increment).
 fn stop_requested(world: &impl Communicator) -> Option<i32> {
@@ -461,6 +458,9 @@ fn stop_requested(world: &impl Communicator) -> Option<i32> {
     (any != 0).then_some(any)
 }
 
+/// The energy audit's record of a converged increment (collective: the element and contact
+/// energies and the pressure loads are summed over the ranks).
+#[allow(clippy::too_many_arguments)]
 pub(super) fn audit_increment(
     world: &impl Communicator,
     model: &Model,

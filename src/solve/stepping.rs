@@ -101,7 +101,7 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
     if model.perturbations().any(|p| p.analysis != Analysis::Response) {
         crate::petsc::eigen::check_options(session)?;
     }
-    let (_lock, note) = ResultsLock::acquire(&options.output, &world)?;
+    let (_lock, note) = ResultsLock::acquire(&options.output, world)?;
     if let (true, Some(note)) = (root, note) {
         println!("note: {note}");
     }

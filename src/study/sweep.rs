@@ -58,7 +58,7 @@ pub fn parse_vary(arg: &str, base: &str, path: &Path) -> Result<Vary> {
     let vary = Vary { section, key, values };
     // the key and the kind of its value, checked on the specification's structure
     let text = with_values(&table, &[(&vary, &vary.values[0])])?;
-    toml::from_str::<DesignSpec>(&text).map_err(|e| bad(format!("{}", e.message())))?;
+    toml::from_str::<DesignSpec>(&text).map_err(|e| bad(e.message().to_string()))?;
     Ok(vary)
 }
 
