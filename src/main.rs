@@ -88,37 +88,8 @@ fn main() -> ExitCode {
             warn_unused_options(&session, root && !is_bad_input(&result));
             finish(result, root, |summary| workflow::report(&job, &before, summary))
         }
-        Command::PenaltyStudy(args) => {
-            let session = match PetscSession::initialize_groups(&args.petsc, args.runs.ranks_per_run) {
-                Ok(s) => s,
-                Err(e) => return fail(&e, launched_as_rank_zero()),
-            };
-            let root = session.everyone().rank() == 0;
-            let result = cli::study::penalty_study(&session, &args);
-            warn_unused_options(&session, root && !is_bad_input(&result));
-            match result {
-                Ok(()) => ExitCode::SUCCESS,
-                Err(e) => fail(&e, root),
-            }
-        }
-        Command::BellowsSweep(args) => {
-            // a bad sweep is refused before MPI and PETSc start
-            let spec = match cli::study::sweep_spec(&args) {
-                Ok(s) => s,
-                Err(e) => return fail(&e, launched_as_rank_zero()),
-            };
-            let session = match PetscSession::initialize_groups(&args.petsc, args.runs.ranks_per_run) {
-                Ok(s) => s,
-                Err(e) => return fail(&e, launched_as_rank_zero()),
-            };
-            let root = session.everyone().rank() == 0;
-            let result = slideline::study::sweep::bellows_sweep(&session, &spec);
-            warn_unused_options(&session, root && !is_bad_input(&result));
-            match result {
-                Ok(_) => ExitCode::SUCCESS,
-                Err(e) => fail(&e, root),
-            }
-        }
+        Command::PenaltyStudy(args) => cli::study::penalty_study_command(&args),
+        Command::BellowsSweep(args) => cli::study::sweep_command(&args),
         Command::Coefficients { c1, c2, through, per_thickness, plot, petsc } => {
             let session = match PetscSession::initialize(&petsc) {
                 Ok(s) => s,

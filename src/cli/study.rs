@@ -1,6 +1,6 @@
 //! `slideline penalty-study` and `slideline coefficients`: the studies the command line runs.
 
-use super::outcome::fail;
+use super::outcome::{fail, is_bad_input, launched_as_rank_zero, warn_unused_options};
 use super::{StudyArgs, SweepArgs};
 use mpi::traits::Communicator;
 use slideline::assessment::coefficients::Coefficients;
@@ -9,8 +9,43 @@ use slideline::Error;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
+/// `slideline penalty-study` from start to exit code: the groups of ranks, the study.
+pub fn penalty_study_command(args: &StudyArgs) -> ExitCode {
+    let session = match PetscSession::initialize_groups(&args.petsc, args.runs.ranks_per_run) {
+        Ok(s) => s,
+        Err(e) => return fail(&e, launched_as_rank_zero()),
+    };
+    let root = session.everyone().rank() == 0;
+    let result = penalty_study(&session, args);
+    warn_unused_options(&session, root && !is_bad_input(&result));
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => fail(&e, root),
+    }
+}
+
+/// `slideline bellows-sweep` from start to exit code: the sweep checked (before MPI and PETSc
+/// start: a bad sweep is refused once), the groups of ranks, the sweep.
+pub fn sweep_command(args: &SweepArgs) -> ExitCode {
+    let spec = match sweep_spec(args) {
+        Ok(s) => s,
+        Err(e) => return fail(&e, launched_as_rank_zero()),
+    };
+    let session = match PetscSession::initialize_groups(&args.petsc, args.runs.ranks_per_run) {
+        Ok(s) => s,
+        Err(e) => return fail(&e, launched_as_rank_zero()),
+    };
+    let root = session.everyone().rank() == 0;
+    let result = slideline::study::sweep::bellows_sweep(&session, &spec);
+    warn_unused_options(&session, root && !is_bad_input(&result));
+    match result {
+        Ok(_) => ExitCode::SUCCESS,
+        Err(e) => fail(&e, root),
+    }
+}
+
 /// `slideline penalty-study`: the study spec for the bellows or a deck, then the runs.
-pub fn penalty_study(session: &PetscSession, args: &StudyArgs) -> Result<(), Error> {
+fn penalty_study(session: &PetscSession, args: &StudyArgs) -> Result<(), Error> {
     use slideline::study::{parse_penalties, StudySpec, Subject};
     let penalties = parse_penalties(&args.penalties, args.per_decade)?;
     let mut bellows = slideline::bellows::joint::BellowsParams::default();
@@ -46,9 +81,8 @@ pub fn penalty_study(session: &PetscSession, args: &StudyArgs) -> Result<(), Err
     slideline::study::penalty_study(session, &spec).map(|_| ())
 }
 
-/// `slideline bellows-sweep`: the keys and their values checked against the specification
-/// (before MPI starts: a bad sweep is refused by rank 0 alone), then the sweep.
-pub fn sweep_spec(args: &SweepArgs) -> Result<slideline::study::sweep::SweepSpec, Error> {
+/// `slideline bellows-sweep`'s keys and their values checked against the specification.
+fn sweep_spec(args: &SweepArgs) -> Result<slideline::study::sweep::SweepSpec, Error> {
     use slideline::study::sweep::{parse_vary, Analyses, SweepSpec};
     // the specification itself must stand before its variants are made
     let base = slideline::bellows::spec::DesignSpec::from_file(&args.spec)?.text;

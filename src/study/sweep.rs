@@ -489,6 +489,11 @@ fn picture(spec: &SweepSpec, rows: &[SweepRow]) -> Result<PathBuf> {
         Curve { label: "passes every check".into(), points: rows.iter().filter(|r| r.passes).map(|r| point(&r)).collect() },
         Curve { label: "fails a check (or outside the code)".into(), points: rows.iter().filter(|r| !r.passes).map(|r| point(&r)).collect() },
     ];
-    point_plot(&path, "Design variants: axial rate against allowable cycles", "log10 allowable cycles (code)", "axial rate (N/mm, code)", &kinds, Axes::DataRange)?;
+    let required = rows.iter().find_map(|r| r.checks.iter().find(|c| c.0 == "fatigue").map(|c| c.2));
+    let title = match required {
+        Some(n) => format!("Design variants: axial rate against allowable cycles ({n} required)"),
+        None => "Design variants: axial rate against allowable cycles".to_string(),
+    };
+    point_plot(&path, &title, "log10 allowable cycles (code)", "axial rate (N/mm, code)", &kinds, Axes::DataRange)?;
     Ok(path)
 }
