@@ -463,16 +463,18 @@ pub fn table(spec: &SweepSpec, rows: &[SweepRow]) -> String {
         "end force N",
         "wall s"
     );
+    // a figure not computed (an analysis not asked, a variant that failed) is a dash
+    let shown = |v: f64, digits: usize| if v.is_finite() { format!("{v:.digits$}") } else { "-".into() };
     for r in sorted {
         let _ = writeln!(
             s,
-            "{:>4} {:<40} {:>12.1} {:>14.0} {:>12.1} {:>12.0} {:>8.1}  {}",
+            "{:>4} {:<40} {:>12} {:>14} {:>12} {:>12} {:>8.1}  {}",
             r.variant,
             r.label,
-            r.figure("axial_rate"),
-            r.figure("allowable_cycles"),
-            r.figure("fe_axial_rate"),
-            r.figure("end_force"),
+            shown(r.figure("axial_rate"), 1),
+            shown(r.figure("allowable_cycles"), 0),
+            shown(r.figure("fe_axial_rate"), 1),
+            shown(r.figure("end_force"), 0),
             r.wall_time,
             outcome_text(r)
         );
