@@ -546,8 +546,12 @@ const SPEC_FLAGS: [&str; 10] =
 /// The `--output-precision` choices.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
 pub enum PrecisionArg {
+    /// The values as computed (64-bit; `full` is the same).
+    #[value(alias = "full")]
     Double,
     Single,
+    /// Each field to its stated resolution (docs/results.md).
+    Resolution,
 }
 
 impl From<PrecisionArg> for crate::model::Precision {
@@ -555,6 +559,7 @@ impl From<PrecisionArg> for crate::model::Precision {
         match p {
             PrecisionArg::Double => crate::model::Precision::Double,
             PrecisionArg::Single => crate::model::Precision::Single,
+            PrecisionArg::Resolution => crate::model::Precision::Resolution,
         }
     }
 }

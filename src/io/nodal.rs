@@ -149,7 +149,7 @@ impl NodalWriter {
         let g = increment.create_group("nodal").map_err(|e| crate::error::Error::Output { path: path.to_path_buf(), message: e.to_string() })?;
         let as_vector = |v: &[[f64; 2]]| -> Vec<f64> { v.iter().flat_map(|u| [u[0], u[1], 0.0]).collect() };
         write_rows(&g, "displacement", &[self.nodes, 3], self.node_slab, &as_vector(f.displacement), path)?;
-        write_field(&g, "reaction_force", &[self.nodes, 3], self.node_slab, &as_vector(f.reaction), self.precision, path)?;
+        write_field(&g, "reaction_force", &[self.nodes, 3], self.node_slab, &as_vector(f.reaction), self.precision, &self.world, path)?;
         // every rank adds its elements' share to every node; the sums meet in one reduction
         let mut local = vec![0.0f64; self.nodes * (AVERAGED + 1)];
         let (sums, counts) = local.split_at_mut(self.nodes * AVERAGED);
@@ -178,15 +178,15 @@ impl NodalWriter {
         let scalars: Vec<[f64; 16]> = means.iter().map(|m| node_scalars(m)).collect();
         for (c, name) in NODAL_SCALARS.iter().enumerate().filter(|(_, name)| nodal_scalar_kept(name, self.fields)) {
             let column: Vec<f64> = scalars.iter().map(|s| s[c]).collect();
-            write_field(&g, name, &[self.nodes], self.node_slab, &column, self.precision, path)?;
+            write_field(&g, name, &[self.nodes], self.node_slab, &column, self.precision, &self.world, path)?;
         }
         if self.fields.plastic_strain {
             let ep: Vec<f64> = means.iter().map(|m| m[AVERAGED - 1]).collect();
-            write_field(&g, "equivalent_plastic_strain", &[self.nodes], self.node_slab, &ep, self.precision, path)?;
+            write_field(&g, "equivalent_plastic_strain", &[self.nodes], self.node_slab, &ep, self.precision, &self.world, path)?;
         }
         if self.fields.temperature {
             let t: Vec<f64> = self.owned.iter().map(|&n| f.temperature.at(n)).collect();
-            write_field(&g, "temperature", &[self.nodes], self.node_slab, &t, self.precision, path)?;
+            write_field(&g, "temperature", &[self.nodes], self.node_slab, &t, self.precision, &self.world, path)?;
         }
         if !f.contact.is_empty() && self.fields.contact {
             self.write_contact(&g, f.contact, path)?;
@@ -196,7 +196,7 @@ impl NodalWriter {
                 .flat_map(|(((nodes, &integration), s), ep)| self.recovery.element_nodal(Shape::of(nodes), integration, Rule::for_element(ep), s))
                 .flatten()
                 .collect();
-            write_field(increment, "element_nodal_stress", &[self.elements, 8, 4], self.element_slab, &stress, self.precision, path)?;
+            write_field(increment, "element_nodal_stress", &[self.elements, 8, 4], self.element_slab, &stress, self.precision, &self.world, path)?;
         }
         Ok(())
     }
@@ -233,16 +233,16 @@ impl NodalWriter {
         let owned = self.node_slab.0..self.node_slab.1;
         let column = |k: usize| -> Vec<f64> { owned.clone().map(|r| most_all[k * n + r]).collect() };
         let gap: Vec<f64> = owned.clone().map(|r| if least_all[r].is_finite() { least_all[r] } else { f64::NAN }).collect();
-        write_field(g, "contact_pressure", &[n], self.node_slab, &column(0), self.precision, path)?;
-        write_field(g, "contact_status", &[n], self.node_slab, &column(1), self.precision, path)?;
-        write_field(g, "contact_gap", &[n], self.node_slab, &gap, self.precision, path)?;
+        write_field(g, "contact_pressure", &[n], self.node_slab, &column(0), self.precision, &self.world, path)?;
+        write_field(g, "contact_status", &[n], self.node_slab, &column(1), self.precision, &self.world, path)?;
+        write_field(g, "contact_gap", &[n], self.node_slab, &gap, self.precision, &self.world, path)?;
         if any_friction == 1 {
             // a node is a slave on one rank only: the signed shear of the rank that has it
             let mut shear_all = vec![0.0f64; n];
             self.world.all_reduce_into(&shear[..], &mut shear_all[..], SystemOperation::sum());
             let signed: Vec<f64> = owned.clone().map(|r| shear_all[r]).collect();
-            write_field(g, "friction_shear", &[n], self.node_slab, &signed, self.precision, path)?;
-            write_field(g, "contact_sliding", &[n], self.node_slab, &column(3), self.precision, path)?;
+            write_field(g, "friction_shear", &[n], self.node_slab, &signed, self.precision, &self.world, path)?;
+            write_field(g, "contact_sliding", &[n], self.node_slab, &column(3), self.precision, &self.world, path)?;
         }
         Ok(())
     }

@@ -407,13 +407,13 @@ impl ResultsFile {
         let used = &self.gauss_points;
         if f.stress {
             let s = gauss_rows(local_stress, used);
-            write_field(&g, "stress", &[self.elements, QUADRATURE_POINTS, 4], self.element_slab, &s, self.precision, &self.path)?;
+            write_field(&g, "stress", &[self.elements, QUADRATURE_POINTS, 4], self.element_slab, &s, self.precision, &self.world, &self.path)?;
         }
         if f.von_mises {
             let vm: Vec<[[f64; 1]; QUADRATURE_POINTS]> = local_stress.iter().map(|e| e.map(|s| [von_mises(&s)])).collect();
-            write_field(&g, "von_mises", &[self.elements, QUADRATURE_POINTS], self.element_slab, &gauss_rows(&vm, used), self.precision, &self.path)?;
+            write_field(&g, "von_mises", &[self.elements, QUADRATURE_POINTS], self.element_slab, &gauss_rows(&vm, used), self.precision, &self.world, &self.path)?;
             let mean: Vec<f64> = vm.iter().zip(used).map(|(e, &n)| e[..n].iter().map(|v| v[0]).sum::<f64>() / n as f64).collect();
-            write_field(&g, "von_mises_mean", &[self.elements], self.element_slab, &mean, self.precision, &self.path)?;
+            write_field(&g, "von_mises_mean", &[self.elements], self.element_slab, &mean, self.precision, &self.world, &self.path)?;
         }
         if f.plastic_strain {
             let ep: Vec<[[f64; 1]; QUADRATURE_POINTS]> = local_plastic_strain.iter().map(|e| e.map(|v| [v])).collect();
@@ -424,10 +424,11 @@ impl ResultsFile {
                 self.element_slab,
                 &gauss_rows(&ep, used),
                 self.precision,
+                &self.world,
                 &self.path,
             )?;
             let ep_max: Vec<f64> = local_plastic_strain.iter().zip(used).map(|(c, &n)| c[..n].iter().fold(0.0f64, |m, &v| m.max(v))).collect();
-            write_field(&g, "equivalent_plastic_strain_max", &[self.elements], self.element_slab, &ep_max, self.precision, &self.path)?;
+            write_field(&g, "equivalent_plastic_strain_max", &[self.elements], self.element_slab, &ep_max, self.precision, &self.world, &self.path)?;
         }
         self.nodal.write(&g, fields, &self.path)?;
         // Newton history of the increment: identical on all ranks, written by rank 0.
@@ -469,17 +470,17 @@ impl ResultsFile {
             let pressure: Vec<f64> = p.states.iter().map(|s| s.pressure).collect();
             let active: Vec<u8> = p.states.iter().map(|s| u8::from(s.pressure > 0.0)).collect();
             let traction: Vec<f64> = p.states.iter().map(|s| s.traction).collect();
-            write_field(&pg, "traction", &[p.total], slab, &traction, self.precision, &self.path)?;
-            write_field(&pg, "gap", &[p.total], slab, &gap, self.precision, &self.path)?;
-            write_field(&pg, "pressure", &[p.total], slab, &pressure, self.precision, &self.path)?;
+            write_field(&pg, "traction", &[p.total], slab, &traction, self.precision, &self.world, &self.path)?;
+            write_field(&pg, "gap", &[p.total], slab, &gap, self.precision, &self.world, &self.path)?;
+            write_field(&pg, "pressure", &[p.total], slab, &pressure, self.precision, &self.world, &self.path)?;
             write_rows(&pg, "active", &[p.total], slab, &active, &self.path)?;
             if let Some(area) = &p.bearing_areas {
-                write_field(&pg, "area", &[p.total], slab, area, self.precision, &self.path)?;
+                write_field(&pg, "area", &[p.total], slab, area, self.precision, &self.world, &self.path)?;
             }
             if p.friction {
                 let shear: Vec<f64> = p.states.iter().map(|s| s.shear).collect();
                 let sliding: Vec<u8> = p.states.iter().map(|s| u8::from(s.sliding)).collect();
-                write_field(&pg, "shear", &[p.total], slab, &shear, self.precision, &self.path)?;
+                write_field(&pg, "shear", &[p.total], slab, &shear, self.precision, &self.world, &self.path)?;
                 write_rows(&pg, "sliding", &[p.total], slab, &sliding, &self.path)?;
             }
         }

@@ -113,12 +113,19 @@ pub struct OutputControls {
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Deserialize, serde::Serialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Precision {
-    /// 64-bit floats: the values as computed.
+    /// 64-bit floats: the values as computed (`full` says the same).
     #[default]
+    #[serde(alias = "full")]
     Double,
     /// 32-bit floats (7 significant digits), as CalculiX's .frd and Abaqus's .odb store
     /// results: half the file for the noise-like low bits nobody reads.
     Single,
+    /// Each field kept to a stated absolute resolution (HDF5's scale-offset filter, decimal
+    /// scaling, which every HDF5 reader decodes): the finer of its unit's (1e-3 MPa, 1e-6 mm,
+    /// 1e-8 for a strain, 1e-3 N) and 1e-6 of the field's largest value at the increment;
+    /// written in each dataset's `resolution` attribute. A field with a value that is not
+    /// finite is kept whole.
+    Resolution,
 }
 
 /// The fields an increment's group holds beside the displacement: named in a deck's
