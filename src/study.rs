@@ -6,8 +6,8 @@
 
 pub mod penalty;
 mod pool;
-pub mod sweep;
 mod subject;
+pub mod sweep;
 mod table_file;
 
 pub use penalty::{parse_penalties, penalty_study, StudyRow, StudySpec, MAX_RUNS};

@@ -3,6 +3,7 @@
 pub mod outcome;
 pub mod post;
 pub mod study;
+pub use study::{StudyArgs, SweepArgs};
 
 use clap::{Parser, Subcommand};
 use slideline::Error;
@@ -100,107 +101,6 @@ pub enum Command {
         #[arg(last = true, allow_hyphen_values = true)]
         petsc: Vec<String>,
     },
-}
-
-#[derive(clap::Args)]
-pub struct StudyArgs {
-    /// A TOML deck to study instead of the bellows (every contact pair gets each penalty).
-    #[arg(long)]
-    pub deck: Option<PathBuf>,
-    /// Penalty values: a range "1e2..1e6" (log-spaced) or a list "1e3,1e4,1e5".
-    #[arg(long, default_value = "1e2..1e6")]
-    pub penalties: String,
-    /// Values per decade of a range.
-    #[arg(long, default_value_t = 2)]
-    pub per_decade: usize,
-    /// The values are the dimensionless kappa (eps = kappa E / h), not N/mm^3.
-    #[arg(long)]
-    pub dimensionless: bool,
-    /// Also run the middle penalty with augmented-Lagrangian updates (the reference).
-    #[arg(long)]
-    pub augmented: bool,
-    /// Reaction tolerance of the recommendation, relative to the reference.
-    #[arg(allow_hyphen_values = true, long, default_value_t = 0.01)]
-    pub tolerance: f64,
-    /// Node set whose axial reaction is compared (bellows: moving_end).
-    #[arg(long)]
-    pub reaction: Option<String>,
-    /// Bellows: the coarse mesh of --quick.
-    #[arg(long)]
-    pub quick: bool,
-    /// Bellows: increments of the compression step.
-    #[arg(long)]
-    pub increments: Option<usize>,
-    /// Bellows: axial compression, mm.
-    #[arg(allow_hyphen_values = true, long)]
-    pub displacement: Option<f64>,
-    /// The study file (HDF5); each run's results go to a directory beside it.
-    #[arg(short, long, default_value = "penalty_study.h5")]
-    pub output: PathBuf,
-    #[command(flatten)]
-    pub runs: StudyRuns,
-    #[arg(short, long)]
-    pub quiet: bool,
-    /// PETSc options (after `--`).
-    #[arg(last = true, allow_hyphen_values = true)]
-    pub petsc: Vec<String>,
-}
-
-#[derive(clap::Args)]
-pub struct SweepArgs {
-    /// The design specification every variant starts from (docs/bellows-spec.md).
-    #[arg(long, value_name = "FILE.toml")]
-    pub spec: PathBuf,
-    /// A key of the specification and its values: KEY=a,b,c (a list), KEY=a..b (the integers
-    /// a to b) or KEY=a..b:n (n values from a to b); KEY is section.key, or a key found in one
-    /// section. Repeat for more keys: the variants are every combination.
-    #[arg(long = "vary", value_name = "KEY=VALUES", required = true)]
-    pub vary: Vec<String>,
-    /// The finite-element assessment beside the code check (as `bellows --assess`).
-    #[arg(long)]
-    pub assess: bool,
-    /// The instability pressures by buckling analyses (as `bellows --squirm`).
-    #[arg(long)]
-    pub squirm: bool,
-    /// The natural frequencies (as `bellows --frequencies`).
-    #[arg(long)]
-    pub frequencies: bool,
-    /// The lateral spring rate for an offset of MM (as `bellows --lateral`).
-    #[arg(allow_hyphen_values = true, long, value_name = "MM")]
-    pub lateral: Option<f64>,
-    /// The angular spring rate for a rotation of DEG (as `bellows --angular`).
-    #[arg(allow_hyphen_values = true, long, value_name = "DEG")]
-    pub angular: Option<f64>,
-    /// The code check and the analyses of the joint at rest only: no elastic-plastic run of
-    /// the design movement.
-    #[arg(long)]
-    pub elastic_only: bool,
-    /// The figure the printed table is sorted by (a column of the study: axial_rate,
-    /// allowable_cycles, fe_squirm_pressure, end_force, ..., or a varied key).
-    #[arg(long, default_value = "axial_rate", value_name = "FIGURE")]
-    pub sort: String,
-    /// The study file (HDF5, a CSV beside it); each variant's results go to a directory beside it.
-    #[arg(short, long, default_value = "bellows_sweep.h5")]
-    pub output: PathBuf,
-    #[command(flatten)]
-    pub runs: StudyRuns,
-    #[arg(short, long)]
-    pub quiet: bool,
-    /// PETSc options (after `--`).
-    #[arg(last = true, allow_hyphen_values = true)]
-    pub petsc: Vec<String>,
-}
-
-/// How a study shares its runs out over the ranks, and what each keeps.
-#[derive(clap::Args)]
-pub struct StudyRuns {
-    /// Ranks each run uses: the ranks given to mpirun are split into groups of this many, each
-    /// taking the next run as it comes free (it must divide the ranks).
-    #[arg(long, default_value_t = 1, value_name = "G")]
-    pub ranks_per_run: usize,
-    /// Keep every increment's fields in each run's file (else its history and each step's end).
-    #[arg(long)]
-    pub full_output: bool,
 }
 
 #[derive(clap::Args)]

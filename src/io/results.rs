@@ -411,7 +411,16 @@ impl ResultsFile {
         }
         if f.von_mises {
             let vm: Vec<[[f64; 1]; QUADRATURE_POINTS]> = local_stress.iter().map(|e| e.map(|s| [von_mises(&s)])).collect();
-            write_field(&g, "von_mises", &[self.elements, QUADRATURE_POINTS], self.element_slab, &gauss_rows(&vm, used), self.precision, &self.world, &self.path)?;
+            write_field(
+                &g,
+                "von_mises",
+                &[self.elements, QUADRATURE_POINTS],
+                self.element_slab,
+                &gauss_rows(&vm, used),
+                self.precision,
+                &self.world,
+                &self.path,
+            )?;
             let mean: Vec<f64> = vm.iter().zip(used).map(|(e, &n)| e[..n].iter().map(|v| v[0]).sum::<f64>() / n as f64).collect();
             write_field(&g, "von_mises_mean", &[self.elements], self.element_slab, &mean, self.precision, &self.world, &self.path)?;
         }

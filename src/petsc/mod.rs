@@ -103,33 +103,23 @@ impl PetscSession {
         use mpi::traits::Communicator;
         options::check(petsc_options)?;
         quiet_threads();
-        let (universe, threading) =
-            mpi::initialize_with_threading(Threading::Multiple).ok_or_else(|| Error::Mpi("MPI was already initialised".into()))?;
+        let (universe, threading) = mpi::initialize_with_threading(Threading::Multiple).ok_or_else(|| Error::Mpi("MPI was already initialised".into()))?;
         if threading != Threading::Multiple {
             return Err(Error::Mpi(format!("this MPI gives {threading:?} threading; a study's coordinator needs MPI_THREAD_MULTIPLE")));
         }
         let everyone = universe.world();
         let size = everyone.size() as usize;
         if ranks_per_group == 0 || !size.is_multiple_of(ranks_per_group) {
-            return Err(Error::input(format!(
-                "--ranks-per-run {ranks_per_group}: it must divide the {size} ranks given (mpirun -n {size}) into whole groups"
-            )));
+            return Err(Error::input(format!("--ranks-per-run {ranks_per_group}: it must divide the {size} ranks given (mpirun -n {size}) into whole groups")));
         }
         let index = everyone.rank() as usize / ranks_per_group;
-        let group = everyone
-            .split_by_color(Color::with_value(index as i32))
-            .ok_or_else(|| Error::Mpi("MPI_Comm_split gave no communicator".into()))?;
+        let group = everyone.split_by_color(Color::with_value(index as i32)).ok_or_else(|| Error::Mpi("MPI_Comm_split gave no communicator".into()))?;
         let groups = Groups { count: size / ranks_per_group, index, ranks_per_group };
         Self::start(petsc_options, group, Some(groups), universe)
     }
 
     /// PETSc and SLEPc started on `world`, with the stop signals trapped.
-    fn start(
-        petsc_options: &[String],
-        world: mpi::topology::SimpleCommunicator,
-        groups: Option<Groups>,
-        universe: mpi::environment::Universe,
-    ) -> Result<Self> {
+    fn start(petsc_options: &[String], world: mpi::topology::SimpleCommunicator, groups: Option<Groups>, universe: mpi::environment::Universe) -> Result<Self> {
         let mut args = vec![CString::new("slideline").expect("static name")];
         for o in petsc_options {
             args.push(CString::new(o.as_str()).map_err(|_| Error::input(format!("PETSc option {o:?} contains a NUL byte")))?);

@@ -171,37 +171,22 @@ fn groups(session: &PetscSession) -> (usize, usize) {
 /// `runs` shared out to the groups; on world rank 0 the rows of `before` and theirs, in order,
 /// the study file rewritten as each arrives.
 fn run_all(session: &PetscSession, spec: &StudySpec, dir: &Path, runs: &[Run], before: &[StudyRow]) -> Result<Vec<StudyRow>> {
-    let leader = session.world().rank() == 0;
-    let decode = |reports: &[super::pool::Report]| -> Vec<StudyRow> {
-        let mut rows: Vec<(usize, StudyRow)> = reports.iter().filter_map(|(k, b)| toml::from_str(std::str::from_utf8(b).ok()?).ok().map(|r| (*k, r))).collect();
-        rows.sort_by_key(|(k, _)| *k);
-        before.iter().cloned().chain(rows.into_iter().map(|(_, r)| r)).collect()
-    };
     let total = runs.len();
-    let reports = super::pool::run_tasks(
+    let rows = super::pool::run_rows(
         session,
         total,
-        |k| {
-            let row = run_one(session, spec, dir, &runs[k]);
-            if leader {
-                toml::to_string(&row).unwrap_or_default().into_bytes()
-            } else {
-                Vec::new()
-            }
-        },
-        |reports: &[super::pool::Report]| {
-            let rows = decode(reports);
+        |k| run_one(session, spec, dir, &runs[k]),
+        |done: &[StudyRow], newest| {
             if spec.progress {
-                if let Some(r) = reports.last().and_then(|(k, _)| rows.iter().find(|r| r.label == runs[*k].label)) {
-                    println!("  [{}/{total}] {}", reports.len(), row_line(r));
-                }
+                println!("  [{}/{total}] {}", done.len(), row_line(&done[newest]));
             }
-            if let Err(e) = write_study(spec, &rows) {
+            let all: Vec<StudyRow> = before.iter().cloned().chain(done.iter().cloned()).collect();
+            if let Err(e) = write_study(spec, &all) {
                 println!("note: the study file could not be written: {e}");
             }
         },
     );
-    Ok(decode(&reports))
+    Ok(before.iter().cloned().chain(rows).collect())
 }
 
 /// One run, on its group's ranks: the model with the run's penalty, its results file, and its

@@ -15,7 +15,7 @@ const ASK: i32 = 7101;
 const ANSWER: i32 = 7102;
 
 /// A finished run's report: its index in the study's list and what its group's leader said.
-pub type Report = (usize, Vec<u8>);
+type Report = (usize, Vec<u8>);
 
 /// Runs `count` tasks over the session's groups (collective over every rank): `work(k)` is
 /// called by every rank of the group that takes task k and returns its report (the leader's is
@@ -23,7 +23,7 @@ pub type Report = (usize, Vec<u8>);
 /// report so far each time one arrives (to keep the study's file current). After SIGINT or
 /// SIGTERM no task is handed out; the runs under way end as their drivers stop them. Returns
 /// the reports in the order they came on world rank 0, nothing elsewhere.
-pub fn run_tasks<W, R>(session: &PetscSession, count: usize, mut work: W, reported: R) -> Vec<Report>
+fn run_tasks<W, R>(session: &PetscSession, count: usize, mut work: W, reported: R) -> Vec<Report>
 where
     W: FnMut(usize) -> Vec<u8>,
     R: FnMut(&[Report]) + Send,
@@ -46,6 +46,44 @@ where
         }
         coordinator.map(|c| c.join().unwrap_or_default()).unwrap_or_default()
     })
+}
+
+/// [`run_tasks`] for runs that report a row: `work(k)` returns task k's row (the group
+/// leader's is kept, sent as TOML); `reported(rows, newest)` gets every row so far in task
+/// order, and which of them just arrived, each time one does (world rank 0); the rows in task
+/// order are returned there, nothing elsewhere.
+pub fn run_rows<Row, W, R>(session: &PetscSession, count: usize, mut work: W, mut reported: R) -> Vec<Row>
+where
+    Row: serde::Serialize + serde::de::DeserializeOwned,
+    W: FnMut(usize) -> Row,
+    R: FnMut(&[Row], usize) + Send,
+{
+    let leader = session.world().rank() == 0;
+    // the rows in task order, with their tasks
+    let decode = |reports: &[Report]| -> (Vec<usize>, Vec<Row>) {
+        let mut decoded: Vec<(usize, Row)> = reports.iter().filter_map(|(k, b)| Some((*k, toml::from_str(std::str::from_utf8(b).ok()?).ok()?))).collect();
+        decoded.sort_by_key(|(k, _)| *k);
+        decoded.into_iter().unzip()
+    };
+    let reports = run_tasks(
+        session,
+        count,
+        |k| {
+            let row = work(k);
+            if leader {
+                toml::to_string(&row).unwrap_or_default().into_bytes()
+            } else {
+                Vec::new()
+            }
+        },
+        |reports: &[Report]| {
+            let (tasks, rows) = decode(reports);
+            if let Some(newest) = reports.last().and_then(|(k, _)| tasks.iter().position(|t| t == k)) {
+                reported(&rows, newest);
+            }
+        },
+    );
+    decode(&reports).1
 }
 
 /// A leader's report of the run it finished (if any) and its question for the next: the

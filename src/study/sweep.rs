@@ -9,7 +9,7 @@ use super::table_file::Table;
 use super::Outcome;
 use crate::bellows::flexibility::Movements;
 use crate::bellows::spec::DesignSpec;
-use crate::bellows::workflow::{self, BellowsJob, BeforeTheRun};
+use crate::bellows::workflow::{self, BeforeTheRun, BellowsJob};
 use crate::error::{Error, Result};
 use crate::io::plots::{point_plot, Axes, Curve};
 use crate::petsc::PetscSession;
@@ -84,7 +84,8 @@ fn parse_values(text: &str) -> std::result::Result<Vec<toml::Value>, String> {
             (None, toml::Value::Integer(a), toml::Value::Integer(b)) => (*a..=*b).map(toml::Value::Integer).collect(),
             (None, _, _) => return Err("a range without a count is of integers (a..b); give a..b:n for n values".into()),
             (Some(n), a, b) => {
-                let (a, b) = (a.as_float().or(a.as_integer().map(|i| i as f64)).unwrap_or(0.0), b.as_float().or(b.as_integer().map(|i| i as f64)).unwrap_or(0.0));
+                let (a, b) =
+                    (a.as_float().or(a.as_integer().map(|i| i as f64)).unwrap_or(0.0), b.as_float().or(b.as_integer().map(|i| i as f64)).unwrap_or(0.0));
                 match n {
                     0 => Vec::new(),
                     1 => vec![toml::Value::Float(a)],
@@ -303,37 +304,21 @@ pub fn bellows_sweep(session: &PetscSession, spec: &SweepSpec) -> Result<Vec<Swe
         let groups = session.groups().map_or(1, |g| g.count);
         println!("bellows-sweep: {} variants on {groups} group(s) of {} rank(s), results in {}", all.len(), session.world().size(), dir.display());
     }
-    let leader = session.world().rank() == 0;
-    let decode = |reports: &[super::pool::Report]| -> Vec<SweepRow> {
-        let mut rows: Vec<SweepRow> = reports.iter().filter_map(|(_, b)| toml::from_str(std::str::from_utf8(b).ok()?).ok()).collect();
-        rows.sort_by_key(|r| r.variant);
-        rows
-    };
     let total = all.len();
-    let reports = super::pool::run_tasks(
+    let rows = super::pool::run_rows(
         session,
         total,
-        |k| {
-            let row = run_variant(session, spec, &dir, k, &all[k]);
-            if leader {
-                toml::to_string(&row).unwrap_or_default().into_bytes()
-            } else {
-                Vec::new()
+        |k| run_variant(session, spec, &dir, k, &all[k]),
+        |done: &[SweepRow], newest| {
+            if spec.progress {
+                let r = &done[newest];
+                println!("  [{}/{total}] {} ({:.1} s): {}", done.len(), r.label, r.wall_time, outcome_text(r));
             }
-        },
-        |reports: &[super::pool::Report]| {
-            let rows = decode(reports);
-            if let (true, Some((k, _))) = (spec.progress, reports.last()) {
-                if let Some(r) = rows.iter().find(|r| r.variant == *k) {
-                    println!("  [{}/{total}] {} ({:.1} s): {}", reports.len(), r.label, r.wall_time, outcome_text(r));
-                }
-            }
-            if let Err(e) = write_study(spec, &rows) {
+            if let Err(e) = write_study(spec, done) {
                 println!("note: the study file could not be written: {e}");
             }
         },
     );
-    let rows = decode(&reports);
     if root {
         write_study(spec, &rows)?;
         let picture = picture(spec, &rows)?;
@@ -436,7 +421,8 @@ fn write_study(spec: &SweepSpec, rows: &[SweepRow]) -> Result<()> {
     let err = |e: hdf5::Error| Error::Output { path: path.clone(), message: e.to_string() };
     super::write_whole(path, |part| {
         let file = hdf5::File::create(part).map_err(err)?;
-        let text = spec.base.parse::<hdf5::types::VarLenUnicode>().map_err(|_| Error::Output { path: path.clone(), message: "the specification's text".into() })?;
+        let text =
+            spec.base.parse::<hdf5::types::VarLenUnicode>().map_err(|_| Error::Output { path: path.clone(), message: "the specification's text".into() })?;
         file.new_attr::<hdf5::types::VarLenUnicode>().create("specification").map_err(err)?.write_scalar(&text).map_err(err)?;
         t.write_group(&file, "variants", path)
     })?;
@@ -455,13 +441,7 @@ pub fn table(spec: &SweepSpec, rows: &[SweepRow]) -> String {
     let _ = writeln!(
         s,
         "{:>4} {:<40} {:>12} {:>14} {:>12} {:>12} {:>8}  verdict",
-        "#",
-        "settings",
-        "rate N/mm",
-        "allow. cycles",
-        "FE rate N/mm",
-        "end force N",
-        "wall s"
+        "#", "settings", "rate N/mm", "allow. cycles", "FE rate N/mm", "end force N", "wall s"
     );
     // a figure not computed (an analysis not asked, a variant that failed) is a dash
     let shown = |v: f64, digits: usize| if v.is_finite() { format!("{v:.digits$}") } else { "-".into() };
