@@ -196,7 +196,15 @@ fn sigterm_during_a_study_keeps_every_finished_run() {
         }
     }
     // mpirun kills its ranks a second after passing SIGTERM on: on a loaded machine a rank
-    // may die before it releases the lock, so the lock is the next study's to replace
+    // may die before it releases the lock, so the lock is the next study's to replace once
+    // its writer is gone (mpirun may return while the kernel is still ending it)
+    if let Ok(lock) = std::fs::read_to_string(dir.path().join("study.lock")) {
+        let pid = lock.split_whitespace().skip_while(|w| *w != "pid").nth(1).unwrap_or("0").to_string();
+        let start = std::time::Instant::now();
+        while Path::new(&format!("/proc/{pid}")).exists() && start.elapsed().as_secs() < 30 {
+            std::thread::sleep(std::time::Duration::from_millis(100));
+        }
+    }
     let again = command_in(dir.path(), 1)
         .current_dir(dir.path())
         .args(["penalty-study", "--quick", "--displacement", "2", "--increments", "2", "--penalties", "1e4", "-q", "-o"])
