@@ -22,7 +22,9 @@ type Report = (usize, Vec<u8>);
 /// kept); `reported` is called on world rank 0, from the coordinator's thread, with every
 /// report so far each time one arrives (to keep the study's file current). After SIGINT or
 /// SIGTERM no task is handed out; the runs under way end as their drivers stop them. Returns
-/// the reports in the order they came on world rank 0, nothing elsewhere.
+/// the reports in the order they came on world rank 0, nothing elsewhere. `reported` may write
+/// HDF5 files while rank 0's own run writes its results: the `hdf5` crate serialises every
+/// call of the library behind one lock (and `io::h5ffi` takes it too).
 fn run_tasks<W, R>(session: &PetscSession, count: usize, mut work: W, reported: R) -> Vec<Report>
 where
     W: FnMut(usize) -> Vec<u8>,
