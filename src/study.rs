@@ -21,11 +21,12 @@ use std::path::{Path, PathBuf};
 /// The most runs a study makes: beyond it a mistyped range would start hours of runs.
 pub const MOST_RUNS: usize = 1000;
 
-/// Field output of a study's run: its history and the last increment of each step, or every
-/// increment with `full` (a 100-variant study would otherwise write tens of gigabytes).
-pub fn study_output(model: &mut crate::model::Model, full: bool) {
+/// Field output of a study's run, set on its `every` (a deck's `[output] every`, the bellows'
+/// `output_every`): its history and the last increment of each step, or as asked with `full`
+/// (a 100-variant study would otherwise write tens of gigabytes).
+pub fn study_output(every: &mut usize, full: bool) {
     if !full {
-        model.output.every = u32::MAX as usize;
+        *every = u32::MAX as usize;
     }
 }
 

@@ -239,30 +239,8 @@ pub struct BellowsArgs {
     /// VIII-1 App. 26); without them slideline computes them from the idealised convolution.
     #[arg(allow_hyphen_values = true, long, value_name = "CP,CF,CD", value_delimiter = ',')]
     pub coefficients: Option<Vec<f64>>,
-    /// The design assessment by finite elements beside the code check: linear elastic analyses
-    /// of the design pressure alone and of the stroke alone, linearised across the plies, and
-    /// the life from the run's own strain range.
-    #[arg(long)]
-    pub assess: bool,
-    /// The lateral spring rate: tube B's end offset sideways by MM, its rotation held, by a
-    /// harmonic perturbation (mode 1) of the joint at rest and of the run's end state, beside
-    /// the code's beam analogy (the guide sleeve's contact left out).
-    #[arg(allow_hyphen_values = true, long, value_name = "MM")]
-    pub lateral: Option<f64>,
-    /// The angular spring rate: tube B's end rotated by DEG about a diameter through the
-    /// bellows' centre, as --lateral.
-    #[arg(allow_hyphen_values = true, long, value_name = "DEG")]
-    pub angular: Option<f64>,
-    /// The instability pressures by buckling analyses of the joint at rest and of the run's end
-    /// state, both tubes' ends held: the column instability (squirm, mode 1) beside EJMA's
-    /// column formula, and the in-plane instability (mode 0) beside the code's.
-    #[arg(long)]
-    pub squirm: bool,
-    /// The natural frequencies by frequency steps of the joint at rest and of the run's end
-    /// state, both tubes' ends held: the first axial (mode 0) and lateral (mode 1) modes beside
-    /// the spring and beam analogies of EJMA's formulas (the fluid's mass left out).
-    #[arg(long)]
-    pub frequencies: bool,
+    #[command(flatten)]
+    pub analyses: JointAnalyses,
     /// A load cycle: after the compression, a further step takes tube B's end back to where it
     /// started (the force-displacement picture then shows the loop).
     #[arg(long)]
@@ -332,16 +310,16 @@ impl BellowsArgs {
             verbose: self.verbose,
             monitor: self.monitor,
             restart: self.restart.clone().map(|file| slideline::io::restart::RestartFrom { file, increment: self.increment }),
-            squirm: self.squirm,
-            assess: self.assess,
-            frequencies: self.frequencies,
+            squirm: self.analyses.squirm,
+            assess: self.analyses.assess,
+            frequencies: self.analyses.frequencies,
         }
     }
 
     /// The movements of the flexibility perturbations (`--lateral`, `--angular`), if any, for
     /// joint `p`.
     pub fn movements(&self, p: &slideline::bellows::joint::BellowsParams) -> Result<Option<slideline::bellows::flexibility::Movements>, Error> {
-        slideline::bellows::flexibility::Movements::checked(self.lateral, self.angular, p)
+        slideline::bellows::flexibility::Movements::checked(self.analyses.lateral, self.analyses.angular, p)
     }
 
     /// The design specification (`--spec`), with the flags that give its values applied: the
@@ -442,6 +420,35 @@ impl BellowsArgs {
 /// [`BellowsArgs::spec`]).
 const SPEC_FLAGS: [&str; 10] =
     ["plies", "ply_thickness", "convolutions", "pitch", "height", "coefficients", "pressure", "temperature", "displacement", "yield_stress"];
+
+/// The analyses of the joint beside its run, for `bellows` and each variant of `bellows-sweep`.
+#[derive(clap::Args)]
+pub struct JointAnalyses {
+    /// The design assessment by finite elements beside the code check: linear elastic analyses
+    /// of the design pressure alone and of the stroke alone, linearised across the plies, and
+    /// the life from the run's own strain range.
+    #[arg(long)]
+    pub assess: bool,
+    /// The lateral spring rate: tube B's end offset sideways by MM, its rotation held, by a
+    /// harmonic perturbation (mode 1) of the joint at rest and of the run's end state, beside
+    /// the code's beam analogy (the guide sleeve's contact left out).
+    #[arg(allow_hyphen_values = true, long, value_name = "MM")]
+    pub lateral: Option<f64>,
+    /// The angular spring rate: tube B's end rotated by DEG about a diameter through the
+    /// bellows' centre, as --lateral.
+    #[arg(allow_hyphen_values = true, long, value_name = "DEG")]
+    pub angular: Option<f64>,
+    /// The instability pressures by buckling analyses of the joint at rest and of the run's end
+    /// state, both tubes' ends held: the column instability (squirm, mode 1) beside EJMA's
+    /// column formula, and the in-plane instability (mode 0) beside the code's.
+    #[arg(long)]
+    pub squirm: bool,
+    /// The natural frequencies by frequency steps of the joint at rest and of the run's end
+    /// state, both tubes' ends held: the first axial (mode 0) and lateral (mode 1) modes beside
+    /// the spring and beam analogies of EJMA's formulas (the fluid's mass left out).
+    #[arg(long)]
+    pub frequencies: bool,
+}
 
 /// The `--output-precision` choices.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]

@@ -63,21 +63,8 @@ pub struct SweepArgs {
     /// section. Repeat for more keys: the variants are every combination.
     #[arg(long = "vary", value_name = "KEY=VALUES", required = true)]
     pub vary: Vec<String>,
-    /// The finite-element assessment beside the code check (as `bellows --assess`).
-    #[arg(long)]
-    pub assess: bool,
-    /// The instability pressures by buckling analyses (as `bellows --squirm`).
-    #[arg(long)]
-    pub squirm: bool,
-    /// The natural frequencies (as `bellows --frequencies`).
-    #[arg(long)]
-    pub frequencies: bool,
-    /// The lateral spring rate for an offset of MM (as `bellows --lateral`).
-    #[arg(allow_hyphen_values = true, long, value_name = "MM")]
-    pub lateral: Option<f64>,
-    /// The angular spring rate for a rotation of DEG (as `bellows --angular`).
-    #[arg(allow_hyphen_values = true, long, value_name = "DEG")]
-    pub angular: Option<f64>,
+    #[command(flatten)]
+    pub analyses: super::JointAnalyses,
     /// The code check and the analyses of the joint at rest only: no elastic-plastic run of
     /// the design movement.
     #[arg(long)]
@@ -192,11 +179,11 @@ fn sweep_spec(args: &SweepArgs) -> Result<slideline::study::sweep::SweepSpec, Er
         return Err(Error::input(format!("--vary {}: given twice", v.name())));
     }
     let analyses = Analyses {
-        assess: args.assess,
-        squirm: args.squirm,
-        frequencies: args.frequencies,
-        lateral: args.lateral,
-        angular: args.angular,
+        assess: args.analyses.assess,
+        squirm: args.analyses.squirm,
+        frequencies: args.analyses.frequencies,
+        lateral: args.analyses.lateral,
+        angular: args.analyses.angular,
         elastic_only: args.elastic_only,
     };
     Ok(SweepSpec {

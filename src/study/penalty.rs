@@ -201,7 +201,7 @@ fn run_one(session: &PetscSession, spec: &StudySpec, dir: &Path, run: &Run) -> S
                 c.augmented_lagrangian = Some(AugmentedLagrangian { penetration_tolerance: tolerance, max_augmentations: 20 });
             }
         }
-        super::study_output(&mut model, spec.full_output);
+        super::study_output(&mut model.output.every, spec.full_output);
         crate::solve::run(session, &model, &RunOptions { output: results.clone(), progress: false, verbose: false, monitor: false, restart: None })
     });
     let wall = start.elapsed().as_secs_f64();

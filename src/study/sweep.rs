@@ -350,9 +350,7 @@ fn run_variant(session: &PetscSession, spec: &SweepSpec, dir: &Path, k: usize, v
     let mut answers = || -> Result<()> {
         let design = DesignSpec::from_text(&v.text, &spec.path)?;
         let mut params = design.joint_params()?;
-        if !spec.full_output {
-            params.output_every = u32::MAX as usize;
-        }
+        super::study_output(&mut params.output_every, spec.full_output);
         params.validate()?;
         let movements = Movements::checked(a.lateral, a.angular, &params)?;
         let job = BellowsJob {
