@@ -229,7 +229,14 @@ pub fn mesh(p: &BellowsParams) -> Result<(Mesh, MeshSets)> {
     // sleeve: matches tube A's stations on the bonded part [sa, za]
     let bonded: Vec<f64> = tube_a_z.iter().copied().filter(|&z| z >= sa - 1e-9).collect();
     let mut sleeve_z = bonded.clone();
-    let free = stations(za, sb, count(sb - za, h));
+    // the crown's start is a station: a quadratic edge across it would bulge past the bore
+    // (by about a millionth of a mm) and overclose tube B at rest
+    let crown_start = sb - p.sleeve_crown_length;
+    let free = if p.sleeve_crown > 0.0 && crown_start > za {
+        piecewise(&[za, crown_start, sb], &[count(crown_start - za, h), count(p.sleeve_crown_length, h)])
+    } else {
+        stations(za, sb, count(sb - za, h))
+    };
     sleeve_z.extend(&free[1..]);
     let mut sleeve = block("sleeve", &stations(rs, ri, n_wall), &sleeve_z);
     crown_sleeve_end(&mut sleeve.1, p, [rs, ri], sb);

@@ -61,7 +61,8 @@ fn quiet_run(output: &Path) -> RunOptions {
 }
 
 /// `work` in a fresh temporary directory, the same on every rank (rank 0 names and creates it,
-/// and removes it when every rank is done; collective).
+/// and removes it when every rank is done, unless `work` failed: its error may name the file,
+/// which is then kept to be read; collective).
 fn in_scratch<T>(session: &PetscSession, name: &str, work: impl FnOnce(&Path) -> Result<T>) -> Result<T> {
     let world = session.world();
     let mut id = [std::process::id() as u64, std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).map_or(0, |d| d.as_nanos() as u64)];
@@ -73,7 +74,7 @@ fn in_scratch<T>(session: &PetscSession, name: &str, work: impl FnOnce(&Path) ->
     world.barrier();
     let result = work(&dir);
     world.barrier();
-    if world.rank() == 0 {
+    if world.rank() == 0 && result.is_ok() {
         let _ = std::fs::remove_dir_all(&dir);
     }
     result
