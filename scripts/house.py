@@ -103,7 +103,7 @@ LAYERS = [
     ["petsc", "dist"],
     ["io"],
     ["solve", "preprocess"],
-    ["bellows", "post", "study"],
+    ["bellows", "post", "study", "dba"],
     ["main", "cli", "lib"],
 ]
 level = {m: k for k, layer in enumerate(LAYERS) for m in layer}

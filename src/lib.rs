@@ -14,6 +14,7 @@ pub mod ad;
 pub mod assessment;
 pub mod bellows;
 pub mod contact;
+pub mod dba;
 pub mod dist;
 pub mod element;
 pub mod fe;

@@ -88,6 +88,7 @@ fn main() -> ExitCode {
             warn_unused_options(&session, root && !is_bad_input(&result));
             finish(result, root, |summary| workflow::report(&job, &before, summary))
         }
+        Command::Check(args) => cli::check::check_command(&args),
         Command::PenaltyStudy(args) => cli::study::penalty_study_command(&args),
         Command::BellowsSweep(args) => cli::study::sweep_command(&args),
         Command::Coefficients { c1, c2, through, per_thickness, plot, petsc } => {

@@ -8,7 +8,6 @@ pub mod penalty;
 mod pool;
 mod subject;
 pub mod sweep;
-mod table_file;
 
 pub use penalty::{parse_penalties, penalty_study, StudyRow, StudySpec, MAX_RUNS};
 pub use subject::{Measures, Subject};

@@ -1,5 +1,6 @@
 //! The command line's grammar: subcommands and their flags, with the help text users read.
 
+pub mod check;
 pub mod outcome;
 pub mod post;
 pub mod study;
@@ -68,6 +69,10 @@ pub enum Command {
         #[arg(last = true, allow_hyphen_values = true)]
         petsc: Vec<String>,
     },
+    /// The design-by-analysis checks of ASME VIII-2 Part 5 that a deck's `[design_by_analysis]`
+    /// table names (plastic collapse by the limit-load method, ratcheting), each by an analysis
+    /// of its own, and their verdict table.
+    Check(check::CheckArgs),
     /// Read a results file: the run's summary and history, a field at an increment, a node's
     /// or set's time series, two runs side by side, the force-displacement picture. No MPI.
     Post(PostArgs),

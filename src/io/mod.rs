@@ -12,6 +12,7 @@ mod perturbation;
 pub mod restart;
 pub mod results;
 pub mod status;
+pub mod table_file;
 pub mod xdmf;
 
 pub use results::{ContactSummary, HistoryRow, ResultsFile};

@@ -6,11 +6,11 @@
 //! smallest penalty whose reaction is within a tolerance of the reference (the
 //! augmented-Lagrangian run if there is one, else the stiffest converged run).
 
-use super::table_file::Table;
 use super::{Measures, Outcome, Subject};
 use crate::error::{Error, Result};
 use crate::io::plots::{line_plot, Axes, Curve};
 use crate::io::reader::ResultsReader;
+use crate::io::table_file::Table;
 use crate::model::{AugmentedLagrangian, Penalty};
 use crate::petsc::PetscSession;
 use crate::solve::RunOptions;

@@ -5,13 +5,13 @@
 //! a chosen figure, and a picture of the axial rate against the allowable cycles with the
 //! variants that pass marked.
 
-use super::table_file::Table;
 use super::Outcome;
 use crate::bellows::flexibility::Movements;
 use crate::bellows::spec::DesignSpec;
 use crate::bellows::workflow::{self, BeforeTheRun, BellowsJob};
 use crate::error::{Error, Result};
 use crate::io::plots::{point_plot, Axes, Curve};
+use crate::io::table_file::Table;
 use crate::petsc::PetscSession;
 use crate::solve::RunSummary;
 use mpi::traits::Communicator;

@@ -33,6 +33,9 @@ pub(super) struct DeckFile {
     pub(super) tie: Vec<TieSpec>,
     #[serde(default)]
     pub(super) step: Vec<StepSpec>,
+    /// `[design_by_analysis]`: read by `slideline check` (`dba::spec`), not by the model.
+    #[allow(dead_code)]
+    pub(super) design_by_analysis: Option<toml::Value>,
 }
 
 /// `[[tie]]`: the slave surface's nodes glued to the master's faces (`model::constraint::tie`).

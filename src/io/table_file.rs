@@ -1,4 +1,4 @@
-//! A study's table (one row per run, its columns in order) in HDF5 and CSV.
+//! A table of columns (a study's rows, a verdict's lines) in HDF5 and CSV.
 
 use crate::error::{Error, Result};
 use std::path::Path;

@@ -1,0 +1,188 @@
+//! Design by analysis, ASME VIII-2 Part 5: the checks carried out on a deck's model, each by
+//! an analysis of its own built from the deck's loads (the limit-load method of protection
+//! against plastic collapse, [`limit_load`]; ratcheting by elastic-plastic analysis,
+//! [`ratcheting`]), and their verdict table. What to check and the data it needs beyond the
+//! model are the deck's `[design_by_analysis]` table ([`spec`]).
+
+pub mod limit_load;
+pub mod ratcheting;
+pub mod spec;
+
+use crate::error::{Error, Result};
+use crate::io::table_file::Table;
+use crate::model::Model;
+use crate::petsc::PetscSession;
+use mpi::traits::Communicator;
+use spec::DbaSpec;
+use std::path::{Path, PathBuf};
+
+/// One line of the verdict table.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CheckRow {
+    pub check: String,
+    pub criterion: String,
+    /// The figure the analysis gave (None: not evaluated, `note` says why).
+    pub figure: Option<f64>,
+    pub limit: f64,
+    pub unit: &'static str,
+    /// None for a line that only informs (a criterion of which another may hold).
+    pub passes: Option<bool>,
+    pub rule: String,
+}
+
+/// The checks' answers.
+pub struct Verdict {
+    pub rows: Vec<CheckRow>,
+    /// Each check's own results file.
+    pub files: Vec<(String, PathBuf)>,
+}
+
+impl Verdict {
+    pub fn passes(&self) -> bool {
+        self.rows.iter().all(|r| r.passes != Some(false))
+    }
+}
+
+/// The results file of check `name` beside the verdict file `output`: out.h5 -> out_NAME.h5.
+pub fn check_file(output: &Path, name: &str) -> PathBuf {
+    let stem = output.file_stem().unwrap_or_default().to_string_lossy();
+    output.with_file_name(format!("{stem}_{name}.h5"))
+}
+
+/// Runs every check `spec` names on `model` (collective); each check's run goes to its own
+/// file beside `output`.
+pub fn run(session: &PetscSession, model: &Model, spec: &DbaSpec, output: &Path, progress: bool) -> Result<Verdict> {
+    let root = session.world().rank() == 0;
+    let mut rows = Vec::new();
+    let mut files = Vec::new();
+    if let Some(ll) = &spec.limit_load {
+        let file = check_file(output, "limit_load");
+        if root && progress {
+            println!(
+                "limit load: elastic-perfectly plastic at 1.5 S, small displacements, the primary loads x {} and on up to x {} ...",
+                ll.factor, ll.search_to
+            );
+        }
+        let answer = limit_load::run(session, model, spec, &file, progress)?;
+        rows.push(limit_load_row(&answer, ll));
+        files.push(("limit_load".to_string(), file));
+    }
+    if let Some(r) = &spec.ratcheting {
+        let file = check_file(output, "ratcheting");
+        if root && progress {
+            println!("ratcheting: elastic-perfectly plastic at the yield strength, {} cycles of steps {:?} ...", r.cycles, r.cycle);
+        }
+        let answer = ratcheting::run(session, model, spec, &file, progress)?;
+        rows.extend(ratcheting_rows(&answer));
+        files.push(("ratcheting".to_string(), file));
+    }
+    Ok(Verdict { rows, files })
+}
+
+fn limit_load_row(a: &limit_load::LimitLoad, ll: &spec::LimitLoadSpec) -> CheckRow {
+    let criterion = match (&a.failed_in, a.collapsed) {
+        (_, false) => format!("the loads x {} carried (collapse above x {})", ll.factor, ll.search_to),
+        (Some((step, lambda)), true) if !a.carried => format!("the loads x {} carried; Newton failed in step '{step}' at load factor {lambda:.4}", ll.factor),
+        _ => format!("the loads x {} carried; the collapse load factor", ll.factor),
+    };
+    CheckRow {
+        check: "plastic collapse, limit load".into(),
+        criterion,
+        figure: a.reached,
+        limit: ll.factor,
+        unit: "x loads",
+        passes: Some(a.carried),
+        rule: "VIII-2 5.2.3, Table 5.3: 1.5 (P + Ps + D) at 1.5 S".into(),
+    }
+}
+
+fn ratcheting_rows(a: &ratcheting::Ratcheting) -> Vec<CheckRow> {
+    let last = format!("cycles {} and {}", a.cycles - 1, a.cycles);
+    let row = |criterion: String, figure: Option<f64>, limit: f64, unit: &'static str, rule: &str| CheckRow {
+        check: "ratcheting".into(),
+        criterion,
+        figure,
+        limit,
+        unit,
+        passes: None,
+        rule: rule.into(),
+    };
+    vec![
+        row(
+            format!("(a) no plastic action in the last cycle: growth of eq. plastic strain, {last}"),
+            Some(a.last_cycle_plastic),
+            a.strain_tolerance,
+            "-",
+            "VIII-2 5.5.7.2 (a)",
+        ),
+        row(
+            match a.core {
+                Some(_) => "(b) an elastic core in the section: its least plastic strain growth".into(),
+                None => "(b) an elastic core: not evaluated (no ratcheting.section)".into(),
+            },
+            a.core,
+            a.strain_tolerance,
+            "-",
+            "VIII-2 5.5.7.2 (b)",
+        ),
+        row(
+            format!("(c) no change of overall dimensions: largest node displacement change, {last}"),
+            Some(a.dimension_change),
+            a.length_tolerance,
+            "mm",
+            "VIII-2 5.5.7.2 (c)",
+        ),
+        CheckRow { passes: Some(a.passes()), ..row(format!("one of (a), (b), (c) holds; {} cycles", a.cycles), None, 0.0, "", "VIII-2 5.5.7.2") },
+    ]
+}
+
+/// The verdict table as printed.
+pub fn table(v: &Verdict, title: &str) -> String {
+    let mut out = format!("design by analysis (ASME VIII-2 Part 5): {title}\n");
+    out += &format!("  {:<28} {:<84} {:>12} {:>12} {:<8} {:<7} {}\n", "check", "criterion", "figure", "limit", "unit", "verdict", "rule");
+    for r in &v.rows {
+        let figure = r.figure.map_or("-".to_string(), |f| format!("{f:.4e}"));
+        let figure = if r.unit == "x loads" { r.figure.map_or("-".into(), |f| format!("{f:.4}")) } else { figure };
+        let limit = match (r.unit, r.passes, r.figure) {
+            ("", _, _) => String::new(),
+            ("x loads", _, _) => format!(">= {:.2}", r.limit),
+            _ => format!("<= {:.1e}", r.limit),
+        };
+        let verdict = match r.passes {
+            Some(true) => "PASS",
+            Some(false) => "FAIL",
+            None => match (r.figure, r.unit) {
+                (Some(f), _) if f <= r.limit => "holds",
+                (Some(_), _) => "fails",
+                (None, _) => "",
+            },
+        };
+        out += &format!("  {:<28} {:<84} {:>12} {:>12} {:<8} {:<7} {}\n", r.check, r.criterion, figure, limit, r.unit, verdict, r.rule);
+    }
+    out += &format!("verdict: {}\n", if v.passes() { "PASS: every check" } else { "FAIL" });
+    for (name, file) in &v.files {
+        out += &format!("  the {} analysis: {}\n", name.replace('_', " "), file.display());
+    }
+    out
+}
+
+/// The verdict in `output`'s group `/dba` (one row per line of the table; rank 0 only).
+pub fn write(v: &Verdict, output: &Path, deck_text: &str) -> Result<()> {
+    let err = |e: hdf5::Error| Error::Output { path: output.to_path_buf(), message: e.to_string() };
+    let file = hdf5::File::create(output).map_err(err)?;
+    let mut t = Table::default();
+    t.text("check", v.rows.iter().map(|r| r.check.clone()).collect());
+    t.text("criterion", v.rows.iter().map(|r| r.criterion.clone()).collect());
+    t.numbers("figure", "", v.rows.iter().map(|r| r.figure.unwrap_or(f64::NAN)).collect());
+    t.numbers("limit", "", v.rows.iter().map(|r| r.limit).collect());
+    t.text("unit", v.rows.iter().map(|r| r.unit.to_string()).collect());
+    t.text("verdict", v.rows.iter().map(|r| r.passes.map_or("", |p| if p { "PASS" } else { "FAIL" }).to_string()).collect());
+    t.text("rule", v.rows.iter().map(|r| r.rule.clone()).collect());
+    t.write_group(&file, "dba", output)?;
+    let text = |s: &str| s.parse::<hdf5::types::VarLenUnicode>().map_err(|_| Error::Output { path: output.to_path_buf(), message: format!("text {s:?}") });
+    let files = v.files.iter().map(|(n, f)| format!("{n}: {}", f.display())).collect::<Vec<_>>().join("; ");
+    let group = file.group("dba").map_err(err)?;
+    group.new_attr::<hdf5::types::VarLenUnicode>().create("results").map_err(err)?.write_scalar(&text(&files)?).map_err(err)?;
+    file.new_attr::<hdf5::types::VarLenUnicode>().create("deck").map_err(err)?.write_scalar(&text(deck_text)?).map_err(err)?;
+    Ok(())
+}

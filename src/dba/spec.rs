@@ -1,0 +1,141 @@
+//! A deck's `[design_by_analysis]` table: the checks of ASME VIII-2 Part 5 to run on its
+//! model and the data they need beside the model's (docs/design-by-analysis.md).
+
+use crate::error::{Error, Result};
+use crate::model::Model;
+use serde::Deserialize;
+use std::collections::BTreeMap;
+
+/// What `slideline check` runs on a deck.
+#[derive(Deserialize, Debug, Clone, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct DbaSpec {
+    /// The allowable (design) stress S, MPa: one value for every material, or a table by
+    /// material name. The limit-load check needs it.
+    pub allowable_stress: Option<Allowable>,
+    pub limit_load: Option<LimitLoadSpec>,
+    pub ratcheting: Option<RatchetingSpec>,
+}
+
+#[derive(Deserialize, Debug, Clone, PartialEq)]
+#[serde(untagged)]
+pub enum Allowable {
+    Every(f64),
+    ByMaterial(BTreeMap<String, f64>),
+}
+
+/// Protection against plastic collapse by the limit-load method (VIII-2 5.2.3).
+#[derive(Deserialize, Debug, Clone, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct LimitLoadSpec {
+    /// The factor on the primary loads (Table 5.3: 1.5 on P + Ps + D).
+    #[serde(default = "limit_load_factor")]
+    pub factor: f64,
+    /// Past the factor, the loads are raised to this multiple of the design loads to find the
+    /// collapse load factor (the check's figure when it lies below).
+    #[serde(default = "search_to")]
+    pub search_to: f64,
+    /// Increments of that search (each cut back down to the deck's min_increment).
+    #[serde(default = "search_increments")]
+    pub search_increments: usize,
+}
+
+/// Protection against ratcheting by elastic-plastic analysis (VIII-2 5.5.7).
+#[derive(Deserialize, Debug, Clone, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct RatchetingSpec {
+    /// The deck's steps that make one cycle of the loads: its last general steps, in order.
+    pub cycle: Vec<String>,
+    /// How many cycles are run (Part 5: at least three).
+    #[serde(default = "three")]
+    pub cycles: usize,
+    /// The primary-load-bearing section, `[[r1, z1], [r2, z2]]` through the wall, where an
+    /// elastic core is looked for (criterion b); without it that criterion is not evaluated.
+    pub section: Option<[[f64; 2]; 2]>,
+}
+
+fn limit_load_factor() -> f64 {
+    1.5
+}
+fn search_to() -> f64 {
+    4.0
+}
+fn search_increments() -> usize {
+    40
+}
+fn three() -> usize {
+    3
+}
+
+/// The least number of cycles a ratcheting check runs (VIII-2 5.5.7.2: at least three).
+pub const LEAST_CYCLES: usize = 3;
+
+impl DbaSpec {
+    /// The `[design_by_analysis]` table of the TOML deck the model was read from; None when
+    /// it has none (or the model came from an .inp deck).
+    pub fn of_model(model: &Model) -> Result<Option<Self>> {
+        let Ok(table) = model.source_text.parse::<toml::Table>() else { return Ok(None) };
+        let Some(value) = table.get("design_by_analysis") else { return Ok(None) };
+        let spec: DbaSpec = value.clone().try_into().map_err(|e: toml::de::Error| Error::input(format!("[design_by_analysis]: {}", e.message())))?;
+        spec.validate(model)?;
+        Ok(Some(spec))
+    }
+
+    /// Checks every value against the model; names the offending key.
+    pub fn validate(&self, model: &Model) -> Result<()> {
+        let bad = |m: String| Err(Error::input(format!("[design_by_analysis] {m}")));
+        if self.limit_load.is_none() && self.ratcheting.is_none() {
+            return bad("names no check: give [design_by_analysis.limit_load] or [design_by_analysis.ratcheting]".into());
+        }
+        if let Some(l) = &self.limit_load {
+            if !(l.factor > 0.0 && l.factor.is_finite()) {
+                return bad(format!("limit_load.factor must be a load factor > 0, got {}", l.factor));
+            }
+            if !(l.search_to > l.factor && l.search_to.is_finite()) {
+                return bad(format!("limit_load.search_to must exceed the factor {}, got {}", l.factor, l.search_to));
+            }
+            if l.search_increments == 0 {
+                return bad("limit_load.search_increments must be at least 1".into());
+            }
+            for m in &model.materials {
+                self.allowable(&m.name)?;
+            }
+        }
+        if let Some(r) = &self.ratcheting {
+            if r.cycles < LEAST_CYCLES {
+                return bad(format!("ratcheting.cycles must be at least {LEAST_CYCLES} (VIII-2 5.5.7.2), got {}", r.cycles));
+            }
+            let general: Vec<&str> = model.general_steps().map(|s| s.name.as_str()).collect();
+            if r.cycle.is_empty()
+                || r.cycle.len() > general.len()
+                || general[general.len() - r.cycle.len()..] != r.cycle.iter().map(String::as_str).collect::<Vec<_>>()[..]
+            {
+                return bad(format!("ratcheting.cycle {:?} must name the deck's last general steps in order (they are {:?})", r.cycle, general));
+            }
+            if let Some(m) = model.materials.iter().find(|m| m.plasticity.is_none()) {
+                return bad(format!("ratcheting: material '{}' has no yield stress (model = \"j2\"): the check is elastic-perfectly plastic at it", m.name));
+            }
+            if let Some(s) = r.section {
+                if s.iter().flatten().any(|v| !v.is_finite()) || s[0] == s[1] {
+                    return bad(format!("ratcheting.section {s:?} must be two distinct points"));
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// The allowable stress S of material `name`, MPa.
+    pub fn allowable(&self, name: &str) -> Result<f64> {
+        let s = match &self.allowable_stress {
+            None => return Err(Error::input("[design_by_analysis] limit_load needs allowable_stress (S, MPa; one value or a table by material)")),
+            Some(Allowable::Every(s)) => *s,
+            Some(Allowable::ByMaterial(t)) => {
+                *t.get(name).ok_or_else(|| Error::input(format!("[design_by_analysis] allowable_stress gives no value for material '{name}'")))?
+            }
+        };
+        if !(s > 0.0 && s.is_finite()) {
+            return Err(Error::input(format!("[design_by_analysis] allowable_stress of material '{name}' must be > 0 MPa, got {s}")));
+        }
+        Ok(s)
+    }
+}

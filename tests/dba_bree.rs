@@ -1,0 +1,158 @@
+//! The ratcheting check (ASME VIII-2 5.5.7, elastic-perfectly plastic cycles) on Bree's
+//! problem: J. Bree, "Elastic-plastic behaviour of thin tubes subjected to internal pressure
+//! and intermittent high-heat fluxes", J. Strain Analysis 2 (1967) 226-238. A thin tube
+//! carries a constant hoop membrane stress sigma_p = p a / t and a hoop stress from a linear
+//! through-wall temperature difference cycled between 0 and dT, whose elastic surface value is
+//! sigma_t = E alpha dT / 2; X = sigma_p / sigma_y, Y = sigma_t / sigma_y. Bree's regions:
+//! elastic E (X + Y <= 1); shakedown S1 (X <= 0.5, Y <= 2) and S2 (X >= 0.5, Y <= 4 (1 - X));
+//! plastic cycling P (Y >= 2, X Y <= 1); ratcheting R1 (X >= 0.5, 4 (1 - X) <= Y <= 2) and R2
+//! (Y >= 2, X Y >= 1). In R1 the ratchet strain per cycle is
+//! 2 (sigma_y / E) (Y - 2 sqrt(Y (1 - X))) (derived here the way Bree's section on R1 does:
+//! on load the hot face yields in tension over x >= a, off load the cold face over x <= b,
+//! equilibrium gives Y (a + 1/2)^2 = 1 - X = Y (b - 1/2)^2 in wall thicknesses, and the strain
+//! grows by (2 sigma_t / E)(b - a) a cycle; it vanishes on the boundary Y = 4 (1 - X)).
+//!
+//! The model is Bree's uniaxial hoop strip: a thin ring (a = 1000 mm, t = 10 mm, 0.5 mm high,
+//! its faces free axially: no axial stress, the hoop strain uniform through the wall as in a
+//! ring), E 200 000 MPa, sigma_y 200 MPa, alpha 1e-5 /degC; 20 elements through the wall.
+//! Two points in each of Bree's six regions, classified by the check's criteria: no yield at
+//! all (E); plastic action in the first cycle but not in the last (S, criterion a); plastic
+//! action in the last cycle, an elastic core and no change of dimensions (P, criteria b and c);
+//! a change of dimensions and no elastic core (R). In R1 the hoop strain per cycle within 5 %
+//! of Bree's. One test function: MPI is initialised once per process.
+
+use slideline::dba::ratcheting::{self, Ratcheting};
+use slideline::dba::spec::{DbaSpec, RatchetingSpec};
+use slideline::io::reader::ResultsReader;
+use slideline::model::{Step, Temperature};
+use slideline::petsc::PetscSession;
+use std::path::Path;
+
+const A: f64 = 1000.0;
+const T: f64 = 10.0;
+const E: f64 = 200_000.0;
+const SY: f64 = 200.0;
+const ALPHA: f64 = 1e-5;
+
+/// The deck of point (x, y): pressure, then the cycle heat (the linear through-wall field,
+/// set below) and cool.
+fn model(x: f64, y: f64) -> slideline::model::Model {
+    let p = x * SY * T / A;
+    let text = format!(
+        r#"nlgeom = false
+reference_temperature = 0.0
+[mesh]
+rectangle = {{ r = [{A}, {b}], z = [0.0, 0.5], divisions = [20, 1] }}
+[[material]]
+name = "steel"
+model = "j2"
+youngs_modulus = {E}
+poissons_ratio = 0.3
+thermal_expansion = {ALPHA}
+yield_stress = {SY}
+[[step]]
+name = "pressurise"
+increments = 2
+boundary = [{{ set = "bottom", uz = 0.0 }}]
+pressure = [{{ surface = "inner", value = {p} }}]
+[[step]]
+name = "heat"
+increments = 8
+temperature = 1.0
+[[step]]
+name = "cool"
+increments = 8
+temperature = 0.0
+"#,
+        b = A + T
+    );
+    let mut m = slideline::model::deck::parse(&text, Path::new("bree.toml")).expect("the deck");
+    // the hot face inside: dT (b - r) / t, whose elastic hoop stress at the faces is -+ sigma_t
+    let dt = 2.0 * y * SY / (E * ALPHA);
+    let field: Vec<f64> = m.mesh.coords.iter().map(|c| dt * (A + T - c[0]) / T).collect();
+    for s in &mut m.steps {
+        if let Step::General(g) = s {
+            if g.name == "heat" {
+                g.temperature = Some(Temperature::Nodal(field.clone()));
+            }
+        }
+    }
+    m
+}
+
+#[derive(Debug, PartialEq, Clone, Copy)]
+enum Behaviour {
+    Elastic,
+    Shakedown,
+    PlasticCycling,
+    Ratcheting,
+}
+
+fn classify(r: &Ratcheting) -> Behaviour {
+    match (r.yielded, r.no_plastic_action(), r.dimensions_kept()) {
+        (false, _, _) => Behaviour::Elastic,
+        (true, true, _) => Behaviour::Shakedown,
+        (true, false, true) => Behaviour::PlasticCycling,
+        (true, false, false) => Behaviour::Ratcheting,
+    }
+}
+
+#[test]
+fn bree_regions_and_the_ratchet_strain_per_cycle() {
+    use Behaviour::*;
+    let session = PetscSession::initialize(&[]).expect("PETSc");
+    let dir = tempfile::tempdir().unwrap();
+    let spec = DbaSpec {
+        allowable_stress: None,
+        limit_load: None,
+        ratcheting: Some(RatchetingSpec { cycle: vec!["heat".into(), "cool".into()], cycles: 4, section: Some([[A, 0.25], [A + T, 0.25]]) }),
+    };
+    // (region, X, Y, what the check must find)
+    let points = [
+        ("E", 0.3, 0.4, Elastic),
+        ("E", 0.6, 0.3, Elastic),
+        ("S1", 0.2, 1.5, Shakedown),
+        ("S1", 0.4, 1.0, Shakedown),
+        ("S2", 0.6, 1.0, Shakedown),
+        ("S2", 0.8, 0.5, Shakedown),
+        ("P", 0.1, 3.0, PlasticCycling),
+        ("P", 0.3, 2.5, PlasticCycling),
+        ("R1", 0.7, 1.6, Ratcheting),
+        ("R1", 0.8, 1.2, Ratcheting),
+        ("R2", 0.4, 3.0, Ratcheting),
+        ("R2", 0.6, 2.5, Ratcheting),
+    ];
+    let mut wrong = Vec::new();
+    for (k, &(region, x, y, expected)) in points.iter().enumerate() {
+        let m = model(x, y);
+        spec.validate(&m).expect("the spec fits the deck");
+        let file = dir.path().join(format!("bree{k}.h5"));
+        let r = ratcheting::run(&session, &m, &spec, &file, false).expect("the ratcheting analysis");
+        let found = classify(&r);
+        eprintln!(
+            "{region} X {x} Y {y}: {found:?} (last-cycle plastic growth {:.3e}, core {:?}, dimension change {:.3e} mm; tolerances {:.1e}, {:.1e} mm)",
+            r.last_cycle_plastic, r.core, r.dimension_change, r.strain_tolerance, r.length_tolerance
+        );
+        if found != expected {
+            wrong.push(format!("{region} ({x}, {y}): {found:?}, Bree says {expected:?}"));
+        }
+        // criterion (b): plastic cycling keeps an elastic core, ratcheting has none
+        match expected {
+            PlasticCycling => assert_eq!(r.elastic_core(), Some(true), "{region} ({x}, {y}): no elastic core"),
+            Ratcheting => assert_eq!(r.elastic_core(), Some(false), "{region} ({x}, {y}): an elastic core"),
+            _ => {}
+        }
+        assert_eq!(r.passes(), expected != Ratcheting, "{region} ({x}, {y}): the check's verdict");
+        if region == "R1" {
+            // the hoop strain per cycle, u_r / r at every node between the last two cycles' ends
+            let f = ResultsReader::open(&file).unwrap();
+            let coords = f.coordinates().unwrap();
+            let [u0, u1] = r.compared.map(|n| f.displacement(&format!("{n:06}")).unwrap());
+            let strain: f64 = coords.iter().zip(u0.iter().zip(&u1)).map(|(c, (a, b))| (b[0] - a[0]) / c[0]).sum::<f64>() / coords.len() as f64;
+            let bree = 2.0 * SY / E * (y - 2.0 * (y * (1.0 - x)).sqrt());
+            eprintln!("  ratchet strain per cycle {strain:.4e}, Bree {bree:.4e} ({:+.2} %)", 100.0 * (strain / bree - 1.0));
+            assert!((strain / bree - 1.0).abs() < 0.05, "{region} ({x}, {y}): ratchet strain {strain:.4e} per cycle against Bree's {bree:.4e}");
+        }
+    }
+    assert!(wrong.is_empty(), "classified against Bree's regions:\n{}", wrong.join("\n"));
+}

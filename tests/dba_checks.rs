@@ -1,0 +1,145 @@
+//! `slideline check DECK`: the design-by-analysis checks of ASME VIII-2 Part 5 a deck's
+//! `[design_by_analysis]` table names, against closed forms the code did not produce.
+//! - Limit load (5.2.3): a thick-walled cylinder, a = 100, b = 200 mm, plane strain (a slice
+//!   with both faces held: in the fully plastic state plastic incompressibility gives the axial
+//!   stress the mean of the other two, as in a closed-end tube), elastic-perfectly plastic at
+//!   1.5 S = 150 MPa: Hill's limit pressure p_L = (2 / sqrt 3) sigma_y ln(b / a) = 120.06 MPa
+//!   (R. Hill, The Mathematical Theory of Plasticity, 1950, ch. V), so 2.401 times a design
+//!   pressure of 50 MPa (PASS: 1.5 is carried) and 1.334 times 90 MPa (FAIL); the collapse
+//!   load factor within 1 %. A thin tube (a = 100, b = 102 mm) likewise, (2 / sqrt 3) 300
+//!   ln 1.02 = 6.861 MPa against 3 MPa: 2.287.
+//! - Ratcheting (5.5.7): the thin tube at a hoop stress of half the yield stress, its axial
+//!   strain cycled between +-2 yield strains (Miller's problem: reversed plasticity under a
+//!   constant hoop stress ratchets the diameter with every cycle, by normality) fails: no
+//!   criterion holds; cycled by +-0.1 of a yield strain it stays elastic and passes by (a).
+//! - Bad tables exit 2 naming the key.
+
+mod common;
+use common::{assert_rejected, command_in, Results, Run};
+
+fn check(deck: &str) -> Run {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let path = dir.path().join("deck.toml");
+    std::fs::write(&path, deck).unwrap();
+    let h5 = dir.path().join("out.h5");
+    let output = command_in(dir.path(), 1).current_dir(dir.path()).arg("check").arg(&path).arg("-o").arg(&h5).arg("--quiet").output().expect("slideline");
+    Run { dir, output, h5 }
+}
+
+fn texts(file: &Results, name: &str) -> Vec<String> {
+    file.file.dataset(name).unwrap().read_raw::<hdf5::types::VarLenUnicode>().unwrap().iter().map(|s| s.to_string()).collect()
+}
+
+fn thick_cylinder(pressure: f64) -> String {
+    std::fs::read_to_string(common::data("dba/thick_cylinder.toml")).unwrap().replace("value = 50.0", &format!("value = {pressure}"))
+}
+
+/// Hill's limit pressure of a tube a -> b at yield stress sy.
+fn hill(a: f64, b: f64, sy: f64) -> f64 {
+    2.0 / 3f64.sqrt() * sy * (b / a).ln()
+}
+
+#[test]
+fn the_limit_load_of_a_thick_cylinder_is_hills() {
+    for (pressure, passes) in [(50.0, true), (90.0, false)] {
+        let run = check(&thick_cylinder(pressure));
+        run.assert_ok();
+        let f = Results::open(&run.h5);
+        let figure = f.f64s("dba/figure")[0];
+        let expected = hill(100.0, 200.0, 150.0) / pressure;
+        eprintln!("p {pressure}: collapse load factor {figure:.4}, Hill {expected:.4} ({:+.3} %)", 100.0 * (figure / expected - 1.0));
+        assert!((figure / expected - 1.0).abs() < 0.01, "collapse factor {figure} against {expected}\n{}", run.stdout());
+        assert_eq!(texts(&f, "dba/verdict")[0], if passes { "PASS" } else { "FAIL" }, "{}", run.stdout());
+        let out = run.stdout();
+        assert!(out.contains("plastic collapse, limit load") && out.contains(if passes { "verdict: PASS" } else { "verdict: FAIL" }), "{out}");
+        // the analysis is kept beside the verdict, readable
+        assert!(run.dir.path().join("out_limit_load.h5").exists());
+    }
+}
+
+fn thin_tube(strain: f64) -> String {
+    let h = 2.0;
+    format!(
+        r#"nlgeom = false
+[mesh]
+rectangle = {{ r = [100.0, 102.0], z = [0.0, {h}], divisions = [4, 2] }}
+{steel}
+[[step]]
+name = "pressurise"
+increments = 2
+boundary = [{{ set = "bottom", uz = 0.0 }}, {{ set = "top", uz = 0.0 }}]
+pressure = [{{ surface = "inner", value = 3.0 }}]
+[[step]]
+name = "pull"
+increments = 6
+boundary = [{{ set = "top", uz = {d} }}]
+[[step]]
+name = "push"
+increments = 6
+boundary = [{{ set = "top", uz = {m} }}]
+[design_by_analysis]
+allowable_stress = 200.0
+limit_load = {{}}
+ratcheting = {{ cycle = ["pull", "push"], cycles = 3, section = [[100.0, 1.0], [102.0, 1.0]] }}
+"#,
+        steel = common::PLASTIC_STEEL,
+        d = strain * h,
+        m = -strain * h
+    )
+}
+
+#[test]
+fn a_thin_tube_ratchets_under_reversed_axial_plasticity_and_not_below_it() {
+    let yield_strain = 300.0 / 200_000.0;
+    for (strain, ratchets) in [(2.0 * yield_strain, true), (0.1 * yield_strain, false)] {
+        let run = check(&thin_tube(strain));
+        run.assert_ok();
+        let out = run.stdout();
+        let f = Results::open(&run.h5);
+        let checks = texts(&f, "dba/check");
+        let verdicts = texts(&f, "dba/verdict");
+        let figures = f.f64s("dba/figure");
+        let limits = f.f64s("dba/limit");
+        // the limit load first: the factored pressure carried, Hill's collapse pressure found
+        assert_eq!((checks[0].as_str(), verdicts[0].as_str()), ("plastic collapse, limit load", "PASS"), "{out}");
+        let expected = hill(100.0, 102.0, 300.0) / 3.0;
+        assert!((figures[0] / expected - 1.0).abs() < 0.01, "collapse factor {} against {expected}\n{out}", figures[0]);
+        // then (a), (b), (c) and the ratcheting verdict
+        assert_eq!(checks[1..].iter().filter(|c| *c == "ratcheting").count(), 4, "{out}");
+        let [a, b, c] = [1, 2, 3].map(|k| figures[k] <= limits[k]);
+        eprintln!("axial strain +-{strain}: (a) {} (b) {} (c) {} mm\n{out}", figures[1], figures[2], figures[3]);
+        assert_eq!(verdicts[4], if ratchets { "FAIL" } else { "PASS" }, "{out}");
+        if ratchets {
+            assert!(!a && !b && !c, "every criterion fails when it ratchets:\n{out}");
+            assert!(out.contains("verdict: FAIL"), "{out}");
+        } else {
+            assert!(a && figures[1] == 0.0, "no plastic strain at all below yield:\n{out}");
+        }
+    }
+}
+
+#[test]
+fn bad_design_by_analysis_tables_are_named() {
+    let base = thin_tube(0.001);
+    let cases: Vec<(String, Vec<&str>)> = vec![
+        (base.replace("limit_load = {}", "limit_load = { factor = 0.0 }"), vec!["limit_load.factor", "> 0"]),
+        (base.replace("limit_load = {}", "limit_load = { factor = 2.0, search_to = 1.5 }"), vec!["limit_load.search_to"]),
+        (base.replace("allowable_stress = 200.0\n", ""), vec!["allowable_stress"]),
+        (base.replace("allowable_stress = 200.0", "allowable_stress = { iron = 200.0 }"), vec!["allowable_stress", "'steel'"]),
+        (base.replace("cycles = 3", "cycles = 2"), vec!["ratcheting.cycles", "at least 3"]),
+        (base.replace(r#"cycle = ["pull", "push"]"#, r#"cycle = ["pressurise"]"#), vec!["ratcheting.cycle", "last general steps"]),
+        (base.replace("limit_load = {}", "limt_load = {}"), vec!["[design_by_analysis]", "limt_load"]),
+        (
+            base.replace("model = \"j2\"", "model = \"elastic\"")
+                .replace("yield_stress = 300.0\n", "")
+                .replace("hardening_modulus = 1000.0\n", "")
+                .replace("limit_load = {}\n", ""),
+            vec!["ratcheting", "'steel'", "yield"],
+        ),
+        (base[..base.find("[design_by_analysis]").unwrap()].to_string(), vec!["no [design_by_analysis] table"]),
+    ];
+    for (deck, needles) in cases {
+        let run = check(&deck);
+        assert_rejected(&run, &needles);
+    }
+}
