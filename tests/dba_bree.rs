@@ -155,4 +155,38 @@ fn bree_regions_and_the_ratchet_strain_per_cycle() {
         }
     }
     assert!(wrong.is_empty(), "classified against Bree's regions:\n{}", wrong.join("\n"));
+    picture(&points.map(|(_, x, y, b)| (x, y, b)), &dir.path().join("bree_diagram.png"));
+}
+
+/// Bree's diagram with the points as the check classified them (they are Bree's, asserted
+/// above); copied to `$SLIDELINE_DOCS_PICTURES/bree_diagram.png` when that is set (docs/).
+fn picture(points: &[(f64, f64, Behaviour)], path: &Path) {
+    use slideline::io::plots::{diagram, Curve};
+    let line = |label: &str, points: Vec<(f64, f64)>| Curve { label: label.into(), points };
+    let ratchet: Vec<(f64, f64)> = (0..=20).map(|k| 0.25 + 0.25 * k as f64 / 20.0).map(|x| (x, 1.0 / x)).chain([(1.0, 0.0)]).collect();
+    let boundaries = [
+        line("Bree's boundaries", vec![(0.0, 1.0), (1.0, 0.0)]),
+        line("", vec![(0.0, 2.0), (1.0, 2.0)]),
+        line("", ratchet),
+        line("", vec![(0.5, 0.5), (0.5, 2.0)]),
+    ];
+    let kinds = [
+        (Behaviour::Elastic, "elastic (E)"),
+        (Behaviour::Shakedown, "shakedown (S1, S2): no plastic action in the last cycle"),
+        (Behaviour::PlasticCycling, "plastic cycling (P): an elastic core, no change of dimensions"),
+        (Behaviour::Ratcheting, "ratcheting (R1, R2): the check fails"),
+    ]
+    .map(|(b, label)| line(label, points.iter().filter(|p| p.2 == b).map(|p| (p.0, p.1)).collect()));
+    diagram(
+        path,
+        "Bree's diagram: the ratcheting check's verdicts",
+        "X = sigma_p / sigma_y (pressure)",
+        "Y = sigma_t / sigma_y (thermal, elastic)",
+        &boundaries,
+        &kinds,
+    )
+    .expect("the picture");
+    if let Some(dir) = std::env::var_os("SLIDELINE_DOCS_PICTURES") {
+        std::fs::copy(path, Path::new(&dir).join("bree_diagram.png")).expect("copy the picture");
+    }
 }

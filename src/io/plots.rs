@@ -65,20 +65,37 @@ pub enum Axes {
 }
 
 pub fn line_plot(path: &Path, title: &str, x_label: &str, y_label: &str, curves: &[Curve], markers: &[Marker], axes: Axes) -> Result<()> {
-    xy_plot(path, (title, x_label, y_label), curves, markers, axes, false)
+    xy_plot(path, (title, x_label, y_label), &[], curves, markers, axes, false)
 }
 
 /// As [`line_plot`], each curve's points drawn as unjoined dots (a study's variants, one
 /// colour per kind).
 pub fn point_plot(path: &Path, title: &str, x_label: &str, y_label: &str, kinds: &[Curve], axes: Axes) -> Result<()> {
-    xy_plot(path, (title, x_label, y_label), kinds, &[], axes, true)
+    xy_plot(path, (title, x_label, y_label), &[], kinds, &[], axes, true)
 }
 
-fn xy_plot(path: &Path, (title, x_label, y_label): (&str, &str, &str), curves: &[Curve], markers: &[Marker], axes: Axes, dots: bool) -> Result<()> {
+/// A diagram: `boundaries` drawn as thin black lines (a region map's), `kinds` as dots, one
+/// colour per kind (the points computed in it), axes from the origin.
+pub fn diagram(path: &Path, title: &str, x_label: &str, y_label: &str, boundaries: &[Curve], kinds: &[Curve]) -> Result<()> {
+    xy_plot(path, (title, x_label, y_label), boundaries, kinds, &[], Axes::FromOrigin, true)
+}
+
+fn xy_plot(
+    path: &Path,
+    (title, x_label, y_label): (&str, &str, &str),
+    boundaries: &[Curve],
+    curves: &[Curve],
+    markers: &[Marker],
+    axes: Axes,
+    dots: bool,
+) -> Result<()> {
     use_bundled_font();
     let err = draw_err(path);
-    let points: Vec<(f64, f64)> =
-        curves.iter().flat_map(|c| c.points.iter().copied()).chain(markers.iter().map(|m| m.at)).filter(|p| p.0.is_finite() && p.1.is_finite()).collect();
+    let points: Vec<(f64, f64)> = (boundaries.iter().chain(curves))
+        .flat_map(|c| c.points.iter().copied())
+        .chain(markers.iter().map(|m| m.at))
+        .filter(|p| p.0.is_finite() && p.1.is_finite())
+        .collect();
     let (mut x0, mut x1, mut y0, mut y1) = match (axes, points.first()) {
         (Axes::DataRange, Some(&(x, y))) => (x, x, y, y),
         _ => (0.0f64, f64::MIN_POSITIVE, 0.0f64, f64::MIN_POSITIVE),
@@ -113,6 +130,12 @@ fn xy_plot(path: &Path, (title, x_label, y_label): (&str, &str, &str), curves: &
             .draw()
             .map_err(|e| err(&e))?;
         let palette = [RGBColor(31, 119, 180), RGBColor(214, 39, 40), RGBColor(44, 160, 44), RGBColor(148, 103, 189)];
+        for b in boundaries {
+            let series = chart.draw_series(LineSeries::new(b.points.iter().copied(), BLACK.stroke_width(2))).map_err(|e| err(&e))?;
+            if !b.label.is_empty() {
+                series.label(b.label.as_str()).legend(|(x, y)| PathElement::new(vec![(x, y), (x + 24, y)], BLACK.stroke_width(2)));
+            }
+        }
         for (k, c) in curves.iter().enumerate() {
             let colour = palette[k % palette.len()];
             if dots {
@@ -137,8 +160,9 @@ fn xy_plot(path: &Path, (title, x_label, y_label): (&str, &str, &str), curves: &
                 .label(m.label.as_str())
                 .legend(|(x, y)| Cross::new((x + 12, y), 7, BLACK.stroke_width(2)));
         }
-        draw_legend(&mut chart, if axes == Axes::FromOrigin { SeriesLabelPosition::UpperLeft } else { SeriesLabelPosition::UpperRight })
-            .map_err(|e| err(&e))?;
+        // a diagram's regions start at the origin: its legend goes where a curve would not
+        let upper_left = axes == Axes::FromOrigin && boundaries.is_empty();
+        draw_legend(&mut chart, if upper_left { SeriesLabelPosition::UpperLeft } else { SeriesLabelPosition::UpperRight }).map_err(|e| err(&e))?;
         root.present().map_err(|e| err(&e))?;
     }
     write_png(path, size, &pixels)
