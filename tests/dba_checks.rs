@@ -8,6 +8,11 @@
 //!   pressure of 50 MPa (PASS: 1.5 is carried) and 1.334 times 90 MPa (FAIL); the collapse
 //!   load factor within 1 %. A thin tube (a = 100, b = 102 mm) likewise, (2 / sqrt 3) 300
 //!   ln 1.02 = 6.861 MPa against 3 MPa: 2.287.
+//! - Limit load of a simply supported circular plate (a = 100, h = 2 mm, solid elements, small
+//!   displacements) under uniform pressure, von Mises at 150 MPa: 6.51 M0 / a^2 with
+//!   M0 = sigma_y h^2 / 4 (H. G. Hopkins & A. J. Wang, J. Mech. Phys. Solids 3 (1954);
+//!   Tresca's 6 M0 / a^2 is Hopkins & Prager's, 1953): 0.09765 MPa, 2.441 times 0.04 MPa,
+//!   within 3 %.
 //! - Ratcheting (5.5.7): the thin tube (examples/pressurised_tube.toml) at a hoop stress of
 //!   half the yield stress, its axial
 //!   strain cycled between +-2 yield strains (Miller's problem: reversed plasticity under a
@@ -56,6 +61,17 @@ fn the_limit_load_of_a_thick_cylinder_is_hills() {
         // the analysis is kept beside the verdict, readable
         assert!(run.dir.path().join("out_limit_load.h5").exists());
     }
+}
+
+#[test]
+fn the_limit_load_of_a_simply_supported_plate_is_hopkins_and_wangs() {
+    let deck = std::fs::read_to_string(common::data("dba/circular_plate.toml")).unwrap();
+    let run = check(&deck);
+    run.assert_ok();
+    let figure = Results::open(&run.h5).f64s("dba/figure")[0];
+    let expected = 6.51 * 150.0 * 2.0f64.powi(2) / 4.0 / 100.0f64.powi(2) / 0.04;
+    eprintln!("plate: collapse load factor {figure:.4}, Hopkins & Wang {expected:.4} ({:+.2} %)", 100.0 * (figure / expected - 1.0));
+    assert!((figure / expected - 1.0).abs() < 0.03, "collapse factor {figure} against {expected}\n{}", run.stdout());
 }
 
 /// The example's thin tube (examples/pressurised_tube.toml: 2 mm high, its top moved +-0.006 mm)
