@@ -79,6 +79,14 @@ fn main() -> ExitCode {
                 };
             }
             let root = session.world().rank() == 0;
+            if args.dba {
+                let result = workflow::design_by_analysis(&session, &params, spec.as_ref(), &args.output, args.quiet);
+                warn_unused_options(&session, root && !is_bad_input(&result));
+                return match result {
+                    Ok(()) => ExitCode::SUCCESS,
+                    Err(e) => fail(&e, root),
+                };
+            }
             let job = args.job(params, movements, spec);
             let before = match workflow::before_the_run(&session, &job) {
                 Ok(before) => before,

@@ -139,3 +139,35 @@ fn bad_design_by_analysis_tables_are_named() {
         assert_rejected(&run, &needles);
     }
 }
+
+/// `bellows --spec FILE --dba`: the seed joint's code verdict, then the design-by-analysis table
+/// (quick mesh, 8 increments a stroke, 2 ranks): the limit load under the design pressure alone
+/// (the ends held; 1.5 S = 172.5 MPa from the specification's S = 115) carries the factored
+/// 0.9 MPa and collapses within the search (to 20 x); ratcheting over three strokes of 70 mm at
+/// 16 times the yield strain and more is plastic action in every cycle (criterion a fails); the
+/// verdict and both analyses' files are written; without --spec it is refused, naming it.
+#[test]
+fn the_bellows_design_by_analysis_runs_the_joint_of_its_specification() {
+    let spec = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/seed_joint.toml");
+    let dir = tempfile::tempdir().unwrap();
+    let run = command_in(dir.path(), 2)
+        .current_dir(dir.path())
+        .args(["bellows", "--spec", spec.to_str().unwrap(), "--quick", "--increments", "8", "--dba", "--quiet", "-o", "j.h5"])
+        .output()
+        .unwrap();
+    let out = String::from_utf8_lossy(&run.stdout).to_string();
+    assert!(run.status.success(), "{out}{}", String::from_utf8_lossy(&run.stderr));
+    let (code, dba) =
+        (out.find("\nverdict: FAIL: fatigue").expect("the code's verdict"), out.find("design by analysis (ASME VIII-2 Part 5)").expect("the table"));
+    assert!(code < dba, "the code's verdict first:\n{out}");
+    let f = Results::open(&dir.path().join("j.h5"));
+    let (checks, verdicts, figures) = (texts(&f, "dba/check"), texts(&f, "dba/verdict"), f.f64s("dba/figure"));
+    assert_eq!(checks.len(), 5, "{out}");
+    assert_eq!(verdicts[0], "PASS", "{out}");
+    assert!(figures[0] > 1.5 && figures[0] < 20.0, "a collapse within the search: {}\n{out}", figures[0]);
+    assert!(figures[1] > 1e-3, "plastic action in the last cycle of a 70 mm stroke:\n{out}");
+    assert!(dir.path().join("j_limit_load.h5").exists() && dir.path().join("j_ratcheting.h5").exists());
+    let refused = command_in(dir.path(), 1).current_dir(dir.path()).args(["bellows", "--quick", "--dba"]).output().unwrap();
+    assert_eq!(refused.status.code(), Some(2), "{}", String::from_utf8_lossy(&refused.stderr));
+    assert!(String::from_utf8_lossy(&refused.stderr).contains("--spec"), "{}", String::from_utf8_lossy(&refused.stderr));
+}

@@ -195,6 +195,44 @@ pub fn run(session: &PetscSession, job: &BellowsJob) -> Result<RunSummary> {
     )
 }
 
+/// How far `--dba`'s limit load raises the design pressure looking for the collapse: the
+/// convolutions of a joint that passes the code's in-plane check (at about 2.3 Sy) hold several
+/// times their design pressure.
+const BELLOWS_SEARCH_TO: f64 = 20.0;
+
+/// `--dba`: the design-by-analysis checks (ASME VIII-2 Part 5) on the joint `params`
+/// describes, with the allowable stress of its specification: the limit load under the design
+/// pressure alone (the ends held; the stroke is a secondary load), and ratcheting over three
+/// cycles of the stroke (compress, return) under the pressure. The verdict is printed with the
+/// specification's code verdict before it and written to `output`'s `/dba`; each analysis in a
+/// file beside it (collective).
+pub fn design_by_analysis(session: &PetscSession, params: &BellowsParams, spec: Option<&DesignSpec>, output: &Path, quiet: bool) -> Result<()> {
+    use crate::dba::spec::{Allowable, DbaSpec, LimitLoadSpec, RatchetingSpec};
+    let spec = spec.ok_or_else(|| crate::error::Error::input("bellows --dba: the checks need the allowable stress of a design specification (--spec FILE)"))?;
+    let (_, _, allowable) = spec.at_temperature()?;
+    let cycling = BellowsParams { cycle: true, ..params.clone() };
+    let model = super::joint::model(&cycling)?;
+    let checks = DbaSpec {
+        allowable_stress: Some(Allowable::Every(allowable)),
+        limit_load: Some(LimitLoadSpec { factor: 1.5, search_to: BELLOWS_SEARCH_TO, search_increments: 40, steps: Some(vec!["heat".into()]) }),
+        ratcheting: Some(RatchetingSpec { cycle: vec!["compress".into(), "return".into()], cycles: crate::dba::spec::LEAST_CYCLES, section: None }),
+    };
+    checks.validate(&model)?;
+    // the code's verdict first, as the run prints it (collective: its chart coefficients)
+    let (_, _, code) = code_verdict(session, spec)?;
+    let root = session.world().rank() == 0;
+    if root {
+        print!("{code}");
+    }
+    let verdict = crate::dba::run(session, &model, &checks, output, !quiet)?;
+    if root {
+        print!("{}", crate::dba::table(&verdict, &params.title()));
+        crate::dba::write(&verdict, output, &model.source_text)?;
+        println!("verdict written to {} (/dba)", output.display());
+    }
+    Ok(())
+}
+
 /// The bellows closing table (slideline beside the paper) and the pictures, from the results
 /// file (rank 0, after the run).
 pub fn report(job: &BellowsJob, before: &BeforeTheRun, summary: &RunSummary) -> Result<()> {

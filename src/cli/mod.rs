@@ -174,6 +174,12 @@ pub struct BellowsArgs {
     /// With --spec: print the code's verdict and stop (no finite-element analysis).
     #[arg(long, requires = "spec")]
     pub check_only: bool,
+    /// With --spec: instead of the stroke's run, the design-by-analysis checks of ASME VIII-2
+    /// Part 5 on the joint (docs/design-by-analysis.md): plastic collapse under the design
+    /// pressure by the limit-load method (at 1.5 S, the pressure x 1.5, the ends held), and
+    /// ratcheting over three cycles of the stroke under the pressure, elastic-perfectly plastic.
+    #[arg(long, requires = "spec", conflicts_with_all = ["check_only", "report", "restart", "cycle"])]
+    pub dba: bool,
     /// After the run, write the design report: one self-contained HTML file (the
     /// specification, the code's verdict, the finite-element tables, the mesh, the pictures).
     #[arg(long, value_name = "FILE.html", conflicts_with = "check_only")]

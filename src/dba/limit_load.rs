@@ -2,7 +2,8 @@
 //! later editions): the model elastic-perfectly plastic at 1.5 S (von Mises, associated
 //! flow), small displacements, the primary loads (pressures, forces, body loads) times the
 //! factor of Table 5.3 (1.5 on P + Ps + D); prescribed displacements as the deck gives them
-//! and no thermal strain (Table 5.3 leaves the secondary loads out). The check passes when
+//! and no thermal strain (Table 5.3 leaves the secondary loads out); the deck's general steps,
+//! or those `steps` names (a stroke, a secondary load, left out). The check passes when
 //! the factored loads are carried (every increment converges). Past them the loads rise to
 //! `search_to` times the design loads until Newton fails at the smallest increment: the
 //! factor reached then is the collapse load factor, the check's figure.
@@ -81,7 +82,8 @@ pub fn model(model: &Model, spec: &DbaSpec, ll: &LimitLoadSpec) -> Result<Model>
     }
     let mut applied = AppliedLoads::default();
     let mut steps = Vec::new();
-    for step in model.general_steps() {
+    let kept = |name: &str| ll.steps.as_ref().is_none_or(|steps| steps.iter().any(|s| s == name));
+    for step in model.general_steps().filter(|s| kept(&s.name)) {
         let mut s = step.clone();
         scale_primary(&mut s, ll.factor);
         applied.apply(&s);

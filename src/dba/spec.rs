@@ -38,6 +38,9 @@ pub struct LimitLoadSpec {
     /// Increments of that search (each cut back down to the deck's min_increment).
     #[serde(default = "search_increments")]
     pub search_increments: usize,
+    /// The general steps the analysis keeps, in the deck's order (default: every one): those
+    /// that carry the primary loads, without a stroke that is a secondary load.
+    pub steps: Option<Vec<String>>,
 }
 
 /// Protection against ratcheting by elastic-plastic analysis (VIII-2 5.5.7).
@@ -96,6 +99,15 @@ impl DbaSpec {
             }
             if l.search_increments == 0 {
                 return bad("limit_load.search_increments must be at least 1".into());
+            }
+            if let Some(steps) = &l.steps {
+                let general: Vec<&str> = model.general_steps().map(|s| s.name.as_str()).collect();
+                if let Some(unknown) = steps.iter().find(|s| !general.contains(&s.as_str())) {
+                    return bad(format!("limit_load.steps: '{unknown}' is not one of the deck's general steps {general:?}"));
+                }
+                if steps.is_empty() {
+                    return bad("limit_load.steps is empty: name the steps that carry the primary loads".into());
+                }
             }
             for m in &model.materials {
                 self.allowable(&m.name)?;
