@@ -106,6 +106,7 @@ fn bree_regions_and_the_ratchet_strain_per_cycle() {
         allowable_stress: None,
         limit_load: None,
         ratcheting: Some(RatchetingSpec { cycle: vec!["heat".into(), "cool".into()], cycles: 4, section: Some([[A, 0.25], [A + T, 0.25]]) }),
+        buckling: None,
     };
     // (region, X, Y, what the check must find)
     let points = [

@@ -13,6 +13,11 @@
 //!   M0 = sigma_y h^2 / 4 (H. G. Hopkins & A. J. Wang, J. Mech. Phys. Solids 3 (1954);
 //!   Tresca's 6 M0 / a^2 is Hopkins & Prager's, 1953): 0.09765 MPa, 2.441 times 0.04 MPa,
 //!   within 3 %.
+//! - Buckling (5.4.1.3(a), type 1): a long tube (R = 101 mm mean, t = 2 mm, plane strain) under
+//!   external pressure, its oval mode n = 2 at Levy's p_cr = E t^3 / (4 (1 - nu^2) R^3) =
+//!   0.4267 MPa for a follower pressure (S. Timoshenko & J. Gere, Theory of Elastic Stability,
+//!   1961, ch. 7): 3.2005 times a design pressure of 0.1333 MPa within 1 %, PASS against
+//!   2 / 0.8 = 2.5; at 0.2 MPa 2.13, FAIL.
 //! - Ratcheting (5.5.7): the thin tube (examples/pressurised_tube.toml) at a hoop stress of
 //!   half the yield stress, its axial
 //!   strain cycled between +-2 yield strains (Miller's problem: reversed plasticity under a
@@ -72,6 +77,25 @@ fn the_limit_load_of_a_simply_supported_plate_is_hopkins_and_wangs() {
     let expected = 6.51 * 150.0 * 2.0f64.powi(2) / 4.0 / 100.0f64.powi(2) / 0.04;
     eprintln!("plate: collapse load factor {figure:.4}, Hopkins & Wang {expected:.4} ({:+.2} %)", 100.0 * (figure / expected - 1.0));
     assert!((figure / expected - 1.0).abs() < 0.03, "collapse factor {figure} against {expected}\n{}", run.stdout());
+}
+
+#[test]
+fn the_buckling_check_finds_levys_ring_pressure() {
+    let deck = std::fs::read_to_string(common::data("dba/ring_buckling.toml")).unwrap();
+    let p_cr = 200_000.0 * 8.0 / (4.0 * 0.91 * 101f64.powi(3));
+    for (pressure, passes) in [(0.1333, true), (0.2, false)] {
+        let run = check(&deck.replace("value = 0.1333", &format!("value = {pressure}")));
+        run.assert_ok();
+        let f = Results::open(&run.h5);
+        let (figure, limit) = (f.f64s("dba/figure")[0], f.f64s("dba/limit")[0]);
+        eprintln!("ring at {pressure} MPa: load factor {figure:.4}, Levy {:.4}", p_cr / pressure);
+        assert!((figure * pressure / p_cr - 1.0).abs() < 0.01, "{figure} x {pressure} MPa against {p_cr}\n{}", run.stdout());
+        assert_eq!(limit, 2.5);
+        assert_eq!(texts(&f, "dba/verdict")[0], if passes { "PASS" } else { "FAIL" }, "{}", run.stdout());
+    }
+    assert_rejected(&check(&deck.replace("beta_cr = 0.8", "beta_cr = 1.5")), &["buckling.beta_cr"]);
+    let without = deck[..deck.find("[[step]]\nname = \"oval\"").unwrap()].to_string() + "[design_by_analysis]\nbuckling = { beta_cr = 0.8 }\n";
+    assert_rejected(&check(&without), &["buckling", "no buckle step"]);
 }
 
 /// The example's thin tube (examples/pressurised_tube.toml: 2 mm high, its top moved +-0.006 mm)

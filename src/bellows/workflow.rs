@@ -216,6 +216,7 @@ pub fn design_by_analysis(session: &PetscSession, params: &BellowsParams, spec: 
         allowable_stress: Some(Allowable::Every(allowable)),
         limit_load: Some(LimitLoadSpec { factor: 1.5, search_to: BELLOWS_SEARCH_TO, search_increments: 40, steps: Some(vec!["heat".into()]) }),
         ratcheting: Some(RatchetingSpec { cycle: vec!["compress".into(), "return".into()], cycles: crate::dba::spec::LEAST_CYCLES, section: None }),
+        buckling: None,
     };
     checks.validate(&model)?;
     // the code's verdict first, as the run prints it (collective: its chart coefficients)

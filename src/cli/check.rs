@@ -27,9 +27,10 @@ pub struct CheckArgs {
 
 pub fn check_command(args: &CheckArgs) -> ExitCode {
     let output = args.output.clone().unwrap_or_else(|| PathBuf::from(format!("{}_check.h5", args.deck.file_stem().unwrap_or_default().to_string_lossy())));
-    let outputs = [output.clone(), slideline::dba::check_file(&output, "limit_load"), slideline::dba::check_file(&output, "ratcheting")];
-    for path in &outputs {
-        if let Err(e) = slideline::output_path::check_output_path(path, Some((&args.deck, "the input deck"))) {
+    let outputs = ["limit_load", "ratcheting", "buckling"].map(|c| slideline::dba::check_file(&output, c));
+    let outputs = std::iter::once(output.clone()).chain(outputs);
+    for path in outputs {
+        if let Err(e) = slideline::output_path::check_output_path(&path, Some((&args.deck, "the input deck"))) {
             return fail(&e, launched_as_rank_zero());
         }
     }

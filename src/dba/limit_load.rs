@@ -36,14 +36,14 @@ pub struct LimitLoad {
 /// The loads a deck's general steps leave applied at their end: each surface's pressure,
 /// each node's force component, each element set's body load (a later step's value wins).
 #[derive(Default)]
-struct AppliedLoads {
-    pressures: Vec<Pressure>,
-    forces: Vec<NodalForce>,
-    body_loads: Vec<BodyLoad>,
+pub(super) struct AppliedLoads {
+    pub(super) pressures: Vec<Pressure>,
+    pub(super) forces: Vec<NodalForce>,
+    pub(super) body_loads: Vec<BodyLoad>,
 }
 
 impl AppliedLoads {
-    fn apply(&mut self, step: &GeneralStep) {
+    pub(super) fn apply(&mut self, step: &GeneralStep) {
         for p in &step.pressures {
             self.pressures.retain(|q| q.surface != p.surface);
             self.pressures.push(p.clone());

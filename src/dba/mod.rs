@@ -1,9 +1,10 @@
 //! Design by analysis, ASME VIII-2 Part 5: the checks carried out on a deck's model, each by
 //! an analysis of its own built from the deck's loads (the limit-load method of protection
 //! against plastic collapse, [`limit_load`]; ratcheting by elastic-plastic analysis,
-//! [`ratcheting`]), and their verdict table. What to check and the data it needs beyond the
+//! [`ratcheting`]; buckling by eigenvalue analysis, [`buckling`]), and their verdict table. What to check and the data it needs beyond the
 //! model are the deck's `[design_by_analysis]` table ([`spec`]).
 
+pub mod buckling;
 pub mod limit_load;
 pub mod ratcheting;
 pub mod spec;
@@ -67,6 +68,18 @@ pub fn run(session: &PetscSession, model: &Model, spec: &DbaSpec, output: &Path,
         rows.push(limit_load_row(&answer, ll));
         files.push(("limit_load".to_string(), file));
     }
+    if let Some(b) = &spec.buckling {
+        let file = check_file(output, "buckling");
+        if root && progress {
+            println!(
+                "buckling: the deck's buckle steps about an elastic prestress of the design pressures, design factor 2 / beta_cr = {:.3} ...",
+                2.0 / b.beta_cr
+            );
+        }
+        let answer = buckling::run(session, model, spec, &file, progress)?;
+        rows.extend(buckling_rows(&answer, b.beta_cr));
+        files.push(("buckling".to_string(), file));
+    }
     if let Some(r) = &spec.ratcheting {
         let file = check_file(output, "ratcheting");
         if root && progress {
@@ -94,6 +107,24 @@ fn limit_load_row(a: &limit_load::LimitLoad, ll: &spec::LimitLoadSpec) -> CheckR
         passes: Some(a.carried),
         rule: "VIII-2 5.2.3, Table 5.3: 1.5 (P + Ps + D) at 1.5 S".into(),
     }
+}
+
+fn buckling_rows(a: &buckling::Buckling, beta_cr: f64) -> Vec<CheckRow> {
+    a.steps
+        .iter()
+        .map(|(name, n, lambda)| CheckRow {
+            check: format!("buckling, mode {n}"),
+            criterion: match lambda {
+                Some(_) => format!("step '{name}': the lowest load factor on the design pressures"),
+                None => format!("step '{name}': no positive load factor among the eigenvalues asked"),
+            },
+            figure: *lambda,
+            limit: a.design_factor,
+            unit: "x loads",
+            passes: Some(lambda.is_none_or(|l| l >= a.design_factor)),
+            rule: format!("VIII-2 5.4.1.3(a), type 1: 2 / beta_cr, beta_cr {beta_cr}"),
+        })
+        .collect()
 }
 
 fn ratcheting_rows(a: &ratcheting::Ratcheting) -> Vec<CheckRow> {

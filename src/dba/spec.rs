@@ -15,6 +15,18 @@ pub struct DbaSpec {
     pub allowable_stress: Option<Allowable>,
     pub limit_load: Option<LimitLoadSpec>,
     pub ratcheting: Option<RatchetingSpec>,
+    #[serde(default)]
+    pub buckling: Option<BucklingSpec>,
+}
+
+/// Protection against collapse from buckling, type 1 (VIII-2 5.4.1.3(a)): the deck's buckle
+/// steps about an elastic prestress of the design pressures.
+#[derive(Deserialize, Debug, Clone, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct BucklingSpec {
+    /// beta_cr, the capacity reduction factor of the shell's geometry and loading; the design
+    /// factor is 2 / beta_cr.
+    pub beta_cr: f64,
 }
 
 #[derive(Deserialize, Debug, Clone, PartialEq)]
@@ -87,8 +99,13 @@ impl DbaSpec {
     /// Checks every value against the model; names the offending key.
     pub fn validate(&self, model: &Model) -> Result<()> {
         let bad = |m: String| Err(Error::input(format!("[design_by_analysis] {m}")));
-        if self.limit_load.is_none() && self.ratcheting.is_none() {
-            return bad("names no check: give [design_by_analysis.limit_load] or [design_by_analysis.ratcheting]".into());
+        if self.limit_load.is_none() && self.ratcheting.is_none() && self.buckling.is_none() {
+            return bad("names no check: give limit_load, ratcheting or buckling".into());
+        }
+        if let Some(b) = &self.buckling {
+            if !(b.beta_cr > 0.0 && b.beta_cr <= 1.0) {
+                return bad(format!("buckling.beta_cr must be a capacity reduction factor in (0, 1], got {}", b.beta_cr));
+            }
         }
         if let Some(l) = &self.limit_load {
             if !(l.factor > 0.0 && l.factor.is_finite()) {
