@@ -70,8 +70,8 @@ pub enum Command {
         petsc: Vec<String>,
     },
     /// The design-by-analysis checks of ASME VIII-2 Part 5 that a deck's `[design_by_analysis]`
-    /// table names (plastic collapse by the limit-load method, ratcheting), each by an analysis
-    /// of its own, and their verdict table.
+    /// table names (plastic collapse by the limit-load method, buckling, ratcheting), each by an
+    /// analysis of its own, and their verdict table.
     Check(check::CheckArgs),
     /// Read a results file: the run's summary and history, a field at an increment, a node's
     /// or set's time series, two runs side by side, the force-displacement picture. No MPI.
