@@ -227,9 +227,7 @@ pub fn design_by_analysis(session: &PetscSession, params: &BellowsParams, spec: 
     }
     let verdict = crate::dba::run(session, &model, &checks, output, !quiet)?;
     if root {
-        print!("{}", crate::dba::table(&verdict, &params.title()));
-        crate::dba::write(&verdict, output, &model.source_text)?;
-        println!("verdict written to {} (/dba)", output.display());
+        crate::dba::report(&verdict, &params.title(), output, &model.source_text)?;
     }
     Ok(())
 }

@@ -28,9 +28,7 @@ pub struct CheckArgs {
 
 pub fn check_command(args: &CheckArgs) -> ExitCode {
     let output = args.output.clone().unwrap_or_else(|| PathBuf::from(format!("{}_check.h5", args.deck.file_stem().unwrap_or_default().to_string_lossy())));
-    let outputs = ["limit_load", "ratcheting", "buckling"].map(|c| slideline::dba::check_file(&output, c));
-    let outputs = std::iter::once(output.clone()).chain(outputs);
-    for path in outputs {
+    for path in slideline::dba::output_files(&output) {
         if let Err(e) = slideline::output_path::check_output_path(&path, Some((&args.deck, "the input deck"))) {
             return fail(&e, launched_as_rank_zero());
         }
@@ -50,9 +48,7 @@ pub fn check_command(args: &CheckArgs) -> ExitCode {
         }
         let verdict = slideline::dba::run(&session, &model, &spec, &output, !args.quiet)?;
         if root {
-            print!("{}", slideline::dba::table(&verdict, &args.deck.display().to_string()));
-            slideline::dba::write(&verdict, &output, &model.source_text)?;
-            println!("verdict written to {} (/dba)", output.display());
+            slideline::dba::report(&verdict, &args.deck.display().to_string(), &output, &model.source_text)?;
         }
         Ok::<(), Error>(())
     })();

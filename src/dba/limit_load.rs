@@ -18,18 +18,14 @@ use std::path::Path;
 /// What the limit-load analysis reached.
 #[derive(Clone, Debug, PartialEq)]
 pub struct LimitLoad {
-    /// The factor asked (Table 5.3's 1.5).
-    pub factor: f64,
     /// Whether the loads times `factor` were carried.
     pub carried: bool,
     /// The factor on the design loads at the last converged increment: the collapse load
     /// factor when the search failed, `search_to` when it carried everything. None when a
     /// factored step before the last failed (its loads are not one multiple of the design's).
     pub reached: Option<f64>,
-    /// Whether the search stopped at a collapse (Newton failing at the smallest increment)
-    /// rather than at `search_to`.
-    pub collapsed: bool,
-    /// Where it failed: the step's name and its load factor, when it did.
+    /// Where Newton failed at the smallest increment (a collapse): the step's name and its
+    /// load factor; None when the search reached `search_to`.
     pub failed_in: Option<(String, f64)>,
 }
 
@@ -119,7 +115,7 @@ pub fn run(session: &PetscSession, model: &Model, spec: &DbaSpec, output: &Path,
         Err(e) => return Err(e),
     };
     let Some(failure) = failure else {
-        return Ok(LimitLoad { factor: ll.factor, carried: true, reached: Some(ll.search_to), collapsed: false, failed_in: None });
+        return Ok(LimitLoad { carried: true, reached: Some(ll.search_to), failed_in: None });
     };
     // the last converged increment, from the file the run kept
     let rows = crate::io::reader::ResultsReader::open(output)?.history_rows()?;
@@ -136,5 +132,5 @@ pub fn run(session: &PetscSession, model: &Model, spec: &DbaSpec, output: &Path,
         // an earlier factored step, or none converged
         _ => (false, None),
     };
-    Ok(LimitLoad { factor: ll.factor, carried, reached, collapsed: true, failed_in: Some(failure) })
+    Ok(LimitLoad { carried, reached, failed_in: Some(failure) })
 }

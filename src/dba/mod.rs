@@ -44,10 +44,27 @@ impl Verdict {
     }
 }
 
+/// The checks, by the names of their analyses' files.
+pub const CHECKS: [&str; 3] = ["limit_load", "buckling", "ratcheting"];
+
 /// The results file of check `name` beside the verdict file `output`: out.h5 -> out_NAME.h5.
 pub fn check_file(output: &Path, name: &str) -> PathBuf {
     let stem = output.file_stem().unwrap_or_default().to_string_lossy();
     output.with_file_name(format!("{stem}_{name}.h5"))
+}
+
+/// The verdict file `output` and every check's file beside it: what a run may write.
+pub fn output_files(output: &Path) -> Vec<PathBuf> {
+    std::iter::once(output.to_path_buf()).chain(CHECKS.map(|c| check_file(output, c))).collect()
+}
+
+/// The verdict printed under `title` and written to `output`'s `/dba` with the deck's text
+/// (rank 0).
+pub fn report(v: &Verdict, title: &str, output: &Path, deck_text: &str) -> Result<()> {
+    print!("{}", table(v, title));
+    write(v, output, deck_text)?;
+    println!("verdict written to {} (/dba)", output.display());
+    Ok(())
 }
 
 /// Runs every check `spec` names on `model` (collective); each check's run goes to its own
@@ -56,8 +73,9 @@ pub fn run(session: &PetscSession, model: &Model, spec: &DbaSpec, output: &Path,
     let root = session.world().rank() == 0;
     let mut rows = Vec::new();
     let mut files = Vec::new();
+    let [limit, buckle, ratchet] = CHECKS;
     if let Some(ll) = &spec.limit_load {
-        let file = check_file(output, "limit_load");
+        let file = check_file(output, limit);
         if root && progress {
             println!(
                 "limit load: elastic-perfectly plastic at 1.5 S, small displacements, the primary loads x {} and on up to x {} ...",
@@ -66,10 +84,10 @@ pub fn run(session: &PetscSession, model: &Model, spec: &DbaSpec, output: &Path,
         }
         let answer = limit_load::run(session, model, spec, &file, progress)?;
         rows.push(limit_load_row(&answer, ll));
-        files.push(("limit_load".to_string(), file));
+        files.push((limit.to_string(), file));
     }
     if let Some(b) = &spec.buckling {
-        let file = check_file(output, "buckling");
+        let file = check_file(output, buckle);
         if root && progress {
             println!(
                 "buckling: the deck's buckle steps about an elastic prestress of the design pressures, design factor 2 / beta_cr = {:.3} ...",
@@ -78,25 +96,25 @@ pub fn run(session: &PetscSession, model: &Model, spec: &DbaSpec, output: &Path,
         }
         let answer = buckling::run(session, model, spec, &file, progress)?;
         rows.extend(buckling_rows(&answer, b.beta_cr));
-        files.push(("buckling".to_string(), file));
+        files.push((buckle.to_string(), file));
     }
     if let Some(r) = &spec.ratcheting {
-        let file = check_file(output, "ratcheting");
+        let file = check_file(output, ratchet);
         if root && progress {
             println!("ratcheting: elastic-perfectly plastic at the yield strength, {} cycles of steps {:?} ...", r.cycles, r.cycle);
         }
         let answer = ratcheting::run(session, model, spec, &file, progress)?;
         rows.extend(ratcheting_rows(&answer));
-        files.push(("ratcheting".to_string(), file));
+        files.push((ratchet.to_string(), file));
     }
     Ok(Verdict { rows, files })
 }
 
 fn limit_load_row(a: &limit_load::LimitLoad, ll: &spec::LimitLoadSpec) -> CheckRow {
-    let criterion = match (&a.failed_in, a.collapsed) {
-        (_, false) => format!("the loads x {} carried (collapse above x {})", ll.factor, ll.search_to),
-        (Some((step, lambda)), true) if !a.carried => format!("the loads x {} carried; Newton failed in step '{step}' at load factor {lambda:.4}", ll.factor),
-        _ => format!("the loads x {} carried; the collapse load factor", ll.factor),
+    let criterion = match &a.failed_in {
+        None => format!("the loads x {} carried (collapse above x {})", ll.factor, ll.search_to),
+        Some((step, lambda)) if !a.carried => format!("the loads x {} carried; Newton failed in step '{step}' at load factor {lambda:.4}", ll.factor),
+        Some(_) => format!("the loads x {} carried; the collapse load factor", ll.factor),
     };
     CheckRow {
         check: "plastic collapse, limit load".into(),

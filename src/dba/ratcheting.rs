@@ -92,18 +92,15 @@ pub fn run(session: &PetscSession, model: &Model, spec: &DbaSpec, output: &Path,
     let m = self::model(model, r)?;
     crate::solve::run(session, &m, &RunOptions { output: output.to_path_buf(), progress, verbose: false, monitor: false, restart: None })?;
     let yield_strain = m.materials.iter().filter_map(|mat| mat.plasticity.map(|h| h.initial_yield_stress() / mat.youngs_modulus)).fold(f64::INFINITY, f64::min);
-    let size = model_size(&model.mesh.coords, model.is_axisymmetric());
+    let size = model_size(&model.mesh, model.is_axisymmetric());
     criteria(output, model.general_steps().count(), r, 1e-3 * yield_strain, 1e-3 * yield_strain * size)
 }
 
 /// The largest overall dimension of the body, mm: its extent, and for a body of revolution
-/// its radius (a ring's diameter changes as it ratchets, however thin its wall).
-fn model_size(coords: &[[f64; 2]], axisymmetric: bool) -> f64 {
-    let b = coords
-        .iter()
-        .fold([f64::INFINITY, f64::INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY], |b, x| [b[0].min(x[0]), b[1].min(x[1]), b[2].max(x[0]), b[3].max(x[1])]);
-    let r0 = if axisymmetric { 0.0 } else { b[0] };
-    (b[2] - r0).max(b[3] - b[1])
+/// at least its outer radius (a ring's diameter changes as it ratchets, however thin its wall).
+fn model_size(mesh: &crate::model::Mesh, axisymmetric: bool) -> f64 {
+    let radius = if axisymmetric { mesh.coords.iter().map(|x| x[0]).fold(0.0, f64::max) } else { 0.0 };
+    mesh.largest_extent().max(radius)
 }
 
 /// The criteria read from the ratcheting run's file: `general` general steps in the deck

@@ -135,10 +135,8 @@ impl DbaSpec {
                 return bad(format!("ratcheting.cycles must be at least {LEAST_CYCLES} (VIII-2 5.5.7.2), got {}", r.cycles));
             }
             let general: Vec<&str> = model.general_steps().map(|s| s.name.as_str()).collect();
-            if r.cycle.is_empty()
-                || r.cycle.len() > general.len()
-                || general[general.len() - r.cycle.len()..] != r.cycle.iter().map(String::as_str).collect::<Vec<_>>()[..]
-            {
+            let cycle: Vec<&str> = r.cycle.iter().map(String::as_str).collect();
+            if cycle.is_empty() || !general.ends_with(&cycle) {
                 return bad(format!("ratcheting.cycle {:?} must name the deck's last general steps in order (they are {:?})", r.cycle, general));
             }
             if let Some(m) = model.materials.iter().find(|m| m.plasticity.is_none()) {
