@@ -80,7 +80,7 @@ fn main() -> ExitCode {
             }
             let root = session.world().rank() == 0;
             if args.dba {
-                let result = workflow::design_by_analysis(&session, &params, spec.as_ref(), &args.output, args.quiet);
+                let result = workflow::design_by_analysis(&session, &params, spec.as_ref(), &args.output, args.report.as_deref(), args.quiet);
                 warn_unused_options(&session, root && !is_bad_input(&result));
                 return match result {
                     Ok(()) => ExitCode::SUCCESS,

@@ -169,14 +169,16 @@ fn bad_design_by_analysis_tables_are_named() {
 /// (the ends held; 1.5 S = 172.5 MPa from the specification's S = 115) carries the factored
 /// 0.9 MPa and collapses within the search (to 20 x); ratcheting over three strokes of 70 mm at
 /// 16 times the yield strain and more is plastic action in every cycle (criterion a fails); the
-/// verdict and both analyses' files are written; without --spec it is refused, naming it.
+/// verdict and both analyses' files are written; the design report (written by the run, and
+/// again by `post` from the verdict file alone, the same) has the code's verdict and the
+/// checks' table with the printed figures; without --spec it is refused, naming it.
 #[test]
 fn the_bellows_design_by_analysis_runs_the_joint_of_its_specification() {
     let spec = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/seed_joint.toml");
     let dir = tempfile::tempdir().unwrap();
     let run = command_in(dir.path(), 2)
         .current_dir(dir.path())
-        .args(["bellows", "--spec", spec.to_str().unwrap(), "--quick", "--increments", "8", "--dba", "--quiet", "-o", "j.h5"])
+        .args(["bellows", "--spec", spec.to_str().unwrap(), "--quick", "--increments", "8", "--dba", "--quiet", "-o", "j.h5", "--report", "j.html"])
         .output()
         .unwrap();
     let out = String::from_utf8_lossy(&run.stdout).to_string();
@@ -191,6 +193,23 @@ fn the_bellows_design_by_analysis_runs_the_joint_of_its_specification() {
     assert!(figures[0] > 1.5 && figures[0] < 20.0, "a collapse within the search: {}\n{out}", figures[0]);
     assert!(figures[1] > 1e-3, "plastic action in the last cycle of a 70 mm stroke:\n{out}");
     assert!(dir.path().join("j_limit_load.h5").exists() && dir.path().join("j_ratcheting.h5").exists());
+    // the report: the code's checks, then the design-by-analysis table as printed
+    let html = std::fs::read_to_string(dir.path().join("j.html")).unwrap();
+    assert!(html.contains("id=\"checks\"") && html.contains("id=\"dba\""), "{html}");
+    assert_eq!(html.matches("class=\"dba-check\"").count(), 5, "{html}");
+    let collapse = format!("{:.4}", figures[0]);
+    assert!(out.contains(&collapse) && html.contains(&format!("<td class=\"n\">{collapse}</td>")), "{collapse}:\n{html}");
+    let overall = if verdicts.iter().any(|v| v == "FAIL") { "FAIL" } else { "PASS: every check" };
+    assert!(html.contains(&format!("id=\"dba-verdict\">Design by analysis: {overall}<")), "{overall}:\n{html}");
+    let nodes = Results::open(&dir.path().join("j_limit_load.h5")).f64s("mesh/coordinates").len() / 2;
+    assert!(html.contains(&format!("id=\"mesh\">{nodes} nodes")), "the mesh of the checks' analyses, {nodes} nodes:\n{html}");
+    let post = command_in(dir.path(), 1).current_dir(dir.path()).args(["post", "j.h5", "--report", "again.html"]).output().unwrap();
+    let printed = String::from_utf8_lossy(&post.stdout);
+    assert!(post.status.success() && printed.contains(&format!("verdict: {overall}")), "{printed}{}", String::from_utf8_lossy(&post.stderr));
+    assert_eq!(std::fs::read_to_string(dir.path().join("again.html")).unwrap(), html, "post writes the run's report again");
+    let field = command_in(dir.path(), 1).current_dir(dir.path()).args(["post", "j.h5", "--field", "stress"]).output().unwrap();
+    let said = String::from_utf8_lossy(&field.stderr);
+    assert!(field.status.code() == Some(2) && said.contains("j_limit_load.h5"), "{said}");
     let refused = command_in(dir.path(), 1).current_dir(dir.path()).args(["bellows", "--quick", "--dba"]).output().unwrap();
     assert_eq!(refused.status.code(), Some(2), "{}", String::from_utf8_lossy(&refused.stderr));
     assert!(String::from_utf8_lossy(&refused.stderr).contains("--spec"), "{}", String::from_utf8_lossy(&refused.stderr));

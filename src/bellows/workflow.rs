@@ -204,9 +204,17 @@ const BELLOWS_SEARCH_TO: f64 = 20.0;
 /// describes, with the allowable stress of its specification: the limit load under the design
 /// pressure alone (the ends held; the stroke is a secondary load), and ratcheting over three
 /// cycles of the stroke (compress, return) under the pressure. The verdict is printed with the
-/// specification's code verdict before it and written to `output`'s `/dba`; each analysis in a
-/// file beside it (collective).
-pub fn design_by_analysis(session: &PetscSession, params: &BellowsParams, spec: Option<&DesignSpec>, output: &Path, quiet: bool) -> Result<()> {
+/// specification's code verdict before it and written to `output` (`/dba`, and the code's
+/// verdict as a run's file holds it); each analysis in a file beside it; with `report`, the
+/// design report of `output` (collective).
+pub fn design_by_analysis(
+    session: &PetscSession,
+    params: &BellowsParams,
+    spec: Option<&DesignSpec>,
+    output: &Path,
+    report: Option<&Path>,
+    quiet: bool,
+) -> Result<()> {
     use crate::dba::spec::{Allowable, DbaSpec, LimitLoadSpec, RatchetingSpec};
     let spec = spec.ok_or_else(|| crate::error::Error::input("bellows --dba: the checks need the allowable stress of a design specification (--spec FILE)"))?;
     let (_, _, allowable) = spec.at_temperature()?;
@@ -220,14 +228,21 @@ pub fn design_by_analysis(session: &PetscSession, params: &BellowsParams, spec: 
     };
     checks.validate(&model)?;
     // the code's verdict first, as the run prints it (collective: its chart coefficients)
-    let (_, _, code) = code_verdict(session, spec)?;
+    let (_, code, code_table) = code_verdict(session, spec)?;
     let root = session.world().rank() == 0;
     if root {
-        print!("{code}");
+        print!("{code_table}");
     }
     let verdict = crate::dba::run(session, &model, &checks, output, !quiet)?;
-    if root {
-        crate::dba::report(&verdict, &params.title(), output, &model.source_text)?;
+    if !root {
+        return Ok(());
+    }
+    crate::dba::report(&verdict, &params.title(), output, &model.source_text)?;
+    crate::io::assessment::write_verdict(output, &code, &spec.text, &spec.sha256())?;
+    if let Some(path) = report {
+        let html = super::report::html::design_report(&ResultsReader::open(output)?, None)?;
+        std::fs::write(path, html).map_err(|e| crate::error::Error::Output { path: path.to_path_buf(), message: e.to_string() })?;
+        println!("report: {}", path.display());
     }
     Ok(())
 }

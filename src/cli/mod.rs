@@ -178,7 +178,9 @@ pub struct BellowsArgs {
     /// Part 5 on the joint (docs/design-by-analysis.md): plastic collapse under the design
     /// pressure by the limit-load method (at 1.5 S, the pressure x 1.5, the ends held), and
     /// ratcheting over three cycles of the stroke under the pressure, elastic-perfectly plastic.
-    #[arg(long, requires = "spec", conflicts_with_all = ["check_only", "report", "restart", "cycle"])]
+    /// With --report, the design report has the specification, the code's verdict and these
+    /// checks.
+    #[arg(long, requires = "spec", conflicts_with_all = ["check_only", "restart", "cycle"])]
     pub dba: bool,
     /// After the run, write the design report: one self-contained HTML file (the
     /// specification, the code's verdict, the finite-element tables, the mesh, the pictures).

@@ -10,6 +10,9 @@ use slideline::Error;
 pub fn post(args: &PostArgs) -> Result<(), Error> {
     use slideline::post;
     let r = ResultsReader::open(&args.file)?;
+    if let Some(verdict) = slideline::dba::read(&args.file)?.filter(|_| !r.has_mesh()) {
+        return verdict_file(&r, &verdict, args);
+    }
     r.notes()?.iter().for_each(|note| eprintln!("note: {note}"));
     if args.increment.is_some() && args.field.is_none() && args.linearize.is_empty() {
         return Err(Error::input("--increment goes with --field or --linearize (the other reports cover every increment)"));
@@ -115,4 +118,25 @@ fn print_quietly_on_closed_pipe(text: &str) -> Result<(), Error> {
         Err(e) if e.kind() != std::io::ErrorKind::BrokenPipe => Err(Error::Output { path: "standard output".into(), message: e.to_string() }),
         _ => Ok(()),
     }
+}
+
+/// `post` of a design-by-analysis verdict file (`slideline check`, `bellows --dba`): its table
+/// again, and with `--report` the design report; its checks' analyses are files of their own.
+fn verdict_file(r: &ResultsReader, verdict: &slideline::dba::Verdict, args: &PostArgs) -> Result<(), Error> {
+    let asked_of_a_run = args.field.is_some() || args.node.is_some() || args.set.is_some() || args.compare.is_some() || args.csv.is_some();
+    if asked_of_a_run || args.plot.is_some() || args.deck || !args.linearize.is_empty() || args.increment.is_some() {
+        let files = verdict.files.iter().map(|(_, f)| f.display().to_string()).collect::<Vec<_>>().join(", ");
+        return Err(Error::input(format!(
+            "{}: a design-by-analysis verdict file has no fields or history of its own; post its checks' files ({files})",
+            args.file.display()
+        )));
+    }
+    let mut out = String::new();
+    if let Some(path) = &args.report {
+        let html = slideline::bellows::report::html::design_report(r, None)?;
+        std::fs::write(path, html).map_err(|e| Error::Output { path: path.clone(), message: e.to_string() })?;
+        out += &format!("report: {}\n", path.display());
+    }
+    out += &slideline::dba::table(verdict, &args.file.display().to_string());
+    print_quietly_on_closed_pipe(&out)
 }

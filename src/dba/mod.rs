@@ -25,7 +25,7 @@ pub struct CheckRow {
     /// The figure the analysis gave (None: not evaluated, `note` says why).
     pub figure: Option<f64>,
     pub limit: f64,
-    pub unit: &'static str,
+    pub unit: String,
     /// None for a line that only informs (a criterion of which another may hold).
     pub passes: Option<bool>,
     pub rule: String,
@@ -41,6 +41,15 @@ pub struct Verdict {
 impl Verdict {
     pub fn passes(&self) -> bool {
         self.rows.iter().all(|r| r.passes != Some(false))
+    }
+
+    /// The verdict in a few words.
+    pub fn summary(&self) -> &'static str {
+        if self.passes() {
+            "PASS: every check"
+        } else {
+            "FAIL"
+        }
     }
 }
 
@@ -121,7 +130,7 @@ fn limit_load_row(a: &limit_load::LimitLoad, ll: &spec::LimitLoadSpec) -> CheckR
         criterion,
         figure: a.reached,
         limit: ll.factor,
-        unit: "x loads",
+        unit: LOAD_FACTOR.into(),
         passes: Some(a.carried),
         rule: "VIII-2 5.2.3, Table 5.3: 1.5 (P + Ps + D) at 1.5 S".into(),
     }
@@ -138,7 +147,7 @@ fn buckling_rows(a: &buckling::Buckling, beta_cr: f64) -> Vec<CheckRow> {
             },
             figure: *lambda,
             limit: a.design_factor,
-            unit: "x loads",
+            unit: LOAD_FACTOR.into(),
             passes: Some(lambda.is_none_or(|l| l >= a.design_factor)),
             rule: format!("VIII-2 5.4.1.3(a), type 1: 2 / beta_cr, beta_cr {beta_cr}"),
         })
@@ -147,12 +156,12 @@ fn buckling_rows(a: &buckling::Buckling, beta_cr: f64) -> Vec<CheckRow> {
 
 fn ratcheting_rows(a: &ratcheting::Ratcheting) -> Vec<CheckRow> {
     let last = format!("cycles {} and {}", a.cycles - 1, a.cycles);
-    let row = |criterion: String, figure: Option<f64>, limit: f64, unit: &'static str, rule: &str| CheckRow {
+    let row = |criterion: String, figure: Option<f64>, limit: f64, unit: &str, rule: &str| CheckRow {
         check: "ratcheting".into(),
         criterion,
         figure,
         limit,
-        unit,
+        unit: unit.into(),
         passes: None,
         rule: rule.into(),
     };
@@ -185,39 +194,49 @@ fn ratcheting_rows(a: &ratcheting::Ratcheting) -> Vec<CheckRow> {
     ]
 }
 
+/// The unit of a figure that is a multiple of the design loads.
+const LOAD_FACTOR: &str = "x loads";
+
+impl CheckRow {
+    /// The row's figure, limit and verdict as the table prints them.
+    pub fn cells(&self) -> [String; 3] {
+        let figure = match (self.figure, self.unit.as_str()) {
+            (None, _) => "-".to_string(),
+            (Some(f), LOAD_FACTOR) => format!("{f:.4}"),
+            (Some(f), _) => format!("{f:.4e}"),
+        };
+        let limit = match self.unit.as_str() {
+            "" => String::new(),
+            LOAD_FACTOR => format!(">= {:.2}", self.limit),
+            _ => format!("<= {:.1e}", self.limit),
+        };
+        // a criterion of which another may hold says only whether it holds
+        let verdict = match (self.passes, self.figure) {
+            (Some(true), _) => "PASS",
+            (Some(false), _) => "FAIL",
+            (None, Some(f)) if f <= self.limit => "holds",
+            (None, Some(_)) => "fails",
+            (None, None) => "",
+        };
+        [figure, limit, verdict.to_string()]
+    }
+}
+
 /// The verdict table as printed.
 pub fn table(v: &Verdict, title: &str) -> String {
     let mut out = format!("design by analysis (ASME VIII-2 Part 5): {title}\n");
     out += &format!("  {:<28} {:<84} {:>12} {:>12} {:<8} {:<7} {}\n", "check", "criterion", "figure", "limit", "unit", "verdict", "rule");
     for r in &v.rows {
-        let figure = match (r.figure, r.unit) {
-            (None, _) => "-".to_string(),
-            (Some(f), "x loads") => format!("{f:.4}"),
-            (Some(f), _) => format!("{f:.4e}"),
-        };
-        let limit = match r.unit {
-            "" => String::new(),
-            "x loads" => format!(">= {:.2}", r.limit),
-            _ => format!("<= {:.1e}", r.limit),
-        };
-        // a criterion of which another may hold says only whether it holds
-        let verdict = match (r.passes, r.figure) {
-            (Some(true), _) => "PASS",
-            (Some(false), _) => "FAIL",
-            (None, Some(f)) if f <= r.limit => "holds",
-            (None, Some(_)) => "fails",
-            (None, None) => "",
-        };
+        let [figure, limit, verdict] = r.cells();
         out += &format!("  {:<28} {:<84} {:>12} {:>12} {:<8} {:<7} {}\n", r.check, r.criterion, figure, limit, r.unit, verdict, r.rule);
     }
-    out += &format!("verdict: {}\n", if v.passes() { "PASS: every check" } else { "FAIL" });
+    out += &format!("verdict: {}\n", v.summary());
     for (name, file) in &v.files {
         out += &format!("  the {} analysis: {}\n", name.replace('_', " "), file.display());
     }
     out
 }
 
-/// The verdict in `output`'s group `/dba` (one row per line of the table; rank 0 only).
 pub fn write(v: &Verdict, output: &Path, deck_text: &str) -> Result<()> {
     let err = |e: hdf5::Error| Error::Output { path: output.to_path_buf(), message: e.to_string() };
     let file = hdf5::File::create(output).map_err(err)?;
@@ -226,7 +245,7 @@ pub fn write(v: &Verdict, output: &Path, deck_text: &str) -> Result<()> {
     t.text("criterion", v.rows.iter().map(|r| r.criterion.clone()).collect());
     t.numbers("figure", "", v.rows.iter().map(|r| r.figure.unwrap_or(f64::NAN)).collect());
     t.numbers("limit", "", v.rows.iter().map(|r| r.limit).collect());
-    t.text("unit", v.rows.iter().map(|r| r.unit.to_string()).collect());
+    t.text("unit", v.rows.iter().map(|r| r.unit.clone()).collect());
     t.text("verdict", v.rows.iter().map(|r| r.passes.map_or("", |p| if p { "PASS" } else { "FAIL" }).to_string()).collect());
     t.text("rule", v.rows.iter().map(|r| r.rule.clone()).collect());
     t.write_group(&file, "dba", output)?;
@@ -236,4 +255,40 @@ pub fn write(v: &Verdict, output: &Path, deck_text: &str) -> Result<()> {
     group.new_attr::<hdf5::types::VarLenUnicode>().create("results").map_err(err)?.write_scalar(&text(&files)?).map_err(err)?;
     file.new_attr::<hdf5::types::VarLenUnicode>().create("deck").map_err(err)?.write_scalar(&text(deck_text)?).map_err(err)?;
     Ok(())
+}
+
+/// The verdict a `check` or `bellows --dba` wrote to `path`'s `/dba`; None where the file has
+/// none.
+pub fn read(path: &Path) -> Result<Option<Verdict>> {
+    let bad = |e: hdf5::Error| Error::input(format!("{}: /dba: {e}", path.display()));
+    let file = hdf5::File::open(path).map_err(bad)?;
+    let Ok(g) = file.group("dba") else { return Ok(None) };
+    let text = |name: &str| -> Result<Vec<String>> {
+        Ok(g.dataset(name).and_then(|d| d.read_raw::<hdf5::types::VarLenUnicode>()).map_err(bad)?.iter().map(|s| s.to_string()).collect())
+    };
+    let numbers = |name: &str| g.dataset(name).and_then(|d| d.read_raw::<f64>()).map_err(bad);
+    let (checks, criteria, units, verdicts, rules) = (text("check")?, text("criterion")?, text("unit")?, text("verdict")?, text("rule")?);
+    let (figures, limits) = (numbers("figure")?, numbers("limit")?);
+    let n = checks.len();
+    if [criteria.len(), units.len(), verdicts.len(), rules.len(), figures.len(), limits.len()].iter().any(|&l| l != n) {
+        return Err(Error::input(format!("{}: /dba: columns of different lengths", path.display())));
+    }
+    let rows = (0..n)
+        .map(|i| CheckRow {
+            check: checks[i].clone(),
+            criterion: criteria[i].clone(),
+            figure: Some(figures[i]).filter(|f| !f.is_nan()),
+            limit: limits[i],
+            unit: units[i].clone(),
+            passes: match verdicts[i].as_str() {
+                "PASS" => Some(true),
+                "FAIL" => Some(false),
+                _ => None,
+            },
+            rule: rules[i].clone(),
+        })
+        .collect();
+    let listed = g.attr("results").and_then(|a| a.read_scalar::<hdf5::types::VarLenUnicode>()).map_err(bad)?.to_string();
+    let files = listed.split("; ").filter_map(|entry| entry.split_once(": ")).map(|(name, file)| (name.to_string(), PathBuf::from(file))).collect();
+    Ok(Some(Verdict { rows, files }))
 }

@@ -100,8 +100,10 @@ impl ResultsReader {
         check_is_hdf5(path)?;
         let file = open_waiting_for_lock(path)?;
         let reader = ResultsReader { file, path: path.to_path_buf() };
+        // a design-by-analysis verdict file (`/dba`) holds its checks' figures, not a run's
+        let verdict_file = reader.file.link_exists("dba");
         for group in ["mesh", "increments", "history"] {
-            if !reader.file.link_exists(group) {
+            if !reader.file.link_exists(group) && !verdict_file {
                 return Err(Error::input(format!("{}: not a slideline results file (no /{group} group)", path.display())));
             }
         }
@@ -128,6 +130,11 @@ impl ResultsReader {
     }
 
     /// Reference coordinates (r, z) of the nodes, in file order.
+    /// Whether the file holds a mesh (a design-by-analysis verdict file does not).
+    pub fn has_mesh(&self) -> bool {
+        self.file.link_exists("mesh")
+    }
+
     pub fn coordinates(&self) -> Result<Vec<[f64; 2]>> {
         Ok(self.read_f64("mesh/coordinates")?.chunks_exact(2).map(|c| [c[0], c[1]]).collect())
     }

@@ -34,7 +34,13 @@ pub fn design_report(reader: &ResultsReader, closing: Option<&str>) -> Result<St
         Some((_, text, _)) => Some(DesignSpec::from_text(text, reader.path())?),
         None => None,
     };
-    let title = spec.as_ref().map(|s| s.title.clone()).filter(|t| !t.is_empty()).unwrap_or_else(|| "Bellows expansion joint".into());
+    let by_analysis = crate::dba::read(reader.path())?;
+    // a deck's checks (`slideline check`) are of any model, not a bellows
+    let untitled = match by_analysis.is_some() && !reader.has_mesh() && spec.is_none() {
+        true => format!("The deck checked into {}", reader.path().file_name().unwrap_or_default().to_string_lossy()),
+        false => "Bellows expansion joint".into(),
+    };
+    let title = spec.as_ref().map(|s| s.title.clone()).filter(|t| !t.is_empty()).unwrap_or(untitled);
     let mut h =
         format!("<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>{}</title><style>{STYLE}</style></head><body>\n", escape(&title));
     h += &format!("<h1>{}: design report</h1>\n", escape(&title));
@@ -50,10 +56,16 @@ pub fn design_report(reader: &ResultsReader, closing: Option<&str>) -> Result<St
     match (&verdict, &spec) {
         (Some((v, _, _)), Some(s)) => {
             h += &format!("<p class=\"verdict\" id=\"verdict\">Verdict: {}</p>\n", escape(&v.summary()));
+            if let Some(d) = &by_analysis {
+                h += &format!("<p class=\"verdict\" id=\"dba-verdict\">Design by analysis: {}</p>\n", d.summary());
+            }
             h += &specification_section(s)?;
             h += &verdict_section(v, s)?;
         }
         _ => h += "<p>No design specification: the run was not given one (<code>--spec</code>), and there is no code verdict.</p>\n",
+    }
+    if let Some(d) = &by_analysis {
+        h += &dba_section(d, reader.path());
     }
     h += "<h2>Finite-element analysis</h2>\n";
     if let Some(t) = closing {
@@ -159,8 +171,47 @@ fn verdict_section(v: &Verdict, s: &DesignSpec) -> Result<String> {
     Ok(h)
 }
 
-/// The mesh: its size, and the element sizes the joint was built with.
+/// The design-by-analysis checks (ASME VIII-2 Part 5) as the verdict file `file` holds them:
+/// the table as printed, and each check's own results file (beside `file`).
+fn dba_section(v: &crate::dba::Verdict, file: &Path) -> String {
+    let mut h = String::from(
+        "<h2>Design by analysis</h2>\n<p>ASME Section VIII Division 2, Part 5: each check by an analysis of its own (docs/design-by-analysis.md).</p>\n",
+    );
+    h += "<table id=\"dba\"><tr><th>check</th><th>criterion</th><th>figure</th><th>limit</th><th>unit</th><th>verdict</th><th>rule</th></tr>\n";
+    for r in &v.rows {
+        let [figure, limit, word] = r.cells();
+        let class = match word.as_str() {
+            "PASS" | "holds" => "pass",
+            "FAIL" | "fails" => "fail",
+            _ => "",
+        };
+        h += &format!(
+            "<tr class=\"dba-check\"><td>{}</td><td>{}</td><td class=\"n\">{}</td><td class=\"n\">{}</td><td>{}</td><td class=\"{class}\">{word}</td><td>{}</td></tr>\n",
+            escape(&r.check),
+            escape(&r.criterion),
+            escape(&figure),
+            escape(&limit),
+            escape(&r.unit),
+            escape(&r.rule)
+        );
+    }
+    h += &format!("</table>\n<p>Verdict: <span class=\"{}\">{}</span>.", if v.passes() { "pass" } else { "fail" }, v.summary());
+    for (name, check_file) in &v.files {
+        let beside = file.with_file_name(check_file.file_name().unwrap_or_default());
+        h += &format!(" The {} analysis: <code>{}</code>.", escape(&name.replace('_', " ")), escape(&beside.file_name().unwrap_or_default().to_string_lossy()));
+    }
+    h + "</p>\n"
+}
+
+/// The mesh: its size, and the element sizes the joint was built with (a verdict file's, from
+/// its first check's results file).
 fn mesh_section(reader: &ResultsReader) -> Result<String> {
+    if !reader.has_mesh() {
+        let checks = crate::dba::read(reader.path())?.map(|v| v.files).unwrap_or_default();
+        let Some((_, first)) = checks.first() else { return Ok(String::new()) };
+        let beside = reader.path().with_file_name(first.file_name().unwrap_or_default());
+        return mesh_section(&ResultsReader::open(&beside)?);
+    }
     let (nodes, elements) = (reader.coordinates()?.len(), reader.connectivity()?.len());
     let deck = reader.text_attr("deck")?;
     let sizes = crate::bellows::joint::BellowsParams::from_toml(&deck, "the results file's deck")
