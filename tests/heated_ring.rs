@@ -38,7 +38,7 @@ boundary = [ {ends} ]
 #[test]
 fn free_ring_heated_to_200_is_stress_free_and_grows_by_alpha_dt() {
     for nlgeom in [true, false] {
-        let run = run_deck(&deck(nlgeom, 200.0, r#"{ set = "bottom", uz = 0.0 }"#), &[], 1, &[]);
+        let run = run_deck(&deck(nlgeom, 200.0, r#"{ set = "bottom", uz = 0.0 }"#), &[], 1, common::DOUBLE);
         run.assert_ok();
         let res = Results::open(&run.h5);
         let strain = ALPHA * 180.0;
@@ -53,7 +53,7 @@ fn free_ring_heated_to_200_is_stress_free_and_grows_by_alpha_dt() {
 
 fn axial_stress_with_held_ends(temperature: f64) -> (Vec<f64>, f64) {
     let ends = r#"{ set = "bottom", uz = 0.0 }, { set = "top", uz = 0.0 }"#;
-    let run = run_deck(&deck(false, temperature, ends), &[], 1, &[]);
+    let run = run_deck(&deck(false, temperature, ends), &[], 1, common::DOUBLE);
     run.assert_ok();
     let res = Results::open(&run.h5);
     let stress = res.f64s(&format!("{}/stress", res.last_increment()));

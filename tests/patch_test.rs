@@ -34,7 +34,7 @@ fn deck(nlgeom: bool, a: f64, b: f64, c: f64) -> String {
 /// Runs the patch with the field (a, b, c); returns the Gauss-point stresses and checks that
 /// every node follows the field exactly.
 fn run_patch(nlgeom: bool, a: f64, b: f64, c: f64) -> Vec<f64> {
-    let run = run_deck(&deck(nlgeom, a, b, c), &[("patch5.msh", &data("patch5.msh"))], 1, &[]);
+    let run = run_deck(&deck(nlgeom, a, b, c), &[("patch5.msh", &data("patch5.msh"))], 1, common::DOUBLE);
     run.assert_ok();
     let res = Results::open(&run.h5);
     for (x, u) in res.nodes() {

@@ -178,7 +178,7 @@ name = "stress"
 boundary = [{{ set = "bottom", uz = 0.0 }}, {{ set = "top", uz = 0.0 }}]
 "#
     );
-    let run = run_deck(&deck, &[], 2, &[]);
+    let run = run_deck(&deck, &[], 2, common::DOUBLE);
     run.assert_ok();
     let res = Results::open(&run.h5);
     let last = res.last_increment();

@@ -201,7 +201,7 @@ fn no_volumetric_locking_limit_pressure_plateau_and_smooth_pressure_field() {
 #[test]
 fn element_nodal_stresses_are_kept_on_request_and_average_to_the_nodal_ones() {
     let steps = format!("[output]\nfields = [\"stress\", \"plastic_strain\", \"element_nodal\"]\n[[step]]\nincrements = 4\n{HOLD}\npressure = [ {{ surface = \"inner\", value = 80.0 }} ]\n");
-    let run = run_deck(&deck(false, 12, 1000.0, &steps), &[], 2, &[]);
+    let run = run_deck(&deck(false, 12, 1000.0, &steps), &[], 2, common::DOUBLE);
     run.assert_ok();
     let res = Results::open(&run.h5);
     let inc = res.last_increment();

@@ -26,7 +26,7 @@ increments = 25
 boundary = [ {{ set = "inner", ur = 0.0 }}, {{ set = "bottom", uz = 0.0 }}, {{ set = "top", uz = {top} }} ]
 "#
     );
-    let run = run_deck(&deck, &[], 1, TIGHT);
+    let run = run_deck(&deck, &[], 1, &[TIGHT, common::DOUBLE].concat());
     run.assert_ok();
     let res = Results::open(&run.h5);
     let (e, sy, h) = (200e3, 300.0, 1000.0);

@@ -267,9 +267,10 @@ pub struct BellowsArgs {
     /// keeps every increment.
     #[arg(long, default_value_t = 1, value_name = "N")]
     pub output_every: usize,
-    /// The visualisation fields as 64-bit (`double`) or 32-bit (`single`) floats; the
-    /// displacement, restart state, history and mesh stay 64-bit.
-    #[arg(long, value_enum, default_value_t = PrecisionArg::Double)]
+    /// The visualisation fields as 32-bit (`single`, 7 significant digits) or 64-bit
+    /// (`double`, as computed) floats, or each to its stated resolution; the displacement,
+    /// restart state, history and mesh stay 64-bit.
+    #[arg(long, value_enum, default_value_t = PrecisionArg::Single)]
     pub output_precision: PrecisionArg,
     /// A coarse, quick version of the same case (about 5 s on 2 ranks).
     #[arg(long)]
@@ -469,6 +470,7 @@ pub enum PrecisionArg {
     /// The values as computed (64-bit; `full` is the same).
     #[value(alias = "full")]
     Double,
+    /// 32-bit floats: each value to 2^-24 of itself (the default).
     Single,
     /// Each field to its stated resolution (docs/results.md).
     Resolution,

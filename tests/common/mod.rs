@@ -49,6 +49,11 @@ hardening_modulus = 1000.0
 /// default field test stops where engineering answers have settled (0.1 % and better).
 pub const TIGHT: &[&str] = &["--convergence", "residual"];
 
+/// `slideline run` flags for the fields as computed (64-bit): tests that read a stress,
+/// temperature or contact traction from the file to 1e-8 and finer (by default the file keeps
+/// them as 32-bit floats, 6e-8 of each value).
+pub const DOUBLE: &[&str] = &["--output-precision", "double"];
+
 /// The slideline binary under `mpirun -n ranks` (or alone for one rank), with OpenMPI's session
 /// directory under `dir`: concurrently starting OpenMPI 4.1 singletons race to create the
 /// shared one in /tmp and fail with "mkdir ... File exists".

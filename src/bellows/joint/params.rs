@@ -136,7 +136,7 @@ impl Default for BellowsParams {
             cycle: false,
             ply_elements: 2,
             output_every: 1,
-            output_precision: crate::model::Precision::Double,
+            output_precision: crate::model::Precision::Single,
             ply_element_length: 1.0,
             wall_elements: 3,
             wall_element_length: 4.0,
