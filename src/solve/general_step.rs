@@ -575,10 +575,12 @@ pub(super) fn set_free_values(x: &mut Vector<'_>, dofs: &DofMap, partition: &Par
 
 /// A write that failed on one rank (a full disk, a vanished directory) leaves the others
 /// waiting inside HDF5's collective calls: the rank that met it prints the error and stops every
-/// rank (MPI_Abort). The increments completed before are on disk, each flushed and marked.
+/// rank (MPI_Abort). The increments completed before are on disk, each flushed and marked. On
+/// one rank too: HDF5 closes the file it could not write at MPI_Finalize, and with 32-bit
+/// fields that close crashed (a segfault in H5F__close_cb, every time on a full 2 MB disk).
 pub(super) fn stop_all_on_write_error<T>(world: &impl Communicator, output: &std::path::Path, result: Result<T>) -> Result<T> {
     match result {
-        Err(e @ Error::Output { .. }) if world.size() > 1 => {
+        Err(e @ Error::Output { .. }) => {
             eprintln!("error: {e}; every rank stops (the increments completed before are in the file)");
             // the abort runs no destructor: the lock goes first, whichever rank holds it (a
             // file that stays locked would refuse the next run into it)
