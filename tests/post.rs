@@ -146,8 +146,12 @@ fn post_reproduces_the_run_and_reports_fields() {
     let not_h5 = dir.path().join("fit.toml");
     let empty = dir.path().join("empty.h5");
     hdf5::File::create(&empty).unwrap();
+    // a run killed between creating its file and the first flush leaves 0 bytes
+    let nothing = dir.path().join("nothing.h5");
+    std::fs::write(&nothing, b"").unwrap();
     for (args, needle) in [
         (vec![not_h5.to_str().unwrap()], "not a slideline results file (not HDF5)"),
+        (vec![nothing.to_str().unwrap()], "empty: the run writing it stopped before it wrote anything"),
         (vec![empty.to_str().unwrap()], "no /mesh group"),
         (vec![h5s, "--field", "von_mises", "--increment", "6"], "increment 6 out of range"),
         (vec![h5s, "--field", "strain", "--increment", "1"], "unknown field"),

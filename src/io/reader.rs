@@ -84,6 +84,12 @@ fn check_is_hdf5(path: &Path) -> Result<()> {
         let kind = if meta.is_dir() { "a directory" } else { "not a regular file" };
         return Err(Error::input(format!("{}: {kind}, not a slideline results file", path.display())));
     }
+    if meta.len() == 0 {
+        return Err(Error::input(format!(
+            "{}: empty: the run writing it stopped before it wrote anything (killed while creating it?); run it again",
+            path.display()
+        )));
+    }
     let mut head = [0u8; 8];
     let read = std::fs::File::open(path).and_then(|mut f| std::io::Read::read_exact(&mut f, &mut head));
     if read.is_err() || head != HDF5_SIGNATURE {
