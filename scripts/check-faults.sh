@@ -73,11 +73,12 @@ for trial in $(seq 1 20); do
     wait || true
     what="SIGKILL to rank 0 at $delay s, trial $trial"
     [ -e "$work/k.h5" ] || { echo "$what: killed before the file was made -> ok"; continue; }
-    if [ ! -s "$work/k.h5" ]; then
-        # killed between creating the file and its first flush: nothing in it, and post says so
-        "$slideline" post "$work/k.h5" > "$work/k.post" 2>&1 && fail "$what: post read an empty file"
-        grep -q "empty: the run writing it stopped" "$work/k.post" || fail "$what: an empty file, and post says: $(cat "$work/k.post")"
-        echo "$what: killed while creating the file; post says it is empty -> ok"
+    if [ "$(head -c 8 "$work/k.h5" | od -An -tx1 | tr -d ' \n')" != 894844460d0a1a0a ]; then
+        # killed between creating the file and its first flush (the superblock): nothing to
+        # read, and post says so
+        "$slideline" post "$work/k.h5" > "$work/k.post" 2>&1 && fail "$what: post read a file without a superblock"
+        grep -q "incomplete: the run writing it stopped while creating it" "$work/k.post" || fail "$what: no superblock, and post says: $(cat "$work/k.post")"
+        echo "$what: killed while creating the file; post says it is incomplete -> ok"
         continue
     fi
     "$slideline" post "$work/k.h5" > "$work/k.post" 2>&1 || fail "$what: post cannot read the file: $(cat "$work/k.post")"

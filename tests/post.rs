@@ -151,7 +151,7 @@ fn post_reproduces_the_run_and_reports_fields() {
     std::fs::write(&nothing, b"").unwrap();
     for (args, needle) in [
         (vec![not_h5.to_str().unwrap()], "not a slideline results file (not HDF5)"),
-        (vec![nothing.to_str().unwrap()], "empty: the run writing it stopped before it wrote anything"),
+        (vec![nothing.to_str().unwrap()], "incomplete: the run writing it stopped while creating it"),
         (vec![empty.to_str().unwrap()], "no /mesh group"),
         (vec![h5s, "--field", "von_mises", "--increment", "6"], "increment 6 out of range"),
         (vec![h5s, "--field", "strain", "--increment", "1"], "unknown field"),

@@ -84,14 +84,16 @@ fn check_is_hdf5(path: &Path) -> Result<()> {
         let kind = if meta.is_dir() { "a directory" } else { "not a regular file" };
         return Err(Error::input(format!("{}: {kind}, not a slideline results file", path.display())));
     }
-    if meta.len() == 0 {
+    let mut head = [0u8; 8];
+    let read = std::fs::File::open(path).and_then(|mut f| std::io::Read::read_exact(&mut f, &mut head));
+    // HDF5 writes the superblock at the file's first flush, after the mesh: a run killed
+    // before it leaves a file of nothing but zeros at its start, or of no bytes
+    if meta.len() == 0 || (read.is_ok() && head == [0u8; 8]) {
         return Err(Error::input(format!(
-            "{}: empty: the run writing it stopped before it wrote anything (killed while creating it?); run it again",
+            "{}: incomplete: the run writing it stopped while creating it, before its first increment (nothing to read); run it again",
             path.display()
         )));
     }
-    let mut head = [0u8; 8];
-    let read = std::fs::File::open(path).and_then(|mut f| std::io::Read::read_exact(&mut f, &mut head));
     if read.is_err() || head != HDF5_SIGNATURE {
         return Err(Error::input(format!("{}: not a slideline results file (not HDF5)", path.display())));
     }
