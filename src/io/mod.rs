@@ -8,6 +8,7 @@ mod h5ffi;
 mod heat;
 pub mod lock;
 pub mod nodal;
+mod opening;
 mod perturbation;
 pub mod restart;
 pub mod results;

@@ -20,93 +20,9 @@ fn missing(path: &Path, what: &str, e: impl std::fmt::Display) -> Error {
     Error::input(format!("{}: cannot read {what}: {e}", path.display()))
 }
 
-/// HDF5 refuses a file another process holds locked (a writer, or one closing it just now),
-/// and a process whose open failed so keeps failing; so the lock is waited for first (HDF5
-/// takes it with flock, as `File::try_lock_shared` tests it), up to `LOCK_WAIT`.
-const LOCK_WAIT: std::time::Duration = std::time::Duration::from_secs(3);
-
-fn open_waiting_for_lock(path: &Path) -> Result<hdf5::File> {
-    let start = std::time::Instant::now();
-    if let Ok(probe) = std::fs::File::open(path) {
-        while let Err(std::fs::TryLockError::WouldBlock) = probe.try_lock_shared() {
-            if start.elapsed() >= LOCK_WAIT {
-                return Err(Error::input(format!(
-                    "{}: locked by another process for {} s (a run still writing it, or a program holding it open); read it when that has finished",
-                    path.display(),
-                    LOCK_WAIT.as_secs()
-                )));
-            }
-            std::thread::sleep(std::time::Duration::from_millis(100));
-        }
-        // the probe's shared lock goes with it; HDF5 takes its own
-    }
-    let failed = |e: hdf5::Error| {
-        let first = e.to_string().lines().next().unwrap_or_default().to_string();
-        Error::input(format!("{}: an HDF5 file that does not open (truncated, or left open by a run that was killed?): {first}", path.display()))
-    };
-    match hdf5::File::open(path) {
-        Ok(file) => Ok(file),
-        Err(e) => match repair(path, &e.to_string()) {
-            Some(note) => {
-                eprintln!("note: {note}");
-                hdf5::File::open(path).map_err(failed)
-            }
-            None => Err(failed(e)),
-        },
-    }
-}
-
-/// A file a killed writer left behind, repaired as HDF5's `h5clear` does (hdf5-tools, which
-/// slideline's set-up installs): a superblock whose end-of-file mark lies past the data that
-/// reached the disk ("truncated file") gets the file's own size, a superblock still marked open
-/// for writing gets its marks cleared. The increments the writer completed are all before that
-/// point (each is flushed before it is marked complete). The note to print, or None.
-fn repair(path: &Path, error: &str) -> Option<String> {
-    let (args, what): (&[&str], &str) = if error.contains("truncated file") {
-        (&["--increment=0"], "its end-of-file mark set to the data on disk")
-    } else if error.contains("status_flags") || error.contains("already open for write") {
-        (&["-s"], "its open-for-writing marks cleared")
-    } else {
-        return None;
-    };
-    let done = std::process::Command::new("h5clear").args(args).arg(path).output().ok()?;
-    done.status.success().then(|| format!("{}: left by a writer that was killed; repaired with h5clear ({what})", path.display()))
-}
-
-/// HDF5's signature, at the start of every file slideline writes.
-const HDF5_SIGNATURE: [u8; 8] = *b"\x89HDF\r\n\x1a\n";
-
-/// Refuses, naming it, what is not a regular file starting with HDF5's signature: a directory,
-/// a FIFO (whose read would block), a CSV or a deck given by mistake.
-fn check_is_hdf5(path: &Path) -> Result<()> {
-    let meta = std::fs::metadata(path).map_err(|e| Error::input(format!("{}: {e}", path.display())))?;
-    if !meta.is_file() {
-        let kind = if meta.is_dir() { "a directory" } else { "not a regular file" };
-        return Err(Error::input(format!("{}: {kind}, not a slideline results file", path.display())));
-    }
-    let mut head = [0u8; 8];
-    let read = std::fs::File::open(path).and_then(|mut f| std::io::Read::read_exact(&mut f, &mut head));
-    // HDF5 writes the superblock at the file's first flush, after the mesh: a run killed
-    // before it leaves a file of nothing but zeros at its start, or of no bytes
-    if meta.len() == 0 || (read.is_ok() && head == [0u8; 8]) {
-        return Err(Error::input(format!(
-            "{}: incomplete: the run writing it stopped while creating it, before its first increment (nothing to read); run it again",
-            path.display()
-        )));
-    }
-    if read.is_err() || head != HDF5_SIGNATURE {
-        return Err(Error::input(format!("{}: not a slideline results file (not HDF5)", path.display())));
-    }
-    Ok(())
-}
-
 impl ResultsReader {
     pub fn open(path: &Path) -> Result<Self> {
-        if !path.exists() {
-            return Err(Error::input(format!("{}: no such file", path.display())));
-        }
-        check_is_hdf5(path)?;
-        let file = open_waiting_for_lock(path)?;
+        let file = super::opening::open_results(path)?;
         let reader = ResultsReader { file, path: path.to_path_buf() };
         // a design-by-analysis verdict file (`/dba`) holds its checks' figures, not a run's
         let verdict_file = reader.file.link_exists("dba");
