@@ -123,8 +123,16 @@ fn print_quietly_on_closed_pipe(text: &str) -> Result<(), Error> {
 /// `post` of a design-by-analysis verdict file (`slideline check`, `bellows --dba`): its table
 /// again, and with `--report` the design report; its checks' analyses are files of their own.
 fn verdict_file(r: &ResultsReader, verdict: &slideline::dba::Verdict, args: &PostArgs) -> Result<(), Error> {
-    let asked_of_a_run = args.field.is_some() || args.node.is_some() || args.set.is_some() || args.compare.is_some() || args.csv.is_some();
-    if asked_of_a_run || args.plot.is_some() || args.deck || !args.linearize.is_empty() || args.increment.is_some() {
+    let asked_of_a_run = args.field.is_some()
+        || args.node.is_some()
+        || args.set.is_some()
+        || args.compare.is_some()
+        || args.csv.is_some()
+        || args.plot.is_some()
+        || args.deck
+        || !args.linearize.is_empty()
+        || args.increment.is_some();
+    if asked_of_a_run {
         let files = verdict.files.iter().map(|(_, f)| f.display().to_string()).collect::<Vec<_>>().join(", ");
         return Err(Error::input(format!(
             "{}: a design-by-analysis verdict file has no fields or history of its own; post its checks' files ({files})",

@@ -65,7 +65,7 @@ pub fn design_report(reader: &ResultsReader, closing: Option<&str>) -> Result<St
         _ => h += "<p>No design specification: the run was not given one (<code>--spec</code>), and there is no code verdict.</p>\n",
     }
     if let Some(d) = &by_analysis {
-        h += &dba_section(d, reader.path());
+        h += &dba_section(d);
     }
     h += "<h2>Finite-element analysis</h2>\n";
     if let Some(t) = closing {
@@ -74,7 +74,7 @@ pub fn design_report(reader: &ResultsReader, closing: Option<&str>) -> Result<St
     for (name, text) in reader.printed_tables()?.iter().filter(|(n, _)| n != super::CODE_VERDICT) {
         h += &format!("<h3>{}</h3>\n<pre id=\"table-{}\">{}</pre>\n", escape(name), escape(name), escape(text.trim_matches('\n')));
     }
-    h += &mesh_section(reader)?;
+    h += &mesh_section(reader, by_analysis.as_ref())?;
     h += &pictures_section(reader.path())?;
     if let Some((_, text, sha)) = &verdict {
         h += &format!("<h2>The specification file</h2>\n<p>SHA-256 {sha}</p>\n<pre id=\"specification\">{}</pre>\n", escape(text));
@@ -171,9 +171,9 @@ fn verdict_section(v: &Verdict, s: &DesignSpec) -> Result<String> {
     Ok(h)
 }
 
-/// The design-by-analysis checks (ASME VIII-2 Part 5) as the verdict file `file` holds them:
-/// the table as printed, and each check's own results file (beside `file`).
-fn dba_section(v: &crate::dba::Verdict, file: &Path) -> String {
+/// The design-by-analysis checks (ASME VIII-2 Part 5) as a verdict file holds them: the table
+/// as printed, and each check's own results file (beside the verdict file).
+fn dba_section(v: &crate::dba::Verdict) -> String {
     let mut h = String::from(
         "<h2>Design by analysis</h2>\n<p>ASME Section VIII Division 2, Part 5: each check by an analysis of its own (docs/design-by-analysis.md).</p>\n",
     );
@@ -197,20 +197,22 @@ fn dba_section(v: &crate::dba::Verdict, file: &Path) -> String {
     }
     h += &format!("</table>\n<p>Verdict: <span class=\"{}\">{}</span>.", if v.passes() { "pass" } else { "fail" }, v.summary());
     for (name, check_file) in &v.files {
-        let beside = file.with_file_name(check_file.file_name().unwrap_or_default());
-        h += &format!(" The {} analysis: <code>{}</code>.", escape(&name.replace('_', " ")), escape(&beside.file_name().unwrap_or_default().to_string_lossy()));
+        h += &format!(
+            " The {} analysis: <code>{}</code>.",
+            escape(&name.replace('_', " ")),
+            escape(&check_file.file_name().unwrap_or_default().to_string_lossy())
+        );
     }
     h + "</p>\n"
 }
 
 /// The mesh: its size, and the element sizes the joint was built with (a verdict file's, from
-/// its first check's results file).
-fn mesh_section(reader: &ResultsReader) -> Result<String> {
+/// its first check's results file, beside it).
+fn mesh_section(reader: &ResultsReader, verdict: Option<&crate::dba::Verdict>) -> Result<String> {
     if !reader.has_mesh() {
-        let checks = crate::dba::read(reader.path())?.map(|v| v.files).unwrap_or_default();
-        let Some((_, first)) = checks.first() else { return Ok(String::new()) };
+        let Some((_, first)) = verdict.and_then(|v| v.files.first()) else { return Ok(String::new()) };
         let beside = reader.path().with_file_name(first.file_name().unwrap_or_default());
-        return mesh_section(&ResultsReader::open(&beside)?);
+        return mesh_section(&ResultsReader::open(&beside)?, None);
     }
     let (nodes, elements) = (reader.coordinates()?.len(), reader.connectivity()?.len());
     let deck = reader.text_attr("deck")?;
