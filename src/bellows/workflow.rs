@@ -240,8 +240,7 @@ pub fn design_by_analysis(
     crate::dba::report(&verdict, &params.title(), output, &model.source_text)?;
     crate::io::assessment::write_verdict(output, &code, &spec.text, &spec.sha256())?;
     if let Some(path) = report {
-        let html = super::report::html::design_report(&ResultsReader::open(output)?, None)?;
-        std::fs::write(path, html).map_err(|e| crate::error::Error::Output { path: path.to_path_buf(), message: e.to_string() })?;
+        super::report::html::write_design_report(&ResultsReader::open(output)?, None, path)?;
         println!("report: {}", path.display());
     }
     Ok(())
@@ -327,8 +326,7 @@ pub fn report(job: &BellowsJob, before: &BeforeTheRun, summary: &RunSummary) -> 
         println!("picture: {}", joint_picture(params, output)?.display());
         let reader = ResultsReader::open(output)?;
         let closing = super::report::closing_table_from_file(&reader)?;
-        let html = super::report::html::design_report(&reader, closing.as_deref())?;
-        std::fs::write(path, html).map_err(|e| crate::error::Error::Output { path: path.clone(), message: e.to_string() })?;
+        super::report::html::write_design_report(&reader, closing.as_deref(), path)?;
         println!("report: {}", path.display());
     }
     Ok(())

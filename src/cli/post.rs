@@ -52,8 +52,7 @@ pub fn post(args: &PostArgs) -> Result<(), Error> {
         if closing.is_none() {
             return Err(Error::input(format!("{}: not a `slideline bellows` run's file: it has no design report", args.file.display())));
         }
-        let html = slideline::bellows::report::html::design_report(&r, closing.as_deref())?;
-        std::fs::write(path, html).map_err(|e| Error::Output { path: path.clone(), message: e.to_string() })?;
+        slideline::bellows::report::html::write_design_report(&r, closing.as_deref(), path)?;
         out += &format!("report: {}\n", path.display());
     }
     if !detail {
@@ -141,8 +140,7 @@ fn verdict_file(r: &ResultsReader, verdict: &slideline::dba::Verdict, args: &Pos
     }
     let mut out = String::new();
     if let Some(path) = &args.report {
-        let html = slideline::bellows::report::html::design_report(r, None)?;
-        std::fs::write(path, html).map_err(|e| Error::Output { path: path.clone(), message: e.to_string() })?;
+        slideline::bellows::report::html::write_design_report(r, None, path)?;
         out += &format!("report: {}\n", path.display());
     }
     out += &slideline::dba::table(verdict, &args.file.display().to_string());

@@ -237,6 +237,7 @@ pub fn table(v: &Verdict, title: &str) -> String {
     out
 }
 
+/// The verdict in `output`'s group `/dba` (one row per line of the table; rank 0 only).
 pub fn write(v: &Verdict, output: &Path, deck_text: &str) -> Result<()> {
     let err = |e: hdf5::Error| Error::Output { path: output.to_path_buf(), message: e.to_string() };
     let file = hdf5::File::create(output).map_err(err)?;

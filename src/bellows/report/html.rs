@@ -83,6 +83,12 @@ pub fn design_report(reader: &ResultsReader, closing: Option<&str>) -> Result<St
     Ok(h)
 }
 
+/// [`design_report`] written to `path`.
+pub fn write_design_report(reader: &ResultsReader, closing: Option<&str>, path: &Path) -> Result<()> {
+    let html = design_report(reader, closing)?;
+    std::fs::write(path, html).map_err(|e| crate::error::Error::Output { path: path.to_path_buf(), message: e.to_string() })
+}
+
 /// The bellows, its material and the design conditions, as the specification gives them.
 fn specification_section(s: &DesignSpec) -> Result<String> {
     let b = &s.bellows;
