@@ -495,6 +495,7 @@ fn material_data_in_other_units_are_named() {
         poissons_ratio: 0.3,
         thermal_expansion: 0.0,
         plasticity: Some(slideline::material::Hardening::linear(300.0, 0.0)),
+        kinematic: slideline::material::KinematicHardening::NONE,
         density: 0.0,
         conductivity: 0.0,
     };

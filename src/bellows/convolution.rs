@@ -189,6 +189,7 @@ impl Convolution {
                 poissons_ratio: NU,
                 thermal_expansion: 0.0,
                 plasticity: None,
+                kinematic: crate::model::KinematicHardening::NONE,
                 density: 0.0,
                 conductivity: 0.0,
             }],

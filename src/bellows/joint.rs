@@ -408,6 +408,7 @@ pub fn model(p: &BellowsParams) -> Result<Model> {
         poissons_ratio: p.poissons_ratio,
         thermal_expansion: p.thermal_expansion,
         plasticity: Some(Plasticity::linear(p.yield_stress, p.hardening_modulus)),
+        kinematic: crate::model::KinematicHardening::NONE,
         density: p.density,
         conductivity: 0.0,
     };

@@ -371,7 +371,7 @@ pub fn compute_solid(input: &SolidInput<'_>, u: &[[f64; 2]; NODES], mut tangents
         let tau = stress[q].map(|s| s * scale);
         let material = input.material;
         energy.elastic += w * material.elastic_energy(&tau);
-        energy.plastic_work += w * material.hardening.plastic_work(state[q].ep);
+        energy.plastic_work += w * (material.hardening.plastic_work(state[q].ep) + state[q].kinematic_work);
         let thermal = w * material.thermal_expansion * (tau[0] + tau[1] + tau[2]);
         for a in 0..NODES {
             thermal_force[a] += thermal * shape[a];

@@ -21,6 +21,10 @@ pub fn describe(group: &str, name: &str) -> (&'static str, String) {
             "committed plastic state of those points: C_p^-1 (finite strain) or eps_p (small strain) [rr, zz, tt, rz], equivalent plastic strain (restart)"
                 .into(),
         ),
+        (_, "backstress_state") => (
+            "MPa",
+            "backstresses of those points (kinematic hardening): three terms [rr, zz, tt, rz], then their share of the plastic work (restart)".into(),
+        ),
         (_, n) if n.starts_with("multiplier_nodes_pass") => {
             ("-", "node ids of the slave nodes with a nonzero augmented-Lagrangian multiplier (restart)".into())
         }

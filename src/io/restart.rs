@@ -4,7 +4,8 @@
 //! Beside its fields, each increment group the run writes holds `state/` (attributes
 //! `next_increment_size`, `pattern_refits`): the plastic state of every Gauss point that has
 //! left its initial state (`plastic_points` (n, 2) [element id, point], `plastic_state` (n, 5)
-//! [the four components of C_p^-1 or eps_p, equivalent plastic strain]) and the
+//! [the four components of C_p^-1 or eps_p, equivalent plastic strain]; with kinematic hardening
+//! also `backstress_state` (n, 13) [three backstresses rr, zz, tt, rz, their plastic work]) and the
 //! augmented-Lagrangian multipliers that are nonzero (`multiplier_nodes_passK`, `multipliers_passK`).
 //! The Jacobian's contact couplings grow through the run and are kept once, in
 //! `/restart/pattern` (rows [increment number, rank, node id, node id]), so that a continued
@@ -18,6 +19,7 @@ use super::reader::ResultsReader;
 use super::HistoryRow;
 use crate::element::solid::QUADRATURE_POINTS as QP;
 use crate::error::{Error, Result};
+use crate::material::kinematic::MAX_BACKSTRESSES;
 use crate::material::PointState;
 use crate::model::{Mesh, Model};
 use crate::records::contact::SlipPoint;
@@ -38,6 +40,8 @@ pub struct CommittedState<'a> {
     pub local_elements: &'a [usize],
     /// The initial state of a Gauss point (points still in it are not stored).
     pub initial: PointState,
+    /// Whether a material has kinematic hardening (the points' backstresses are then stored).
+    pub kinematic: bool,
     /// Per contact pass, (mesh node, multiplier) of this rank's slave nodes with a nonzero one.
     pub multipliers: Vec<Vec<(usize, f64)>>,
     /// Per contact pass, (mesh node, slip reference) of this rank's slave nodes that have one.
@@ -76,16 +80,21 @@ pub(super) fn write_state(
     sg.new_attr::<u64>().create("contact_passes").map_err(&err)?.write_scalar(&(state.multipliers.len() as u64)).map_err(&err)?;
     let mut points = Vec::new();
     let mut values = Vec::new();
+    let mut back = Vec::new();
     for (&e, history) in state.local_elements.iter().zip(state.history) {
         for (q, s) in history.iter().enumerate() {
             if *s != state.initial {
                 points.extend([mesh.element_ids[e], q as u64]);
                 values.extend(s.plastic.iter().copied().chain([s.ep]));
+                back.extend(s.back.iter().flatten().copied().chain([s.kinematic_work]));
             }
         }
     }
     write_gathered(&sg, world, "plastic_points", 2, &points, path)?;
     write_gathered(&sg, world, "plastic_state", 5, &values, path)?;
+    if state.kinematic {
+        write_gathered(&sg, world, "backstress_state", BACKSTRESS_COLUMNS, &back, path)?;
+    }
     for (p, pass) in state.multipliers.iter().enumerate() {
         let nodes: Vec<u64> = pass.iter().map(|&(n, _)| mesh.node_ids[n]).collect();
         let values: Vec<f64> = pass.iter().map(|&(_, v)| v).collect();
@@ -381,6 +390,10 @@ impl StateGroup<'_> {
     }
 }
 
+/// Columns of `backstress_state`: the three backstresses [rr, zz, tt, rz] and their share of
+/// the plastic work.
+const BACKSTRESS_COLUMNS: usize = 4 * MAX_BACKSTRESSES + 1;
+
 /// The Gauss points not in their initial state: (mesh element, point, state), each checked.
 fn plastic_points(state: &StateGroup<'_>, elements: &HashMap<u64, usize>) -> Result<Vec<(usize, usize, PointState)>> {
     let (bad, group) = (state.bad, &state.name);
@@ -389,13 +402,26 @@ fn plastic_points(state: &StateGroup<'_>, elements: &HashMap<u64, usize>) -> Res
     if points.len() / 2 != states.len() / 5 || points.len() % 2 != 0 || states.len() % 5 != 0 {
         return Err(bad(format!("{group}/plastic_points ({} values) and plastic_state ({} values) do not pair up", points.len(), states.len())));
     }
+    // written only where a material has kinematic hardening: zero backstresses otherwise
+    let back = match state.sg.link_exists("backstress_state") {
+        true => state.f64s("backstress_state")?,
+        false => vec![0.0; points.len() / 2 * BACKSTRESS_COLUMNS],
+    };
+    if back.len() != points.len() / 2 * BACKSTRESS_COLUMNS || !back.iter().all(|v| v.is_finite()) {
+        return Err(bad(format!("{group}/backstress_state ({} values) does not pair with plastic_points ({} points)", back.len(), points.len() / 2)));
+    }
     let mut plastic = Vec::with_capacity(points.len() / 2);
-    for (p, s) in points.chunks_exact(2).zip(states.chunks_exact(5)) {
+    for ((p, s), b) in points.chunks_exact(2).zip(states.chunks_exact(5)).zip(back.chunks_exact(BACKSTRESS_COLUMNS)) {
         let e = elements.get(&p[0]).copied().ok_or_else(|| bad(format!("element {} of its state is not in the mesh", p[0])))?;
         if p[1] >= 9 || !s.iter().all(|v| v.is_finite()) || s[4] < 0.0 {
             return Err(bad(format!("{group}/plastic_points, plastic_state: Gauss point {} of element {} ({s:?}) is no state", p[1], p[0])));
         }
-        plastic.push((e, p[1] as usize, PointState { plastic: [s[0], s[1], s[2], s[3]], ep: s[4] }));
+        let mut point = PointState::isotropic([s[0], s[1], s[2], s[3]], s[4]);
+        for (k, alpha) in point.back.iter_mut().enumerate() {
+            alpha.copy_from_slice(&b[4 * k..4 * k + 4]);
+        }
+        point.kinematic_work = b[4 * MAX_BACKSTRESSES];
+        plastic.push((e, p[1] as usize, point));
     }
     Ok(plastic)
 }

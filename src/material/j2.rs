@@ -21,6 +21,7 @@
 //! same slots `[s_rr, s_rz, s_rz, s_zz, s_tt]`.
 
 use super::hardening::Hardening;
+use super::kinematic::{self, KinematicHardening, MAX_BACKSTRESSES};
 use super::log_exp::{exp_sym2, log_sym2};
 use crate::ad::Scalar;
 
@@ -56,19 +57,31 @@ pub enum Kinematics {
 /// History at one quadrature point. Tensor components in the order [rr, zz, tt, rz].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PointState {
-    /// Finite strain: C_p^-1, the inverse plastic right Cauchy-Green tensor.
+    /// Finite strain: C_p^-1, the inverse plastic right Cauchy-Green tensor (with kinematic
+    /// hardening exp(-2 E_p) of the Lagrangian log plastic strain E_p).
     /// Small strain: the plastic strain eps_p.
     pub plastic: [f64; 4],
     /// Equivalent plastic strain.
     pub ep: f64,
+    /// The backstresses alpha_k of kinematic hardening, MPa (tensor shear); zero without it.
+    pub back: [[f64; 4]; MAX_BACKSTRESSES],
+    /// The backstresses' share of the plastic work so far (what sigma_y(ep) does not give),
+    /// MPa; zero without kinematic hardening.
+    pub kinematic_work: f64,
 }
 
 impl PointState {
     pub fn initial(kinematics: Kinematics) -> Self {
-        match kinematics {
-            Kinematics::Finite => PointState { plastic: [1.0, 1.0, 1.0, 0.0], ep: 0.0 },
-            Kinematics::Small => PointState { plastic: [0.0; 4], ep: 0.0 },
-        }
+        let plastic = match kinematics {
+            Kinematics::Finite => [1.0, 1.0, 1.0, 0.0],
+            Kinematics::Small => [0.0; 4],
+        };
+        PointState { plastic, ep: 0.0, back: [[0.0; 4]; MAX_BACKSTRESSES], kinematic_work: 0.0 }
+    }
+
+    /// The state with this plastic tensor and equivalent plastic strain, and no backstress.
+    pub fn isotropic(plastic: [f64; 4], ep: f64) -> Self {
+        PointState { plastic, ep, back: [[0.0; 4]; MAX_BACKSTRESSES], kinematic_work: 0.0 }
     }
 
     /// The plastic strain tensor [rr, zz, tt, rz] (tensor shear): eps_p in small strain; in
@@ -105,6 +118,8 @@ pub struct J2 {
     pub thermal_expansion: f64,
     /// Isotropic hardening sigma_y(ep); infinite yield stress for an elastic material.
     pub hardening: Hardening,
+    /// Backstress terms (none: isotropic hardening alone); see [`super::kinematic`].
+    pub kinematic: KinematicHardening,
 }
 
 impl J2 {
@@ -118,7 +133,13 @@ impl J2 {
 
     pub fn with_hardening(youngs_modulus: f64, poissons_ratio: f64, thermal_expansion: f64, hardening: Hardening) -> Self {
         let (e, nu) = (youngs_modulus, poissons_ratio);
-        J2 { bulk_modulus: e / (3.0 * (1.0 - 2.0 * nu)), shear_modulus: e / (2.0 * (1.0 + nu)), thermal_expansion, hardening }
+        J2 {
+            bulk_modulus: e / (3.0 * (1.0 - 2.0 * nu)),
+            shear_modulus: e / (2.0 * (1.0 + nu)),
+            thermal_expansion,
+            hardening,
+            kinematic: KinematicHardening::NONE,
+        }
     }
 
     /// Stress and trial history at deformation `f`, projected volume measure `theta`,
@@ -138,9 +159,11 @@ impl J2 {
         dt: f64,
         committed: &PointState,
     ) -> Result<Update<T>, String> {
-        match kinematics {
-            Kinematics::Finite => self.update_finite(branch, f, theta, dt, committed),
-            Kinematics::Small => Ok(self.update_small(branch, f, theta, dt, committed)),
+        match (kinematics, self.kinematic.is_empty()) {
+            (Kinematics::Finite, true) => self.update_finite(branch, f, theta, dt, committed),
+            (Kinematics::Small, true) => Ok(self.update_small(branch, f, theta, dt, committed)),
+            (Kinematics::Finite, false) => kinematic::update_finite(self, branch, f, theta, dt, committed),
+            (Kinematics::Small, false) => Ok(kinematic::update_small(self, branch, f, theta, dt, committed)),
         }
     }
 
@@ -192,6 +215,20 @@ impl J2 {
         dev2 / (4.0 * self.shear_modulus) + tr * tr / (18.0 * self.bulk_modulus)
     }
 
+    /// The volume ratio det F and the thermal stretch 1 + alpha dT, or why the deformation
+    /// is not admissible.
+    pub(super) fn admissible<T: Scalar>(&self, f: &[T; 5], theta: T, dt: f64) -> Result<(T, f64), String> {
+        let j = (f[0] * f[3] - f[1] * f[2]) * f[4];
+        if j.re().is_nan() || j.re() <= 0.0 || theta.re().is_nan() || theta.re() <= 0.0 {
+            return Err(format!("non-positive volume ratio (det F = {:.3e}, projected {:.3e}): element inverted", j.re(), theta.re()));
+        }
+        let stretch = 1.0 + self.thermal_expansion * dt;
+        if stretch.is_nan() || stretch <= 0.0 {
+            return Err(format!("thermal stretch 1 + alpha dT = {stretch} is not positive"));
+        }
+        Ok((j, stretch))
+    }
+
     fn update_small<T: Scalar>(&self, branch: SurfaceBranch, f: &[T; 5], theta: T, dt: f64, committed: &PointState) -> Update<T> {
         let e = [f[0] - 1.0, f[3] - 1.0, f[4] - 1.0, (f[1] + f[2]) * 0.5];
         // B-bar: the volumetric strain is replaced by the projected one.
@@ -204,19 +241,11 @@ impl J2 {
         // unchanged where nothing flowed (bit for bit, so an elastic point's history stays as
         // committed instead of drifting by round-off)
         let plastic = if ep == committed.ep { ep_n } else { std::array::from_fn(|i| trial[i].re() - elastic[i].re() + ep_n[i]) };
-        Update { phi: [s[0], s[3], s[3], s[1], s[2]], cauchy: s.map(|v| v.re()), state: PointState { plastic, ep } }
+        Update { phi: [s[0], s[3], s[3], s[1], s[2]], cauchy: s.map(|v| v.re()), state: PointState::isotropic(plastic, ep) }
     }
 
     fn update_finite<T: Scalar>(&self, branch: SurfaceBranch, f: &[T; 5], theta: T, dt: f64, committed: &PointState) -> Result<Update<T>, String> {
-        let det2 = f[0] * f[3] - f[1] * f[2];
-        let j = det2 * f[4];
-        if j.re().is_nan() || j.re() <= 0.0 || theta.re().is_nan() || theta.re() <= 0.0 {
-            return Err(format!("non-positive volume ratio (det F = {:.3e}, projected {:.3e}): element inverted", j.re(), theta.re()));
-        }
-        let stretch = 1.0 + self.thermal_expansion * dt;
-        if stretch.is_nan() || stretch <= 0.0 {
-            return Err(format!("thermal stretch 1 + alpha dT = {stretch} is not positive"));
-        }
+        let (j, stretch) = self.admissible(f, theta, dt)?;
         // b_e trial = F_bar C_p^-1 F_bar^T / stretch^2 with F_bar = (theta / J)^(1/3) F, in-plane
         // block and hoop. The F-bar scaling multiplies b by (theta / J)^(2/3), which shifts
         // its logarithm by (2/3) ln(theta / J) I: it enters the log strain as one logarithm
@@ -234,18 +263,7 @@ impl J2 {
         let trial = [log_b[0] * 0.5 + shift, log_b[1] * 0.5 + shift, b33.ln() * 0.5 + shift, log_b[2] * 0.5];
         let (tau, elastic, ep) = self.return_map(branch, trial, committed.ep);
 
-        let cauchy = [tau[0], tau[1], tau[2], tau[3]].map(|t| t.re() / theta.re());
-        // phi = (J / theta) tau F^-T; in-plane J / det2 = F_tT, in the hoop J / F_tT = det2
-        let inverse_theta = T::from_f64(1.0) / theta;
-        let w = f[4] * inverse_theta;
-        let (t11, t22, t33, t12) = (tau[0], tau[1], tau[2], tau[3]);
-        let phi = [
-            (t11 * f[3] - t12 * f[1]) * w,
-            (t12 * f[0] - t11 * f[2]) * w,
-            (t12 * f[3] - t22 * f[1]) * w,
-            (t22 * f[0] - t12 * f[2]) * w,
-            t33 * det2 * inverse_theta,
-        ];
+        let (phi, cauchy) = stress_measure(f, theta, &tau);
         if ep == committed.ep {
             // nothing flowed: C_p^-1 is the committed one (bit for bit, rather than recomputed
             // through exp and F_bar^-1 with round-off, so an elastic point's history is unchanged
@@ -268,8 +286,27 @@ impl J2 {
             }
         }
         let plastic = [cp[0][0], cp[1][1], stretch * stretch * be33 / (f33 * f33), cp[0][1]];
-        Ok(Update { phi, cauchy, state: PointState { plastic, ep } })
+        Ok(Update { phi, cauchy, state: PointState::isotropic(plastic, ep) })
     }
+}
+
+/// The element's stress measure phi = (J / theta) tau F^-T and the Cauchy stress tau / theta
+/// of the Kirchhoff stress `tau` ([rr, zz, tt, rz]) at finite strain (see the module doc).
+pub(super) fn stress_measure<T: Scalar>(f: &[T; 5], theta: T, tau: &[T; 4]) -> ([T; 5], [f64; 4]) {
+    let cauchy = tau.map(|t| t.re() / theta.re());
+    // in-plane J / det2 = F_tT, in the hoop J / F_tT = det2
+    let det2 = f[0] * f[3] - f[1] * f[2];
+    let inverse_theta = T::from_f64(1.0) / theta;
+    let w = f[4] * inverse_theta;
+    let (t11, t22, t33, t12) = (tau[0], tau[1], tau[2], tau[3]);
+    let phi = [
+        (t11 * f[3] - t12 * f[1]) * w,
+        (t12 * f[0] - t11 * f[2]) * w,
+        (t12 * f[3] - t22 * f[1]) * w,
+        (t22 * f[0] - t12 * f[2]) * w,
+        t33 * det2 * inverse_theta,
+    ];
+    (phi, cauchy)
 }
 
 #[cfg(test)]
@@ -283,6 +320,7 @@ pub(crate) mod tests {
         shear_modulus: 76_923.076_923_076_92,
         thermal_expansion: 1.875e-5,
         hardening: Hardening::Linear { yield_stress: 300.0, modulus: 1000.0 },
+        kinematic: KinematicHardening::NONE,
     };
 
     /// Central-difference check of d phi / d (f, theta) against the Dual derivative.
@@ -330,17 +368,11 @@ pub(crate) mod tests {
         let (c, sn) = (0.6f64.cos(), 0.6f64.sin());
         let u = [1.3, 0.2, 0.2, 0.8]; // stretch
         let f = [c * u[0] - sn * u[2], c * u[1] - sn * u[3], sn * u[0] + c * u[2], sn * u[1] + c * u[3], 1.1];
-        let prior = PointState { plastic: [0.95, 1.04, 1.01, 0.02], ep: 0.05 };
+        let prior = PointState::isotropic([0.95, 1.04, 1.01, 0.02], 0.05);
         let e = check_tangent(&STEEL, Kinematics::Finite, f, det(&f) * 1.01, 150.0, &prior);
         assert!(e < 1e-6, "large plastic: {e:e}");
-        let e = check_tangent(
-            &STEEL,
-            Kinematics::Small,
-            [1.004, 0.002, 0.001, 0.997, 1.002],
-            0.003,
-            50.0,
-            &PointState { plastic: [1e-3, -5e-4, 0.0, 1e-4], ep: 1e-3 },
-        );
+        let e =
+            check_tangent(&STEEL, Kinematics::Small, [1.004, 0.002, 0.001, 0.997, 1.002], 0.003, 50.0, &PointState::isotropic([1e-3, -5e-4, 0.0, 1e-4], 1e-3));
         assert!(e < 1e-6, "small-strain plastic: {e:e}");
     }
 
@@ -380,10 +412,10 @@ pub(crate) mod tests {
         // What was computed from a history stays valid across a commit that did not change it
         // (the kept element tangents): an elastic step must not recompute C_p^-1 or eps_p with
         // round-off. A plastic step does change it.
-        let relaxed = PointState { plastic: [1.0, 1.0, 1.0, 0.0], ep: 0.05 };
+        let relaxed = PointState::isotropic([1.0, 1.0, 1.0, 0.0], 0.05);
         let up = STEEL.update(Kinematics::Finite, &[1.0002, 0.0, 0.0, 0.9999, 1.0001], 1.0002, 0.0, &relaxed).unwrap();
         assert_eq!(up.state, relaxed, "finite strain, elastic");
-        let small = PointState { plastic: [1e-3, -5e-4, -5e-4, 1e-4], ep: 1e-3 };
+        let small = PointState::isotropic([1e-3, -5e-4, -5e-4, 1e-4], 1e-3);
         let up = STEEL.update(Kinematics::Small, &[1.0012, 0.0001, 0.0001, 0.9996, 0.9996], 0.0004, 0.0, &small).unwrap();
         assert_eq!(up.state, small, "small strain, elastic");
         // the same machinery does move a history that flows
@@ -402,7 +434,7 @@ pub(crate) mod tests {
         assert!(up.state.ep > 0.002 && up.state.ep < 0.02, "second segment expected: ep = {}", up.state.ep);
         let e = check_tangent(&mat, Kinematics::Finite, f, det(&f), 0.0, &PointState::initial(Kinematics::Finite));
         assert!(e < 1e-6, "table, second segment: {e:e}");
-        let prior = PointState { plastic: [0.95, 1.04, 1.01, 0.02], ep: 0.09 };
+        let prior = PointState::isotropic([0.95, 1.04, 1.01, 0.02], 0.09);
         let f = [1.2, 0.1, 0.05, 0.85, 1.05];
         let up = mat.update(Kinematics::Finite, &f, det(&f), 0.0, &prior).unwrap();
         assert!(up.state.ep > 0.1, "flat tail expected: ep = {}", up.state.ep);

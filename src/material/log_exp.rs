@@ -34,20 +34,55 @@ pub fn log_sym2<T: Scalar>(a: &Sym2<T>) -> Sym2<T> {
 
 /// atanh(x)/x and its derivative, as functions of y = x^2 in [0, 1).
 fn atanh_ratio(y: f64) -> (f64, f64) {
+    let (g, dg, _) = atanh_ratio_with_curvature(y);
+    (g, dg)
+}
+
+/// atanh(x)/x and its first two derivatives in y = x^2 in [0, 1).
+fn atanh_ratio_with_curvature(y: f64) -> (f64, f64, f64) {
     if y < 1e-2 {
-        // sum y^k / (2k+1) and its derivative; 10 terms: error < 1e-20 for y < 0.01
-        let (mut g, mut dg) = (ATANH_SERIES[9], 0.0);
+        // sum y^k / (2k+1) and its derivatives; 10 terms: error < 1e-20 for y < 0.01
+        let (mut g, mut dg, mut ddg) = (ATANH_SERIES[9], 0.0, 0.0);
         for k in (0..9).rev() {
+            ddg = ddg * y + 2.0 * dg;
             dg = dg * y + g;
             g = g * y + ATANH_SERIES[k];
         }
-        (g, dg)
+        (g, dg, ddg)
     } else {
-        // d/dy atanh(sqrt y) / sqrt y = (1 / (1 - y) - g) / (2 y)
+        // g' = (u - g) / (2 y) and g'' = (u' - 3 g') / (2 y), u = 1 / (1 - y)
         let x = y.sqrt();
         let g = ((1.0 + x) / (1.0 - x)).ln() * 0.5 / x;
-        (g, (1.0 / (1.0 - y) - g) / (2.0 * y))
+        let u = 1.0 / (1.0 - y);
+        let dg = (u - g) / (2.0 * y);
+        (g, dg, (u * u - 3.0 * dg) / (2.0 * y))
     }
+}
+
+/// The stress conjugate to C of a stress `t` conjugate to ln C: S = t : d ln C / d C, for
+/// symmetric positive-definite `c` (both as (11, 22, 12), tensor components). This is how a
+/// stress work-conjugate to the Lagrangian log strain E = ln(C) / 2 becomes the second
+/// Piola-Kirchhoff stress (S = 2 t_E : dE/dC with t_E = t). Written, like [`log_sym2`], on the
+/// invariants m and s: ln C = g0 I + g1 (C - m I), so
+/// S = tr t (dg0/dm I / 2 + dg0/ds D) + (t : D) (dg1/dm I / 2 + dg1/ds D) + g1 (t - tr t I / 2),
+/// with D = C - m I = ds/dC; smooth (and differentiable) where the eigenvalues coincide.
+pub fn log_gradient_contract<T: Scalar>(c: &Sym2<T>, t: &Sym2<T>) -> Sym2<T> {
+    let (m, s) = invariants(c);
+    let h = (c[0] - c[1]) * 0.5;
+    let q = m * m - s;
+    let (g0_m, g0_s) = (m / q, -(T::from_f64(0.5) / q));
+    let y = s / (m * m);
+    let (ratio, slope, curvature) = atanh_ratio_with_curvature(y.re());
+    let (r, dr) = (y.lift(ratio, slope), y.lift(slope, curvature));
+    let m2 = m * m;
+    let g1 = r / m;
+    let g1_s = dr / (m2 * m);
+    let g1_m = -(r / m2) - s * dr * 2.0 / (m2 * m2);
+    let trace = t[0] + t[1];
+    let t_d = (t[0] - t[1]) * h + t[2] * c[2] * 2.0;
+    let iso = trace * g0_m * 0.5 + t_d * g1_m * 0.5 - g1 * trace * 0.5;
+    let dev = trace * g0_s + t_d * g1_s;
+    [iso + dev * h + g1 * t[0], iso - dev * h + g1 * t[1], dev * c[2] + g1 * t[2]]
 }
 
 /// Exponential of a symmetric 2x2 matrix.
@@ -121,6 +156,41 @@ mod tests {
         let l = log_sym2(&a);
         for k in 0..3 {
             assert!((l2[k] - 2.0 * l[k]).abs() < 1e-13);
+        }
+    }
+
+    /// S = t : d ln C / d C against central differences of the scalar t : ln C (with the
+    /// tensor convention: the 12 slot of the gradient is half the derivative by c[2], which
+    /// enters the double contraction twice), on both sides of the series switch.
+    #[test]
+    fn the_log_gradient_contraction_is_the_gradient_of_t_double_dot_ln_c() {
+        let t = [120.0, -45.0, 30.0];
+        for c in [[1.0, 1.0, 0.0], [1.0 + 1e-3, 1.0, 2e-4], [1.2, 1.0, 0.0], [2.0, 0.7, 0.3], [0.5, 1.9, -0.6]] {
+            let s = log_gradient_contract(&c, &t);
+            let work = |c: &Sym2<f64>| {
+                let l = log_sym2(c);
+                t[0] * l[0] + t[1] * l[1] + 2.0 * t[2] * l[2]
+            };
+            let h = 1e-6;
+            for j in 0..3 {
+                let (mut p, mut q) = (c, c);
+                p[j] += h;
+                q[j] -= h;
+                let fd = (work(&p) - work(&q)) / (2.0 * h) * if j == 2 { 0.5 } else { 1.0 };
+                assert!((fd - s[j]).abs() < 1e-6 * 120.0, "c {c:?}, S[{j}]: {} against {fd}", s[j]);
+            }
+            // and it is differentiable there: Dual against differences of S itself
+            let d = log_gradient_contract(&[Dual::<3>::variable(c[0], 0), Dual::variable(c[1], 1), Dual::variable(c[2], 2)], &t.map(Dual::constant));
+            for j in 0..3 {
+                let (mut p, mut q) = (c, c);
+                p[j] += h;
+                q[j] -= h;
+                let (sp, sq) = (log_gradient_contract(&p, &t), log_gradient_contract(&q, &t));
+                for i in 0..3 {
+                    let fd = (sp[i] - sq[i]) / (2.0 * h);
+                    assert!((fd - d[i].eps[j]).abs() < 1e-6 * 120.0, "c {c:?}, dS[{i}]/dc[{j}]: {} against {fd}", d[i].eps[j]);
+                }
+            }
         }
     }
 

@@ -72,7 +72,7 @@ impl Component {
 }
 
 /// Isotropic material (MPa, 1/degC): elastic (Hencky at finite strain), optionally with
-/// J2 plasticity and isotropic hardening (linear or tabulated).
+/// J2 plasticity, isotropic hardening (linear or tabulated) and kinematic hardening.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Material {
     pub name: String,
@@ -80,6 +80,9 @@ pub struct Material {
     pub poissons_ratio: f64,
     pub thermal_expansion: f64,
     pub plasticity: Option<Plasticity>,
+    /// Backstress terms of kinematic hardening (none: isotropic hardening alone); only with
+    /// `plasticity`.
+    pub kinematic: KinematicHardening,
     /// Mass density, t/mm^3 (so that N, mm and s stay consistent; steel 7.85e-9); 0 when not
     /// given (only frequency steps need it).
     pub density: f64,
@@ -90,6 +93,7 @@ pub struct Material {
 
 /// Isotropic hardening of a J2 material: linear, or a piecewise-linear table.
 pub use crate::material::Hardening as Plasticity;
+pub use crate::material::{Backstress, KinematicHardening};
 
 /// The normal law of a contact pair: a linear penalty eps_n, or CalculiX's exponential
 /// pressure-overclosure law.
@@ -431,6 +435,11 @@ impl Model {
     pub fn set_perturbations(&mut self, perturbations: impl IntoIterator<Item = perturbation::Perturbation>) {
         self.steps.retain(|s| !matches!(s, Step::Perturbation(_)));
         self.steps.extend(perturbations.into_iter().map(Step::Perturbation));
+    }
+
+    /// Whether some material has kinematic hardening (its points carry backstresses).
+    pub fn has_kinematic_hardening(&self) -> bool {
+        self.materials.iter().any(|m| !m.kinematic.is_empty())
     }
 
     /// Whether the temperature varies over the mesh at the start or in some step.

@@ -130,6 +130,12 @@ impl Perturbation {
                 "the base state spins ({omega} rad/s, from step '{step}'): perturbation steps leave the spin's softening out, and are refused about it (ramp the spin to 0 in a general step first)"
             )));
         }
+        if let Some(m) = model.materials.iter().find(|m| !m.kinematic.is_empty()) {
+            return Err(at(format!(
+                "material '{}' has kinematic hardening: a perturbation step's elastic-plastic tangent about the base state is built for isotropic hardening only (the base state's backstresses are not carried to it)",
+                m.name
+            )));
+        }
         if self.mode > MAX_MODE {
             return Err(at(format!("mode {} is above {MAX_MODE}", self.mode)));
         }

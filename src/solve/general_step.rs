@@ -402,6 +402,7 @@ impl<'a, 's> GeneralSteps<'a, 's> {
                 history: st.problem.committed_history(),
                 local_elements: partition.local_elements(),
                 initial: PointState::initial(model.kinematics),
+                kinematic: model.has_kinematic_hardening(),
                 multipliers,
                 slip,
                 fresh_pattern,

@@ -150,7 +150,7 @@ fn coupled_pairs(contact: Option<&ContactAssembly>, constraints: Option<&Constra
 pub fn material_kernel(m: &Material) -> J2 {
     match m.plasticity {
         None => J2::elastic(m.youngs_modulus, m.poissons_ratio, m.thermal_expansion),
-        Some(h) => J2::with_hardening(m.youngs_modulus, m.poissons_ratio, m.thermal_expansion, h),
+        Some(h) => J2 { kinematic: m.kinematic, ..J2::with_hardening(m.youngs_modulus, m.poissons_ratio, m.thermal_expansion, h) },
     }
 }
 

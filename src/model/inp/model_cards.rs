@@ -23,6 +23,7 @@ impl Builder {
             density_at: None,
             plastic: Vec::new(),
             plastic_at: None,
+            kinematic: false,
             conductivity: 0.0,
         });
         Ok(())

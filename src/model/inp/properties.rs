@@ -43,9 +43,12 @@ impl Builder {
             }
             "PLASTIC" => {
                 card.only(&["HARDENING"])?;
-                if card.param("HARDENING").is_some_and(|t| !t.eq_ignore_ascii_case("ISOTROPIC")) {
-                    return Err(card.error("only HARDENING=ISOTROPIC is supported"));
-                }
+                m.kinematic = match card.param("HARDENING") {
+                    Some(t) if t.eq_ignore_ascii_case("KINEMATIC") => true,
+                    None => false,
+                    Some(t) if t.eq_ignore_ascii_case("ISOTROPIC") => false,
+                    Some(_) => return Err(card.error("HARDENING=ISOTROPIC or KINEMATIC (linear, a two-point curve) is supported")),
+                };
                 m.plastic.clear();
                 for d in &card.data {
                     if d.fields.len() > 2 && !d.fields[2].is_empty() {
