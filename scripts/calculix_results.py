@@ -56,7 +56,8 @@ def sta(path):
 
 
 def history(path, set_name):
-    rows = list(csv.DictReader(open(path)))
+    # the CSV's header cells carry their units ("time [s]"): key the columns by name alone
+    rows = [{k.split(" [")[0]: v for k, v in r.items()} for r in csv.DictReader(open(path))]
     col = f"reaction_{set_name}_z_2deg"
     if rows and col not in rows[0]:
         sys.exit(f"slideline's history has no column {col}: is {set_name} a set with a prescribed displacement?")

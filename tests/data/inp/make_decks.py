@@ -22,6 +22,12 @@ spun_disc.inp     an annular disc r 5..100, 10 thick, of CalculiX's reduced CAX8
                   five elements across, spun at 1000 rad/s (*DLOAD CENTRIF) with 10 MPa on its
                   top face and its bottom face held axially: the coarse mesh across the bore's
                   steep hoop-stress gradient is where reduced and full integration differ.
+kinematic_cylinder.inp  thick cylinder a = 100, b = 150 of 10 CAX8R across, ends held axially (plane
+                  strain), linear kinematic hardening (*PLASTIC, HARDENING=KINEMATIC: yield 100 MPa,
+                  slope 10 GPa): 70 MPa inside (step 1; past the bore's yield at about 32 MPa),
+                  back to 0 (step 2; the bore yields in reverse, as it would not with isotropic
+                  hardening), and 70 MPa again (step 3). NLGEOM: CalculiX 2.20's small-strain
+                  kinematic hardening softens while loading (200 to 49 MPa over 1 % uniaxial strain).
 small_bellows.inp one smooth convolution of two 0.5 mm plies (r 50..58, 2 x 80 elements each), J2 plasticity with a
                   three-point hardening table, heated to 200 degC with 1 MPa inside (step 1),
                   then compressed 4 mm axially (step 2), NLGEOM, contact between the plies.
@@ -180,6 +186,32 @@ def spun_disc():
                      "*NODE FILE", "U", "*EL FILE", "S",
                      "*END STEP"]
     write("spun_disc.inp", deck)
+
+
+def kinematic_cylinder():
+    a, b, h, ni, nj = 100.0, 150.0, 10.0, 10, 1
+    m = Mesh()
+    grid, rows = m.block(ni, nj, lambda I, J: (a + (b - a) * I / (2 * ni), h * J / (2 * nj)))
+    elements = [e for r in rows for e in r]
+    deck = ["*HEADING", "Thick cylinder with linear kinematic hardening: 70 MPa inside, off, on again"] + m.node_lines()
+    deck += m.element_lines(elements, "CYLINDER", kind="CAX8R")
+    deck += listing("*NSET, NSET=BOTTOM", side(grid, ni, nj, "bottom"))
+    deck += listing("*NSET, NSET=TOP", side(grid, ni, nj, "top"))
+    deck += ["*NSET, NSET=PROBE", f"{grid[0, 0]}, {grid[ni, 0]}, {grid[2 * ni, 0]}"]
+    deck += ["*ELSET, ELSET=INNER", f"{rows[0][0]}"]
+    deck += ["*MATERIAL, NAME=STEEL", "*ELASTIC", "200000., 0.3",
+             "*PLASTIC, HARDENING=KINEMATIC", "100., 0.", "600., 0.05",
+             "*SOLID SECTION, ELSET=CYLINDER, MATERIAL=STEEL",
+             "*BOUNDARY", "BOTTOM, 2, 2"]
+    for name, pressure in (("load", 70.0), ("unload", 0.0), ("reload", 70.0)):
+        held = ["*BOUNDARY", "TOP, 2, 2, 0."] if name == "load" else []
+        deck += ["*STEP, NLGEOM, INC=100", f"** {name}", "*STATIC, DIRECT", "0.1, 1."] + held + [
+                 "*DLOAD", f"INNER, P4, {pressure}",
+                 "*NODE PRINT, NSET=TOP, TOTALS=ONLY", "RF",
+                 "*NODE PRINT, NSET=PROBE", "U",
+                 "*NODE FILE", "U", "*EL FILE", "S, PEEQ",
+                 "*END STEP"]
+    write("kinematic_cylinder.inp", deck)
 
 
 def fit_mesh(m, gi, ri, go, ro, nj):
@@ -437,3 +469,4 @@ if __name__ == "__main__":
     hertz()
     small_bellows()
     spun_disc()
+    kinematic_cylinder()
