@@ -578,3 +578,21 @@ fn chart_coefficients_outside_the_charts_or_of_no_mesh_are_refused_by_flag() {
     let row: Vec<f64> = String::from_utf8_lossy(&out.stdout).lines().last().unwrap().split_whitespace().map(|v| v.parse().unwrap()).collect();
     assert!(row.len() == 5 && row[2..].iter().all(|c| c.is_finite() && *c > 0.1 && *c < 10.0), "{row:?}");
 }
+
+/// Kinematic hardening's terms: each refused with the material and the term named.
+#[test]
+fn bad_backstresses_are_named_with_their_material() {
+    let j2 = "[[material]]\nname = \"cyclic\"\nmodel = \"j2\"\nyoungs_modulus = 200000.0\npoissons_ratio = 0.3\nyield_stress = 200.0\n";
+    for (terms, needles) in [
+        ("backstresses = [ { modulus = 20000.0, recall = -5.0 } ]\n", vec!["'cyclic'", "backstress 1", "recall"]),
+        ("backstresses = [ { modulus = 1e4 }, { modulus = 0.0 } ]\n", vec!["'cyclic'", "backstress 2", "modulus"]),
+        ("backstresses = [ { modulus = 1e4 }, { modulus = 1e4 }, { modulus = 1e4 }, { modulus = 1e4 } ]\n", vec!["'cyclic'", "at most 3"]),
+        ("backstresses = [ { modulus = 1e4, gamma = 10.0 } ]\n", vec!["gamma"]),
+    ] {
+        let run = run_deck(&format!("{RECT}{j2}{terms}{STEP}"), &[], 1, &[]);
+        assert_rejected(&run, &needles);
+    }
+    // backstresses move a yield surface: an elastic material has none
+    let run = run_deck(&format!("{RECT}{MATERIAL}backstresses = [ {{ modulus = 1e4 }} ]\n{STEP}"), &[], 1, &[]);
+    assert_rejected(&run, &["'steel'", "backstresses need model = \"j2\""]);
+}

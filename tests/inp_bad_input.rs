@@ -326,3 +326,25 @@ fn a_short_element_line_an_empty_deck_and_a_far_node_are_named() {
     refused(run("comments.inp", "** nothing\n**\n"), &["comments.inp: the deck is empty"]);
     refused(run("far.inp", &far), &["node 3 at (1e308, 2e0): coordinates beyond 1e9 mm"]);
 }
+
+/// *PLASTIC, HARDENING=KINEMATIC is Prager's linear rule from a two-point curve; a longer
+/// curve (multilinear kinematic hardening) and HARDENING=COMBINED are refused with the line.
+#[test]
+fn kinematic_hardening_beyond_a_two_point_curve_is_refused_with_its_line() {
+    let plastic = |card: &str| {
+        let dir = tempfile::tempdir().unwrap();
+        let deck = DECK.replace("{MODEL}", "").replace("{STEP}", "").replace("200000., 0.3\n", &format!("200000., 0.3\n{card}"));
+        std::fs::write(dir.path().join("model.inp"), deck).unwrap();
+        let h5 = dir.path().join("out.h5");
+        let output = command_in(dir.path(), 1).current_dir(dir.path()).args(["run", "model.inp", "-o"]).arg(&h5).output().unwrap();
+        Run { dir, output, h5 }
+    };
+    let three = plastic("*PLASTIC, HARDENING=KINEMATIC\n200., 0.\n300., 0.01\n350., 0.05\n");
+    assert_rejected(&three, &["model.inp:21", "*PLASTIC", "two-point curve", "3 points"]);
+    let combined = plastic("*PLASTIC, HARDENING=COMBINED\n200., 0.\n300., 0.01\n");
+    assert_rejected(&combined, &["model.inp:21", "ISOTROPIC or KINEMATIC"]);
+    // the two-point curve is read, and says how
+    let two = plastic("*PLASTIC, HARDENING=KINEMATIC\n200., 0.\n300., 0.01\n");
+    two.assert_ok();
+    assert!(two.stdout().contains("linear kinematic hardening of slope 10000 MPa"), "{}", two.stdout());
+}

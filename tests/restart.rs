@@ -360,3 +360,30 @@ fn a_restart_may_change_only_the_steps_not_yet_begun() {
     // but once in the unload step, it may not
     refused(run(&[&later, "--restart", "cycle.h5", "--increment", "7", "-o", "late.h5"]), "the deck changes step 2 increments");
 }
+
+/// Kinematic hardening's backstresses are part of the restart state: the plastic cylinder with
+/// two Armstrong-Frederick terms, loaded past yield, then taken to suction so that its bore
+/// yields in reverse, continued from increment 8 (inside the reversal) equals the whole run
+/// bit for bit. The state there holds backstresses (nonzero, `backstress_state`); a
+/// continuation that lost them would yield in reverse at another load.
+#[test]
+fn backstresses_carry_over_a_restart_bit_for_bit() {
+    let dir = tempfile::tempdir().unwrap();
+    let deck = plastic_cylinder()
+        .replace("hardening_modulus = 1000.0\n", "hardening_modulus = 0.0\nbackstresses = [ { modulus = 20000.0, recall = 100.0 }, { modulus = 5000.0 } ]\n")
+        + "[[step]]\nname = \"suction\"\nincrements = 4\npressure = [ { surface = \"inner\", value = -75.0 } ]\n";
+    assert!(deck.contains("backstresses"));
+    std::fs::write(dir.path().join("cycle.toml"), deck).unwrap();
+    let run = |args: &[&str]| ok(command_in(dir.path(), 1).current_dir(dir.path()).arg("run").arg("cycle.toml").args(args).arg("--quiet").output().unwrap());
+    run(&["-o", "cycle.h5"]);
+    run(&["--restart", "cycle.h5", "--increment", "8", "-o", "rest.h5"]);
+    let f = hdf5::File::open(dir.path().join("cycle.h5")).unwrap();
+    let back = f.dataset("increments/000008/state/backstress_state").unwrap();
+    assert_eq!(back.shape()[1], 13);
+    let values = back.read_raw::<f64>().unwrap();
+    assert!(values.iter().any(|v| v.abs() > 1.0), "backstresses of some MPa expected at increment 8");
+    // the bore flowed again in the suction step: the equivalent plastic strain grew after 6
+    let ep = Results::open(&dir.path().join("cycle.h5")).history("max_equivalent_plastic_strain");
+    assert!(ep[9] > ep[5] * 1.01, "reverse yield expected in the suction step: {ep:?}");
+    assert_continues(&dir.path().join("cycle.h5"), &dir.path().join("rest.h5"), 8);
+}
