@@ -103,6 +103,7 @@ fn bree_regions_and_the_ratchet_strain_per_cycle() {
     let session = PetscSession::initialize(&[]).expect("PETSc");
     let dir = tempfile::tempdir().unwrap();
     let spec = DbaSpec {
+        fatigue: None,
         allowable_stress: None,
         limit_load: None,
         ratcheting: Some(RatchetingSpec { cycle: vec!["heat".into(), "cool".into()], cycles: 4, section: Some([[A, 0.25], [A + T, 0.25]]) }),

@@ -221,6 +221,7 @@ pub fn design_by_analysis(
     let cycling = BellowsParams { cycle: true, ..params.clone() };
     let model = super::joint::model(&cycling)?;
     let checks = DbaSpec {
+        fatigue: None,
         allowable_stress: Some(Allowable::Every(allowable)),
         limit_load: Some(LimitLoadSpec { factor: 1.5, search_to: BELLOWS_SEARCH_TO, search_increments: 40, steps: Some(vec!["heat".into()]) }),
         ratcheting: Some(RatchetingSpec { cycle: vec!["compress".into(), "return".into()], cycles: crate::dba::spec::LEAST_CYCLES, section: None }),

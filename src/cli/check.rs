@@ -14,7 +14,7 @@ pub struct CheckArgs {
     /// The input deck (TOML) with a `[design_by_analysis]` table (docs/design-by-analysis.md).
     pub deck: PathBuf,
     /// The verdict file (HDF5, `/dba`); each check's analysis is written beside it,
-    /// NAME_limit_load.h5, NAME_buckling.h5, NAME_ratcheting.h5. Default: the deck's name with
+    /// NAME_limit_load.h5, NAME_buckling.h5, NAME_ratcheting.h5, NAME_fatigue.h5. Default: the deck's name with
     /// `_check.h5`.
     #[arg(short, long)]
     pub output: Option<PathBuf>,

@@ -5,6 +5,8 @@
 //! model are the deck's `[design_by_analysis]` table ([`spec`]).
 
 pub mod buckling;
+pub mod fatigue;
+pub mod fatigue_curve;
 pub mod limit_load;
 pub mod ratcheting;
 pub mod spec;
@@ -54,7 +56,7 @@ impl Verdict {
 }
 
 /// The checks, by the names of their analyses' files.
-pub const CHECKS: [&str; 3] = ["limit_load", "buckling", "ratcheting"];
+pub const CHECKS: [&str; 4] = ["limit_load", "buckling", "ratcheting", "fatigue"];
 
 /// The results file of check `name` beside the verdict file `output`: out.h5 -> out_NAME.h5.
 pub fn check_file(output: &Path, name: &str) -> PathBuf {
@@ -82,7 +84,7 @@ pub fn run(session: &PetscSession, model: &Model, spec: &DbaSpec, output: &Path,
     let root = session.world().rank() == 0;
     let mut rows = Vec::new();
     let mut files = Vec::new();
-    let [limit, buckle, ratchet] = CHECKS;
+    let [limit, buckle, ratchet, fatigue_name] = CHECKS;
     if let Some(ll) = &spec.limit_load {
         let file = check_file(output, limit);
         if root && progress {
@@ -115,6 +117,15 @@ pub fn run(session: &PetscSession, model: &Model, spec: &DbaSpec, output: &Path,
         let answer = ratcheting::run(session, model, spec, &file, progress)?;
         rows.extend(ratcheting_rows(&answer));
         files.push((ratchet.to_string(), file));
+    }
+    if let Some(f) = &spec.fatigue {
+        let file = check_file(output, fatigue_name);
+        if root && progress {
+            println!("fatigue: elastic-plastic, the materials as given, {} cycles of steps {:?}, the last evaluated ...", f.cycles, f.cycle);
+        }
+        let answer = fatigue::run(session, model, spec, &file, progress)?;
+        rows.extend(fatigue_rows(&answer));
+        files.push((fatigue_name.to_string(), file));
     }
     Ok(Verdict { rows, files })
 }
@@ -194,6 +205,38 @@ fn ratcheting_rows(a: &ratcheting::Ratcheting) -> Vec<CheckRow> {
     ]
 }
 
+fn fatigue_rows(a: &fatigue::Fatigue) -> Vec<CheckRow> {
+    use fatigue_curve::Cycles;
+    let where_ = format!("element {} at r {:.2}, z {:.2} mm", a.element, a.at[0], a.at[1]);
+    let cycles = match a.allowed {
+        Cycles::Allowed(n) => format!("N = {n:.4e}, {}", a.curve),
+        Cycles::Beyond(n) => format!("N above {n:.1e}, the end of {}", a.curve),
+        Cycles::Below(n) => format!("N below {n:.0}, the start of {}", a.curve),
+    };
+    let info = |criterion: String, figure: f64, unit: &str, rule: &str| CheckRow {
+        check: "fatigue, elastic-plastic".into(),
+        criterion,
+        figure: Some(figure),
+        limit: f64::NAN,
+        unit: unit.into(),
+        passes: None,
+        rule: rule.into(),
+    };
+    vec![
+        info(format!("effective strain range of cycle {}, the largest: {where_}", a.cycles_run), a.strain_range, "-", "VIII-2 5.5.4.4 steps 4-5"),
+        info(format!("alternating stress E x range / 2 there: {cycles}"), a.alternating_stress, "MPa", "VIII-2 5.5.4.4 steps 6-7, Annex 3-F"),
+        CheckRow {
+            check: "fatigue, elastic-plastic".into(),
+            criterion: format!("damage n / N of {:.4e} design cycles", a.design_cycles),
+            figure: Some(a.damage),
+            limit: 1.0,
+            unit: "-".into(),
+            passes: Some(a.damage <= 1.0),
+            rule: "VIII-2 5.5.4.4 step 8".into(),
+        },
+    ]
+}
+
 /// The unit of a figure that is a multiple of the design loads.
 const LOAD_FACTOR: &str = "x loads";
 
@@ -206,6 +249,7 @@ impl CheckRow {
             (Some(f), _) => format!("{f:.4e}"),
         };
         let limit = match self.unit.as_str() {
+            _ if self.limit.is_nan() => String::new(),
             "" => String::new(),
             LOAD_FACTOR => format!(">= {:.2}", self.limit),
             _ => format!("<= {:.1e}", self.limit),
@@ -214,6 +258,8 @@ impl CheckRow {
         let verdict = match (self.passes, self.figure) {
             (Some(true), _) => "PASS",
             (Some(false), _) => "FAIL",
+            // a figure that informs, with no limit of its own
+            _ if self.limit.is_nan() => "",
             (None, Some(f)) if f <= self.limit => "holds",
             (None, Some(_)) => "fails",
             (None, None) => "",

@@ -17,6 +17,40 @@ pub struct DbaSpec {
     pub ratcheting: Option<RatchetingSpec>,
     #[serde(default)]
     pub buckling: Option<BucklingSpec>,
+    pub fatigue: Option<FatigueSpec>,
+}
+
+/// Fatigue by elastic-plastic analysis (VIII-2 5.5.4): the cycle's effective strain range
+/// and the permissible cycles from the fatigue curve.
+#[derive(Deserialize, Debug, Clone, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct FatigueSpec {
+    /// The deck's steps that make one cycle of the loads: its last general steps, in order.
+    pub cycle: Vec<String>,
+    /// How many cycles are run; the last is evaluated (at least two: the first from the
+    /// virgin state is no stabilised cycle).
+    #[serde(default = "three")]
+    pub cycles: usize,
+    /// The cycles the design must endure, n: the damage is n / N.
+    pub design_cycles: f64,
+    /// The fatigue curve as [[cycles, S_a MPa], ...] at `curve_modulus` (default: the
+    /// built-in curve of austenitic steels).
+    pub curve: Option<Vec<[f64; 2]>>,
+    /// E_FC, MPa: the modulus the curve's stresses belong to (with `curve`).
+    pub curve_modulus: Option<f64>,
+}
+
+impl FatigueSpec {
+    /// The fatigue curve the check reads.
+    pub fn curve(&self) -> Result<super::fatigue_curve::FatigueCurve> {
+        let bad = |m: String| Error::input(format!("[design_by_analysis] fatigue.curve: {m}"));
+        match (&self.curve, self.curve_modulus) {
+            (None, None) => Ok(super::fatigue_curve::FatigueCurve::austenitic()),
+            (Some(points), Some(modulus)) => super::fatigue_curve::FatigueCurve::table(points.iter().map(|p| (p[0], p[1])).collect(), modulus).map_err(bad),
+            (Some(_), None) => Err(bad("a curve needs curve_modulus (E_FC, MPa: the modulus its stresses belong to)".into())),
+            (None, Some(_)) => Err(bad("curve_modulus belongs to a curve: give curve = [[cycles, S_a], ...] too".into())),
+        }
+    }
 }
 
 /// Protection against collapse from buckling, type 1 (VIII-2 5.4.1.3(a)): the deck's buckle
@@ -99,8 +133,25 @@ impl DbaSpec {
     /// Checks every value against the model; names the offending key.
     pub fn validate(&self, model: &Model) -> Result<()> {
         let bad = |m: String| Err(Error::input(format!("[design_by_analysis] {m}")));
-        if self.limit_load.is_none() && self.ratcheting.is_none() && self.buckling.is_none() {
-            return bad("names no check: give limit_load, ratcheting or buckling".into());
+        if self.limit_load.is_none() && self.ratcheting.is_none() && self.buckling.is_none() && self.fatigue.is_none() {
+            return bad("names no check: give limit_load, ratcheting, buckling or fatigue".into());
+        }
+        if let Some(f) = &self.fatigue {
+            if f.cycles < 2 {
+                return bad(format!(
+                    "fatigue.cycles must be at least 2 (the last cycle is evaluated, the first starts from the virgin state), got {}",
+                    f.cycles
+                ));
+            }
+            if !(f.design_cycles > 0.0 && f.design_cycles.is_finite()) {
+                return bad(format!("fatigue.design_cycles must be a number of cycles > 0, got {}", f.design_cycles));
+            }
+            let general: Vec<&str> = model.general_steps().map(|s| s.name.as_str()).collect();
+            let cycle: Vec<&str> = f.cycle.iter().map(String::as_str).collect();
+            if cycle.is_empty() || !general.ends_with(&cycle) {
+                return bad(format!("fatigue.cycle {:?} must name the deck's last general steps in order (they are {:?})", f.cycle, general));
+            }
+            f.curve()?;
         }
         if let Some(b) = &self.buckling {
             if !(b.beta_cr > 0.0 && b.beta_cr <= 1.0) {
