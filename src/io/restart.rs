@@ -416,11 +416,8 @@ fn plastic_points(state: &StateGroup<'_>, elements: &HashMap<u64, usize>) -> Res
         if p[1] >= 9 || !s.iter().all(|v| v.is_finite()) || s[4] < 0.0 {
             return Err(bad(format!("{group}/plastic_points, plastic_state: Gauss point {} of element {} ({s:?}) is no state", p[1], p[0])));
         }
-        let mut point = PointState::isotropic([s[0], s[1], s[2], s[3]], s[4]);
-        for (k, alpha) in point.back.iter_mut().enumerate() {
-            alpha.copy_from_slice(&b[4 * k..4 * k + 4]);
-        }
-        point.kinematic_work = b[4 * MAX_BACKSTRESSES];
+        let back = std::array::from_fn(|k| std::array::from_fn(|c| b[4 * k + c]));
+        let point = PointState { back, kinematic_work: b[4 * MAX_BACKSTRESSES], ..PointState::isotropic([s[0], s[1], s[2], s[3]], s[4]) };
         plastic.push((e, p[1] as usize, point));
     }
     Ok(plastic)

@@ -1,10 +1,13 @@
 //! Material and contact cards: *ELASTIC, *PLASTIC, *EXPANSION and *DENSITY under
-//! *MATERIAL, the *SURFACE INTERACTION properties, *CONTACT PAIR.
+//! *MATERIAL (and the model's materials made from them), the *SURFACE INTERACTION properties,
+//! *CONTACT PAIR.
 
 use super::cards::{error_at, normalise, Card, Location};
 use super::{single, Builder};
 use crate::error::Result;
-use crate::model::{default_capture_distance, Adjust, ContactIntegration, ContactPair, Friction, Penalty};
+use crate::model::{
+    default_capture_distance, Adjust, Backstress, ContactIntegration, ContactPair, Friction, KinematicHardening, Material, Penalty, Plasticity,
+};
 
 /// One data line of a *CONTACT PAIR card, as listed.
 pub(super) struct ListedPair {
@@ -17,6 +20,58 @@ pub(super) struct ListedPair {
 }
 
 impl Builder {
+    /// The deck's materials as the model's (`heat`: a heat deck's need no elastic constants).
+    pub(super) fn material_list(&mut self, heat: bool) -> Result<Vec<Material>> {
+        let mut materials = Vec::new();
+        let mut notes = Vec::new();
+        for m in &self.materials {
+            let (youngs_modulus, poissons_ratio) = match (m.elastic, heat) {
+                (Some(e), _) => e,
+                (None, true) => (f64::NAN, f64::NAN),
+                (None, false) => return Err(error_at(&m.at, "MATERIAL", format!("material {} has no *ELASTIC", m.name))),
+            };
+            // piecewise linear through the points, flat after the last (as Abaqus): two points
+            // are linear hardening exactly up to the second
+            let plasticity = match (m.plastic.as_slice(), &m.plastic_at) {
+                ([], _) | (_, None) => None,
+                (points, Some(at)) => Some(Plasticity::table(points).map_err(|e| error_at(at, "PLASTIC", e))?),
+            };
+            // HARDENING=KINEMATIC: the yield surface keeps the first point's size and moves
+            // with the curve's slope (Prager), as CalculiX's linear kinematic hardening
+            let (plasticity, kinematic) = match (plasticity, &m.plastic_at) {
+                (Some(curve), Some(at)) if m.kinematic => {
+                    let [(ep0, s0), (ep1, s1)] = m.plastic[..] else {
+                        return Err(error_at(
+                            at,
+                            "PLASTIC",
+                            format!("HARDENING=KINEMATIC takes a two-point curve (linear kinematic hardening), got {} points", m.plastic.len()),
+                        ));
+                    };
+                    let slope = (s1 - s0) / (ep1 - ep0);
+                    let terms = KinematicHardening::new(&[Backstress { modulus: slope, recall: 0.0 }]).map_err(|e| error_at(at, "PLASTIC", e))?;
+                    notes.push(format!(
+                        "material {}: linear kinematic hardening of slope {slope} MPa from *PLASTIC, HARDENING=KINEMATIC ({at}), continued past its last point ({ep1})",
+                        m.name
+                    ));
+                    (Some(Plasticity::linear(curve.initial_yield_stress(), 0.0)), terms)
+                }
+                (p, _) => (p, KinematicHardening::NONE),
+            };
+            materials.push(Material {
+                name: m.name.clone(),
+                youngs_modulus,
+                poissons_ratio,
+                thermal_expansion: m.expansion,
+                plasticity,
+                kinematic,
+                density: m.density,
+                conductivity: m.conductivity,
+            });
+        }
+        self.notes.extend(notes);
+        Ok(materials)
+    }
+
     pub(super) fn material_property(&mut self, card: &Card) -> Result<()> {
         let m = self.materials.last_mut().expect("checked by the caller");
         match card.keyword.as_str() {
