@@ -224,7 +224,7 @@ fn fatigue_rows(a: &fatigue::Fatigue) -> Vec<CheckRow> {
     };
     vec![
         info(format!("effective strain range of cycle {}, the largest: {where_}", a.cycles_run), a.strain_range, "-", "VIII-2 5.5.4.4 steps 4-5"),
-        info(format!("alternating stress E x range / 2 there: {cycles}"), a.alternating_stress, "MPa", "VIII-2 5.5.4.4 steps 6-7, Annex 3-F"),
+        info(format!("S_alt = E x range / 2 there: {cycles}"), a.alternating_stress, "MPa", "VIII-2 5.5.4.4 steps 6-7, Annex 3-F"),
         CheckRow {
             check: "fatigue, elastic-plastic".into(),
             criterion: format!("damage n / N of {:.4e} design cycles", a.design_cycles),

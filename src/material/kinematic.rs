@@ -367,6 +367,14 @@ mod tests {
         let f = [c * u[0] - s * u[2], c * u[1] - s * u[3], s * u[0] + c * u[2], s * u[1] + c * u[3], 1.05];
         let e = tangent_error(&mat, Kinematics::Finite, f, det(&f), 100.0, &prior(Kinematics::Finite));
         assert!(e < 1e-6, "finite, large rotation: {e:e}");
+        // with a tabulated isotropic law, the return ending on its second segment
+        let table = Hardening::table(&[(0.0, 250.0), (0.001, 270.0), (0.02, 300.0)]).unwrap();
+        let tabled = J2 { hardening: table, ..mat };
+        let f = [0.996, 0.0, 0.0, 1.008, 0.996];
+        let up = tabled.update(Kinematics::Finite, &f, det(&f), 0.0, &PointState::initial(Kinematics::Finite)).unwrap();
+        assert!(up.state.ep > 0.001 && up.state.ep < 0.02, "second segment expected: ep = {}", up.state.ep);
+        let e = tangent_error(&tabled, Kinematics::Finite, f, det(&f), 0.0, &PointState::initial(Kinematics::Finite));
+        assert!(e < 1e-6, "table, second segment: {e:e}");
     }
 
     /// Without plastic flow the Lagrangian log-strain model is the Hencky material of the
@@ -465,6 +473,36 @@ mod tests {
             (eps_p0, x0, nu) = (ep_end, x_end, -nu);
         }
         assert_eq!(reversals, 6);
+    }
+
+    /// The load predictor's tangent at a converged plastic state (`SurfaceBranch::Flowing`):
+    /// the one-sided derivative of continued loading, the elastic one far stiffer.
+    #[test]
+    fn a_flowing_surface_gives_the_tangent_of_continued_loading() {
+        let mat = chaboche();
+        for kin in [Kinematics::Finite, Kinematics::Small] {
+            let s = 1.004;
+            let l = 1.0 - 0.5 * (s - 1.0);
+            let f = [l, 0.0, 0.0, s, l];
+            let theta_of = |f: &[f64; 5]| if kin == Kinematics::Finite { det(f) } else { f[0] + f[3] + f[4] - 3.0 };
+            let theta = theta_of(&f);
+            let state = mat.update(kin, &f, theta, 0.0, &PointState::initial(kin)).unwrap().state;
+            assert!(state.ep > 5e-4, "{kin:?}: plastic expected, ep = {}", state.ep);
+            let vars: [Dual<6>; 6] = std::array::from_fn(|i| Dual::variable(if i < 5 { f[i] } else { theta }, i));
+            let tangent = |branch| mat.update_on(branch, kin, &[vars[0], vars[1], vars[2], vars[3], vars[4]], vars[5], 0.0, &state).unwrap().phi;
+            let (flowing, elastic) = (tangent(SurfaceBranch::Flowing), tangent(SurfaceBranch::Elastic));
+            let h = 1e-7;
+            let mut g = f;
+            g[3] += h;
+            let dth = theta_of(&g) - theta;
+            let ahead = mat.update(kin, &g, theta + dth, 0.0, &state).unwrap().phi;
+            let here = mat.update(kin, &f, theta, 0.0, &state).unwrap().phi;
+            let fd = (ahead[3] - here[3]) / h;
+            let along = |phi: &[Dual<6>; 5]| phi[3].eps[3] + phi[3].eps[5] * dth / h;
+            let scale = along(&elastic).abs();
+            assert!((along(&flowing) - fd).abs() < 1e-4 * scale, "{kin:?}: flowing {} against continued loading {fd}", along(&flowing));
+            assert!(along(&elastic) - fd > 0.3 * scale, "{kin:?}: elastic {} should be far stiffer than {fd}", along(&elastic));
+        }
     }
 
     #[test]
