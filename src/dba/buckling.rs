@@ -36,6 +36,7 @@ pub fn model(model: &Model) -> Result<Model> {
     m.kinematics = Kinematics::Finite;
     for mat in &mut m.materials {
         mat.plasticity = None;
+        mat.kinematic = crate::model::KinematicHardening::NONE;
         mat.thermal_expansion = 0.0;
     }
     let mut applied = AppliedLoads::default();

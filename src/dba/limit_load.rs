@@ -74,6 +74,7 @@ pub fn model(model: &Model, spec: &DbaSpec, ll: &LimitLoadSpec) -> Result<Model>
     m.kinematics = Kinematics::Small;
     for mat in &mut m.materials {
         mat.plasticity = Some(Plasticity::linear(1.5 * spec.allowable(&mat.name)?, 0.0));
+        mat.kinematic = crate::model::KinematicHardening::NONE;
         mat.thermal_expansion = 0.0;
     }
     let mut applied = AppliedLoads::default();

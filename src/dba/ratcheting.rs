@@ -68,7 +68,9 @@ pub fn model(model: &Model, r: &RatchetingSpec) -> Result<Model> {
     let mut m = model.clone();
     for mat in &mut m.materials {
         let h = mat.plasticity.ok_or_else(|| Error::input(format!("[design_by_analysis] ratcheting: material '{}' has no yield stress", mat.name)))?;
+        // elastic-perfectly plastic: no hardening of either kind
         mat.plasticity = Some(Plasticity::linear(h.initial_yield_stress(), 0.0));
+        mat.kinematic = crate::model::KinematicHardening::NONE;
     }
     let mut steps: Vec<Step> = model.steps.iter().filter(|s| !matches!(s, Step::Perturbation(_))).cloned().collect();
     let cycle: Vec<_> = model.general_steps().filter(|s| r.cycle.contains(&s.name)).cloned().collect();
