@@ -92,3 +92,56 @@ fn meshio_reads_every_increment_and_the_fields_equal_the_results_file() {
     let size = |f: &str| std::fs::metadata(dir.path().join(f)).unwrap().len() as f64;
     assert!(size("joint.h5") < 0.75 * size("double.h5"), "single precision: {} against {} bytes", size("joint.h5"), size("double.h5"));
 }
+
+/// Kinematic hardening's backstress is in the file (Gauss points, `backstress`) and at the
+/// nodes (`backstress_rr` .. `backstress_von_mises`), which meshio reads at every increment of
+/// a 2-rank run with the other fields (and zeros at t = 0). What is stored is the state the
+/// solver had: at every Gauss point that flowed in the last increment the stress sits on the
+/// moved yield surface, sqrt(3/2) |s - alpha| = sigma_y (300 MPa, no isotropic hardening),
+/// within 1e-6, in a cylinder loaded past yield and then taken to suction (reverse yield).
+#[test]
+fn meshio_reads_the_backstress_and_flowing_points_sit_on_the_moved_surface() {
+    let deck = r#"nlgeom = false
+[mesh]
+rectangle = { r = [100.0, 130.0], z = [0.0, 3.0], divisions = [8, 2] }
+[[material]]
+name = "steel"
+model = "j2"
+youngs_modulus = 200000.0
+poissons_ratio = 0.3
+yield_stress = 300.0
+backstresses = [ { modulus = 20000.0, recall = 100.0 }, { modulus = 5000.0 } ]
+[[step]]
+increments = 4
+boundary = [ { set = "bottom", uz = 0.0 }, { set = "top", uz = 0.0 } ]
+pressure = [ { surface = "inner", value = 84.0 } ]
+[[step]]
+increments = 4
+pressure = [ { surface = "inner", value = -75.0 } ]
+"#;
+    let run = common::run_deck(deck, &[], 2, common::DOUBLE);
+    run.assert_ok();
+    let text = check(&run.h5.with_extension("xmf"));
+    assert!(text.contains("8 increment steps after the t = 0 frame"), "{text}");
+    let xmf = std::fs::read_to_string(run.h5.with_extension("xmf")).unwrap();
+    assert!(xmf.contains("Name=\"backstress_von_mises\""), "the sidecar lists the nodal backstress");
+    let file = hdf5::File::open(&run.h5).unwrap();
+    let read = |inc: &str, name: &str| file.dataset(&format!("increments/{inc}/{name}")).unwrap().read_raw::<f64>().unwrap();
+    let (stress, back) = (read("000008", "stress"), read("000008", "backstress"));
+    let (ep, ep_before) = (read("000008", "equivalent_plastic_strain"), read("000007", "equivalent_plastic_strain"));
+    let mut flowing = 0;
+    for k in 0..ep.len() {
+        if ep[k] > ep_before[k] {
+            let relative: [f64; 4] = std::array::from_fn(|c| stress[4 * k + c] - back[4 * k + c]);
+            let mean = (relative[0] + relative[1] + relative[2]) / 3.0;
+            let s = [relative[0] - mean, relative[1] - mean, relative[2] - mean, relative[3]];
+            let q = (1.5 * (s[0] * s[0] + s[1] * s[1] + s[2] * s[2] + 2.0 * s[3] * s[3])).sqrt();
+            assert!((q / 300.0 - 1.0).abs() < 1e-6, "Gauss point {k}: sqrt(3/2) |s - alpha| = {q}");
+            flowing += 1;
+        }
+    }
+    assert!(flowing > 0, "some points yield in reverse in the last increment");
+    // at the end of the loading the bore has a backstress of some MPa (C ep, ep ~ 5e-4)
+    let nodal = read("000004", "nodal/backstress_von_mises");
+    assert!(nodal.iter().all(|v| *v >= 0.0) && nodal.iter().any(|v| *v > 5.0), "{nodal:?}");
+}

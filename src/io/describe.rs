@@ -90,6 +90,11 @@ pub fn describe(group: &str, name: &str) -> (&'static str, String) {
                 n.trim_start_matches("plastic_strain_")
             ),
         ),
+        (_, "backstress") => ("MPa", format!("backstress of kinematic hardening, the sum of its terms [rr, zz, tt, rz] (tensor shear), at {SLOTS}")),
+        (_, "backstress_von_mises") => ("MPa", "von Mises equivalent of the backstress at the nodes, copied from the nearest Gauss point".into()),
+        (_, n) if n.starts_with("backstress_") => {
+            ("MPa", format!("backstress {} at the nodes (kinematic hardening), copied from the nearest Gauss point", n.trim_start_matches("backstress_")))
+        }
         (_, "friction_shear") => ("MPa", "frictional shear traction at the slave nodes (the largest in magnitude over their pairs), 0 elsewhere".into()),
         (_, "contact_sliding") => ("-", "1 where a slave node slides (friction at its Coulomb limit), 0 where it sticks, is open, or is no slave".into()),
         (_, "displacement") if g.ends_with("nodal") => ("mm", "u_r, u_z, 0 at each node (a 3-vector for ParaView)".into()),

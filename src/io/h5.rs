@@ -129,6 +129,7 @@ fn deflated(name: &str) -> bool {
         || name == "temperature"
         || name == "plastic_points"
         || name.starts_with("plastic_strain_")
+        || name.starts_with("backstress")
         || name.starts_with("equivalent_plastic_strain")
         || name.starts_with("contact_")
         || name.starts_with("friction_")

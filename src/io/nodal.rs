@@ -52,6 +52,10 @@ pub const NODAL_SCALARS: [&str; 16] = [
 /// The nodal scalars after [`NODAL_SCALARS`]: the equivalent plastic strain and temperature.
 pub const NODAL_TAIL: [&str; 2] = ["equivalent_plastic_strain", "temperature"];
 
+/// The backstress at the nodes (kinematic hardening): its components and von Mises
+/// equivalent, copied from the nearest Gauss point as the plastic strain is.
+pub const BACKSTRESS_SCALARS: [&str; 5] = ["backstress_rr", "backstress_zz", "backstress_tt", "backstress_rz", "backstress_von_mises"];
+
 /// The contact scalars at the nodes, the last two only for pairs with friction.
 pub const CONTACT_SCALARS: [&str; 5] = ["contact_pressure", "contact_status", "contact_gap", "friction_shear", "contact_sliding"];
 
@@ -122,6 +126,26 @@ impl NodalWriter {
         Ok(())
     }
 
+    /// The backstress at the nodes, [`BACKSTRESS_SCALARS`] (collective): each element's nearest
+    /// Gauss point's, averaged over the elements at a node.
+    fn write_backstress(&self, g: &hdf5::Group, back: &[[[f64; 4]; 9]], path: &Path) -> Result<()> {
+        const C: usize = BACKSTRESS_SCALARS.len();
+        let mut local = vec![0.0f64; self.nodes * (C + 1)];
+        let (sums, counts) = local.split_at_mut(self.nodes * C);
+        for ((nodes, &integration), gauss) in self.connectivity.iter().zip(&self.integration).zip(back) {
+            let values: [[f64; C]; 9] = gauss.map(|a| [a[0], a[1], a[2], a[3], von_mises(&a)]);
+            Recovery::accumulate(nodes, &self.recovery.element_nodal(Shape::of(nodes), integration, Rule::Copy, &values), sums, counts);
+        }
+        let mut total = vec![0.0f64; local.len()];
+        self.world.all_reduce_into(&local[..], &mut total[..], SystemOperation::sum());
+        let (sums, counts) = total.split_at(self.nodes * C);
+        for (c, name) in BACKSTRESS_SCALARS.iter().enumerate() {
+            let column: Vec<f64> = (self.node_slab.0..self.node_slab.1).map(|n| sums[n * C + c] / counts[n].max(1.0)).collect();
+            write_field(g, name, &[self.nodes], self.node_slab, &column, self.precision, &self.world, path)?;
+        }
+        Ok(())
+    }
+
     pub fn new(world: SimpleCommunicator, model: &Model, partition: &Partition) -> Self {
         let (mesh, output) = (&model.mesh, model.output);
         let connectivity = partition.local_elements().iter().map(|&e| mesh.elements[e].map(|n| partition.node_position[n])).collect();
@@ -183,6 +207,9 @@ impl NodalWriter {
         if self.fields.plastic_strain {
             let ep: Vec<f64> = means.iter().map(|m| m[AVERAGED - 1]).collect();
             write_field(&g, "equivalent_plastic_strain", &[self.nodes], self.node_slab, &ep, self.precision, &self.world, path)?;
+        }
+        if let (true, Some(back)) = (self.fields.plastic_strain, f.backstress) {
+            self.write_backstress(&g, back, path)?;
         }
         if self.fields.temperature {
             let t: Vec<f64> = self.owned.iter().map(|&n| f.temperature.at(n)).collect();

@@ -286,6 +286,7 @@ impl ResultsFile {
             precision: model.output.precision,
             contact: !model.contacts.is_empty(),
             friction: (0..model.contacts.len()).any(|p| model.pair_has_friction(p)),
+            kinematic: model.has_kinematic_hardening(),
             topology,
             plane: geometry == PLANE,
         };
@@ -423,6 +424,18 @@ impl ResultsFile {
             )?;
             let mean: Vec<f64> = vm.iter().zip(used).map(|(e, &n)| e[..n].iter().map(|v| v[0]).sum::<f64>() / n as f64).collect();
             write_field(&g, "von_mises_mean", &[self.elements], self.element_slab, &mean, self.precision, &self.world, &self.path)?;
+        }
+        if let (true, Some(back)) = (f.plastic_strain, fields.backstress) {
+            write_field(
+                &g,
+                "backstress",
+                &[self.elements, QUADRATURE_POINTS, 4],
+                self.element_slab,
+                &gauss_rows(back, used),
+                self.precision,
+                &self.world,
+                &self.path,
+            )?;
         }
         if f.plastic_strain {
             let ep: Vec<[[f64; 1]; QUADRATURE_POINTS]> = local_plastic_strain.iter().map(|e| e.map(|v| [v])).collect();

@@ -12,7 +12,7 @@
 //! mesh.
 
 use super::describe::{describe, plane_units};
-use super::nodal::{nodal_scalar_kept, CONTACT_SCALARS, NODAL_SCALARS, NODAL_TAIL};
+use super::nodal::{nodal_scalar_kept, BACKSTRESS_SCALARS, CONTACT_SCALARS, NODAL_SCALARS, NODAL_TAIL};
 use crate::error::{Error, Result};
 use crate::fe::shape::Shape;
 use crate::model::{Mesh, OutputFields, Precision};
@@ -87,6 +87,9 @@ pub struct GridFields {
     pub contact: bool,
     /// Some pair has friction: the nodal shear and sliding are written.
     pub friction: bool,
+    /// Some material has kinematic hardening: the nodal backstress is written (with the
+    /// plastic strain).
+    pub kinematic: bool,
     pub topology: Topology,
     /// A model of plane sections only: forces over the thickness, not per radian.
     pub plane: bool,
@@ -170,7 +173,7 @@ impl Sidecar {
             (None, "temperature") => format!("{INITIAL}/temperature"),
             (None, _) => format!("{INITIAL}/scalar"),
         };
-        let GridFields { fields: f, precision, contact, friction, .. } = self.what;
+        let GridFields { fields: f, precision, contact, friction, kinematic, .. } = self.what;
         // the t = 0 frame's zeros are 64-bit
         let width = if group.is_some() && precision == Precision::Single { 4 } else { 8 };
         for (name, width) in [("displacement", 8), ("reaction_force", width)] {
@@ -184,7 +187,8 @@ impl Sidecar {
             (true, true) => 5,
         };
         let scalars = NODAL_SCALARS.iter().chain(&NODAL_TAIL).filter(|name| nodal_scalar_kept(name, f));
-        for name in scalars.chain(&CONTACT_SCALARS[..contact_count]) {
+        let backstress = if kinematic && f.plastic_strain { &BACKSTRESS_SCALARS[..] } else { &[] };
+        for name in scalars.chain(backstress).chain(&CONTACT_SCALARS[..contact_count]) {
             let _ = writeln!(x, "{}", attribute(name, "Scalar", "Node", item(&scalar_path(name), &nodes.to_string(), "Float", width)));
         }
         let element = [("von_mises_mean", f.von_mises), ("equivalent_plastic_strain_max", f.plastic_strain)].into_iter().filter(|e| e.1).map(|e| e.0);
@@ -291,6 +295,7 @@ mod tests {
                 precision: Precision::Double,
                 contact: false,
                 friction: false,
+                kinematic: false,
                 topology: Topology::Quad8,
                 plane: false,
             },

@@ -16,6 +16,9 @@ pub struct IncrementFields<'a> {
     pub strain: &'a [[[f64; 4]; QUADRATURE_POINTS]],
     /// Plastic strain tensor at the Gauss points of the local elements.
     pub plastic_strain_tensor: &'a [[[f64; 4]; QUADRATURE_POINTS]],
+    /// The backstress (the sum of its terms, MPa) at the Gauss points of the local elements,
+    /// where a material has kinematic hardening.
+    pub backstress: Option<&'a [[[f64; 4]; QUADRATURE_POINTS]]>,
     /// Reaction force (r, z) of the owned nodes, per radian: zero on the free DOFs.
     pub reaction: &'a [[f64; 2]],
     /// The temperature of every node, degC.

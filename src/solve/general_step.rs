@@ -382,6 +382,7 @@ impl<'a, 's> GeneralSteps<'a, 's> {
         let contact_output = st.problem.contact.as_ref().map(|c| c.pass_outputs()).unwrap_or_default();
         let (strain, plastic_strain_tensor) =
             if with_fields { st.problem.strain_fields(&self.carried.displacement, &fields.thickness_stretch) } else { Default::default() };
+        let backstress = (with_fields && model.has_kinematic_hardening()).then(|| st.problem.backstress_field());
         let reaction: Vec<[f64; 2]> =
             partition.owned_nodes().iter().map(|&n| std::array::from_fn(|c| if st.prescribed[n][c] { force[2 * n + c] } else { 0.0 })).collect();
         let increment_fields = IncrementFields {
@@ -390,6 +391,7 @@ impl<'a, 's> GeneralSteps<'a, 's> {
             plastic_strain: &fields.plastic_strain,
             strain: &strain,
             plastic_strain_tensor: &plastic_strain_tensor,
+            backstress: backstress.as_deref(),
             reaction: &reaction,
             temperature: &load_now.temperature,
             contact: &contact_output,

@@ -350,6 +350,11 @@ impl<'s, 'm> Problem<'s, 'm> {
         (total, plastic)
     }
 
+    /// The committed backstress at the Gauss points (the sum of its terms; kinematic hardening).
+    pub fn backstress_field(&self) -> Vec<[[f64; 4]; QUADRATURE_POINTS]> {
+        self.committed.iter().map(|points| points.map(|p| std::array::from_fn(|c| p.back.iter().map(|a| a[c]).sum()))).collect()
+    }
+
     /// The committed history and what contact carries, for the next step's problem.
     pub fn into_history(self) -> (History, Option<ContactCarry>) {
         (self.committed, self.contact.map(|c| c.into_carry()))
