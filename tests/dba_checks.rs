@@ -174,8 +174,22 @@ fn bad_design_by_analysis_tables_are_named() {
 /// checks' table with the printed figures; without --spec it is refused, naming it.
 #[test]
 fn the_bellows_design_by_analysis_runs_the_joint_of_its_specification() {
-    let spec = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/seed_joint.toml");
+    // the seed joint's specification with a cyclic curve for the fatigue check (illustrative
+    // Armstrong-Frederick terms, not a fit of AISI 304)
+    let seed = std::fs::read_to_string(std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/seed_joint.toml")).unwrap();
+    let marker = "hardening_modulus = 1000.0";
+    assert!(seed.contains(marker));
     let dir = tempfile::tempdir().unwrap();
+    let spec = dir.path().join("seed_cyclic.toml");
+    std::fs::write(
+        &spec,
+        seed.replacen(
+            marker,
+            "backstresses = [ { modulus = 60000.0, recall = 400.0 }, { modulus = 10000.0, recall = 60.0 }, { modulus = 1500.0 } ]\nhardening_modulus = 1000.0",
+            1,
+        ),
+    )
+    .unwrap();
     let run = command_in(dir.path(), 2)
         .current_dir(dir.path())
         .args(["bellows", "--spec", spec.to_str().unwrap(), "--quick", "--increments", "8", "--dba", "--quiet", "-o", "j.h5", "--report", "j.html"])
@@ -188,15 +202,23 @@ fn the_bellows_design_by_analysis_runs_the_joint_of_its_specification() {
     assert!(code < dba, "the code's verdict first:\n{out}");
     let f = Results::open(&dir.path().join("j.h5"));
     let (checks, verdicts, figures) = (texts(&f, "dba/check"), texts(&f, "dba/verdict"), f.f64s("dba/figure"));
-    assert_eq!(checks.len(), 5, "{out}");
+    assert_eq!(checks.len(), 8, "{out}");
     assert_eq!(verdicts[0], "PASS", "{out}");
     assert!(figures[0] > 1.5 && figures[0] < 20.0, "a collapse within the search: {}\n{out}", figures[0]);
     assert!(figures[1] > 1e-3, "plastic action in the last cycle of a 70 mm stroke:\n{out}");
     assert!(dir.path().join("j_limit_load.h5").exists() && dir.path().join("j_ratcheting.h5").exists());
+    // fatigue over three strokes against the specification's 1000 cycles: a plastic strain
+    // range of percents, far fewer cycles allowed (the code's check fails too), and the damage
+    // is n / N of the S_alt = E x range / 2 printed beside it
+    assert_eq!(&checks[5..], ["fatigue, elastic-plastic"; 3], "{out}");
+    assert!(figures[5] > 0.01, "a 70 mm stroke's effective strain range: {}\n{out}", figures[5]);
+    assert!((figures[6] - 200_000.0 * figures[5] / 2.0).abs() < 1e-9 * figures[6], "{out}");
+    assert_eq!(verdicts[7], "FAIL", "{out}");
+    assert!(figures[7] > 1.0 && dir.path().join("j_fatigue.h5").exists(), "{out}");
     // the report: the code's checks, then the design-by-analysis table as printed
     let html = std::fs::read_to_string(dir.path().join("j.html")).unwrap();
     assert!(html.contains("id=\"checks\"") && html.contains("id=\"dba\""), "{html}");
-    assert_eq!(html.matches("class=\"dba-check\"").count(), 5, "{html}");
+    assert_eq!(html.matches("class=\"dba-check\"").count(), 8, "{html}");
     let collapse = format!("{:.4}", figures[0]);
     assert!(out.contains(&collapse) && html.contains(&format!("<td class=\"n\">{collapse}</td>")), "{collapse}:\n{html}");
     let overall = if verdicts.iter().any(|v| v == "FAIL") { "FAIL" } else { "PASS: every check" };

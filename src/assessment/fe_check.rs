@@ -64,3 +64,18 @@ pub struct StrainLife {
     pub pseudo_stress: f64,
     pub cycles: Option<f64>,
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_effective_range_of_uniaxial_plastic_flow_is_its_axial_strain() {
+        // plastic flow at constant volume: (-e/2, e, -e/2) in (rr, zz, tt); a volume change
+        // adds nothing; pure shear gamma = 2 eps_rz gives gamma / sqrt 3
+        let e = 3e-3;
+        assert!((effective_strain_range([-e / 2.0, e, -e / 2.0, 0.0]) - e).abs() < 1e-18);
+        assert!((effective_strain_range([-e / 2.0 + 1e-3, e + 1e-3, -e / 2.0 + 1e-3, 0.0]) - e).abs() < 1e-15);
+        assert!((effective_strain_range([0.0, 0.0, 0.0, e / 2.0]) - e / 3f64.sqrt()).abs() < 1e-18);
+    }
+}

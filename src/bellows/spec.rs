@@ -118,6 +118,10 @@ pub struct MaterialSpec {
     /// The finite-element plies' linear hardening (0: perfectly plastic).
     #[serde(default)]
     pub hardening_modulus: f64,
+    /// The cyclic stress-strain curve as kinematic hardening (Armstrong-Frederick terms):
+    /// `--dba`'s fatigue check runs with it (none: no fatigue check).
+    #[serde(default)]
+    pub backstresses: Vec<crate::material::Backstress>,
     #[serde(default = "no_expansion")]
     pub thermal_expansion: Property,
     #[serde(default)]

@@ -202,8 +202,10 @@ const BELLOWS_SEARCH_TO: f64 = 20.0;
 
 /// `--dba`: the design-by-analysis checks (ASME VIII-2 Part 5) on the joint `params`
 /// describes, with the allowable stress of its specification: the limit load under the design
-/// pressure alone (the ends held; the stroke is a secondary load), and ratcheting over three
-/// cycles of the stroke (compress, return) under the pressure. The verdict is printed with the
+/// pressure alone (the ends held; the stroke is a secondary load), ratcheting over three
+/// cycles of the stroke (compress, return) under the pressure, and where the specification's
+/// material gives its cyclic curve (`backstresses`) fatigue over three such cycles against
+/// its required cycles. The verdict is printed with the
 /// specification's code verdict before it and written to `output` (`/dba`, and the code's
 /// verdict as a run's file holds it); each analysis in a file beside it; with `report`, the
 /// design report of `output` (collective).
@@ -215,16 +217,32 @@ pub fn design_by_analysis(
     report: Option<&Path>,
     quiet: bool,
 ) -> Result<()> {
-    use crate::dba::spec::{Allowable, DbaSpec, LimitLoadSpec, RatchetingSpec};
+    use crate::dba::spec::{Allowable, DbaSpec, FatigueSpec, LimitLoadSpec, RatchetingSpec};
+    use crate::error::Error;
+    use crate::model::KinematicHardening;
     let spec = spec.ok_or_else(|| crate::error::Error::input("bellows --dba: the checks need the allowable stress of a design specification (--spec FILE)"))?;
     let (_, _, allowable) = spec.at_temperature()?;
     let cycling = BellowsParams { cycle: true, ..params.clone() };
-    let model = super::joint::model(&cycling)?;
+    let mut model = super::joint::model(&cycling)?;
+    // the specification's cyclic curve, where it gives one, for the fatigue check (the other
+    // checks are elastic-perfectly plastic)
+    let kinematic = KinematicHardening::new(&spec.material.backstresses).map_err(|e| Error::input(format!("[material] backstresses: {e}")))?;
+    for m in &mut model.materials {
+        m.kinematic = kinematic;
+    }
+    let stroke = vec!["compress".to_string(), "return".to_string()];
+    let fatigue = (!kinematic.is_empty()).then(|| FatigueSpec {
+        cycle: stroke.clone(),
+        cycles: crate::dba::spec::LEAST_CYCLES,
+        design_cycles: spec.design.cycles,
+        curve: None,
+        curve_modulus: None,
+    });
     let checks = DbaSpec {
-        fatigue: None,
+        fatigue,
         allowable_stress: Some(Allowable::Every(allowable)),
         limit_load: Some(LimitLoadSpec { factor: 1.5, search_to: BELLOWS_SEARCH_TO, search_increments: 40, steps: Some(vec!["heat".into()]) }),
-        ratcheting: Some(RatchetingSpec { cycle: vec!["compress".into(), "return".into()], cycles: crate::dba::spec::LEAST_CYCLES, section: None }),
+        ratcheting: Some(RatchetingSpec { cycle: stroke, cycles: crate::dba::spec::LEAST_CYCLES, section: None }),
         buckling: None,
     };
     checks.validate(&model)?;

@@ -5,7 +5,8 @@
 //! - the effective strain range, the largest over pairs of the cycle's states i, j of
 //!   delta_eps_eff = S_P(sigma_i - sigma_j) / E + eps_peq(eps_p,i - eps_p,j), S_P the von
 //!   Mises equivalent of the stress range and eps_peq the von Mises equivalent plastic strain
-//!   range, sqrt(2/3 d:d) (5.5.4.4, steps 4 and 5);
+//!   range (`effective_strain_range`, sqrt(2/3 d:d) for a plastic strain) (5.5.4.4, steps 4
+//!   and 5);
 //! - the alternating stress S_alt = E delta_eps_eff / 2 (step 6), and the permissible cycles N
 //!   read off the fatigue curve at S_alt E_FC / E (step 7, Annex 3-F);
 //! - the damage of the design cycles n / N, which must not exceed 1 (step 8).
@@ -15,6 +16,7 @@
 
 use super::fatigue_curve::Cycles;
 use super::spec::{DbaSpec, FatigueSpec};
+use crate::assessment::fe_check::effective_strain_range;
 use crate::element::solid::QUADRATURE_POINTS as QP;
 use crate::error::{Error, Result};
 use crate::io::reader::ResultsReader;
@@ -129,7 +131,7 @@ pub fn evaluate(file: &Path, model: &Model, f: &FatigueSpec) -> Result<Fatigue> 
                 for j in 0..i {
                     let ds: [f64; 4] = std::array::from_fn(|c| states[i].stress[k][c] - states[j].stress[k][c]);
                     let dp: [f64; 4] = std::array::from_fn(|c| states[i].plastic[k][c] - states[j].plastic[k][c]);
-                    let range = crate::fe::axisymmetric::von_mises(&ds) / youngs + equivalent_strain(&dp);
+                    let range = crate::fe::axisymmetric::von_mises(&ds) / youngs + effective_strain_range(dp);
                     if range > worst.0 {
                         worst = (range, k);
                     }
@@ -163,24 +165,4 @@ struct PointStates {
     stress: Vec<[f64; 4]>,
     /// Plastic strain (eps_p, or ln(C_p) / 2 at finite strain).
     plastic: Vec<[f64; 4]>,
-}
-
-/// The von Mises equivalent of a strain range d [rr, zz, tt, rz] (tensor shear) of plastic,
-/// volume-preserving strain: sqrt(2/3 d : d).
-fn equivalent_strain(d: &[f64; 4]) -> f64 {
-    (2.0 / 3.0 * (d[0] * d[0] + d[1] * d[1] + d[2] * d[2] + 2.0 * d[3] * d[3])).sqrt()
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn the_equivalent_plastic_strain_of_uniaxial_flow_is_its_axial_strain() {
-        // plastic flow at constant volume: (-e/2, e, -e/2) in (rr, zz, tt)
-        let e = 3e-3;
-        assert!((equivalent_strain(&[-e / 2.0, e, -e / 2.0, 0.0]) - e).abs() < 1e-18);
-        // pure shear gamma = 2 eps_rz: gamma / sqrt 3
-        assert!((equivalent_strain(&[0.0, 0.0, 0.0, e / 2.0]) - e / 3f64.sqrt()).abs() < 1e-18);
-    }
 }

@@ -32,13 +32,15 @@ use crate::ad::Scalar;
 /// Largest number of Armstrong-Frederick backstresses.
 pub const MAX_BACKSTRESSES: usize = 3;
 
-/// One Armstrong-Frederick backstress term.
-#[derive(Clone, Copy, Debug, PartialEq, Default)]
+/// One Armstrong-Frederick backstress term (a deck's `{ modulus = C, recall = gamma }`).
+#[derive(Clone, Copy, Debug, PartialEq, Default, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct Backstress {
     /// C_k, MPa: the initial slope of the term's uniaxial stress-plastic strain curve.
     pub modulus: f64,
     /// gamma_k (dimensionless): the rate of its recall; C_k / gamma_k is its saturation
-    /// stress. 0 is linear (Prager) hardening.
+    /// stress. 0 (the default) is linear (Prager) hardening.
+    #[serde(default)]
     pub recall: f64,
 }
 

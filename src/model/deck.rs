@@ -83,8 +83,8 @@ mod steps;
 use super::constraint::{default_tie_tolerance, tie};
 use super::mesh::{blocks, rectangle, split_into_triangles, Block, MeshSets};
 use super::{
-    default_capture_distance, gmsh, Adjust, AugmentedLagrangian, Backstress, ContactIntegration, ContactPair, Friction, KinematicHardening, Kinematics,
-    Material, Model, OutputControls, OutputFields, Penalty, Plasticity, Pressure, Step,
+    default_capture_distance, gmsh, Adjust, AugmentedLagrangian, ContactIntegration, ContactPair, Friction, KinematicHardening, Kinematics, Material, Model,
+    OutputControls, OutputFields, Penalty, Plasticity, Pressure, Step,
 };
 use crate::error::{Error, Result};
 use crate::fe::quadrature::Integration;
@@ -154,8 +154,7 @@ fn materials(deck: &DeckFile, path: &Path) -> Result<Vec<Material>> {
         if !m.backstresses.is_empty() && plasticity.is_none() {
             return Err(Error::input(format!("material '{}': backstresses need model = \"j2\" and its yield_stress", m.name)));
         }
-        let terms: Vec<Backstress> = m.backstresses.iter().map(|b| Backstress { modulus: b.modulus, recall: b.recall }).collect();
-        let kinematic = KinematicHardening::new(&terms).map_err(|e| Error::input(format!("material '{}': {e}", m.name)))?;
+        let kinematic = KinematicHardening::new(&m.backstresses).map_err(|e| Error::input(format!("material '{}': {e}", m.name)))?;
         materials.push(Material {
             name: m.name.clone(),
             youngs_modulus: elastic(m.youngs_modulus, "youngs_modulus (MPa)")?,

@@ -270,16 +270,7 @@ pub(super) struct MaterialSpec {
     pub(super) hardening_modulus: Option<f64>,
     /// Kinematic hardening: up to three Armstrong-Frederick terms.
     #[serde(default)]
-    pub(super) backstresses: Vec<BackstressSpec>,
-}
-
-/// One backstress term: C (MPa) and gamma (0, the default, for linear kinematic hardening).
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-pub(super) struct BackstressSpec {
-    pub(super) modulus: f64,
-    #[serde(default)]
-    pub(super) recall: f64,
+    pub(super) backstresses: Vec<crate::material::Backstress>,
 }
 
 pub(super) fn default_kind() -> MaterialKind {
