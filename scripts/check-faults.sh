@@ -4,8 +4,8 @@
 #  - a disk that fills in the middle of a run (a 2 MB tmpfs), on 1 and 2 ranks: the run stops
 #    within seconds with exit 1 and "cannot write", its lock released, and `slideline post`
 #    reads every increment completed before; `post --plot` onto a full disk says so plainly;
-#  - SIGKILL to rank 0 of a 2-rank run at 20 random times: post reads and a restart continues
-#    every file;
+#  - SIGKILL to rank 0 of a 2-rank run at 20 random times, and 20 times timed into the file's
+#    writes (scripts/kill_during_writes.py): post reads and a restart continues every file;
 #  - a read-only mount: `run -o` and `penalty-study -o` onto it are refused with exit 2 at once
 #    (penalty-study's rank 1 used to wait forever).
 # Prints one line per check and exits 1 on the first failure.
@@ -92,6 +92,10 @@ for trial in $(seq 1 20); do
     fi
     echo "$what: post reads $kept increment(s), a restart continues it -> ok"
 done
+
+# SIGKILL to rank 0 timed into the file's writes (20 trials; 1 in 30 such kills once left the
+# superblock's end of allocation short of the metadata written: "addr overflow")
+python3 "$here/scripts/kill_during_writes.py" "$slideline" "$work" 20 || fail "a file killed during its writes did not read"
 
 # a read-only mount
 mount -t tmpfs -o size=2m,ro tmpfs "$mnt"

@@ -320,6 +320,48 @@ fn a_file_left_truncated_by_a_killed_writer_is_repaired_and_read() {
     assert!(String::from_utf8_lossy(&continued.stdout).contains("end reaction"));
 }
 
+/// A writer killed while it flushed an increment can leave metadata past the end of
+/// allocation its superblock records (reproduced: 1 of 30 SIGKILLs of rank 0 timed into the
+/// file's writes; reading the increments fails with "addr overflow"). Made here by setting a
+/// finished file's mark (superblock version 0, bytes 40..48) short of its last increments:
+/// with the run's lock left by a process that is gone, post and a restart repair the file as
+/// `h5clear --increment=0` does, with a note, and read every increment; with the lock of a live
+/// process (a run that may still be writing) the file is not touched. Seen failing before:
+/// "addr overflow" from post.
+#[test]
+fn a_file_whose_allocation_mark_a_killed_writer_left_short_is_repaired_and_read() {
+    let dir = tempfile::tempdir().unwrap();
+    ok(bellows(dir.path(), 1, &["-o", "full.h5"]));
+    let h5 = dir.path().join("full.h5");
+    let increments = slideline_increments(&h5);
+    let mut bytes = std::fs::read(&h5).unwrap();
+    assert_eq!(bytes[8], 0, "superblock version");
+    let eoa = u64::from_le_bytes(bytes[40..48].try_into().unwrap());
+    assert_eq!(eoa, bytes.len() as u64, "a finished file ends at its mark");
+    bytes[40..48].copy_from_slice(&(eoa / 2).to_le_bytes());
+    std::fs::write(&h5, &bytes).unwrap();
+    let host = std::fs::read_to_string("/proc/sys/kernel/hostname").unwrap().trim().to_string();
+    let lock = dir.path().join("full.lock");
+    let post = || command_in(dir.path(), 1).arg("post").arg(&h5).output().unwrap();
+    // a live process's lock: the file is left as it is, and does not read
+    std::fs::write(&lock, format!("host {host} pid {}\n", std::process::id())).unwrap();
+    let out = post();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success() && !err.contains("repaired"), "{err}");
+    assert_eq!(std::fs::read(&h5).unwrap()[40..48], (eoa / 2).to_le_bytes(), "a file a run may be writing was changed");
+    // the lock of a process that is gone: repaired, every increment read
+    let gone = std::process::Command::new("true").spawn().unwrap();
+    let pid = gone.id();
+    gone.wait_with_output().unwrap();
+    std::fs::write(&lock, format!("host {host} pid {pid}\n")).unwrap();
+    let out = post();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success() && err.contains("end-of-allocation mark set"), "{err}");
+    assert_eq!(slideline_increments(&h5), increments);
+    let continued = ok(bellows_restart(dir.path(), 1, "full.h5", &["--increment", "5", "-o", "more.h5"]));
+    assert!(String::from_utf8_lossy(&continued.stdout).contains("end reaction"));
+}
+
 /// A restart continues the same problem (Abaqus's rule): restarting the plastic cylinder from
 /// increment 3 of its load step with that step's pressure changed (84 -> 90 MPa) or with the
 /// material's yield stress changed is refused (exit 2, naming what changed); changing the

@@ -1,5 +1,5 @@
 //! The raw HDF5 calls the `hdf5` crate does not offer: a collective write of one rank's rows of
-//! a dataset. Parallel HDF5 writes chunked, filtered (compressed) datasets only through
+//! a dataset, and a file's stored end of allocation. Parallel HDF5 writes chunked, filtered (compressed) datasets only through
 //! collective transfers, and the crate writes with the default, independent, transfer property
 //! list. Like `src/petsc/`, this is an FFI module (the only other place `unsafe` is allowed):
 //! every `unsafe` block says why it is sound.
@@ -79,4 +79,22 @@ pub fn write_rows_collective<T: H5Type>(dataset: &hdf5::Dataset, first: usize, r
             Ok(())
         }
     })
+}
+
+extern "C" {
+    // HDF5 >= 1.10.2 (H5Fpublic.h); not among hdf5-sys's bindings
+    fn H5Fget_eoa(file_id: hid_t, eoa: *mut hdf5_sys::h5::haddr_t) -> hdf5_sys::h5::herr_t;
+}
+
+/// The end of allocation `file`'s superblock records: every object the file's metadata
+/// addresses lies before it (HDF5 refuses one past it: "addr overflow").
+pub fn end_of_allocation(file: &hdf5::File) -> Result<u64, String> {
+    let mut eoa: hdf5_sys::h5::haddr_t = 0;
+    // SAFETY: the file identifier is valid while `file` lives, and `eoa` is a valid place for
+    // the one value the call writes.
+    let status = hdf5::sync::sync(|| unsafe { H5Fget_eoa(file.id(), &mut eoa) });
+    if status < 0 {
+        return Err("HDF5 H5Fget_eoa failed".into());
+    }
+    Ok(eoa)
 }

@@ -64,6 +64,20 @@ impl Drop for ResultsLock {
     }
 }
 
+/// Whether a run may be writing `results` still: its lock is there, and not left by a process
+/// of this host that is gone (a lock of another host may be a live run).
+pub fn writer_may_be_alive(results: &Path) -> bool {
+    std::fs::read_to_string(lock_path(results)).is_ok_and(|held| !holder_gone(&held))
+}
+
+/// Whether the lock text `held` names a process of this host that is gone.
+fn holder_gone(held: &str) -> bool {
+    match held.split_whitespace().collect::<Vec<_>>().as_slice() {
+        ["host", h, "pid", p] => *h == host() && p.parse::<u32>().is_ok_and(|p| !Path::new(&format!("/proc/{p}")).exists()),
+        _ => false,
+    }
+}
+
 /// Creates `lock` exclusively, replacing a stale one; the note says when it did.
 fn take(lock: &Path, results: &Path) -> Result<Option<String>> {
     let me = format!("host {} pid {}\n", host(), std::process::id());
@@ -74,13 +88,7 @@ fn take(lock: &Path, results: &Path) -> Result<Option<String>> {
         Ok(f) => f,
         Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => {
             let held = std::fs::read_to_string(lock).unwrap_or_default();
-            let words: Vec<&str> = held.split_whitespace().collect();
-            let (their_host, pid) = match words.as_slice() {
-                ["host", h, "pid", p] => (h.to_string(), p.parse::<u32>().ok()),
-                _ => (String::new(), None),
-            };
-            let gone = their_host == host() && pid.is_some_and(|p| !Path::new(&format!("/proc/{p}")).exists());
-            if !gone {
+            if !holder_gone(&held) {
                 return Err(Error::input(format!(
                     "cannot write {}: another run is writing it ({}, lock {}); remove the lock if that run is gone",
                     results.display(),

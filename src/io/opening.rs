@@ -1,6 +1,6 @@
 //! Opening a results file as a run may have left it: another process's lock waited for, what
 //! is not HDF5 (or a file killed while being created) named, a file a killed writer left
-//! marked open repaired as `h5clear` does.
+//! marked open, or with its end of allocation short of its metadata, repaired as `h5clear` does.
 
 use crate::error::{Error, Result};
 use std::path::Path;
@@ -39,7 +39,7 @@ fn open_waiting_for_lock(path: &Path) -> Result<hdf5::File> {
         Error::input(format!("{}: an HDF5 file that does not open (truncated, or left open by a run that was killed?): {first}", path.display()))
     };
     match hdf5::File::open(path) {
-        Ok(file) => Ok(file),
+        Ok(file) => repair_short_allocation(path, file).map_err(failed),
         Err(e) => match repair(path, &e.to_string()) {
             Some(note) => {
                 eprintln!("note: {note}");
@@ -63,8 +63,31 @@ fn repair(path: &Path, error: &str) -> Option<String> {
     } else {
         return None;
     };
+    repair_with_h5clear(path, args, what)
+}
+
+/// Runs `h5clear ARGS path`; the note to print, or None where it failed.
+fn repair_with_h5clear(path: &Path, args: &[&str], what: &str) -> Option<String> {
     let done = std::process::Command::new("h5clear").args(args).arg(path).output().ok()?;
     done.status.success().then(|| format!("{}: left by a writer that was killed; repaired with h5clear ({what})", path.display()))
+}
+
+/// A file whose writer was killed while it flushed an increment may hold metadata past the end
+/// of allocation its superblock records (the superblock not rewritten yet: reading the
+/// increments then fails with "addr overflow"); with no run writing it, the mark is set to the
+/// file's size, as `h5clear --increment=0` does. A file closed cleanly ends at its mark.
+fn repair_short_allocation(path: &Path, file: hdf5::File) -> hdf5::Result<hdf5::File> {
+    let size = std::fs::metadata(path).map(|m| m.len()).unwrap_or(0);
+    let short = super::h5ffi::end_of_allocation(&file).is_ok_and(|eoa| eoa < size);
+    if !short || super::lock::writer_may_be_alive(path) {
+        return Ok(file);
+    }
+    drop(file);
+    match repair_with_h5clear(path, &["--increment=0"], "its end-of-allocation mark set to the data on disk") {
+        Some(note) => eprintln!("note: {note}"),
+        None => eprintln!("note: {}: left by a writer that was killed, and h5clear could not repair it: increments may not read", path.display()),
+    }
+    hdf5::File::open(path)
 }
 
 /// HDF5's signature, at the start of every file slideline writes.
