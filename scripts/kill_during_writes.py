@@ -58,6 +58,12 @@ for t in range(1, trials + 1):
         print(f"FAILED: {what}: post cannot read the file (kept as {kept}): {post.stderr.strip()}")
         continue
     rows = sum(1 for line in post.stdout.splitlines() if line.startswith("step ") and " inc " in line)
+    # only the increment being written when the rank was killed may be incomplete
+    lost = [line for line in post.stderr.splitlines() if "were not completely written" in line and ("," in line or "(s)  were" in line)]
+    if lost:
+        failed += 1
+        print(f"FAILED: {what}: complete increments lost (kept as {kept}): {lost[0]}")
+        continue
     if 0 < rows < 42:
         again = subprocess.run(["mpirun", "-n", "2", slideline, "bellows", "--quiet", "--restart", h5, "-o", os.path.join(work, "w2.h5")],
                                capture_output=True, text=True, env=env)

@@ -362,6 +362,32 @@ fn a_file_whose_allocation_mark_a_killed_writer_left_short_is_repaired_and_read(
     assert!(String::from_utf8_lossy(&continued.stdout).contains("end reaction"));
 }
 
+/// The increments' links sit in one piece of metadata that each flush writes whole: the
+/// group of the newer format (compact links, creation order tracked) with an object header
+/// sized for 2048 of them at once. The older symbol table (a local heap and a B-tree of nodes
+/// that split every few increments) was found torn by SIGKILLs timed into the writes: "bad heap
+/// free list" (the heap's header and block from two flushes), and the links of increments 5 to
+/// 9 lost (a B-tree node pointing at a symbol node never written). h5py reads the group as
+/// before. Seen failing before: a 40-byte header (a symbol table message).
+#[test]
+fn the_increments_links_are_held_in_one_object_header() {
+    let dir = tempfile::tempdir().unwrap();
+    ok(bellows(dir.path(), 2, &["-o", "links.h5"]));
+    let script = "import h5py, sys\n\
+f = h5py.File(sys.argv[1], 'r'); g = f['increments']\n\
+info = h5py.h5o.get_info(g.id)\n\
+print(len(g), info.hdr.space.total, sorted(g) == list(g), g.id.get_create_plist().get_link_creation_order())\n";
+    let out = common::python().arg("-c").arg(script).arg(dir.path().join("links.h5")).output().unwrap();
+    let text = String::from_utf8_lossy(&out.stdout);
+    let words: Vec<&str> = text.split_whitespace().collect();
+    assert!(out.status.success() && words.len() == 4, "{text} {}", String::from_utf8_lossy(&out.stderr));
+    let (links, header): (usize, usize) = (words[0].parse().unwrap(), words[1].parse().unwrap());
+    assert!(links >= 10, "{links} increments");
+    assert!(header >= 2048 * 32, "the increments' object header holds {header} bytes");
+    assert_eq!(words[2], "True", "h5py lists the increments in order");
+    assert_ne!(words[3], "0", "the links' creation order is tracked (the newer group format)");
+}
+
 /// A restart continues the same problem (Abaqus's rule): restarting the plastic cylinder from
 /// increment 3 of its load step with that step's pressure changed (84 -> 90 MPa) or with the
 /// material's yield stress changed is refused (exit 2, naming what changed); changing the
