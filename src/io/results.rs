@@ -24,9 +24,7 @@ use hdf5::types::VarLenUnicode;
 use mpi::traits::{AsRaw, Communicator, CommunicatorCollectives};
 use std::path::{Path, PathBuf};
 
-/// Increments with fields whose links the file's `/increments` holds in its first piece of
-/// metadata (a longer run goes on in a continuation of it: only then can a kill at the wrong
-/// moment cost more than the increment being written).
+/// Increments whose links `/increments` holds in one piece of metadata (h5ffi::create_group_for_links).
 const INCREMENTS_AT_ONCE: u16 = 2048;
 
 /// Contact state of one pair at an increment.
@@ -283,8 +281,7 @@ impl ResultsFile {
         write_rows(&initial, "cell", &[ne], element_slab, &vec![0.0f64; element_slab.1 - element_slab.0], path)?;
         let initial_temperature: Vec<f64> = owned.iter().map(|&n| model.reference_temperature.at(n)).collect();
         write_rows(&initial, "temperature", &[nn], node_slab, &initial_temperature, path)?;
-        // the increments' links in one object header, so that a writer killed while flushing
-        // an increment cannot leave the links of the increments before half-written
+        // a writer killed while flushing cannot leave the increments' links half-written
         super::h5ffi::create_group_for_links(&file, "increments", INCREMENTS_AT_ONCE, 6)
             .map_err(|message| Error::Output { path: path.to_path_buf(), message })?;
         file.create_group("history").map_err(&err)?;
