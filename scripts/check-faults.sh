@@ -93,8 +93,9 @@ for trial in $(seq 1 20); do
     echo "$what: post reads $kept increment(s), a restart continues it -> ok"
 done
 
-# SIGKILL to rank 0 timed into the file's writes (20 trials; 1 in 30 such kills once left the
-# superblock's end of allocation short of the metadata written: "addr overflow")
+# SIGKILL to rank 0 timed into the file's writes (20 trials; such kills once left the
+# superblock's end of allocation short of the metadata written, "addr overflow", and the
+# increments' old-style link table torn, "bad heap free list" or five increments lost)
 python3 "$here/scripts/kill_during_writes.py" "$slideline" "$work" 20 || fail "a file killed during its writes did not read"
 
 # a read-only mount

@@ -1,8 +1,9 @@
 //! The raw HDF5 calls the `hdf5` crate does not offer: a collective write of one rank's rows of
-//! a dataset, and a file's stored end of allocation. Parallel HDF5 writes chunked, filtered (compressed) datasets only through
+//! a dataset (parallel HDF5 writes chunked, filtered (compressed) datasets only through
 //! collective transfers, and the crate writes with the default, independent, transfer property
-//! list. Like `src/petsc/`, this is an FFI module (the only other place `unsafe` is allowed):
-//! every `unsafe` block says why it is sound.
+//! list), a file's stored end of allocation, and a group created with link-storage properties.
+//! Like `src/petsc/`, this is an FFI module (the only other place `unsafe` is allowed): every
+//! `unsafe` block says why it is sound.
 #![allow(unsafe_code)]
 
 use hdf5::H5Type;
