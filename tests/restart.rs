@@ -326,8 +326,9 @@ fn a_file_left_truncated_by_a_killed_writer_is_repaired_and_read() {
 /// finished file's mark (superblock version 0, bytes 40..48) short of its last increments:
 /// with the run's lock left by a process that is gone, post and a restart repair the file as
 /// `h5clear --increment=0` does, with a note, and read every increment; with the lock of a live
-/// process (a run that may still be writing) the file is not touched. Seen failing before:
-/// "addr overflow" from post.
+/// process (a run that may still be writing) the file is not touched and post says a run is
+/// still writing it (not that one stopped). Seen failing before: "addr overflow" from post;
+/// then "were not completely written (the run stopped while writing them)" for a live run.
 #[test]
 fn a_file_whose_allocation_mark_a_killed_writer_left_short_is_repaired_and_read() {
     let dir = tempfile::tempdir().unwrap();
@@ -348,7 +349,8 @@ fn a_file_whose_allocation_mark_a_killed_writer_left_short_is_repaired_and_read(
     std::fs::write(&lock, format!("host {host} pid {}\n", std::process::id())).unwrap();
     let out = post();
     let err = String::from_utf8_lossy(&out.stderr);
-    assert!(out.status.success() && !err.contains("repaired") && err.contains("not completely written"), "{err}");
+    assert!(out.status.success() && !err.contains("repaired") && err.contains("a run is still writing this file"), "{err}");
+    assert!(!err.contains("the run stopped"), "a live run's file is called a stopped run's: {err}");
     assert_eq!(std::fs::read(&h5).unwrap()[40..48], (eoa / 2).to_le_bytes(), "a file a run may be writing was changed");
     // the lock of a process that is gone: repaired, every increment read
     let gone = std::process::Command::new("true").spawn().unwrap();

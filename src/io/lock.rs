@@ -67,7 +67,14 @@ impl Drop for ResultsLock {
 /// Whether a run may be writing `results` still: its lock is there, and not left by a process
 /// of this host that is gone (a lock of another host may be a live run).
 pub fn writer_may_be_alive(results: &Path) -> bool {
-    std::fs::read_to_string(lock_path(results)).is_ok_and(|held| !holder_gone(&held))
+    live_writer(results).is_some()
+}
+
+/// The lock's path and text ("host H pid P") of a run that may be writing `results` still.
+pub fn live_writer(results: &Path) -> Option<(PathBuf, String)> {
+    let lock = lock_path(results);
+    let held = std::fs::read_to_string(&lock).ok().filter(|held| !holder_gone(held))?;
+    Some((lock, held.trim().to_string()))
 }
 
 /// Whether the lock text `held` names a process of this host that is gone.

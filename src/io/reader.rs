@@ -174,6 +174,18 @@ impl ResultsReader {
     pub fn notes(&self) -> Result<Vec<String>> {
         let mut notes = Vec::new();
         let (complete, incomplete) = self.increments_by_completion()?;
+        if let Some((lock, held)) = super::lock::live_writer(&self.path) {
+            // a run still at work: the increment it is writing and the history rows ahead of
+            // its fields are no damage, so nothing else is noted
+            let under_way = if incomplete.is_empty() { String::new() } else { format!("; increment(s) {} under way are left out", incomplete.join(", ")) };
+            notes.push(format!(
+                "{}: a run is still writing this file (its lock {} holds {held}): its {} complete increment(s) are read{under_way}",
+                self.path.display(),
+                lock.display(),
+                complete.len()
+            ));
+            return Ok(notes);
+        }
         if !incomplete.is_empty() {
             notes.push(format!(
                 "{}: increment(s) {} were not completely written (the run stopped while writing them) and are ignored",
