@@ -397,6 +397,10 @@ fn merge_coincident(mesh: &mut Mesh, tol: f64, bonded: impl Fn([f64; 2]) -> bool
     mesh.coords = coords;
 }
 
+/// The contact pairs of a ply pack's faces with themselves: the outside faces where the
+/// sidewalls meet across a root, the inside ones under a crest.
+pub const FOLD_PAIRS: [&str; 2] = ["outside_folds", "inside_folds"];
+
 /// The seed paper's analysis of the joint: AISI 304, heat to `temperature` with `pressure`
 /// inside (step 1), then compress tube B's end by `displacement` (step 2); tube A's end held,
 /// both ends free radially; frictionless penalty contact.
@@ -443,8 +447,9 @@ pub fn model(p: &BellowsParams) -> Result<Model> {
     // 0.1 the quick joint's end reaction zig-zagged by 2.5 % between increments and the
     // friction dissipated moved by 12 % with a quarter of the increment (0.3 % and 0.9 %)
     contacts.push(pair("sleeve", "tube_b_inner", "sleeve_outer", false, p.friction_sleeve));
-    contacts.push(pair("outside_folds", &format!("ply{}_outer", p.plies), &format!("ply{}_outer", p.plies), false, p.friction_plies));
-    contacts.push(pair("inside_folds", "ply1_inner", "ply1_inner", false, p.friction_plies));
+    let [outside, inside] = FOLD_PAIRS;
+    contacts.push(pair(outside, &format!("ply{}_outer", p.plies), &format!("ply{}_outer", p.plies), false, p.friction_plies));
+    contacts.push(pair(inside, "ply1_inner", "ply1_inner", false, p.friction_plies));
     let hold = |set: &str, component: Component, value: f64| PrescribedDisplacement { node_set: set.into(), component, value };
     let mut steps = vec![
         GeneralStep {

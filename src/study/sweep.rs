@@ -7,6 +7,7 @@
 
 use super::Outcome;
 use crate::bellows::flexibility::Movements;
+use crate::bellows::report::folds_first_touch;
 use crate::bellows::spec::DesignSpec;
 use crate::bellows::workflow::{self, BeforeTheRun, BellowsJob};
 use crate::error::{Error, Result};
@@ -195,7 +196,7 @@ pub struct SweepRow {
 }
 
 /// The figures of a row, in order, with their units.
-pub const FIGURES: [(&str, &str); 17] = [
+pub const FIGURES: [(&str, &str); 18] = [
     ("c1", ""),
     ("c2", ""),
     ("axial_rate", "N/mm"),
@@ -211,6 +212,7 @@ pub const FIGURES: [(&str, &str); 17] = [
     ("fe_axial_frequency", "Hz"),
     ("fe_lateral_frequency", "Hz"),
     ("end_force", "N"),
+    ("folds_touch_at", "mm"),
     ("max_plastic_strain", ""),
     ("newton_iterations", ""),
 ];
@@ -277,11 +279,14 @@ impl SweepRow {
     }
 
     /// The elastic-plastic run's figures: the moving end's force (full ring, compression
-    /// positive), the largest plastic strain, the Newton iterations.
+    /// positive), the compression at which the folds first touch (NaN: never), the largest
+    /// plastic strain, the Newton iterations.
     fn take_run(&mut self, summary: &RunSummary) {
         let Some(last) = summary.history.last() else { return };
         let force = last.reactions.iter().find(|(set, _)| set == "moving_end").map_or(f64::NAN, |(_, f)| -f[1] * 2.0 * std::f64::consts::PI);
         self.set("end_force", force);
+        let compression = |k: usize| summary.history[k].set_displacements.iter().find(|(set, _)| set == "moving_end").map_or(f64::NAN, |(_, u)| -u[1]);
+        self.set("folds_touch_at", folds_first_touch(&summary.history).map_or(f64::NAN, compression));
         self.set("max_plastic_strain", summary.history.iter().map(|r| r.max_plastic_strain).fold(0.0, f64::max));
         self.set("newton_iterations", summary.history.iter().map(|r| r.newton_iterations).sum::<usize>() as f64);
     }
@@ -438,21 +443,23 @@ pub fn table(spec: &SweepSpec, rows: &[SweepRow]) -> String {
     let _ = writeln!(s, "variants sorted by {}:", spec.sort);
     let _ = writeln!(
         s,
-        "{:>4} {:<40} {:>12} {:>14} {:>12} {:>12} {:>8}  verdict",
-        "#", "settings", "rate N/mm", "allow. cycles", "FE rate N/mm", "end force N", "wall s"
+        "{:>4} {:<40} {:>12} {:>14} {:>12} {:>12} {:>10} {:>8}  verdict",
+        "#", "settings", "rate N/mm", "allow. cycles", "FE rate N/mm", "end force N", "folds mm", "wall s"
     );
     // a figure not computed (an analysis not asked, a variant that failed) is a dash
     let shown = |v: f64, digits: usize| if v.is_finite() { format!("{v:.digits$}") } else { "-".into() };
     for r in sorted {
         let _ = writeln!(
             s,
-            "{:>4} {:<40} {:>12} {:>14} {:>12} {:>12} {:>8.1}  {}",
+            "{:>4} {:<40} {:>12} {:>14} {:>12} {:>12} {:>10} {:>8.1}  {}",
             r.variant,
             r.label,
             shown(r.figure("axial_rate"), 1),
             shown(r.figure("allowable_cycles"), 0),
             shown(r.figure("fe_axial_rate"), 1),
             shown(r.figure("end_force"), 0),
+            // a run whose folds stayed apart, beside one that was not made
+            if r.figure("end_force").is_finite() && r.figure("folds_touch_at").is_nan() { "never".into() } else { shown(r.figure("folds_touch_at"), 1) },
             r.wall_time,
             outcome_text(r)
         );

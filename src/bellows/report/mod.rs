@@ -6,7 +6,7 @@
 
 use crate::assessment::code::CodeCheck;
 use crate::assessment::fe_check::{FeCheck, Peak, StrainLife};
-use crate::bellows::joint::BellowsParams;
+use crate::bellows::joint::{BellowsParams, FOLD_PAIRS};
 use crate::error::Result;
 use crate::fe::shape::Shape;
 use crate::io::plots::{deformed_field, line_plot, Axes, Curve, FieldPicture, Marker};
@@ -68,6 +68,9 @@ pub struct BellowsReport {
     pub fields_at: (usize, f64),
     pub von_mises: Extreme,
     pub plastic_strain: Extreme,
+    /// (compression mm, end reaction N per sector) where the folds first bear on each other
+    /// ([`folds_first_touch`]); None where they never do.
+    pub folds_touch: Option<(f64, f64)>,
     /// Largest ply-to-ply and sleeve penetration over the whole history, mm.
     pub ply_penetration: f64,
     pub sleeve_penetration: f64,
@@ -141,6 +144,13 @@ fn picture_increments(written: &[(String, usize, f64)], stroke: f64) -> Vec<(Str
 /// N mm per sector: the area of the loop when the curve comes back (trapezoids).
 fn loop_area(curve: &[(f64, f64)], from: usize) -> f64 {
     curve[from..].windows(2).map(|w| 0.5 * (w[0].1 + w[1].1) * (w[1].0 - w[0].0)).sum()
+}
+
+/// The first increment of the compression (step 2) at which the convolutions' folds bear on
+/// each other (a node of a [`FOLD_PAIRS`] pair in contact): from there on the joint stiffens as
+/// a closing stack of plies, which the code's formulas (free convolutions) do not describe.
+pub fn folds_first_touch(history: &[HistoryRow]) -> Option<usize> {
+    history.iter().position(|r| r.step == 2 && r.contacts.iter().any(|c| FOLD_PAIRS.contains(&c.name.as_str()) && c.active_nodes > 0))
 }
 
 fn largest_penetration(history: &[HistoryRow], pair: impl Fn(&str) -> bool) -> f64 {
@@ -228,6 +238,7 @@ impl BellowsReport {
             von_mises: extreme(fields, &last, "von_mises")?,
             plastic_strain: extreme(fields, &last, "equivalent_plastic_strain")?,
             fields_at,
+            folds_touch: folds_first_touch(history).map(|k| curve[k]),
             ply_penetration: largest_penetration(history, |n| n.starts_with("ply")),
             sleeve_penetration: largest_penetration(history, |n| n == "sleeve"),
             ply_thickness: p.ply_thickness,
@@ -289,6 +300,11 @@ impl BellowsReport {
             "-",
         );
         line("max sleeve penetration, mm", format!("{:.2e}", self.sleeve_penetration), "-");
+        line(
+            &format!("folds first touch at, mm (end reaction there, N {per})"),
+            self.folds_touch.map_or("never".into(), |(at, force)| format!("{at:.1} ({:.1})", force * scale)),
+            "-",
+        );
         if self.friction != (0.0, 0.0) {
             line("friction mu, plies / sleeve", format!("{} / {}", self.friction.0, self.friction.1), "0 / 0");
         }
