@@ -19,7 +19,7 @@ use super::reader::ResultsReader;
 use super::HistoryRow;
 use crate::element::solid::QUADRATURE_POINTS as QP;
 use crate::error::{Error, Result};
-use crate::material::kinematic::MAX_BACKSTRESSES;
+use crate::material::backstress::MAX_BACKSTRESSES;
 use crate::material::PointState;
 use crate::model::{Mesh, Model};
 use crate::records::contact::SlipPoint;

@@ -20,8 +20,8 @@
 //! `phi = J sigma(F_bar) F^-T` (finite; de Souza Neto's F-bar) or the small-strain stress in the
 //! same slots `[s_rr, s_rz, s_rz, s_zz, s_tt]`.
 
+use super::backstress::{KinematicHardening, MAX_BACKSTRESSES};
 use super::hardening::Hardening;
-use super::kinematic::{self, KinematicHardening, MAX_BACKSTRESSES};
 use super::log_exp::{exp_sym2, log_sym2};
 use crate::ad::Scalar;
 
@@ -142,31 +142,6 @@ impl J2 {
         }
     }
 
-    /// Stress and trial history at deformation `f`, projected volume measure `theta`,
-    /// temperature change `dt`, from the `committed` history. Fails (a domain error for the
-    /// solver) when the deformation is not admissible.
-    pub fn update<T: Scalar>(&self, kinematics: Kinematics, f: &[T; 5], theta: T, dt: f64, committed: &PointState) -> Result<Update<T>, String> {
-        self.update_on(SurfaceBranch::Elastic, kinematics, f, theta, dt, committed)
-    }
-
-    /// [`J2::update`] with the given treatment of trial states on the yield surface.
-    pub fn update_on<T: Scalar>(
-        &self,
-        branch: SurfaceBranch,
-        kinematics: Kinematics,
-        f: &[T; 5],
-        theta: T,
-        dt: f64,
-        committed: &PointState,
-    ) -> Result<Update<T>, String> {
-        match (kinematics, self.kinematic.is_empty()) {
-            (Kinematics::Finite, true) => self.update_finite(branch, f, theta, dt, committed),
-            (Kinematics::Small, true) => Ok(self.update_small(branch, f, theta, dt, committed)),
-            (Kinematics::Finite, false) => kinematic::update_finite(self, branch, f, theta, dt, committed),
-            (Kinematics::Small, false) => Ok(kinematic::update_small(self, branch, f, theta, dt, committed)),
-        }
-    }
-
     /// Radial return on the elastic trial strain `e` ([11, 22, 33, 12], tensor shear).
     /// Returns the stress, the elastic strain after return, and ep.
     fn return_map<T: Scalar>(&self, branch: SurfaceBranch, e: [T; 4], ep_n: f64) -> ([T; 4], [T; 4], f64) {
@@ -229,7 +204,7 @@ impl J2 {
         Ok((j, stretch))
     }
 
-    fn update_small<T: Scalar>(&self, branch: SurfaceBranch, f: &[T; 5], theta: T, dt: f64, committed: &PointState) -> Update<T> {
+    pub(super) fn update_small<T: Scalar>(&self, branch: SurfaceBranch, f: &[T; 5], theta: T, dt: f64, committed: &PointState) -> Update<T> {
         let e = [f[0] - 1.0, f[3] - 1.0, f[4] - 1.0, (f[1] + f[2]) * 0.5];
         // B-bar: the volumetric strain is replaced by the projected one.
         let shift = (theta - (e[0] + e[1] + e[2])) / 3.0;
@@ -244,7 +219,7 @@ impl J2 {
         Update { phi: [s[0], s[3], s[3], s[1], s[2]], cauchy: s.map(|v| v.re()), state: PointState::isotropic(plastic, ep) }
     }
 
-    fn update_finite<T: Scalar>(&self, branch: SurfaceBranch, f: &[T; 5], theta: T, dt: f64, committed: &PointState) -> Result<Update<T>, String> {
+    pub(super) fn update_finite<T: Scalar>(&self, branch: SurfaceBranch, f: &[T; 5], theta: T, dt: f64, committed: &PointState) -> Result<Update<T>, String> {
         let (j, stretch) = self.admissible(f, theta, dt)?;
         // b_e trial = F_bar C_p^-1 F_bar^T / stretch^2 with F_bar = (theta / J)^(1/3) F, in-plane
         // block and hoop. The F-bar scaling multiplies b by (theta / J)^(2/3), which shifts
