@@ -458,8 +458,12 @@ pub fn table(spec: &SweepSpec, rows: &[SweepRow]) -> String {
             shown(r.figure("allowable_cycles"), 0),
             shown(r.figure("fe_axial_rate"), 1),
             shown(r.figure("end_force"), 0),
-            // a run whose folds stayed apart, beside one that was not made
-            if r.figure("end_force").is_finite() && r.figure("folds_touch_at").is_nan() { "never".into() } else { shown(r.figure("folds_touch_at"), 1) },
+            // a run that reached its stroke with the folds apart, beside one not made or cut short
+            if r.outcome == Outcome::Converged && r.figure("end_force").is_finite() && r.figure("folds_touch_at").is_nan() {
+                "never".into()
+            } else {
+                shown(r.figure("folds_touch_at"), 1)
+            },
             r.wall_time,
             outcome_text(r)
         );
