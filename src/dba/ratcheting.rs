@@ -131,7 +131,9 @@ fn criteria(file: &Path, general: usize, r: &RatchetingSpec, strain_tolerance: f
 }
 
 /// The least of a Gauss-point field (9 slots per element) along the section a -> b, read
-/// through each element's Gauss points (never extrapolated past them), at 200 points.
+/// through each element's Gauss points (never extrapolated past them) and held within them
+/// (the polynomial through a steep growth undershoots zero between its Gauss points, and
+/// found an elastic core in a wall every point of which grows), at 200 points.
 fn least_along(reader: &ResultsReader, field: &[f64], a: [f64; 2], b: [f64; 2]) -> Result<f64> {
     let (coords, elements) = (reader.coordinates()?, reader.connectivity()?);
     let packed: Vec<[[f64; 4]; 9]> = field.chunks_exact(9).map(|e| std::array::from_fn(|q| [e[q], 0.0, 0.0, 0.0])).collect();
@@ -141,7 +143,7 @@ fn least_along(reader: &ResultsReader, field: &[f64], a: [f64; 2], b: [f64; 2]) 
     let values: Vec<f64> = (0..=POINTS)
         .filter_map(|k| {
             let t = k as f64 / POINTS as f64;
-            sampler.at([a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])]).map(|v| v[0])
+            sampler.within_gauss_values([a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])]).map(|v| v[0])
         })
         .collect();
     if values.len() < POINTS / 2 {

@@ -119,6 +119,8 @@ pub struct StressSampler<'a> {
     fields: Vec<ElementField>,
     /// Per element, its bounding box (r0, z0, r1, z1).
     boxes: Vec<[f64; 4]>,
+    /// Per element, each component's least and greatest Gauss value.
+    ranges: Vec<[[f64; 2]; 4]>,
     /// How far outside an element (in its coordinates xi, eta) a point still counts as in it.
     slack: f64,
 }
@@ -150,7 +152,12 @@ impl<'a> StressSampler<'a> {
                 })
             })
             .collect();
-        StressSampler { coords, elements, fields, boxes, slack: 1e-9 }
+        let ranges = (elements.iter().zip(integration).zip(stress))
+            .map(|((e, &i), g)| {
+                std::array::from_fn(|c| g[..Shape::of(e).points(i)].iter().fold([f64::INFINITY, f64::NEG_INFINITY], |r, v| [r[0].min(v[c]), r[1].max(v[c])]))
+            })
+            .collect();
+        StressSampler { coords, elements, fields, boxes, ranges, slack: 1e-9 }
     }
 
     /// Points up to `slack` outside an element (in its coordinates: 1e-2 is 0.5 % of its width)
@@ -165,6 +172,16 @@ impl<'a> StressSampler<'a> {
     /// The stress at `p`, None outside every element.
     pub fn at(&self, p: [f64; 2]) -> Option<[f64; 4]> {
         self.holding(p).next().map(|(e, xi)| self.fields[e].at(Shape::of(&self.elements[e]), xi))
+    }
+
+    /// As [`Self::at`], each component held within the element's own Gauss values: for a field
+    /// that is bounded pointwise (an equivalent plastic strain, or its growth, never below
+    /// zero), where a polynomial through steep Gauss values would undershoot between them.
+    pub fn within_gauss_values(&self, p: [f64; 2]) -> Option<[f64; 4]> {
+        self.holding(p).next().map(|(e, xi)| {
+            let v = self.fields[e].at(Shape::of(&self.elements[e]), xi);
+            std::array::from_fn(|c| v[c].clamp(self.ranges[e][c][0], self.ranges[e][c][1]))
+        })
     }
 
     /// The stress at `p` in the element that a line leaving `p` along `direction` (unit) runs

@@ -65,25 +65,26 @@ pub enum Axes {
 }
 
 pub fn line_plot(path: &Path, title: &str, x_label: &str, y_label: &str, curves: &[Curve], markers: &[Marker], axes: Axes) -> Result<()> {
-    xy_plot(path, (title, x_label, y_label), &[], curves, markers, axes, false)
+    xy_plot(path, (title, x_label, y_label), (&[], &[]), curves, markers, axes, false)
 }
 
 /// As [`line_plot`], each curve's points drawn as unjoined dots (a study's variants, one
 /// colour per kind).
 pub fn point_plot(path: &Path, title: &str, x_label: &str, y_label: &str, kinds: &[Curve], axes: Axes) -> Result<()> {
-    xy_plot(path, (title, x_label, y_label), &[], kinds, &[], axes, true)
+    xy_plot(path, (title, x_label, y_label), (&[], &[]), kinds, &[], axes, true)
 }
 
-/// A diagram: `boundaries` drawn as thin black lines (a region map's), `kinds` as dots, one
-/// colour per kind (the points computed in it), axes from the origin.
-pub fn diagram(path: &Path, title: &str, x_label: &str, y_label: &str, boundaries: &[Curve], kinds: &[Curve]) -> Result<()> {
-    xy_plot(path, (title, x_label, y_label), boundaries, kinds, &[], Axes::FromOrigin, true)
+/// A diagram: `boundaries` drawn as thin black lines (a region map's), each of `regions`' labels
+/// written at its point, `kinds` as dots, one colour per kind (the points computed in it), axes
+/// from the origin.
+pub fn diagram(path: &Path, title: &str, x_label: &str, y_label: &str, (boundaries, regions): (&[Curve], &[Marker]), kinds: &[Curve]) -> Result<()> {
+    xy_plot(path, (title, x_label, y_label), (boundaries, regions), kinds, &[], Axes::FromOrigin, true)
 }
 
 fn xy_plot(
     path: &Path,
     (title, x_label, y_label): (&str, &str, &str),
-    boundaries: &[Curve],
+    (boundaries, regions): (&[Curve], &[Marker]),
     curves: &[Curve],
     markers: &[Marker],
     axes: Axes,
@@ -135,6 +136,9 @@ fn xy_plot(
             if !b.label.is_empty() {
                 series.label(b.label.as_str()).legend(|(x, y)| PathElement::new(vec![(x, y), (x + 24, y)], BLACK.stroke_width(2)));
             }
+        }
+        for r in regions {
+            chart.draw_series(std::iter::once(Text::new(r.label.clone(), r.at, ("sans-serif", 28)))).map_err(|e| err(&e))?;
         }
         for (k, c) in curves.iter().enumerate() {
             let colour = palette[k % palette.len()];
