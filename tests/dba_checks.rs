@@ -8,6 +8,12 @@
 //!   pressure of 50 MPa (PASS: 1.5 is carried) and 1.334 times 90 MPa (FAIL); the collapse
 //!   load factor within 1 %. A thin tube (a = 100, b = 102 mm) likewise, (2 / sqrt 3) 300
 //!   ln 1.02 = 6.861 MPa against 3 MPa: 2.287.
+//! - Limit load of a thick sphere (a = 100, b = 200 mm) under internal pressure, von Mises at
+//!   1.5 S = 150 MPa: in spherical symmetry von Mises is Tresca, p_L = 2 sigma_y ln(b / a) =
+//!   207.94 MPa (Hill, ch. V), 2.44640 times 85 MPa. The search must accept only increments
+//!   whose residual has fallen (the field test once accepted one after 12 iterations with a
+//!   residual of 888 N/rad and reported 2.4469): within 1e-4, and the supports (the equator)
+//!   carry the figure's load, pi a^2 p, to 1e-4.
 //! - Limit load of a simply supported circular plate (a = 100, h = 2 mm, solid elements, small
 //!   displacements) under uniform pressure, von Mises at 150 MPa: 6.51 M0 / a^2 with
 //!   M0 = sigma_y h^2 / 4 (H. G. Hopkins & A. J. Wang, J. Mech. Phys. Solids 3 (1954);
@@ -66,6 +72,31 @@ fn the_limit_load_of_a_thick_cylinder_is_hills() {
         // the analysis is kept beside the verdict, readable
         assert!(run.dir.path().join("out_limit_load.h5").exists());
     }
+}
+
+#[test]
+fn the_limit_load_of_a_thick_sphere_is_reached_by_converged_increments_only() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    for f in ["thick_sphere.toml", "thick_sphere.msh"] {
+        std::fs::copy(common::data(&format!("dba/{f}")), dir.path().join(f)).unwrap();
+    }
+    let h5 = dir.path().join("out.h5");
+    let output =
+        command_in(dir.path(), 1).current_dir(dir.path()).arg("check").arg("thick_sphere.toml").arg("-o").arg(&h5).arg("--quiet").output().expect("slideline");
+    let run = Run { dir, output, h5 };
+    run.assert_ok();
+    let figure = Results::open(&run.h5).f64s("dba/figure")[0];
+    let (a, b, sy, p) = (100.0, 200.0, 150.0, 85.0);
+    let expected = 2.0 * sy * f64::ln(b / a) / p;
+    eprintln!("sphere: collapse load factor {figure:.5}, closed form {expected:.5} ({:+.4} %)", 100.0 * (figure / expected - 1.0));
+    assert!((figure / expected - 1.0).abs() < 1e-4, "collapse factor {figure} against {expected}\n{}", run.stdout());
+    // the load the supports carry at the last increment the search kept: the equator's axial
+    // reaction per radian against the pressure's resultant, a^2 p / 2 per radian
+    let analysis = Results::open(&run.dir.path().join("out_limit_load.h5"));
+    let reaction = *analysis.history("reaction_bottom_z").last().expect("a converged increment");
+    let carried = -2.0 * reaction / (a * a * p);
+    eprintln!("the supports carry {carried:.5} times the design pressure's resultant");
+    assert!((carried / figure - 1.0).abs() < 1e-4, "the supports carry {carried}, the figure says {figure}");
 }
 
 #[test]

@@ -6,7 +6,10 @@ patch5.msh     distorted 5-element Q8 patch on r in [10, 20], z in [0, 10]; ever
 inverted.msh   one Q8 element numbered clockwise (must be rejected).
 degenerate.msh one Q8 element with two coincident corners (must be rejected).
 no_elements.msh nodes but no 8-node quadrilateral (must be rejected).
+dba/thick_sphere.msh a quarter meridian of a thick sphere (a = 100, b = 200 mm), 10 x 8 Q8;
+               lines "inner", "outer", "bottom" (z = 0) and "axis" (r = 0).
 """
+import math
 
 def write(name, nodes, quads, lines=(), points=(), names=()):
     """nodes: {tag: (x, y)}; quads: [(tag, [8 node tags])]; lines: [(phys, tag, [3 tags])];
@@ -72,6 +75,36 @@ def patch():
     write("patch5.msh", nodes, quads, points=points, names=names)
 
 
+def sphere(name, a, b, nr, nt):
+    """A quarter meridian a <= R <= b, nr x nt Q8 (R, then the angle from the equator)."""
+    # nodes on a (2nr+1) x (2nt+1) grid in (radius, polar angle from the z axis)
+    nodes = {}
+    def tag(i, j): return 1 + i + (2*nr+1)*j
+    for j in range(2*nt+1):
+        th = 0.5*math.pi*j/(2*nt)
+        for i in range(2*nr+1):
+            R = a + (b-a)*i/(2*nr)
+            if (i % 2 == 1) and (j % 2 == 1):
+                continue
+            # polar angle from the equator (z = 0) to the pole (r = 0)
+            nodes[tag(i, j)] = (R*math.cos(th), R*math.sin(th))
+    quads = []
+    t = 1000
+    for j in range(nt):
+        for i in range(nr):
+            i0, j0 = 2*i, 2*j
+            c = [tag(i0, j0), tag(i0+2, j0), tag(i0+2, j0+2), tag(i0, j0+2)]
+            m = [tag(i0+1, j0), tag(i0+2, j0+1), tag(i0+1, j0+2), tag(i0, j0+1)]
+            quads.append((t, c + m)); t += 1
+    lines = []
+    for j in range(nt):   # inner (i = 0) and outer (i = 2nr) arcs
+        lines.append((1, t, [tag(0, 2*j+2), tag(0, 2*j), tag(0, 2*j+1)])); t += 1
+        lines.append((2, t, [tag(2*nr, 2*j), tag(2*nr, 2*j+2), tag(2*nr, 2*j+1)])); t += 1
+    for i in range(nr):   # equator z = 0 and the axis r = 0
+        lines.append((3, t, [tag(2*i, 0), tag(2*i+2, 0), tag(2*i+1, 0)])); t += 1
+        lines.append((4, t, [tag(2*i+2, 2*nt), tag(2*i, 2*nt), tag(2*i+1, 2*nt)])); t += 1
+    write(name, nodes, quads, lines, (), [(1, 1, "inner"), (1, 2, "outer"), (1, 3, "bottom"), (1, 4, "axis")])
+
 def one(name, conn, coords):
     write(name, coords, [(1, conn)])
 
@@ -86,3 +119,4 @@ if __name__ == "__main__":
     deg[6] = deg[2]
     one("degenerate.msh", [1, 2, 3, 4, 5, 6, 7, 8], deg)
     write("no_elements.msh", sq, [], points=[(1, 1, 1)], names=[(0, 1, "p")])
+    sphere("dba/thick_sphere.msh", 100.0, 200.0, 10, 8)
