@@ -71,7 +71,7 @@ pub fn code_check(session: &PetscSession, params: &BellowsParams) -> Result<Code
     let geometry = super::joint::code_geometry(params);
     let (coefficients, source) = match params.coefficients {
         Some([cp, cf, cd]) => (Coefficients { cp, cf, cd }, Source::Given),
-        None => (super::convolution::compute(session, geometry.c1(), geometry.c2(), Default::default())?, Source::Computed),
+        None => (super::convolution::compute_for_the_code(session, geometry.c1(), geometry.c2())?, Source::Computed),
     };
     let p = params;
     let duty = Duty {
@@ -88,7 +88,7 @@ pub fn code_check(session: &PetscSession, params: &BellowsParams) -> Result<Code
 /// The code check of design specification `spec` and its verdict, with the table that prints
 /// them; the chart coefficients given or computed for its convolution (collective).
 pub fn code_verdict(session: &PetscSession, spec: &DesignSpec) -> Result<(CodeCheck, Verdict, String)> {
-    let check = spec.code_check(|b| super::convolution::compute(session, b.c1(), b.c2(), Default::default()))?;
+    let check = spec.code_check(|b| super::convolution::compute_for_the_code(session, b.c1(), b.c2()))?;
     let verdict = spec.verdict(&check)?;
     let table = super::report::verdict_table(spec, &check, &verdict)?;
     Ok((check, verdict, table))

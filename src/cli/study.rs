@@ -226,7 +226,11 @@ pub fn coefficients(session: &PetscSession, c1: &[f64], c2: &[f64], fineness: sl
         return fail(&e, root);
     }
     if root {
-        println!("chart coefficients of the idealised U-shaped convolution (computed):\n      C1       C2       Cp       Cf       Cd");
+        println!(
+            "chart coefficients of the idealised U-shaped convolution (computed; the code check takes Cd / {}: {}):\n      C1       C2       Cp       Cf       Cd  Cd code",
+            slideline::bellows::convolution::CD_EXCESS,
+            "its largest excess over the charts' printed points"
+        );
     }
     let mut table = Vec::new();
     for &a in c1 {
@@ -234,7 +238,8 @@ pub fn coefficients(session: &PetscSession, c1: &[f64], c2: &[f64], fineness: sl
             match slideline::bellows::convolution::compute(session, a, b, fineness) {
                 Ok(c) => {
                     if root {
-                        println!("{a:>8.4} {b:>8.4} {:>8.4} {:>8.4} {:>8.4}", c.cp, c.cf, c.cd);
+                        let code = slideline::bellows::convolution::for_the_code(c);
+                        println!("{a:>8.4} {b:>8.4} {:>8.4} {:>8.4} {:>8.4} {:>8.4}", c.cp, c.cf, c.cd, code.cd);
                     }
                     table.push((a, b, c));
                 }

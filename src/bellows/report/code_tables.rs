@@ -3,7 +3,7 @@
 //! each check with its value, limit, utilisation, PASS or FAIL and rule, and the verdict line
 //! naming the failing checks.
 
-use crate::assessment::code::CodeCheck;
+use crate::assessment::code::{CodeCheck, Source};
 use crate::assessment::verdict::{Sense, Verdict};
 use crate::bellows::spec::DesignSpec;
 use crate::error::Result;
@@ -54,6 +54,9 @@ pub fn verdict_table(spec: &DesignSpec, check: &CodeCheck, verdict: &Verdict) ->
     ));
     let k = check.coefficients;
     line(format!("  chart coefficients (C1 {:.3}, C2 {:.3}): Cp {:.4}, Cf {:.4}, Cd {:.4} {}", check.c1, check.c2, k.cp, k.cf, k.cd, check.source.label()));
+    if check.source == Source::Computed {
+        line(format!("    ({})", crate::bellows::convolution::computed_note()));
+    }
     let d = &spec.design;
     let axial = match spec.axial() {
         x if x < 0.0 => format!("axial compression {} mm", -x),
@@ -119,6 +122,9 @@ pub(super) fn figure(v: f64) -> String {
 pub fn code_section(c: &CodeCheck) -> String {
     let k = c.coefficients;
     let mut t = format!("\n  code check (EJMA; C1 {:.3}, C2 {:.3}; Cp {:.3}, Cf {:.3}, Cd {:.3} {}):\n", c.c1, c.c2, k.cp, k.cf, k.cd, c.source.label());
+    if c.source == Source::Computed {
+        t.push_str(&format!("  ({})\n", crate::bellows::convolution::computed_note()));
+    }
     let mut line = |what: &str, value: String| t.push_str(&format!("  {what:<50} {value:>20}\n"));
     line("S1 hoop membrane in the tangent, pressure, MPa", format!("{:.1}", c.s1));
     // files written before S2 and the in-plane instability were computed hold NaN for them
