@@ -71,10 +71,11 @@ impl Error {
 
 pub type Result<T> = std::result::Result<T, Error>;
 
-/// A list of items for a message: the first ten, comma-separated, then "and N more".
-/// A number as a message shows it: plainly, or in exponent form where it is huge or tiny
-/// (1e300 is not 301 digits).
+/// A number as a message shows it: to 10 significant digits (a sum's round-off is not the
+/// user's number: 3 x 60.3 is 180.9, not 180.89999999999998), plainly, or in exponent form
+/// where it is huge or tiny (1e300 is not 301 digits).
 pub fn shown(v: f64) -> String {
+    let v: f64 = if v.is_finite() { format!("{v:.9e}").parse().unwrap_or(v) } else { v };
     if v == 0.0 || !v.is_finite() || (1e-4..1e6).contains(&v.abs()) {
         format!("{v}")
     } else {
@@ -82,6 +83,7 @@ pub fn shown(v: f64) -> String {
     }
 }
 
+/// A list of items for a message: the first ten, comma-separated, then "and N more".
 pub fn first_ten(items: &[impl Display]) -> String {
     let shown: Vec<String> = items.iter().take(10).map(|i| i.to_string()).collect();
     match items.len() {

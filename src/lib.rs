@@ -20,6 +20,7 @@ pub mod element;
 pub mod fe;
 pub mod interrupt;
 pub mod io;
+pub mod launch;
 pub mod material;
 pub mod model;
 pub mod output_path;

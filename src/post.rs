@@ -529,6 +529,12 @@ pub fn linearize(r: &ResultsReader, sections: &[String], number: usize) -> Resul
         let l = linearize(a, b, 200, |p, d| sampler.entering(p, d))
             .map_err(|m| Error::input(format!("{}: section ({}, {}):({}, {}): {m}", r.path().display(), a[0], a[1], b[0], b[1])))?;
         out.push_str(&format!("section ({}, {}) -> ({}, {}), t = {:.4} mm\n", a[0], a[1], b[0], b[1], l.thickness));
+        let walls = walls_crossed(&sampler, &elements, a, b);
+        if walls > 1 {
+            out.push_str(&format!(
+                "  note: the section crosses {walls} walls (the plies of a pack, say, meshed apart), linearised here as one; each has a membrane and bending stress of its own: linearise across each\n"
+            ));
+        }
         out.push_str(&format!("  {:<26} {:>12} {:>12} {:>12} {:>12}\n", "", "normal", across.split(' ').next().unwrap_or_default(), third, "shear"));
         let row = |what: &str, v: &[f64; 4]| format!("  {what:<26} {:>12.4} {:>12.4} {:>12.4} {:>12.4}\n", v[0], v[1], v[2], v[3]);
         out.push_str(&row("membrane", &l.membrane));
@@ -541,6 +547,21 @@ pub fn linearize(r: &ResultsReader, sections: &[String], number: usize) -> Resul
         ));
     }
     Ok(out)
+}
+
+/// How many walls the section a -> b crosses: one more than the times it passes from an
+/// element to one that shares no node with it (an interface between bodies meshed apart, such
+/// as the plies of a pack in contact), read at the middles of 1000 equal pieces (a section
+/// that starts on an interface starts in the wall it runs into).
+fn walls_crossed(sampler: &crate::fe::linearize::StressSampler, elements: &[[usize; 8]], a: [f64; 2], b: [f64; 2]) -> usize {
+    const POINTS: usize = 1000;
+    let along: Vec<usize> =
+        (0..POINTS).map(|k| (k as f64 + 0.5) / POINTS as f64).filter_map(|t| sampler.element_at([a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])])).collect();
+    let apart = |e: usize, f: usize| {
+        let nodes = |e: usize| &elements[e][..crate::fe::shape::Shape::of(&elements[e]).nodes()];
+        !nodes(e).iter().any(|n| nodes(f).contains(n))
+    };
+    1 + along.windows(2).filter(|w| w[0] != w[1] && apart(w[0], w[1])).count()
 }
 
 /// The names of a results file's two in-plane directions: (r, z) about the axis, or a plane

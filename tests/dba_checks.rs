@@ -92,7 +92,7 @@ fn the_limit_load_of_a_thick_sphere_is_reached_by_converged_increments_only() {
     assert!((figure / expected - 1.0).abs() < 1e-4, "collapse factor {figure} against {expected}\n{}", run.stdout());
     // the load the supports carry at the last increment the search kept: the equator's axial
     // reaction per radian against the pressure's resultant, a^2 p / 2 per radian
-    let analysis = Results::open(&run.dir.path().join("out_limit_load.h5"));
+    let analysis = Results::open(&run.dir.path().join("out_collapse_search.h5"));
     let reaction = *analysis.history("reaction_bottom_z").last().expect("a converged increment");
     let carried = -2.0 * reaction / (a * a * p);
     eprintln!("the supports carry {carried:.5} times the design pressure's resultant");

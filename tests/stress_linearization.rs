@@ -265,5 +265,10 @@ print(" ".join(repr(v) for v in [*mean[:2], *row[0, :2], *row[2, :2], np.abs(row
                 end[c]
             );
         }
+        assert!(!text.contains("walls (the plies"), "one ply is one wall:\n{text}");
     }
+    // across both plies: two walls taken as one, and said (seen failing before: no note)
+    let out = command_in(dir.path(), 1).args(["post"]).arg(&h5).args(["--linearize", "160,200:162,200"]).output().unwrap();
+    let text = String::from_utf8_lossy(&out.stdout).to_string();
+    assert!(out.status.success() && text.contains("the section crosses 2 walls"), "{text}{}", String::from_utf8_lossy(&out.stderr));
 }

@@ -9,6 +9,7 @@
 //! convolutions, rm mean radius of the crest and root tori, Dm mean diameter, tp ply thickness
 //! after forming, P pressure, Eb elastic modulus, e axial movement per convolution.
 
+use crate::error::shown;
 use std::f64::consts::PI;
 
 /// The geometry of a U-shaped bellows.
@@ -152,23 +153,23 @@ impl UBellows {
         let mut violated = Vec::new();
         let (nq, db) = (self.convolutions as f64 * self.pitch, self.inside_diameter);
         if nq > 3.0 * db {
-            violated.push(format!("the convolved length N q = {nq} mm exceeds 3 Db = {} mm (ASME VIII-1 26-3(a))", 3.0 * db));
+            violated.push(format!("the convolved length N q = {} mm exceeds 3 Db = {} mm (ASME VIII-1 26-3(a))", shown(nq), shown(3.0 * db)));
         }
         let nt = self.n() * self.ply_thickness;
         if nt > 5.0 {
-            violated.push(format!("the ply pack n t = {nt} mm exceeds 5 mm (ASME VIII-1 26-3(b))"));
+            violated.push(format!("the ply pack n t = {} mm exceeds 5 mm (ASME VIII-1 26-3(b))", shown(nt)));
         }
         if self.height > db / 3.0 {
             violated.push(format!("the convolution height w = {} mm exceeds Db / 3 = {:.1} mm (ASME VIII-1 26-6.2)", self.height, db / 3.0));
         }
         if self.torus_radius < 3.0 * self.ply_thickness {
-            violated.push(format!("the torus radius rm = {} mm is below 3 t = {} mm (ASME VIII-1 26-6.2)", self.torus_radius, 3.0 * self.ply_thickness));
+            violated.push(format!("the torus radius rm = {} mm is below 3 t = {} mm (ASME VIII-1 26-6.2)", shown(self.torus_radius), shown(3.0 * self.ply_thickness)));
         }
         if 2.0 * self.torus_radius > self.height {
             violated.push(format!(
                 "the convolution is not U-shaped: its tori (2 rm = {} mm) are taller than its height w = {} mm",
-                2.0 * self.torus_radius,
-                self.height
+                shown(2.0 * self.torus_radius),
+                shown(self.height)
             ));
         }
         violated

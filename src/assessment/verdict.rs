@@ -41,6 +41,15 @@ impl FatigueCurve {
         }
     }
 
+    /// The factors the curve is entered with, as the verdict names them: Kg, and Eo / Eb
+    /// where the curve takes the moduli (ASME's; EJMA's curve takes the stress as computed).
+    pub fn factors(self, kg: f64, room_modulus: f64, modulus: f64) -> String {
+        match self {
+            FatigueCurve::Asme => format!("Kg {kg} and Eo / Eb {:.3}", room_modulus / modulus),
+            FatigueCurve::Ejma => format!("Kg {kg}"),
+        }
+    }
+
     /// The allowable cycles at the stress range `st` (MPa) with the fatigue strength reduction
     /// factor `kg` and the moduli at room and design temperature; `f64::INFINITY` below the
     /// curve's endurance range (EJMA's), 1e6 at the foot of the table (ASME's).

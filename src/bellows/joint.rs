@@ -23,7 +23,7 @@ use std::collections::HashMap;
 use std::f64::consts::PI;
 
 mod params;
-pub use params::BellowsParams;
+pub use params::{off_the_charts, BellowsParams};
 
 /// A piece of the ply-pack mid-surface: a straight line or a circular arc.
 #[derive(Clone, Copy, Debug)]

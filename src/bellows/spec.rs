@@ -10,7 +10,7 @@ use crate::assessment::code::{CodeCheck, Duty, Source};
 use crate::assessment::coefficients::Coefficients;
 use crate::assessment::formulas::UBellows;
 use crate::assessment::verdict::{self, Allowables, Conditions, FatigueCurve, Forming, Verdict};
-use crate::error::{Error, Result};
+use crate::error::{shown, Error, Result};
 use serde::Deserialize;
 
 /// The whole specification.
@@ -65,7 +65,7 @@ fn as_formed() -> Forming {
 /// A material property: one value at the design temperature, or a table of [temperature (degC),
 /// value] pairs interpolated linearly at it.
 #[derive(Clone, Debug, Deserialize)]
-#[serde(untagged)]
+#[serde(untagged, expecting = "give a number in slideline's units (MPa, /degC, t/mm^3) or a table of [temperature (degC), value] pairs")]
 pub enum Property {
     Value(f64),
     Table(Vec<[f64; 2]>),
@@ -296,17 +296,34 @@ impl DesignSpec {
         ];
         for (key, v) in positive.into_iter().chain(self.code.meridional_factor.map(|k| ("code.meridional_factor", k))) {
             if !(v > 0.0 && v.is_finite()) {
-                return bad(key, format!("must be > 0, got {}", crate::error::shown(v)));
+                return bad(key, format!("must be > 0, got {}", shown(v)));
             }
         }
         for (key, v) in [("bellows.tangent_length", b.tangent_length), ("design.lateral", self.design.lateral), ("design.angular", self.design.angular)] {
             if !(v >= 0.0 && v.is_finite()) {
-                return bad(key, format!("must be >= 0, got {}", crate::error::shown(v)));
+                return bad(key, format!("must be >= 0, got {}", shown(v)));
             }
         }
         for (key, n) in [("bellows.convolutions", b.convolutions), ("bellows.plies", b.plies)] {
             if n == 0 {
                 return bad(key, "must be at least 1".into());
+            }
+        }
+        if let Some(rule) = b.coefficients.and_then(|c| super::joint::off_the_charts(&c)) {
+            return bad("bellows.coefficients", rule);
+        }
+        // the movements the joint can take at all (as the --lateral and --angular flags): no
+        // more than its convolved length sideways or axially, 45 degrees of rotation
+        let length = b.convolutions as f64 * b.pitch;
+        let movements = [
+            ("design.lateral", self.design.lateral, length, "mm, the convolved length N q"),
+            ("design.axial_compression", self.design.axial_compression.unwrap_or(0.0), length, "mm, the convolved length N q"),
+            ("design.axial_extension", self.design.axial_extension.unwrap_or(0.0), length, "mm, the convolved length N q"),
+            ("design.angular", self.design.angular, 45.0, "degrees"),
+        ];
+        for (key, v, most, what) in movements {
+            if v.abs() > most {
+                return bad(key, format!("{} is more than the joint can take: give at most {} {what}", shown(v), shown(most)));
             }
         }
         if !(self.design.pressure >= 0.0 && self.design.pressure.is_finite()) {
@@ -321,10 +338,10 @@ impl DesignSpec {
         match (self.design.axial_compression, self.design.axial_extension) {
             (Some(_), Some(_)) => return bad("design.axial_compression", "give one of axial_compression and axial_extension".into()),
             (Some(x), None) if !(x >= 0.0 && x.is_finite()) => {
-                return bad("design.axial_compression", format!("a movement is given by its size, >= 0 mm; got {}", crate::error::shown(x)))
+                return bad("design.axial_compression", format!("a movement is given by its size, >= 0 mm; got {}", shown(x)))
             }
             (None, Some(x)) if !(x >= 0.0 && x.is_finite()) => {
-                return bad("design.axial_extension", format!("a movement is given by its size, >= 0 mm; got {}", crate::error::shown(x)))
+                return bad("design.axial_extension", format!("a movement is given by its size, >= 0 mm; got {}", shown(x)))
             }
             _ => {}
         }
@@ -335,15 +352,18 @@ impl DesignSpec {
             return bad(
                 "bellows.convolution_height",
                 format!(
-                    "w = {} mm is less than the crest's and root's mid-surface radii and the ply pack ({rc} + {rr} + {pack} mm): the tori overlap",
-                    b.convolution_height
+                    "w = {} mm is less than the crest's and root's mid-surface radii and the ply pack ({} + {} + {} mm): the tori overlap",
+                    shown(b.convolution_height),
+                    shown(rc),
+                    shown(rr),
+                    shown(pack)
                 ),
             );
         }
         if b.pitch < 2.0 * (rc + rr) - 1e-9 {
             return bad(
                 "bellows.pitch",
-                format!("q = {} mm is less than 2 (rc + rr) = {} mm (mid-surface radii): neighbouring convolutions overlap", b.pitch, 2.0 * (rc + rr)),
+                format!("q = {} mm is less than 2 (rc + rr) = {} mm (mid-surface radii): neighbouring convolutions overlap", shown(b.pitch), shown(2.0 * (rc + rr))),
             );
         }
         if b.inside_diameter <= 2.0 * pack {
@@ -352,7 +372,7 @@ impl DesignSpec {
         let (modulus, yield_stress, allowable) = self.at_temperature()?;
         for (key, v) in [("material.youngs_modulus", modulus), ("material.yield_stress", yield_stress), ("material.allowable_stress", allowable)] {
             if !(v > 0.0 && v.is_finite()) {
-                return bad(key, format!("must be > 0 MPa at the design temperature, got {}", crate::error::shown(v)));
+                return bad(key, format!("must be > 0 MPa at the design temperature, got {}", shown(v)));
             }
         }
         if !(self.material.poissons_ratio > -1.0 && self.material.poissons_ratio < 0.5) {

@@ -246,6 +246,7 @@ pub fn design_by_analysis(
         buckling: None,
     };
     checks.validate(&model)?;
+    let _locks = crate::dba::lock_outputs(session, output)?;
     // the code's verdict first, as the run prints it (collective: its chart coefficients)
     let (_, code, code_table) = code_verdict(session, spec)?;
     let root = session.world().rank() == 0;

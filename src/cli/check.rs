@@ -39,6 +39,7 @@ pub fn check_command(args: &CheckArgs) -> ExitCode {
     };
     let root = session.world().rank() == 0;
     let result = (|| {
+        let _locks = slideline::dba::lock_outputs(&session, &output)?;
         let (model, notes) = slideline::preprocess::prepared_deck(&args.deck)?;
         let spec = slideline::dba::spec::DbaSpec::of_model(&model)?.ok_or_else(|| {
             Error::input(format!("{}: no [design_by_analysis] table: it names the checks to run (docs/design-by-analysis.md)", args.deck.display()))

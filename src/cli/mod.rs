@@ -341,8 +341,15 @@ impl BellowsArgs {
     /// and the chart coefficients (`--torus-radius` has no meaning beside its crest and root
     /// radii, and is refused).
     pub fn spec(&self, given: impl Fn(&str) -> bool) -> Result<Option<slideline::bellows::spec::DesignSpec>, Error> {
-        let Some(path) = &self.spec else { return Ok(None) };
-        let mut spec = slideline::bellows::spec::DesignSpec::from_file(path)?;
+        let mut spec = match (&self.spec, &self.restart) {
+            (Some(path), _) => slideline::bellows::spec::DesignSpec::from_file(path)?,
+            // a restart of a specified joint continues with its specification (and its verdict)
+            (None, Some(file)) => match restarted_spec(file)? {
+                Some(spec) => spec,
+                None => return Ok(None),
+            },
+            (None, None) => return Ok(None),
+        };
         if given("torus_radius") {
             return Err(Error::input(
                 "bellows: --torus-radius with --spec: give the crest and root radii in the specification ([bellows] crest_radius, root_radius)",
@@ -382,20 +389,22 @@ impl BellowsArgs {
             return Err(Error::input(format!("bellows: --coefficients takes three values, Cp,Cf,Cd; got {}", c.len())));
         }
         let mut p = match (&self.params, &self.restart) {
-            _ if spec.is_some() => spec.expect("given").joint_params()?,
-            (Some(path), _) => slideline::bellows::joint::BellowsParams::from_toml_file(path)?,
-            // a restart continues the file's own joint
+            // a restart continues the file's own joint (and its specification's, if it had one)
             (None, Some(file)) => {
                 let deck = slideline::io::reader::ResultsReader::open(file)?.text_attr("deck")?;
                 slideline::bellows::joint::BellowsParams::from_toml(&deck, &format!("{}: its deck (not a bellows run?)", file.display()))?
             }
+            _ if spec.is_some() => spec.expect("given").joint_params()?,
+            (Some(path), _) => slideline::bellows::joint::BellowsParams::from_toml_file(path)?,
             (None, None) => slideline::bellows::joint::BellowsParams::default(),
         };
         if self.quick {
             p = p.quick();
         }
-        // a specification's values are in it already (`spec`)
-        let given = |id: &str| given(id) && !(spec.is_some() && SPEC_FLAGS.contains(&id));
+        // a specification's values are in it already (`spec`), unless the joint is a restarted
+        // file's
+        let from_spec = spec.is_some() && !(self.params.is_none() && self.restart.is_some());
+        let given = |id: &str| given(id) && !(from_spec && SPEC_FLAGS.contains(&id));
         let mut take = |id: &str, set: &mut dyn FnMut(&mut slideline::bellows::joint::BellowsParams)| {
             if given(id) {
                 set(&mut p);
@@ -428,6 +437,14 @@ impl BellowsArgs {
         take("convergence", &mut |p| p.convergence = self.convergence.into());
         Ok(p)
     }
+}
+
+/// The design specification a results file's run was made for (its verdict holds its text),
+/// None for a run without one.
+fn restarted_spec(file: &std::path::Path) -> Result<Option<slideline::bellows::spec::DesignSpec>, Error> {
+    let text = slideline::io::reader::ResultsReader::open(file)?.verdict()?.map(|(_, text, _)| text);
+    let source = std::path::PathBuf::from(format!("{} (its specification)", file.display()));
+    text.map(|t| slideline::bellows::spec::DesignSpec::from_text(&t, &source)).transpose()
 }
 
 /// The flags that give a design specification's values (applied to it by

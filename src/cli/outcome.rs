@@ -38,11 +38,7 @@ pub fn warn_unused_options(session: &PetscSession, root: bool) {
     }
 }
 
-/// Whether this process is rank 0 of its launch (or launched alone), read from the launcher's
-/// environment: for messages printed before MPI starts.
-pub fn launched_as_rank_zero() -> bool {
-    ["OMPI_COMM_WORLD_RANK", "PMI_RANK", "PMIX_RANK"].iter().all(|v| std::env::var(v).map_or(true, |r| r == "0"))
-}
+pub use slideline::launch::launched_as_rank_zero;
 
 /// Prints `e` (when `print`: rank 0, or before MPI the launch's rank 0) and gives its exit code.
 pub fn fail(e: &Error, print: bool) -> ExitCode {

@@ -32,6 +32,7 @@ pub fn post(args: &PostArgs) -> Result<(), Error> {
         || args.csv.is_some()
         || plot.is_some()
         || args.deck
+        || args.assessment
         || args.report.is_some()
         || !args.linearize.is_empty();
     let heat = r.heat_steps()?;

@@ -4,13 +4,14 @@
 //! factor of Table 5.3 (1.5 on P + Ps + D); prescribed displacements as the deck gives them
 //! and no thermal strain (Table 5.3 leaves the secondary loads out); the deck's general steps,
 //! or those `steps` names (a stroke, a secondary load, left out). The check passes when
-//! the factored loads are carried (every increment converges). Past them the loads rise to
-//! `search_to` times the design loads until Newton fails at the smallest increment: the
-//! factor reached then is the collapse load factor, the check's figure. The run takes the
-//! residual convergence test (||F|| down by 1e-10), whatever the deck's: the field test
-//! relaxes as Newton stalls near collapse and once accepted an increment whose residual was
-//! 4 % of the forces, past the load the supports carried; under the residual test the applied
-//! factor is the carried one to 1e-10 of the forces.
+//! the factored loads are carried (every increment converges): a run of the factored steps
+//! alone ([`run_factored`]). Past them the loads rise to `search_to` times the design loads
+//! until Newton fails at the smallest increment ([`search`], that run continued, after the
+//! other checks): the factor reached then is the collapse load factor, the check's figure.
+//! Both take the residual convergence test (||F|| down by 1e-10), whatever the deck's: the
+//! field test relaxes as Newton stalls near collapse and once accepted an increment whose
+//! residual was 4 % of the forces, past the load the supports carried; under the residual
+//! test the applied factor is the carried one to 1e-10 of the forces.
 
 use super::spec::{DbaSpec, LimitLoadSpec};
 use crate::error::{Error, Result};
@@ -28,9 +29,21 @@ pub struct LimitLoad {
     /// factor when the search failed, `search_to` when it carried everything. None when a
     /// factored step before the last failed (its loads are not one multiple of the design's).
     pub reached: Option<f64>,
-    /// Where Newton failed at the smallest increment (a collapse): the step's name and its
-    /// load factor; None when the search reached `search_to`.
-    pub failed_in: Option<(String, f64)>,
+    /// Where the analysis stopped (a collapse, where Newton failed at the smallest increment):
+    /// the step's name, its load factor on the design loads and why; None when the search
+    /// reached `search_to`.
+    pub failed_in: Option<Stop>,
+}
+
+/// Where and why the limit-load analysis stopped.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Stop {
+    pub step: String,
+    /// The factor on the design loads of the attempt that failed (None in a factored step
+    /// before the last, whose loads are not one multiple of the design's).
+    pub factor: Option<f64>,
+    /// The solver's words: the reason and whether a smaller increment was tried.
+    pub why: String,
 }
 
 /// The loads a deck's general steps leave applied at their end: each surface's pressure,
@@ -109,34 +122,52 @@ pub fn model(model: &Model, spec: &DbaSpec, ll: &LimitLoadSpec) -> Result<Model>
     Ok(m)
 }
 
-/// Runs the limit-load analysis of `model` into `output` (collective).
-pub fn run(session: &PetscSession, model: &Model, spec: &DbaSpec, output: &Path, progress: bool) -> Result<LimitLoad> {
+/// The factored steps of the limit-load analysis of `model`, run into `output` (collective):
+/// whether the factored loads are carried, the check's verdict, known before any search.
+pub fn run_factored(session: &PetscSession, model: &Model, spec: &DbaSpec, output: &Path, progress: bool) -> Result<LimitLoad> {
+    let ll = spec.limit_load.as_ref().ok_or_else(|| Error::input("[design_by_analysis] has no limit_load"))?;
+    let mut m = self::model(model, spec, ll)?;
+    m.steps.retain(|s| !matches!(s, Step::General(g) if g.name == SEARCH_STEP));
+    let options = RunOptions { output: output.to_path_buf(), progress, verbose: false, monitor: false, restart: None };
+    match crate::solve::run(session, &m, &options) {
+        Ok(_) => Ok(LimitLoad { carried: true, reached: Some(ll.factor), failed_in: None }),
+        Err(Error::NotConverged { step, load_factor, reason }) => {
+            let last_step = m.general_step_count();
+            let rows = crate::io::reader::ResultsReader::open(output)?.history_rows()?;
+            // in the last factored step its loads are the factor times lambda of the design's
+            let reached = rows.last().filter(|(_, r)| r.step == last_step).map(|(_, r)| ll.factor * r.load_factor);
+            let factor = (m.general_steps().last().is_some_and(|s| s.name == step)).then(|| ll.factor * load_factor);
+            Ok(LimitLoad { carried: false, reached, failed_in: Some(Stop { step, factor, why: first_clause(&reason) }) })
+        }
+        Err(e) => Err(e),
+    }
+}
+
+/// The collapse search (collective): the factored run `factored` continued (a restart from its
+/// last increment) by the search step into `output`, the loads raised to `search_to` times the
+/// design's until Newton fails at the smallest increment. Run after every other check: however
+/// long its last attempts take near collapse, the verdict is known and written before it.
+pub fn search(session: &PetscSession, model: &Model, spec: &DbaSpec, factored: &Path, output: &Path, progress: bool) -> Result<LimitLoad> {
     let ll = spec.limit_load.as_ref().ok_or_else(|| Error::input("[design_by_analysis] has no limit_load"))?;
     let m = self::model(model, spec, ll)?;
-    let steps: Vec<String> = m.general_steps().map(|s| s.name.clone()).collect();
-    let options = RunOptions { output: output.to_path_buf(), progress, verbose: false, monitor: false, restart: None };
+    let restart = Some(crate::io::restart::RestartFrom { file: factored.to_path_buf(), increment: None });
+    let options = RunOptions { output: output.to_path_buf(), progress, verbose: false, monitor: false, restart };
     let failure = match crate::solve::run(session, &m, &options) {
-        Ok(_) => None,
-        Err(Error::NotConverged { step, load_factor, .. }) => Some((step, load_factor)),
+        Ok(_) => return Ok(LimitLoad { carried: true, reached: Some(ll.search_to), failed_in: None }),
+        Err(Error::NotConverged { step, load_factor, reason }) => Stop { step, factor: Some(ll.factor + (ll.search_to - ll.factor) * load_factor), why: first_clause(&reason) },
         Err(e) => return Err(e),
     };
-    let Some(failure) = failure else {
-        return Ok(LimitLoad { carried: true, reached: Some(ll.search_to), failed_in: None });
-    };
-    // the last converged increment, from the file the run kept
+    // the last converged increment, from the file the run kept (its history from the start)
     let rows = crate::io::reader::ResultsReader::open(output)?.history_rows()?;
-    let last = rows.last().map(|(_, r)| (r.step, r.load_factor));
-    let search = steps.len();
-    let factored = search - 1;
-    let (carried, reached) = match last {
-        // in the search: from the factor up to search_to
-        Some((step, lambda)) if step == search => (true, Some(ll.factor + (ll.search_to - ll.factor) * lambda)),
-        // every factored step done, nothing of the search
-        Some((step, lambda)) if step == factored && lambda >= 1.0 => (true, Some(ll.factor)),
-        // in the last factored step: its loads are the factor times lambda of the design's
-        Some((step, lambda)) if step == factored => (false, Some(ll.factor * lambda)),
-        // an earlier factored step, or none converged
-        _ => (false, None),
+    let search = m.general_step_count();
+    let reached = match rows.last() {
+        Some((_, r)) if r.step == search => ll.factor + (ll.search_to - ll.factor) * r.load_factor,
+        _ => ll.factor,
     };
-    Ok(LimitLoad { carried, reached, failed_in: Some(failure) })
+    Ok(LimitLoad { carried: true, reached: Some(reached), failed_in: Some(failure) })
+}
+
+/// The solver's reason up to its first ';' (the rest names the file, which the table does).
+fn first_clause(reason: &str) -> String {
+    reason.split(';').next().unwrap_or_default().to_string()
 }

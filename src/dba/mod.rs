@@ -64,9 +64,24 @@ pub fn check_file(output: &Path, name: &str) -> PathBuf {
     output.with_file_name(format!("{stem}_{name}.h5"))
 }
 
+/// The file of the limit-load check's collapse search: its factored run (`NAME_limit_load.h5`)
+/// continued.
+pub const SEARCH: &str = "collapse_search";
+
 /// The verdict file `output` and every check's file beside it: what a run may write.
 pub fn output_files(output: &Path) -> Vec<PathBuf> {
-    std::iter::once(output.to_path_buf()).chain(CHECKS.map(|c| check_file(output, c))).collect()
+    std::iter::once(output.to_path_buf()).chain(CHECKS.iter().chain([&SEARCH]).map(|c| check_file(output, c))).collect()
+}
+
+/// Takes the locks of the verdict file `output` and of every check's file beside it, before
+/// the first analysis starts (collective; notes printed on rank 0): two checks given the same
+/// output never write into each other's files. Held until dropped.
+pub fn lock_outputs(session: &PetscSession, output: &Path) -> Result<Vec<crate::io::lock::ResultsLock>> {
+    let (locks, notes) = crate::io::lock::ResultsLock::acquire_all(&output_files(output), session.world())?;
+    if session.world().rank() == 0 {
+        notes.iter().for_each(|n| println!("note: {n}"));
+    }
+    Ok(locks)
 }
 
 /// The verdict printed under `title` and written to `output`'s `/dba` with the deck's text
@@ -79,62 +94,123 @@ pub fn report(v: &Verdict, title: &str, output: &Path, deck_text: &str) -> Resul
 }
 
 /// Runs every check `spec` names on `model` (collective); each check's run goes to its own
-/// file beside `output`.
+/// file beside `output`. Each check's rows are printed as soon as it ends (with `progress`); a
+/// check whose analysis does not converge (ratcheting, fatigue) gets a failing row that says
+/// where it stopped, and the checks after it still run.
 pub fn run(session: &PetscSession, model: &Model, spec: &DbaSpec, output: &Path, progress: bool) -> Result<Verdict> {
-    let root = session.world().rank() == 0;
-    let mut rows = Vec::new();
-    let mut files = Vec::new();
+    let say = session.world().rank() == 0 && progress;
+    let mut verdict = Verdict { rows: Vec::new(), files: Vec::new() };
     let [limit, buckle, ratchet, fatigue_name] = CHECKS;
+    let mut carried = None;
     if let Some(ll) = &spec.limit_load {
-        let file = check_file(output, limit);
-        if root && progress {
-            println!(
-                "limit load: elastic-perfectly plastic at 1.5 S, small displacements, the primary loads x {} and on up to x {} ...",
-                ll.factor, ll.search_to
-            );
+        if say {
+            println!("limit load: elastic-perfectly plastic at 1.5 S, small displacements, the primary loads x {} ...", ll.factor);
         }
-        let answer = limit_load::run(session, model, spec, &file, progress)?;
-        rows.push(limit_load_row(&answer, ll));
-        files.push((limit.to_string(), file));
+        let file = check_file(output, limit);
+        let answer = limit_load::run_factored(session, model, spec, &file, progress)?;
+        verdict.add(limit, file.clone(), vec![limit_load_row(&answer, ll)], say);
+        carried = answer.carried.then_some((ll, file));
     }
     if let Some(b) = &spec.buckling {
-        let file = check_file(output, buckle);
-        if root && progress {
+        if say {
             println!(
                 "buckling: the deck's buckle steps about an elastic prestress of the design pressures, design factor 2 / beta_cr = {:.3} ...",
                 2.0 / b.beta_cr
             );
         }
+        let file = check_file(output, buckle);
         let answer = buckling::run(session, model, spec, &file, progress)?;
-        rows.extend(buckling_rows(&answer, b.beta_cr));
-        files.push((buckle.to_string(), file));
+        verdict.add(buckle, file, buckling_rows(&answer, b.beta_cr), say);
     }
     if let Some(r) = &spec.ratcheting {
-        let file = check_file(output, ratchet);
-        if root && progress {
+        if say {
             println!("ratcheting: elastic-perfectly plastic at the yield strength, {} cycles of steps {:?} ...", r.cycles, r.cycle);
         }
-        let answer = ratcheting::run(session, model, spec, &file, progress)?;
-        rows.extend(ratcheting_rows(&answer));
-        files.push((ratchet.to_string(), file));
+        let file = check_file(output, ratchet);
+        let rows = match ratcheting::run(session, model, spec, &file, progress) {
+            Ok(answer) => ratcheting_rows(&answer),
+            Err(e) => vec![not_shown("ratcheting", e, &file, "VIII-2 5.5.7.2")?],
+        };
+        verdict.add(ratchet, file, rows, say);
     }
     if let Some(f) = &spec.fatigue {
-        let file = check_file(output, fatigue_name);
-        if root && progress {
+        if say {
             println!("fatigue: elastic-plastic, the materials as given, {} cycles of steps {:?}, the last evaluated ...", f.cycles, f.cycle);
         }
-        let answer = fatigue::run(session, model, spec, &file, progress)?;
-        rows.extend(fatigue_rows(&answer));
-        files.push((fatigue_name.to_string(), file));
+        let file = check_file(output, fatigue_name);
+        let rows = match fatigue::run(session, model, spec, &file, progress) {
+            Ok(answer) => fatigue_rows(&answer),
+            Err(e) => vec![not_shown("fatigue, elastic-plastic", e, &file, "VIII-2 5.5.4.4")?],
+        };
+        verdict.add(fatigue_name, file, rows, say);
     }
-    Ok(Verdict { rows, files })
+    // the collapse load last: every verdict is known, and written, before its search
+    if let Some((ll, factored)) = carried {
+        if session.world().rank() == 0 {
+            write(&verdict, output, &model.source_text)?;
+        }
+        if say {
+            println!("collapse search: the factored loads raised on up to x {} (the verdict so far is in {}) ...", ll.search_to, output.display());
+        }
+        let file = check_file(output, SEARCH);
+        let answer = limit_load::search(session, model, spec, &factored, &file, progress)?;
+        let row = limit_load_row(&answer, ll);
+        if say {
+            let [figure, _, _] = row.cells();
+            println!("  -> {}: {} {figure}", row.check, row.criterion);
+        }
+        verdict.rows[0] = row;
+        verdict.files.push((SEARCH.to_string(), file));
+    }
+    Ok(verdict)
+}
+
+impl Verdict {
+    /// Check `name`'s rows and file, its rows printed at once when `say`.
+    fn add(&mut self, name: &str, file: PathBuf, rows: Vec<CheckRow>, say: bool) {
+        if say {
+            for r in &rows {
+                let [figure, limit, verdict] = r.cells();
+                println!("  -> {}: {} {figure} {limit} {} {verdict}", r.check, r.criterion, r.unit);
+            }
+        }
+        self.rows.extend(rows);
+        self.files.push((name.to_string(), file));
+    }
+}
+
+/// The failing row of a check whose analysis stopped without converging (`e`, a
+/// non-convergence; any other error is passed on): the check is not shown to hold, and the
+/// row says where its analysis stopped.
+fn not_shown(check: &str, e: Error, file: &Path, rule: &str) -> Result<CheckRow> {
+    let Error::NotConverged { step, load_factor, reason } = e else { return Err(e) };
+    Ok(CheckRow {
+        check: check.into(),
+        criterion: format!(
+            "not shown: its analysis stopped in step '{step}' at load factor {load_factor:.4} ({}; its converged increments in {})",
+            reason.split(';').next().unwrap_or_default(),
+            file.file_name().unwrap_or_default().to_string_lossy()
+        ),
+        figure: None,
+        limit: f64::NAN,
+        unit: String::new(),
+        passes: Some(false),
+        rule: rule.into(),
+    })
 }
 
 fn limit_load_row(a: &limit_load::LimitLoad, ll: &spec::LimitLoadSpec) -> CheckRow {
+    // where and why: "at the smallest increment" says a collapse; anything else in the solver's words
+    let at = |stop: &limit_load::Stop| {
+        let why = if stop.why.contains("min_increment") { "at the smallest increment".to_string() } else { stop.why.clone() };
+        stop.factor.map_or(format!(", {why}"), |f| format!(" at x {f:.4}, {why}"))
+    };
     let criterion = match &a.failed_in {
+        // the factored run alone, before the search
+        None if a.reached == Some(ll.factor) => format!("the loads x {} carried (the collapse search follows)", ll.factor),
         None => format!("the loads x {} carried (collapse above x {})", ll.factor, ll.search_to),
-        Some((step, lambda)) if !a.carried => format!("the loads x {} carried; Newton failed in step '{step}' at load factor {lambda:.4}", ll.factor),
-        Some(_) => format!("the loads x {} carried; the collapse load factor", ll.factor),
+        Some(stop) if !a.carried => format!("the loads x {} carried: not so, Newton failed in step '{}'{}", ll.factor, stop.step, at(stop)),
+        Some(stop) => format!("the loads x {} carried; the collapse load factor (Newton failed{})", ll.factor, at(stop)),
     };
     CheckRow {
         check: "plastic collapse, limit load".into(),

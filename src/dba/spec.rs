@@ -64,7 +64,7 @@ pub struct BucklingSpec {
 }
 
 #[derive(Deserialize, Debug, Clone, PartialEq)]
-#[serde(untagged)]
+#[serde(untagged, expecting = "give a stress in MPa (a number) or a table of them by material name (`{ steel = 137.0 }`)")]
 pub enum Allowable {
     Every(f64),
     ByMaterial(BTreeMap<String, f64>),

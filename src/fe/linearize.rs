@@ -174,6 +174,11 @@ impl<'a> StressSampler<'a> {
         self.holding(p).next().map(|(e, xi)| self.fields[e].at(Shape::of(&self.elements[e]), xi))
     }
 
+    /// The element holding `p`, if any.
+    pub fn element_at(&self, p: [f64; 2]) -> Option<usize> {
+        self.holding(p).next().map(|(e, _)| e)
+    }
+
     /// As [`Self::at`], each component held within the element's own Gauss values: for a field
     /// that is bounded pointwise (an equivalent plastic strain, or its growth, never below
     /// zero), where a polynomial through steep Gauss values would undershoot between them.

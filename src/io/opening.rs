@@ -38,6 +38,9 @@ fn open_waiting_for_lock(path: &Path) -> Result<hdf5::File> {
         let first = e.to_string().lines().next().unwrap_or_default().to_string();
         Error::input(format!("{}: an HDF5 file that does not open (truncated, or left open by a run that was killed?): {first}", path.display()))
     };
+    if !crate::launch::launched_as_rank_zero() {
+        return open_after_the_first_rank(path).map_err(failed);
+    }
     match hdf5::File::open(path) {
         Ok(file) => repair_short_allocation(path, file).map_err(failed),
         Err(e) => match repair(path, &e.to_string()) {
@@ -47,6 +50,33 @@ fn open_waiting_for_lock(path: &Path) -> Result<hdf5::File> {
             }
             None => Err(failed(e)),
         },
+    }
+}
+
+/// Only the launch's rank 0 repairs a file, so that no rank opens it while another rewrites its
+/// superblock (HDF5 then read "sblock->base_addr = 0" on the other rank); the launcher's
+/// environment says which rank this is, since a file is opened before MPI starts too (a
+/// restart's deck). How long another rank waits for the first to repair a file before it takes the file as it
+/// is (the first rank's own error then says what is wrong).
+const REPAIR_WAIT: std::time::Duration = std::time::Duration::from_secs(10);
+
+/// The file opened by a rank other than the first: as it opens, once no repair is needed (a
+/// file the first rank would repair is waited for while it does), or its error after
+/// `REPAIR_WAIT`.
+fn open_after_the_first_rank(path: &Path) -> hdf5::Result<hdf5::File> {
+    let start = std::time::Instant::now();
+    loop {
+        let file = hdf5::File::open(path);
+        let repaired = match &file {
+            Ok(f) => !super::h5ffi::end_of_allocation(f).is_ok_and(|eoa| eoa < std::fs::metadata(path).map(|m| m.len()).unwrap_or(0))
+                || super::lock::writer_may_be_alive(path),
+            Err(_) => false,
+        };
+        if repaired || start.elapsed() >= REPAIR_WAIT {
+            return file;
+        }
+        drop(file);
+        std::thread::sleep(std::time::Duration::from_millis(100));
     }
 }
 

@@ -249,13 +249,8 @@ impl BellowsParams {
                 return Err(Error::input(format!("bellows: {name} must be > 0, got {}", crate::error::shown(v))));
             }
         }
-        // the codes' charts' coefficients lie between about 0.3 and 3
-        if let Some((name, v)) = self.coefficients.into_iter().flat_map(|c| [("Cp", c[0]), ("Cf", c[1]), ("Cd", c[2])]).find(|(_, v)| !(0.1..=10.0).contains(v))
-        {
-            return Err(Error::input(format!(
-                "bellows: coefficient {name} {} is off the codes' charts: give 0.1 to 10 (the charts' coefficients lie between about 0.3 and 3)",
-                crate::error::shown(v)
-            )));
+        if let Some(rule) = self.coefficients.and_then(|c| off_the_charts(&c)) {
+            return Err(Error::input(format!("bellows: {rule}")));
         }
         for (name, v) in [
             ("temperature", self.temperature),
@@ -296,10 +291,12 @@ impl BellowsParams {
         }
         // radial sidewalls at q = 2 (rr + rc), tapered ones wider; narrower would fold them back
         if self.pitch < 2.0 * (rr + rc) - 1e-9 {
+            // named as the user gave the radii: a torus radius alone, or the root's and crest's
+            let radii = if self.crest_radius.is_some() { "2 (root radius + crest radius)" } else { "4 x the torus radius" };
             return Err(Error::input(format!(
-                "bellows: a pitch of {} is less than 2 (root radius + crest radius) = {}: U-shaped convolutions' sidewalls would fold back over each other",
-                self.pitch,
-                2.0 * (rr + rc)
+                "bellows: a pitch of {} is less than {radii} = {}: U-shaped convolutions' sidewalls would fold back over each other",
+                crate::error::shown(self.pitch),
+                crate::error::shown(2.0 * (rr + rc))
             )));
         }
         if self.sidewall() < 0.0 {
@@ -387,4 +384,14 @@ impl BellowsParams {
     pub fn tube_outer_radius(&self) -> f64 {
         self.tube_inner_radius + self.tube_thickness
     }
+}
+
+/// What is wrong with chart coefficients [Cp, Cf, Cd] off the codes' charts, whose
+/// coefficients lie between about 0.3 and 3 (for the flags and the specification alike).
+pub fn off_the_charts(c: &[f64; 3]) -> Option<String> {
+    let (name, v) = [("Cp", c[0]), ("Cf", c[1]), ("Cd", c[2])].into_iter().find(|(_, v)| !(0.1..=10.0).contains(v))?;
+    Some(format!(
+        "coefficient {name} {} is off the codes' charts: give 0.1 to 10 (the charts' coefficients lie between about 0.3 and 3)",
+        crate::error::shown(v)
+    ))
 }

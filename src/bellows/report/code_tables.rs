@@ -89,12 +89,12 @@ pub fn verdict_table(spec: &DesignSpec, check: &CodeCheck, verdict: &Verdict) ->
         let pass = if c.passes() { "PASS" } else { "FAIL" };
         line(format!("  {:<30} {:>11} {:>13} {:<7} {:>6.2}  {:<7} {}", c.name, figure(c.value), limit, c.unit, c.ratio(), pass, c.rule));
     }
+    let curve = allowables.fatigue_curve;
     line(format!(
-        "  the design's life is the fatigue check's: {} with Kg {} and Eo / Eb {:.3}; {}",
-        allowables.fatigue_curve.name(),
-        allowables.fatigue_factor,
-        allowables.room_modulus / modulus,
-        allowables.fatigue_curve.basis()
+        "  the design's life is the fatigue check's: {} with {}; {}",
+        curve.name(),
+        curve.factors(allowables.fatigue_factor, allowables.room_modulus, modulus),
+        curve.basis()
     ));
     for outside in &verdict.outside {
         line(format!("  note: outside the code's conditions of applicability: {outside}"));

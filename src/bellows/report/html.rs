@@ -165,10 +165,9 @@ fn verdict_section(v: &Verdict, s: &DesignSpec) -> Result<String> {
     }
     h += "</table>\n";
     h += &format!(
-        "<p>The design's life is the fatigue check's: {} with Kg {} and Eo / Eb {:.3}; {}. The finite-element lives (<code>--assess</code>) are a cross-check.</p>\n",
+        "<p>The design's life is the fatigue check's: {} with {}; {}. The finite-element lives (<code>--assess</code>) are a cross-check.</p>\n",
         escape(allowables.fatigue_curve.name()),
-        allowables.fatigue_factor,
-        allowables.room_modulus / s.at_temperature()?.0,
+        escape(&allowables.fatigue_curve.factors(allowables.fatigue_factor, allowables.room_modulus, s.at_temperature()?.0)),
         escape(allowables.fatigue_curve.basis())
     );
     for outside in &v.outside {

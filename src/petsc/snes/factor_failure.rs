@@ -6,16 +6,19 @@ use crate::petsc::{check, sys};
 use std::ffi::CStr;
 
 /// A failed factorisation: what MUMPS said, and whether a smaller increment can help (a
-/// singular tangent may become regular; a matrix too large for the memory stays as large).
+/// singular tangent may become regular, and a workspace that the pivots of one matrix's values
+/// outgrew may do for another's; a matrix too large for the memory stays as large).
 #[derive(Clone, Debug, PartialEq)]
 pub struct FactorFailure {
     pub text: String,
     pub retry_may_help: bool,
 }
 
-/// MUMPS's errors about memory, not about the matrix's values.
+/// MUMPS's errors about the machine's memory or the cap on it, not about the matrix's values
+/// (its workspace too small, -8, -9, -11, -12, -14, -15, -17, -20, is the estimate of the
+/// analysis outgrown by the pivots the values needed: a near-singular tangent's, at collapse).
 fn memory_error(infog1: i64) -> bool {
-    matches!(infog1, -5 | -7 | -8 | -9 | -11 | -12 | -13 | -14 | -15 | -17 | -19 | -20)
+    matches!(infog1, -5 | -7 | -13 | -19)
 }
 
 /// The sentence for MUMPS's error `infog1` (negative) with its detail `infog2`.
