@@ -555,8 +555,10 @@ pub fn linearize(r: &ResultsReader, sections: &[String], number: usize) -> Resul
 /// that starts on an interface starts in the wall it runs into).
 fn walls_crossed(sampler: &crate::fe::linearize::StressSampler, elements: &[[usize; 8]], a: [f64; 2], b: [f64; 2]) -> usize {
     const POINTS: usize = 1000;
-    let along: Vec<usize> =
-        (0..POINTS).map(|k| (k as f64 + 0.5) / POINTS as f64).filter_map(|t| sampler.element_at([a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])])).collect();
+    let along: Vec<usize> = (0..POINTS)
+        .map(|k| (k as f64 + 0.5) / POINTS as f64)
+        .filter_map(|t| sampler.element_at([a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])]))
+        .collect();
     let apart = |e: usize, f: usize| {
         let nodes = |e: usize| &elements[e][..crate::fe::shape::Shape::of(&elements[e]).nodes()];
         !nodes(e).iter().any(|n| nodes(f).contains(n))

@@ -218,7 +218,8 @@ fn a_results_file_in_use_is_refused_and_a_stale_lock_replaced() {
 fn a_check_writes_nothing_when_one_of_its_files_is_held() {
     let dir = tempfile::tempdir().unwrap();
     let deck = std::fs::read_to_string(common::data("dba/thick_cylinder.toml")).unwrap();
-    std::fs::write(dir.path().join("deck.toml"), deck.replace("limit_load = {", "ratcheting = { cycle = [\"pressurise\"], cycles = 3 }\nlimit_load = {")).unwrap();
+    std::fs::write(dir.path().join("deck.toml"), deck.replace("limit_load = {", "ratcheting = { cycle = [\"pressurise\"], cycles = 3 }\nlimit_load = {"))
+        .unwrap();
     let host = std::fs::read_to_string("/proc/sys/kernel/hostname").unwrap();
     std::fs::write(dir.path().join("out_ratcheting.lock"), format!("host {} pid {}\n", host.trim(), std::process::id())).unwrap();
     std::fs::write(dir.path().join("out_limit_load.h5"), "another check's finished file").unwrap();

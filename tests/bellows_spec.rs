@@ -196,7 +196,11 @@ fn a_joint_of_ones_own_runs_from_its_specification_with_a_report_of_its_own() {
     // a restart of the specified joint continues with its specification: the verdict again
     // (seen failing before: --spec and --restart were refused together, and a restart alone
     // fell back to an axial-only check without the specification's verdict)
-    let again = command_in(dir.path(), 2).current_dir(dir.path()).args(["bellows", "--restart", "r.h5", "--increment", "5", "--quiet", "-o", "r2.h5"]).output().unwrap();
+    let again = command_in(dir.path(), 2)
+        .current_dir(dir.path())
+        .args(["bellows", "--restart", "r.h5", "--increment", "5", "--quiet", "-o", "r2.h5"])
+        .output()
+        .unwrap();
     let text = String::from_utf8_lossy(&again.stdout).to_string();
     assert!(again.status.success(), "{text}{}", String::from_utf8_lossy(&again.stderr));
     assert!(text.contains("DN200 axial expansion joint") && text.contains("\nverdict: "), "{text}");

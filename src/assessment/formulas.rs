@@ -163,7 +163,11 @@ impl UBellows {
             violated.push(format!("the convolution height w = {} mm exceeds Db / 3 = {:.1} mm (ASME VIII-1 26-6.2)", self.height, db / 3.0));
         }
         if self.torus_radius < 3.0 * self.ply_thickness {
-            violated.push(format!("the torus radius rm = {} mm is below 3 t = {} mm (ASME VIII-1 26-6.2)", shown(self.torus_radius), shown(3.0 * self.ply_thickness)));
+            violated.push(format!(
+                "the torus radius rm = {} mm is below 3 t = {} mm (ASME VIII-1 26-6.2)",
+                shown(self.torus_radius),
+                shown(3.0 * self.ply_thickness)
+            ));
         }
         if 2.0 * self.torus_radius > self.height {
             violated.push(format!(

@@ -363,7 +363,11 @@ impl DesignSpec {
         if b.pitch < 2.0 * (rc + rr) - 1e-9 {
             return bad(
                 "bellows.pitch",
-                format!("q = {} mm is less than 2 (rc + rr) = {} mm (mid-surface radii): neighbouring convolutions overlap", shown(b.pitch), shown(2.0 * (rc + rr))),
+                format!(
+                    "q = {} mm is less than 2 (rc + rr) = {} mm (mid-surface radii): neighbouring convolutions overlap",
+                    shown(b.pitch),
+                    shown(2.0 * (rc + rr))
+                ),
             );
         }
         if b.inside_diameter <= 2.0 * pack {

@@ -200,6 +200,10 @@ pub fn run(session: &PetscSession, job: &BellowsJob) -> Result<RunSummary> {
 /// times their design pressure.
 const BELLOWS_SEARCH_TO: f64 = 20.0;
 
+/// The time budget of the bellows' collapse search, s: its verdict is known before it starts,
+/// and near collapse a ply pack in contact takes tens of seconds an increment.
+const BELLOWS_SEARCH_SECONDS: f64 = 300.0;
+
 /// `--dba`: the design-by-analysis checks (ASME VIII-2 Part 5) on the joint `params`
 /// describes, with the allowable stress of its specification: the limit load under the design
 /// pressure alone (the ends held; the stroke is a secondary load), ratcheting over three
@@ -241,7 +245,13 @@ pub fn design_by_analysis(
     let checks = DbaSpec {
         fatigue,
         allowable_stress: Some(Allowable::Every(allowable)),
-        limit_load: Some(LimitLoadSpec { factor: 1.5, search_to: BELLOWS_SEARCH_TO, search_increments: 40, steps: Some(vec!["heat".into()]) }),
+        limit_load: Some(LimitLoadSpec {
+            factor: 1.5,
+            search_to: BELLOWS_SEARCH_TO,
+            search_increments: 40,
+            search_seconds: Some(BELLOWS_SEARCH_SECONDS),
+            steps: Some(vec!["heat".into()]),
+        }),
         ratcheting: Some(RatchetingSpec { cycle: stroke, cycles: crate::dba::spec::LEAST_CYCLES, section: None }),
         buckling: None,
     };

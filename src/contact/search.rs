@@ -106,8 +106,15 @@ impl EdgeGrid {
     /// can skip its points. Conservative with respect to [`Self::closest_edge`]: every point
     /// of the edge lies in its hull box, so its cell is one the box overlaps, and an edge found
     /// from it is within `capture` of the box.
+    /// A box over more cells than the grid holds (an edge flung far by a diverging Newton
+    /// iterate, whose box spanned some 1e12 cells and kept a run in this loop for minutes) is
+    /// tested against every edge's box instead: the same answer, at the cost of one pass.
     pub fn may_reach(&self, x: &[[f64; 2]; 3], excluded: &[usize], capture: f64) -> bool {
         let b = hull(x);
+        let span = |k: usize| cell_of(b[1][k], self.cell) as f64 - cell_of(b[0][k], self.cell) as f64 + 1.0;
+        if span(0) * span(1) > self.cells.len() as f64 {
+            return (0..self.hulls.len()).any(|k| box_gap(&b, &self.hulls[k]) <= capture && !excluded.contains(&k));
+        }
         for i in cell_of(b[0][0], self.cell)..=cell_of(b[1][0], self.cell) {
             for j in cell_of(b[0][1], self.cell)..=cell_of(b[1][1], self.cell) {
                 if self.cell_edges((i, j)).iter().any(|&k| box_gap(&b, &self.hulls[k]) <= capture && !excluded.contains(&k)) {
@@ -272,6 +279,23 @@ mod tests {
         mesh.element_ids = (1..=mesh.elements.len() as u64).collect();
         let s = ContactSurface::new(&mesh, &edges);
         (mesh, s)
+    }
+
+    /// An edge flung 1e9 mm by a diverging iterate spans about 1e18 cells of a 1 mm grid: the
+    /// question is answered against every edge's box at once, and alike (seen failing before:
+    /// the loop over its cells ran for minutes, a DN400 joint's collapse search without output).
+    #[test]
+    fn an_edge_flung_far_is_answered_at_once_and_alike() {
+        let (mesh, sets) = rectangle([1.0, 5.0], [0.0, 1.0], [4, 1]).unwrap();
+        let s = ContactSurface::new(&mesh, &sets.surfaces["top"]);
+        let x = |n: usize| mesh.coords[n];
+        let grid = EdgeGrid::new(&s, &x, 0.1);
+        let flung = [[2.0, 1.05], [1.0e9, -1.0e9], [2.5, 1.05]];
+        assert!(grid.may_reach(&flung, &[], 0.1), "its box holds the surface");
+        let away = [[2.0e9, 1.0e9], [3.0e9, 2.0e9], [2.5e9, 1.5e9]];
+        assert!(!grid.may_reach(&away, &[], 0.1));
+        let all: Vec<usize> = (0..s.edges.len()).collect();
+        assert!(!grid.may_reach(&flung, &all, 0.1), "every edge excluded");
     }
 
     #[test]

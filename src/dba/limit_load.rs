@@ -152,9 +152,18 @@ pub fn search(session: &PetscSession, model: &Model, spec: &DbaSpec, factored: &
     let m = self::model(model, spec, ll)?;
     let restart = Some(crate::io::restart::RestartFrom { file: factored.to_path_buf(), increment: None });
     let options = RunOptions { output: output.to_path_buf(), progress, verbose: false, monitor: false, restart };
-    let failure = match crate::solve::run(session, &m, &options) {
+    let budget = ll.search_seconds.map(crate::interrupt::Budget::start);
+    let outcome = crate::solve::run(session, &m, &options);
+    drop(budget);
+    let failure = match outcome {
         Ok(_) => return Ok(LimitLoad { carried: true, reached: Some(ll.search_to), failed_in: None }),
-        Err(Error::NotConverged { step, load_factor, reason }) => Stop { step, factor: Some(ll.factor + (ll.search_to - ll.factor) * load_factor), why: first_clause(&reason) },
+        Err(Error::NotConverged { step, load_factor, reason }) => {
+            Stop { step, factor: Some(ll.factor + (ll.search_to - ll.factor) * load_factor), why: first_clause(&reason) }
+        }
+        Err(Error::Interrupted { signal: "its time budget", .. }) => {
+            let seconds = ll.search_seconds.unwrap_or_default();
+            Stop { step: SEARCH_STEP.into(), factor: None, why: format!("the search stopped at its budget of {seconds} s") }
+        }
         Err(e) => return Err(e),
     };
     // the last converged increment, from the file the run kept (its history from the start)

@@ -200,17 +200,18 @@ fn not_shown(check: &str, e: Error, file: &Path, rule: &str) -> Result<CheckRow>
 }
 
 fn limit_load_row(a: &limit_load::LimitLoad, ll: &spec::LimitLoadSpec) -> CheckRow {
-    // where and why: "at the smallest increment" says a collapse; anything else in the solver's words
-    let at = |stop: &limit_load::Stop| {
-        let why = if stop.why.contains("min_increment") { "at the smallest increment".to_string() } else { stop.why.clone() };
-        stop.factor.map_or(format!(", {why}"), |f| format!(" at x {f:.4}, {why}"))
-    };
+    // a collapse is where Newton fails at the smallest increment; any other stop is said
+    let collapse = |stop: &limit_load::Stop| stop.why.contains("min_increment");
     let criterion = match &a.failed_in {
         // the factored run alone, before the search
         None if a.reached == Some(ll.factor) => format!("the loads x {} carried (the collapse search follows)", ll.factor),
         None => format!("the loads x {} carried (collapse above x {})", ll.factor, ll.search_to),
-        Some(stop) if !a.carried => format!("the loads x {} carried: not so, Newton failed in step '{}'{}", ll.factor, stop.step, at(stop)),
-        Some(stop) => format!("the loads x {} carried; the collapse load factor (Newton failed{})", ll.factor, at(stop)),
+        Some(stop) if !a.carried => {
+            let at = stop.factor.map_or(String::new(), |f| format!(" at x {f:.4}"));
+            format!("the loads x {} carried: not so, Newton failed in step '{}'{at} ({})", ll.factor, stop.step, stop.why)
+        }
+        Some(stop) if collapse(stop) => format!("the loads x {} carried; the collapse load factor: Newton fails just past it", ll.factor),
+        Some(stop) => format!("the loads x {} carried; the search stopped at the figure ({})", ll.factor, stop.why),
     };
     CheckRow {
         check: "plastic collapse, limit load".into(),
@@ -414,4 +415,27 @@ pub fn read(path: &Path) -> Result<Option<Verdict>> {
     let listed = g.attr("results").and_then(|a| a.read_scalar::<hdf5::types::VarLenUnicode>()).map_err(bad)?.to_string();
     let files = listed.split("; ").filter_map(|entry| entry.split_once(": ")).map(|(name, file)| (name.to_string(), PathBuf::from(file))).collect();
     Ok(Some(Verdict { rows, files }))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A check whose analysis stops without converging fails, saying where; any other error
+    /// is passed on (it is not the check's answer).
+    #[test]
+    fn an_analysis_that_does_not_converge_fails_its_check_and_says_where() {
+        let stopped = Error::NotConverged {
+            step: "compress".into(),
+            load_factor: 0.3698,
+            reason: "DIVERGED_MAX_IT after 25 Newton iterations; the 25 converged increments before are in x.h5".into(),
+        };
+        let row = not_shown("ratcheting", stopped, Path::new("dir/out_ratcheting.h5"), "VIII-2 5.5.7.2").unwrap();
+        assert_eq!(row.passes, Some(false));
+        assert!(row.criterion.contains("step 'compress' at load factor 0.3698 (DIVERGED_MAX_IT after 25 Newton iterations;"), "{}", row.criterion);
+        assert!(row.criterion.contains("out_ratcheting.h5") && !row.criterion.contains("dir/"), "{}", row.criterion);
+        let verdict = Verdict { rows: vec![row], files: Vec::new() };
+        assert!(!verdict.passes() && table(&verdict, "t").contains("FAIL"));
+        assert!(not_shown("ratcheting", Error::input("bad"), Path::new("x.h5"), "r").is_err());
+    }
 }

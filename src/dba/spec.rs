@@ -84,6 +84,11 @@ pub struct LimitLoadSpec {
     /// Increments of that search (each cut back down to the deck's min_increment).
     #[serde(default = "search_increments")]
     pub search_increments: usize,
+    /// The search's time budget, s (none: until Newton fails at the smallest increment): past
+    /// it the search stops after its increment under way, the figure "collapse above" the
+    /// factor reached. The check's verdict is known before the search starts.
+    #[serde(default)]
+    pub search_seconds: Option<f64>,
     /// The general steps the analysis keeps, in the deck's order (default: every one): those
     /// that carry the primary loads, without a stroke that is a secondary load.
     pub steps: Option<Vec<String>>,
@@ -167,6 +172,9 @@ impl DbaSpec {
             }
             if l.search_increments == 0 {
                 return bad("limit_load.search_increments must be at least 1".into());
+            }
+            if let Some(t) = l.search_seconds.filter(|t| !(*t > 0.0 && t.is_finite())) {
+                return bad(format!("limit_load.search_seconds must be > 0 s, got {t}"));
             }
             if let Some(steps) = &l.steps {
                 let general: Vec<&str> = model.general_steps().map(|s| s.name.as_str()).collect();

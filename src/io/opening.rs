@@ -68,8 +68,10 @@ fn open_after_the_first_rank(path: &Path) -> hdf5::Result<hdf5::File> {
     loop {
         let file = hdf5::File::open(path);
         let repaired = match &file {
-            Ok(f) => !super::h5ffi::end_of_allocation(f).is_ok_and(|eoa| eoa < std::fs::metadata(path).map(|m| m.len()).unwrap_or(0))
-                || super::lock::writer_may_be_alive(path),
+            Ok(f) => {
+                !super::h5ffi::end_of_allocation(f).is_ok_and(|eoa| eoa < std::fs::metadata(path).map(|m| m.len()).unwrap_or(0))
+                    || super::lock::writer_may_be_alive(path)
+            }
             Err(_) => false,
         };
         if repaired || start.elapsed() >= REPAIR_WAIT {
