@@ -95,7 +95,7 @@ for c in cycles(modules) or [["none"]]:
             print(f"     {a} -> {b}: {', '.join(why[:6])}{' ...' if len(why) > 6 else ''}")
 # the layers (docs/code.md), lowest first: a module imports only from its own layer or below
 LAYERS = [
-    ["error", "output_path", "ad", "interrupt"],
+    ["error", "output_path", "ad", "interrupt", "launch"],
     ["fe", "material", "element"],
     ["model"],
     ["contact"],

@@ -94,7 +94,18 @@ pub fn first_ten(items: &[impl Display]) -> String {
 
 #[cfg(test)]
 mod list_tests {
-    use super::first_ten;
+    use super::{first_ten, shown};
+
+    /// A sum's round-off is not printed (seen before: "3 Db = 180.89999999999998 mm",
+    /// "2.4000000000000004"), a huge value not in 301 digits.
+    #[test]
+    fn a_computed_number_is_shown_as_its_ten_digits_say() {
+        assert_eq!(shown(3.0 * 60.3), "180.9");
+        assert_eq!(shown(3.0 * 0.8), "2.4");
+        assert_eq!(shown(1e300), "1e300");
+        assert_eq!(shown(f64::NAN), "NaN");
+        assert_eq!(shown(0.1234567891234), "0.1234567891");
+    }
 
     #[test]
     fn a_long_list_shows_its_first_ten_and_counts_the_rest() {

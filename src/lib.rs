@@ -1,5 +1,5 @@
 //! slideline: a parallel nonlinear finite-element solver on PETSc for axisymmetric solids in
-//! contact. Layers (see DESIGN.md): readers -> `model`; pure kernels (`fe`, `material`,
+//! contact. Layers (see docs/code.md): readers -> `model`; pure kernels (`fe`, `material`,
 //! `element`); parallel drivers (`dist`, `solve`, `io`) over the `petsc` binding.
 #![deny(unsafe_code)]
 #![deny(unsafe_op_in_unsafe_fn)]

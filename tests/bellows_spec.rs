@@ -67,6 +67,8 @@ fn the_sample_report_passes_with_its_printed_figures() {
     assert!(text.contains("ASME VIII-1 Mandatory Appendix 26 (2013 edition)") && text.contains("EJMA as-formed austenitic curve"), "{text}");
     assert!(text.lines().last().unwrap() == "verdict: PASS: every check", "{text}");
     assert!(!text.contains("far beyond"), "{text}");
+    // EJMA's curve takes no moduli: none is printed (seen before: "Eo / Eb 1.000")
+    assert!(text.contains("EJMA as-formed austenitic curve with Kg 1;") && !text.contains("Eo / Eb"), "{text}");
 }
 
 #[test]
@@ -126,6 +128,12 @@ fn bad_specifications_are_named() {
         ),
         ("pressure = 0.3", "pressure = -0.1", vec!["design.pressure", "external pressure is not checked yet"]),
         ("fatigue_curve = \"ejma\"", "fatigue_curve = \"best\"", vec!["[code] fatigue_curve", "unknown variant"]),
+        // bounded as the flags are (seen failing before: a 300-digit S6 and an S6 of 9e11 MPa,
+        // exit 0), an enum's message with its key and line (seen before: "did not match any
+        // variant of untagged enum Property")
+        ("coefficients = [0.67, 1.57, 1.68]", "coefficients = [1e300, 1.57, 1.68]", vec!["bellows.coefficients", "Cp 1e300 is off the codes' charts"]),
+        ("lateral = 1.0", "lateral = 1e9", vec!["design.lateral", "1e9 is more than the joint can take", "at most 144 mm"]),
+        ("allowable_stress = 129.6", "allowable_stress = \"high\"", vec!["[material] allowable_stress", ":27:", "give a number in slideline's units"]),
     ] {
         let run = check_only(&changed(name, from, to, dir.path()));
         assert_rejected(&run, &needles);
@@ -133,6 +141,30 @@ fn bad_specifications_are_named() {
     // a flag a specification has no value for; a flag's value checked as the file's
     assert_rejected(&check_only_with(&spec_file(name), &["--torus-radius", "1.3"]), &["--torus-radius with --spec", "crest_radius, root_radius"]);
     assert_rejected(&check_only_with(&spec_file(name), &["--pitch", "5"]), &["bellows.pitch", "overlap"]);
+    // a torus radius the user gave alone is named as such (seen before: "2 (root radius +
+    // crest radius)", radii the user never gave)
+    let dir = tempfile::tempdir().unwrap();
+    let out =
+        command_in(dir.path(), 1).args(["bellows", "--torus-radius", "20", "--quick", "--mesh-only", "-o", "m.h5"]).current_dir(dir.path()).output().unwrap();
+    let run = Run { h5: dir.path().join("m.h5"), dir, output: out };
+    assert_rejected(&run, &["a pitch of 24 is less than 4 x the torus radius = 80"]);
+}
+
+/// The DN400 joint of a bellows engineer (tests/data/specs/dn400_rev_c.toml): the code's
+/// figures as their hand check gives them (S1 100.8, S2 58.7, S3 9.68, S4 221.0 MPa, Kb 536.2
+/// N/mm, Psc 2.045, Psi 1.698 MPa), and S6 as the conservative Cd makes it: their 641 MPa with
+/// the solid ply's Cd, times 1.051; the life then 2874 cycles against the 3000 required (their
+/// 3213 with the solid ply's Cd), a FAIL. Numbers rounded as printed.
+#[test]
+fn the_dn400_joint_gives_its_engineers_figures_and_the_conservative_s6() {
+    let run = check_only(&spec_file("dn400_rev_c.toml"));
+    let text = run.stdout();
+    for printed in
+        ["S1 100.8, S2 58.7, S3 9.68, S4 221.0", "axial rate Kb 536.2 N/mm", "<= 2.045 MPa", "<= 1.698 MPa", "S6 673.7 MPa", "2874       >= 3000 cycles"]
+    {
+        assert!(text.contains(printed), "{printed:?} not in\n{text}");
+    }
+    assert!(text.contains("Cd computed from the solid ply / 1.051") && text.lines().last() == Some("verdict: FAIL: fatigue"), "{text}");
 }
 
 /// The seed joint written as a specification (examples/seed_joint.toml) is the joint

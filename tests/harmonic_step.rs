@@ -303,7 +303,10 @@ boundary = [ {{ set = "lower_bottom", ur = 0.0, uz = 0.0, ut = 0.0 }}, {{ set = 
     let apart = run_deck(&deck(sticking, "without_contact = [\"joint\"]"), &[], 1, &[]);
     apart.assert_ok();
     let free = force(&apart);
-    assert!(free.abs() < 1e-9 * stuck, "the pair left out: {free} N");
+    // nothing joins the halves: the force is the solve's round-off, 1.3e-9 of the stuck force
+    // on a machine whose BLAS rounds otherwise (it was held to 1e-9, and failed there), far
+    // below the frictionless joint's 2.8e-6
+    assert!(free.abs() < 1e-8 * stuck && free.abs() < 1e-2 * slipping.abs(), "the pair left out: {free} N");
     let bad = run_deck(&deck(sticking, "without_contact = [\"seal\"]"), &[], 1, &[]);
     assert_eq!(bad.code(), 2, "{}", bad.stderr());
     assert!(bad.stderr().contains("without_contact: no contact pair 'seal'"), "{}", bad.stderr());

@@ -47,6 +47,11 @@ pub fn fail(e: &Error, print: bool) -> ExitCode {
         // messages about the exit
         use std::io::Write as _;
         let _ = std::io::stderr().write_all(format!("error: {e}\n").as_bytes());
+    } else {
+        // mpirun ends the whole job when the first rank exits with an error: the ranks that
+        // say nothing leave rank 0 the time to say why (seen: a loaded machine's rank 1 exited
+        // before rank 0 had written its line, and the refusal came without one)
+        std::thread::sleep(std::time::Duration::from_millis(500));
     }
     ExitCode::from(e.exit_code() as u8)
 }

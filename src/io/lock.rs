@@ -126,7 +126,14 @@ fn take(lock: &Path, results: &Path) -> Result<Taken> {
         let _ = std::fs::remove_file(&draft);
         return Err(cannot(e));
     }
-    let link = || std::fs::hard_link(&draft, lock);
+    // a file system without hard links (some network and FAT ones) gets the lock created in
+    // place, exclusively, and written
+    let link = || match std::fs::hard_link(&draft, lock) {
+        Err(e) if e.kind() != std::io::ErrorKind::AlreadyExists => {
+            std::fs::OpenOptions::new().write(true).create_new(true).open(lock).and_then(|mut f| f.write_all(me().as_bytes()))
+        }
+        linked => linked,
+    };
     let outcome = match link() {
         Ok(()) => Ok(Taken::New(None)),
         Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => {

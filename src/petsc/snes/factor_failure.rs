@@ -83,6 +83,8 @@ mod tests {
         assert!(mumps_error(-9, 1234).contains("-mat_mumps_icntl_14") && mumps_error(-9, 1234).contains("INFOG(2) = 1234"));
         assert!(mumps_error(-19, 5).contains("-mat_mumps_icntl_23"));
         assert!(mumps_error(-99, 0).contains("Error diagnostics"));
-        assert!(super::memory_error(-9) && super::memory_error(-19) && !super::memory_error(-10) && !super::memory_error(-6));
+        // the machine's memory and its cap stay; a workspace the values' pivots outgrew, a
+        // singular tangent may change with a smaller increment
+        assert!(super::memory_error(-13) && super::memory_error(-19) && !super::memory_error(-9) && !super::memory_error(-10) && !super::memory_error(-6));
     }
 }
