@@ -227,9 +227,8 @@ pub fn coefficients(session: &PetscSession, c1: &[f64], c2: &[f64], fineness: sl
     }
     if root {
         println!(
-            "chart coefficients of the idealised U-shaped convolution (computed; the code check takes Cd / {}: {}):\n      C1       C2       Cp       Cf       Cd  Cd code",
-            slideline::bellows::convolution::CD_EXCESS,
-            "its largest excess over the charts' printed points"
+            "chart coefficients of the idealised U-shaped convolution (computed; the code check takes Cd / {}: its largest excess over the charts' printed points):\n      C1       C2       Cp       Cf       Cd  Cd code",
+            slideline::bellows::convolution::CD_EXCESS
         );
     }
     let mut table = Vec::new();

@@ -136,7 +136,7 @@ pub fn run_factored(session: &PetscSession, model: &Model, spec: &DbaSpec, outpu
             let rows = crate::io::reader::ResultsReader::open(output)?.history_rows()?;
             // in the last factored step its loads are the factor times lambda of the design's
             let reached = rows.last().filter(|(_, r)| r.step == last_step).map(|(_, r)| ll.factor * r.load_factor);
-            let factor = (m.general_steps().last().is_some_and(|s| s.name == step)).then(|| ll.factor * load_factor);
+            let factor = m.general_steps().last().is_some_and(|s| s.name == step).then_some(ll.factor * load_factor);
             Ok(LimitLoad { carried: false, reached, failed_in: Some(Stop { step, factor, why: first_clause(&reason) }) })
         }
         Err(e) => Err(e),
