@@ -105,7 +105,7 @@ pub fn post(args: &PostArgs) -> Result<(), Error> {
         out += &format!("picture: {}\n", post::plot(&r, path)?.display());
     }
     if !args.linearize.is_empty() {
-        out += &post::linearize(&r, &args.linearize, post::increment_number(&r, increment)?)?;
+        out += &post::sections::linearize(&r, &args.linearize, post::increment_number(&r, increment)?)?;
     }
     print_quietly_on_closed_pipe(&out)
 }

@@ -179,6 +179,21 @@ impl<'a> StressSampler<'a> {
         self.holding(p).next().map(|(e, _)| e)
     }
 
+    /// How many walls the section a -> b crosses: one more than the times it passes from an
+    /// element to one that shares no node with it (an interface between bodies meshed apart,
+    /// such as the plies of a pack in contact), read at the middles of 1000 equal pieces (a
+    /// section that starts on an interface starts in the wall it runs into).
+    pub fn walls_crossed(&self, a: [f64; 2], b: [f64; 2]) -> usize {
+        const POINTS: usize = 1000;
+        let along: Vec<usize> = (0..POINTS)
+            .map(|k| (k as f64 + 0.5) / POINTS as f64)
+            .filter_map(|t| self.element_at([a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])]))
+            .collect();
+        let nodes = |e: usize| &self.elements[e][..Shape::of(&self.elements[e]).nodes()];
+        let apart = |e: usize, f: usize| !nodes(e).iter().any(|n| nodes(f).contains(n));
+        1 + along.windows(2).filter(|w| w[0] != w[1] && apart(w[0], w[1])).count()
+    }
+
     /// As [`Self::at`], each component held within the element's own Gauss values: for a field
     /// that is bounded pointwise (an equivalent plastic strain, or its growth, never below
     /// zero), where a polynomial through steep Gauss values would undershoot between them.
