@@ -282,27 +282,7 @@ impl BellowsParams {
                 return Err(Error::input(format!("bellows: {name} must be at least 1")));
             }
         }
-        let (rr, rc) = (self.torus_radius, self.crest());
-        let pack = self.pack_thickness();
-        for (name, r) in [("torus radius", rr), ("crest radius", rc)] {
-            if r <= pack / 2.0 {
-                return Err(Error::input(format!("bellows: {name} {r} must exceed half the ply pack ({}): the inner ply would fold onto itself", pack / 2.0)));
-            }
-        }
-        // radial sidewalls at q = 2 (rr + rc), tapered ones wider; narrower would fold them back
-        if self.pitch < 2.0 * (rr + rc) - 1e-9 {
-            // named as the user gave the radii: a torus radius alone, or the root's and crest's
-            let radii = if self.crest_radius.is_some() { "2 (root radius + crest radius)" } else { "4 x the torus radius" };
-            return Err(Error::input(format!(
-                "bellows: a pitch of {} is less than {radii} = {}: U-shaped convolutions' sidewalls would fold back over each other",
-                crate::error::shown(self.pitch),
-                crate::error::shown(2.0 * (rr + rc))
-            )));
-        }
-        if self.sidewall() < 0.0 {
-            let torus = if self.crest_radius.is_some() { "the root and crest radii" } else { "two torus radii" };
-            return Err(Error::input(format!("bellows: convolution height {} is less than {torus} ({})", self.height, rr + rc)));
-        }
+        self.validate_convolution()?;
         let convoluted = self.convolutions as f64 * self.pitch;
         let gap = self.length - 2.0 * self.tube_length;
         if (gap - convoluted).abs() > 1e-6 {
@@ -348,6 +328,33 @@ impl BellowsParams {
                 "bellows: the mesh would have about {elements:.3e} elements, more than {} (coarsen --ply-elements, --ply-element-length, --wall-elements or --wall-element-length)",
                 crate::model::mesh::MAX_GENERATED_ELEMENTS
             )));
+        }
+        Ok(())
+    }
+
+    /// The U-shaped convolution's own checks: tori that hold the ply pack, sidewalls that do not
+    /// fold back, a height that holds both tori; named as the user gave the radii.
+    fn validate_convolution(&self) -> Result<()> {
+        let (rr, rc) = (self.torus_radius, self.crest());
+        let pack = self.pack_thickness();
+        for (name, r) in [("torus radius", rr), ("crest radius", rc)] {
+            if r <= pack / 2.0 {
+                return Err(Error::input(format!("bellows: {name} {r} must exceed half the ply pack ({}): the inner ply would fold onto itself", pack / 2.0)));
+            }
+        }
+        // radial sidewalls at q = 2 (rr + rc), tapered ones wider; narrower would fold them back
+        if self.pitch < 2.0 * (rr + rc) - 1e-9 {
+            // named as the user gave the radii: a torus radius alone, or the root's and crest's
+            let radii = if self.crest_radius.is_some() { "2 (root radius + crest radius)" } else { "4 x the torus radius" };
+            return Err(Error::input(format!(
+                "bellows: a pitch of {} is less than {radii} = {}: U-shaped convolutions' sidewalls would fold back over each other",
+                crate::error::shown(self.pitch),
+                crate::error::shown(2.0 * (rr + rc))
+            )));
+        }
+        if self.sidewall() < 0.0 {
+            let torus = if self.crest_radius.is_some() { "the root and crest radii" } else { "two torus radii" };
+            return Err(Error::input(format!("bellows: convolution height {} is less than {torus} ({})", self.height, rr + rc)));
         }
         Ok(())
     }
