@@ -159,7 +159,9 @@ pub fn run(session: &PetscSession, model: &Model, spec: &DbaSpec, output: &Path,
             let [figure, _, _] = row.cells();
             println!("  -> {}: {} {figure}", row.check, row.criterion);
         }
-        verdict.rows[0] = row;
+        if let Some(first) = verdict.rows.iter_mut().find(|r| r.check == row.check) {
+            *first = row;
+        }
         verdict.files.push((SEARCH.to_string(), file));
     }
     Ok(verdict)
