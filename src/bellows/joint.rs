@@ -294,7 +294,16 @@ pub fn mesh(p: &BellowsParams) -> Result<(Mesh, MeshSets)> {
     mesh.node_ids = (1..=mesh.coords.len() as u64).collect();
     mesh.element_ids = (1..=mesh.elements.len() as u64).collect();
 
-    // named sets
+    let out = joint_sets(&mesh, &sets, p);
+    Ok((mesh, out))
+}
+
+/// The joint's named sets over the assembled `mesh` (the parts' `sets` prefixed): everything,
+/// the two ends, the parts' surfaces, and the wetted boundary.
+fn joint_sets(mesh: &Mesh, sets: &MeshSets, p: &BellowsParams) -> MeshSets {
+    let ri = p.tube_inner_radius;
+    let (za, zb) = (p.tube_length, p.length - p.tube_length);
+    let (sa, sb) = (za - p.sleeve_overlap, zb + p.sleeve_overlap);
     let mut out = MeshSets { element_sets: sets.element_sets.clone(), ..MeshSets::default() };
     out.element_sets.insert("all".into(), (0..mesh.elements.len()).collect());
     out.node_sets.insert("all".into(), (0..mesh.coords.len()).collect());
@@ -303,7 +312,7 @@ pub fn mesh(p: &BellowsParams) -> Result<(Mesh, MeshSets)> {
     out.node_sets.insert("moving_end".into(), nodes_where(&|c| (c[1] - p.length).abs() < 1e-9 && c[0] >= ri - 1e-9));
     for (name, edges) in &sets.surfaces {
         if !edges.is_empty() {
-            out.add_surface(&mesh, name, edges.clone());
+            out.add_surface(mesh, name, edges.clone());
         }
     }
     // the wetted boundary: everything the fluid reaches. The sleeve is a liner, not a seal, so
@@ -330,8 +339,8 @@ pub fn mesh(p: &BellowsParams) -> Result<(Mesh, MeshSets)> {
         .chain(surface("tube_b_bottom"))
         .chain(surface("ply1_inner"))
         .collect();
-    out.add_surface(&mesh, "wetted", wetted);
-    Ok((mesh, out))
+    out.add_surface(mesh, "wetted", wetted);
+    out
 }
 
 fn block(name: &str, r: &[f64], z: &[f64]) -> (String, Mesh, MeshSets) {
