@@ -97,6 +97,15 @@ fn the_limit_load_of_a_thick_sphere_is_reached_by_converged_increments_only() {
     let carried = -2.0 * reaction / (a * a * p);
     eprintln!("the supports carry {carried:.5} times the design pressure's resultant");
     assert!((carried / figure - 1.0).abs() < 1e-4, "the supports carry {carried}, the figure says {figure}");
+    // a search out of time stops, says so, and keeps the verdict
+    let deck = std::fs::read_to_string(run.dir.path().join("thick_sphere.toml")).unwrap();
+    std::fs::write(run.dir.path().join("thick_sphere.toml"), deck.replace("search_to = 3.0 }", "search_to = 3.0, search_seconds = 0.001 }")).unwrap();
+    let h5 = run.dir.path().join("late.h5");
+    let out = command_in(run.dir.path(), 1).current_dir(run.dir.path()).arg("check").arg("thick_sphere.toml").arg("-o").arg(&h5).output().expect("slideline");
+    let late = Run { dir: run.dir, output: out, h5 };
+    late.assert_ok();
+    assert!(late.stdout().contains("the search stopped at the figure (the search stopped at its budget of 0.001 s)"), "{}", late.stdout());
+    assert_eq!(texts(&Results::open(&late.h5), "dba/verdict")[0], "PASS");
 }
 
 #[test]

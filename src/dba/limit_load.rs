@@ -160,7 +160,7 @@ pub fn search(session: &PetscSession, model: &Model, spec: &DbaSpec, factored: &
         Err(Error::NotConverged { step, load_factor, reason }) => {
             Stop { step, factor: Some(ll.factor + (ll.search_to - ll.factor) * load_factor), why: first_clause(&reason) }
         }
-        Err(Error::Interrupted { signal: "its time budget", .. }) => {
+        Err(Error::Interrupted { signal, .. }) if signal == crate::interrupt::name(crate::interrupt::BUDGET) => {
             let seconds = ll.search_seconds.unwrap_or_default();
             Stop { step: SEARCH_STEP.into(), factor: None, why: format!("the search stopped at its budget of {seconds} s") }
         }
@@ -177,6 +177,6 @@ pub fn search(session: &PetscSession, model: &Model, spec: &DbaSpec, factored: &
 }
 
 /// The solver's reason up to its first ';' (the rest names the file, which the table does).
-fn first_clause(reason: &str) -> String {
+pub(super) fn first_clause(reason: &str) -> String {
     reason.split(';').next().unwrap_or_default().to_string()
 }

@@ -156,8 +156,7 @@ pub fn run(session: &PetscSession, model: &Model, spec: &DbaSpec, output: &Path,
         let answer = limit_load::search(session, model, spec, &factored, &file, progress)?;
         let row = limit_load_row(&answer, ll);
         if say {
-            let [figure, _, _] = row.cells();
-            println!("  -> {}: {} {figure}", row.check, row.criterion);
+            println!("{}", row.announced());
         }
         if let Some(first) = verdict.rows.iter_mut().find(|r| r.check == row.check) {
             *first = row;
@@ -171,10 +170,7 @@ impl Verdict {
     /// Check `name`'s rows and file, its rows printed at once when `say`.
     fn add(&mut self, name: &str, file: PathBuf, rows: Vec<CheckRow>, say: bool) {
         if say {
-            for r in &rows {
-                let [figure, limit, verdict] = r.cells();
-                println!("  -> {}: {} {figure} {limit} {} {verdict}", r.check, r.criterion, r.unit);
-            }
+            rows.iter().for_each(|r| println!("{}", r.announced()));
         }
         self.rows.extend(rows);
         self.files.push((name.to_string(), file));
@@ -190,7 +186,7 @@ fn not_shown(check: &str, e: Error, file: &Path, rule: &str) -> Result<CheckRow>
         check: check.into(),
         criterion: format!(
             "not shown: its analysis stopped in step '{step}' at load factor {load_factor:.4} ({}; its converged increments in {})",
-            reason.split(';').next().unwrap_or_default(),
+            limit_load::first_clause(&reason),
             file.file_name().unwrap_or_default().to_string_lossy()
         ),
         figure: None,
@@ -320,6 +316,12 @@ fn fatigue_rows(a: &fatigue::Fatigue) -> Vec<CheckRow> {
 const LOAD_FACTOR: &str = "x loads";
 
 impl CheckRow {
+    /// The line that says the row as soon as its check ends.
+    fn announced(&self) -> String {
+        let [figure, limit, verdict] = self.cells();
+        format!("  -> {}: {} {figure} {limit} {} {verdict}", self.check, self.criterion, self.unit)
+    }
+
     /// The row's figure, limit and verdict as the table prints them.
     pub fn cells(&self) -> [String; 3] {
         let figure = match (self.figure, self.unit.as_str()) {

@@ -56,8 +56,8 @@ fn open_waiting_for_lock(path: &Path) -> Result<hdf5::File> {
 /// Only the launch's rank 0 repairs a file, so that no rank opens it while another rewrites its
 /// superblock (HDF5 then read "sblock->base_addr = 0" on the other rank); the launcher's
 /// environment says which rank this is, since a file is opened before MPI starts too (a
-/// restart's deck). How long another rank waits for the first to repair a file before it takes the file as it
-/// is (the first rank's own error then says what is wrong).
+/// restart's deck). Another rank waits this long for the repair, then takes the file as it is
+/// (rank 0's own error then says what is wrong).
 const REPAIR_WAIT: std::time::Duration = std::time::Duration::from_secs(10);
 
 /// The file opened by a rank other than the first: as it opens, once no repair is needed (a
@@ -67,13 +67,7 @@ fn open_after_the_first_rank(path: &Path) -> hdf5::Result<hdf5::File> {
     let start = std::time::Instant::now();
     loop {
         let file = hdf5::File::open(path);
-        let repaired = match &file {
-            Ok(f) => {
-                !super::h5ffi::end_of_allocation(f).is_ok_and(|eoa| eoa < std::fs::metadata(path).map(|m| m.len()).unwrap_or(0))
-                    || super::lock::writer_may_be_alive(path)
-            }
-            Err(_) => false,
-        };
+        let repaired = file.as_ref().is_ok_and(|f| !needs_allocation_repair(path, f));
         if repaired || start.elapsed() >= REPAIR_WAIT {
             return file;
         }
@@ -109,9 +103,7 @@ fn repair_with_h5clear(path: &Path, args: &[&str], what: &str) -> Option<String>
 /// increments then fails with "addr overflow"); with no run writing it, the mark is set to the
 /// file's size, as `h5clear --increment=0` does. A file closed cleanly ends at its mark.
 fn repair_short_allocation(path: &Path, file: hdf5::File) -> hdf5::Result<hdf5::File> {
-    let size = std::fs::metadata(path).map(|m| m.len()).unwrap_or(0);
-    let short = super::h5ffi::end_of_allocation(&file).is_ok_and(|eoa| eoa < size);
-    if !short || super::lock::writer_may_be_alive(path) {
+    if !needs_allocation_repair(path, &file) {
         return Ok(file);
     }
     drop(file);
@@ -120,6 +112,13 @@ fn repair_short_allocation(path: &Path, file: hdf5::File) -> hdf5::Result<hdf5::
         None => eprintln!("note: {}: left by a writer that was killed, and h5clear could not repair it: increments may not read", path.display()),
     }
     hdf5::File::open(path)
+}
+
+/// Whether `file` (open at `path`) ends its allocation short of the file's size with no live
+/// run writing it: what [`repair_short_allocation`] mends.
+fn needs_allocation_repair(path: &Path, file: &hdf5::File) -> bool {
+    let size = std::fs::metadata(path).map(|m| m.len()).unwrap_or(0);
+    super::h5ffi::end_of_allocation(file).is_ok_and(|eoa| eoa < size) && !super::lock::writer_may_be_alive(path)
 }
 
 /// HDF5's signature, at the start of every file slideline writes.
