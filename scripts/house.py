@@ -1,8 +1,10 @@
 #!/usr/bin/env python3
 """The house's measures, from the source alone: import circles between modules (the directories
-under src/) and between files, the functions longer than 150 lines and the files with more than
-600 lines of non-test code. A file imports another when it names a path under `crate::`
-(a `use` or a path in the code) that resolves to it.
+under src/) and between files, imports against the layers, the functions longer than 120 lines
+and the files with more than 550 lines of non-test code. A file imports another when it names
+a path (`crate::`, `super::`, `self::`, a child module's) that resolves to it, in a `use` or in
+the code, followed through re-exports (`pub use`) to the file that defines the name. Exits 1
+when it finds anything.
     scripts/house.py [src]"""
 import os, re, sys
 from collections import defaultdict
@@ -26,34 +28,86 @@ def code_of(text):
     text = text[: cut.start()] if cut else text
     return re.sub(r"//[^\n]*", "", text)
 
-def resolve(path):
-    """The longest file module that `path` (a::b::c) names."""
+def expand(tree):
+    """The paths a `use` tree names: `a::{b, c::{d, e}}` gives a::b, a::c::d, a::c::e."""
+    tree = re.sub(r"\s+", "", re.sub(r"\s+as\s+\w+", "", tree))
+    m = re.match(r"^([\w:]*?)(::)?\{(.*)\}$", tree)
+    if not m:
+        return [tree]
+    head, inner = m.group(1), m.group(3)
+    parts, depth, cur = [], 0, ""
+    for ch in inner:
+        depth += ch == "{"
+        depth -= ch == "}"
+        if ch == "," and depth == 0:
+            parts.append(cur); cur = ""
+        else:
+            cur += ch
+    parts.append(cur)
+    out = []
+    for p in filter(None, parts):
+        for t in expand(p):
+            out.append(head + "::" + t if head and t != "self" else head or t)
+    return out
+
+def absolute(mod, path):
+    """`path` as written in module `mod`, from the crate's root, or None for a path outside
+    the crate (`slideline::` in the binary's files is the crate)."""
+    here = mod.split("::") if mod not in ("", "lib", "main") else []
     parts = path.split("::")
-    while parts:
-        name = "::".join(parts)
-        if name in files:
-            return name
-        parts = parts[:-1]
+    if parts[0] in ("crate", "slideline"):
+        return parts[1:]
+    if parts[0] == "self":
+        return here + parts[1:]
+    if parts[0] == "super":
+        base = here[:]
+        while parts and parts[0] == "super":
+            base = base[:-1]
+            parts = parts[1:]
+        return base + parts
+    # a bare path: a child module of this one (`use results::X` in io/mod.rs)
+    if "::".join(here + parts[:1]) in files:
+        return here + parts
     return None
 
+def resolve(parts, seen=()):
+    """The file module that the path `parts` names: its longest file-module prefix, followed
+    through that module's re-exports (`pub use`) of the next name (the crate root's first)."""
+    if parts and ("", parts[0]) in reexports and ("", parts[0]) not in seen:
+        return resolve(reexports[("", parts[0])] + parts[1:], seen + (("", parts[0]),))
+    for k in range(len(parts), 0, -1):
+        name = "::".join(parts[:k])
+        if name in files:
+            rest = parts[k:]
+            if rest and (name, rest[0]) in reexports and (name, rest[0]) not in seen:
+                return resolve(reexports[(name, rest[0])] + rest[1:], seen + ((name, rest[0]),))
+            return name
+    return None
+
+USE = re.compile(r"^\s*(pub(\([^)]*\))?\s+)?use\s+([^;]+);", re.M)
+codes = {mod: code_of(open(path).read()) for mod, path in files.items()}
+# the re-exports: (module, name) -> the path it stands for
+reexports = {}
+for mod, code in codes.items():
+    for m in USE.finditer(code):
+        if not m.group(1):
+            continue
+        for p in expand(m.group(3)):
+            a = absolute(mod, p)
+            if a:
+                reexports[("" if mod in ("lib", "main") else mod, p.split("::")[-1])] = a
+
 edges = defaultdict(set)
-for mod, path in files.items():
-    code = code_of(open(path).read())
-    # use crate::a::{b, c::d}; and crate::a::b paths in code; super:: relative to the module
-    for m in re.finditer(r"crate::([\w:]+)(::\{([^;]*?)\})?", code):
-        base = m.group(1).rstrip(":")
-        targets = [base]
-        if m.group(3):
-            targets = [base + "::" + t.strip().split(" as ")[0].split("::{")[0] for t in re.split(r",(?![^{]*\})", m.group(3)) if t.strip()]
-        for t in targets:
-            r = resolve(t)
-            if r and r != mod:
-                edges[mod].add(r)
-    for m in re.finditer(r"\bsuper::([\w:]+)", code):
-        parent = mod.split("::")[:-1] if not path.endswith("mod.rs") else mod.split("::")
-        parent = parent[:-1] if path.endswith("mod.rs") else parent
-        r = resolve("::".join(parent + [m.group(1)]))
-        if r and r != mod and not mod.startswith(r + "::"):
+for mod, code in codes.items():
+    paths = []
+    for m in USE.finditer(code):
+        paths += expand(m.group(3))
+    body = USE.sub("", code)
+    paths += re.findall(r"\b((?:crate|super|self|slideline)(?:::\w+)+)", body)
+    for p in paths:
+        a = absolute(mod, p)
+        r = resolve(a) if a else None
+        if r is not None and r != mod and not mod.startswith(r + "::") and r != "":
             edges[mod].add(r)
 
 def cycles(graph):
@@ -119,7 +173,8 @@ for c in cycles(edges):
 if not cycles(edges):
     print("  none")
 
-print("functions above 150 lines:")
+LONGEST_FUNCTION, LARGEST_FILE = 120, 550
+print(f"functions above {LONGEST_FUNCTION} lines:")
 long = []
 for mod, path in sorted(files.items()):
     lines = code_of(open(path).read()).split("\n")
@@ -129,14 +184,16 @@ for mod, path in sorted(files.items()):
             indent = len(m.group(1))
             for j in range(i + 1, len(lines)):
                 if lines[j].startswith(" " * indent + "}") and len(lines[j]) - len(lines[j].lstrip()) == indent:
-                    if j - i + 1 > 150:
+                    if j - i + 1 > LONGEST_FUNCTION:
                         long.append(f"  {os.path.relpath(path, src)}: {m.group(7)} {j - i + 1}")
                     break
 print("\n".join(long) or "  none")
-print("files above 600 lines before their tests:")
+print(f"files above {LARGEST_FILE} lines before their tests:")
 def lines_before_tests(path):
     """Every line before the test module, comments and blank lines too."""
     lines = open(path).read().split("\n")
     return next((i for i, l in enumerate(lines) if l.strip() == "#[cfg(test)]"), len(lines))
 big = [(lines_before_tests(p), os.path.relpath(p, src)) for p in files.values()]
-print("\n".join(f"  {p}: {n}" for n, p in sorted(big, reverse=True) if n > 600) or "  none")
+print("\n".join(f"  {p}: {n}" for n, p in sorted(big, reverse=True) if n > LARGEST_FILE) or "  none")
+found = cycles(modules) or upward or unplaced or cycles(edges) or long or any(n > LARGEST_FILE for n, _ in big)
+sys.exit(1 if found else 0)

@@ -6,6 +6,7 @@ pub mod describe;
 mod h5;
 mod h5ffi;
 mod heat;
+mod history;
 pub mod lock;
 pub mod nodal;
 mod opening;
@@ -16,7 +17,8 @@ pub mod status;
 pub mod table_file;
 pub mod xdmf;
 
-pub use results::{ContactSummary, HistoryRow, ResultsFile};
+pub use history::{ContactSummary, HistoryRow};
+pub use results::ResultsFile;
 pub mod plots;
 pub mod progress;
 pub mod reader;

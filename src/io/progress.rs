@@ -5,7 +5,7 @@
 //! ranks a pseudo-terminal whatever mpirun's own output is, so a rank cannot tell whether a
 //! person is watching. Cutbacks and notes go above the bar or between the lines.
 
-use super::HistoryRow;
+use super::history::HistoryRow;
 use indicatif::{ProgressBar, ProgressStyle};
 use std::io::IsTerminal;
 

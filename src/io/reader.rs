@@ -2,7 +2,7 @@
 //! and the history columns, for pictures, summaries and post-processing. Every failure names
 //! the file and the group or dataset that is missing, so a wrong file gives a clear message.
 
-use super::{ContactSummary, HistoryRow};
+use super::history::{ContactSummary, HistoryRow};
 use crate::error::{Error, Result};
 use crate::fe::quadrature::Integration;
 use crate::model::perturbation::Analysis;

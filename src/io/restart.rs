@@ -16,7 +16,7 @@
 
 use super::h5::{describe_dataset, group_in, h5err, write_rows};
 use super::reader::ResultsReader;
-use super::HistoryRow;
+use super::history::HistoryRow;
 use crate::element::solid::QUADRATURE_POINTS as QP;
 use crate::error::{Error, Result};
 use crate::material::backstress::MAX_BACKSTRESSES;

@@ -2,7 +2,7 @@
 //! per converged increment, each cutback and the end, appended and flushed as the run goes, so
 //! `tail -f RESULTS.sta` follows a run whatever its terminal shows. Written by rank 0.
 
-use super::HistoryRow;
+use super::history::HistoryRow;
 use crate::error::{Error, Result};
 use std::io::Write;
 use std::path::{Path, PathBuf};
