@@ -12,6 +12,7 @@ pub mod nodal;
 mod opening;
 mod perturbation;
 pub mod restart;
+pub mod state;
 pub mod results;
 pub mod status;
 pub mod table_file;

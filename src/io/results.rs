@@ -9,7 +9,7 @@
 
 use super::h5::{describe_dataset, gauss_rows, group_in, h5err, write_field, write_rows, COMPLETE, COMPLETION_MARKED, OUTPUT_EVERY, PLANE};
 use super::nodal::NodalWriter;
-use super::restart::{write_state, CommittedState};
+use super::state::{write_state, CommittedState};
 use super::xdmf;
 use super::history::HistoryRow;
 use crate::dist::Partition;

@@ -21,7 +21,7 @@ use crate::dist::{DofMap, Partition};
 use crate::element::solid::ElementEnergy;
 use crate::error::{Error, Result};
 use crate::io::progress::Progress;
-use crate::io::restart::CommittedState;
+use crate::io::state::CommittedState;
 use crate::io::status::StatusFile;
 use crate::io::{ContactSummary, HistoryRow, ResultsFile};
 use crate::material::PointState;
