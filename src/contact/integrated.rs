@@ -155,46 +155,7 @@ pub fn weighted_gaps_into(
         if !grid.may_reach(&xs, skip, capture) {
             continue;
         }
-        // split points: the middle node (the hats kink there) and the master edge ends
-        // projected onto this slave edge
-        cuts.clear();
-        cuts.extend([-1.0, 0.0, 1.0]);
-        masters.clear();
-        // the ends first: where both find the same master edge or two neighbours, the master
-        // surface runs on under the slave edge from one to the other, and the probes between
-        // would find those edges again; they are spared (a fifth of the bellows' searches).
-        // Five probes could miss a short master edge too: a cut is for accuracy, not validity
-        let mut probe = |xi: f64| {
-            let found = grid.closest_edge(master, x, point(&xs, xi), skip, capture, hint).map(|(m, _)| m);
-            if let Some(m) = found {
-                hint = Some(m);
-                if !masters.contains(&m) {
-                    masters.push(m);
-                }
-            }
-            found
-        };
-        let ends = [probe(-1.0), probe(1.0)];
-        let continuous = match ends {
-            [Some(a), Some(b)] => a == b || master.neighbours[a].contains(&Some(b)),
-            _ => false,
-        };
-        if !continuous {
-            for xi in [-0.5, 0.0, 0.5] {
-                probe(xi);
-            }
-        }
-        for &m in &masters {
-            for corner in [master.edges[m][0], master.edges[m][1]] {
-                if let Some(p) = project_on_edge(x(corner), &xs) {
-                    if p.xi > -1.0 + 1e-9 && p.xi < 1.0 - 1e-9 && p.distance <= capture {
-                        cuts.push(p.xi);
-                    }
-                }
-            }
-        }
-        cuts.sort_by(f64::total_cmp);
-        cuts.dedup_by(|a, b| (*a - *b).abs() < 1e-9);
+        split_points(&grid, master, x, &xs, skip, capture, &mut hint, &mut cuts, &mut masters);
         // the edge's nodes among the requested ones (looked up once, not per point)
         let requested = en.map(|n| slave.index_of(n).and_then(position));
         for piece in cuts.windows(2) {
@@ -239,6 +200,61 @@ pub fn weighted_gaps_into(
             }
         }
     }
+}
+
+/// Where slave edge `xs` is split for its integration, into `cuts` (in [-1, 1], sorted): its
+/// middle node (the hats kink there) and the ends of the master edges it faces projected onto
+/// it; `masters` gets those edges, `hint` the last one found.
+#[allow(clippy::too_many_arguments)]
+fn split_points(
+    grid: &EdgeGrid,
+    master: &ContactSurface,
+    x: &impl Fn(usize) -> [f64; 2],
+    xs: &[[f64; 2]; 3],
+    skip: &[usize],
+    capture: f64,
+    hint: &mut Option<usize>,
+    cuts: &mut Vec<f64>,
+    masters: &mut Vec<usize>,
+) {
+    cuts.clear();
+    cuts.extend([-1.0, 0.0, 1.0]);
+    masters.clear();
+    // the ends first: where both find the same master edge or two neighbours, the master
+    // surface runs on under the slave edge from one to the other, and the probes between
+    // would find those edges again; they are spared (a fifth of the bellows' searches).
+    // Five probes could miss a short master edge too: a cut is for accuracy, not validity
+    let mut probe = |xi: f64| {
+        let found = grid.closest_edge(master, x, point(xs, xi), skip, capture, *hint).map(|(m, _)| m);
+        if let Some(m) = found {
+            *hint = Some(m);
+            if !masters.contains(&m) {
+                masters.push(m);
+            }
+        }
+        found
+    };
+    let ends = [probe(-1.0), probe(1.0)];
+    let continuous = match ends {
+        [Some(a), Some(b)] => a == b || master.neighbours[a].contains(&Some(b)),
+        _ => false,
+    };
+    if !continuous {
+        for xi in [-0.5, 0.0, 0.5] {
+            probe(xi);
+        }
+    }
+    for &m in masters.iter() {
+        for corner in [master.edges[m][0], master.edges[m][1]] {
+            if let Some(p) = project_on_edge(x(corner), xs) {
+                if p.xi > -1.0 + 1e-9 && p.xi < 1.0 - 1e-9 && p.distance <= capture {
+                    cuts.push(p.xi);
+                }
+            }
+        }
+    }
+    cuts.sort_by(f64::total_cmp);
+    cuts.dedup_by(|a, b| (*a - *b).abs() < 1e-9);
 }
 
 fn point(x: &[[f64; 2]; 3], xi: f64) -> [f64; 2] {

@@ -9,51 +9,10 @@ const SLOTS: &str = "the 9 Gauss slots of each element (a Q8's 3 x 3 points, xi 
 pub fn describe(group: &str, name: &str) -> (&'static str, String) {
     let g = group.trim_start_matches('/');
     let top = g.split('/').next().unwrap_or("");
+    if let Some(described) = describe_sets_state_and_side_results(g, top, name) {
+        return described;
+    }
     match (top, name) {
-        ("mesh", _) if g.ends_with("node_sets") => ("-", format!("node set {name}: rows of /mesh/coordinates")),
-        ("mesh", _) if g.ends_with("element_sets") => ("-", format!("element set {name}: rows of /mesh/connectivity")),
-        ("restart", "pattern") => {
-            ("-", "contact couplings the Jacobian reserved: [increment number, rank, node id, node id], as they were added (restart)".into())
-        }
-        (_, "plastic_points") => ("-", "[element id, Gauss point] of each Gauss point that has left its initial state (restart)".into()),
-        (_, "plastic_state") => (
-            "-",
-            "committed plastic state of those points: C_p^-1 (finite strain) or eps_p (small strain) [rr, zz, tt, rz], equivalent plastic strain (restart)"
-                .into(),
-        ),
-        (_, "backstress_state") => (
-            "MPa",
-            "backstresses of those points (kinematic hardening): three terms [rr, zz, tt, rz], then their share of the plastic work (restart)".into(),
-        ),
-        (_, n) if n.starts_with("multiplier_nodes_pass") => {
-            ("-", "node ids of the slave nodes with a nonzero augmented-Lagrangian multiplier (restart)".into())
-        }
-        (_, n) if n.starts_with("slip_nodes_pass") => ("-", "node ids of the slave nodes with a slip reference (friction; restart)".into()),
-        (_, n) if n.starts_with("slip_pass") => {
-            ("-", "their slip reference: [master edge index, edge coordinate, tangential traction (MPa)] (friction; restart)".into())
-        }
-        (_, "audit_nodes") => ("-", "node ids with a reaction or a pressure load (energy audit; restart)".into()),
-        (_, "audit_forces") => {
-            ("N per radian", "their reaction (r, z) and pressure load (r, z), where the next increment's external work starts (restart)".into())
-        }
-        (_, n) if n.starts_with("multipliers_pass") => ("MPa", "their committed augmented-Lagrangian multipliers (restart)".into()),
-        ("perturbations", "amplitudes") => (
-            "mm",
-            "harmonic amplitudes [U_r, U_z, U_t] of each node: u_r = U_r cos n theta, u_z = U_z cos n theta, u_theta = U_t sin n theta (n = 0: U_t)".into(),
-        ),
-        ("perturbations", "eigenvalues") => ("-", "omega^2 (rad^2/s^2; frequency steps) or the load factor (buckle steps) of each mode, nearest zero first".into()),
-        ("perturbations", "frequencies") => ("Hz", "natural frequency of each mode (negative: the base state is unstable in it)".into()),
-        ("perturbations", "effective_mass_ring") => ("t", "each mode's effective mass along its mode's rigid motion (n = 0 axial, n = 1 lateral), full ring".into()),
-        ("perturbations", n) if n.starts_with("critical_pressure_") => ("MPa", "each mode's critical pressure on the surface: the base state's plus the load factor times the step's".into()),
-        ("perturbations", n) if n.starts_with("mode_") => ("-", "the mode's amplitudes [U_r, U_z, U_t] of each node, largest 1".into()),
-        ("perturbations", "stress") => (
-            "MPa",
-            format!("stress amplitudes [s_rr, s_zz, s_tt, s_rz, s_rt, s_zt] at {SLOTS}: the first four x cos n theta, the last two x sin n theta (n = 0: constant); D : strain"),
-        ),
-        ("perturbations", "displacement") => ("mm", "the perturbation's displacement at theta = 0 as a vector (u_r, u_z, u_theta) for ParaView's warp".into()),
-        ("heat", "temperature") => ("degC", "the heat step's steady temperature at each node".into()),
-        ("heat", "flux") => ("mW/mm^2", format!("heat flux q = -k grad T [q_r, q_z] at {SLOTS}")),
-        ("heat", "element_flux") => ("mW/mm^2", "each element's mean heat flux [q_r, q_z, 0] over its Gauss points, a vector for ParaView".into()),
         ("mesh", "coordinates") => ("mm", "r, z of each node".into()),
         ("mesh", "connectivity") => (
             "-",
@@ -127,6 +86,58 @@ pub fn describe(group: &str, name: &str) -> (&'static str, String) {
         (_, n) if n.starts_with("stress_") => ("MPa", format!("{} at the nodes (Gauss values carried to the nodes, averaged)", n.replace('_', " "))),
         _ => ("-", name.replace('_', " ")),
     }
+}
+
+/// (units, description) of the node and element sets, the restart state's datasets and the
+/// perturbation and heat steps' results; None for the increments' fields and the mesh.
+fn describe_sets_state_and_side_results(g: &str, top: &str, name: &str) -> Option<(&'static str, String)> {
+    Some(match (top, name) {
+        ("mesh", _) if g.ends_with("node_sets") => ("-", format!("node set {name}: rows of /mesh/coordinates")),
+        ("mesh", _) if g.ends_with("element_sets") => ("-", format!("element set {name}: rows of /mesh/connectivity")),
+        ("restart", "pattern") => {
+            ("-", "contact couplings the Jacobian reserved: [increment number, rank, node id, node id], as they were added (restart)".into())
+        }
+        (_, "plastic_points") => ("-", "[element id, Gauss point] of each Gauss point that has left its initial state (restart)".into()),
+        (_, "plastic_state") => (
+            "-",
+            "committed plastic state of those points: C_p^-1 (finite strain) or eps_p (small strain) [rr, zz, tt, rz], equivalent plastic strain (restart)"
+                .into(),
+        ),
+        (_, "backstress_state") => (
+            "MPa",
+            "backstresses of those points (kinematic hardening): three terms [rr, zz, tt, rz], then their share of the plastic work (restart)".into(),
+        ),
+        (_, n) if n.starts_with("multiplier_nodes_pass") => {
+            ("-", "node ids of the slave nodes with a nonzero augmented-Lagrangian multiplier (restart)".into())
+        }
+        (_, n) if n.starts_with("slip_nodes_pass") => ("-", "node ids of the slave nodes with a slip reference (friction; restart)".into()),
+        (_, n) if n.starts_with("slip_pass") => {
+            ("-", "their slip reference: [master edge index, edge coordinate, tangential traction (MPa)] (friction; restart)".into())
+        }
+        (_, "audit_nodes") => ("-", "node ids with a reaction or a pressure load (energy audit; restart)".into()),
+        (_, "audit_forces") => {
+            ("N per radian", "their reaction (r, z) and pressure load (r, z), where the next increment's external work starts (restart)".into())
+        }
+        (_, n) if n.starts_with("multipliers_pass") => ("MPa", "their committed augmented-Lagrangian multipliers (restart)".into()),
+        ("perturbations", "amplitudes") => (
+            "mm",
+            "harmonic amplitudes [U_r, U_z, U_t] of each node: u_r = U_r cos n theta, u_z = U_z cos n theta, u_theta = U_t sin n theta (n = 0: U_t)".into(),
+        ),
+        ("perturbations", "eigenvalues") => ("-", "omega^2 (rad^2/s^2; frequency steps) or the load factor (buckle steps) of each mode, nearest zero first".into()),
+        ("perturbations", "frequencies") => ("Hz", "natural frequency of each mode (negative: the base state is unstable in it)".into()),
+        ("perturbations", "effective_mass_ring") => ("t", "each mode's effective mass along its mode's rigid motion (n = 0 axial, n = 1 lateral), full ring".into()),
+        ("perturbations", n) if n.starts_with("critical_pressure_") => ("MPa", "each mode's critical pressure on the surface: the base state's plus the load factor times the step's".into()),
+        ("perturbations", n) if n.starts_with("mode_") => ("-", "the mode's amplitudes [U_r, U_z, U_t] of each node, largest 1".into()),
+        ("perturbations", "stress") => (
+            "MPa",
+            format!("stress amplitudes [s_rr, s_zz, s_tt, s_rz, s_rt, s_zt] at {SLOTS}: the first four x cos n theta, the last two x sin n theta (n = 0: constant); D : strain"),
+        ),
+        ("perturbations", "displacement") => ("mm", "the perturbation's displacement at theta = 0 as a vector (u_r, u_z, u_theta) for ParaView's warp".into()),
+        ("heat", "temperature") => ("degC", "the heat step's steady temperature at each node".into()),
+        ("heat", "flux") => ("mW/mm^2", format!("heat flux q = -k grad T [q_r, q_z] at {SLOTS}")),
+        ("heat", "element_flux") => ("mW/mm^2", "each element's mean heat flux [q_r, q_z, 0] over its Gauss points, a vector for ParaView".into()),
+        _ => return None,
+    })
 }
 
 /// The units of a plane model's dataset or column whose axisymmetric units are `units`: its

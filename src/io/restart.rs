@@ -129,23 +129,7 @@ impl RestartPoint {
         let plastic = plastic_points(&state, &elements)?;
         let (multipliers, slip) = contact_state(&state, model, &node)?;
         let audit = audit_point(&state, model, &displacement, &node)?;
-        // the rows up to the increment: each continued file holds those after its restart point,
-        // the file it continues those before (oldest first, the order the run reserved them)
-        let mut limits = vec![number];
-        for (r, _) in &chain[..chain.len() - 1] {
-            let at = r.restarted_from().map_or(0, |(_, at)| at);
-            limits.push(at.min(*limits.last().unwrap_or(&number)));
-        }
-        let mut pattern = Vec::new();
-        for ((r, _), &limit) in chain.iter().zip(&limits).rev() {
-            if !r.file().link_exists("restart/pattern") {
-                continue;
-            }
-            let rows = r.file().dataset("restart/pattern").and_then(|d| d.read_raw::<u64>()).map_err(|e| bad(format!("restart/pattern: {e}")))?;
-            for row in rows.chunks_exact(4).filter(|row| row[0] as usize <= limit) {
-                pattern.push((row[1] as usize, node(row[2])?, node(row[3])?));
-            }
-        }
+        let pattern = chain_pattern(&chain, number, &node, &bad)?;
         let load_factor = reader.increment_attr(&name, "load_factor")?;
         if !(load_factor > 0.0 && load_factor <= 1.0) {
             return Err(bad(format!("increments/{name} attribute load_factor is {load_factor}, not in (0, 1]")));
@@ -199,6 +183,34 @@ impl RestartPoint {
             last_increment,
         })
     }
+}
+
+/// The Jacobian's contact couplings reserved up to increment `number`, (rank, mesh node, mesh
+/// node), from the files of `chain` (this file first, then those it continues): each continued
+/// file holds those after its restart point, the file it continues those before (oldest first,
+/// the order the run reserved them).
+fn chain_pattern(
+    chain: &[(ResultsReader, Vec<usize>)],
+    number: usize,
+    node: &dyn Fn(u64) -> Result<usize>,
+    bad: &dyn Fn(String) -> Error,
+) -> Result<Vec<(usize, usize, usize)>> {
+    let mut limits = vec![number];
+    for (r, _) in &chain[..chain.len() - 1] {
+        let at = r.restarted_from().map_or(0, |(_, at)| at);
+        limits.push(at.min(*limits.last().unwrap_or(&number)));
+    }
+    let mut pattern = Vec::new();
+    for ((r, _), &limit) in chain.iter().zip(&limits).rev() {
+        if !r.file().link_exists("restart/pattern") {
+            continue;
+        }
+        let rows = r.file().dataset("restart/pattern").and_then(|d| d.read_raw::<u64>()).map_err(|e| bad(format!("restart/pattern: {e}")))?;
+        for row in rows.chunks_exact(4).filter(|row| row[0] as usize <= limit) {
+            pattern.push((row[1] as usize, node(row[2])?, node(row[3])?));
+        }
+    }
+    Ok(pattern)
 }
 
 /// An increment's restart state group: its datasets read (empty where absent), a refusal worded
