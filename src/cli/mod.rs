@@ -33,42 +33,7 @@ pub enum Command {
     /// PETSc options go after `--`, e.g.
     /// `slideline run cylinder.toml -- -snes_monitor -ksp_type gmres -pc_type gamg -log_view`.
     /// The PETSC_OPTIONS environment variable is honoured too.
-    Run {
-        /// The input deck: TOML (docs/deck.md), or an Abaqus/CalculiX deck (.inp; the subset in
-        /// docs/inp.md).
-        deck: PathBuf,
-        /// Results file (HDF5). Default: the deck's name with extension .h5, in the current directory.
-        #[arg(short, long)]
-        output: Option<PathBuf>,
-        /// No progress lines.
-        #[arg(short, long)]
-        quiet: bool,
-        /// The long progress line: every reaction, the contact, the residual norm.
-        #[arg(long, conflicts_with = "quiet")]
-        verbose: bool,
-        /// A line per Newton iteration: the convergence test's largest residual force and
-        /// correction against their bounds.
-        #[arg(long)]
-        monitor: bool,
-        /// Continue the run that wrote this results file (from its last complete increment, or
-        /// --increment), with this deck: the same model, possibly more increments or further steps.
-        #[arg(long, value_name = "FILE.h5")]
-        restart: Option<PathBuf>,
-        /// The increment (#N, as the run printed it) to continue from.
-        #[arg(long, value_name = "N", requires = "restart")]
-        increment: Option<usize>,
-        /// Newton's convergence test, over the deck's `[stepping] convergence`: `field`
-        /// (CalculiX's and Abaqus's) or `residual` (||F|| down by 1e-10, or to round-off).
-        #[arg(long, value_enum)]
-        convergence: Option<ConvergenceArg>,
-        /// The visualisation fields as 64-bit (`double`) or 32-bit (`single`) floats, over the
-        /// deck's `[output] precision`; the displacement, restart state, history and mesh stay 64-bit.
-        #[arg(long, value_enum)]
-        output_precision: Option<PrecisionArg>,
-        /// PETSc options (after `--`).
-        #[arg(last = true, allow_hyphen_values = true)]
-        petsc: Vec<String>,
-    },
+    Run(RunArgs),
     /// The design-by-analysis checks of ASME VIII-2 Part 5 that a deck's `[design_by_analysis]`
     /// table names (plastic collapse by the limit-load method, buckling, ratcheting), each by an
     /// analysis of its own, and their verdict table.
@@ -156,6 +121,45 @@ pub struct PostArgs {
     /// R1,Z1:R2,Z2 in mm (reference coordinates); repeat for more sections.
     #[arg(long, value_name = "R1,Z1:R2,Z2")]
     pub linearize: Vec<String>,
+}
+
+/// Flags of `slideline run`.
+#[derive(clap::Args)]
+pub struct RunArgs {
+    /// The input deck: TOML (docs/deck.md), or an Abaqus/CalculiX deck (.inp; the subset in
+    /// docs/inp.md).
+    pub deck: PathBuf,
+    /// Results file (HDF5). Default: the deck's name with extension .h5, in the current directory.
+    #[arg(short, long)]
+    pub output: Option<PathBuf>,
+    /// No progress lines.
+    #[arg(short, long)]
+    pub quiet: bool,
+    /// The long progress line: every reaction, the contact, the residual norm.
+    #[arg(long, conflicts_with = "quiet")]
+    pub verbose: bool,
+    /// A line per Newton iteration: the convergence test's largest residual force and
+    /// correction against their bounds.
+    #[arg(long)]
+    pub monitor: bool,
+    /// Continue the run that wrote this results file (from its last complete increment, or
+    /// --increment), with this deck: the same model, possibly more increments or further steps.
+    #[arg(long, value_name = "FILE.h5")]
+    pub restart: Option<PathBuf>,
+    /// The increment (#N, as the run printed it) to continue from.
+    #[arg(long, value_name = "N", requires = "restart")]
+    pub increment: Option<usize>,
+    /// Newton's convergence test, over the deck's `[stepping] convergence`: `field`
+    /// (CalculiX's and Abaqus's) or `residual` (||F|| down by 1e-10, or to round-off).
+    #[arg(long, value_enum)]
+    pub convergence: Option<ConvergenceArg>,
+    /// The visualisation fields as 64-bit (`double`) or 32-bit (`single`) floats, over the
+    /// deck's `[output] precision`; the displacement, restart state, history and mesh stay 64-bit.
+    #[arg(long, value_enum)]
+    pub output_precision: Option<PrecisionArg>,
+    /// PETSc options (after `--`).
+    #[arg(last = true, allow_hyphen_values = true)]
+    pub petsc: Vec<String>,
 }
 
 /// Flags of `slideline bellows` (mm, MPa, degC).

@@ -95,50 +95,7 @@ impl ResultsFile {
         let (nn, ne) = (mesh.coords.len(), mesh.elements.len());
         let node_slab = (partition.node_offsets[rank], partition.node_offsets[rank + 1]);
         let element_slab = (partition.element_offsets[rank], partition.element_offsets[rank + 1]);
-        let g = file.create_group("mesh").map_err(&err)?;
-        let owned = partition.owned_nodes();
-        let local = partition.local_elements();
-        let coords: Vec<f64> = owned.iter().flat_map(|&n| mesh.coords[n]).collect();
-        write_rows(&g, "coordinates", &[nn, 2], node_slab, &coords, path)?;
-        let conn: Vec<i64> = local.iter().flat_map(|&e| mesh.elements[e].map(|n| partition.node_position[n] as i64)).collect();
-        write_rows(&g, "connectivity", &[ne, 8], element_slab, &conn, path)?;
-        let topology = xdmf::Topology::of(mesh);
-        let nodes_of = |e: usize| mesh.element_nodes(e).iter().map(|&n| partition.node_position[n] as i64);
-        match topology {
-            xdmf::Topology::Quad8 => {}
-            xdmf::Topology::Tri6 => {
-                let cells: Vec<i64> = local.iter().flat_map(|&e| nodes_of(e)).collect();
-                write_rows(&g, "topology", &[ne, 6], element_slab, &cells, path)?;
-            }
-            xdmf::Topology::Mixed { values } => {
-                // each rank's cells follow those of the ranks before it
-                let length = |e: usize| 1 + mesh.shape(e).nodes();
-                let start: usize = (0..ne).filter(|&e| partition.element_rank[e] < rank).map(length).sum();
-                let cells: Vec<i64> = local.iter().flat_map(|&e| std::iter::once(xdmf::xdmf_cell_type(mesh.shape(e))).chain(nodes_of(e))).collect();
-                write_rows(&g, "topology", &[values], (start, start + cells.len()), &cells, path)?;
-            }
-        }
-        let ids: Vec<u64> = owned.iter().map(|&n| mesh.node_ids[n]).collect();
-        write_rows(&g, "node_ids", &[nn], node_slab, &ids, path)?;
-        let ids: Vec<u64> = local.iter().map(|&e| mesh.element_ids[e]).collect();
-        write_rows(&g, "element_ids", &[ne], element_slab, &ids, path)?;
-        let ranks: Vec<u32> = local.iter().map(|&e| partition.element_rank[e] as u32).collect();
-        write_rows(&g, "element_rank", &[ne], element_slab, &ranks, path)?;
-        let gauss_points: Vec<usize> = local.iter().map(|&e| model.mesh.shape(e).points(model.element_integration[e])).collect();
-        let counts: Vec<u32> = gauss_points.iter().map(|&n| n as u32).collect();
-        write_rows(&g, "gauss_points", &[ne], element_slab, &counts, path)?;
-        // Sets are small and identical on every rank: rank 0 writes them.
-        for (group, sets, position) in
-            [("node_sets", &model.node_sets, &partition.node_position), ("element_sets", &model.element_sets, &partition.element_position)]
-        {
-            let sg = g.create_group(group).map_err(&err)?;
-            for (name, members) in sets.iter() {
-                let mut pos: Vec<u64> = members.iter().map(|&m| position[m] as u64).collect();
-                pos.sort_unstable();
-                let slab = if rank == 0 { (0, pos.len()) } else { (0, 0) };
-                write_rows(&sg, name, &[pos.len()], slab, if rank == 0 { &pos } else { &[] }, path)?;
-            }
-        }
+        let (topology, gauss_points) = write_mesh(&file, model, partition, path)?;
         // the t = 0 frame of the sidecar: zero vectors, scalars and element values, the
         // reference temperature
         let initial = file.create_group(xdmf::INITIAL.trim_start_matches('/')).map_err(&err)?;
@@ -147,7 +104,7 @@ impl ResultsFile {
         write_rows(&initial, "scalar", &[nn], node_slab, &vec![0.0f64; owned_count], path)?;
         // and per element, for the element fields: ParaView keeps one array list over time
         write_rows(&initial, "cell", &[ne], element_slab, &vec![0.0f64; element_slab.1 - element_slab.0], path)?;
-        let initial_temperature: Vec<f64> = owned.iter().map(|&n| model.reference_temperature.at(n)).collect();
+        let initial_temperature: Vec<f64> = partition.owned_nodes().iter().map(|&n| model.reference_temperature.at(n)).collect();
         write_rows(&initial, "temperature", &[nn], node_slab, &initial_temperature, path)?;
         // a writer killed while flushing cannot leave the increments' links half-written
         super::h5ffi::create_group_for_links(&file, "increments", INCREMENTS_AT_ONCE, 6)
@@ -463,4 +420,61 @@ impl ResultsFile {
         }
         Ok(())
     }
+}
+
+/// The results file's `/mesh` group: the coordinates, connectivity (and the XDMF topology where
+/// it differs), the ids, ranks and Gauss point counts, the sets; each rank its slab (collective).
+/// Gives the topology and the local elements' integration point counts.
+fn write_mesh(file: &hdf5::File, model: &Model, partition: &Partition, path: &Path) -> Result<(xdmf::Topology, Vec<usize>)> {
+    let err = h5err(path);
+    let rank = partition.rank;
+    let mesh = &model.mesh;
+    let (nn, ne) = (mesh.coords.len(), mesh.elements.len());
+    let node_slab = (partition.node_offsets[rank], partition.node_offsets[rank + 1]);
+    let element_slab = (partition.element_offsets[rank], partition.element_offsets[rank + 1]);
+    let g = file.create_group("mesh").map_err(&err)?;
+    let owned = partition.owned_nodes();
+    let local = partition.local_elements();
+    let coords: Vec<f64> = owned.iter().flat_map(|&n| mesh.coords[n]).collect();
+    write_rows(&g, "coordinates", &[nn, 2], node_slab, &coords, path)?;
+    let conn: Vec<i64> = local.iter().flat_map(|&e| mesh.elements[e].map(|n| partition.node_position[n] as i64)).collect();
+    write_rows(&g, "connectivity", &[ne, 8], element_slab, &conn, path)?;
+    let topology = xdmf::Topology::of(mesh);
+    let nodes_of = |e: usize| mesh.element_nodes(e).iter().map(|&n| partition.node_position[n] as i64);
+    match topology {
+        xdmf::Topology::Quad8 => {}
+        xdmf::Topology::Tri6 => {
+            let cells: Vec<i64> = local.iter().flat_map(|&e| nodes_of(e)).collect();
+            write_rows(&g, "topology", &[ne, 6], element_slab, &cells, path)?;
+        }
+        xdmf::Topology::Mixed { values } => {
+            // each rank's cells follow those of the ranks before it
+            let length = |e: usize| 1 + mesh.shape(e).nodes();
+            let start: usize = (0..ne).filter(|&e| partition.element_rank[e] < rank).map(length).sum();
+            let cells: Vec<i64> = local.iter().flat_map(|&e| std::iter::once(xdmf::xdmf_cell_type(mesh.shape(e))).chain(nodes_of(e))).collect();
+            write_rows(&g, "topology", &[values], (start, start + cells.len()), &cells, path)?;
+        }
+    }
+    let ids: Vec<u64> = owned.iter().map(|&n| mesh.node_ids[n]).collect();
+    write_rows(&g, "node_ids", &[nn], node_slab, &ids, path)?;
+    let ids: Vec<u64> = local.iter().map(|&e| mesh.element_ids[e]).collect();
+    write_rows(&g, "element_ids", &[ne], element_slab, &ids, path)?;
+    let ranks: Vec<u32> = local.iter().map(|&e| partition.element_rank[e] as u32).collect();
+    write_rows(&g, "element_rank", &[ne], element_slab, &ranks, path)?;
+    let gauss_points: Vec<usize> = local.iter().map(|&e| model.mesh.shape(e).points(model.element_integration[e])).collect();
+    let counts: Vec<u32> = gauss_points.iter().map(|&n| n as u32).collect();
+    write_rows(&g, "gauss_points", &[ne], element_slab, &counts, path)?;
+    // Sets are small and identical on every rank: rank 0 writes them.
+    for (group, sets, position) in
+        [("node_sets", &model.node_sets, &partition.node_position), ("element_sets", &model.element_sets, &partition.element_position)]
+    {
+        let sg = g.create_group(group).map_err(&err)?;
+        for (name, members) in sets.iter() {
+            let mut pos: Vec<u64> = members.iter().map(|&m| position[m] as u64).collect();
+            pos.sort_unstable();
+            let slab = if rank == 0 { (0, pos.len()) } else { (0, 0) };
+            write_rows(&sg, name, &[pos.len()], slab, if rank == 0 { &pos } else { &[] }, path)?;
+        }
+    }
+    Ok((topology, gauss_points))
 }
