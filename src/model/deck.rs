@@ -261,53 +261,7 @@ pub fn parse(text: &str, path: &Path) -> Result<Model> {
         }
     }
 
-    let mut contacts = Vec::new();
-    for c in &deck.contact {
-        let name = c.name.clone().unwrap_or_else(|| if c.slave == c.master { c.slave.clone() } else { format!("{}-{}", c.slave, c.master) });
-        let penalty = match (c.penalty, c.penalty_factor, &c.exponential) {
-            (Some(v), None, None) => Penalty::Stiffness(v),
-            (None, Some(v), None) => Penalty::Factor(v),
-            (None, None, Some(e)) => Penalty::Exponential { clearance: e.clearance, pressure: e.pressure },
-            _ => {
-                return Err(Error::input(format!(
-                    "contact '{name}': give exactly one of penalty (N/mm^3), penalty_factor (kappa in eps = kappa E / h) or exponential = {{ clearance = c0, pressure = p0 }}"
-                )))
-            }
-        };
-        let capture_distance = match c.capture_distance {
-            Some(d) => d,
-            None => {
-                let edges = |s: &String| surfaces.get(s).map(|v| v.as_slice()).ok_or_else(|| Error::input(format!("contact '{name}': unknown surface '{s}'")));
-                let (master, slave) = (edges(&c.master)?, edges(&c.slave)?);
-                default_capture_distance(&mesh, slave, master, c.two_pass)
-            }
-        };
-        let augmented_lagrangian = c
-            .augmented_lagrangian
-            .as_ref()
-            .map(|a| AugmentedLagrangian { penetration_tolerance: a.penetration_tolerance, max_augmentations: a.max_augmentations });
-        let friction = Friction::from_values(&name, c.friction, c.tangential_penalty, c.elastic_slip)?;
-        contacts.push(ContactPair {
-            name,
-            slave: c.slave.clone(),
-            master: c.master.clone(),
-            two_pass: c.two_pass,
-            integration: match c.integration {
-                IntegrationSpec::Segment => ContactIntegration::Segment,
-                IntegrationSpec::NodeToSegment => ContactIntegration::NodeToSegment,
-            },
-            penalty,
-            capture_distance,
-            augmented_lagrangian,
-            exclude_neighbours: c.exclude_neighbours,
-            friction,
-            adjust: c.adjust.as_ref().map(|a| match a {
-                AdjustSpec::Clearance(v) => Adjust::Clearance(*v),
-                AdjustSpec::NodeSet(s) => Adjust::NodeSet(s.clone()),
-            }),
-            slave_nodes: None,
-        });
-    }
+    let contacts = contact_pairs(&deck, &mesh, &surfaces)?;
     let constraints = ties(&deck, &mesh, &surfaces)?;
     let kinematics = if deck.nlgeom { Kinematics::Finite } else { Kinematics::Small };
     let section = deck.section()?;
@@ -338,4 +292,56 @@ pub fn parse(text: &str, path: &Path) -> Result<Model> {
     };
     model.validate()?;
     Ok(model)
+}
+
+/// The deck's contact pairs, their penalties, capture distances and friction read.
+fn contact_pairs(deck: &DeckFile, mesh: &super::Mesh, surfaces: &std::collections::BTreeMap<String, Vec<super::Edge>>) -> Result<Vec<ContactPair>> {
+    let mut contacts = Vec::new();
+    for c in &deck.contact {
+        let name = c.name.clone().unwrap_or_else(|| if c.slave == c.master { c.slave.clone() } else { format!("{}-{}", c.slave, c.master) });
+        let penalty = match (c.penalty, c.penalty_factor, &c.exponential) {
+            (Some(v), None, None) => Penalty::Stiffness(v),
+            (None, Some(v), None) => Penalty::Factor(v),
+            (None, None, Some(e)) => Penalty::Exponential { clearance: e.clearance, pressure: e.pressure },
+            _ => {
+                return Err(Error::input(format!(
+                    "contact '{name}': give exactly one of penalty (N/mm^3), penalty_factor (kappa in eps = kappa E / h) or exponential = {{ clearance = c0, pressure = p0 }}"
+                )))
+            }
+        };
+        let capture_distance = match c.capture_distance {
+            Some(d) => d,
+            None => {
+                let edges = |s: &String| surfaces.get(s).map(|v| v.as_slice()).ok_or_else(|| Error::input(format!("contact '{name}': unknown surface '{s}'")));
+                let (master, slave) = (edges(&c.master)?, edges(&c.slave)?);
+                default_capture_distance(mesh, slave, master, c.two_pass)
+            }
+        };
+        let augmented_lagrangian = c
+            .augmented_lagrangian
+            .as_ref()
+            .map(|a| AugmentedLagrangian { penetration_tolerance: a.penetration_tolerance, max_augmentations: a.max_augmentations });
+        let friction = Friction::from_values(&name, c.friction, c.tangential_penalty, c.elastic_slip)?;
+        contacts.push(ContactPair {
+            name,
+            slave: c.slave.clone(),
+            master: c.master.clone(),
+            two_pass: c.two_pass,
+            integration: match c.integration {
+                IntegrationSpec::Segment => ContactIntegration::Segment,
+                IntegrationSpec::NodeToSegment => ContactIntegration::NodeToSegment,
+            },
+            penalty,
+            capture_distance,
+            augmented_lagrangian,
+            exclude_neighbours: c.exclude_neighbours,
+            friction,
+            adjust: c.adjust.as_ref().map(|a| match a {
+                AdjustSpec::Clearance(v) => Adjust::Clearance(*v),
+                AdjustSpec::NodeSet(s) => Adjust::NodeSet(s.clone()),
+            }),
+            slave_nodes: None,
+        });
+    }
+    Ok(contacts)
 }
