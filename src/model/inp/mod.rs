@@ -18,6 +18,7 @@
 
 pub mod cards;
 mod constraints;
+mod expand;
 mod finish;
 mod loads;
 mod mesh;
