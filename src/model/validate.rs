@@ -120,68 +120,75 @@ impl Model {
             return Err(Error::input("the model has no steps: add a [[step]]"));
         }
         for step in self.general_steps() {
-            if step.increments == 0 || step.increments > MAX_INCREMENTS {
-                return Err(Error::input(format!("step '{}': increments must lie in 1..={MAX_INCREMENTS}, got {}", step.name, step.increments)));
-            }
-            if let Some(t) = step.temperature.as_ref().and_then(Temperature::non_finite) {
-                return Err(Error::input(format!("step '{}': temperature must be finite, got {t}", step.name)));
-            }
-            for d in &step.displacements {
-                self.node_set(&d.node_set).map_err(|e| Error::input(format!("step '{}': {e}", step.name)))?;
-                if !d.value.is_finite() {
-                    return Err(Error::input(format!("step '{}': displacement on '{}' is not finite", step.name, d.node_set)));
-                }
-            }
-            for (k, p) in step.pressures.iter().enumerate() {
-                self.surface(&p.surface).map_err(|e| Error::input(format!("step '{}': {e}", step.name)))?;
-                if !p.value.is_finite() {
-                    return Err(Error::input(format!("step '{}': pressure on '{}' must be finite, got {}", step.name, p.surface, p.value)));
-                }
-                if step.pressures[..k].iter().any(|q| q.surface == p.surface) {
-                    return Err(Error::input(format!(
-                        "step '{}': surface '{}' is given two pressures: give one (their sum, if both act)",
-                        step.name, p.surface
-                    )));
-                }
-            }
-            for f in &step.nodal_forces {
-                if f.node >= self.mesh.coords.len() || !f.value.is_finite() {
-                    return Err(Error::input(format!(
-                        "step '{}': a nodal force of {} on node index {} (give a finite force on a mesh node)",
-                        step.name, f.value, f.node
-                    )));
-                }
-            }
-            for (k, change) in step.friction_changes.iter().enumerate() {
-                if !self.contacts.iter().any(|c| c.name == change.pair) {
-                    return Err(Error::input(format!(
-                        "step '{}': friction of an unknown contact pair '{}' (known: {})",
-                        step.name,
-                        change.pair,
-                        known(self.contacts.iter().map(|c| &c.name))
-                    )));
-                }
-                if step.friction_changes[..k].iter().any(|c| c.pair == change.pair) {
-                    return Err(Error::input(format!("step '{}': the friction of pair '{}' is changed twice", step.name, change.pair)));
-                }
-            }
-            for (k, b) in step.body_loads.iter().enumerate() {
-                let at = |what: String| Error::input(format!("step '{}': body load on '{}': {what}", step.name, b.elements));
-                let elements = self.element_sets.get(&b.elements).ok_or_else(|| at(format!("unknown element set '{}'", b.elements)))?;
-                if !b.force.value().is_finite() {
-                    return Err(at(format!("{} must be finite", b.force.value())));
-                }
-                if let Some(m) = elements.iter().map(|&e| &self.materials[self.element_material[e]]).find(|m| !(m.density > 0.0 && m.density.is_finite())) {
-                    return Err(at(format!("material '{}' has no density (t/mm^3; steel 7.85e-9)", m.name)));
-                }
-                let same = |c: &BodyLoad| c.elements == b.elements && std::mem::discriminant(&c.force) == std::mem::discriminant(&b.force);
-                if step.body_loads[..k].iter().any(same) {
-                    return Err(at("given twice: give one value (their sum, if both act)".into()));
-                }
-            }
+            self.validate_general_step(step)?;
         }
         self.validate_constraints()?;
         self.check_constraints()?;
+        Ok(())
+    }
+
+    /// A general step's loads: its increments, temperature, displacements, pressures, nodal
+    /// forces, friction changes and body loads, each on what the model has.
+    fn validate_general_step(&self, step: &super::GeneralStep) -> Result<()> {
+        if step.increments == 0 || step.increments > MAX_INCREMENTS {
+            return Err(Error::input(format!("step '{}': increments must lie in 1..={MAX_INCREMENTS}, got {}", step.name, step.increments)));
+        }
+        if let Some(t) = step.temperature.as_ref().and_then(Temperature::non_finite) {
+            return Err(Error::input(format!("step '{}': temperature must be finite, got {t}", step.name)));
+        }
+        for d in &step.displacements {
+            self.node_set(&d.node_set).map_err(|e| Error::input(format!("step '{}': {e}", step.name)))?;
+            if !d.value.is_finite() {
+                return Err(Error::input(format!("step '{}': displacement on '{}' is not finite", step.name, d.node_set)));
+            }
+        }
+        for (k, p) in step.pressures.iter().enumerate() {
+            self.surface(&p.surface).map_err(|e| Error::input(format!("step '{}': {e}", step.name)))?;
+            if !p.value.is_finite() {
+                return Err(Error::input(format!("step '{}': pressure on '{}' must be finite, got {}", step.name, p.surface, p.value)));
+            }
+            if step.pressures[..k].iter().any(|q| q.surface == p.surface) {
+                return Err(Error::input(format!(
+                    "step '{}': surface '{}' is given two pressures: give one (their sum, if both act)",
+                    step.name, p.surface
+                )));
+            }
+        }
+        for f in &step.nodal_forces {
+            if f.node >= self.mesh.coords.len() || !f.value.is_finite() {
+                return Err(Error::input(format!(
+                    "step '{}': a nodal force of {} on node index {} (give a finite force on a mesh node)",
+                    step.name, f.value, f.node
+                )));
+            }
+        }
+        for (k, change) in step.friction_changes.iter().enumerate() {
+            if !self.contacts.iter().any(|c| c.name == change.pair) {
+                return Err(Error::input(format!(
+                    "step '{}': friction of an unknown contact pair '{}' (known: {})",
+                    step.name,
+                    change.pair,
+                    known(self.contacts.iter().map(|c| &c.name))
+                )));
+            }
+            if step.friction_changes[..k].iter().any(|c| c.pair == change.pair) {
+                return Err(Error::input(format!("step '{}': the friction of pair '{}' is changed twice", step.name, change.pair)));
+            }
+        }
+        for (k, b) in step.body_loads.iter().enumerate() {
+            let at = |what: String| Error::input(format!("step '{}': body load on '{}': {what}", step.name, b.elements));
+            let elements = self.element_sets.get(&b.elements).ok_or_else(|| at(format!("unknown element set '{}'", b.elements)))?;
+            if !b.force.value().is_finite() {
+                return Err(at(format!("{} must be finite", b.force.value())));
+            }
+            if let Some(m) = elements.iter().map(|&e| &self.materials[self.element_material[e]]).find(|m| !(m.density > 0.0 && m.density.is_finite())) {
+                return Err(at(format!("material '{}' has no density (t/mm^3; steel 7.85e-9)", m.name)));
+            }
+            let same = |c: &BodyLoad| c.elements == b.elements && std::mem::discriminant(&c.force) == std::mem::discriminant(&b.force);
+            if step.body_loads[..k].iter().any(same) {
+                return Err(at("given twice: give one value (their sum, if both act)".into()));
+            }
+        }
         Ok(())
     }
 

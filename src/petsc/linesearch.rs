@@ -177,29 +177,8 @@ unsafe extern "C" fn apply(ls: sys::SNESLineSearch, _ctx: *mut c_void) -> sys::P
     let norms = if hist.is_null() || nhist <= 0 { &[][..] } else { unsafe { std::slice::from_raw_parts(hist, nhist as usize) } };
     let mut step = None;
     if stalled(norms) {
-        // ||F||^2 at the full step (in F) and at half of it (into G)
-        let (mut full, mut mid) = (0.0, 0.0);
-        // SAFETY: x, f, y, w, g are the line search's own vectors (SNESLineSearchGetVecs), alive while it runs.
-        petsc_try!(sys::VecNorm(f, sys::NormType_NORM_2, &mut full));
-        // SAFETY: x, f, y, w, g are the line search's own vectors (SNESLineSearchGetVecs), alive while it runs.
-        petsc_try!(sys::VecWAXPY(w, -0.5 * lambda, y, x));
-        // SAFETY: `snes` owns this line search (SNESLineSearchGetSNES) and outlives the callback; the outs are locals.
-        petsc_try!(sys::SNESComputeFunction(snes, w, g));
-        // SAFETY: `snes` owns this line search (SNESLineSearchGetSNES) and outlives the callback; the outs are locals.
-        petsc_try!(sys::SNESGetFunctionDomainError(snes, &mut domain));
-        // SAFETY: x, f, y, w, g are the line search's own vectors (SNESLineSearchGetVecs), alive while it runs.
-        petsc_try!(sys::VecWAXPY(w, -lambda, y, x));
-        if domain == sys::PetscBool_PETSC_FALSE {
-            // SAFETY: x, f, y, w, g are the line search's own vectors (SNESLineSearchGetVecs), alive while it runs.
-            petsc_try!(sys::VecNorm(g, sys::NormType_NORM_2, &mut mid));
-            step = Some(l2_step(fnorm * fnorm, mid * mid, full * full, lambda, &tolerances));
-        } else {
-            // the half step left the domain (the full one did not): back to the secant, with
-            // F evaluated at the full step again so that the half step's domain flag is cleared
-            // rather than left for the SNES to read
-            // SAFETY: `snes` owns this line search (SNESLineSearchGetSNES) and outlives the callback; the outs are locals.
-            petsc_try!(sys::SNESComputeFunction(snes, w, f));
-        }
+        // SAFETY: the line search's own vectors and SNES, got above, alive during this callback.
+        petsc_try!(l2_trial(snes, [x, f, y, w, g], lambda, fnorm, &tolerances, &mut step));
     }
     let step = match step {
         Some(step) => step,
@@ -247,6 +226,45 @@ unsafe extern "C" fn apply(ls: sys::SNESLineSearch, _ctx: *mut c_void) -> sys::P
     if lambda <= steptol {
         // SAFETY: `ls` is the line search PETSc is running (valid during this callback); the outs are locals.
         petsc_try!(sys::SNESLineSearchSetReason(ls, sys::SNESLineSearchReason_SNES_LINESEARCH_FAILED_REDUCT));
+    }
+    0
+}
+
+/// The L2 line search's step where Newton stalls (`stalled`): ||F||^2 at the full step (in F)
+/// and at half of it (into G) give the parabola's minimum, into `step`; left None where the half
+/// step leaves the domain (the secant then), with F evaluated at the full step again so that
+/// the half step's domain flag is cleared rather than left for the SNES to read.
+///
+/// # Safety
+/// `snes` and the vectors [X, F, Y, W, G] are those of the line search PETSc is running.
+unsafe fn l2_trial(
+    snes: sys::SNES,
+    [x, f, y, w, g]: [sys::Vec; 5],
+    lambda: f64,
+    fnorm: f64,
+    tolerances: &Tolerances,
+    step: &mut Option<Option<f64>>,
+) -> sys::PetscErrorCode {
+    // ||F||^2 at the full step (in F) and at half of it (into G)
+    let (mut full, mut mid, mut domain) = (0.0, 0.0, sys::PetscBool_PETSC_FALSE);
+    // SAFETY: x, f, y, w, g are the line search's own vectors (SNESLineSearchGetVecs), alive while it runs.
+    petsc_try!(sys::VecNorm(f, sys::NormType_NORM_2, &mut full));
+    // SAFETY: x, f, y, w, g are the line search's own vectors (SNESLineSearchGetVecs), alive while it runs.
+    petsc_try!(sys::VecWAXPY(w, -0.5 * lambda, y, x));
+    // SAFETY: `snes` owns this line search (SNESLineSearchGetSNES) and outlives the callback; the outs are locals.
+    petsc_try!(sys::SNESComputeFunction(snes, w, g));
+    // SAFETY: `snes` owns this line search (SNESLineSearchGetSNES) and outlives the callback; the outs are locals.
+    petsc_try!(sys::SNESGetFunctionDomainError(snes, &mut domain));
+    // SAFETY: x, f, y, w, g are the line search's own vectors (SNESLineSearchGetVecs), alive while it runs.
+    petsc_try!(sys::VecWAXPY(w, -lambda, y, x));
+    if domain == sys::PetscBool_PETSC_FALSE {
+        // SAFETY: x, f, y, w, g are the line search's own vectors (SNESLineSearchGetVecs), alive while it runs.
+        petsc_try!(sys::VecNorm(g, sys::NormType_NORM_2, &mut mid));
+        *step = Some(l2_step(fnorm * fnorm, mid * mid, full * full, lambda, tolerances));
+    } else {
+        // the half step left the domain (the full one did not): back to the secant
+        // SAFETY: `snes` owns this line search (SNESLineSearchGetSNES) and outlives the callback; the outs are locals.
+        petsc_try!(sys::SNESComputeFunction(snes, w, f));
     }
     0
 }

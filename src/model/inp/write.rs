@@ -254,40 +254,7 @@ pub fn to_inp(model: &Model, title: &str) -> Result<String> {
                 }
             }
         }
-        if !step.displacements.is_empty() || step.release_constraints {
-            let _ = writeln!(w, "*BOUNDARY{}", if step.release_constraints { ", OP=NEW" } else { "" });
-            for d in &step.displacements {
-                let dof = match d.component {
-                    Component::R => 1,
-                    Component::Z => 2,
-                };
-                let _ = writeln!(w, "{}, {dof}, {dof}, {}", d.node_set, num(d.value));
-            }
-        }
-        if !step.pressures.is_empty() {
-            let _ = writeln!(w, "*DLOAD");
-            for p in &step.pressures {
-                let (_, labels) = loaded.iter().find(|(s, _)| s == &p.surface).expect("every loaded surface listed");
-                for (elset, face) in labels {
-                    let _ = writeln!(w, "{elset}, P{face}, {}", num(p.value));
-                }
-            }
-        }
-        if !step.body_loads.is_empty() {
-            // about CalculiX's axisymmetric axis, y
-            let _ = writeln!(w, "*DLOAD");
-            for b in &step.body_loads {
-                let set = checked_name(&b.elements)?;
-                let _ = match b.force {
-                    BodyForce::Gravity(g) => writeln!(w, "{set}, GRAV, {}, 0., 1., 0.", num(g)),
-                    BodyForce::Spin(w2) => writeln!(w, "{set}, CENTRIF, {}, 0., 0., 0., 0., 1., 0.", num(w2)),
-                };
-            }
-        }
-        if let Some(t) = &step.temperature {
-            let _ = writeln!(w, "*TEMPERATURE");
-            temperature_lines(w, model, t);
-        }
+        write_step_loads(w, model, step, &loaded)?;
         for set in &constrained {
             let _ = writeln!(w, "*NODE PRINT, NSET={set}, TOTALS=ONLY\nRF");
         }
@@ -295,6 +262,46 @@ pub fn to_inp(model: &Model, title: &str) -> Result<String> {
         let _ = writeln!(w, "*NODE FILE{frequency}\nU\n*EL FILE{frequency}\nS, PEEQ\n*END STEP");
     }
     Ok(out)
+}
+
+/// A step's loads: its *BOUNDARY, its pressures on the `loaded` faces' element sets and body
+/// loads (*DLOAD), its *TEMPERATURE.
+fn write_step_loads(w: &mut String, model: &Model, step: &crate::model::GeneralStep, loaded: &[(String, Vec<(String, usize)>)]) -> Result<()> {
+    if !step.displacements.is_empty() || step.release_constraints {
+        let _ = writeln!(w, "*BOUNDARY{}", if step.release_constraints { ", OP=NEW" } else { "" });
+        for d in &step.displacements {
+            let dof = match d.component {
+                Component::R => 1,
+                Component::Z => 2,
+            };
+            let _ = writeln!(w, "{}, {dof}, {dof}, {}", d.node_set, num(d.value));
+        }
+    }
+    if !step.pressures.is_empty() {
+        let _ = writeln!(w, "*DLOAD");
+        for p in &step.pressures {
+            let (_, labels) = loaded.iter().find(|(s, _)| s == &p.surface).expect("every loaded surface listed");
+            for (elset, face) in labels {
+                let _ = writeln!(w, "{elset}, P{face}, {}", num(p.value));
+            }
+        }
+    }
+    if !step.body_loads.is_empty() {
+        // about CalculiX's axisymmetric axis, y
+        let _ = writeln!(w, "*DLOAD");
+        for b in &step.body_loads {
+            let set = checked_name(&b.elements)?;
+            let _ = match b.force {
+                BodyForce::Gravity(g) => writeln!(w, "{set}, GRAV, {}, 0., 1., 0.", num(g)),
+                BodyForce::Spin(w2) => writeln!(w, "{set}, CENTRIF, {}, 0., 0., 0., 0., 1., 0.", num(w2)),
+            };
+        }
+    }
+    if let Some(t) = &step.temperature {
+        let _ = writeln!(w, "*TEMPERATURE");
+        temperature_lines(w, model, t);
+    }
+    Ok(())
 }
 
 /// A number in at most 20 characters (CalculiX reads fields of 20): the shortest text that
