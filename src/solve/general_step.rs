@@ -17,43 +17,33 @@ use super::perturbation::KeptBase;
 use super::problem::{LoadState, Problem, StepStart};
 use super::resume::{Carried, ResumeAt};
 use super::schedule::StepLoads;
+use super::stepping::RunContext;
 use crate::dist::{DofMap, Partition};
 use crate::element::solid::ElementEnergy;
 use crate::error::{Error, Result};
-use crate::io::progress::Progress;
 use crate::io::state::CommittedState;
-use crate::io::status::StatusFile;
-use crate::io::{ContactSummary, HistoryRow, ResultsFile};
+use crate::io::{ContactSummary, HistoryRow};
 use crate::material::PointState;
 use crate::model::{Convergence, GeneralStep, Model, Predictor};
-use crate::petsc::{FieldRatios, Matrix, PetscSession, Snes, SolveReport, VecOps, Vector};
+use crate::petsc::{FieldRatios, Matrix, Snes, SolveReport, VecOps, Vector};
 use crate::records::energy::Energies;
 use crate::records::increment_fields::IncrementFields;
 use crate::records::last_increment::LastIncrement;
 use mpi::collective::SystemOperation;
 use mpi::datatype::PartitionMut;
 use mpi::traits::*;
-use std::path::Path;
-use std::time::Instant;
 
 /// A step reversing the previous one's prescribed motion starts at this fraction of a
 /// requested increment (the joint's unloading: its first increments undo the plastic flow).
 const REVERSAL_START: f64 = 0.25;
 
-/// The general steps' run: what every step shares (the session, the model, the output) and
-/// what one step hands the next (the state carried, the perturbations' base).
-pub(super) struct GeneralSteps<'a, 's> {
-    pub session: &'s PetscSession,
-    pub model: &'a Model,
-    pub partition: &'a Partition,
-    /// The results file's path, and whether each Newton iteration is printed.
-    pub output: &'a Path,
-    pub monitor: bool,
-    pub progress: &'a Progress,
-    pub status: &'a mut Option<StatusFile>,
-    pub results: &'a mut ResultsFile,
-    pub start: Instant,
+/// The general steps' own state: what one step hands the next (the state carried, the
+/// perturbations' base) and the contact pattern's counts; what every procedure shares comes
+/// with the run's context.
+pub(super) struct GeneralSteps {
     pub carried: Carried,
+    /// The history rows a restart took over from the file it continues.
+    pub continued: usize,
     pub reserved_couplings: usize,
     pub pattern_refits: usize,
     /// The perturbation steps' base state: the end of the last general step.
@@ -88,23 +78,35 @@ struct StepState<'s, 'm> {
     last_in_file: bool,
 }
 
-impl<'a, 's> GeneralSteps<'a, 's> {
+impl GeneralSteps {
+    /// The perturbation steps' base state: the end of the last general step, once converged.
+    pub fn base_state(&self) -> Option<super::perturbation::BaseState<'_>> {
+        let kept = self.base.as_ref()?;
+        Some(super::perturbation::BaseState {
+            displacement: &self.carried.displacement,
+            stress: &kept.stress,
+            plastic_strain: &kept.plastic_strain,
+            pressures: &kept.pressures,
+            contacts: &kept.contacts,
+        })
+    }
+
     /// Runs general step `s` to its end, from `resumed_here` for a restart inside it
     /// (collective).
-    pub fn step(&mut self, s: usize, resumed_here: Option<ResumeAt>) -> Result<()> {
-        let mut st = self.begin(s, resumed_here)?;
-        let (model, partition, world) = (self.model, self.partition, self.session.world());
+    pub fn step<'a, 's>(&mut self, ctx: &mut RunContext<'a, 's>, s: usize, resumed_here: Option<ResumeAt>) -> Result<()> {
+        let mut st = self.begin(ctx, s, resumed_here)?;
+        let (model, partition, world) = (ctx.model, ctx.partition, ctx.session.world());
         let controls = model.stepping;
         let model_size = model.mesh.largest_extent();
         while st.lambda < 1.0 {
             if let Some(signal) = stop_requested(world) {
-                if let Some(status) = self.status.as_mut() {
+                if let Some(status) = ctx.status.as_mut() {
                     status.note(&format!("stopped by {} at lambda {:.6}", crate::interrupt::name(signal), st.lambda));
                 }
                 return Err(Error::Interrupted {
                     signal: crate::interrupt::name(signal),
-                    what: format!("{} converged increments (step '{}' at load factor {:.6})", self.results.increments_written(), st.step.name, st.lambda),
-                    path: self.output.to_path_buf(),
+                    what: format!("{} converged increments (step '{}' at load factor {:.6})", ctx.results.increments_written(), st.step.name, st.lambda),
+                    path: ctx.options.output.clone(),
                 });
             }
             // land exactly on 1 rather than leave a sliver
@@ -141,18 +143,18 @@ impl<'a, 's> GeneralSteps<'a, 's> {
                 }
             }
             if !report.converged() {
-                self.cut_back(&mut st, target, &report)?;
+                self.cut_back(ctx, &mut st, target, &report)?;
                 continue;
             }
-            self.record(&mut st, target, report, augmentations)?;
+            self.record(ctx, &mut st, target, report, augmentations)?;
         }
-        self.end(st)
+        self.end(ctx, st)
     }
 
     /// Sets step `s` up: its loads, unknowns and solver, the load factor it starts from, and
     /// the contact at its start (an interference fit's overlap, bodies only open contact holds).
-    fn begin(&mut self, s: usize, resumed_here: Option<ResumeAt>) -> Result<StepState<'s, 'a>> {
-        let (session, model, partition) = (self.session, self.model, self.partition);
+    fn begin<'a, 's>(&mut self, ctx: &mut RunContext<'a, 's>, s: usize, resumed_here: Option<ResumeAt>) -> Result<StepState<'s, 'a>> {
+        let (session, model, partition) = (ctx.session, ctx.model, ctx.partition);
         let (world, comm) = (session.world(), session.comm());
         let root = world.rank() == 0;
         let controls = model.stepping;
@@ -178,7 +180,7 @@ impl<'a, 's> GeneralSteps<'a, 's> {
         let jacobian = problem.jacobian_matrix()?;
         let mut snes = Snes::new(session)?;
         snes.set_field_test((controls.convergence == Convergence::Field).then(FieldRatios::default));
-        snes.set_monitor(self.monitor);
+        snes.set_monitor(ctx.options.monitor);
         if resumed_here.is_some() {
             // the field test's time average over the step's increments before the restart
             snes.restore_force_average(self.carried.rows.iter().filter(|r| r.step == s + 1).map(|r| r.average_force));
@@ -213,7 +215,7 @@ impl<'a, 's> GeneralSteps<'a, 's> {
                 if root {
                     eprintln!("{text}");
                 }
-                if let Some(status) = self.status.as_mut() {
+                if let Some(status) = ctx.status.as_mut() {
                     status.note(&text);
                 }
             }
@@ -247,15 +249,15 @@ impl<'a, 's> GeneralSteps<'a, 's> {
 
     /// After a failed attempt at `target`: the increment cut back (a note of it), or the run
     /// stopped with the reason when a smaller one cannot help.
-    fn cut_back(&mut self, st: &mut StepState<'s, 'a>, target: f64, report: &SolveReport) -> Result<()> {
-        let (model, partition, world) = (self.model, self.partition, self.session.world());
+    fn cut_back<'a, 's>(&mut self, ctx: &mut RunContext<'a, 's>, st: &mut StepState<'s, 'a>, target: f64, report: &SolveReport) -> Result<()> {
+        let (model, partition, world) = (ctx.model, ctx.partition, ctx.session.world());
         let controls = model.stepping;
         let (s, step) = (st.s, st.step);
         st.problem.reset();
         st.failed_in_step = true;
         st.cutbacks += 1;
         st.size = (target - st.lambda) * controls.cutback_factor;
-        self.progress.note(&format!(
+        ctx.progress.note(&format!(
             "step {}/{} {:<10} cutback at lambda {target:.6}: {}, {} Newton its; retry {:.3e}",
             s + 1,
             model.general_step_count(),
@@ -264,12 +266,12 @@ impl<'a, 's> GeneralSteps<'a, 's> {
             report.newton_iterations,
             st.size
         ));
-        if let Some(status) = self.status.as_mut() {
+        if let Some(status) = ctx.status.as_mut() {
             status.note(&format!("step {} cutback at lambda {target:.6} ({} after {} Newton iterations)", s + 1, report.describe(), report.newton_iterations));
         }
         if st.size < controls.min_increment || !report.retry_may_help() {
             let stop = if report.retry_may_help() { "the increment would fall below min_increment" } else { "a smaller increment cannot help" };
-            if let Some(status) = self.status.as_mut() {
+            if let Some(status) = ctx.status.as_mut() {
                 status.note(&format!("stopped: {stop}"));
             }
             let stop = if report.retry_may_help() { format!("{stop} = {:e}", controls.min_increment) } else { stop.to_string() };
@@ -286,8 +288,8 @@ impl<'a, 's> GeneralSteps<'a, 's> {
                     "{} after {} Newton iterations, and {stop}{why}; the {} converged increments before are in {}",
                     report.describe(),
                     report.newton_iterations,
-                    self.results.increments_written(),
-                    self.output.display()
+                    ctx.results.increments_written(),
+                    ctx.options.output.display()
                 ),
             });
         }
@@ -296,8 +298,8 @@ impl<'a, 's> GeneralSteps<'a, 's> {
 
     /// The converged increment at `target`: committed, its history row and energy audit, its
     /// fields and restart state written (when the output asks), the next attempt's size.
-    fn record(&mut self, st: &mut StepState<'s, 'a>, target: f64, report: SolveReport, augmentations: usize) -> Result<()> {
-        let (model, partition, world) = (self.model, self.partition, self.session.world());
+    fn record<'a, 's>(&mut self, ctx: &mut RunContext<'a, 's>, st: &mut StepState<'s, 'a>, target: f64, report: SolveReport, augmentations: usize) -> Result<()> {
+        let (model, partition, world) = (ctx.model, ctx.partition, ctx.session.world());
         let controls = model.stepping;
         let nodes = model.mesh.coords.len();
         let (s, step) = (st.s, st.step);
@@ -367,7 +369,7 @@ impl<'a, 's> GeneralSteps<'a, 's> {
             augmentations,
             max_plastic_strain: max_ep,
             contacts,
-            wall_time: self.carried.wall_before + self.start.elapsed().as_secs_f64(),
+            wall_time: self.carried.wall_before + ctx.start.elapsed().as_secs_f64(),
             reactions,
             set_displacements,
             energy: Some(energy),
@@ -417,12 +419,12 @@ impl<'a, 's> GeneralSteps<'a, 's> {
             }
         });
         let written = state.as_ref().map(|state| (&increment_fields, state));
-        stop_all_on_write_error(world, self.output, output.run(|| self.results.write_increment(&step.name, &row, written, partition))?)?;
+        stop_all_on_write_error(world, &ctx.options.output, output.run(|| ctx.results.write_increment(&step.name, &row, written, partition))?)?;
         st.last_in_file = with_fields;
-        if let Some(status) = self.status.as_mut() {
+        if let Some(status) = ctx.status.as_mut() {
             status.record(&row);
         }
-        self.progress.increment(&row, &step.name, model.general_step_count(), !model.is_axisymmetric());
+        ctx.progress.increment(&row, &step.name, model.general_step_count(), !model.is_axisymmetric());
         self.carried.rows.push(row);
         st.cutbacks = 0;
         Ok(())
@@ -430,8 +432,8 @@ impl<'a, 's> GeneralSteps<'a, 's> {
 
     /// The step's end: the perturbations' base where a restart converged no increment, and what
     /// the next step takes over.
-    fn end(&mut self, mut st: StepState<'s, 'a>) -> Result<()> {
-        let (model, partition, world) = (self.model, self.partition, self.session.world());
+    fn end<'a, 's>(&mut self, ctx: &mut RunContext<'a, 's>, mut st: StepState<'s, 'a>) -> Result<()> {
+        let (model, partition, world) = (ctx.model, ctx.partition, ctx.session.world());
         let s = st.s;
         // a restart from the last step's end converges no increment: the state it resumes is
         // the perturbations' base

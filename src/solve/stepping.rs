@@ -1,16 +1,16 @@
-//! A run: its set-up (the output checked, locked and created, PETSc's options read, a restart's
-//! state restored), then each procedure's steps handed to its driver in order: the heat steps
-//! (`conduction`), the general steps (`general_step`), the perturbation steps about the last
-//! one's end (`perturbation` for a response, `modes` for an eigenproblem); and the helpers the
-//! general steps' driver shares.
+//! A run: its set-up (the output checked, locked and created, PETSc's options read, a restart
+//! point read), then each step handed to its procedure's driver, in order, through one dispatch
+//! with the run's context: the heat steps (`conduction`), the general steps (`general_step`),
+//! the perturbation steps about the last one's end (`perturbation` for a response, `modes` for
+//! an eigenproblem).
 
 use super::general_step::{stop_all_on_write_error, GeneralSteps};
-use super::resume::{restart_point, Carried};
+use super::resume::{restart_point, Carried, ResumeAt};
 use crate::dist::Partition;
 use crate::error::{Error, Result};
 use crate::io::lock::ResultsLock;
 use crate::io::progress::Progress;
-use crate::io::restart::RestartFrom;
+use crate::io::restart::{RestartFrom, RestartPoint};
 use crate::io::status::StatusFile;
 use crate::io::{HistoryRow, ResultsFile};
 use crate::model::perturbation::{Analysis, Perturbation};
@@ -105,9 +105,9 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
     if let (true, Some(note)) = (root, note) {
         println!("note: {note}");
     }
-    let mut results = ResultsFile::create(&options.output, session, model, &partition)?;
+    let results = ResultsFile::create(&options.output, session, model, &partition)?;
     let title = format!("{} nodes, {} elements on {} rank(s); results {}", nodes, model.mesh.elements.len(), partition.size, options.output.display());
-    let mut status = if root { Some(StatusFile::create(&options.output, &title)?) } else { None };
+    let status = if root { Some(StatusFile::create(&options.output, &title)?) } else { None };
     let progress = Progress::new(root && options.progress, options.verbose, model.steps.len());
     progress.note(&format!(
         "slideline: {} nodes, {} elements on {} rank(s); results -> {}",
@@ -116,68 +116,46 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
         partition.size,
         options.output.display()
     ));
-    // the heat steps run first (validated: they lead the list): the last one's field is the
-    // general steps' temperature, and so part of the model the rest runs on
-    let mut heat = Vec::new();
-    for h in model.heat_steps() {
-        let answer = super::conduction::solve(session, model, &partition, h)?;
-        stop_all_on_write_error(world, &options.output, results.write_heat(h, &answer, &partition, model.is_axisymmetric()))?;
-        progress.note(&format!("heat step '{}': solved", h.name));
-        heat.push((h.name.clone(), answer));
-    }
-    let heated = heat.last().filter(|_| model.general_step_count() > 0).map(|(_, a)| model.with_heat_field(a.temperature.clone()));
-    let model = heated.as_ref().unwrap_or(model);
-    let (carried, mut resumed) = match resume {
-        None => (Carried::fresh(model, &partition), None),
-        Some(point) => {
-            progress.note(&format!(
-                "restart: continuing {} from increment #{} (step {}, load factor {})",
-                point.file.display(),
-                point.number,
-                point.step + 1,
-                point.load_factor
-            ));
-            let (carried, at) = Carried::restored(model, &partition, point, &mut results)?;
-            (carried, Some(at))
-        }
-    };
-    let continued = carried.rows.len();
-    let first_step = resumed.as_ref().map_or(0, |r| r.step);
-    let mut general = GeneralSteps {
-        session,
-        model,
-        partition: &partition,
-        output: &options.output,
-        monitor: options.monitor,
-        progress: &progress,
-        status: &mut status,
-        results: &mut results,
-        start,
-        carried,
-        reserved_couplings: 0,
-        pattern_refits: 0,
-        base: None,
-    };
-    // each step to its procedure's driver, in the list's order; the general steps are
-    // numbered among themselves (the results file's steps), and a restart skips those before
-    // its own
+    // the model the general steps run on: with the last heat step's field as its temperature
+    let heated = std::cell::OnceCell::new();
+    let mut ctx = RunContext { session, model, partition: &partition, options, progress: &progress, status, results, start };
+    // each step to its procedure's driver, in the list's order (validated: heat steps, general
+    // steps, perturbation steps); the general steps are numbered among themselves (the results
+    // file's steps), and a restart skips those before its own
+    let mut heat: Vec<(String, crate::records::heat::HeatAnswer)> = Vec::new();
     let mut perturbations = Vec::new();
+    let mut general: Option<(GeneralSteps, Option<ResumeAt>)> = None;
+    let mut resume = resume;
     let mut general_index = 0;
     for step in &model.steps {
+        if !matches!(step, Step::Heat(_)) && general.is_none() {
+            if let Some((_, answer)) = heat.last().filter(|_| model.general_step_count() > 0) {
+                ctx.model = heated.get_or_init(|| model.with_heat_field(answer.temperature.clone()));
+            }
+            general = Some(start_general(&mut ctx, resume.take())?);
+        }
         match step {
-            Step::Heat(_) => {}
+            Step::Heat(h) => heat.push((h.name.clone(), heat_step(&mut ctx, h)?)),
             Step::General(_) => {
-                if general_index >= first_step {
-                    general.step(general_index, resumed.take())?;
+                let (steps, resumed) = general.as_mut().expect("started before the first general step");
+                if general_index >= resumed.as_ref().map_or(0, |r| r.step) {
+                    steps.step(&mut ctx, general_index, resumed.take())?;
                 }
                 general_index += 1;
             }
-            Step::Perturbation(p) => perturbations.push((p.name.clone(), perturbation(&mut general, p, options.progress)?)),
+            Step::Perturbation(p) => {
+                let (steps, _) = general.as_ref().expect("started before the first perturbation step");
+                perturbations.push((p.name.clone(), perturbation(&mut ctx, steps, p)?));
+            }
         }
     }
-    let GeneralSteps { carried: Carried { displacement, rows, .. }, reserved_couplings, pattern_refits, .. } = general;
+    let (general, _) = match general {
+        Some(general) => general,
+        None => start_general(&mut ctx, resume.take())?,
+    };
+    let GeneralSteps { carried: Carried { displacement, rows, .. }, continued, reserved_couplings, pattern_refits, .. } = general;
     progress.finish();
-    if let Some(status) = status.as_mut() {
+    if let Some(status) = ctx.status.as_mut() {
         status.note(&format!("completed: {} increments ({} in this run) in {:.1} s", rows.len(), rows.len() - continued, start.elapsed().as_secs_f64()));
     }
     Ok(RunSummary {
@@ -194,20 +172,56 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
     })
 }
 
+/// What every procedure's driver works with, handed down by the run's one dispatch: the
+/// session, the model (with the heat steps' field, once they have run), its partition, the
+/// run's options, the progress lines, the status and results files, the run's clock.
+pub(super) struct RunContext<'a, 's> {
+    pub session: &'s PetscSession,
+    pub model: &'a Model,
+    pub partition: &'a Partition,
+    pub options: &'a RunOptions,
+    pub progress: &'a Progress,
+    pub status: Option<StatusFile>,
+    pub results: ResultsFile,
+    pub start: Instant,
+}
+
+/// Heat step `h` solved and its answer written (collective).
+fn heat_step(ctx: &mut RunContext<'_, '_>, h: &crate::model::heat::HeatStep) -> Result<crate::records::heat::HeatAnswer> {
+    let answer = super::conduction::solve(ctx.session, ctx.model, ctx.partition, h)?;
+    let written = ctx.results.write_heat(h, &answer, ctx.partition, ctx.model.is_axisymmetric());
+    stop_all_on_write_error(ctx.session.world(), &ctx.options.output, written)?;
+    ctx.progress.note(&format!("heat step '{}': solved", h.name));
+    Ok(answer)
+}
+
+/// The general steps' state at the first of them: fresh, or a restart point's (announced).
+fn start_general(ctx: &mut RunContext<'_, '_>, resume: Option<RestartPoint>) -> Result<(GeneralSteps, Option<ResumeAt>)> {
+    let (carried, resumed) = match resume {
+        None => (Carried::fresh(ctx.model, ctx.partition), None),
+        Some(point) => {
+            ctx.progress.note(&format!(
+                "restart: continuing {} from increment #{} (step {}, load factor {})",
+                point.file.display(),
+                point.number,
+                point.step + 1,
+                point.load_factor
+            ));
+            let (carried, at) = Carried::restored(ctx.model, ctx.partition, point, &mut ctx.results)?;
+            (carried, Some(at))
+        }
+    };
+    let continued = carried.rows.len();
+    Ok((GeneralSteps { carried, continued, reserved_couplings: 0, pattern_refits: 0, base: None }, resumed))
+}
+
 /// Perturbation step `p` about the state the general steps ended in, by its procedure's
 /// driver (`perturbation` for a response, `modes` for an eigenproblem), its answer written
 /// (collective).
-fn perturbation(general: &mut GeneralSteps, p: &Perturbation, progress_lines: bool) -> Result<PerturbationAnswer> {
-    let (session, model, partition) = (general.session, general.model, general.partition);
-    let Some(kept) = general.base.as_ref() else {
+fn perturbation(ctx: &mut RunContext<'_, '_>, general: &GeneralSteps, p: &Perturbation) -> Result<PerturbationAnswer> {
+    let (session, model, partition) = (ctx.session, ctx.model, ctx.partition);
+    let Some(state) = general.base_state() else {
         return Err(Error::input(format!("perturbation step '{}': this run converged no increment of a general step to be its base state", p.name)));
-    };
-    let state = super::perturbation::BaseState {
-        displacement: &general.carried.displacement,
-        stress: &kept.stress,
-        plastic_strain: &kept.plastic_strain,
-        pressures: &kept.pressures,
-        contacts: &kept.contacts,
     };
     let answer = match p.analysis {
         Analysis::Response => super::perturbation::response(session, model, partition, &state, p, false)?,
@@ -216,14 +230,14 @@ fn perturbation(general: &mut GeneralSteps, p: &Perturbation, progress_lines: bo
     };
     // notes on what an answer means belong with it, --quiet or not
     for note in answer.notes.iter().filter(|_| session.world().rank() == 0) {
-        match progress_lines {
-            true => general.progress.note(&format!("note: {note}")),
+        match ctx.options.progress {
+            true => ctx.progress.note(&format!("note: {note}")),
             false => println!("note: {note}"),
         }
     }
     // the base state's fields: the last increment's (always written: it ends its step)
     let base_group = general.carried.rows.last().map(|r| format!("{:06}", r.number));
-    let written = general.results.write_perturbation(p, &answer, partition, base_group.as_deref());
-    stop_all_on_write_error(session.world(), general.output, written)?;
+    let written = ctx.results.write_perturbation(p, &answer, partition, base_group.as_deref());
+    stop_all_on_write_error(session.world(), &ctx.options.output, written)?;
     Ok(answer)
 }
