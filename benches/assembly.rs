@@ -8,10 +8,10 @@ use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use slideline::bellows::joint::{model, BellowsParams};
 use slideline::dist::{DofMap, Partition};
 use slideline::petsc::{PetscSession, VecOps, Vector};
-use slideline::solve::affinity::partition_affinity;
+use slideline::solve::contact::affinity::partition_affinity;
 use slideline::solve::contact::contact_nodes;
+use slideline::solve::problem::schedule::StepLoads;
 use slideline::solve::problem::{initial_history, Problem, StepStart};
-use slideline::solve::schedule::StepLoads;
 
 fn assembly(c: &mut Criterion) {
     let session = PetscSession::initialize(&[]).expect("PETSc");

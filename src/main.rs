@@ -148,8 +148,7 @@ fn run_command(args: cli::RunArgs) -> ExitCode {
         m
     });
     let segment = model.as_ref().ok().and_then(|m| m.reaction_segment_degrees);
-    let result =
-        model.and_then(|m| run(&session, &m, &RunOptions { output, progress: !quiet, verbose, monitor, restart: restart_from(&restart, increment) }));
+    let result = model.and_then(|m| run(&session, &m, &RunOptions { output, progress: !quiet, verbose, monitor, restart: restart_from(&restart, increment) }));
     warn_unused_options(&session, root && !is_bad_input(&result));
     finish(result, root, |summary| {
         // CalculiX's convention, for reading beside its .dat file

@@ -9,9 +9,9 @@
 use slideline::dist::{DofMap, Partition};
 use slideline::model::{deck, Temperature};
 use slideline::petsc::{MatOps, PetscSession, VecOps, Vector};
-use slideline::solve::affinity::partition_affinity;
+use slideline::solve::contact::affinity::partition_affinity;
+use slideline::solve::problem::schedule::StepLoads;
 use slideline::solve::problem::{initial_history, ElementFields, Problem, StepStart};
-use slideline::solve::schedule::StepLoads;
 use std::path::Path;
 
 const DECK: &str = r#"

@@ -1,5 +1,5 @@
 //! The bellows' lateral and angular spring rates by harmonic perturbation steps (mode 1) about a
-//! state of the joint (`solve::perturbation`), beside the codes' beam analogy evaluated with the
+//! state of the joint (`solve::procedures::perturbation`), beside the codes' beam analogy evaluated with the
 //! joint's own axial rate (a mode 0 perturbation about the same state):
 //! - `axial`: the moving end pushed 1 mm along the axis, twist held at both ends;
 //! - `lateral`: the moving end offset sideways, its rotation held (the ends parallel, the codes'

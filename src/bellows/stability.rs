@@ -1,4 +1,4 @@
-//! The bellows' instability pressures by buckle steps (`solve::modes`) about a state of the
+//! The bellows' instability pressures by buckle steps (`solve::procedures::modes`) about a state of the
 //! joint, both tubes' ends held: mode 1, the column instability ("squirm", the joint bowing
 //! sideways under its pressure thrust), and mode 0, the in-plane instability of the
 //! convolutions; each beside the codes' estimates:

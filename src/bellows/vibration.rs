@@ -1,4 +1,4 @@
-//! The bellows' natural frequencies by frequency steps (`solve::modes`) about a state of the
+//! The bellows' natural frequencies by frequency steps (`solve::procedures::modes`) about a state of the
 //! joint, both tubes' ends held: the axial modes (mode 0, twist held) and the lateral ones
 //! (mode 1), the lowest of each beside the beam and spring analogies EJMA's frequency formulas
 //! come from, evaluated with slideline's own axial rate Kb of the same state and the

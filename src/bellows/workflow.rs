@@ -21,7 +21,7 @@ use crate::io::restart::RestartFrom;
 use crate::io::ResultsFile;
 use crate::model::Step;
 use crate::petsc::PetscSession;
-use crate::solve::affinity::partition_affinity;
+use crate::solve::contact::affinity::partition_affinity;
 use crate::solve::{RunOptions, RunSummary};
 use mpi::traits::Communicator;
 use std::path::{Path, PathBuf};

@@ -1,4 +1,4 @@
-//! Contact in a harmonic perturbation (`solve::perturbation`): the stiffness the base state's
+//! Contact in a harmonic perturbation (`solve::procedures::perturbation`): the stiffness the base state's
 //! closed contact nodes give a displacement of one circumferential harmonic n.
 //!
 //! At each angle theta the perturbation moves the meridional half-plane's nodes by

@@ -14,9 +14,9 @@
 //! Everything is keyed by node and element ids, so any partition can read it; the continued run
 //! is bit-identical to the uninterrupted one on the same number of ranks.
 
+use super::history::HistoryRow;
 use super::reader::ResultsReader;
 use super::state::{AUDIT_THERMAL, BACKSTRESS_COLUMNS, PREDICTOR_INCREMENT};
-use super::history::HistoryRow;
 use crate::error::{Error, Result};
 use crate::material::backstress::MAX_BACKSTRESSES;
 use crate::material::PointState;

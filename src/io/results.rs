@@ -8,10 +8,10 @@
 //! converged increment, so a run that dies keeps everything converged before.
 
 use super::h5::{describe_dataset, gauss_rows, group_in, h5err, write_field, write_rows, COMPLETE, COMPLETION_MARKED, OUTPUT_EVERY, PLANE};
+use super::history::HistoryRow;
 use super::nodal::NodalWriter;
 use super::state::{write_state, CommittedState};
 use super::xdmf;
-use super::history::HistoryRow;
 use crate::dist::Partition;
 use crate::element::solid::QUADRATURE_POINTS;
 use crate::error::{Error, Result};

@@ -1,6 +1,6 @@
 //! Linear multi-point constraints between displacement components: sum_i a_i u(n_i, c_i) = 0.
 //! CalculiX's *EQUATION, *TIE and *PRE-TENSION SECTION all reduce to them (the reader builds
-//! them); the solver enforces each by a penalty (`solve::constraints`).
+//! them); the solver enforces each by a penalty (`solve::problem::constraints`).
 
 use super::{Component, Edge, Mesh, Model};
 use crate::error::{Error, Result};

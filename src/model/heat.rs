@@ -2,7 +2,7 @@
 //! temperature field that Fourier's law gives, -div(k grad T) = 0 in the body, with the
 //! temperatures the step holds on node sets and insulated (zero-flux) surfaces elsewhere. It
 //! is linear (a temperature-independent conductivity), so a step solves once
-//! (`solve::conduction`, `element::conduction`). Heat steps come before the general steps;
+//! (`solve::procedures::conduction`, `element::conduction`). Heat steps come before the general steps;
 //! the last one's field is then the temperature of the general steps, reached in the first of
 //! them (ramped from the initial temperatures, as a step's own temperature is), as CalculiX
 //! carries a *HEAT TRANSFER step's temperatures into the *STATIC step after it (measured with

@@ -2,7 +2,7 @@
 //! response to a load of one circumferential harmonic n about the state they end in, which
 //! they leave unchanged. The load is prescribed harmonic displacement amplitudes on node sets,
 //! rigid motions of end rings (n = 1) and harmonic pressure amplitudes; the answer is the
-//! harmonic displacement field and each set's reactions (`solve::perturbation`,
+//! harmonic displacement field and each set's reactions (`solve::procedures::perturbation`,
 //! `element::harmonic`).
 
 use super::{Model, Pressure};

@@ -148,10 +148,7 @@ impl Model {
                 return Err(Error::input(format!("step '{}': pressure on '{}' must be finite, got {}", step.name, p.surface, p.value)));
             }
             if step.pressures[..k].iter().any(|q| q.surface == p.surface) {
-                return Err(Error::input(format!(
-                    "step '{}': surface '{}' is given two pressures: give one (their sum, if both act)",
-                    step.name, p.surface
-                )));
+                return Err(Error::input(format!("step '{}': surface '{}' is given two pressures: give one (their sum, if both act)", step.name, p.surface)));
             }
         }
         for f in &step.nodal_forces {

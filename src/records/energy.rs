@@ -1,5 +1,5 @@
 //! The energy audit's totals after an increment and the loads its next trapezoids start from
-//! (`solve::energy` keeps the audit; the history and the restart state write these).
+//! (`solve::procedures::general::energy` keeps the audit; the history and the restart state write these).
 
 /// The audit's totals after an increment (per radian, N mm).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]

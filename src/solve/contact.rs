@@ -7,11 +7,6 @@
 //! reverse pass; each pass of a two-pass pair carries half of the penalty force, so the
 //! pressure at a slave node, p = max(0, lambda - eps g), is the contact pressure in both modes.
 
-pub use super::contact_surfaces::contact_nodes;
-use super::contact_surfaces::{edge_neighbourhood, surfaces_and_directions};
-pub use super::engagement::{BaseContact, Engagement};
-use super::engagement::{Engagements, PointHessians};
-use super::pattern::ContactPattern;
 use crate::contact::integrated::WeightedGap;
 use crate::contact::search::EdgeGrid;
 use crate::contact::surface::ContactSurface;
@@ -19,9 +14,17 @@ use crate::dist::{DofMap, Partition};
 use crate::model::{ContactIntegration, Friction, Model};
 use crate::petsc::sys::PetscInt;
 use crate::records::contact::{SlaveState, SlipPoint};
+use crate::solve::contact::engagement::{Engagements, PointHessians};
+use crate::solve::contact::surfaces::{edge_neighbourhood, surfaces_and_directions};
+use crate::solve::jacobian::pattern::ContactPattern;
+pub use engagement::{BaseContact, Engagement};
+pub use surfaces::contact_nodes;
 
+pub mod affinity;
+pub(super) mod engagement;
 mod output;
 mod slave_nodes;
+pub(super) mod surfaces;
 
 /// One direction of a pair: slave nodes of one surface against the segments of another.
 struct Pass {

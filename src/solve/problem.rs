@@ -7,12 +7,6 @@
 //! `trial`; [`Problem::commit`] copies trial to committed after a converged increment. A failed
 //! attempt never touches `committed`, so a cutback has nothing to undo.
 
-use super::constraints::ConstraintAssembly;
-use super::contact::{ContactAssembly, ContactCarry, Need};
-use super::contact_surfaces::contact_nodes;
-pub use super::kept::ElementFields;
-use super::kept::{KeptTangent, KeptTangents, LastEvaluation};
-use super::layout::JacobianLayout;
 use crate::dist::{DofMap, Partition};
 use crate::element::body_load::BodyForce;
 use crate::element::solid::ElementMatrix;
@@ -24,8 +18,19 @@ use crate::material::{Kinematics, PointState, SurfaceBranch, J2};
 use crate::model::{Material, Model, Temperature};
 use crate::petsc::sys::PetscInt;
 use crate::petsc::{LogStage, Matrix, PetscSession, Scatter, VecOps, Vector};
+use crate::solve::contact::surfaces::contact_nodes;
+use crate::solve::contact::{ContactAssembly, ContactCarry, Need};
+use crate::solve::jacobian::layout::JacobianLayout;
+use crate::solve::problem::constraints::ConstraintAssembly;
+use crate::solve::problem::kept::{KeptTangent, KeptTangents, LastEvaluation};
+pub use kept::ElementFields;
 
 mod assembly;
+pub mod constraints;
+pub(super) mod held;
+pub(super) mod kept;
+pub(super) mod roundoff;
+pub mod schedule;
 
 /// Loads and prescribed values at the current load factor.
 #[derive(Clone, Debug)]

@@ -189,12 +189,8 @@ fn split_times(s: &StepDef, amplitudes: &BTreeMap<String, Vec<(f64, f64)>>, tota
     used.extend(s.cloads.iter().filter_map(|b| b.amplitude.as_ref()));
     used.extend(s.temperature.iter().filter_map(|b| b.amplitude.as_ref()));
     let listed = s.time_points.iter().flat_map(|(times, total)| times.iter().map(move |&t| if *total { t - total_time } else { t }));
-    let mut times: Vec<f64> = used
-        .iter()
-        .flat_map(|a| amplitudes[*a].iter().map(|p| p.0))
-        .chain(listed)
-        .filter(|&t| t > 1e-12 * s.period && t < s.period * (1.0 - 1e-12))
-        .collect();
+    let mut times: Vec<f64> =
+        used.iter().flat_map(|a| amplitudes[*a].iter().map(|p| p.0)).chain(listed).filter(|&t| t > 1e-12 * s.period && t < s.period * (1.0 - 1e-12)).collect();
     times.push(s.period);
     times.sort_by(f64::total_cmp);
     times.dedup_by(|a, b| (*a - *b).abs() <= 1e-12 * s.period);

@@ -10,8 +10,8 @@ use crate::contact::search::EdgeGrid;
 use crate::contact::surface::ContactSurface;
 use crate::model::{ContactPair, Model, Penalty};
 use crate::records::contact::{SlaveState, SlipPoint};
-use crate::solve::engagement::{Engagements, FrictionRecipe};
-use crate::solve::roundoff::ROUNDOFF_ULPS;
+use crate::solve::contact::engagement::{Engagements, FrictionRecipe};
+use crate::solve::problem::roundoff::ROUNDOFF_ULPS;
 
 /// The friction kernel's arguments for a slave node at `xs` projecting at `xi` on master edge
 /// `edge`, its slip measured from `reference`.

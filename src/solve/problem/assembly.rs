@@ -10,8 +10,8 @@ use crate::error::Result;
 use crate::material::Kinematics;
 use crate::petsc::{MatOps, MatrixView, NonlinearProblem, VecOps, VectorView};
 use crate::solve::contact::Need;
-use crate::solve::kept::{ElementFields, LastEvaluation};
-use crate::solve::roundoff::ROUNDOFF_ULPS;
+use crate::solve::problem::kept::{ElementFields, LastEvaluation};
+use crate::solve::problem::roundoff::ROUNDOFF_ULPS;
 use mpi::collective::{CommunicatorCollectives, SystemOperation};
 
 impl NonlinearProblem for Problem<'_, '_> {

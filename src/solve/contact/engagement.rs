@@ -52,7 +52,7 @@ pub enum BaseContact {
 
 /// The friction kernel's arguments at one slave node (see `contact::friction`).
 #[derive(Clone, Copy, Debug)]
-pub(super) struct FrictionRecipe {
+pub(in crate::solve) struct FrictionRecipe {
     pub xs: [f64; 2],
     pub master: [[f64; 2]; 3],
     pub reference: [[f64; 2]; 3],
@@ -91,7 +91,7 @@ impl Engagement {
     /// Node-to-segment: slave node `node` at `xs` on the master edge with nodes `edge` at
     /// `x_master`, projected at `projection`; `residual` is the kernel's over [node, edge...].
     #[allow(clippy::too_many_arguments)]
-    pub(super) fn set_nodal(
+    pub(in crate::solve) fn set_nodal(
         &mut self,
         node: usize,
         edge: [usize; 3],
@@ -111,7 +111,7 @@ impl Engagement {
 
     /// Friction at slave node `node` projecting on the edge `edge`, its slip measured from the
     /// reference edge `reference`; `residual` is the kernel's over [node, edge, reference].
-    pub(super) fn set_friction(&mut self, node: usize, edge: [usize; 3], reference: [usize; 3], residual: &[f64], recipe: FrictionRecipe) {
+    pub(in crate::solve) fn set_friction(&mut self, node: usize, edge: [usize; 3], reference: [usize; 3], residual: &[f64], recipe: FrictionRecipe) {
         let slots = self.friction_nodes(node, edge, reference, &[], residual);
         self.recipe = TangentRecipe::Friction { recipe, slots };
         self.gradient.clear();
@@ -121,7 +121,7 @@ impl Engagement {
     /// `pressure` = lambda - eps g / A from the weighted gap of `samples`, so dp/du =
     /// `dp_per_gap` x dg/du.
     #[allow(clippy::too_many_arguments)]
-    pub(super) fn set_friction_integrated(
+    pub(in crate::solve) fn set_friction_integrated(
         &mut self,
         node: usize,
         edge: [usize; 3],
@@ -185,7 +185,7 @@ impl Engagement {
     /// Segment integration: slave node `node`, its weighted gap made of `samples`, at the
     /// nodal pressure times the pass's weight `weighted_pressure`; `stiffness` is the pass's
     /// weight times eps / A. The residual is -weighted_pressure dg.
-    pub(super) fn set_integrated(&mut self, node: usize, samples: &[GapSample], stiffness: f64, weighted_pressure: f64) {
+    pub(in crate::solve) fn set_integrated(&mut self, node: usize, samples: &[GapSample], stiffness: f64, weighted_pressure: f64) {
         self.recipe = TangentRecipe::Integrated { stiffness, weighted_pressure };
         sample_nodes(node, samples, &mut self.nodes);
         refill(&mut self.samples, samples.iter().copied());
@@ -196,7 +196,7 @@ impl Engagement {
 
     /// Forms the tangent at positions `x` (those of the evaluation that found the engagement),
     /// the segment-integrated ones from `hessians` of the same evaluation.
-    pub(super) fn form_tangent(&mut self, x: &impl Fn(usize) -> [f64; 2], hessians: &mut PointHessians) {
+    pub(in crate::solve) fn form_tangent(&mut self, x: &impl Fn(usize) -> [f64; 2], hessians: &mut PointHessians) {
         self.tangent.clear();
         match &self.recipe {
             TangentRecipe::Nodal { xs, master, projection, law } => {
@@ -259,18 +259,18 @@ impl Engagement {
 /// next one, so an evaluation refills them instead of allocating (DESIGN: no allocation in
 /// the hot path).
 #[derive(Default)]
-pub(super) struct Engagements {
+pub(in crate::solve) struct Engagements {
     slots: Vec<Engagement>,
     len: usize,
 }
 
 impl Engagements {
-    pub(super) fn clear(&mut self) {
+    pub(in crate::solve) fn clear(&mut self) {
         self.len = 0;
     }
 
     /// The next slot, for one of `Engagement`'s setters to fill.
-    pub(super) fn next_slot(&mut self) -> &mut Engagement {
+    pub(in crate::solve) fn next_slot(&mut self) -> &mut Engagement {
         if self.len == self.slots.len() {
             self.slots.push(Engagement::default());
         }
@@ -278,11 +278,11 @@ impl Engagements {
         &mut self.slots[self.len - 1]
     }
 
-    pub(super) fn as_slice(&self) -> &[Engagement] {
+    pub(in crate::solve) fn as_slice(&self) -> &[Engagement] {
         &self.slots[..self.len]
     }
 
-    pub(super) fn as_mut_slice(&mut self) -> &mut [Engagement] {
+    pub(in crate::solve) fn as_mut_slice(&mut self) -> &mut [Engagement] {
         &mut self.slots[..self.len]
     }
 }
@@ -311,7 +311,7 @@ fn position_in(nodes: &[usize], n: usize) -> usize {
 /// The Hessians of the pointwise gap at the integration points of one evaluation, computed
 /// when a tangent first asks (each point serves the two slave nodes whose hats cover it).
 #[derive(Default)]
-pub(super) struct PointHessians {
+pub(in crate::solve) struct PointHessians {
     /// Per point, its index in `matrices` (u32::MAX until computed).
     slot: Vec<u32>,
     matrices: Vec<SampleMatrix>,
@@ -319,7 +319,7 @@ pub(super) struct PointHessians {
 
 impl PointHessians {
     /// Forgets every Hessian; `points` points to come.
-    pub(super) fn reset(&mut self, points: usize) {
+    pub(in crate::solve) fn reset(&mut self, points: usize) {
         self.slot.clear();
         self.slot.resize(points, u32::MAX);
         self.matrices.clear();

@@ -4,7 +4,6 @@
 //! perturbation step's). Then the heat flux at the Gauss points and the heat flowing in
 //! through each held set: the residual K T there.
 
-use super::linear_system::{amplitudes_of, assemble, solve_once, Amplitude, Block};
 use crate::dist::Partition;
 use crate::element::conduction::{conduction_matrix, heat_flux};
 use crate::element::solid::NODES;
@@ -14,6 +13,7 @@ use crate::model::Model;
 use crate::petsc::sys::PetscInt;
 use crate::petsc::PetscSession;
 use crate::records::heat::{HeatAnswer, HeatFlow};
+use crate::solve::procedures::linear_system::{amplitudes_of, assemble, solve_once, Amplitude, Block};
 use mpi::collective::SystemOperation;
 use mpi::traits::*;
 

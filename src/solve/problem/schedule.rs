@@ -1,9 +1,9 @@
 //! What each step asks for: prescribed values, pressures and temperature at its start and end,
 //! interpolated linearly in the step's load factor.
 
-use super::problem::LoadState;
 use crate::element::body_load::BodyForce;
 use crate::model::{Model, Temperature};
+use crate::solve::problem::LoadState;
 use std::collections::BTreeMap;
 
 /// Start and end of every load quantity over one step.

@@ -12,18 +12,18 @@ use mpi::traits::*;
 /// An amplitude's place in the system: an unknown (index, coefficient: an axis node's U_t of
 /// mode 1 is -1 times its U_r) or a prescribed value.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub(super) enum Amplitude {
+pub(in crate::solve) enum Amplitude {
     Unknown(PetscInt, f64),
     Prescribed(f64),
 }
 
 /// An element's or an edge's matrix over its nodes' amplitudes (column-major, 3 per node; a
 /// heat step's over their temperatures, 1 per node).
-pub(super) type Block = (Vec<usize>, Vec<f64>);
+pub(in crate::solve) type Block = (Vec<usize>, Vec<f64>);
 
 /// The unknowns' matrix of `blocks` (K_ff) and the right-hand side's entries -K_fp U_p of the
 /// prescribed amplitudes (collective: PETSc sums rows from every rank).
-pub(super) fn assemble<'s, const D: usize>(
+pub(in crate::solve) fn assemble<'s, const D: usize>(
     session: &'s PetscSession,
     blocks: &[Block],
     amplitude: &[[Amplitude; D]],
@@ -59,7 +59,7 @@ pub(super) fn assemble<'s, const D: usize>(
 /// Solves `matrix` u = b once, b from the right-hand side's entries `rhs` (rows summed over the
 /// ranks), with the SNES's linear solver and its options (collective): this rank's part of u,
 /// or None when the solve failed (a singular matrix).
-pub(super) fn solve_once(session: &PetscSession, matrix: &Matrix<'_>, rhs: Vec<(PetscInt, f64)>, local_len: usize) -> Result<Option<Vec<f64>>> {
+pub(in crate::solve) fn solve_once(session: &PetscSession, matrix: &Matrix<'_>, rhs: Vec<(PetscInt, f64)>, local_len: usize) -> Result<Option<Vec<f64>>> {
     let mut b = Vector::mpi(session, session.comm(), local_len)?;
     b.set_all(0.0)?;
     let (indices, adds): (Vec<PetscInt>, Vec<f64>) = rhs.into_iter().unzip();
@@ -76,7 +76,7 @@ pub(super) fn solve_once(session: &PetscSession, matrix: &Matrix<'_>, rhs: Vec<(
 
 /// Every node's amplitudes on every rank from this rank's part `solution` of the unknowns
 /// (collective).
-pub(super) fn amplitudes_of<const D: usize>(
+pub(in crate::solve) fn amplitudes_of<const D: usize>(
     world: &impl Communicator,
     partition: &Partition,
     amplitude: &[[Amplitude; D]],

@@ -3,10 +3,10 @@
 //! master edges its slave edges face, so facing surfaces are cut at the same place and their
 //! couplings stay on one rank.
 
-use super::contact_surfaces::{edge_neighbourhood, surfaces_and_directions};
 use crate::contact::search::EdgeGrid;
 use crate::dist::Affinity;
 use crate::model::{ContactIntegration, Model};
+use crate::solve::contact::surfaces::{edge_neighbourhood, surfaces_and_directions};
 
 /// Relative work per Newton iteration of one element (1.3 residuals with the dual-number
 /// material update and one tangent: about 6 us, `cargo bench --bench kernels`) and of one

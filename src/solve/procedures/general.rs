@@ -10,28 +10,27 @@
 //! `growth_factor`, never past the requested size. Below `min_increment` the run stops with
 //! every converged increment in the results file.
 
-use super::attempt::{predict, solve_increment};
-use super::energy::EnergyAudit;
-use super::held;
-use super::perturbation::KeptBase;
-use super::problem::{LoadState, Problem, StepStart};
-use super::resume::{Carried, ResumeAt};
-use super::schedule::StepLoads;
-use super::stepping::RunContext;
+mod attempt;
+pub mod energy;
+mod record;
+pub(in crate::solve) mod resume;
+
 use crate::dist::{DofMap, Partition};
-use crate::element::solid::ElementEnergy;
 use crate::error::{Error, Result};
-use crate::io::state::CommittedState;
-use crate::io::{ContactSummary, HistoryRow};
-use crate::material::PointState;
-use crate::model::{Convergence, GeneralStep, Model, Predictor};
+use crate::model::{Convergence, GeneralStep, Predictor};
 use crate::petsc::{FieldRatios, Matrix, Snes, SolveReport, VecOps, Vector};
-use crate::records::energy::Energies;
-use crate::records::increment_fields::IncrementFields;
 use crate::records::last_increment::LastIncrement;
+use crate::solve::context::RunContext;
+use crate::solve::problem::held;
+use crate::solve::problem::schedule::StepLoads;
+use crate::solve::problem::{Problem, StepStart};
+use crate::solve::procedures::perturbation::KeptBase;
+use attempt::{predict, solve_increment};
 use mpi::collective::SystemOperation;
 use mpi::datatype::PartitionMut;
 use mpi::traits::*;
+use record::keep_base;
+use resume::{Carried, ResumeAt};
 
 /// A step reversing the previous one's prescribed motion starts at this fraction of a
 /// requested increment (the joint's unloading: its first increments undo the plastic flow).
@@ -40,7 +39,7 @@ const REVERSAL_START: f64 = 0.25;
 /// The general steps' own state: what one step hands the next (the state carried, the
 /// perturbations' base) and the contact pattern's counts; what every procedure shares comes
 /// with the run's context.
-pub(super) struct GeneralSteps {
+pub(in crate::solve) struct GeneralSteps {
     pub carried: Carried,
     /// The history rows a restart took over from the file it continues.
     pub continued: usize,
@@ -80,9 +79,9 @@ struct StepState<'s, 'm> {
 
 impl GeneralSteps {
     /// The perturbation steps' base state: the end of the last general step, once converged.
-    pub fn base_state(&self) -> Option<super::perturbation::BaseState<'_>> {
+    pub fn base_state(&self) -> Option<crate::solve::procedures::perturbation::BaseState<'_>> {
         let kept = self.base.as_ref()?;
-        Some(super::perturbation::BaseState {
+        Some(crate::solve::procedures::perturbation::BaseState {
             displacement: &self.carried.displacement,
             stress: &kept.stress,
             plastic_strain: &kept.plastic_strain,
@@ -296,140 +295,6 @@ impl GeneralSteps {
         Ok(())
     }
 
-    /// The converged increment at `target`: committed, its history row and energy audit, its
-    /// fields and restart state written (when the output asks), the next attempt's size.
-    fn record<'a, 's>(&mut self, ctx: &mut RunContext<'a, 's>, st: &mut StepState<'s, 'a>, target: f64, report: SolveReport, augmentations: usize) -> Result<()> {
-        let (model, partition, world) = (ctx.model, ctx.partition, ctx.session.world());
-        let controls = model.stepping;
-        let nodes = model.mesh.coords.len();
-        let (s, step) = (st.s, st.step);
-        let done = target - st.lambda;
-        st.lambda = target;
-        st.increment += 1;
-        let output = st.problem.stages.output;
-        let fields = output.run(|| st.problem.evaluate_fields(&st.x))??;
-        st.problem.commit();
-        let owned = owned_displacement(&st.x, &st.dofs, partition, &st.problem.load().prescribed)?;
-        // the extrapolating predictor's increment (kept only for it)
-        let before = (controls.predictor == Predictor::Extrapolate).then(|| self.carried.displacement.clone());
-        gather_displacement(world, partition, &owned, &mut self.carried.displacement);
-        st.last = before.map(|before| LastIncrement::between(&before, &self.carried.displacement, done));
-        let mut force = vec![0.0; 2 * nodes];
-        let local: Vec<f64> = fields.nodal_force.iter().flatten().copied().collect();
-        world.all_reduce_into(&local[..], &mut force[..], SystemOperation::sum());
-        let local_max_ep = fields.plastic_strain.iter().flatten().fold(0.0f64, |m, &v| m.max(v));
-        let mut max_ep = 0.0;
-        world.all_reduce_into(&local_max_ep, &mut max_ep, SystemOperation::max());
-        if let Some(contact) = st.problem.contact.as_mut() {
-            let local = contact.nodal_forces();
-            let mut total = vec![0.0; local.len()];
-            world.all_reduce_into(&local[..], &mut total[..], SystemOperation::sum());
-            contact.recover_tractions(&total);
-        }
-        // only the end of the last general step is the perturbations' base (a run that stops
-        // before it returns before them): no copy at every increment
-        if model.perturbations().next().is_some() && s + 1 == model.general_step_count() && st.lambda >= 1.0 {
-            self.base = Some(keep_base(model, &mut st.problem, &fields));
-        }
-        let contacts = contact_summaries(world, model, &st.problem);
-        let load_now = st.loads.at(model, st.lambda);
-        let energy =
-            audit_increment(world, model, &mut self.carried.audit, &st.problem, &fields, &force, &st.prescribed, &self.carried.displacement, &load_now);
-        let reactions = st
-            .loads
-            .constrained_sets
-            .iter()
-            .map(|set| (set.clone(), model.node_sets[set].iter().fold([0.0; 2], |acc, &n| [acc[0] + force[2 * n], acc[1] + force[2 * n + 1]])))
-            .collect();
-        let set_displacements = st
-            .loads
-            .constrained_sets
-            .iter()
-            .map(|set| {
-                let nodes = &model.node_sets[set];
-                let sum = nodes.iter().fold([0.0; 2], |acc, &n| [acc[0] + self.carried.displacement[n][0], acc[1] + self.carried.displacement[n][1]]);
-                (set.clone(), sum.map(|s| s / nodes.len().max(1) as f64))
-            })
-            .collect();
-        let row = HistoryRow {
-            number: self.carried.rows.len() + 1,
-            step: s + 1,
-            increment: st.increment,
-            load_factor: st.lambda,
-            time: match step.time_span {
-                Some([start, end]) => start + st.lambda * (end - start),
-                None => s as f64 + st.lambda,
-            },
-            newton_iterations: report.newton_iterations,
-            linear_iterations: report.linear_iterations,
-            residual_norm: report.residual_norms.last().copied().unwrap_or(f64::NAN),
-            residual_norms: report.residual_norms.clone(),
-            average_force: st.snes.accept_increment(),
-            cutbacks: st.cutbacks,
-            augmentations,
-            max_plastic_strain: max_ep,
-            contacts,
-            wall_time: self.carried.wall_before + ctx.start.elapsed().as_secs_f64(),
-            reactions,
-            set_displacements,
-            energy: Some(energy),
-        };
-        // the next attempt's size: kept after a hard increment, grown after an easy one
-        st.size = if report.newton_iterations <= controls.easy_iterations { (done * controls.growth_factor).min(st.requested) } else { done };
-        let with_fields = !step.without_field_output && model.output.writes_fields(row.number, st.lambda >= 1.0);
-        let fresh_pattern = match (with_fields, st.problem.contact.as_mut()) {
-            (true, Some(c)) => c.pattern_mut().take_fresh(),
-            _ => Vec::new(),
-        };
-        let contact_output = st.problem.contact.as_ref().map(|c| c.pass_outputs()).unwrap_or_default();
-        let (strain, plastic_strain_tensor) =
-            if with_fields { st.problem.strain_fields(&self.carried.displacement, &fields.thickness_stretch) } else { Default::default() };
-        let backstress = (with_fields && model.has_kinematic_hardening()).then(|| st.problem.backstress_field());
-        let reaction: Vec<[f64; 2]> =
-            partition.owned_nodes().iter().map(|&n| std::array::from_fn(|c| if st.prescribed[n][c] { force[2 * n + c] } else { 0.0 })).collect();
-        let increment_fields = IncrementFields {
-            displacement: &owned,
-            stress: &fields.stress,
-            plastic_strain: &fields.plastic_strain,
-            strain: &strain,
-            plastic_strain_tensor: &plastic_strain_tensor,
-            backstress: backstress.as_deref(),
-            reaction: &reaction,
-            temperature: &load_now.temperature,
-            contact: &contact_output,
-        };
-        let state = with_fields.then(|| {
-            let (multipliers, slip, refits) =
-                st.problem.contact.as_ref().map_or((Vec::new(), Vec::new(), 0), |c| (c.committed_by_node(), c.slip_by_node(), c.pattern().refits));
-            CommittedState {
-                mesh: &model.mesh,
-                history: st.problem.committed_history(),
-                local_elements: partition.local_elements(),
-                initial: PointState::initial(model.kinematics),
-                kinematic: model.has_kinematic_hardening(),
-                multipliers,
-                slip,
-                fresh_pattern,
-                next_size: st.size,
-                // the extrapolation's increment, unless the previous increment's field has it
-                predictor_increment: (st.increment > 1 && !st.last_in_file).then(|| st.last.as_ref().map(|l| l.displacement.as_slice())).flatten(),
-                audit: &self.carried.audit.last,
-                thermal_by_node: model.has_temperature_field(),
-                refits,
-            }
-        });
-        let written = state.as_ref().map(|state| (&increment_fields, state));
-        stop_all_on_write_error(world, &ctx.options.output, output.run(|| ctx.results.write_increment(&step.name, &row, written, partition))?)?;
-        st.last_in_file = with_fields;
-        if let Some(status) = ctx.status.as_mut() {
-            status.record(&row);
-        }
-        ctx.progress.increment(&row, &step.name, model.general_step_count(), !model.is_axisymmetric());
-        self.carried.rows.push(row);
-        st.cutbacks = 0;
-        Ok(())
-    }
-
     /// The step's end: the perturbations' base where a restart converged no increment, and what
     /// the next step takes over.
     fn end<'a, 's>(&mut self, ctx: &mut RunContext<'a, 's>, mut st: StepState<'s, 'a>) -> Result<()> {
@@ -463,54 +328,8 @@ fn stop_requested(world: &impl Communicator) -> Option<i32> {
     (any != 0).then_some(any)
 }
 
-/// The energy audit's record of a converged increment (collective: the element and contact
-/// energies and the pressure loads are summed over the ranks).
-#[allow(clippy::too_many_arguments)]
-pub(super) fn audit_increment(
-    world: &impl Communicator,
-    model: &Model,
-    audit: &mut EnergyAudit,
-    problem: &Problem<'_, '_>,
-    fields: &super::problem::ElementFields,
-    residual: &[f64],
-    prescribed: &[[bool; 2]],
-    displacement: &[[f64; 2]],
-    load: &LoadState,
-) -> Energies {
-    let local: Vec<f64> = fields.pressure_force.iter().flatten().copied().collect();
-    let mut pressure = vec![0.0; local.len()];
-    world.all_reduce_into(&local[..], &mut pressure[..], SystemOperation::sum());
-    let e = fields.energy;
-    let contact = problem.contact.as_ref().map_or([0.0; 3], |c| c.energies());
-    let local = [e.elastic, e.plastic_work, contact[0], contact[1], contact[2]];
-    let mut total = [0.0; 5];
-    world.all_reduce_into(&local[..], &mut total[..], SystemOperation::sum());
-    let mut thermal_force = vec![0.0; fields.thermal_force.len()];
-    world.all_reduce_into(&fields.thermal_force[..], &mut thermal_force[..], SystemOperation::sum());
-    let elements = ElementEnergy { elastic: total[0], plastic_work: total[1] };
-    let temperature = load.temperature.nodal(model.mesh.coords.len());
-    audit.record(residual, prescribed, &pressure, displacement, elements, [total[2], total[3], total[4]], &thermal_force, &temperature)
-}
-
-/// Per pair, over all ranks: active slave nodes, largest penetration, total normal force.
-pub(super) fn contact_summaries(world: &impl Communicator, model: &Model, problem: &Problem<'_, '_>) -> Vec<ContactSummary> {
-    let Some(contact) = problem.contact.as_ref() else { return Vec::new() };
-    contact
-        .pair_summaries(model)
-        .into_iter()
-        .zip(&model.contacts)
-        .map(|((active, penetration, force), pair)| {
-            let (mut a, mut p, mut f) = (0.0, 0.0, 0.0);
-            world.all_reduce_into(&active, &mut a, SystemOperation::sum());
-            world.all_reduce_into(&penetration, &mut p, SystemOperation::max());
-            world.all_reduce_into(&force, &mut f, SystemOperation::sum());
-            ContactSummary { name: pair.name.clone(), active_nodes: a as usize, max_penetration: p, normal_force: f }
-        })
-        .collect()
-}
-
 /// All ranks' owned displacements into the replicated array (model node order).
-pub(super) fn gather_displacement(world: &impl Communicator, partition: &Partition, owned: &[[f64; 2]], displacement: &mut [[f64; 2]]) {
+pub(in crate::solve) fn gather_displacement(world: &impl Communicator, partition: &Partition, owned: &[[f64; 2]], displacement: &mut [[f64; 2]]) {
     let counts: Vec<i32> = (0..partition.size).map(|r| 2 * (partition.node_offsets[r + 1] - partition.node_offsets[r]) as i32).collect();
     let displs: Vec<i32> = partition.node_offsets[..partition.size].iter().map(|&o| 2 * o as i32).collect();
     let flat: Vec<f64> = owned.iter().flatten().copied().collect();
@@ -521,20 +340,8 @@ pub(super) fn gather_displacement(world: &impl Communicator, partition: &Partiti
     }
 }
 
-/// Runs every step of `model` on the session's ranks, writing `options.output` as it goes.
-/// What the perturbation steps need of the converged state `problem` is in, whose fields are
-/// `fields`: this rank's stress and plastic strain, the pressures, the closed contact nodes.
-pub(super) fn keep_base(model: &Model, problem: &mut Problem<'_, '_>, fields: &super::kept::ElementFields) -> super::perturbation::KeptBase {
-    super::perturbation::KeptBase {
-        stress: fields.stress.clone(),
-        plastic_strain: fields.plastic_strain.clone(),
-        pressures: problem.load().pressures.clone(),
-        contacts: problem.contact.as_mut().map(|c| c.base_contacts(model)).unwrap_or_default(),
-    }
-}
-
 /// Displacement of this rank's owned nodes (partition order): solved values and prescribed ones.
-pub(super) fn owned_displacement(x: &Vector<'_>, dofs: &DofMap, partition: &Partition, prescribed: &[[f64; 2]]) -> Result<Vec<[f64; 2]>> {
+pub(in crate::solve) fn owned_displacement(x: &Vector<'_>, dofs: &DofMap, partition: &Partition, prescribed: &[[f64; 2]]) -> Result<Vec<[f64; 2]>> {
     let first = dofs.first() as i32;
     let a = x.read()?;
     Ok(partition
@@ -550,7 +357,7 @@ pub(super) fn owned_displacement(x: &Vector<'_>, dofs: &DofMap, partition: &Part
 /// near-constant residual, and a relative convergence test can then pass at an absurd state
 /// (3e9 mm, measured on a thick cylinder at its collapse pressure). `work` is overwritten.
 /// Collective.
-pub(super) fn runaway(
+pub(in crate::solve) fn runaway(
     x: &Vector<'_>,
     work: &mut Vector<'_>,
     (dofs, partition, converged): (&DofMap, &Partition, &[[f64; 2]]),
@@ -565,7 +372,7 @@ pub(super) fn runaway(
 }
 
 /// Puts the current displacement of this rank's free DOFs into `x` (the initial guess).
-pub(super) fn set_free_values(x: &mut Vector<'_>, dofs: &DofMap, partition: &Partition, displacement: &[[f64; 2]]) -> Result<()> {
+pub(in crate::solve) fn set_free_values(x: &mut Vector<'_>, dofs: &DofMap, partition: &Partition, displacement: &[[f64; 2]]) -> Result<()> {
     let first = dofs.first() as i32;
     let mut a = x.write()?;
     for &n in partition.owned_nodes() {
@@ -576,22 +383,4 @@ pub(super) fn set_free_values(x: &mut Vector<'_>, dofs: &DofMap, partition: &Par
         }
     }
     Ok(())
-}
-
-/// A write that failed on one rank (a full disk, a vanished directory) leaves the others
-/// waiting inside HDF5's collective calls: the rank that met it prints the error and stops every
-/// rank (MPI_Abort). The increments completed before are on disk, each flushed and marked. On
-/// one rank too: HDF5 closes the file it could not write at MPI_Finalize, and with 32-bit
-/// fields that close crashed (a segfault in H5F__close_cb, every time on a full 2 MB disk).
-pub(super) fn stop_all_on_write_error<T>(world: &impl Communicator, output: &std::path::Path, result: Result<T>) -> Result<T> {
-    match result {
-        Err(e @ Error::Output { .. }) => {
-            eprintln!("error: {e}; every rank stops (the increments completed before are in the file)");
-            // the abort runs no destructor: the lock goes first, whichever rank holds it (a
-            // file that stays locked would refuse the next run into it)
-            let _ = std::fs::remove_file(crate::io::lock::lock_path(output));
-            world.abort(1)
-        }
-        other => other,
-    }
 }

@@ -77,7 +77,7 @@ impl ConstraintAssembly {
                 sink(n, k, f);
                 forces[0] += f.abs();
                 forces[1] += 1.0;
-                roundoff += (super::roundoff::ROUNDOFF_ULPS * f64::EPSILON * c.penalty * size * a.abs()).powi(2);
+                roundoff += (crate::solve::problem::roundoff::ROUNDOFF_ULPS * f64::EPSILON * c.penalty * size * a.abs()).powi(2);
             }
         }
         (forces, roundoff)

@@ -1,22 +1,22 @@
 //! What a run carries from one step to the next, and where a restart puts it: the state read
 //! back from a results file's restart point, exactly what a commit wrote.
 
-use super::contact::{CarriedMultipliers, CarriedSlip, ContactCarry};
-use super::energy::EnergyAudit;
-use super::pattern::ContactPattern;
-use super::problem::{initial_history, History};
-use super::schedule::StepLoads;
 use crate::dist::Partition;
 use crate::error::{Error, Result};
 use crate::io::restart::{RestartFrom, RestartPoint};
 use crate::io::{HistoryRow, ResultsFile};
 use crate::model::Model;
 use crate::records::last_increment::LastIncrement;
+use crate::solve::contact::{CarriedMultipliers, CarriedSlip, ContactCarry};
+use crate::solve::jacobian::pattern::ContactPattern;
+use crate::solve::problem::schedule::StepLoads;
+use crate::solve::problem::{initial_history, History};
+use crate::solve::procedures::general::energy::EnergyAudit;
 
 /// What the run carries from one step to the next: the displacement of every node, this rank's
 /// elements' history, contact's committed state and pattern, the history rows, the last step's
 /// loads, the energy audit, and the wall time of the run it continues.
-pub(super) struct Carried {
+pub(in crate::solve) struct Carried {
     pub displacement: Vec<[f64; 2]>,
     pub history: History,
     pub carry: Option<ContactCarry>,
@@ -29,7 +29,7 @@ pub(super) struct Carried {
 /// Where a restart puts the stepping: the step (0-based), the displacement at its start (its
 /// newly prescribed values ramp from there), the load factor reached, the next increment's size
 /// and the increments the step has taken.
-pub(super) struct ResumeAt {
+pub(in crate::solve) struct ResumeAt {
     pub step: usize,
     pub step_start: Vec<[f64; 2]>,
     pub load_factor: f64,
@@ -97,7 +97,7 @@ impl Carried {
 }
 
 /// Reads the restart point (every rank, serially), refusing to overwrite the file it reads.
-pub(super) fn restart_point(from: &RestartFrom, output: &std::path::Path, model: &Model) -> Result<RestartPoint> {
+pub(in crate::solve) fn restart_point(from: &RestartFrom, output: &std::path::Path, model: &Model) -> Result<RestartPoint> {
     let same = match (std::fs::canonicalize(&from.file), std::fs::canonicalize(output)) {
         (Ok(a), Ok(b)) => a == b,
         _ => false,
@@ -112,7 +112,7 @@ pub(super) fn restart_point(from: &RestartFrom, output: &std::path::Path, model:
 }
 
 /// This rank's elements' history at a restart point.
-pub(super) fn restored_history(model: &Model, partition: &Partition, point: &RestartPoint) -> History {
+pub(in crate::solve) fn restored_history(model: &Model, partition: &Partition, point: &RestartPoint) -> History {
     let mut history = initial_history(model, partition);
     let mut local = vec![usize::MAX; model.mesh.elements.len()];
     for (k, &e) in partition.local_elements().iter().enumerate() {

@@ -4,35 +4,22 @@
 //! the perturbation steps about the last one's end (`perturbation` for a response, `modes` for
 //! an eigenproblem).
 
-use super::general_step::{stop_all_on_write_error, GeneralSteps};
-use super::resume::{restart_point, Carried, ResumeAt};
 use crate::dist::Partition;
 use crate::error::{Error, Result};
 use crate::io::lock::ResultsLock;
 use crate::io::progress::Progress;
-use crate::io::restart::{RestartFrom, RestartPoint};
+use crate::io::restart::RestartPoint;
 use crate::io::status::StatusFile;
 use crate::io::{HistoryRow, ResultsFile};
 use crate::model::perturbation::{Analysis, Perturbation};
 use crate::model::{Model, Step};
 use crate::petsc::{PetscSession, Snes};
 use crate::records::perturbation::PerturbationAnswer;
+use crate::solve::context::{stop_all_on_write_error, RunContext, RunOptions};
+use crate::solve::procedures::general::resume::{restart_point, Carried, ResumeAt};
+use crate::solve::procedures::general::GeneralSteps;
 use mpi::traits::*;
-use std::path::PathBuf;
 use std::time::Instant;
-
-#[derive(Clone, Debug)]
-pub struct RunOptions {
-    pub output: PathBuf,
-    /// Print a line per increment (rank 0).
-    pub progress: bool,
-    /// The long line per increment, with every reaction and the contact.
-    pub verbose: bool,
-    /// A line per Newton iteration: the convergence test's measures against their bounds.
-    pub monitor: bool,
-    /// Continue the run that wrote this file from one of its increments.
-    pub restart: Option<RestartFrom>,
-}
 
 #[derive(Clone, Debug)]
 pub struct RunSummary {
@@ -83,7 +70,7 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
     let world = session.world();
     let root = world.rank() == 0;
     let nodes = model.mesh.coords.len();
-    let partition = Partition::new(session, &model.mesh, &super::affinity::partition_affinity(model))?;
+    let partition = Partition::new(session, &model.mesh, &crate::solve::contact::affinity::partition_affinity(model))?;
     // the deck, its mesh and its includes are never written over, whatever name leads to them
     let written = [options.output.clone(), crate::io::xdmf::sidecar_path(&options.output), crate::io::status::status_path(&options.output)];
     for (output, input) in written.iter().flat_map(|w| model.source_files.iter().map(move |i| (w, i))) {
@@ -172,23 +159,9 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
     })
 }
 
-/// What every procedure's driver works with, handed down by the run's one dispatch: the
-/// session, the model (with the heat steps' field, once they have run), its partition, the
-/// run's options, the progress lines, the status and results files, the run's clock.
-pub(super) struct RunContext<'a, 's> {
-    pub session: &'s PetscSession,
-    pub model: &'a Model,
-    pub partition: &'a Partition,
-    pub options: &'a RunOptions,
-    pub progress: &'a Progress,
-    pub status: Option<StatusFile>,
-    pub results: ResultsFile,
-    pub start: Instant,
-}
-
 /// Heat step `h` solved and its answer written (collective).
 fn heat_step(ctx: &mut RunContext<'_, '_>, h: &crate::model::heat::HeatStep) -> Result<crate::records::heat::HeatAnswer> {
-    let answer = super::conduction::solve(ctx.session, ctx.model, ctx.partition, h)?;
+    let answer = crate::solve::procedures::conduction::solve(ctx.session, ctx.model, ctx.partition, h)?;
     let written = ctx.results.write_heat(h, &answer, ctx.partition, ctx.model.is_axisymmetric());
     stop_all_on_write_error(ctx.session.world(), &ctx.options.output, written)?;
     ctx.progress.note(&format!("heat step '{}': solved", h.name));
@@ -224,9 +197,9 @@ fn perturbation(ctx: &mut RunContext<'_, '_>, general: &GeneralSteps, p: &Pertur
         return Err(Error::input(format!("perturbation step '{}': this run converged no increment of a general step to be its base state", p.name)));
     };
     let answer = match p.analysis {
-        Analysis::Response => super::perturbation::response(session, model, partition, &state, p, false)?,
-        Analysis::Frequency { eigenvalues } => super::modes::frequency(session, model, partition, &state, p, eigenvalues)?,
-        Analysis::Buckle { eigenvalues } => super::modes::buckle(session, model, partition, &state, p, eigenvalues)?,
+        Analysis::Response => crate::solve::procedures::perturbation::response(session, model, partition, &state, p, false)?,
+        Analysis::Frequency { eigenvalues } => crate::solve::procedures::modes::frequency(session, model, partition, &state, p, eigenvalues)?,
+        Analysis::Buckle { eigenvalues } => crate::solve::procedures::modes::buckle(session, model, partition, &state, p, eigenvalues)?,
     };
     // notes on what an answer means belong with it, --quiet or not
     for note in answer.notes.iter().filter(|_| session.world().rank() == 0) {

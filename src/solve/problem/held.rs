@@ -3,9 +3,9 @@
 //! with an arbitrary jump of the body. Named in a warning at a step's start and in the error
 //! when a step gives up, so the user learns why instead of reading a cutback cascade.
 
-use super::problem::Problem;
 use crate::contact::format_mm;
 use crate::model::Model;
+use crate::solve::problem::Problem;
 use mpi::collective::SystemOperation;
 use mpi::traits::*;
 

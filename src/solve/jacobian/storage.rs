@@ -12,7 +12,7 @@ use crate::petsc::OwnedStructure;
 /// entries of other ranks' rows added through MatSetValues. MatSetValuesCOO instead sums every
 /// value through two index arrays of PETSc's (about 1.2 ms per Jacobian on the default bellows,
 /// 1 rank, against a third of that for the copies).
-pub(super) struct Storage {
+pub(in crate::solve) struct Storage {
     pub matrix: usize,
     /// (first value, first place, length) in the diagonal and the off-diagonal block.
     pub diagonal: Vec<(usize, usize, usize)>,

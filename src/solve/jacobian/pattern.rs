@@ -5,7 +5,7 @@
 //! storage to the pattern at every assembly, so each row that takes a new entry reallocates the
 //! whole matrix (8 % of a quick bellows run went to those copies). So each rank keeps here the
 //! couplings its engagements have needed so far: each step's matrix is built for the elements
-//! and all of them (the COO layout of `solve::layout`; PETSc gathers the ranks' entries into
+//! and all of them (the COO layout of `solve::jacobian::layout`; PETSc gathers the ranks' entries into
 //! rows), and when a Jacobian's engagements need couplings the pattern lacks, the matrix is
 //! refitted in place before any value is added (`Problem::fit_pattern`:
 //! [`ContactPattern::synchronise`], then a new COO preallocation on every rank). MUMPS redoes its

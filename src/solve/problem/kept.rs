@@ -2,8 +2,8 @@
 //! material tangents for the Jacobian SNES asks for next, and the output fields for the
 //! output after convergence.
 
-use super::contact::Multipliers;
 use crate::element::solid::{ElementEnergy, MaterialTangents, NODES, QUADRATURE_POINTS};
+use crate::solve::contact::Multipliers;
 
 /// The material tangents each local element's last residual evaluation computed, with the
 /// displacements and temperature they belong to. SNES asks for the Jacobian at the iterate
@@ -13,13 +13,13 @@ use crate::element::solid::{ElementEnergy, MaterialTangents, NODES, QUADRATURE_P
 /// elements whose history it changes; the others serve the next increment's predictor, which
 /// asks for the Jacobian at the converged state.
 #[derive(Default)]
-pub(super) struct KeptTangents {
+pub(in crate::solve) struct KeptTangents {
     /// Per local element.
     pub elements: Vec<KeptTangent>,
 }
 
 #[derive(Clone, Default)]
-pub(super) struct KeptTangent {
+pub(in crate::solve) struct KeptTangent {
     /// Whether `material` belongs to `u` and `temperature_change` (and today's history).
     pub valid: bool,
     pub u: [[f64; 2]; NODES],
@@ -80,7 +80,7 @@ impl ElementFields {
 /// The output fields of the last residual evaluation and the state it was made at: after
 /// convergence the output asks for the fields at the iterate whose residual SNES has just
 /// evaluated, so they are kept rather than computed a second time.
-pub(super) struct LastEvaluation {
+pub(in crate::solve) struct LastEvaluation {
     pub gathered: Vec<f64>,
     /// The problem's load generation it was made under.
     pub load: u64,

@@ -1,11 +1,11 @@
 //! One attempt at an increment: the load predictor, then the Newton solve with its
 //! augmented-Lagrangian updates.
 
-use super::problem::{LoadState, Problem};
 use crate::error::Result;
 use crate::material::SurfaceBranch;
 use crate::model::Model;
 use crate::petsc::{Matrix, NonlinearProblem, Snes, SolveReport, VecOps, Vector};
+use crate::solve::problem::{LoadState, Problem};
 use mpi::collective::SystemOperation;
 use mpi::traits::*;
 
@@ -14,7 +14,7 @@ use mpi::traits::*;
 /// within tolerance (or the pair's update budget is spent). Returns the last solve's report
 /// with the Newton and linear iterations of all solves, and the number of updates.
 #[allow(clippy::too_many_arguments)]
-pub(super) fn solve_increment(
+pub(in crate::solve) fn solve_increment(
     world: &impl Communicator,
     model: &Model,
     snes: &mut Snes<'_>,
@@ -55,7 +55,7 @@ pub(super) fn solve_increment(
 /// yield, and Newton wanders between loading and unloading there. Collective; where anything
 /// fails on any rank the predictor is skipped (Newton then starts from the converged state).
 #[allow(clippy::too_many_arguments)]
-pub(super) fn predict(
+pub(in crate::solve) fn predict(
     world: &impl Communicator,
     snes: &mut Snes<'_>,
     problem: &mut Problem<'_, '_>,

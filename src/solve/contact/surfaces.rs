@@ -22,7 +22,7 @@ pub fn contact_nodes(model: &Model) -> Vec<usize> {
 /// carry `weight` of the pair's force (one half each in a two-pass pair). `slave_nodes`: the
 /// pair's node-based slave (its first direction only), those nodes bearing with the master
 /// face's area.
-pub(super) struct Direction<'a> {
+pub(in crate::solve) struct Direction<'a> {
     pub pair: usize,
     pub slave: usize,
     pub master: usize,
@@ -32,7 +32,7 @@ pub(super) struct Direction<'a> {
 
 /// The model's contact surfaces (each once, however many pairs name it) and the directions of
 /// every pair over them.
-pub(super) fn surfaces_and_directions(model: &Model) -> (Vec<ContactSurface>, Vec<Direction<'_>>) {
+pub(in crate::solve) fn surfaces_and_directions(model: &Model) -> (Vec<ContactSurface>, Vec<Direction<'_>>) {
     let mut names: Vec<&str> = Vec::new();
     for c in &model.contacts {
         for s in [c.slave.as_str(), c.master.as_str()] {
@@ -57,7 +57,7 @@ pub(super) fn surfaces_and_directions(model: &Model) -> (Vec<ContactSurface>, Ve
 }
 
 /// Self-contact: the edges a slave edge may not bear on, those within `hops` of its nodes.
-pub(super) fn edge_neighbourhood(surface: &ContactSurface, edge: usize, hops: usize) -> Vec<usize> {
+pub(in crate::solve) fn edge_neighbourhood(surface: &ContactSurface, edge: usize, hops: usize) -> Vec<usize> {
     let mut near: Vec<usize> = surface.edges[edge].iter().flat_map(|&n| surface.neighbourhood(n, hops)).collect();
     near.sort_unstable();
     near.dedup();

@@ -22,8 +22,6 @@
 //! there: n = 0, U_r = U_t = 0; n = 1, U_z = 0 and U_t = -U_r (one unknown, U_r); n >= 2, all
 //! zero.
 
-use super::contact::BaseContact;
-use super::linear_system::{amplitudes_of, assemble, solve_once, Amplitude, Block};
 use crate::contact::harmonic::{normal_stiffness, sticking_stiffness};
 use crate::dist::Partition;
 use crate::element::harmonic::{
@@ -38,6 +36,8 @@ use crate::model::Model;
 use crate::petsc::sys::PetscInt;
 use crate::petsc::PetscSession;
 use crate::records::perturbation::{PerturbationAnswer, SetReaction};
+use crate::solve::contact::BaseContact;
+use crate::solve::procedures::linear_system::{amplitudes_of, assemble, solve_once, Amplitude, Block};
 use mpi::collective::SystemOperation;
 use mpi::traits::*;
 use std::f64::consts::PI;
@@ -65,10 +65,10 @@ pub struct KeptBase {
 }
 
 /// A local element's geometry and the material tangent at its Gauss points.
-pub(super) type ElementMaterial = (ElementGeometry, [Tangent6; QUADRATURE_POINTS]);
+pub(in crate::solve) type ElementMaterial = (ElementGeometry, [Tangent6; QUADRATURE_POINTS]);
 
 /// The base state's current geometry: every node's position.
-pub(super) fn current_positions(model: &Model, base: &BaseState<'_>) -> Vec<[f64; 2]> {
+pub(in crate::solve) fn current_positions(model: &Model, base: &BaseState<'_>) -> Vec<[f64; 2]> {
     let mesh = &model.mesh;
     (0..mesh.coords.len()).map(|n| [mesh.coords[n][0] + base.displacement[n][0], mesh.coords[n][1] + base.displacement[n][1]]).collect()
 }
@@ -76,7 +76,7 @@ pub(super) fn current_positions(model: &Model, base: &BaseState<'_>) -> Vec<[f64
 /// The stiffness of `step`'s mode about `base` on this rank: its elements' material and
 /// initial-stress matrices, the base pressures' load stiffness (finite kinematics), the closed
 /// contact nodes of the pairs the step does not leave out; and each element's material tangent.
-pub(super) fn stiffness_blocks(
+pub(in crate::solve) fn stiffness_blocks(
     model: &Model,
     partition: &Partition,
     base: &BaseState<'_>,
@@ -127,7 +127,7 @@ pub(super) fn stiffness_blocks(
 
 /// The load stiffness of pressure `p` following `surface` on this rank's edges, for mode
 /// `mode` (d f_ext / dU enters the stiffness with a minus).
-pub(super) fn pressure_stiffness_blocks(model: &Model, partition: &Partition, current: &[[f64; 2]], surface: &str, p: f64, mode: u32) -> Vec<Block> {
+pub(in crate::solve) fn pressure_stiffness_blocks(model: &Model, partition: &Partition, current: &[[f64; 2]], surface: &str, p: f64, mode: u32) -> Vec<Block> {
     let local: std::collections::HashSet<usize> = partition.local_elements().iter().copied().collect();
     let edges = model.surfaces.get(surface).into_iter().flatten().filter(|edge| local.contains(&edge.element));
     edges
@@ -141,7 +141,7 @@ pub(super) fn pressure_stiffness_blocks(model: &Model, partition: &Partition, cu
 }
 
 /// The material's stress amplitudes D : strain at the Gauss points of this rank's elements.
-pub(super) fn stresses(
+pub(in crate::solve) fn stresses(
     model: &Model,
     partition: &Partition,
     materials: &[ElementMaterial],
@@ -161,7 +161,7 @@ pub(super) fn stresses(
 
 /// The response to the step's prescribed amplitudes and harmonic pressures; `hold_twist` holds
 /// every U_t at zero (an axisymmetric load's solve, whose twist is decoupled).
-pub(super) fn response(
+pub(in crate::solve) fn response(
     session: &PetscSession,
     model: &Model,
     partition: &Partition,
@@ -239,7 +239,7 @@ pub(super) fn response(
 }
 
 /// The model's size, for the axis tolerance.
-pub(super) fn model_size(x: &[[f64; 2]]) -> f64 {
+pub(in crate::solve) fn model_size(x: &[[f64; 2]]) -> f64 {
     let (rmax, zmin, zmax) = x.iter().fold((0.0f64, f64::INFINITY, f64::NEG_INFINITY), |(r, a, b), p| (r.max(p[0]), a.min(p[1]), b.max(p[1])));
     rmax.max(zmax - zmin)
 }
@@ -248,7 +248,7 @@ pub(super) fn model_size(x: &[[f64; 2]]) -> f64 {
 type Prescription = Vec<[Option<f64>; 3]>;
 
 /// The amplitudes the step prescribes and each ring's (set, centre z_c).
-pub(super) fn prescribed_amplitudes(model: &Model, step: &Perturbation, x: &[[f64; 2]]) -> Result<(Prescription, Vec<(String, f64)>)> {
+pub(in crate::solve) fn prescribed_amplitudes(model: &Model, step: &Perturbation, x: &[[f64; 2]]) -> Result<(Prescription, Vec<(String, f64)>)> {
     let mut prescribed = vec![[None; 3]; x.len()];
     let mut set_value = |n: usize, c: usize, v: f64, set: &str| -> Result<()> {
         match prescribed[n][c] {
@@ -286,7 +286,13 @@ pub(super) fn prescribed_amplitudes(model: &Model, step: &Perturbation, x: &[[f6
 
 /// Numbers the unknown amplitudes rank by rank in partition order, with the axis's regularity;
 /// returns every node's amplitudes and the ranks' offsets.
-pub(super) fn number(partition: &Partition, prescribed: &[[Option<f64>; 3]], x: &[[f64; 2]], mode: u32, size: f64) -> (Vec<[Amplitude; 3]>, Vec<usize>) {
+pub(in crate::solve) fn number(
+    partition: &Partition,
+    prescribed: &[[Option<f64>; 3]],
+    x: &[[f64; 2]],
+    mode: u32,
+    size: f64,
+) -> (Vec<[Amplitude; 3]>, Vec<usize>) {
     let mut amplitude = vec![[Amplitude::Prescribed(0.0); 3]; x.len()];
     let mut offsets = vec![0; partition.size + 1];
     let mut next: PetscInt = 0;

@@ -1,6 +1,6 @@
 //! Eigenvalue perturbation steps about the base state (Abaqus's *FREQUENCY and *BUCKLE on CAXA
 //! elements), one circumferential harmonic n at a time, on the harmonic element's system
-//! (`solve::perturbation`) and SLEPc (`petsc::eigen`):
+//! (`solve::procedures::perturbation`) and SLEPc (`petsc::eigen`):
 //! - **frequency**: K_T phi = omega^2 M phi, K_T the perturbation's stiffness about the base
 //!   state (material, initial stress, follower pressure, contact), M the consistent mass, the
 //!   ring factor in both; frequencies in Hz and each mode's effective mass along the mode's
@@ -12,8 +12,6 @@
 //!
 //! The amplitudes a step names are held at zero in the eigenproblem.
 
-use super::linear_system::{amplitudes_of, assemble, Amplitude, Block};
-use super::perturbation::{current_positions, model_size, number, prescribed_amplitudes, pressure_stiffness_blocks, response, stiffness_blocks, BaseState};
 use crate::dist::Partition;
 use crate::element::harmonic::{initial_stress_stiffness, ring_factor};
 use crate::element::solid::{NODES, QUADRATURE_POINTS};
@@ -23,6 +21,10 @@ use crate::model::Model;
 use crate::petsc::eigen::{nearest, Pencil};
 use crate::petsc::PetscSession;
 use crate::records::perturbation::{EigenMode, PerturbationAnswer};
+use crate::solve::procedures::linear_system::{amplitudes_of, assemble, Amplitude, Block};
+use crate::solve::procedures::perturbation::{
+    current_positions, model_size, number, prescribed_amplitudes, pressure_stiffness_blocks, response, stiffness_blocks, BaseState,
+};
 use mpi::collective::SystemOperation;
 use mpi::traits::*;
 use std::f64::consts::PI;

@@ -15,11 +15,11 @@
 //! MatSetValuesCOO: the layout knows by then where PETSc stores each of its rank's rows and
 //! copies its values there in runs ([`JacobianLayout::hand_over`]).
 
-use super::storage::Storage;
 use crate::element::solid::DOFS;
 use crate::error::Result;
 use crate::petsc::sys::PetscInt;
 use crate::petsc::MatOps;
+use crate::solve::jacobian::storage::Storage;
 use std::collections::HashMap;
 
 /// Entries of an element block.
