@@ -12,7 +12,7 @@ pub mod ratcheting;
 pub mod spec;
 
 use crate::error::{Error, Result};
-use crate::io::table_file::Table;
+use crate::io::table_file::{Table, TableFile};
 use crate::model::Model;
 use crate::petsc::PetscSession;
 use mpi::traits::Communicator;
@@ -366,8 +366,7 @@ pub fn table(v: &Verdict, title: &str) -> String {
 
 /// The verdict in `output`'s group `/dba` (one row per line of the table; rank 0 only).
 pub fn write(v: &Verdict, output: &Path, deck_text: &str) -> Result<()> {
-    let err = |e: hdf5::Error| Error::Output { path: output.to_path_buf(), message: e.to_string() };
-    let file = hdf5::File::create(output).map_err(err)?;
+    let file = TableFile::create(output)?;
     let mut t = Table::default();
     t.text("check", v.rows.iter().map(|r| r.check.clone()).collect());
     t.text("criterion", v.rows.iter().map(|r| r.criterion.clone()).collect());
@@ -376,25 +375,21 @@ pub fn write(v: &Verdict, output: &Path, deck_text: &str) -> Result<()> {
     t.text("unit", v.rows.iter().map(|r| r.unit.clone()).collect());
     t.text("verdict", v.rows.iter().map(|r| r.passes.map_or("", |p| if p { "PASS" } else { "FAIL" }).to_string()).collect());
     t.text("rule", v.rows.iter().map(|r| r.rule.clone()).collect());
-    t.write_group(&file, "dba", output)?;
-    let text = |s: &str| s.parse::<hdf5::types::VarLenUnicode>().map_err(|_| Error::Output { path: output.to_path_buf(), message: format!("text {s:?}") });
+    file.table("dba", &t)?;
     let files = v.files.iter().map(|(n, f)| format!("{n}: {}", f.display())).collect::<Vec<_>>().join("; ");
-    let group = file.group("dba").map_err(err)?;
-    group.new_attr::<hdf5::types::VarLenUnicode>().create("results").map_err(err)?.write_scalar(&text(&files)?).map_err(err)?;
-    file.new_attr::<hdf5::types::VarLenUnicode>().create("deck").map_err(err)?.write_scalar(&text(deck_text)?).map_err(err)?;
-    Ok(())
+    file.text_attr(Some("dba"), "results", &files)?;
+    file.text_attr(None, "deck", deck_text)
 }
 
 /// The verdict a `check` or `bellows --dba` wrote to `path`'s `/dba`; None where the file has
 /// none.
 pub fn read(path: &Path) -> Result<Option<Verdict>> {
-    let bad = |e: hdf5::Error| Error::input(format!("{}: /dba: {e}", path.display()));
-    let file = hdf5::File::open(path).map_err(bad)?;
-    let Ok(g) = file.group("dba") else { return Ok(None) };
-    let text = |name: &str| -> Result<Vec<String>> {
-        Ok(g.dataset(name).and_then(|d| d.read_raw::<hdf5::types::VarLenUnicode>()).map_err(bad)?.iter().map(|s| s.to_string()).collect())
-    };
-    let numbers = |name: &str| g.dataset(name).and_then(|d| d.read_raw::<f64>()).map_err(bad);
+    let file = TableFile::open(path, "dba")?;
+    if !file.has_group("dba") {
+        return Ok(None);
+    }
+    let text = |name: &str| file.texts("dba", name);
+    let numbers = |name: &str| file.numbers("dba", name);
     let (checks, criteria, units, verdicts, rules) = (text("check")?, text("criterion")?, text("unit")?, text("verdict")?, text("rule")?);
     let (figures, limits) = (numbers("figure")?, numbers("limit")?);
     let n = checks.len();
@@ -416,7 +411,7 @@ pub fn read(path: &Path) -> Result<Option<Verdict>> {
             rule: rules[i].clone(),
         })
         .collect();
-    let listed = g.attr("results").and_then(|a| a.read_scalar::<hdf5::types::VarLenUnicode>()).map_err(bad)?.to_string();
+    let listed = file.group_text_attr("dba", "results")?;
     let files = listed.split("; ").filter_map(|entry| entry.split_once(": ")).map(|(name, file)| (name.to_string(), PathBuf::from(file))).collect();
     Ok(Some(Verdict { rows, files }))
 }

@@ -10,7 +10,7 @@ use super::{Measures, Outcome, Subject};
 use crate::error::{Error, Result};
 use crate::io::plots::{line_plot, Axes, Curve};
 use crate::io::reader::ResultsReader;
-use crate::io::table_file::Table;
+use crate::io::table_file::{Table, TableFile};
 use crate::model::{AugmentedLagrangian, Penalty};
 use crate::petsc::PetscSession;
 use crate::solve::RunOptions;
@@ -351,8 +351,6 @@ fn write_study(spec: &StudySpec, rows: &[StudyRow]) -> Result<()> {
     let mut rows = rows.to_vec();
     compare_to_reference(&mut rows);
     let path = &spec.output;
-    let err = |e: hdf5::Error| Error::Output { path: path.clone(), message: e.to_string() };
-    let text = |s: &str| s.parse::<hdf5::types::VarLenUnicode>().map_err(|_| Error::Output { path: path.clone(), message: "text attribute".into() });
     let mut t = Table::default();
     t.text("label", rows.iter().map(|r| r.label.clone()).collect());
     t.numbers("penalty", if spec.dimensionless { "" } else { "N/mm^3" }, rows.iter().map(|r| r.penalty).collect());
@@ -374,28 +372,16 @@ fn write_study(spec: &StudySpec, rows: &[StudyRow]) -> Result<()> {
     t.numbers("reaction", spec.measures.reaction_unit, rows.iter().map(|r| r.reaction).collect());
     t.numbers("reaction_difference", "", rows.iter().map(|r| r.difference).collect());
     super::write_whole(path, |part| {
-        let file = hdf5::File::create(part).map_err(err)?;
-        file.new_attr::<hdf5::types::VarLenUnicode>()
-            .create("penalty_unit")
-            .map_err(err)?
-            .write_scalar(&text(if spec.dimensionless { "kappa (eps = kappa E / h)" } else { "N/mm^3" })?)
-            .map_err(err)?;
-        file.new_attr::<hdf5::types::VarLenUnicode>()
-            .create("reaction")
-            .map_err(err)?
-            .write_scalar(&text(&format!("{} x {} ({})", spec.measures.reaction_column, spec.measures.reaction_scale, spec.measures.reaction_unit))?)
-            .map_err(err)?;
-        t.write_group(&file, "summary", path)?;
-        let runs = file.create_group("runs").map_err(err)?;
+        let file = TableFile::create(part)?;
+        file.text_attr(None, "penalty_unit", if spec.dimensionless { "kappa (eps = kappa E / h)" } else { "N/mm^3" })?;
+        file.text_attr(None, "reaction", &format!("{} x {} ({})", spec.measures.reaction_column, spec.measures.reaction_scale, spec.measures.reaction_unit))?;
+        file.table("summary", &t)?;
+        file.group("runs")?;
         for row in &rows {
-            let g = runs.create_group(&row.label).map_err(err)?;
-            g.new_attr::<hdf5::types::VarLenUnicode>().create("results").map_err(err)?.write_scalar(&text(&row.results.display().to_string())?).map_err(err)?;
-            let h = g.create_group("history").map_err(err)?;
-            // a run that failed before its first increment has no history to copy
-            let Ok(r) = ResultsReader::open(&row.results) else { continue };
-            for c in r.history_columns()? {
-                h.new_dataset_builder().with_data(r.history(&c)?.as_slice()).create(c.as_str()).map_err(err)?;
-            }
+            let group = format!("runs/{}", row.label);
+            file.group(&group)?;
+            file.text_attr(Some(&group), "results", &row.results.display().to_string())?;
+            file.copy_history(&format!("{group}/history"), &row.results)?;
         }
         Ok(())
     })?;

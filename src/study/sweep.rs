@@ -12,7 +12,7 @@ use crate::bellows::spec::DesignSpec;
 use crate::bellows::workflow::{self, BeforeTheRun, BellowsJob};
 use crate::error::{Error, Result};
 use crate::io::plots::{point_plot, Axes, Curve};
-use crate::io::table_file::Table;
+use crate::io::table_file::{Table, TableFile};
 use crate::petsc::PetscSession;
 use crate::solve::RunSummary;
 use mpi::traits::Communicator;
@@ -421,13 +421,10 @@ fn study_table(rows: &[SweepRow], vary: &[Vary]) -> Table {
 fn write_study(spec: &SweepSpec, rows: &[SweepRow]) -> Result<()> {
     let t = study_table(rows, &spec.vary);
     let path = &spec.output;
-    let err = |e: hdf5::Error| Error::Output { path: path.clone(), message: e.to_string() };
     super::write_whole(path, |part| {
-        let file = hdf5::File::create(part).map_err(err)?;
-        let text =
-            spec.base.parse::<hdf5::types::VarLenUnicode>().map_err(|_| Error::Output { path: path.clone(), message: "the specification's text".into() })?;
-        file.new_attr::<hdf5::types::VarLenUnicode>().create("specification").map_err(err)?.write_scalar(&text).map_err(err)?;
-        t.write_group(&file, "variants", path)
+        let file = TableFile::create(part)?;
+        file.text_attr(None, "specification", &spec.base)?;
+        file.table("variants", &t)
     })?;
     super::write_whole(&path.with_extension("csv"), |part| t.write_csv(part))
 }
