@@ -6,7 +6,7 @@
 //! solve of the same iteration in scripts/profile-bellows.sh.
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use slideline::bellows::joint::{model, BellowsParams};
-use slideline::dist::{DofMap, Partition};
+use slideline::decomposition::{DofMap, Partition};
 use slideline::petsc::{PetscSession, VecOps, Vector};
 use slideline::solve::contact::affinity::partition_affinity;
 use slideline::solve::contact::contact_nodes;

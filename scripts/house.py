@@ -154,7 +154,7 @@ LAYERS = [
     ["model"],
     ["contact"],
     ["records", "assessment"],
-    ["petsc", "dist"],
+    ["petsc", "decomposition"],
     ["io"],
     ["solve", "preprocess"],
     ["bellows", "post", "study", "dba"],

@@ -1,6 +1,6 @@
 //! slideline: a parallel nonlinear finite-element solver on PETSc for axisymmetric solids in
 //! contact. Layers (see docs/code.md): readers -> `model`; pure kernels (`fe`, `material`,
-//! `element`); parallel drivers (`dist`, `solve`, `io`) over the `petsc` binding.
+//! `element`); parallel drivers (`decomposition`, `solve`, `io`) over the `petsc` binding.
 #![deny(unsafe_code)]
 #![deny(unsafe_op_in_unsafe_fn)]
 // Kernels are written in index notation, as their formulas are.
@@ -15,7 +15,7 @@ pub mod assessment;
 pub mod bellows;
 pub mod contact;
 pub mod dba;
-pub mod dist;
+pub mod decomposition;
 pub mod element;
 pub mod fe;
 pub mod interrupt;

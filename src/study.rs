@@ -9,7 +9,7 @@ mod pool;
 mod subject;
 pub mod sweep;
 
-pub use penalty::{parse_penalties, penalty_study, StudyRow, StudySpec, MAX_RUNS};
+pub use penalty::{parse_penalties, penalty_study, StudyPlan, StudyRow, MAX_RUNS};
 pub use subject::{Measures, Subject};
 
 use crate::error::{Error, Result};

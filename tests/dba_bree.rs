@@ -28,7 +28,7 @@
 //! One test function: MPI is initialised once per process.
 
 use slideline::dba::ratcheting::{self, Ratcheting};
-use slideline::dba::spec::{DbaSpec, RatchetingSpec};
+use slideline::dba::table::{DbaTable, RatchetingTable};
 use slideline::io::reader::ResultsReader;
 use slideline::model::{Step, Temperature};
 use slideline::petsc::PetscSession;
@@ -108,11 +108,11 @@ fn bree_regions_and_the_ratchet_strain_per_cycle() {
     use Behaviour::*;
     let session = PetscSession::initialize(&[]).expect("PETSc");
     let dir = tempfile::tempdir().unwrap();
-    let spec = DbaSpec {
+    let spec = DbaTable {
         fatigue: None,
         allowable_stress: None,
         limit_load: None,
-        ratcheting: Some(RatchetingSpec { cycle: vec!["heat".into(), "cool".into()], cycles: 4, section: Some([[A, 0.25], [A + T, 0.25]]) }),
+        ratcheting: Some(RatchetingTable { cycle: vec!["heat".into(), "cool".into()], cycles: 4, section: Some([[A, 0.25], [A + T, 0.25]]) }),
         buckling: None,
     };
     // (region, X, Y, what the check must find)

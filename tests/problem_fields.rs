@@ -6,7 +6,7 @@
 //! under a rough displacement field, heated, on one rank.
 //! One test function: MPI can be initialised once per process.
 
-use slideline::dist::{DofMap, Partition};
+use slideline::decomposition::{DofMap, Partition};
 use slideline::model::{deck, Temperature};
 use slideline::petsc::{MatOps, PetscSession, VecOps, Vector};
 use slideline::solve::contact::affinity::partition_affinity;

@@ -13,7 +13,7 @@ use crate::assessment::code::{CodeCheck, Duty, Source};
 use crate::assessment::coefficients::Coefficients;
 use crate::assessment::fe_check::FeCheck;
 use crate::assessment::verdict::{Forming, Verdict};
-use crate::dist::Partition;
+use crate::decomposition::Partition;
 use crate::error::Result;
 use crate::io::plots::{outline_picture, Panel, SegmentLayer};
 use crate::io::reader::ResultsReader;
@@ -221,7 +221,7 @@ pub fn design_by_analysis(
     report: Option<&Path>,
     quiet: bool,
 ) -> Result<()> {
-    use crate::dba::spec::{Allowable, DbaSpec, FatigueSpec, LimitLoadSpec, RatchetingSpec};
+    use crate::dba::table::{Allowable, DbaTable, FatigueTable, LimitLoadTable, RatchetingTable};
     use crate::error::Error;
     use crate::model::KinematicHardening;
     let spec = spec.ok_or_else(|| crate::error::Error::input("bellows --dba: the checks need the allowable stress of a design specification (--spec FILE)"))?;
@@ -235,24 +235,24 @@ pub fn design_by_analysis(
         m.kinematic = kinematic;
     }
     let stroke = vec!["compress".to_string(), "return".to_string()];
-    let fatigue = (!kinematic.is_empty()).then(|| FatigueSpec {
+    let fatigue = (!kinematic.is_empty()).then(|| FatigueTable {
         cycle: stroke.clone(),
-        cycles: crate::dba::spec::LEAST_CYCLES,
+        cycles: crate::dba::table::LEAST_CYCLES,
         design_cycles: spec.design.cycles,
         curve: None,
         curve_modulus: None,
     });
-    let checks = DbaSpec {
+    let checks = DbaTable {
         fatigue,
         allowable_stress: Some(Allowable::Every(allowable)),
-        limit_load: Some(LimitLoadSpec {
+        limit_load: Some(LimitLoadTable {
             factor: 1.5,
             search_to: BELLOWS_SEARCH_TO,
             search_increments: 40,
             search_seconds: Some(BELLOWS_SEARCH_SECONDS),
             steps: Some(vec!["heat".into()]),
         }),
-        ratcheting: Some(RatchetingSpec { cycle: stroke, cycles: crate::dba::spec::LEAST_CYCLES, section: None }),
+        ratcheting: Some(RatchetingTable { cycle: stroke, cycles: crate::dba::table::LEAST_CYCLES, section: None }),
         buckling: None,
     };
     checks.validate(&model)?;

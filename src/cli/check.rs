@@ -41,7 +41,7 @@ pub fn check_command(args: &CheckArgs) -> ExitCode {
     let result = (|| {
         let _locks = slideline::dba::lock_outputs(&session, &output)?;
         let (model, notes) = slideline::preprocess::prepared_deck(&args.deck)?;
-        let spec = slideline::dba::spec::DbaSpec::of_model(&model)?.ok_or_else(|| {
+        let spec = slideline::dba::table::DbaTable::of_model(&model)?.ok_or_else(|| {
             Error::input(format!("{}: no [design_by_analysis] table: it names the checks to run (docs/design-by-analysis.md)", args.deck.display()))
         })?;
         if root && !args.quiet {

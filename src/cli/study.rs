@@ -134,7 +134,7 @@ pub fn sweep_command(args: &SweepArgs) -> ExitCode {
 
 /// `slideline penalty-study`: the study spec for the bellows or a deck, then the runs.
 fn penalty_study(session: &PetscSession, args: &StudyArgs) -> Result<(), Error> {
-    use slideline::study::{parse_penalties, StudySpec, Subject};
+    use slideline::study::{parse_penalties, StudyPlan, Subject};
     let penalties = parse_penalties(&args.penalties, args.per_decade)?;
     let mut bellows = slideline::bellows::joint::BellowsParams::default();
     if args.quick {
@@ -155,7 +155,7 @@ fn penalty_study(session: &PetscSession, args: &StudyArgs) -> Result<(), Error> 
         None => Subject::Bellows(bellows),
     };
     let measures = subject.measures(args.reaction.clone())?;
-    let spec = StudySpec {
+    let spec = StudyPlan {
         subject,
         penalties,
         dimensionless: args.dimensionless,
@@ -170,8 +170,8 @@ fn penalty_study(session: &PetscSession, args: &StudyArgs) -> Result<(), Error> 
 }
 
 /// `slideline bellows-sweep`'s keys and their values checked against the specification.
-fn sweep_spec(args: &SweepArgs) -> Result<slideline::study::sweep::SweepSpec, Error> {
-    use slideline::study::sweep::{parse_vary, Analyses, SweepSpec};
+fn sweep_spec(args: &SweepArgs) -> Result<slideline::study::sweep::SweepPlan, Error> {
+    use slideline::study::sweep::{parse_vary, Analyses, SweepPlan};
     // the specification itself must stand before its variants are made
     let base = slideline::bellows::spec::DesignSpec::from_file(&args.spec)?.text;
     let vary = args.vary.iter().map(|v| parse_vary(v, &base, &args.spec)).collect::<Result<Vec<_>, _>>()?;
@@ -186,7 +186,7 @@ fn sweep_spec(args: &SweepArgs) -> Result<slideline::study::sweep::SweepSpec, Er
         angular: args.analyses.angular,
         elastic_only: args.elastic_only,
     };
-    Ok(SweepSpec {
+    Ok(SweepPlan {
         base,
         path: args.spec.clone(),
         vary,

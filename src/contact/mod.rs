@@ -1,6 +1,8 @@
-//! Frictionless node-to-segment ("slide line") contact: the kernel of eqs. (1)-(6) of the
-//! seed paper (Wriggers), contact surfaces as polylines with consistent axisymmetric
-//! tributary areas, and the closest-segment search. Pure: no PETSc, no MPI.
+//! Penalty contact kernels: the node-to-segment ("slide line") kernel of eqs. (1)-(6) of the
+//! seed paper (Wriggers) and the integrated (segment-to-segment) gap, Coulomb friction's return
+//! map, the harmonic perturbation's contact stiffness, contact surfaces as polylines with
+//! consistent axisymmetric tributary areas, the closest-segment search and the initial
+//! adjustment. Pure: no PETSc, no MPI.
 
 pub mod adjust;
 pub mod friction;

@@ -7,7 +7,7 @@
 //! reduction factor for the shell's geometry and loading.
 
 use super::limit_load::AppliedLoads;
-use super::spec::DbaSpec;
+use super::table::DbaTable;
 use crate::error::{Error, Result};
 use crate::model::perturbation::Analysis;
 use crate::model::{GeneralStep, Kinematics, Model, PrescribedDisplacement, Step};
@@ -73,7 +73,7 @@ pub fn model(model: &Model) -> Result<Model> {
 }
 
 /// Runs the buckling analysis of `model` into `output` (collective).
-pub fn run(session: &PetscSession, model: &Model, spec: &DbaSpec, output: &Path, progress: bool) -> Result<Buckling> {
+pub fn run(session: &PetscSession, model: &Model, spec: &DbaTable, output: &Path, progress: bool) -> Result<Buckling> {
     let b = spec.buckling.as_ref().ok_or_else(|| Error::input("[design_by_analysis] has no buckling"))?;
     let m = self::model(model)?;
     let summary = crate::solve::run(session, &m, &RunOptions { output: output.to_path_buf(), progress, verbose: false, monitor: false, restart: None })?;

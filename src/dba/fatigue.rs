@@ -15,7 +15,7 @@
 //! strain is the restart state's (eps_p at small strain, ln(C_p) / 2 at finite strain).
 
 use super::fatigue_curve::Cycles;
-use super::spec::{DbaSpec, FatigueSpec};
+use super::table::{DbaTable, FatigueTable};
 use crate::assessment::fe_check::effective_strain_range;
 use crate::element::solid::QUADRATURE_POINTS as QP;
 use crate::error::{Error, Result};
@@ -53,7 +53,7 @@ fn cycle_name(name: &str, k: usize) -> String {
 
 /// The fatigue model of `model`: its heat and general steps, the cycle repeated; the tight
 /// residual test; fields (with the restart state) at every increment.
-pub fn model(model: &Model, f: &FatigueSpec) -> Result<Model> {
+pub fn model(model: &Model, f: &FatigueTable) -> Result<Model> {
     let mut m = model.clone();
     let mut steps: Vec<Step> = model.steps.iter().filter(|s| !matches!(s, Step::Perturbation(_))).cloned().collect();
     let cycle: Vec<_> = model.general_steps().filter(|s| f.cycle.contains(&s.name)).cloned().collect();
@@ -74,7 +74,7 @@ pub fn model(model: &Model, f: &FatigueSpec) -> Result<Model> {
 
 /// Runs the fatigue analysis of `model` into `output` and evaluates its last cycle
 /// (collective).
-pub fn run(session: &PetscSession, model: &Model, spec: &DbaSpec, output: &Path, progress: bool) -> Result<Fatigue> {
+pub fn run(session: &PetscSession, model: &Model, spec: &DbaTable, output: &Path, progress: bool) -> Result<Fatigue> {
     let f = spec.fatigue.as_ref().ok_or_else(|| Error::input("[design_by_analysis] has no fatigue"))?;
     let m = self::model(model, f)?;
     crate::solve::run(session, &m, &RunOptions { output: output.to_path_buf(), progress, verbose: false, monitor: false, restart: None })?;
@@ -82,7 +82,7 @@ pub fn run(session: &PetscSession, model: &Model, spec: &DbaSpec, output: &Path,
 }
 
 /// The last cycle's figures from the fatigue run's file.
-pub fn evaluate(file: &Path, model: &Model, f: &FatigueSpec) -> Result<Fatigue> {
+pub fn evaluate(file: &Path, model: &Model, f: &FatigueTable) -> Result<Fatigue> {
     let reader = ResultsReader::open(file)?;
     let rows = reader.history_rows()?;
     let general = model.general_steps().count();

@@ -13,7 +13,7 @@
 //! residual was 4 % of the forces, past the load the supports carried; under the residual
 //! test the applied factor is the carried one to 1e-10 of the forces.
 
-use super::spec::{DbaSpec, LimitLoadSpec};
+use super::table::{DbaTable, LimitLoadTable};
 use crate::error::{Error, Result};
 use crate::model::{BodyLoad, Convergence, GeneralStep, Kinematics, Model, NodalForce, Plasticity, Pressure, Step};
 use crate::petsc::PetscSession;
@@ -86,7 +86,7 @@ pub const SEARCH_STEP: &str = "collapse search";
 /// The limit-load model of `model`: its materials elastic-perfectly plastic at 1.5 S, small
 /// displacements, no thermal strain, its general steps with the primary loads times the
 /// factor, then the search step.
-pub fn model(model: &Model, spec: &DbaSpec, ll: &LimitLoadSpec) -> Result<Model> {
+pub fn model(model: &Model, spec: &DbaTable, ll: &LimitLoadTable) -> Result<Model> {
     let mut m = model.clone();
     m.kinematics = Kinematics::Small;
     for mat in &mut m.materials {
@@ -124,7 +124,7 @@ pub fn model(model: &Model, spec: &DbaSpec, ll: &LimitLoadSpec) -> Result<Model>
 
 /// The factored steps of the limit-load analysis of `model`, run into `output` (collective):
 /// whether the factored loads are carried, the check's verdict, known before any search.
-pub fn run_factored(session: &PetscSession, model: &Model, spec: &DbaSpec, output: &Path, progress: bool) -> Result<LimitLoad> {
+pub fn run_factored(session: &PetscSession, model: &Model, spec: &DbaTable, output: &Path, progress: bool) -> Result<LimitLoad> {
     let ll = spec.limit_load.as_ref().ok_or_else(|| Error::input("[design_by_analysis] has no limit_load"))?;
     let mut m = self::model(model, spec, ll)?;
     m.steps.retain(|s| !matches!(s, Step::General(g) if g.name == SEARCH_STEP));
@@ -147,7 +147,7 @@ pub fn run_factored(session: &PetscSession, model: &Model, spec: &DbaSpec, outpu
 /// last increment) by the search step into `output`, the loads raised to `search_to` times the
 /// design's until Newton fails at the smallest increment. Run after every other check: however
 /// long its last attempts take near collapse, the verdict is known and written before it.
-pub fn search(session: &PetscSession, model: &Model, spec: &DbaSpec, factored: &Path, output: &Path, progress: bool) -> Result<LimitLoad> {
+pub fn search(session: &PetscSession, model: &Model, spec: &DbaTable, factored: &Path, output: &Path, progress: bool) -> Result<LimitLoad> {
     let ll = spec.limit_load.as_ref().ok_or_else(|| Error::input("[design_by_analysis] has no limit_load"))?;
     let m = self::model(model, spec, ll)?;
     let restart = Some(crate::io::restart::RestartFrom { file: factored.to_path_buf(), increment: None });

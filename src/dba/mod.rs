@@ -2,22 +2,22 @@
 //! an analysis of its own built from the deck's loads (the limit-load method of protection
 //! against plastic collapse, [`limit_load`]; ratcheting by elastic-plastic analysis,
 //! [`ratcheting`]; buckling by eigenvalue analysis, [`buckling`]), and their verdict table. What to check and the data it needs beyond the
-//! model are the deck's `[design_by_analysis]` table ([`spec`]).
+//! model are the deck's `[design_by_analysis]` table ([`table`]).
 
 pub mod buckling;
 pub mod fatigue;
 pub mod fatigue_curve;
 pub mod limit_load;
 pub mod ratcheting;
-pub mod spec;
+pub mod table;
 
 use crate::error::{Error, Result};
 use crate::io::table_file::{Table, TableFile};
 use crate::model::Model;
 use crate::petsc::PetscSession;
 use mpi::traits::Communicator;
-use spec::DbaSpec;
 use std::path::{Path, PathBuf};
+use table::DbaTable;
 
 /// One line of the verdict table.
 #[derive(Clone, Debug, PartialEq)]
@@ -97,7 +97,7 @@ pub fn report(v: &Verdict, title: &str, output: &Path, deck_text: &str) -> Resul
 /// file beside `output`. Each check's rows are printed as soon as it ends (with `progress`); a
 /// check whose analysis does not converge (ratcheting, fatigue) gets a failing row that says
 /// where it stopped, and the checks after it still run.
-pub fn run(session: &PetscSession, model: &Model, spec: &DbaSpec, output: &Path, progress: bool) -> Result<Verdict> {
+pub fn run(session: &PetscSession, model: &Model, spec: &DbaTable, output: &Path, progress: bool) -> Result<Verdict> {
     let say = session.world().rank() == 0 && progress;
     let mut verdict = Verdict { rows: Vec::new(), files: Vec::new() };
     let [limit, buckle, ratchet, fatigue_name] = CHECKS;
@@ -197,7 +197,7 @@ fn not_shown(check: &str, e: Error, file: &Path, rule: &str) -> Result<CheckRow>
     })
 }
 
-fn limit_load_row(a: &limit_load::LimitLoad, ll: &spec::LimitLoadSpec) -> CheckRow {
+fn limit_load_row(a: &limit_load::LimitLoad, ll: &table::LimitLoadTable) -> CheckRow {
     // a collapse is where Newton fails at the smallest increment; any other stop is said
     let collapse = |stop: &limit_load::Stop| stop.why.contains("min_increment");
     let criterion = match &a.failed_in {

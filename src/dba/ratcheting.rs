@@ -9,7 +9,7 @@
 //! growth of the equivalent plastic strain below it is no plastic action, and a node moving
 //! less than it times the model's size between the cycles' ends is no change of dimensions.
 
-use super::spec::{DbaSpec, RatchetingSpec};
+use super::table::{DbaTable, RatchetingTable};
 use crate::error::{Error, Result};
 use crate::fe::linearize::StressSampler;
 use crate::fe::recover::Rule;
@@ -64,7 +64,7 @@ fn cycle_name(name: &str, k: usize) -> String {
 /// The ratcheting model of `model`: its materials elastic-perfectly plastic at their yield
 /// strength, its heat and general steps, the cycle repeated; the tight residual test (the
 /// criteria compare states to 1e-3 of the yield strain); fields at each step's end.
-pub fn model(model: &Model, r: &RatchetingSpec) -> Result<Model> {
+pub fn model(model: &Model, r: &RatchetingTable) -> Result<Model> {
     let mut m = model.clone();
     for mat in &mut m.materials {
         let h = mat.plasticity.ok_or_else(|| Error::input(format!("[design_by_analysis] ratcheting: material '{}' has no yield stress", mat.name)))?;
@@ -89,7 +89,7 @@ pub fn model(model: &Model, r: &RatchetingSpec) -> Result<Model> {
 
 /// Runs the ratcheting analysis of `model` into `output` and reads the criteria from it
 /// (collective).
-pub fn run(session: &PetscSession, model: &Model, spec: &DbaSpec, output: &Path, progress: bool) -> Result<Ratcheting> {
+pub fn run(session: &PetscSession, model: &Model, spec: &DbaTable, output: &Path, progress: bool) -> Result<Ratcheting> {
     let r = spec.ratcheting.as_ref().ok_or_else(|| Error::input("[design_by_analysis] has no ratcheting"))?;
     let m = self::model(model, r)?;
     crate::solve::run(session, &m, &RunOptions { output: output.to_path_buf(), progress, verbose: false, monitor: false, restart: None })?;
@@ -107,7 +107,7 @@ fn model_size(mesh: &crate::model::Mesh, axisymmetric: bool) -> f64 {
 
 /// The criteria read from the ratcheting run's file: `general` general steps in the deck
 /// (its cycle the last of them, once), run `r.cycles` times.
-fn criteria(file: &Path, general: usize, r: &RatchetingSpec, strain_tolerance: f64, length_tolerance: f64) -> Result<Ratcheting> {
+fn criteria(file: &Path, general: usize, r: &RatchetingTable, strain_tolerance: f64, length_tolerance: f64) -> Result<Ratcheting> {
     let reader = ResultsReader::open(file)?;
     let rows = reader.history_rows()?;
     let c = r.cycle.len();

@@ -11,7 +11,7 @@
 //! nodal stresses before averaging, `/increments/NNNNNN/element_nodal_stress`.
 
 use super::h5::{write_field, write_rows};
-use crate::dist::Partition;
+use crate::decomposition::Partition;
 use crate::error::Result;
 use crate::fe::axisymmetric::{principal_stresses, von_mises};
 use crate::fe::quadrature::Integration;

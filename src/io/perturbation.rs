@@ -6,7 +6,7 @@
 
 use super::h5::{gauss_rows, group_in, h5err, write_rows};
 use super::results::ResultsFile;
-use crate::dist::Partition;
+use crate::decomposition::Partition;
 use crate::element::solid::QUADRATURE_POINTS;
 use crate::error::Result;
 use crate::model::perturbation::{Analysis, Perturbation};

@@ -237,9 +237,6 @@ impl StateGroup<'_> {
     }
 }
 
-/// Columns of `backstress_state`: the three backstresses [rr, zz, tt, rz] and their share of
-/// the plastic work.
-
 /// The Gauss points not in their initial state: (mesh element, point, state), each checked.
 fn plastic_points(state: &StateGroup<'_>, elements: &HashMap<u64, usize>) -> Result<Vec<(usize, usize, PointState)>> {
     let (bad, group) = (state.bad, &state.name);

@@ -12,7 +12,7 @@ use super::history::HistoryRow;
 use super::nodal::NodalWriter;
 use super::state::{write_state, CommittedState};
 use super::xdmf;
-use crate::dist::Partition;
+use crate::decomposition::Partition;
 use crate::element::solid::QUADRATURE_POINTS;
 use crate::error::{Error, Result};
 use crate::fe::axisymmetric::von_mises;

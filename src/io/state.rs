@@ -187,5 +187,6 @@ fn write_gathered<T: hdf5::H5Type + Equivalence + Copy>(
 /// State dataset: the extrapolation predictor's displacement increment, mesh node order.
 pub(super) const PREDICTOR_INCREMENT: &str = "predictor_increment";
 pub(super) const AUDIT_THERMAL: &str = "audit_thermal";
-/// Columns of `backstress_state`: three backstresses' four components and their plastic work.
+/// Columns of `backstress_state`: the three backstresses [rr, zz, tt, rz] and their share of
+/// the plastic work.
 pub(super) const BACKSTRESS_COLUMNS: usize = 4 * MAX_BACKSTRESSES + 1;

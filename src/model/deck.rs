@@ -77,7 +77,7 @@
 //!                                   # tangential_penalty / elastic_slip as in [[contact]])
 //! ```
 
-mod spec;
+mod schema;
 mod steps;
 
 use super::constraint::{default_tie_tolerance, tie};
@@ -88,7 +88,7 @@ use super::{
 };
 use crate::error::{Error, Result};
 use crate::fe::quadrature::Integration;
-use spec::{AdjustSpec, DeckFile, GeometrySpec, IntegrationSpec, MaterialKind};
+use schema::{AdjustToml, DeckFile, GeometryToml, IntegrationToml, MaterialKind};
 use std::path::Path;
 
 /// A TOML error on one line, naming the line and the key (with its table) where there is one:
@@ -244,7 +244,7 @@ pub fn parse(text: &str, path: &Path) -> Result<Model> {
     let reference_temperature = deck.reference_temperature.field(&mesh, &node_sets, None, "reference_temperature")?;
     let mut temperature_now = reference_temperature.clone();
     let mut steps = Vec::new();
-    let plane = deck.geometry != GeometrySpec::Axisymmetric;
+    let plane = deck.geometry != GeometryToml::Axisymmetric;
     for (k, s) in deck.step.iter().enumerate() {
         let name = s.name.clone().unwrap_or_else(|| format!("step-{}", k + 1));
         let pressures: Vec<Pressure> = s.pressure.iter().map(|p| Pressure { surface: p.surface.clone(), value: p.value }).collect();
@@ -328,8 +328,8 @@ fn contact_pairs(deck: &DeckFile, mesh: &super::Mesh, surfaces: &std::collection
             master: c.master.clone(),
             two_pass: c.two_pass,
             integration: match c.integration {
-                IntegrationSpec::Segment => ContactIntegration::Segment,
-                IntegrationSpec::NodeToSegment => ContactIntegration::NodeToSegment,
+                IntegrationToml::Segment => ContactIntegration::Segment,
+                IntegrationToml::NodeToSegment => ContactIntegration::NodeToSegment,
             },
             penalty,
             capture_distance,
@@ -337,8 +337,8 @@ fn contact_pairs(deck: &DeckFile, mesh: &super::Mesh, surfaces: &std::collection
             exclude_neighbours: c.exclude_neighbours,
             friction,
             adjust: c.adjust.as_ref().map(|a| match a {
-                AdjustSpec::Clearance(v) => Adjust::Clearance(*v),
-                AdjustSpec::NodeSet(s) => Adjust::NodeSet(s.clone()),
+                AdjustToml::Clearance(v) => Adjust::Clearance(*v),
+                AdjustToml::NodeSet(s) => Adjust::NodeSet(s.clone()),
             }),
             slave_nodes: None,
         });

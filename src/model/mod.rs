@@ -128,8 +128,9 @@ pub struct AugmentedLagrangian {
     pub max_augmentations: usize,
 }
 
-/// A frictionless node-to-segment contact pair: the nodes of `slave` against the segments of
-/// `master` (and, two-pass, also the reverse). `slave == master` is self-contact.
+/// A penalty contact pair, node-to-segment or integrated, with Coulomb friction where given:
+/// the nodes of `slave` against the segments of `master` (and, two-pass, also the reverse).
+/// `slave == master` is self-contact.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ContactPair {
     pub name: String,

@@ -9,13 +9,13 @@
 mod callbacks;
 mod factor_failure;
 pub use factor_failure::FactorFailure;
-mod field_test;
+mod field_convergence;
 
 use super::{check, linesearch, sys, Comm, MatOps, Matrix, MatrixView, PetscSession, SessionBorrow, VecOps, Vector, VectorView};
 use crate::error::{Error, Result};
 use callbacks::{convergence_trampoline, jacobian_trampoline, reset_factorisation, residual_trampoline, CallbackContext, FieldContext};
-pub use field_test::FieldRatios;
-use field_test::ForceAverage;
+pub use field_convergence::FieldRatios;
+use field_convergence::ForceAverage;
 use mpi::topology::SimpleCommunicator;
 use mpi::traits::*;
 use std::ffi::{c_void, CStr};

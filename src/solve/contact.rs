@@ -10,7 +10,7 @@
 use crate::contact::integrated::WeightedGap;
 use crate::contact::search::EdgeGrid;
 use crate::contact::surface::ContactSurface;
-use crate::dist::{DofMap, Partition};
+use crate::decomposition::{DofMap, Partition};
 use crate::model::{ContactIntegration, Friction, Model};
 use crate::petsc::sys::PetscInt;
 use crate::records::contact::{SlaveState, SlipPoint};

@@ -1,7 +1,7 @@
 //! What every procedure's driver works with: the run's context, handed down by its one
 //! dispatch (`run`), and the rule for a results file that cannot be written.
 
-use crate::dist::Partition;
+use crate::decomposition::Partition;
 use crate::error::{Error, Result};
 use crate::io::progress::Progress;
 use crate::io::restart::RestartFrom;

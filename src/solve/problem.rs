@@ -7,7 +7,7 @@
 //! `trial`; [`Problem::commit`] copies trial to committed after a converged increment. A failed
 //! attempt never touches `committed`, so a cutback has nothing to undo.
 
-use crate::dist::{DofMap, Partition};
+use crate::decomposition::{DofMap, Partition};
 use crate::element::body_load::BodyForce;
 use crate::element::solid::ElementMatrix;
 use crate::element::solid::{compute_solid, solid_tangent, ElementGeometry, MaterialTangents, SolidInput, SolidResponse, DOFS, NODES, QUADRATURE_POINTS};

@@ -4,7 +4,7 @@
 //! the perturbation steps about the last one's end (`perturbation` for a response, `modes` for
 //! an eigenproblem).
 
-use crate::dist::Partition;
+use crate::decomposition::Partition;
 use crate::error::{Error, Result};
 use crate::io::lock::ResultsLock;
 use crate::io::progress::Progress;

@@ -92,7 +92,7 @@ pub struct StudyRow {
 }
 
 /// What the study runs and how it reports.
-pub struct StudySpec {
+pub struct StudyPlan {
     /// The model, run with each penalty (N/mm^3 or kappa, as `dimensionless` says).
     pub subject: Subject,
     pub penalties: Vec<f64>,
@@ -117,7 +117,7 @@ fn penalty_of(value: f64, dimensionless: bool) -> Penalty {
 
 /// Runs the study over the session's groups (collective over every rank); world rank 0
 /// returns the rows, in the order of the penalties, having written the file and pictures.
-pub fn penalty_study(session: &PetscSession, spec: &StudySpec) -> Result<Vec<StudyRow>> {
+pub fn penalty_study(session: &PetscSession, spec: &StudyPlan) -> Result<Vec<StudyRow>> {
     let root = session.everyone().rank() == 0;
     if !(spec.tolerance > 0.0 && spec.tolerance.is_finite()) {
         return Err(Error::input(format!("--tolerance {}: give a relative tolerance > 0 (0.01 is 1 %)", spec.tolerance)));
@@ -170,7 +170,7 @@ fn groups(session: &PetscSession) -> (usize, usize) {
 
 /// `runs` shared out to the groups; on world rank 0 the rows of `before` and theirs, in order,
 /// the study file rewritten as each arrives.
-fn run_all(session: &PetscSession, spec: &StudySpec, dir: &Path, runs: &[Run], before: &[StudyRow]) -> Result<Vec<StudyRow>> {
+fn run_all(session: &PetscSession, spec: &StudyPlan, dir: &Path, runs: &[Run], before: &[StudyRow]) -> Result<Vec<StudyRow>> {
     let total = runs.len();
     let rows = super::pool::run_rows(
         session,
@@ -192,7 +192,7 @@ fn run_all(session: &PetscSession, spec: &StudySpec, dir: &Path, runs: &[Run], b
 /// One run, on its group's ranks: the model with the run's penalty, its results file, and its
 /// row (read back from the file on the group's rank 0; a run that failed is a row that says
 /// why).
-fn run_one(session: &PetscSession, spec: &StudySpec, dir: &Path, run: &Run) -> StudyRow {
+fn run_one(session: &PetscSession, spec: &StudyPlan, dir: &Path, run: &Run) -> StudyRow {
     let results = dir.join(format!("penalty_{}.h5", run.label));
     let start = Instant::now();
     let outcome = spec.subject.model(penalty_of(run.penalty, spec.dimensionless)).and_then(|mut model| {
@@ -234,7 +234,7 @@ fn run_one(session: &PetscSession, spec: &StudySpec, dir: &Path, run: &Run) -> S
     row
 }
 
-fn summarise(results: &Path, row: &mut StudyRow, spec: &StudySpec) -> Result<()> {
+fn summarise(results: &Path, row: &mut StudyRow, spec: &StudyPlan) -> Result<()> {
     let r = ResultsReader::open(results)?;
     let rows = r.history_rows()?;
     let penetration = r
@@ -296,7 +296,7 @@ fn row_line(r: &StudyRow) -> String {
 }
 
 /// The printed summary table and the recommendation line.
-pub fn table(rows: &[StudyRow], spec: &StudySpec) -> String {
+pub fn table(rows: &[StudyRow], spec: &StudyPlan) -> String {
     let mut s = String::new();
     let unit = if spec.dimensionless { "kappa" } else { "N/mm^3" };
     let _ = writeln!(
@@ -347,7 +347,7 @@ pub fn table(rows: &[StudyRow], spec: &StudySpec) -> String {
 /// The study file, written whole (see [`super::write_whole`]): /summary/COLUMN (one row per
 /// run, its differences from the reference among them) and /runs/LABEL/history/COLUMN copied
 /// from each run's own results file (named in the group's attribute `results`); and the CSV.
-fn write_study(spec: &StudySpec, rows: &[StudyRow]) -> Result<()> {
+fn write_study(spec: &StudyPlan, rows: &[StudyRow]) -> Result<()> {
     let mut rows = rows.to_vec();
     compare_to_reference(&mut rows);
     let path = &spec.output;
@@ -389,7 +389,7 @@ fn write_study(spec: &StudySpec, rows: &[StudyRow]) -> Result<()> {
 }
 
 /// The pictures against log10 of the penalty (plain runs; the AL run is a marker line).
-fn draw_pictures(spec: &StudySpec, rows: &[StudyRow]) -> Result<()> {
+fn draw_pictures(spec: &StudyPlan, rows: &[StudyRow]) -> Result<()> {
     let path = &spec.output;
     let plain: Vec<&StudyRow> = rows.iter().filter(|r| !r.augmented && r.increments > 0).collect();
     let x = |r: &StudyRow| r.penalty.log10();

@@ -163,7 +163,7 @@ pub struct Analyses {
 }
 
 /// What a sweep runs and how it reports.
-pub struct SweepSpec {
+pub struct SweepPlan {
     /// The specification the variants start from, and its file.
     pub base: String,
     pub path: PathBuf,
@@ -294,7 +294,7 @@ impl SweepRow {
 
 /// Runs the sweep over the session's groups (collective over every rank); world rank 0
 /// returns the rows in variant order, having written the study file, its CSV and picture.
-pub fn bellows_sweep(session: &PetscSession, spec: &SweepSpec) -> Result<Vec<SweepRow>> {
+pub fn bellows_sweep(session: &PetscSession, spec: &SweepPlan) -> Result<Vec<SweepRow>> {
     let root = session.everyone().rank() == 0;
     let all = variants(&spec.base, &spec.vary)?;
     if !sortable(&spec.sort, &spec.vary) {
@@ -347,7 +347,7 @@ fn outcome_text(r: &SweepRow) -> String {
 
 /// One variant on its group's ranks: the code check and the analyses at rest, then unless
 /// elastic-only the run of the design movement; a variant that fails is a row that says why.
-fn run_variant(session: &PetscSession, spec: &SweepSpec, dir: &Path, k: usize, v: &Variant) -> SweepRow {
+fn run_variant(session: &PetscSession, spec: &SweepPlan, dir: &Path, k: usize, v: &Variant) -> SweepRow {
     let start = Instant::now();
     let results = dir.join(format!("variant_{k:03}.h5"));
     let mut row = SweepRow::new(k, v, results.clone());
@@ -418,7 +418,7 @@ fn study_table(rows: &[SweepRow], vary: &[Vary]) -> Table {
 
 /// The study file (/variants/COLUMN, and the base specification's text as an attribute) and
 /// the CSV, each written whole.
-fn write_study(spec: &SweepSpec, rows: &[SweepRow]) -> Result<()> {
+fn write_study(spec: &SweepPlan, rows: &[SweepRow]) -> Result<()> {
     let t = study_table(rows, &spec.vary);
     let path = &spec.output;
     super::write_whole(path, |part| {
@@ -430,7 +430,7 @@ fn write_study(spec: &SweepSpec, rows: &[SweepRow]) -> Result<()> {
 }
 
 /// The printed table, sorted by `spec.sort` (ascending; variants without it last).
-pub fn table(spec: &SweepSpec, rows: &[SweepRow]) -> String {
+pub fn table(spec: &SweepPlan, rows: &[SweepRow]) -> String {
     let mut sorted: Vec<&SweepRow> = rows.iter().collect();
     sorted.sort_by(|a, b| {
         let (x, y) = (a.figure(&spec.sort), b.figure(&spec.sort));
@@ -470,7 +470,7 @@ pub fn table(spec: &SweepSpec, rows: &[SweepRow]) -> String {
 
 /// The axial rate against the allowable cycles (log10), the variants that pass every check
 /// apart from those that do not: the trade-off at a glance (`STEM_rate_cycles.png`).
-fn picture(spec: &SweepSpec, rows: &[SweepRow]) -> Result<PathBuf> {
+fn picture(spec: &SweepPlan, rows: &[SweepRow]) -> Result<PathBuf> {
     let path = PathBuf::from(format!("{}_rate_cycles.png", spec.output.with_extension("").display()));
     let point = |r: &&SweepRow| (r.figure("allowable_cycles").log10(), r.figure("axial_rate"));
     let kinds = [

@@ -1,7 +1,7 @@
 //! The TOML deck's steps, each by its procedure: a general (static) step, a perturbation step
 //! (harmonic, frequency, buckle), a heat step.
 
-use super::spec::{SetTemperatureSpec, StepSpec, TemperatureSpec};
+use super::schema::{SetTemperatureToml, StepToml, TemperatureToml};
 use crate::element::body_load::BodyForce;
 use crate::error::{Error, Result};
 use crate::model::heat::{HeatStep, HeldTemperature};
@@ -13,7 +13,7 @@ use std::collections::BTreeMap;
 /// General step `s` named `name` with its `pressures`; a temperature it sets becomes
 /// `temperature_now`, the next step's start (`plane`: forces are the thickness's, not a ring's).
 pub(super) fn general(
-    s: &StepSpec,
+    s: &StepToml,
     name: String,
     pressures: Vec<Pressure>,
     mesh: &Mesh,
@@ -96,7 +96,7 @@ pub(super) fn general(
 
 /// Perturbation step `s` named `name` of `procedure` ("harmonic", "frequency" or "buckle"),
 /// with its harmonic `pressures`.
-pub(super) fn perturbation(s: &StepSpec, name: String, pressures: Vec<Pressure>, procedure: &str) -> Result<Perturbation> {
+pub(super) fn perturbation(s: &StepToml, name: String, pressures: Vec<Pressure>, procedure: &str) -> Result<Perturbation> {
     let mode = s.mode.ok_or_else(|| Error::input(format!("step '{name}': procedure = \"{procedure}\" needs its mode (mode = n)")))?;
     if procedure == "harmonic" && s.eigenvalues.is_some() {
         return Err(Error::input(format!("step '{name}': eigenvalues is for procedure = \"frequency\" or \"buckle\"")));
@@ -135,7 +135,7 @@ pub(super) fn perturbation(s: &StepSpec, name: String, pressures: Vec<Pressure>,
 
 /// A `procedure = "heat"` step: `temperature = [{ set = ..., value = ... }, ...]` holds those
 /// sets' temperatures; nothing else belongs in it.
-pub(super) fn heat(s: &StepSpec, name: &str) -> Result<HeatStep> {
+pub(super) fn heat(s: &StepToml, name: &str) -> Result<HeatStep> {
     let mechanical = [
         ("mode", s.mode.is_some()),
         ("without_contact", s.without_contact.is_some()),
@@ -150,13 +150,13 @@ pub(super) fn heat(s: &StepSpec, name: &str) -> Result<HeatStep> {
     if let Some((key, _)) = mechanical.iter().find(|(_, given)| *given) {
         return Err(Error::input(format!("step '{name}': {key} has no meaning in a heat step (it holds temperatures alone)")));
     }
-    let held = |t: &SetTemperatureSpec| {
+    let held = |t: &SetTemperatureToml| {
         let set =
             t.set.clone().ok_or_else(|| Error::input(format!("step '{name}': a heat step's temperature entries each name their node set (set = ...)")))?;
         Ok(HeldTemperature { node_set: set, value: t.value })
     };
     let temperatures = match &s.temperature {
-        Some(TemperatureSpec::Sets(sets)) => sets.iter().map(held).collect::<Result<Vec<_>>>()?,
+        Some(TemperatureToml::Sets(sets)) => sets.iter().map(held).collect::<Result<Vec<_>>>()?,
         _ => {
             return Err(Error::input(format!(
                 "step '{name}': a heat step holds temperatures on node sets: temperature = [{{ set = \"...\", value = ... }}, ...]"

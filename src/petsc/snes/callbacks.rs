@@ -2,7 +2,7 @@
 //! trampoline over the caller's problem (the context [`Snes::solve`](super::Snes::solve) sets),
 //! run under `catch_unwind` with the outcome agreed across ranks.
 
-use super::field_test::{field_bounds, field_converged, FieldRatios, ForceAverage, IterateMeasures};
+use super::field_convergence::{field_bounds, field_converged, FieldRatios, ForceAverage, IterateMeasures};
 use super::NonlinearProblem;
 use crate::error::{Error, Result};
 use crate::petsc::{check, sys, MatrixView, VecOps, VectorView};

@@ -4,7 +4,7 @@
 //! couplings stay on one rank.
 
 use crate::contact::search::EdgeGrid;
-use crate::dist::Affinity;
+use crate::decomposition::Affinity;
 use crate::model::{ContactIntegration, Model};
 use crate::solve::contact::surfaces::{edge_neighbourhood, surfaces_and_directions};
 

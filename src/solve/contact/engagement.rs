@@ -256,7 +256,7 @@ impl Engagement {
 }
 
 /// The engagements of the last evaluation: the slots past `len` keep their vectors for the
-/// next one, so an evaluation refills them instead of allocating (DESIGN: no allocation in
+/// next one, so an evaluation refills them instead of allocating (no allocation in
 /// the hot path).
 #[derive(Default)]
 pub(in crate::solve) struct Engagements {

@@ -9,7 +9,7 @@
 //! contact (CalculiX eliminates each constraint's dependent DOF instead; the difference is
 //! the give above). Each constraint is evaluated by the rank that owns its first node.
 
-use crate::dist::{DofMap, Partition};
+use crate::decomposition::{DofMap, Partition};
 use crate::fe::shape::Shape;
 use crate::model::Model;
 use crate::petsc::sys::PetscInt;

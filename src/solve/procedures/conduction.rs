@@ -4,7 +4,7 @@
 //! perturbation step's). Then the heat flux at the Gauss points and the heat flowing in
 //! through each held set: the residual K T there.
 
-use crate::dist::Partition;
+use crate::decomposition::Partition;
 use crate::element::conduction::{conduction_matrix, heat_flux};
 use crate::element::solid::NODES;
 use crate::error::{Error, Result};

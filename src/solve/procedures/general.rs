@@ -15,7 +15,7 @@ pub mod energy;
 mod record;
 pub(in crate::solve) mod resume;
 
-use crate::dist::{DofMap, Partition};
+use crate::decomposition::{DofMap, Partition};
 use crate::error::{Error, Result};
 use crate::model::{Convergence, GeneralStep, Predictor};
 use crate::petsc::{FieldRatios, Matrix, Snes, SolveReport, VecOps, Vector};

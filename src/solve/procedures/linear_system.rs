@@ -2,7 +2,7 @@
 //! step's temperature): its numbering (unknowns and prescribed values), its assembly from
 //! element blocks, one solve, and the solution gathered back to every node on every rank.
 
-use crate::dist::Partition;
+use crate::decomposition::Partition;
 use crate::error::Result;
 use crate::petsc::sys::PetscInt;
 use crate::petsc::{MatOps, Matrix, PetscSession, Snes, VecOps, Vector};

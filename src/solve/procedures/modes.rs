@@ -12,7 +12,7 @@
 //!
 //! The amplitudes a step names are held at zero in the eigenproblem.
 
-use crate::dist::Partition;
+use crate::decomposition::Partition;
 use crate::element::harmonic::{initial_stress_stiffness, ring_factor};
 use crate::element::solid::{NODES, QUADRATURE_POINTS};
 use crate::error::{Error, Result};

@@ -23,7 +23,7 @@
 //! zero.
 
 use crate::contact::harmonic::{normal_stiffness, sticking_stiffness};
-use crate::dist::Partition;
+use crate::decomposition::Partition;
 use crate::element::harmonic::{
     elastoplastic, harmonic_strain, initial_stress_stiffness, isotropic, material_stiffness, ring_factor, HarmonicMatrix, Tangent6,
 };

@@ -213,7 +213,7 @@ fn set_totals(model: &Model, sets: &[String], force: &[f64], displacement: &[[f6
 /// increment where the file will not hold it, the energy audit's starting point.
 fn committed_state<'r>(
     model: &'r Model,
-    partition: &'r crate::dist::Partition,
+    partition: &'r crate::decomposition::Partition,
     st: &'r StepState<'_, '_>,
     fresh_pattern: Vec<(usize, usize)>,
     audit: &'r crate::records::energy::AuditPoint,

@@ -1,7 +1,7 @@
 //! What a run carries from one step to the next, and where a restart puts it: the state read
 //! back from a results file's restart point, exactly what a commit wrote.
 
-use crate::dist::Partition;
+use crate::decomposition::Partition;
 use crate::error::{Error, Result};
 use crate::io::restart::{RestartFrom, RestartPoint};
 use crate::io::{HistoryRow, ResultsFile};

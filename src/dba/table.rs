@@ -9,22 +9,22 @@ use std::collections::BTreeMap;
 /// What `slideline check` runs on a deck.
 #[derive(Deserialize, Debug, Clone, PartialEq)]
 #[serde(deny_unknown_fields)]
-pub struct DbaSpec {
+pub struct DbaTable {
     /// The allowable (design) stress S, MPa: one value for every material, or a table by
     /// material name. The limit-load check needs it.
     pub allowable_stress: Option<Allowable>,
-    pub limit_load: Option<LimitLoadSpec>,
-    pub ratcheting: Option<RatchetingSpec>,
+    pub limit_load: Option<LimitLoadTable>,
+    pub ratcheting: Option<RatchetingTable>,
     #[serde(default)]
-    pub buckling: Option<BucklingSpec>,
-    pub fatigue: Option<FatigueSpec>,
+    pub buckling: Option<BucklingTable>,
+    pub fatigue: Option<FatigueTable>,
 }
 
 /// Fatigue by elastic-plastic analysis (VIII-2 5.5.4): the cycle's effective strain range
 /// and the permissible cycles from the fatigue curve.
 #[derive(Deserialize, Debug, Clone, PartialEq)]
 #[serde(deny_unknown_fields)]
-pub struct FatigueSpec {
+pub struct FatigueTable {
     /// The deck's steps that make one cycle of the loads: its last general steps, in order.
     pub cycle: Vec<String>,
     /// How many cycles are run; the last is evaluated (at least two: the first from the
@@ -40,7 +40,7 @@ pub struct FatigueSpec {
     pub curve_modulus: Option<f64>,
 }
 
-impl FatigueSpec {
+impl FatigueTable {
     /// The fatigue curve the check reads.
     pub fn curve(&self) -> Result<super::fatigue_curve::FatigueCurve> {
         let bad = |m: String| Error::input(format!("[design_by_analysis] fatigue.curve: {m}"));
@@ -57,7 +57,7 @@ impl FatigueSpec {
 /// steps about an elastic prestress of the design pressures.
 #[derive(Deserialize, Debug, Clone, PartialEq)]
 #[serde(deny_unknown_fields)]
-pub struct BucklingSpec {
+pub struct BucklingTable {
     /// beta_cr, the capacity reduction factor of the shell's geometry and loading; the design
     /// factor is 2 / beta_cr.
     pub beta_cr: f64,
@@ -73,7 +73,7 @@ pub enum Allowable {
 /// Protection against plastic collapse by the limit-load method (VIII-2 5.2.3).
 #[derive(Deserialize, Debug, Clone, PartialEq)]
 #[serde(deny_unknown_fields)]
-pub struct LimitLoadSpec {
+pub struct LimitLoadTable {
     /// The factor on the primary loads (Table 5.3: 1.5 on P + Ps + D).
     #[serde(default = "limit_load_factor")]
     pub factor: f64,
@@ -97,7 +97,7 @@ pub struct LimitLoadSpec {
 /// Protection against ratcheting by elastic-plastic analysis (VIII-2 5.5.7).
 #[derive(Deserialize, Debug, Clone, PartialEq)]
 #[serde(deny_unknown_fields)]
-pub struct RatchetingSpec {
+pub struct RatchetingTable {
     /// The deck's steps that make one cycle of the loads: its last general steps, in order.
     pub cycle: Vec<String>,
     /// How many cycles are run (Part 5: at least three).
@@ -124,13 +124,13 @@ fn three() -> usize {
 /// The least number of cycles a ratcheting check runs (VIII-2 5.5.7.2: at least three).
 pub const LEAST_CYCLES: usize = 3;
 
-impl DbaSpec {
+impl DbaTable {
     /// The `[design_by_analysis]` table of the TOML deck the model was read from; None when
     /// it has none (or the model came from an .inp deck).
     pub fn of_model(model: &Model) -> Result<Option<Self>> {
         let Ok(table) = model.source_text.parse::<toml::Table>() else { return Ok(None) };
         let Some(value) = table.get("design_by_analysis") else { return Ok(None) };
-        let spec: DbaSpec = value.clone().try_into().map_err(|e: toml::de::Error| Error::input(format!("[design_by_analysis]: {}", e.message())))?;
+        let spec: DbaTable = value.clone().try_into().map_err(|e: toml::de::Error| Error::input(format!("[design_by_analysis]: {}", e.message())))?;
         spec.validate(model)?;
         Ok(Some(spec))
     }

@@ -12,28 +12,28 @@ use std::path::PathBuf;
 #[serde(deny_unknown_fields)]
 pub(super) struct DeckFile {
     #[serde(default = "default_reference_temperature")]
-    pub(super) reference_temperature: TemperatureSpec,
+    pub(super) reference_temperature: TemperatureToml,
     #[serde(default = "yes")]
     pub(super) nlgeom: bool,
     #[serde(default)]
-    pub(super) geometry: GeometrySpec,
+    pub(super) geometry: GeometryToml,
     pub(super) thickness: Option<f64>,
-    pub(super) mesh: MeshSpec,
+    pub(super) mesh: MeshToml,
     #[serde(default)]
-    pub(super) stepping: SteppingSpec,
+    pub(super) stepping: SteppingToml,
     #[serde(default)]
-    pub(super) output: OutputSpec,
+    pub(super) output: OutputToml,
     #[serde(default)]
-    pub(super) material: Vec<MaterialSpec>,
+    pub(super) material: Vec<MaterialToml>,
     #[serde(default)]
-    pub(super) section: Vec<SectionSpec>,
+    pub(super) section: Vec<SectionToml>,
     #[serde(default)]
-    pub(super) contact: Vec<ContactSpec>,
+    pub(super) contact: Vec<ContactToml>,
     #[serde(default)]
-    pub(super) tie: Vec<TieSpec>,
+    pub(super) tie: Vec<TieToml>,
     #[serde(default)]
-    pub(super) step: Vec<StepSpec>,
-    /// `[design_by_analysis]`: read by `slideline check` (`dba::spec`), not by the model.
+    pub(super) step: Vec<StepToml>,
+    /// `[design_by_analysis]`: read by `slideline check` (`dba::table`), not by the model.
     #[allow(dead_code)]
     pub(super) design_by_analysis: Option<toml::Value>,
 }
@@ -41,7 +41,7 @@ pub(super) struct DeckFile {
 /// `[[tie]]`: the slave surface's nodes glued to the master's faces (`model::constraint::tie`).
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
-pub(super) struct TieSpec {
+pub(super) struct TieToml {
     pub(super) name: Option<String>,
     pub(super) slave: String,
     pub(super) master: String,
@@ -51,7 +51,7 @@ pub(super) struct TieSpec {
 
 #[derive(Deserialize, Default)]
 #[serde(deny_unknown_fields)]
-pub(super) struct OutputSpec {
+pub(super) struct OutputToml {
     /// Fields of every N-th increment (and of the last of each step).
     pub(super) every: Option<usize>,
     /// Which fields beside the displacement (default: all).
@@ -62,32 +62,32 @@ pub(super) struct OutputSpec {
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
-pub(super) struct ContactSpec {
+pub(super) struct ContactToml {
     pub(super) name: Option<String>,
     pub(super) slave: String,
     pub(super) master: String,
     #[serde(default)]
     pub(super) two_pass: bool,
     #[serde(default)]
-    pub(super) integration: IntegrationSpec,
+    pub(super) integration: IntegrationToml,
     pub(super) penalty: Option<f64>,
     pub(super) penalty_factor: Option<f64>,
-    pub(super) exponential: Option<ExponentialSpec>,
+    pub(super) exponential: Option<ExponentialToml>,
     pub(super) capture_distance: Option<f64>,
-    pub(super) augmented_lagrangian: Option<AugmentedSpec>,
+    pub(super) augmented_lagrangian: Option<AugmentedToml>,
     #[serde(default = "two")]
     pub(super) exclude_neighbours: usize,
     pub(super) friction: Option<f64>,
     pub(super) tangential_penalty: Option<f64>,
     pub(super) elastic_slip: Option<f64>,
-    pub(super) adjust: Option<AdjustSpec>,
+    pub(super) adjust: Option<AdjustToml>,
 }
 
 /// `exponential = { clearance = c0, pressure = p0 }`: CalculiX's exponential
 /// pressure-overclosure law in place of a penalty.
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
-pub(super) struct ExponentialSpec {
+pub(super) struct ExponentialToml {
     pub(super) clearance: f64,
     pub(super) pressure: f64,
 }
@@ -95,14 +95,14 @@ pub(super) struct ExponentialSpec {
 /// `adjust = 0.01` (a clearance, mm) or `adjust = "node_set"`.
 #[derive(Deserialize)]
 #[serde(untagged)]
-pub(super) enum AdjustSpec {
+pub(super) enum AdjustToml {
     Clearance(f64),
     NodeSet(String),
 }
 
 #[derive(Deserialize, Default, Clone, Copy)]
 #[serde(rename_all = "kebab-case")]
-pub(super) enum IntegrationSpec {
+pub(super) enum IntegrationToml {
     #[default]
     Segment,
     NodeToSegment,
@@ -114,7 +114,7 @@ pub(super) fn two() -> usize {
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
-pub(super) struct AugmentedSpec {
+pub(super) struct AugmentedToml {
     pub(super) penetration_tolerance: f64,
     #[serde(default = "ten")]
     pub(super) max_augmentations: usize,
@@ -124,8 +124,8 @@ pub(super) fn ten() -> usize {
     10
 }
 
-pub(super) fn default_reference_temperature() -> TemperatureSpec {
-    TemperatureSpec::Uniform(20.0)
+pub(super) fn default_reference_temperature() -> TemperatureToml {
+    TemperatureToml::Uniform(20.0)
 }
 
 /// `temperature = 20.0` (every node) or `temperature = [{ set = "hot", value = 150.0 }, ...]`:
@@ -133,19 +133,19 @@ pub(super) fn default_reference_temperature() -> TemperatureSpec {
 /// node; in a step, nodes no entry names keep their temperature.
 #[derive(Deserialize, Clone)]
 #[serde(untagged)]
-pub(super) enum TemperatureSpec {
+pub(super) enum TemperatureToml {
     Uniform(f64),
-    Sets(Vec<SetTemperatureSpec>),
+    Sets(Vec<SetTemperatureToml>),
 }
 
 #[derive(Deserialize, Clone)]
 #[serde(deny_unknown_fields)]
-pub(super) struct SetTemperatureSpec {
+pub(super) struct SetTemperatureToml {
     pub(super) set: Option<String>,
     pub(super) value: f64,
 }
 
-impl TemperatureSpec {
+impl TemperatureToml {
     /// The field it gives over `before` (None: the reference temperature, which must reach
     /// every node); `what` names it in errors.
     pub(super) fn field(
@@ -156,8 +156,8 @@ impl TemperatureSpec {
         what: &str,
     ) -> Result<Temperature> {
         let entries = match self {
-            TemperatureSpec::Uniform(t) => return Ok(Temperature::Uniform(*t)),
-            TemperatureSpec::Sets(entries) => entries,
+            TemperatureToml::Uniform(t) => return Ok(Temperature::Uniform(*t)),
+            TemperatureToml::Sets(entries) => entries,
         };
         let all: Vec<usize> = (0..mesh.coords.len()).collect();
         let mut assignments = Vec::new();
@@ -181,7 +181,7 @@ pub(super) fn yes() -> bool {
 
 #[derive(Deserialize, Default)]
 #[serde(deny_unknown_fields)]
-pub(super) struct SteppingSpec {
+pub(super) struct SteppingToml {
     pub(super) cutback_factor: Option<f64>,
     pub(super) growth_factor: Option<f64>,
     pub(super) easy_iterations: Option<usize>,
@@ -191,7 +191,7 @@ pub(super) struct SteppingSpec {
     pub(super) convergence: Option<Convergence>,
 }
 
-impl SteppingSpec {
+impl SteppingToml {
     pub(super) fn controls(&self) -> SteppingControls {
         let d = SteppingControls::default();
         SteppingControls {
@@ -208,16 +208,16 @@ impl SteppingSpec {
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
-pub(super) struct MeshSpec {
+pub(super) struct MeshToml {
     pub(super) file: Option<PathBuf>,
-    pub(super) rectangle: Option<RectangleSpec>,
+    pub(super) rectangle: Option<RectangleToml>,
     #[serde(default)]
-    pub(super) block: Vec<BlockSpec>,
+    pub(super) block: Vec<BlockToml>,
 }
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
-pub(super) struct BlockSpec {
+pub(super) struct BlockToml {
     pub(super) name: String,
     pub(super) r: [f64; 2],
     pub(super) z: [f64; 2],
@@ -234,7 +234,7 @@ pub(super) fn no_grading() -> [f64; 2] {
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
-pub(super) struct RectangleSpec {
+pub(super) struct RectangleToml {
     pub(super) r: [f64; 2],
     pub(super) z: [f64; 2],
     pub(super) divisions: [usize; 2],
@@ -252,7 +252,7 @@ pub(super) enum MaterialKind {
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
-pub(super) struct MaterialSpec {
+pub(super) struct MaterialToml {
     pub(super) name: String,
     #[serde(default = "default_kind")]
     pub(super) model: MaterialKind,
@@ -279,7 +279,7 @@ pub(super) fn default_kind() -> MaterialKind {
 
 #[derive(Deserialize, Default, Clone, Copy, PartialEq)]
 #[serde(rename_all = "snake_case")]
-pub(super) enum GeometrySpec {
+pub(super) enum GeometryToml {
     #[default]
     Axisymmetric,
     PlaneStrain,
@@ -290,7 +290,7 @@ impl DeckFile {
     /// The section every element gets.
     pub(super) fn section(&self) -> Result<Section> {
         let thickness = self.thickness.unwrap_or(1.0);
-        if self.geometry == GeometrySpec::Axisymmetric {
+        if self.geometry == GeometryToml::Axisymmetric {
             if self.thickness.is_some() {
                 return Err(Error::input("thickness: only a plane geometry has one (geometry = \"plane_strain\" or \"plane_stress\")"));
             }
@@ -299,20 +299,20 @@ impl DeckFile {
         if !(thickness > 0.0 && thickness.is_finite()) {
             return Err(Error::input(format!("thickness = {thickness}: must be a positive length (mm)")));
         }
-        Ok(if self.geometry == GeometrySpec::PlaneStrain { Section::PlaneStrain { thickness } } else { Section::PlaneStress { thickness } })
+        Ok(if self.geometry == GeometryToml::PlaneStrain { Section::PlaneStrain { thickness } } else { Section::PlaneStress { thickness } })
     }
 }
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
-pub(super) struct SectionSpec {
+pub(super) struct SectionToml {
     pub(super) elements: String,
     pub(super) material: String,
 }
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
-pub(super) struct StepSpec {
+pub(super) struct StepToml {
     pub(super) name: Option<String>,
     /// "static" (the default) or "harmonic", a linear perturbation about the state before.
     pub(super) procedure: Option<String>,
@@ -323,27 +323,27 @@ pub(super) struct StepSpec {
     /// Frequency and buckle steps: how many eigenvalues.
     pub(super) eigenvalues: Option<usize>,
     pub(super) increments: Option<usize>,
-    pub(super) temperature: Option<TemperatureSpec>,
+    pub(super) temperature: Option<TemperatureToml>,
     #[serde(default)]
-    pub(super) boundary: Vec<BoundarySpec>,
+    pub(super) boundary: Vec<BoundaryToml>,
     #[serde(default)]
-    pub(super) pressure: Vec<PressureSpec>,
+    pub(super) pressure: Vec<PressureToml>,
     /// Concentrated forces on the nodes of node sets.
     #[serde(default)]
-    pub(super) force: Vec<ForceSpec>,
+    pub(super) force: Vec<ForceToml>,
     /// Body loads on element sets: gravity along the axis or spin about it.
     #[serde(default)]
-    pub(super) body_load: Vec<BodyLoadSpec>,
+    pub(super) body_load: Vec<BodyLoadToml>,
     /// Contact pairs whose friction changes from this step on.
     #[serde(default)]
-    pub(super) contact_friction: Vec<FrictionChangeSpec>,
+    pub(super) contact_friction: Vec<FrictionChangeToml>,
 }
 
 /// `{ pair = "fit", friction = 0.1 }`, with `tangential_penalty` or `elastic_slip` as in a
 /// `[[contact]]`; `friction = 0` makes the pair frictionless.
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
-pub(super) struct FrictionChangeSpec {
+pub(super) struct FrictionChangeToml {
     pub(super) pair: String,
     pub(super) friction: f64,
     pub(super) tangential_penalty: Option<f64>,
@@ -352,7 +352,7 @@ pub(super) struct FrictionChangeSpec {
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
-pub(super) struct BodyLoadSpec {
+pub(super) struct BodyLoadToml {
     pub(super) elements: String,
     /// Acceleration along +z, mm/s^2 (downward along the axis: -9810).
     pub(super) gravity: Option<f64>,
@@ -362,7 +362,7 @@ pub(super) struct BodyLoadSpec {
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
-pub(super) struct BoundarySpec {
+pub(super) struct BoundaryToml {
     pub(super) set: String,
     #[serde(alias = "ux")]
     pub(super) ur: Option<f64>,
@@ -380,7 +380,7 @@ pub(super) struct BoundarySpec {
 /// (as CalculiX's *CLOAD).
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
-pub(super) struct ForceSpec {
+pub(super) struct ForceToml {
     pub(super) set: String,
     #[serde(alias = "fx")]
     pub(super) fr: Option<f64>,
@@ -390,7 +390,7 @@ pub(super) struct ForceSpec {
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
-pub(super) struct PressureSpec {
+pub(super) struct PressureToml {
     pub(super) surface: String,
     pub(super) value: f64,
 }
