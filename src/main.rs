@@ -54,19 +54,14 @@ fn restart_from(file: &Option<PathBuf>, increment: Option<usize>) -> Option<slid
 /// `slideline bellows`: the specification or parameters checked before MPI starts, then the
 /// joint's run (or its mesh, deck or design-by-analysis checks).
 fn bellows_command(args: &cli::BellowsArgs, sub: Option<&clap::ArgMatches>) -> ExitCode {
-    let given = |id: &str| sub.and_then(|m| m.value_source(id)) == Some(clap::parser::ValueSource::CommandLine);
     // bad flags, specifications and parameter files are reported before MPI and PETSc start
-    let spec = match args.spec(given) {
-        Ok(s) => s,
-        Err(e) => return fail(&e, launched_as_rank_zero()),
-    };
-    if let (Some(spec), true) = (&spec, args.check_only) {
-        return cli::check_only(spec, &args.petsc);
-    }
-    let params = match args.params(given, spec.as_ref()).and_then(|p| p.validate().map(|()| p)) {
+    let params = match args.joint(sub) {
         Ok(p) => p,
         Err(e) => return fail(&e, launched_as_rank_zero()),
     };
+    if args.check_only {
+        return cli::check_only(&params, &args.petsc);
+    }
     // the movements of the flexibility perturbations, if any
     let movements = match args.movements(&params) {
         Ok(m) => m,
@@ -78,7 +73,7 @@ fn bellows_command(args: &cli::BellowsArgs, sub: Option<&clap::ArgMatches>) -> E
             return fail(&e, launched_as_rank_zero());
         }
         // no MPI needed: every rank would write the same file
-        return match slideline::bellows::joint::model(&params).and_then(|m| model::inp::write(&m, &params.title(), path)) {
+        return match slideline::bellows::joint::model(&params).and_then(|m| model::inp::write(&m, &params.fe_title(), path)) {
             Ok(()) => {
                 println!("deck written to {}", path.display());
                 ExitCode::SUCCESS
@@ -105,14 +100,14 @@ fn bellows_command(args: &cli::BellowsArgs, sub: Option<&clap::ArgMatches>) -> E
     }
     let root = session.world().rank() == 0;
     if args.dba {
-        let result = workflow::design_by_analysis(&session, &params, spec.as_ref(), &args.output, args.report.as_deref(), args.quiet);
+        let result = workflow::design_by_analysis(&session, &params, &args.output, args.report.as_deref(), args.quiet);
         warn_unused_options(&session, root && !is_bad_input(&result));
         return match result {
             Ok(()) => ExitCode::SUCCESS,
             Err(e) => fail(&e, root),
         };
     }
-    let job = args.job(params, movements, spec);
+    let job = args.job(params, movements);
     let before = match workflow::before_the_run(&session, &job) {
         Ok(before) => before,
         Err(e) => return fail(&e, root),

@@ -25,7 +25,8 @@ use super::membrane::PlyMembrane;
 use super::stations::{stations_of, PieceStations, STATIONS};
 use crate::assessment::fe_check::{effective_strain_range, FeCheck, Peak, StrainLife};
 use crate::assessment::formulas::{cycles_as_formed_austenitic, PSI_PER_MPA};
-use crate::bellows::joint::{convolution_pieces, BellowsParams, ConvolutionPiece};
+use crate::bellows::joint::{convolution_pieces, ConvolutionPiece};
+use crate::bellows::spec::DesignSpec;
 use crate::error::{Error, Result};
 use crate::io::reader::ResultsReader;
 use crate::model::{Component, GeneralStep, PrescribedDisplacement, Pressure, Step};
@@ -40,20 +41,20 @@ pub const LOAD_FRACTION: f64 = 0.01;
 /// The two linear analyses of joint `p` and their linearised stresses (collective: every rank
 /// calls it; the analyses' files go to a temporary directory and are removed), with the
 /// instability pressures of `stability` (the joint's buckling analyses at rest).
-pub fn analyse(session: &PetscSession, p: &BellowsParams, stability: &super::stability::Stability) -> Result<FeCheck> {
+pub fn analyse(session: &PetscSession, p: &DesignSpec, stability: &super::stability::Stability) -> Result<FeCheck> {
     // the stroke analysis runs without a stroke too (a pressure-only assessment), for the rate
-    let nominal = if p.displacement == 0.0 { 1.0 } else { p.displacement.abs() };
+    let nominal = if p.displacement() == 0.0 { 1.0 } else { p.displacement().abs() };
     let stroke = LOAD_FRACTION * nominal;
     let pieces = convolution_pieces(p);
     super::in_scratch(session, "assess", |dir| {
         let pressed = dir.join("pressure.h5");
-        let model = linear_analysis(p, "pressure", 0.0, LOAD_FRACTION * p.pressure)?;
+        let model = linear_analysis(p, "pressure", 0.0, LOAD_FRACTION * p.design.pressure)?;
         run(session, &model, &super::quiet_run(&pressed))?;
         let from_pressure = stations(&pressed, &model, p, &pieces, 1.0 / LOAD_FRACTION)?;
         let stroked = dir.join("stroke.h5");
         let model = stroke_analysis(p, stroke)?;
         run(session, &model, &super::quiet_run(&stroked))?;
-        let from_stroke = stations(&stroked, &model, p, &pieces, p.displacement.abs() / stroke)?;
+        let from_stroke = stations(&stroked, &model, p, &pieces, p.displacement().abs() / stroke)?;
         // the rate is the joint's tangent at rest (the axial perturbation of the stability
         // analyses), the figure the flexibility and stability tables give: the stroke
         // analysis' secant over its 1 % of the stroke moves with the stroke (0.5 % between
@@ -67,13 +68,13 @@ pub fn analyse(session: &PetscSession, p: &BellowsParams, stability: &super::sta
 
 /// The joint's model for the linear analysis of the stroke alone: tube B's end moved by
 /// `stroke` towards tube A (mm), tube A's end held.
-pub fn stroke_analysis(p: &BellowsParams, stroke: f64) -> Result<crate::model::Model> {
+pub fn stroke_analysis(p: &DesignSpec, stroke: f64) -> Result<crate::model::Model> {
     linear_analysis(p, "stroke", stroke, 0.0)
 }
 
 /// The joint's model, elastic and without the heat, with one step: tube A's end held, tube B's
 /// moved by `stroke` towards it (mm), `pressure` (MPa) on the wetted surface.
-fn linear_analysis(p: &BellowsParams, name: &str, stroke: f64, pressure: f64) -> Result<crate::model::Model> {
+fn linear_analysis(p: &DesignSpec, name: &str, stroke: f64, pressure: f64) -> Result<crate::model::Model> {
     let hold = |set: &str, value: f64| PrescribedDisplacement { node_set: set.into(), component: Component::Z, value };
     let pressures = if pressure == 0.0 { vec![] } else { vec![Pressure { surface: "wetted".into(), value: pressure }] };
     let mut m = super::elastic_model(p)?;
@@ -89,7 +90,7 @@ fn linear_analysis(p: &BellowsParams, name: &str, stroke: f64, pressure: f64) ->
 /// of `file` (a run of `model`), multiplied by `scale` (from the applied load to the
 /// design's). The membrane stress is the ply's meridional force over its area, from the
 /// elements' nodal forces ([`PlyMembrane`]); the bending and hoop stresses are linearised.
-fn stations(file: &Path, model: &crate::model::Model, p: &BellowsParams, pieces: &[ConvolutionPiece], scale: f64) -> Result<Vec<PieceStations>> {
+fn stations(file: &Path, model: &crate::model::Model, p: &DesignSpec, pieces: &[ConvolutionPiece], scale: f64) -> Result<Vec<PieceStations>> {
     let r = ResultsReader::open(file)?;
     let last = r.increments()?.pop().ok_or_else(|| Error::Output { path: file.to_path_buf(), message: "no increment".into() })?;
     let stress: Vec<[[f64; 4]; 9]> =
@@ -108,14 +109,14 @@ fn stations(file: &Path, model: &crate::model::Model, p: &BellowsParams, pieces:
 
 /// The worst values over the stations, and S2 as the hoop membrane averaged over each
 /// convolution's meridian (a root shared by two convolutions counts half to each).
-fn combine(p: &BellowsParams, pieces: &[ConvolutionPiece], pressure: &[PieceStations], stroke: &[PieceStations], axial_rate: f64) -> FeCheck {
+fn combine(p: &DesignSpec, pieces: &[ConvolutionPiece], pressure: &[PieceStations], stroke: &[PieceStations], axial_rate: f64) -> FeCheck {
     let (mut s3, mut s4, mut s5, mut s6, mut st) = Default::default();
     let mut ends: [Peak; 4] = Default::default();
-    let mut hoop = vec![(0.0, 0.0); p.convolutions];
+    let mut hoop = vec![(0.0, 0.0); p.bellows.convolutions];
     for (i, piece) in pieces.iter().enumerate() {
         let weight = piece.piece.length() / STATIONS as f64;
         for j in 0..STATIONS {
-            for k in 0..p.plies {
+            for k in 0..p.bellows.plies {
                 let ((ply, a), (_, b)) = (pressure[i][j][k], stroke[i][j][k]);
                 let at = || format!("{}, ply {}", piece.label, ply + 1);
                 if piece.end {

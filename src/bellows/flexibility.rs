@@ -17,7 +17,8 @@
 
 use super::stations::{stations_of, PieceStations};
 use crate::assessment::fe_check::Peak;
-use crate::bellows::joint::{convolution_pieces, BellowsParams};
+use crate::bellows::joint::convolution_pieces;
+use crate::bellows::spec::DesignSpec;
 use crate::error::Result;
 use crate::io::reader::ResultsReader;
 use crate::model::perturbation::{Analysis, HarmonicComponent, HarmonicDisplacement, Perturbation, RingMotion};
@@ -43,11 +44,11 @@ impl Movements {
     /// The movements asked (`--lateral` mm, `--angular` degrees), if any, for joint `p`: what
     /// the codes' beam analogy and a linear perturbation describe, an offset up to the
     /// convoluted length and a rotation up to 45 degrees, nonzero.
-    pub fn checked(lateral: Option<f64>, angular: Option<f64>, p: &BellowsParams) -> Result<Option<Self>> {
+    pub fn checked(lateral: Option<f64>, angular: Option<f64>, p: &DesignSpec) -> Result<Option<Self>> {
         if lateral.is_none() && angular.is_none() {
             return Ok(None);
         }
-        let length = p.convolutions as f64 * p.pitch;
+        let length = p.bellows.convolutions as f64 * p.bellows.pitch;
         for (flag, v, units, most) in [("--lateral", lateral, "mm", length), ("--angular", angular, "degrees", 45.0)] {
             if let Some(v) = v.filter(|v| !v.is_finite() || *v == 0.0 || v.abs() > most) {
                 return Err(crate::error::Error::input(format!(
@@ -87,14 +88,14 @@ pub struct Flexibility {
 }
 
 /// The z of the bellows' centre: the middle of its convolutions.
-pub fn centre(p: &BellowsParams) -> f64 {
+pub fn centre(p: &DesignSpec) -> f64 {
     let pieces = convolution_pieces(p);
     let (a, b) = (pieces[0].piece.at(0.0).0[1], pieces[pieces.len() - 1].piece.at(1.0).0[1]);
     0.5 * (a + b)
 }
 
 /// The perturbation steps of `movements` on joint `p`.
-pub fn steps(p: &BellowsParams, movements: Movements) -> Vec<Perturbation> {
+pub fn steps(p: &DesignSpec, movements: Movements) -> Vec<Perturbation> {
     let held = |set: &str| {
         [HarmonicComponent::R, HarmonicComponent::Z, HarmonicComponent::T].map(|component| HarmonicDisplacement { node_set: set.into(), component, value: 0.0 })
     };
@@ -128,7 +129,7 @@ pub fn steps(p: &BellowsParams, movements: Movements) -> Vec<Perturbation> {
         // about the bellows' centre where the state has it: the stroke shortens the
         // convolutions alone, so the centre has moved by half of it (the heat's few tenths of a
         // millimetre left out); the moving end's moment is then the bellows' own
-        let stroke = if p.cycle { 0.0 } else { p.displacement };
+        let stroke = if p.joint.cycle { 0.0 } else { p.displacement() };
         out.push(step(ANGULAR, 1, held("fixed_end").to_vec(), ring(0.0, movements.angular.to_radians(), Some(centre(p) - stroke / 2.0)), false));
     }
     if movements.lateral != 0.0 {
@@ -152,7 +153,7 @@ pub(super) fn axial_rate(answers: &[(String, PerturbationAnswer)]) -> Result<f64
 
 /// The flexibility from the perturbation answers of a run of the joint `p` with [`steps`], its
 /// stresses from the run's results file `r`.
-pub fn from_run(p: &BellowsParams, movements: Movements, answers: &[(String, PerturbationAnswer)], r: &ResultsReader) -> Result<Flexibility> {
+pub fn from_run(p: &DesignSpec, movements: Movements, answers: &[(String, PerturbationAnswer)], r: &ResultsReader) -> Result<Flexibility> {
     let resultant = |step: &str, set: &str, name: &str| resultant_in(answers, step, set, name);
     let missing = |what: &str| crate::error::Error::Output { path: r.path().to_path_buf(), message: format!("no {what} in the perturbation steps") };
     let axial_rate = axial_rate(answers)?;
@@ -201,7 +202,7 @@ fn peaks(pieces: &[crate::bellows::joint::ConvolutionPiece], stations: &[PieceSt
 /// The joint `p` at rest (no pressure, heat or stroke, elastic: the codes' assumption) and the
 /// perturbations of `movements` about it (collective; the run's file goes to a temporary
 /// directory and is removed).
-pub fn at_rest(session: &PetscSession, p: &BellowsParams, movements: Movements) -> Result<Flexibility> {
+pub fn at_rest(session: &PetscSession, p: &DesignSpec, movements: Movements) -> Result<Flexibility> {
     super::at_rest(
         session,
         p,

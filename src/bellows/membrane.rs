@@ -18,7 +18,8 @@
 //! exact integral of r ds over a straight line) is the membrane stress: force over area, the
 //! codes' own definition (S3 = P w / (2 tp) is the pressure's force over the metal).
 
-use crate::bellows::joint::{ply_columns, BellowsParams, ConvolutionPiece};
+use crate::bellows::joint::{ply_columns, ConvolutionPiece};
+use crate::bellows::spec::DesignSpec;
 use crate::element::solid::{compute_solid, SolidInput, NODES};
 use crate::error::{Error, Result};
 use crate::io::reader::ResultsReader;
@@ -42,7 +43,7 @@ pub struct PlyMembrane {
 impl PlyMembrane {
     /// From increment `increment` of the results file `r`, a run of `model` (the file's nodes
     /// are in the partition's order: matched to the model's by their numbers and positions).
-    pub fn from_file(r: &ResultsReader, increment: &str, model: &Model, p: &BellowsParams, pieces: &[ConvolutionPiece], scale: f64) -> Result<Self> {
+    pub fn from_file(r: &ResultsReader, increment: &str, model: &Model, p: &DesignSpec, pieces: &[ConvolutionPiece], scale: f64) -> Result<Self> {
         let failed = |message: String| Error::Output { path: r.path().to_path_buf(), message };
         let (coords, ids, file_u) = (r.coordinates()?, r.node_ids()?, r.field(increment, "nodal/displacement")?);
         let index: HashMap<u64, usize> = model.mesh.node_ids.iter().enumerate().map(|(n, &id)| (id, n)).collect();
@@ -58,16 +59,16 @@ impl PlyMembrane {
 
     /// From the displacements `u` (model node order) of a linear analysis of joint `p`'s model
     /// `model`, multiplied by `scale`; `pieces` are `convolution_pieces(p)`.
-    pub fn new(model: &Model, u: &[[f64; 2]], p: &BellowsParams, pieces: &[ConvolutionPiece], scale: f64) -> std::result::Result<Self, String> {
+    pub fn new(model: &Model, u: &[[f64; 2]], p: &DesignSpec, pieces: &[ConvolutionPiece], scale: f64) -> std::result::Result<Self, String> {
         let columns = ply_columns(p);
         // convolution piece i is mid-surface piece i + 1: its first column follows tangent A's
         let first: Vec<usize> = (0..pieces.len()).map(|i| columns[..=i].iter().sum()).collect();
         let mesh = &model.mesh;
-        let mut lines = Vec::with_capacity(p.plies);
-        for ply in 0..p.plies {
+        let mut lines = Vec::with_capacity(p.bellows.plies);
+        for ply in 0..p.bellows.plies {
             let name = format!("ply{}", ply + 1);
             let set = model.element_sets.get(&name).ok_or_else(|| format!("the model has no element set {name}"))?;
-            let per_column = p.ply_elements;
+            let per_column = p.joint.ply_elements;
             // the nodes of elements outside this ply
             let mut elsewhere = vec![false; mesh.coords.len()];
             let inside: std::collections::HashSet<usize> = set.iter().copied().collect();

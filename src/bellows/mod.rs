@@ -21,11 +21,12 @@ use crate::error::{Error, Result};
 use crate::petsc::PetscSession;
 use crate::solve::RunOptions;
 use mpi::traits::*;
+use spec::DesignSpec;
 use std::path::{Path, PathBuf};
 
 /// The joint `p`'s own model, elastic and without thermal expansion (the codes' linear
 /// analyses).
-fn elastic_model(p: &crate::bellows::joint::BellowsParams) -> Result<crate::model::Model> {
+fn elastic_model(p: &DesignSpec) -> Result<crate::model::Model> {
     let mut m = crate::bellows::joint::model(p)?;
     for material in &mut m.materials {
         material.plasticity = None;
@@ -39,12 +40,14 @@ fn elastic_model(p: &crate::bellows::joint::BellowsParams) -> Result<crate::mode
 /// directory; `read` takes the rest parameters, the run's answers and its file (collective).
 fn at_rest<T>(
     session: &PetscSession,
-    p: &crate::bellows::joint::BellowsParams,
+    p: &DesignSpec,
     name: &str,
-    steps: impl FnOnce(&crate::bellows::joint::BellowsParams) -> Vec<crate::model::perturbation::Perturbation>,
-    read: impl FnOnce(&crate::bellows::joint::BellowsParams, &crate::solve::RunSummary, &Path) -> Result<T>,
+    steps: impl FnOnce(&DesignSpec) -> Vec<crate::model::perturbation::Perturbation>,
+    read: impl FnOnce(&DesignSpec, &crate::solve::RunSummary, &Path) -> Result<T>,
 ) -> Result<T> {
-    let rest = crate::bellows::joint::BellowsParams { pressure: 0.0, displacement: 0.0, heat_increments: 1, increments: 1, cycle: false, ..p.clone() };
+    let mut rest = p.clone();
+    (rest.design.pressure, rest.design.axial_compression, rest.design.axial_extension) = (0.0, Some(0.0), None);
+    (rest.joint.heat_increments, rest.joint.increments, rest.joint.cycle) = (1, 1, false);
     let mut model = elastic_model(&rest)?;
     model.set_perturbations(steps(&rest));
     model.validate()?;

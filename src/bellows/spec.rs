@@ -1,20 +1,31 @@
-//! A bellows design specification (`slideline bellows --spec FILE.toml`), in an expansion-joint
-//! data sheet's terms: the bellows' dimensions, its material's properties at the design
-//! temperature (or tables of them against temperature, interpolated), the design conditions and
-//! the code's choices. It gives the code's verdict ([`DesignSpec::verdict`]) and the joint the
-//! finite-element analyses run on ([`DesignSpec::joint_params`]). Every key is in
-//! docs/bellows-spec.md; an unknown key or an impossible geometry is refused by name.
+//! The joint, described once: a bellows expansion joint in an expansion-joint data sheet's terms
+//! (the bellows' dimensions, its material's properties at the design temperature or tables of
+//! them against temperature, the design conditions, the code's choices) and the finite-element
+//! joint around it (`[joint]`: the pipes, the guide sleeve, contact, mesh, stepping, output).
+//! The code's verdict ([`DesignSpec::verdict`]), the mesher (`bellows::joint`), the analyses
+//! and the report all read this one type; the flags and `bellows-sweep --vary` change it by key
+//! (`section.key`, [`keys`]). Every key is in docs/bellows-spec.md; an unknown key or an
+//! impossible geometry is refused by name.
+//!
+//! `--spec FILE` reads a specification: the data sheet's keys are required. `--params FILE` and
+//! the default run start from the seed paper's joint ([`DesignSpec::seed`]), each key given
+//! replacing the seed's.
 
-use super::joint::BellowsParams;
 use crate::assessment::code::{CodeCheck, Duty, Source};
 use crate::assessment::coefficients::Coefficients;
 use crate::assessment::formulas::UBellows;
 use crate::assessment::verdict::{self, Allowables, Conditions, FatigueCurve, Forming, Verdict};
-use crate::error::{shown, Error, Result};
-use serde::Deserialize;
+use crate::error::{Error, Result};
+use serde::{Deserialize, Serialize};
 
-/// The whole specification.
-#[derive(Clone, Debug, Deserialize)]
+mod fe_joint;
+pub mod keys;
+mod rules;
+
+pub use rules::off_the_charts;
+
+/// The whole description of a joint.
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct DesignSpec {
     /// A line naming the joint (the report's title).
@@ -33,7 +44,7 @@ pub struct DesignSpec {
 }
 
 /// The bellows' dimensions (mm), as a data sheet gives them.
-#[derive(Clone, Debug, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct BellowsSpec {
     /// Db, the inside diameter of the plies on the tangents (the pipes' outside).
@@ -54,7 +65,7 @@ pub struct BellowsSpec {
     #[serde(default = "as_formed")]
     pub forming: Forming,
     /// The chart coefficients [Cp, Cf, Cd] read off the code's charts; computed without them.
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub coefficients: Option<[f64; 3]>,
 }
 
@@ -64,7 +75,7 @@ fn as_formed() -> Forming {
 
 /// A material property: one value at the design temperature, or a table of [temperature (degC),
 /// value] pairs interpolated linearly at it.
-#[derive(Clone, Debug, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
 #[serde(untagged, expecting = "give a number in slideline's units (MPa, /degC, t/mm^3) or a table of [temperature (degC), value] pairs")]
 pub enum Property {
     Value(f64),
@@ -98,7 +109,7 @@ impl Property {
 
 /// The bellows material: its name, where its data come from, and its properties at the design
 /// temperature (MPa, /degC, t/mm^3).
-#[derive(Clone, Debug, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct MaterialSpec {
     pub name: String,
@@ -107,24 +118,27 @@ pub struct MaterialSpec {
     /// Eb, at the design temperature.
     pub youngs_modulus: Property,
     /// Eo, at room temperature: the fatigue curve's (Eb when not given).
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub room_temperature_modulus: Option<f64>,
     #[serde(default = "poisson")]
     pub poissons_ratio: f64,
     /// Sy, at the design temperature.
     pub yield_stress: Property,
-    /// S, the allowable stress at the design temperature.
-    pub allowable_stress: Property,
+    /// S, the allowable stress at the design temperature: required of a specification (the
+    /// seed joint has none, and gets the code check without a verdict).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub allowable_stress: Option<Property>,
     /// The finite-element plies' linear hardening (0: perfectly plastic).
     #[serde(default)]
     pub hardening_modulus: f64,
     /// The cyclic stress-strain curve as kinematic hardening (Armstrong-Frederick terms):
     /// `--dba`'s fatigue check runs with it (none: no fatigue check).
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub backstresses: Vec<crate::material::Backstress>,
     #[serde(default = "no_expansion")]
     pub thermal_expansion: Property,
-    #[serde(default)]
+    /// The finite-element joint's mass density (default the seed's 8.0e-9 t/mm^3).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub density: Option<f64>,
 }
 
@@ -138,32 +152,35 @@ fn poisson() -> f64 {
 
 /// The design conditions: internal pressure (MPa), temperature (degC), the movements (mm,
 /// degrees) and the cycles required of them.
-#[derive(Clone, Debug, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct DesignConditions {
     pub pressure: f64,
     pub temperature: f64,
     /// The axial movement: one of a compression or an extension (mm, the whole bellows).
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub axial_compression: Option<f64>,
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub axial_extension: Option<f64>,
     #[serde(default)]
     pub lateral: f64,
     #[serde(default)]
     pub angular: f64,
-    pub cycles: f64,
+    /// Required of a specification (the seed joint has none).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub cycles: Option<f64>,
 }
 
 /// The code's choices: the fatigue curve and its strength reduction factor Kg, the
 /// longitudinal weld's factor Cwb, and Km (by the forming when not given); a key left out
 /// takes its default.
-#[derive(Clone, Debug, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct CodeChoices {
     pub fatigue_curve: FatigueCurve,
     pub fatigue_factor: f64,
     pub weld_factor: f64,
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub meridional_factor: Option<f64>,
 }
 
@@ -173,21 +190,145 @@ impl Default for CodeChoices {
     }
 }
 
-/// The finite-element joint around the bellows: the pipes the tangents sit on, the guide sleeve
-/// and the analysis' mesh and stepping. Unset values are the seed joint's, lengths scaled with
-/// the bellows' inside diameter (the seed's is 320 mm).
-#[derive(Clone, Debug, Default, Deserialize)]
-#[serde(deny_unknown_fields)]
+/// The finite-element joint around the bellows and its analysis: the pipes the tangents sit on,
+/// the guide sleeve, contact and friction, the mesh, the stepping and the output. Unset
+/// lengths are the seed joint's scaled with the bellows' inside diameter (the seed's is 320 mm).
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
+#[serde(default, deny_unknown_fields)]
 pub struct JointSpec {
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub tube_thickness: Option<f64>,
+    /// Axial length of each pipe (tube A; tube B is as long, at the other end).
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub tube_length: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub sleeve_thickness: Option<f64>,
+    /// The sleeve's overlap with tube A (bonded) and tube B (sliding), from the tube ends.
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub sleeve_overlap: Option<f64>,
-    pub increments: Option<usize>,
-    pub penalty: Option<f64>,
+    /// The sleeve's entry is crowned: its outside falls by this much (mm) over its last
+    /// `sleeve_crown_length`, a parabola tangent to the cylinder (0: a sharp end).
+    pub sleeve_crown: f64,
+    pub sleeve_crown_length: f64,
+    /// Contact penalty, N/mm^3.
+    pub penalty: f64,
+    /// Coulomb friction coefficient between the plies (and of a ply's folds on each other).
+    pub friction_plies: f64,
+    /// Coulomb friction coefficient between the sleeve and tube B's bore.
+    pub friction_sleeve: f64,
+    /// Tangential penalty of the friction, MPa/mm of elastic slip.
+    pub tangential_penalty: f64,
+    /// Instead of the tangential penalty, the elastic slip (mm) at the Coulomb limit: eps_T =
+    /// mu p / elastic_slip.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub elastic_slip: Option<f64>,
+    /// Increments of the heating step (pressure and temperature) and of the stroke.
+    pub heat_increments: usize,
+    pub increments: usize,
+    /// After the stroke, a further step takes tube B's end back to where it started.
+    pub cycle: bool,
+    /// How Newton's convergence is judged.
+    pub convergence: crate::model::Convergence,
+    /// Elements through each ply's thickness, and their length along the ply meridian (mm).
+    pub ply_elements: usize,
+    pub ply_element_length: f64,
+    /// Elements through the tube and sleeve walls, and their length along them (mm).
+    pub wall_elements: usize,
+    pub wall_element_length: f64,
+    /// Fields of every N-th increment in the results file (and of the last of each step).
+    pub output_every: usize,
+    /// The width of the visualisation fields' floats.
+    pub output_precision: crate::model::Precision,
+}
+
+impl Default for JointSpec {
+    fn default() -> Self {
+        JointSpec {
+            tube_thickness: None,
+            tube_length: None,
+            sleeve_thickness: None,
+            sleeve_overlap: None,
+            // a sharp end presses into tube B's bore between two of its nodes, and the fit's
+            // force then alternates with the end's place between them: with sleeve friction
+            // the quick joint's end reaction zig-zagged by 0.26 % from increment to increment
+            // (0.03 % crowned; docs/performance.md)
+            sleeve_crown: 0.2,
+            sleeve_crown_length: 8.0,
+            penalty: 1.0e4,
+            friction_plies: 0.0,
+            friction_sleeve: 0.0,
+            // measured on the quick joint's cycle with mu = 0.2 between the plies (cutbacks,
+            // against 4 frictionless): 1e4 (the normal penalty) fails at 98 % of the stroke,
+            // 1000 takes 31, 300 takes 17, 100 takes 15. At 300 the elastic slip at the Coulomb
+            // limit, mu p / eps_T, is 0.7 % of the quick mesh's 2 mm ply elements at p = 10 MPa,
+            // about Abaqus' default allowance (0.5 % of the element length)
+            tangential_penalty: 300.0,
+            elastic_slip: None,
+            heat_increments: 2,
+            increments: 240,
+            cycle: false,
+            convergence: crate::model::Convergence::default(),
+            ply_elements: 2,
+            ply_element_length: 1.0,
+            wall_elements: 3,
+            wall_element_length: 4.0,
+            output_every: 1,
+            output_precision: crate::model::Precision::Single,
+        }
+    }
 }
 
 impl DesignSpec {
+    /// The seed paper's joint (DN300, two 1 mm plies of AISI 304 at 200 degC and 6 bar,
+    /// compressed 70 mm): what `slideline bellows` runs, and what `--params` and the flags
+    /// change. It has no allowable stress and no cycles: the code check, no verdict.
+    pub fn seed() -> Self {
+        DesignSpec {
+            title: String::new(),
+            text: String::new(),
+            bellows: BellowsSpec {
+                inside_diameter: 320.0,
+                convolution_height: 20.0,
+                pitch: 24.0,
+                crest_radius: 5.0,
+                root_radius: 5.0,
+                convolutions: 6,
+                plies: 2,
+                ply_thickness: 1.0,
+                tangent_length: 20.0,
+                forming: Forming::AsFormed,
+                coefficients: None,
+            },
+            material: MaterialSpec {
+                name: "AISI 304".into(),
+                source: "the seed paper".into(),
+                youngs_modulus: Property::Value(200_000.0),
+                room_temperature_modulus: None,
+                poissons_ratio: 0.3,
+                yield_stress: Property::Value(300.0),
+                allowable_stress: None,
+                hardening_modulus: 1000.0,
+                backstresses: Vec::new(),
+                thermal_expansion: Property::Value(1.875e-5),
+                // AISI 304: 8.00 g/cm^3 (ASM Handbook)
+                density: Some(8.0e-9),
+            },
+            design: DesignConditions {
+                pressure: 0.6,
+                temperature: 200.0,
+                axial_compression: Some(70.0),
+                axial_extension: None,
+                lateral: 0.0,
+                angular: 0.0,
+                cycles: None,
+            },
+            code: CodeChoices::default(),
+            joint: JointSpec::default(),
+        }
+    }
+
+    /// A design specification (`--spec`): the data sheet's keys required, the code's data
+    /// (allowable stress, cycles) among them.
     pub fn from_file(path: &std::path::Path) -> Result<Self> {
         let text = std::fs::read_to_string(path).map_err(|source| Error::Read { path: path.to_path_buf(), source })?;
         Self::from_text(&text, path)
@@ -197,8 +338,20 @@ impl DesignSpec {
     pub fn from_text(text: &str, path: &std::path::Path) -> Result<Self> {
         let mut spec: DesignSpec = toml::from_str(text).map_err(|e| crate::model::deck::toml_error(path, text, &e, "docs/bellows-spec.md"))?;
         spec.text = text.to_string();
+        for (key, missing) in [("material.allowable_stress", spec.material.allowable_stress.is_none()), ("design.cycles", spec.design.cycles.is_none())] {
+            if missing {
+                return Err(Error::input(format!("spec: {key}: missing: the code's verdict needs it (docs/bellows-spec.md)")));
+            }
+        }
         spec.validate()?;
         Ok(spec)
+    }
+
+    /// A joint file (`--params`): the seed joint with each key the file gives replaced.
+    pub fn joint_file(path: &std::path::Path) -> Result<Self> {
+        let text = std::fs::read_to_string(path).map_err(|source| Error::Read { path: path.to_path_buf(), source })?;
+        let table: toml::Table = text.parse().map_err(|e: toml::de::Error| Error::input(format!("{}: {}", path.display(), e.message())))?;
+        keys::over_seed(&table).map_err(|e| Error::input(format!("{}: {e}", path.display())))
     }
 
     /// The SHA-256 of the specification's text, in hex: what a report names its input by.
@@ -207,10 +360,21 @@ impl DesignSpec {
         sha2::Sha256::digest(self.text.as_bytes()).iter().map(|b| format!("{b:02x}")).collect()
     }
 
+    /// Whether the joint has what the code's verdict needs beyond the code check: an allowable
+    /// stress and the cycles required.
+    pub fn has_design_data(&self) -> bool {
+        self.material.allowable_stress.is_some() && self.design.cycles.is_some()
+    }
+
     /// The mid-surface radii of the crest and the root (the inside radii plus half the pack).
     pub fn mid_surface_radii(&self) -> (f64, f64) {
-        let half = self.bellows.plies as f64 * self.bellows.ply_thickness / 2.0;
+        let half = self.pack_thickness() / 2.0;
         (self.bellows.crest_radius + half, self.bellows.root_radius + half)
+    }
+
+    /// Total thickness of the ply pack.
+    pub fn pack_thickness(&self) -> f64 {
+        self.bellows.plies as f64 * self.bellows.ply_thickness
     }
 
     /// The bellows as the code's formulas see it: rm the mean of the crest's and root's
@@ -236,13 +400,15 @@ impl DesignSpec {
 
     pub fn conditions(&self) -> Conditions {
         let d = &self.design;
-        Conditions { pressure: d.pressure, axial: self.axial(), lateral: d.lateral, angular: d.angular, cycles: d.cycles }
+        Conditions { pressure: d.pressure, axial: self.axial(), lateral: d.lateral, angular: d.angular, cycles: d.cycles.unwrap_or(f64::NAN) }
     }
 
-    /// The material's modulus, yield and allowable stresses at the design temperature.
+    /// The material's modulus, yield and allowable stresses at the design temperature (the
+    /// allowable NaN where the joint has none).
     pub fn at_temperature(&self) -> Result<(f64, f64, f64)> {
         let (m, t) = (&self.material, self.design.temperature);
-        Ok((m.youngs_modulus.at(t, "youngs_modulus")?, m.yield_stress.at(t, "yield_stress")?, m.allowable_stress.at(t, "allowable_stress")?))
+        let allowable = m.allowable_stress.as_ref().map_or(Ok(f64::NAN), |s| s.at(t, "allowable_stress"))?;
+        Ok((m.youngs_modulus.at(t, "youngs_modulus")?, m.yield_stress.at(t, "yield_stress")?, allowable))
     }
 
     pub fn allowables(&self) -> Result<Allowables> {
@@ -277,163 +443,6 @@ impl DesignSpec {
     pub fn verdict(&self, check: &CodeCheck) -> Result<Verdict> {
         let (modulus, _, _) = self.at_temperature()?;
         Ok(verdict::verdict(&self.geometry(), check, &self.conditions(), &self.allowables()?, modulus))
-    }
-
-    /// Checks what the file says can be a bellows and a design: each value named with its rule.
-    pub fn validate(&self) -> Result<()> {
-        let b = &self.bellows;
-        let bad = |key: &str, rule: String| Err(Error::input(format!("spec: {key}: {rule}")));
-        let positive = [
-            ("bellows.inside_diameter", b.inside_diameter),
-            ("bellows.convolution_height", b.convolution_height),
-            ("bellows.pitch", b.pitch),
-            ("bellows.crest_radius", b.crest_radius),
-            ("bellows.root_radius", b.root_radius),
-            ("bellows.ply_thickness", b.ply_thickness),
-            ("design.cycles", self.design.cycles),
-            ("code.fatigue_factor", self.code.fatigue_factor),
-            ("code.weld_factor", self.code.weld_factor),
-        ];
-        for (key, v) in positive.into_iter().chain(self.code.meridional_factor.map(|k| ("code.meridional_factor", k))) {
-            if !(v > 0.0 && v.is_finite()) {
-                return bad(key, format!("must be > 0, got {}", shown(v)));
-            }
-        }
-        for (key, v) in [("bellows.tangent_length", b.tangent_length), ("design.lateral", self.design.lateral), ("design.angular", self.design.angular)] {
-            if !(v >= 0.0 && v.is_finite()) {
-                return bad(key, format!("must be >= 0, got {}", shown(v)));
-            }
-        }
-        for (key, n) in [("bellows.convolutions", b.convolutions), ("bellows.plies", b.plies)] {
-            if n == 0 {
-                return bad(key, "must be at least 1".into());
-            }
-        }
-        if let Some(rule) = b.coefficients.and_then(|c| super::joint::off_the_charts(&c)) {
-            return bad("bellows.coefficients", rule);
-        }
-        // the movements the joint can take at all (as the --lateral and --angular flags): no
-        // more than its convolved length sideways or axially, 45 degrees of rotation
-        let length = b.convolutions as f64 * b.pitch;
-        let movements = [
-            ("design.lateral", self.design.lateral, length, "mm, the convolved length N q"),
-            ("design.axial_compression", self.design.axial_compression.unwrap_or(0.0), length, "mm, the convolved length N q"),
-            ("design.axial_extension", self.design.axial_extension.unwrap_or(0.0), length, "mm, the convolved length N q"),
-            ("design.angular", self.design.angular, 45.0, "degrees"),
-        ];
-        for (key, v, most, what) in movements {
-            if v.abs() > most {
-                return bad(key, format!("{} is more than the joint can take: give at most {} {what}", shown(v), shown(most)));
-            }
-        }
-        if !(self.design.pressure >= 0.0 && self.design.pressure.is_finite()) {
-            return bad(
-                "design.pressure",
-                format!("{}: give the internal design pressure, >= 0 MPa (external pressure is not checked yet)", self.design.pressure),
-            );
-        }
-        if !self.design.temperature.is_finite() {
-            return bad("design.temperature", "must be a finite number (degC)".into());
-        }
-        match (self.design.axial_compression, self.design.axial_extension) {
-            (Some(_), Some(_)) => return bad("design.axial_compression", "give one of axial_compression and axial_extension".into()),
-            (Some(x), None) if !(x >= 0.0 && x.is_finite()) => {
-                return bad("design.axial_compression", format!("a movement is given by its size, >= 0 mm; got {}", shown(x)))
-            }
-            (None, Some(x)) if !(x >= 0.0 && x.is_finite()) => {
-                return bad("design.axial_extension", format!("a movement is given by its size, >= 0 mm; got {}", shown(x)))
-            }
-            _ => {}
-        }
-        let pack = b.plies as f64 * b.ply_thickness;
-        let (rc, rr) = self.mid_surface_radii();
-        // the U shape: two half tori and the sidewalls between them fit in the height and the pitch
-        if rc + rr + pack > b.convolution_height {
-            return bad(
-                "bellows.convolution_height",
-                format!(
-                    "w = {} mm is less than the crest's and root's mid-surface radii and the ply pack ({} + {} + {} mm): the tori overlap",
-                    shown(b.convolution_height),
-                    shown(rc),
-                    shown(rr),
-                    shown(pack)
-                ),
-            );
-        }
-        if b.pitch < 2.0 * (rc + rr) - 1e-9 {
-            return bad(
-                "bellows.pitch",
-                format!(
-                    "q = {} mm is less than 2 (rc + rr) = {} mm (mid-surface radii): neighbouring convolutions overlap",
-                    shown(b.pitch),
-                    shown(2.0 * (rc + rr))
-                ),
-            );
-        }
-        if b.inside_diameter <= 2.0 * pack {
-            return bad("bellows.inside_diameter", format!("Db = {} mm leaves no bore inside the ply pack", b.inside_diameter));
-        }
-        let (modulus, yield_stress, allowable) = self.at_temperature()?;
-        for (key, v) in [("material.youngs_modulus", modulus), ("material.yield_stress", yield_stress), ("material.allowable_stress", allowable)] {
-            if !(v > 0.0 && v.is_finite()) {
-                return bad(key, format!("must be > 0 MPa at the design temperature, got {}", shown(v)));
-            }
-        }
-        if !(self.material.poissons_ratio > -1.0 && self.material.poissons_ratio < 0.5) {
-            return bad("material.poissons_ratio", format!("must lie in (-1, 0.5), got {}", self.material.poissons_ratio));
-        }
-        Ok(())
-    }
-
-    /// The finite-element joint of this specification: the bellows on pipes of the seed joint's
-    /// proportions (scaled with Db, or as `[joint]` gives them), the design pressure and
-    /// temperature, the axial movement as the stroke.
-    pub fn joint_params(&self) -> Result<BellowsParams> {
-        let b = &self.bellows;
-        let (rc, rr) = self.mid_surface_radii();
-        let (modulus, yield_stress, _) = self.at_temperature()?;
-        let seed = BellowsParams::default();
-        // the joint's other lengths scale with the seed's bellows inside diameter
-        let scale = b.inside_diameter / (2.0 * seed.tube_outer_radius());
-        let j = &self.joint;
-        let tube_thickness = j.tube_thickness.unwrap_or(seed.tube_thickness * scale);
-        let tube_length = j.tube_length.unwrap_or((seed.tube_length * scale).max(b.tangent_length + seed.sleeve_overlap * scale));
-        let convolved = b.convolutions as f64 * b.pitch;
-        let mut p = BellowsParams {
-            tube_inner_radius: b.inside_diameter / 2.0 - tube_thickness,
-            tube_thickness,
-            tube_length,
-            length: 2.0 * tube_length + convolved,
-            convolutions: b.convolutions,
-            pitch: b.pitch,
-            height: b.convolution_height,
-            torus_radius: rr,
-            crest_radius: (rc != rr).then_some(rc),
-            plies: b.plies,
-            ply_thickness: b.ply_thickness,
-            tangent_length: b.tangent_length,
-            sleeve_thickness: j.sleeve_thickness.unwrap_or(seed.sleeve_thickness * scale),
-            sleeve_overlap: j.sleeve_overlap.unwrap_or(seed.sleeve_overlap * scale),
-            youngs_modulus: modulus,
-            poissons_ratio: self.material.poissons_ratio,
-            thermal_expansion: self.material.thermal_expansion.at(self.design.temperature, "thermal_expansion")?,
-            yield_stress,
-            hardening_modulus: self.material.hardening_modulus,
-            density: self.material.density.unwrap_or(seed.density),
-            temperature: self.design.temperature,
-            pressure: self.design.pressure,
-            displacement: -self.axial(),
-            coefficients: b.coefficients,
-            ..seed
-        };
-        if let Some(n) = j.increments {
-            p.increments = n;
-        }
-        if let Some(k) = j.penalty {
-            p.penalty = k;
-        }
-        p.validate().map_err(|e| Error::input(format!("spec: the finite-element joint: {e}")))?;
-        Ok(p)
     }
 }
 

@@ -20,7 +20,7 @@
 //! `flexibility`.
 
 use super::flexibility::AXIAL;
-use crate::bellows::joint::BellowsParams;
+use crate::bellows::spec::DesignSpec;
 use crate::error::Result;
 use crate::model::perturbation::{Analysis, HarmonicComponent, HarmonicDisplacement, Perturbation};
 use crate::model::Pressure;
@@ -62,7 +62,7 @@ impl Stability {
 }
 
 /// The buckle steps (and the axial rate's step) on joint `p`.
-pub fn steps(p: &BellowsParams) -> Vec<Perturbation> {
+pub fn steps(p: &DesignSpec) -> Vec<Perturbation> {
     let held = |set: &str| {
         [HarmonicComponent::R, HarmonicComponent::Z, HarmonicComponent::T].map(|component| HarmonicDisplacement { node_set: set.into(), component, value: 0.0 })
     };
@@ -108,7 +108,7 @@ pub(super) fn lowest_positive_mode<'a>(answers: &'a [(String, PerturbationAnswer
 /// The joint `p` at rest (no pressure, heat or stroke, elastic) and its buckle steps
 /// (collective); `keep` sees the run's file and its answer on every rank (a picture of a mode,
 /// say) before the file is removed.
-pub fn at_rest(session: &PetscSession, p: &BellowsParams, keep: impl FnOnce(&std::path::Path, &Stability)) -> Result<Stability> {
+pub fn at_rest(session: &PetscSession, p: &DesignSpec, keep: impl FnOnce(&std::path::Path, &Stability)) -> Result<Stability> {
     super::at_rest(session, p, "stability", steps, |_, summary, file| {
         let stability = from_answers(&summary.perturbations)?;
         keep(file, &stability);
@@ -118,7 +118,7 @@ pub fn at_rest(session: &PetscSession, p: &BellowsParams, keep: impl FnOnce(&std
 
 /// EJMA's column instability pressure with both ends held, 0.34 pi Kb / (N q), and the
 /// unfactored equivalent column's, 2 pi Kb / (N q) (MPa).
-pub fn column_estimates(p: &BellowsParams, axial_rate: f64) -> (f64, f64) {
-    let code = crate::bellows::joint::code_geometry(p).column_instability_pressure(axial_rate);
+pub fn column_estimates(p: &DesignSpec, axial_rate: f64) -> (f64, f64) {
+    let code = p.geometry().column_instability_pressure(axial_rate);
     (code, code * 2.0 / 0.34)
 }

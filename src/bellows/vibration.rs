@@ -12,8 +12,7 @@
 
 use super::flexibility::AXIAL;
 use super::stability::lowest_positive_mode;
-use crate::bellows::joint::code_geometry;
-use crate::bellows::joint::BellowsParams;
+use crate::bellows::spec::DesignSpec;
 use crate::error::Result;
 use crate::model::perturbation::{Analysis, HarmonicComponent, HarmonicDisplacement, Perturbation};
 use crate::petsc::PetscSession;
@@ -45,7 +44,7 @@ pub struct Frequencies {
 }
 
 /// The frequency steps (and the axial rate's step) on joint `p`.
-pub fn steps(p: &BellowsParams) -> Vec<Perturbation> {
+pub fn steps(p: &DesignSpec) -> Vec<Perturbation> {
     let hold = |set: &str, components: &[HarmonicComponent]| {
         components.iter().map(|&component| HarmonicDisplacement { node_set: set.into(), component, value: 0.0 }).collect::<Vec<_>>()
     };
@@ -66,19 +65,19 @@ pub fn steps(p: &BellowsParams) -> Vec<Perturbation> {
 }
 
 /// The frequencies from the answers to [`steps`] of a run of joint `p` (its end state).
-pub fn from_answers(p: &BellowsParams, answers: &[(String, PerturbationAnswer)]) -> Result<Frequencies> {
+pub fn from_answers(p: &DesignSpec, answers: &[(String, PerturbationAnswer)]) -> Result<Frequencies> {
     let axial_rate = super::flexibility::axial_rate(answers)?;
     let lowest = |name: &str| {
         lowest_positive_mode(answers, name).map(|m| Mode { frequency: frequency_hz(m.eigenvalue), effective_mass: m.effective_mass.unwrap_or(f64::NAN) })
     };
-    let stroke = if p.cycle { 0.0 } else { p.displacement };
-    let convolved_length = p.convolutions as f64 * p.pitch - stroke;
+    let stroke = if p.joint.cycle { 0.0 } else { p.displacement() };
+    let convolved_length = p.bellows.convolutions as f64 * p.bellows.pitch - stroke;
     Ok(Frequencies { axial_rate, convolved_length, axial: lowest(AXIAL_MODES), lateral: lowest(LATERAL_MODES) })
 }
 
 /// The joint `p` at rest (no pressure, heat or stroke, elastic) and its frequency steps
 /// (collective; the run's file is removed).
-pub fn at_rest(session: &PetscSession, p: &BellowsParams) -> Result<Frequencies> {
+pub fn at_rest(session: &PetscSession, p: &DesignSpec) -> Result<Frequencies> {
     super::at_rest(session, p, "frequencies", steps, |rest, summary, _| from_answers(rest, &summary.perturbations))
 }
 
@@ -96,10 +95,10 @@ pub struct Estimates {
 }
 
 /// The analogies for joint `p` in state `f`: its axial rate and convolved length.
-pub fn estimates(p: &BellowsParams, f: &Frequencies) -> Estimates {
+pub fn estimates(p: &DesignSpec, f: &Frequencies) -> Estimates {
     use crate::assessment::formulas::{axial_frequency, lateral_frequency, rayleigh_lateral_frequency};
-    let g = code_geometry(p);
-    let (mass, dm, lb, axial_rate) = (g.live_mass(p.density), g.mean_diameter(), f.convolved_length, f.axial_rate);
+    let g = p.geometry();
+    let (mass, dm, lb, axial_rate) = (g.live_mass(p.density()), g.mean_diameter(), f.convolved_length, f.axial_rate);
     Estimates {
         axial: axial_frequency(axial_rate, mass),
         lateral: lateral_frequency(axial_rate, mass, dm, lb),

@@ -4,7 +4,6 @@
 //! and the pictures ([`report`]); and `--mesh-only`'s mesh ([`write_mesh`]).
 
 use super::flexibility::{Flexibility, Movements};
-use super::joint::BellowsParams;
 use super::report::BellowsReport;
 use super::spec::DesignSpec;
 use super::stability::{Stability, SQUIRM};
@@ -12,7 +11,7 @@ use super::vibration::{Frequencies, LATERAL_MODES};
 use crate::assessment::code::{CodeCheck, Duty, Source};
 use crate::assessment::coefficients::Coefficients;
 use crate::assessment::fe_check::FeCheck;
-use crate::assessment::verdict::{Forming, Verdict};
+use crate::assessment::verdict::Verdict;
 use crate::decomposition::Partition;
 use crate::error::Result;
 use crate::io::plots::{outline_picture, Panel, SegmentLayer};
@@ -28,10 +27,9 @@ use std::path::{Path, PathBuf};
 
 /// What a `slideline bellows` command asks for, its flags checked.
 pub struct BellowsJob {
-    pub params: BellowsParams,
-    /// The design specification the joint comes from (`--spec`), if any: its code verdict is
-    /// printed before the analyses.
-    pub spec: Option<DesignSpec>,
+    /// The joint (its code verdict is printed before the analyses where it has a design
+    /// specification's data: see [`BellowsJob::spec`]).
+    pub params: DesignSpec,
     /// Write the design report here (`--report`), after the run.
     pub report: Option<PathBuf>,
     /// The flexibility's movements (`--lateral`, `--angular`), if any.
@@ -44,6 +42,14 @@ pub struct BellowsJob {
     pub squirm: bool,
     pub assess: bool,
     pub frequencies: bool,
+}
+
+impl BellowsJob {
+    /// The joint as a design specification, where it has one's data (the allowable stress and
+    /// the cycles): the code's verdict is then made and printed.
+    pub fn spec(&self) -> Option<&DesignSpec> {
+        self.params.has_design_data().then_some(&self.params)
+    }
 }
 
 /// What the analyses before the main run found, for its report: the code check, the
@@ -67,20 +73,19 @@ pub fn picture_path(output: &Path, name: &str) -> PathBuf {
 
 /// The bellows' code check (EJMA): the design pressure and the whole stroke, with the chart
 /// coefficients given (`--coefficients`) or computed for its convolution (collective).
-pub fn code_check(session: &PetscSession, params: &BellowsParams) -> Result<CodeCheck> {
-    let geometry = super::joint::code_geometry(params);
-    let (coefficients, source) = match params.coefficients {
+pub fn code_check(session: &PetscSession, params: &DesignSpec) -> Result<CodeCheck> {
+    let geometry = params.geometry();
+    let (coefficients, source) = match params.bellows.coefficients {
         Some([cp, cf, cd]) => (Coefficients { cp, cf, cd }, Source::Given),
         None => (super::convolution::compute_for_the_code(session, geometry.c1(), geometry.c2())?, Source::Computed),
     };
-    let p = params;
     let duty = Duty {
-        pressure: p.pressure,
-        stroke: p.displacement.abs(),
-        modulus: p.youngs_modulus,
-        yield_stress: p.yield_stress,
-        tangent_length: p.tangent_length,
-        forming: Forming::AsFormed,
+        pressure: params.design.pressure,
+        stroke: params.displacement().abs(),
+        modulus: params.youngs_modulus(),
+        yield_stress: params.yield_stress(),
+        tangent_length: params.bellows.tangent_length,
+        forming: params.bellows.forming,
     };
     Ok(CodeCheck::new(&geometry, coefficients, source, duty))
 }
@@ -102,7 +107,7 @@ pub fn before_the_run(session: &PetscSession, job: &BellowsJob) -> Result<Before
     // the code check, with the chart coefficients given or computed for the joint's own
     // convolution: a specification's, for its equivalent movement, with its verdict; else the
     // stroke's
-    let (code, verdict) = match &job.spec {
+    let (code, verdict) = match job.spec() {
         Some(spec) => {
             let (check, verdict, table) = code_verdict(session, spec)?;
             if root && !job.quiet {
@@ -164,7 +169,7 @@ pub fn before_the_run(session: &PetscSession, job: &BellowsJob) -> Result<Before
         let k = c.coefficients;
         println!(
             "bellows: {} plies x {} mm, {} convolutions, pitch {}, height {}; EJMA axial rate {:.1} N/mm full ring, {:.2} N/mm per 2.5-degree sector (C1 = {:.3}, C2 = {:.3}: Cp {:.3}, Cf {:.3}, Cd {:.3} {})",
-            params.plies, params.ply_thickness, params.convolutions, params.pitch, params.height, c.axial_rate, c.axial_rate * 2.5 / 360.0, c.c1, c.c2, k.cp, k.cf, k.cd, c.source.label()
+            params.bellows.plies, params.bellows.ply_thickness, params.bellows.convolutions, params.bellows.pitch, params.bellows.convolution_height, c.axial_rate, c.axial_rate * 2.5 / 360.0, c.c1, c.c2, k.cp, k.cf, k.cd, c.source.label()
         );
     }
     Ok(BeforeTheRun { code, verdict, fe, rest, stable, vibrating })
@@ -213,20 +218,17 @@ const BELLOWS_SEARCH_SECONDS: f64 = 300.0;
 /// specification's code verdict before it and written to `output` (`/dba`, and the code's
 /// verdict as a run's file holds it); each analysis in a file beside it; with `report`, the
 /// design report of `output` (collective).
-pub fn design_by_analysis(
-    session: &PetscSession,
-    params: &BellowsParams,
-    spec: Option<&DesignSpec>,
-    output: &Path,
-    report: Option<&Path>,
-    quiet: bool,
-) -> Result<()> {
+pub fn design_by_analysis(session: &PetscSession, params: &DesignSpec, output: &Path, report: Option<&Path>, quiet: bool) -> Result<()> {
     use crate::dba::table::{Allowable, DbaTable, FatigueTable, LimitLoadTable, RatchetingTable};
     use crate::error::Error;
     use crate::model::KinematicHardening;
-    let spec = spec.ok_or_else(|| crate::error::Error::input("bellows --dba: the checks need the allowable stress of a design specification (--spec FILE)"))?;
+    let spec = params
+        .has_design_data()
+        .then_some(params)
+        .ok_or_else(|| crate::error::Error::input("bellows --dba: the checks need the allowable stress of a design specification (--spec FILE)"))?;
     let (_, _, allowable) = spec.at_temperature()?;
-    let cycling = BellowsParams { cycle: true, ..params.clone() };
+    let mut cycling = params.clone();
+    cycling.joint.cycle = true;
     let mut model = super::joint::model(&cycling)?;
     // the specification's cyclic curve, where it gives one, for the fatigue check (the other
     // checks are elastic-perfectly plastic)
@@ -238,7 +240,7 @@ pub fn design_by_analysis(
     let fatigue = (!kinematic.is_empty()).then(|| FatigueTable {
         cycle: stroke.clone(),
         cycles: crate::dba::table::LEAST_CYCLES,
-        design_cycles: spec.design.cycles,
+        design_cycles: spec.design.cycles.unwrap_or(f64::NAN),
         curve: None,
         curve_modulus: None,
     });
@@ -267,7 +269,7 @@ pub fn design_by_analysis(
     if !root {
         return Ok(());
     }
-    crate::dba::report(&verdict, &params.title(), output, &model.source_text)?;
+    crate::dba::report(&verdict, &params.fe_title(), output, &model.source_text)?;
     crate::io::assessment::write_verdict(output, &code, &spec.text, &spec.sha256())?;
     if let Some(path) = report {
         super::report::html::write_design_report(&ResultsReader::open(output)?, None, path)?;
@@ -284,7 +286,7 @@ pub fn report(job: &BellowsJob, before: &BeforeTheRun, summary: &RunSummary) -> 
     let (code, fe, rest, stable, vibrating) = (code.as_ref(), fe.as_ref(), rest.as_ref(), stable.as_ref(), vibrating.as_ref());
     let reader = ResultsReader::open(output)?;
     let life = match fe {
-        Some(_) => super::finite_element::strain_life(&reader, params.youngs_modulus)?,
+        Some(_) => super::finite_element::strain_life(&reader, params.youngs_modulus())?,
         None => None,
     };
     // a restart from a finished run's end writes no increment of its own: its fields are in
@@ -344,7 +346,7 @@ pub fn report(job: &BellowsJob, before: &BeforeTheRun, summary: &RunSummary) -> 
     if let Some(c) = code {
         crate::io::assessment::write(output, c)?;
     }
-    if let (Some(spec), Some((v, _))) = (&job.spec, verdict) {
+    if let (Some(spec), Some((v, _))) = (job.spec(), verdict) {
         crate::io::assessment::write_verdict(output, v, &spec.text, &spec.sha256())?;
     }
     if let Some(f) = fe {
@@ -364,7 +366,7 @@ pub fn report(job: &BellowsJob, before: &BeforeTheRun, summary: &RunSummary) -> 
 
 /// Writes the joint's mesh (Gmsh .msh next to `output`, and the results file's /mesh) and a
 /// picture of where the pressure acts (collective).
-pub fn write_mesh(session: &PetscSession, params: &BellowsParams, output: &Path) -> Result<()> {
+pub fn write_mesh(session: &PetscSession, params: &DesignSpec, output: &Path) -> Result<()> {
     let msh = output.with_extension("msh");
     let (mesh, sets) = super::joint::mesh(params)?;
     let root = session.world().rank() == 0;
@@ -383,12 +385,12 @@ pub fn write_mesh(session: &PetscSession, params: &BellowsParams, output: &Path)
 
 /// The joint's meridian section with the faces the pressure acts on, next to `output`
 /// (`STEM_wetted.png`): to check the load before a run, and the report's picture of the joint.
-fn joint_picture(params: &BellowsParams, output: &Path) -> Result<PathBuf> {
+fn joint_picture(params: &DesignSpec, output: &Path) -> Result<PathBuf> {
     let (mesh, sets) = super::joint::mesh(params)?;
     let picture = picture_path(output, "wetted");
     let layers = vec![
         SegmentLayer { label: "boundary".into(), segments: mesh.edge_segments(&mesh.free_edges()), width: 1 },
-        SegmentLayer { label: format!("wetted: {} MPa", params.pressure), segments: mesh.edge_segments(&sets.surfaces["wetted"]), width: 4 },
+        SegmentLayer { label: format!("wetted: {} MPa", params.design.pressure), segments: mesh.edge_segments(&sets.surfaces["wetted"]), width: 4 },
     ];
     outline_picture(&picture, "bellows joint: the faces the pressure acts on (meridian section)", &[Panel { caption: None, layers }])?;
     Ok(picture)

@@ -7,6 +7,7 @@ pub mod study;
 pub use study::{StudyArgs, SweepArgs};
 
 use clap::{Parser, Subcommand};
+use slideline::bellows::spec::DesignSpec;
 use slideline::Error;
 use std::path::PathBuf;
 
@@ -184,97 +185,97 @@ pub struct BellowsArgs {
     /// ratcheting over three cycles of the stroke under the pressure, elastic-perfectly plastic.
     /// With --report, the design report has the specification, the code's verdict and these
     /// checks.
-    #[arg(long, requires = "spec", conflicts_with_all = ["check_only", "restart", "cycle"])]
+    #[arg(long, requires = "spec", conflicts_with_all = ["check_only", "restart", "joint.cycle"])]
     pub dba: bool,
     /// After the run, write the design report: one self-contained HTML file (the
     /// specification, the code's verdict, the finite-element tables, the mesh, the pictures).
     #[arg(long, value_name = "FILE.html", conflicts_with = "check_only")]
     pub report: Option<PathBuf>,
     /// Number of plies in the pack.
-    #[arg(long, default_value_t = 2)]
+    #[arg(long = "plies", id = "bellows.plies", default_value_t = 2, value_name = "PLIES")]
     pub plies: usize,
     /// Thickness of each ply, mm.
-    #[arg(allow_hyphen_values = true, long, default_value_t = 1.0)]
+    #[arg(allow_hyphen_values = true, long = "ply-thickness", id = "bellows.ply_thickness", default_value_t = 1.0, value_name = "PLY_THICKNESS")]
     pub ply_thickness: f64,
     /// Number of convolutions.
-    #[arg(long, default_value_t = 6)]
+    #[arg(long = "convolutions", id = "bellows.convolutions", default_value_t = 6, value_name = "CONVOLUTIONS")]
     pub convolutions: usize,
     /// Convolution pitch, mm (4 x torus radius for U shapes).
-    #[arg(allow_hyphen_values = true, long, default_value_t = 24.0)]
+    #[arg(allow_hyphen_values = true, long = "pitch", id = "bellows.pitch", default_value_t = 24.0, value_name = "PITCH")]
     pub pitch: f64,
     /// Convolution height w (mid-surface, root to crest), mm.
-    #[arg(allow_hyphen_values = true, long, default_value_t = 20.0)]
+    #[arg(allow_hyphen_values = true, long = "height", id = "bellows.convolution_height", default_value_t = 20.0, value_name = "HEIGHT")]
     pub height: f64,
     /// Mean radius of the root and crest tori, mm.
     #[arg(allow_hyphen_values = true, long, default_value_t = 6.0)]
     pub torus_radius: f64,
     /// Axial compression of the joint, mm.
-    #[arg(allow_hyphen_values = true, long, default_value_t = 70.0)]
+    #[arg(allow_hyphen_values = true, long = "displacement", id = "design.axial_compression", default_value_t = 70.0, value_name = "DISPLACEMENT")]
     pub displacement: f64,
     /// Increments of the compression step.
-    #[arg(long, default_value_t = 240)]
+    #[arg(long = "increments", id = "joint.increments", default_value_t = 240, value_name = "INCREMENTS")]
     pub increments: usize,
     /// Contact penalty, N/mm^3 (MPa per mm of penetration).
-    #[arg(allow_hyphen_values = true, long, default_value_t = 1.0e4)]
+    #[arg(allow_hyphen_values = true, long = "penalty", id = "joint.penalty", default_value_t = 1.0e4, value_name = "PENALTY")]
     pub penalty: f64,
     /// Operating temperature, degC (from 20).
-    #[arg(allow_hyphen_values = true, long, default_value_t = 200.0)]
+    #[arg(allow_hyphen_values = true, long = "temperature", id = "design.temperature", default_value_t = 200.0, value_name = "TEMPERATURE")]
     pub temperature: f64,
     /// Internal pressure, MPa (0.6 = 6 bar).
-    #[arg(allow_hyphen_values = true, long, default_value_t = 0.6)]
+    #[arg(allow_hyphen_values = true, long = "pressure", id = "design.pressure", default_value_t = 0.6, value_name = "PRESSURE")]
     pub pressure: f64,
     /// Initial yield stress, MPa.
-    #[arg(allow_hyphen_values = true, long, default_value_t = 300.0)]
+    #[arg(allow_hyphen_values = true, long = "yield-stress", id = "material.yield_stress", default_value_t = 300.0, value_name = "YIELD_STRESS")]
     pub yield_stress: f64,
     /// Linear isotropic hardening modulus, MPa.
-    #[arg(allow_hyphen_values = true, long, default_value_t = 1000.0)]
+    #[arg(allow_hyphen_values = true, long = "hardening", id = "material.hardening_modulus", default_value_t = 1000.0, value_name = "HARDENING")]
     pub hardening: f64,
     /// Mass density of the plies, tubes and sleeve, t/mm^3 (AISI 304: 8.0e-9), for
     /// --frequencies.
-    #[arg(allow_hyphen_values = true, long, default_value_t = 8.0e-9)]
+    #[arg(allow_hyphen_values = true, long = "density", id = "material.density", default_value_t = 8.0e-9, value_name = "DENSITY")]
     pub density: f64,
     /// Element length along the plies, mm.
-    #[arg(allow_hyphen_values = true, long, default_value_t = 1.0)]
+    #[arg(allow_hyphen_values = true, long = "ply-element-length", id = "joint.ply_element_length", default_value_t = 1.0, value_name = "PLY_ELEMENT_LENGTH")]
     pub ply_element_length: f64,
     /// Elements through each ply.
-    #[arg(long, default_value_t = 2)]
+    #[arg(long = "ply-elements", id = "joint.ply_elements", default_value_t = 2, value_name = "PLY_ELEMENTS")]
     pub ply_elements: usize,
     /// Coulomb friction coefficient between the plies (and where a ply's folds touch).
-    #[arg(allow_hyphen_values = true, long, default_value_t = 0.0, value_name = "MU")]
+    #[arg(allow_hyphen_values = true, long = "friction-plies", id = "joint.friction_plies", default_value_t = 0.0, value_name = "MU")]
     pub friction_plies: f64,
     /// Coulomb friction coefficient between the sleeve and tube B's bore.
-    #[arg(allow_hyphen_values = true, long, default_value_t = 0.0, value_name = "MU")]
+    #[arg(allow_hyphen_values = true, long = "friction-sleeve", id = "joint.friction_sleeve", default_value_t = 0.0, value_name = "MU")]
     pub friction_sleeve: f64,
     /// Tangential penalty of the friction, MPa/mm of elastic slip.
-    #[arg(allow_hyphen_values = true, long, default_value_t = 300.0, value_name = "MPA_PER_MM")]
+    #[arg(allow_hyphen_values = true, long = "tangential-penalty", id = "joint.tangential_penalty", default_value_t = 300.0, value_name = "MPA_PER_MM")]
     pub tangential_penalty: f64,
     /// Instead of --tangential-penalty, the elastic slip at the Coulomb limit (mm): the
     /// stiffness follows the pressure, eps_T = mu p / slip (Abaqus's form).
-    #[arg(allow_hyphen_values = true, long, value_name = "MM", conflicts_with = "tangential_penalty")]
+    #[arg(allow_hyphen_values = true, long = "elastic-slip", id = "joint.elastic_slip", value_name = "MM", conflicts_with = "joint.tangential_penalty")]
     pub elastic_slip: Option<f64>,
     /// The code check's chart coefficients Cp,Cf,Cd read off the code's charts (EJMA, ASME
     /// VIII-1 App. 26); without them slideline computes them from the idealised convolution.
-    #[arg(allow_hyphen_values = true, long, value_name = "CP,CF,CD", value_delimiter = ',')]
+    #[arg(allow_hyphen_values = true, long = "coefficients", id = "bellows.coefficients", value_name = "CP,CF,CD", value_delimiter = ',')]
     pub coefficients: Option<Vec<f64>>,
     #[command(flatten)]
     pub analyses: JointAnalyses,
     /// A load cycle: after the compression, a further step takes tube B's end back to where it
     /// started (the force-displacement picture then shows the loop).
-    #[arg(long)]
+    #[arg(long = "cycle", id = "joint.cycle")]
     pub cycle: bool,
     /// Newton's convergence test: `field` (CalculiX's and Abaqus's: residual forces within
     /// 0.5 % of the time-averaged force, corrections within 2 % of the increment) or
     /// `residual` (the residual norm down by 1e-10, or to round-off).
-    #[arg(long, value_enum, default_value_t = ConvergenceArg::Field)]
+    #[arg(long = "convergence", id = "joint.convergence", value_enum, default_value_t = ConvergenceArg::Field, value_name = "CONVERGENCE")]
     pub convergence: ConvergenceArg,
     /// Write the fields of every N-th increment (and of the last of each step); the history
     /// keeps every increment.
-    #[arg(long, default_value_t = 1, value_name = "N")]
+    #[arg(long = "output-every", id = "joint.output_every", default_value_t = 1, value_name = "N")]
     pub output_every: usize,
     /// The visualisation fields as 32-bit (`single`, 7 significant digits) or 64-bit
     /// (`double`, as computed) floats, or each to its stated resolution; the displacement,
     /// restart state, history and mesh stay 64-bit.
-    #[arg(long, value_enum, default_value_t = PrecisionArg::Single)]
+    #[arg(long = "output-precision", id = "joint.output_precision", value_enum, default_value_t = PrecisionArg::Single, value_name = "OUTPUT_PRECISION")]
     pub output_precision: PrecisionArg,
     /// A coarse, quick version of the same case (about 5 s on 2 ranks).
     #[arg(long)]
@@ -311,16 +312,10 @@ pub struct BellowsArgs {
 }
 
 impl BellowsArgs {
-    /// The job these flags ask for, with the parameters and movements they give.
-    pub fn job(
-        &self,
-        params: slideline::bellows::joint::BellowsParams,
-        movements: Option<slideline::bellows::flexibility::Movements>,
-        spec: Option<slideline::bellows::spec::DesignSpec>,
-    ) -> slideline::bellows::workflow::BellowsJob {
+    /// The job these flags ask for, with the joint and movements they give.
+    pub fn job(&self, params: DesignSpec, movements: Option<slideline::bellows::flexibility::Movements>) -> slideline::bellows::workflow::BellowsJob {
         slideline::bellows::workflow::BellowsJob {
             params,
-            spec,
             report: self.report.clone(),
             movements,
             output: self.output.clone(),
@@ -336,125 +331,94 @@ impl BellowsArgs {
 
     /// The movements of the flexibility perturbations (`--lateral`, `--angular`), if any, for
     /// joint `p`.
-    pub fn movements(&self, p: &slideline::bellows::joint::BellowsParams) -> Result<Option<slideline::bellows::flexibility::Movements>, Error> {
+    pub fn movements(&self, p: &DesignSpec) -> Result<Option<slideline::bellows::flexibility::Movements>, Error> {
         slideline::bellows::flexibility::Movements::checked(self.analyses.lateral, self.analyses.angular, p)
     }
 
-    /// The design specification (`--spec`), with the flags that give its values applied: the
-    /// bellows' dimensions, the design pressure, temperature and compression, the yield stress
-    /// and the chart coefficients (`--torus-radius` has no meaning beside its crest and root
-    /// radii, and is refused).
-    pub fn spec(&self, given: impl Fn(&str) -> bool) -> Result<Option<slideline::bellows::spec::DesignSpec>, Error> {
-        let mut spec = match (&self.spec, &self.restart) {
-            (Some(path), _) => slideline::bellows::spec::DesignSpec::from_file(path)?,
-            // a restart of a specified joint continues with its specification (and its verdict)
-            (None, Some(file)) => match restarted_spec(file)? {
-                Some(spec) => spec,
-                None => return Ok(None),
-            },
-            (None, None) => return Ok(None),
-        };
-        if given("torus_radius") {
+    /// The joint: the `--spec` specification, the `--params` file over the seed's joint, a
+    /// restarted file's own joint, or the seed's; then `--quick`; then each key a flag given on
+    /// the command line sets (`matches`: a flag's id is its key, `section.key`), and
+    /// `--torus-radius` (both tori's mid-surface radius). Checked: a joint with a design
+    /// specification's data by the data sheet's rules and the finite-element joint's, any
+    /// other by the finite-element joint's.
+    pub fn joint(&self, matches: Option<&clap::ArgMatches>) -> Result<DesignSpec, Error> {
+        use slideline::bellows::spec::keys;
+        let given = |id: &str| matches.and_then(|m| m.value_source(id)) == Some(clap::parser::ValueSource::CommandLine);
+        if let Some(c) = self.coefficients.as_ref().filter(|c| c.len() != 3) {
+            return Err(Error::input(format!("bellows: --coefficients takes three values, Cp,Cf,Cd; got {}", c.len())));
+        }
+        if given("torus_radius") && self.spec.is_some() {
             return Err(Error::input(
                 "bellows: --torus-radius with --spec: give the crest and root radii in the specification ([bellows] crest_radius, root_radius)",
             ));
         }
-        let (b, d) = (&mut spec.bellows, &mut spec.design);
-        let take = |id: &str, set: &mut dyn FnMut()| {
-            // `params` leaves these to the specification: the two lists must agree
-            assert!(SPEC_FLAGS.contains(&id), "{id} is not among SPEC_FLAGS");
-            if given(id) {
-                set();
-            }
-        };
-        take("plies", &mut || b.plies = self.plies);
-        take("ply_thickness", &mut || b.ply_thickness = self.ply_thickness);
-        take("convolutions", &mut || b.convolutions = self.convolutions);
-        take("pitch", &mut || b.pitch = self.pitch);
-        take("height", &mut || b.convolution_height = self.height);
-        take("coefficients", &mut || b.coefficients = self.coefficients.as_ref().filter(|c| c.len() == 3).map(|c| [c[0], c[1], c[2]]));
-        take("pressure", &mut || d.pressure = self.pressure);
-        take("temperature", &mut || d.temperature = self.temperature);
-        take("displacement", &mut || (d.axial_compression, d.axial_extension) = (Some(self.displacement), None));
-        take("yield_stress", &mut || spec.material.yield_stress = slideline::bellows::spec::Property::Value(self.yield_stress));
-        spec.validate()?;
-        Ok(Some(spec))
-    }
-
-    /// The joint's parameters: the defaults (the seed case), the `--spec` or `--params` file, then
-    /// `--quick`, then every flag given on the command line (`given(id)`): a flag given
-    /// explicitly wins over both.
-    pub fn params(
-        &self,
-        given: impl Fn(&str) -> bool,
-        spec: Option<&slideline::bellows::spec::DesignSpec>,
-    ) -> Result<slideline::bellows::joint::BellowsParams, Error> {
-        if let Some(c) = self.coefficients.as_ref().filter(|c| c.len() != 3) {
-            return Err(Error::input(format!("bellows: --coefficients takes three values, Cp,Cf,Cd; got {}", c.len())));
-        }
-        let mut p = match (&self.params, &self.restart) {
-            // a restart continues the file's own joint (and its specification's, if it had one)
-            (None, Some(file)) => {
-                let deck = slideline::io::reader::ResultsReader::open(file)?.text_attr("deck")?;
-                slideline::bellows::joint::BellowsParams::from_toml(&deck, &format!("{}: its deck (not a bellows run?)", file.display()))?
-            }
-            _ if spec.is_some() => spec.expect("given").joint_params()?,
-            (Some(path), _) => slideline::bellows::joint::BellowsParams::from_toml_file(path)?,
-            (None, None) => slideline::bellows::joint::BellowsParams::default(),
+        let mut joint = match (&self.spec, &self.params, &self.restart) {
+            (Some(path), _, _) => DesignSpec::from_file(path)?,
+            (None, Some(path), _) => DesignSpec::joint_file(path)?,
+            // a restart continues the file's own joint (with its specification's text)
+            (None, None, Some(file)) => restarted_joint(file)?,
+            (None, None, None) => DesignSpec::seed(),
         };
         if self.quick {
-            p = p.quick();
+            joint = joint.quick();
         }
-        // a specification's values are in it already (`spec`), unless the joint is a restarted
-        // file's
-        let from_spec = spec.is_some() && !(self.params.is_none() && self.restart.is_some());
-        let given = |id: &str| given(id) && !(from_spec && SPEC_FLAGS.contains(&id));
-        let mut take = |id: &str, set: &mut dyn FnMut(&mut slideline::bellows::joint::BellowsParams)| {
-            if given(id) {
-                set(&mut p);
+        let settings = matches.map(flag_keys).unwrap_or_default();
+        if !settings.is_empty() {
+            joint = keys::with_keys(&joint, &settings)?;
+        }
+        if given("torus_radius") {
+            let half = joint.pack_thickness() / 2.0;
+            if self.torus_radius <= half {
+                return Err(Error::input(format!(
+                    "bellows: torus radius {} must exceed half the ply pack ({half}): the inner ply would fold onto itself",
+                    self.torus_radius
+                )));
             }
-        };
-        take("plies", &mut |p| p.plies = self.plies);
-        take("ply_thickness", &mut |p| p.ply_thickness = self.ply_thickness);
-        take("convolutions", &mut |p| p.convolutions = self.convolutions);
-        take("pitch", &mut |p| p.pitch = self.pitch);
-        take("height", &mut |p| p.height = self.height);
-        take("torus_radius", &mut |p| p.torus_radius = self.torus_radius);
-        take("displacement", &mut |p| p.displacement = self.displacement);
-        take("increments", &mut |p| p.increments = self.increments);
-        take("penalty", &mut |p| p.penalty = self.penalty);
-        take("temperature", &mut |p| p.temperature = self.temperature);
-        take("pressure", &mut |p| p.pressure = self.pressure);
-        take("yield_stress", &mut |p| p.yield_stress = self.yield_stress);
-        take("hardening", &mut |p| p.hardening_modulus = self.hardening);
-        take("density", &mut |p| p.density = self.density);
-        take("ply_element_length", &mut |p| p.ply_element_length = self.ply_element_length);
-        take("ply_elements", &mut |p| p.ply_elements = self.ply_elements);
-        take("output_every", &mut |p| p.output_every = self.output_every);
-        take("output_precision", &mut |p| p.output_precision = self.output_precision.into());
-        take("friction_plies", &mut |p| p.friction_plies = self.friction_plies);
-        take("friction_sleeve", &mut |p| p.friction_sleeve = self.friction_sleeve);
-        take("cycle", &mut |p| p.cycle = self.cycle);
-        take("tangential_penalty", &mut |p| p.tangential_penalty = self.tangential_penalty);
-        take("elastic_slip", &mut |p| p.elastic_slip = self.elastic_slip);
-        take("coefficients", &mut |p| p.coefficients = self.coefficients.as_ref().map(|c| [c[0], c[1], c[2]]));
-        take("convergence", &mut |p| p.convergence = self.convergence.into());
-        Ok(p)
+            (joint.bellows.root_radius, joint.bellows.crest_radius) = (self.torus_radius - half, self.torus_radius - half);
+        }
+        match joint.has_design_data() {
+            true => joint.validate()?,
+            false => joint.validate_joint()?,
+        }
+        Ok(joint)
     }
 }
 
-/// The design specification a results file's run was made for (its verdict holds its text),
-/// None for a run without one.
-fn restarted_spec(file: &std::path::Path) -> Result<Option<slideline::bellows::spec::DesignSpec>, Error> {
-    let text = slideline::io::reader::ResultsReader::open(file)?.verdict()?.map(|(_, text, _)| text);
-    let source = std::path::PathBuf::from(format!("{} (its specification)", file.display()));
-    text.map(|t| slideline::bellows::spec::DesignSpec::from_text(&t, &source)).transpose()
+/// The keys that the flags given on the command line set: each flag whose id is a key
+/// (`section.key`), its value as TOML (a choice by its canonical name, a switch `true`, a list
+/// an array).
+fn flag_keys(matches: &clap::ArgMatches) -> Vec<(String, toml::Value)> {
+    use clap::Args;
+    let command = BellowsArgs::augment_args(clap::Command::new("bellows"));
+    let mut settings = Vec::new();
+    for arg in command.get_arguments().filter(|a| a.get_id().as_str().contains('.')) {
+        let id = arg.get_id().as_str();
+        if matches.value_source(id) != Some(clap::parser::ValueSource::CommandLine) {
+            continue;
+        }
+        let raw: Vec<String> = matches.get_raw(id).map(|v| v.map(|s| s.to_string_lossy().into_owned()).collect()).unwrap_or_default();
+        let choice = |text: &str| arg.get_possible_values().into_iter().find(|v| v.matches(text, false)).map(|v| v.get_name().to_string());
+        let value = match (arg.get_action(), raw.as_slice()) {
+            (clap::ArgAction::SetTrue, _) => toml::Value::Boolean(true),
+            (_, [one]) if !arg.get_possible_values().is_empty() => toml::Value::String(choice(one).unwrap_or_else(|| one.clone())),
+            (_, [one]) if arg.get_value_delimiter().is_none() => slideline::bellows::spec::keys::value_of(one),
+            (_, many) => toml::Value::Array(many.iter().map(|v| slideline::bellows::spec::keys::value_of(v)).collect()),
+        };
+        settings.push((id.to_string(), value));
+    }
+    settings
 }
 
-/// The flags that give a design specification's values (applied to it by
-/// [`BellowsArgs::spec`]).
-const SPEC_FLAGS: [&str; 10] =
-    ["plies", "ply_thickness", "convolutions", "pitch", "height", "coefficients", "pressure", "temperature", "displacement", "yield_stress"];
+/// The joint a results file's run was made for (its deck), with the text of its specification
+/// where the run had one (its verdict holds it).
+fn restarted_joint(file: &std::path::Path) -> Result<DesignSpec, Error> {
+    let reader = slideline::io::reader::ResultsReader::open(file)?;
+    let mut joint = DesignSpec::from_deck(&reader.text_attr("deck")?, &format!("{}: its deck (not a bellows run?)", file.display()))?;
+    if let Some((_, text, _)) = reader.verdict()? {
+        joint.text = text;
+    }
+    Ok(joint)
+}
 
 /// The analyses of the joint beside its run, for `bellows` and each variant of `bellows-sweep`.
 #[derive(clap::Args)]
@@ -525,7 +489,7 @@ impl From<ConvergenceArg> for crate::model::Convergence {
 
 /// `bellows --spec FILE --check-only`: the code's verdict on the specification, printed (rank
 /// 0); PETSc starts only to compute chart coefficients the file does not give.
-pub fn check_only(spec: &slideline::bellows::spec::DesignSpec, petsc: &[String]) -> std::process::ExitCode {
+pub fn check_only(spec: &DesignSpec, petsc: &[String]) -> std::process::ExitCode {
     use mpi::traits::Communicator;
     let session = match slideline::petsc::PetscSession::initialize(petsc) {
         Ok(s) => s,

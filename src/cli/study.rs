@@ -136,13 +136,15 @@ pub fn sweep_command(args: &SweepArgs) -> ExitCode {
 fn penalty_study(session: &PetscSession, args: &StudyArgs) -> Result<(), Error> {
     use slideline::study::{parse_penalties, StudyPlan, Subject};
     let penalties = parse_penalties(&args.penalties, args.per_decade)?;
-    let mut bellows = slideline::bellows::joint::BellowsParams::default();
+    let mut bellows = slideline::bellows::spec::DesignSpec::seed();
     if args.quick {
         bellows = bellows.quick();
     }
-    bellows.increments = args.increments.unwrap_or(bellows.increments);
-    bellows.displacement = args.displacement.unwrap_or(bellows.displacement);
-    bellows.validate()?;
+    bellows.joint.increments = args.increments.unwrap_or(bellows.joint.increments);
+    if let Some(d) = args.displacement {
+        (bellows.design.axial_compression, bellows.design.axial_extension) = (Some(d), None);
+    }
+    bellows.validate_joint()?;
     let subject = match &args.deck {
         // a TOML or an .inp deck, as `slideline run` reads it
         Some(d) => {

@@ -8,7 +8,7 @@ use crate::ad::Scalar;
 pub const MAX_BACKSTRESSES: usize = 3;
 
 /// One Armstrong-Frederick backstress term (a deck's `{ modulus = C, recall = gamma }`).
-#[derive(Clone, Copy, Debug, PartialEq, Default, serde::Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Default, serde::Deserialize, serde::Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct Backstress {
     /// C_k, MPa: the initial slope of the term's uniaxial stress-plastic strain curve.

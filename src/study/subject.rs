@@ -2,8 +2,9 @@
 //! pair, and what it measures the runs by (the node set whose axial reaction is compared, how
 //! that reaction is printed, the length penetration is set against).
 
-use crate::bellows::joint::{self, BellowsParams};
+use crate::bellows::joint;
 use crate::bellows::report::SECTOR_RADIANS;
+use crate::bellows::spec::DesignSpec;
 use crate::contact::surface::ContactSurface;
 use crate::error::{Error, Result};
 use crate::model::{Model, Penalty};
@@ -11,7 +12,7 @@ use crate::model::{Model, Penalty};
 // one per study: the variants' sizes do not matter
 #[allow(clippy::large_enum_variant)]
 pub enum Subject {
-    Bellows(BellowsParams),
+    Bellows(DesignSpec),
     Deck(Model),
 }
 
@@ -45,7 +46,7 @@ impl Subject {
     /// thickness, a deck's per ring against its shortest master edge.
     pub fn measures(&self, reaction: Option<String>) -> Result<Measures> {
         let (set, reaction_scale, reaction_unit, length, length_name) = match self {
-            Subject::Bellows(p) => (reaction.unwrap_or_else(|| "moving_end".into()), -SECTOR_RADIANS, "N/sector", p.ply_thickness, "ply"),
+            Subject::Bellows(p) => (reaction.unwrap_or_else(|| "moving_end".into()), -SECTOR_RADIANS, "N/sector", p.bellows.ply_thickness, "ply"),
             Subject::Deck(m) => {
                 let set = reaction.ok_or_else(|| Error::input("penalty-study --deck: name the node set whose reaction to compare with --reaction SET"))?;
                 if !m.node_sets.contains_key(&set) {

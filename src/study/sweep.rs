@@ -8,7 +8,7 @@
 use super::Outcome;
 use crate::bellows::flexibility::Movements;
 use crate::bellows::report::folds_first_touch;
-use crate::bellows::spec::DesignSpec;
+use crate::bellows::spec::{keys, DesignSpec};
 use crate::bellows::workflow::{self, BeforeTheRun, BellowsJob};
 use crate::error::{Error, Result};
 use crate::io::plots::{point_plot, Axes, Curve};
@@ -41,7 +41,7 @@ impl Vary {
 /// so an unknown key or a value of the wrong kind is refused here, naming it.
 pub fn parse_vary(arg: &str, base: &str, path: &Path) -> Result<Vary> {
     let bad = |why: String| Error::input(format!("--vary {arg}: {why}"));
-    let (key, values) = arg.split_once('=').ok_or_else(|| bad("give KEY=VALUES (convolutions=6..12, bellows.ply_thickness=0.3,0.5)".into()))?;
+    let (key, values) = arg.split_once('=').ok_or_else(|| bad("give KEY=VALUES (convolutions=6..12, bellows.bellows.ply_thickness=0.3,0.5)".into()))?;
     let table: toml::Table = base.parse().map_err(|e| Error::input(format!("{}: {e}", path.display())))?;
     let (section, key) = match key.trim().split_once('.') {
         Some((s, k)) => (s.to_string(), k.to_string()),
@@ -103,15 +103,12 @@ fn parse_values(text: &str) -> std::result::Result<Vec<toml::Value>, String> {
     Ok(values)
 }
 
-/// The specification's text with each key set to its value.
+/// The specification's text with each key set to its value (as a flag sets it:
+/// `bellows::spec::keys`).
 fn with_values(base: &toml::Table, settings: &[(&Vary, &toml::Value)]) -> Result<String> {
     let mut table = base.clone();
     for (vary, value) in settings {
-        let section = table.entry(vary.section.clone()).or_insert_with(|| toml::Value::Table(toml::Table::new()));
-        let Some(section) = section.as_table_mut() else {
-            return Err(Error::input(format!("--vary {}: {:?} is not a section", vary.name(), vary.section)));
-        };
-        section.insert(vary.key.clone(), (*value).clone());
+        keys::set(&mut table, &vary.name(), (*value).clone()).map_err(|why| Error::input(format!("--vary {}: {why}", vary.name())))?;
     }
     toml::to_string(&table).map_err(|e| Error::Internal(format!("the variant's specification: {e}")))
 }
@@ -353,14 +350,12 @@ fn run_variant(session: &PetscSession, spec: &SweepPlan, dir: &Path, k: usize, v
     let mut row = SweepRow::new(k, v, results.clone());
     let a = spec.analyses;
     let mut answers = || -> Result<()> {
-        let design = DesignSpec::from_text(&v.text, &spec.path)?;
-        let mut params = design.joint_params()?;
-        super::study_output(&mut params.output_every, spec.full_output);
-        params.validate()?;
+        let mut params = DesignSpec::from_text(&v.text, &spec.path)?;
+        super::study_output(&mut params.joint.output_every, spec.full_output);
+        params.validate_joint()?;
         let movements = Movements::checked(a.lateral, a.angular, &params)?;
         let job = BellowsJob {
             params,
-            spec: Some(design),
             report: None,
             movements,
             output: results.clone(),

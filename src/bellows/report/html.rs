@@ -123,7 +123,7 @@ fn specification_section(s: &DesignSpec) -> Result<String> {
         ("design temperature", format!("{} degC", d.temperature)),
         ("axial movement", axial),
         ("lateral offset, angular rotation", format!("{} mm, {} deg", d.lateral, d.angular)),
-        ("cycles required", format!("{}", d.cycles)),
+        ("cycles required", d.cycles.map_or("-".into(), |n| format!("{n}"))),
     ];
     let table = |rows: &[(&str, String)]| rows.iter().map(|(k, v)| format!("<tr><th>{}</th><td>{}</td></tr>", escape(k), escape(v))).collect::<String>();
     Ok(format!(
@@ -221,11 +221,11 @@ fn mesh_section(reader: &ResultsReader, verdict: Option<&crate::dba::Verdict>) -
     }
     let (nodes, elements) = (reader.coordinates()?.len(), reader.connectivity()?.len());
     let deck = reader.text_attr("deck")?;
-    let sizes = crate::bellows::joint::BellowsParams::from_toml(&deck, "the results file's deck")
+    let sizes = crate::bellows::spec::DesignSpec::from_deck(&deck, "the results file's deck")
         .map(|p| {
             format!(
                 " Quadratic 8-node axisymmetric elements: {} through each ply, {} mm along it; {} through the tubes' and sleeve's walls, {} mm along them.",
-                p.ply_elements, p.ply_element_length, p.wall_elements, p.wall_element_length
+                p.joint.ply_elements, p.joint.ply_element_length, p.joint.wall_elements, p.joint.wall_element_length
             )
         })
         .unwrap_or_default();

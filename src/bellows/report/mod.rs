@@ -6,7 +6,8 @@
 
 use crate::assessment::code::CodeCheck;
 use crate::assessment::fe_check::{FeCheck, Peak, StrainLife};
-use crate::bellows::joint::{BellowsParams, FOLD_PAIRS};
+use crate::bellows::joint::FOLD_PAIRS;
+use crate::bellows::spec::DesignSpec;
 use crate::error::Result;
 use crate::fe::shape::Shape;
 use crate::io::plots::{deformed_field, line_plot, Axes, Curve, FieldPicture, Marker};
@@ -110,8 +111,8 @@ fn end_reaction(row: &HistoryRow) -> f64 {
 
 /// Applied compression at a row: zero in step 1, the load factor's share in step 2, back to
 /// zero through step 3 (a cycle's return).
-fn applied(row: &HistoryRow, p: &BellowsParams) -> f64 {
-    compression(row.step, row.load_factor, p.displacement)
+fn applied(row: &HistoryRow, p: &DesignSpec) -> f64 {
+    compression(row.step, row.load_factor, p.displacement())
 }
 
 /// The compression (mm) at `load_factor` of `step` of a joint compressed by `stroke`.
@@ -199,7 +200,7 @@ fn extreme(reader: &ResultsReader, increment: &str, field: &str) -> Result<Extre
 }
 
 impl BellowsReport {
-    pub fn new(p: &BellowsParams, code: Option<CodeCheck>, run: &RunSummary, reader: &ResultsReader) -> Result<Self> {
+    pub fn new(p: &DesignSpec, code: Option<CodeCheck>, run: &RunSummary, reader: &ResultsReader) -> Result<Self> {
         let history = &run.history;
         let curve: Vec<(f64, f64)> = history.iter().map(|r| (applied(r, p), end_reaction(r))).collect();
         let heated = history.iter().rposition(|r| r.step == 1);
@@ -211,7 +212,7 @@ impl BellowsReport {
         // the paper's figures at the end of the compression (the cycle's turning point)
         let compressed = history.iter().rposition(|r| r.step == 2).unwrap_or(curve.len().saturating_sub(1));
         let &(displacement, reaction) = curve.get(compressed).unwrap_or(&(0.0, f64::NAN));
-        let cycle = (p.cycle && history.last().is_some_and(|r| r.step == 3 && r.load_factor >= 1.0))
+        let cycle = (p.joint.cycle && history.last().is_some_and(|r| r.step == 3 && r.load_factor >= 1.0))
             .then(|| (loop_area(&curve, heated.unwrap_or(0)), curve.last().map_or(f64::NAN, |c| c.1)));
         // fields at the end of the compression (always written: the last increment of a step),
         // from the file that holds them: a restart after it (a cycle carried on) continues a
@@ -229,7 +230,7 @@ impl BellowsReport {
         let last = format!("{:06}", fields_at.0);
         Ok(BellowsReport {
             displacement,
-            stroke: p.displacement,
+            stroke: p.displacement(),
             preload,
             reaction,
             secant_stiffness: (reaction - preload) / displacement,
@@ -241,7 +242,7 @@ impl BellowsReport {
             folds_touch: folds_first_touch(history).map(|k| curve[k]),
             ply_penetration: largest_penetration(history, |n| n.starts_with("ply")),
             sleeve_penetration: largest_penetration(history, |n| n == "sleeve"),
-            ply_thickness: p.ply_thickness,
+            ply_thickness: p.bellows.ply_thickness,
             increments: history.len(),
             cutbacks: history.iter().map(|r| r.cutbacks).sum(),
             newton_iterations: history.iter().map(|r| r.newton_iterations).sum(),
@@ -251,7 +252,7 @@ impl BellowsReport {
             ranks: run.ranks,
             curve,
             cycle,
-            friction: (p.friction_plies, p.friction_sleeve),
+            friction: (p.joint.friction_plies, p.joint.friction_sleeve),
             energy: history.last().and_then(|r| r.energy),
             seed: p.is_seed_joint(),
             code_section: true,
@@ -485,7 +486,7 @@ pub fn closing_table_from_file(r: &ResultsReader) -> Result<Option<String>> {
     if !deck.starts_with("# slideline bellows") || r.increments()?.is_empty() {
         return Ok(None);
     }
-    let Ok(params) = crate::bellows::joint::BellowsParams::from_toml(&deck, &r.path().display().to_string()) else { return Ok(None) };
+    let Ok(params) = crate::bellows::spec::DesignSpec::from_deck(&deck, &r.path().display().to_string()) else { return Ok(None) };
     let history: Vec<crate::io::HistoryRow> = r.history_rows()?.into_iter().map(|(_, row)| row).collect();
     // what the table reads of the run: its history, ranks and restart point (the wall time is
     // the history's own)

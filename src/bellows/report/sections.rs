@@ -4,7 +4,7 @@
 
 use crate::assessment::code::CodeCheck;
 use crate::bellows::flexibility::{Flexibility, Movements};
-use crate::bellows::joint::BellowsParams;
+use crate::bellows::spec::DesignSpec;
 use crate::bellows::stability::{column_estimates, Stability};
 use crate::bellows::vibration::{estimates, Estimates, Frequencies, Mode};
 
@@ -12,11 +12,11 @@ use crate::bellows::vibration::{estimates, Estimates, Frequencies, Mode};
 /// by harmonic perturbations of the joint at rest and at the end of its run, each beside the
 /// codes' beam analogy evaluated with the same state's axial rate (and, for the stresses, the
 /// code check's S5 + S6 at the movement's equivalent axial movement per convolution).
-pub fn flexibility_section(p: &BellowsParams, code: Option<&CodeCheck>, movements: Movements, rest: &Flexibility, operating: Option<&Flexibility>) -> String {
-    let g = crate::bellows::joint::code_geometry(p);
+pub fn flexibility_section(p: &DesignSpec, code: Option<&CodeCheck>, movements: Movements, rest: &Flexibility, operating: Option<&Flexibility>) -> String {
+    let g = p.geometry();
     let (dm, lb, n) = (g.mean_diameter(), g.convolutions as f64 * g.pitch, g.convolutions as f64);
     // the axial movement the operating state has taken (the codes' Lb + x)
-    let stroke = if p.cycle { 0.0 } else { -p.displacement };
+    let stroke = if p.joint.cycle { 0.0 } else { -p.displacement() };
     let states: Vec<(&str, &Flexibility, f64)> = std::iter::once(("at rest", rest, 0.0)).chain(operating.map(|f| ("operating", f, stroke))).collect();
     let mut t = format!(
         "\n  flexibility: harmonic perturbations (mode 1) of the joint, the guide sleeve's contact left out, beside the beam analogy\n  \
@@ -46,7 +46,7 @@ pub fn flexibility_section(p: &BellowsParams, code: Option<&CodeCheck>, movement
     let lateral_code = |f: &Flexibility| crate::assessment::formulas::lateral_rate(f.axial_rate, dm, lb);
     let angular_code = |f: &Flexibility| crate::assessment::formulas::angular_rate_per_degree(f.axial_rate, dm);
     // the code check's S5 + S6 at the equivalent axial movement per convolution of a movement
-    let code_stress = |e: f64| code.map(|c| g.s5(e, p.youngs_modulus, c.coefficients.cf) + g.s6(e, p.youngs_modulus, c.coefficients.cd));
+    let code_stress = |e: f64| code.map(|c| g.s5(e, p.youngs_modulus(), c.coefficients.cf) + g.s6(e, p.youngs_modulus(), c.coefficients.cd));
     let (y, theta) = (movements.lateral, movements.angular.to_radians());
     let centre = crate::bellows::flexibility::centre(p);
     if rest.lateral.is_some() {
@@ -81,7 +81,7 @@ pub fn flexibility_section(p: &BellowsParams, code: Option<&CodeCheck>, movement
 
 /// The stability section: the buckling pressures of the joint at rest and at the end of its run
 /// (both tubes' ends held) beside the codes' estimates with the same state's axial rate.
-pub fn stability_section(p: &BellowsParams, code: Option<&CodeCheck>, rest: &Stability, operating: &Stability) -> String {
+pub fn stability_section(p: &DesignSpec, code: Option<&CodeCheck>, rest: &Stability, operating: &Stability) -> String {
     let mut t = String::from("\n  stability: buckling analyses of the joint (both tubes' ends held), the critical internal pressure, MPa\n");
     t.push_str(&format!("  {:<58} {:>12} {:>12}\n", "", "at rest", "operating"));
     let cell = |v: Option<f64>| v.filter(|v| v.is_finite()).map_or("-".to_string(), |v| format!("{v:.2}"));
@@ -121,7 +121,7 @@ pub fn stability_section(p: &BellowsParams, code: Option<&CodeCheck>, rest: &Sta
 /// The natural frequencies section: the lowest axial and lateral modes of the joint at rest and
 /// at the end of its run (both tubes' ends held) beside the analogies of EJMA's frequency
 /// formulas with the same state's axial rate, each with its ratio.
-pub fn frequencies_section(p: &BellowsParams, rest: &Frequencies, operating: &Frequencies) -> String {
+pub fn frequencies_section(p: &DesignSpec, rest: &Frequencies, operating: &Frequencies) -> String {
     let mut t = String::from("\n  natural frequencies: the joint with both tubes' ends held, Hz\n");
     t.push_str(&format!("  {:<58} {:>12} {:>12}\n", "", "at rest", "operating"));
     let cell = |v: Option<f64>, digits: usize| v.filter(|v| v.is_finite()).map_or("-".to_string(), |v| format!("{v:.digits$}"));
@@ -154,7 +154,7 @@ pub fn frequencies_section(p: &BellowsParams, rest: &Frequencies, operating: &Fr
          the finite elements add the tangents' and tubes' mass and stiffness, the plies' contact and, operating, the state's stress;\n  \
          operating, where the folds bear on each other, the analogies are no longer the joint\n",
         mass * 1000.0,
-        p.density
+        p.density()
     ));
     t
 }
