@@ -316,7 +316,7 @@ fn outputs_never_overwrite_an_input_file() {
     for name in ["lame.inp", "lame_mesh.inc"] {
         std::fs::copy(data(&format!("inp/{name}")), root.join(name)).unwrap();
     }
-    std::fs::write(root.join("joint.toml"), "plies = 2\n").unwrap();
+    std::fs::write(root.join("joint.toml"), "[bellows]\nplies = 2\n").unwrap();
     let inputs = ["m.msh", "deck.toml", "lame.inp", "lame_mesh.inc", "joint.toml"].map(|f| (f, std::fs::read(root.join(f)).unwrap()));
     for (args, needle) in [
         (&["run", "deck.toml", "-o", "m.msh"][..], "an input file of the model"),

@@ -66,7 +66,7 @@ fn coarse_seed_case_on_two_ranks() {
     let initial = -(fz[heated + 1] - fz[heated]) * SECTOR / du;
     let cf: f64 = stdout.split("EJMA rate (Cf ").nth(1).and_then(|t| t.split(' ').next()).and_then(|v| v.parse().ok()).expect("the computed Cf is printed");
     assert!((1.5..2.0).contains(&cf), "Cf {cf} at C1 = C2 = 0.6 (the table in docs/bellows.md: 1.721)");
-    let ejma = slideline::bellows::joint::ejma_axial_rate(&Default::default(), cf) * SECTOR / (2.0 * PI);
+    let ejma = slideline::bellows::joint::ejma_axial_rate(&slideline::bellows::spec::DesignSpec::seed(), cf) * SECTOR / (2.0 * PI);
     assert!((initial - ejma).abs() <= 0.35 * ejma, "initial stiffness {initial:.2} vs EJMA {ejma:.2} N/mm");
     assert!(stdout.contains(&format!("{initial:.2}")) && stdout.contains(&format!("{ejma:.2}")), "both rates are printed:\n{stdout}");
 

@@ -15,7 +15,7 @@ fn bad_flags_are_refused_before_any_solve() {
     for (args, needle) in [
         (vec!["--ply-thickness", "-1"], "ply thickness"),
         (vec!["--plies", "0"], "plies"),
-        (vec!["--convolutions", "9"], "convolutions"),
+        (vec!["--convolutions", "0"], "convolutions must be at least 1"),
         (vec!["--torus-radius", "0.9", "--pitch", "3.6"], "torus radius"),
         (vec!["--height", "8"], "height"),
         (vec!["--friction-plies", "-0.1"], "friction between the plies"),
@@ -107,15 +107,19 @@ fn a_parameter_file_sets_the_joint_and_flags_override_it() {
     let dir = tempfile::tempdir().unwrap();
     // the example file is the seed case
     let example = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/bellows.toml");
-    assert_eq!(slideline::bellows::joint::BellowsParams::from_toml_file(&example).unwrap(), Default::default());
+    let mut read = slideline::bellows::spec::DesignSpec::joint_file(&example).unwrap();
+    let seed = slideline::bellows::spec::DesignSpec::seed();
+    assert_ne!(read, seed, "the file gives the tubes' and sleeve's dimensions the seed derives from Db");
+    read.joint = slideline::bellows::spec::JointSpec { tube_thickness: None, tube_length: None, sleeve_thickness: None, sleeve_overlap: None, ..read.joint };
+    assert_eq!(read, seed);
     let write = |name: &str, text: &str| {
         let path = dir.path().join(name);
         std::fs::write(&path, text).unwrap();
         path.to_str().unwrap().to_string()
     };
-    let typo = write("typo.toml", "plies = 2\npliess = 3\n");
-    let zero = write("zero.toml", "plies = 0\nconvolutions = 5\nlength = 376.0\n");
-    let crown = write("crown.toml", "sleeve_crown = 5.0\n");
+    let typo = write("typo.toml", "[bellows]\nplies = 2\npliess = 3\n");
+    let zero = write("zero.toml", "[bellows]\nplies = 0\nconvolutions = 5\npitch = 26.0\n");
+    let crown = write("crown.toml", "[joint]\nsleeve_crown = 5.0\n");
     for (args, needle) in [
         (vec!["--params", typo.as_str()], "unknown field `pliess`"),
         (vec!["--params", zero.as_str()], "plies"),
@@ -126,14 +130,15 @@ fn a_parameter_file_sets_the_joint_and_flags_override_it() {
         assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
         assert!(err.contains(needle), "{args:?}: {err}");
     }
-    // the file's 5 convolutions with the command line's 3 plies
+    // the file's 5 convolutions of pitch 26 with the command line's 3 plies (the tori's inside
+    // radii kept: their mid-surface radii 6.5 mm, 4 x 6.5 = 26)
     let out = bellows(dir.path(), &["--params", zero.as_str(), "--plies", "3", "--quick", "--mesh-only"]);
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     let (mesh, sets) = slideline::model::gmsh::read(&dir.path().join("b.msh")).unwrap();
     assert!(sets.element_sets.contains_key("ply3") && !sets.element_sets.contains_key("ply4"));
     let zmax_ply = sets.element_sets["ply1"].iter().flat_map(|&e| mesh.elements[e]).map(|n| mesh.coords[n][1]).fold(0.0, f64::max);
-    // tangent B ends 20 past the convolutions: 128 + 5 x 24 + 20 = 268
-    assert!((zmax_ply - 268.0).abs() < 1e-9, "{zmax_ply}");
+    // tangent B ends 20 past the convolutions: 128 + 5 x 26 + 20 = 278
+    assert!((zmax_ply - 278.0).abs() < 1e-9, "{zmax_ply}");
 }
 
 #[test]

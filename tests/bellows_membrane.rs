@@ -9,7 +9,8 @@
 //! test function: MPI can be initialised once per process.
 
 use slideline::bellows::finite_element::stroke_analysis;
-use slideline::bellows::joint::{convolution_pieces, BellowsParams};
+use slideline::bellows::joint::convolution_pieces;
+use slideline::bellows::spec::DesignSpec;
 use slideline::bellows::membrane::PlyMembrane;
 use slideline::io::reader::ResultsReader;
 use slideline::petsc::PetscSession;
@@ -18,7 +19,8 @@ use slideline::solve::{run, RunOptions};
 #[test]
 fn the_plies_membrane_forces_at_every_apex_carry_the_end_reaction() {
     let session = PetscSession::initialize(&[]).expect("PETSc");
-    let p = BellowsParams { ply_element_length: 1.9, ..BellowsParams::default().quick() };
+    let mut p = DesignSpec::seed().quick();
+    p.joint.ply_element_length = 1.9;
     let dir = tempfile::tempdir().unwrap();
     let file = dir.path().join("stroke.h5");
     let model = stroke_analysis(&p, 0.7).expect("model");
@@ -30,17 +32,17 @@ fn the_plies_membrane_forces_at_every_apex_carry_the_end_reaction() {
     let reaction = *r.history("reaction_moving_end_z").unwrap().last().unwrap();
     let pieces = convolution_pieces(&p);
     let membrane = PlyMembrane::from_file(&r, &last, &model, &p, &pieces, 1.0).expect("membrane");
-    let (t, pack) = (p.ply_thickness, p.pack_thickness());
+    let (t, pack) = (p.bellows.ply_thickness, p.pack_thickness());
     let mut apexes = 0;
     for (i, piece) in pieces.iter().enumerate().filter(|(_, c)| !c.end && !c.label.starts_with("sidewall")) {
         let (x, tangent) = piece.piece.at(0.5);
         assert!(tangent[0].abs() < 1e-12 && tangent[1] > 0.0, "{}: the meridian at the apex runs along +z", piece.label);
         // ply k's mid-surface lies (k + 1/2) t outward from the pack's inside
-        let force: f64 = (0..p.plies).map(|k| membrane.at(k, i, 0.5) * t * (x[0] - pack / 2.0 + (k as f64 + 0.5) * t)).sum();
+        let force: f64 = (0..p.bellows.plies).map(|k| membrane.at(k, i, 0.5) * t * (x[0] - pack / 2.0 + (k as f64 + 0.5) * t)).sum();
         eprintln!("{}: plies' force {force:.4} N per radian, reaction {reaction:.4}", piece.label);
         assert!((force / reaction - 1.0).abs() < 1e-4, "{}: the plies carry {force} N per radian, the end reaction is {reaction}", piece.label);
         apexes += 1;
     }
-    assert_eq!(apexes, 2 * p.convolutions - 1, "every crest and every root between two convolutions");
+    assert_eq!(apexes, 2 * p.bellows.convolutions - 1, "every crest and every root between two convolutions");
     assert!(reaction < 0.0, "the stroke pushes");
 }

@@ -190,7 +190,7 @@ fn assemble_parts(parts: &[(String, Mesh, MeshSets)], convoluted_edges: impl Fn(
 
 /// Builds the mesh, its sets and the contact surfaces of the joint.
 pub fn mesh(p: &DesignSpec) -> Result<(Mesh, MeshSets)> {
-    p.validate()?;
+    p.validate_joint()?;
     let pieces = mid_surface(p);
     let (ri, ro) = (p.tube_inner_radius(), p.tube_outer_radius());
     let rs = ri - p.sleeve_thickness();
@@ -505,7 +505,7 @@ mod tests {
 
     #[test]
     fn ejma_rate_of_the_default_joint() {
-        let p = DesignSpec::default();
+        let p = DesignSpec::seed();
         // per 2.5-degree sector with a chart value Cf ~ 1.9: about the paper's 16.16 N/mm
         let sector = ejma_axial_rate(&p, 1.9) * 2.5 / 360.0;
         assert!((sector - 16.0).abs() < 2.0, "{sector}");
@@ -513,7 +513,7 @@ mod tests {
 
     #[test]
     fn the_default_joint_meshes_with_the_seed_dimensions() {
-        let p = DesignSpec::default();
+        let p = DesignSpec::seed();
         let (mesh, sets) = mesh(&p).unwrap();
         mesh.validate().unwrap();
         // crest outside surface at r = 182, root inside at 160
@@ -552,7 +552,7 @@ mod tests {
     /// either end): every other wetted edge end is shared by exactly two wetted edges.
     #[test]
     fn the_wetted_surface_is_the_whole_fluid_boundary() {
-        let p = DesignSpec::default();
+        let p = DesignSpec::seed();
         let (mesh, sets) = mesh(&p).unwrap();
         let mut ends: HashMap<usize, usize> = HashMap::new();
         for &e in &sets.surfaces["wetted"] {
@@ -586,26 +586,28 @@ mod tests {
 
     #[test]
     fn the_kept_deck_reads_back_to_the_same_parameters() {
-        let p = DesignSpec { plies: 3, displacement: 12.5, ..DesignSpec::default() }.quick();
+        let mut p = DesignSpec::seed().quick();
+        (p.bellows.plies, p.bellows.pitch, p.design.axial_compression) = (3, 26.0, Some(12.5));
         let dir = std::env::temp_dir().join(format!("slideline-params-{}.toml", std::process::id()));
         std::fs::write(&dir, p.to_toml()).unwrap();
-        let back = DesignSpec::from_toml_file(&dir).unwrap();
+        let back = DesignSpec::joint_file(&dir).unwrap();
         std::fs::remove_file(&dir).unwrap();
         assert_eq!(back, p);
+        assert_eq!(DesignSpec::from_deck(&p.to_toml(), "deck").unwrap(), p);
         assert!(model(&p).unwrap().source_text.starts_with("# slideline bellows: 3 plies"));
     }
 
     #[test]
     fn bad_parameters_are_named() {
         let bad = |f: fn(&mut DesignSpec), needle: &str| {
-            let mut p = DesignSpec::default();
+            let mut p = DesignSpec::seed();
             f(&mut p);
-            let e = p.validate().unwrap_err().to_string();
+            let e = p.validate_joint().unwrap_err().to_string();
             assert!(e.contains(needle), "{e}");
         };
         bad(|p| p.bellows.ply_thickness = -1.0, "ply thickness");
         bad(|p| p.bellows.plies = 0, "plies");
-        bad(|p| p.bellows.convolutions = 7, "convolutions of pitch");
-        bad(|p| p.torus_radius() = 0.8, "torus radius");
+        bad(|p| p.joint.sleeve_crown = 5.0, "sleeve crown must be >= 0 and below half the sleeve thickness (5 mm)");
+        bad(|p| p.bellows.root_radius = -0.2, "torus radius 0.8 must exceed half the ply pack (1)");
     }
 }

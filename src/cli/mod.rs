@@ -167,8 +167,8 @@ pub struct RunArgs {
 #[derive(clap::Args)]
 #[command(allow_negative_numbers = true)]
 pub struct BellowsArgs {
-    /// A TOML file of joint parameters (any field of BellowsParams, e.g. examples/bellows.toml);
-    /// flags given on the command line override it.
+    /// A joint file: any key of a design specification (docs/bellows-spec.md), each missing one
+    /// the seed joint's (e.g. examples/bellows.toml); flags given on the command line override it.
     #[arg(long)]
     pub params: Option<PathBuf>,
     /// A design specification in a data sheet's terms (docs/bellows-spec.md): the bellows, its
@@ -191,7 +191,8 @@ pub struct BellowsArgs {
     /// specification, the code's verdict, the finite-element tables, the mesh, the pictures).
     #[arg(long, value_name = "FILE.html", conflicts_with = "check_only")]
     pub report: Option<PathBuf>,
-    /// Number of plies in the pack.
+    /// Number of plies in the pack (the tori's inside radii stay, as a forming die's: more plies
+    /// widen their mid-surface radii, and need a pitch of 4 of those).
     #[arg(long = "plies", id = "bellows.plies", default_value_t = 2, value_name = "PLIES")]
     pub plies: usize,
     /// Thickness of each ply, mm.
