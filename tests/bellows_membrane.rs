@@ -10,8 +10,8 @@
 
 use slideline::bellows::finite_element::stroke_analysis;
 use slideline::bellows::joint::convolution_pieces;
-use slideline::bellows::spec::DesignSpec;
 use slideline::bellows::membrane::PlyMembrane;
+use slideline::bellows::spec::DesignSpec;
 use slideline::io::reader::ResultsReader;
 use slideline::petsc::PetscSession;
 use slideline::solve::{run, RunOptions};

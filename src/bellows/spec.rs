@@ -191,140 +191,158 @@ impl Default for CodeChoices {
 }
 
 /// The finite-element joint around the bellows and its analysis: the pipes the tangents sit on,
-/// the guide sleeve, contact and friction, the mesh, the stepping and the output. Unset
-/// lengths are the seed joint's scaled with the bellows' inside diameter (the seed's is 320 mm).
+/// the guide sleeve, contact and friction, the mesh, the stepping and the output. Every key is
+/// optional, its default beside it; unset lengths are the seed joint's scaled with the bellows'
+/// inside diameter (the seed's is 320 mm).
 #[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
-#[serde(default, deny_unknown_fields)]
+#[serde(deny_unknown_fields)]
 pub struct JointSpec {
-    #[serde(skip_serializing_if = "Option::is_none")]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub tube_thickness: Option<f64>,
     /// Axial length of each pipe (tube A; tube B is as long, at the other end).
-    #[serde(skip_serializing_if = "Option::is_none")]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub tube_length: Option<f64>,
-    #[serde(skip_serializing_if = "Option::is_none")]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub sleeve_thickness: Option<f64>,
     /// The sleeve's overlap with tube A (bonded) and tube B (sliding), from the tube ends.
-    #[serde(skip_serializing_if = "Option::is_none")]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub sleeve_overlap: Option<f64>,
     /// The sleeve's entry is crowned: its outside falls by this much (mm) over its last
-    /// `sleeve_crown_length`, a parabola tangent to the cylinder (0: a sharp end).
+    /// `sleeve_crown_length`, a parabola tangent to the cylinder (0: a sharp end). A sharp end
+    /// presses into tube B's bore between two of its nodes, and the fit's force then alternates
+    /// with the end's place between them: with sleeve friction the quick joint's end reaction
+    /// zig-zagged by 0.26 % from increment to increment (0.03 % crowned; docs/performance.md).
+    #[serde(default = "defaults::sleeve_crown")]
     pub sleeve_crown: f64,
+    #[serde(default = "defaults::sleeve_crown_length")]
     pub sleeve_crown_length: f64,
     /// Contact penalty, N/mm^3.
+    #[serde(default = "defaults::penalty")]
     pub penalty: f64,
     /// Coulomb friction coefficient between the plies (and of a ply's folds on each other).
+    #[serde(default)]
     pub friction_plies: f64,
     /// Coulomb friction coefficient between the sleeve and tube B's bore.
+    #[serde(default)]
     pub friction_sleeve: f64,
-    /// Tangential penalty of the friction, MPa/mm of elastic slip.
+    /// Tangential penalty of the friction, MPa/mm of elastic slip. Measured on the quick
+    /// joint's cycle with mu = 0.2 between the plies (cutbacks, against 4 frictionless): 1e4
+    /// (the normal penalty) fails at 98 % of the stroke, 1000 takes 31, 300 takes 17, 100 takes
+    /// 15. At 300 the elastic slip at the Coulomb limit, mu p / eps_T, is 0.7 % of the quick
+    /// mesh's 2 mm ply elements at p = 10 MPa, about Abaqus' default allowance (0.5 %).
+    #[serde(default = "defaults::tangential_penalty")]
     pub tangential_penalty: f64,
     /// Instead of the tangential penalty, the elastic slip (mm) at the Coulomb limit: eps_T =
     /// mu p / elastic_slip.
-    #[serde(skip_serializing_if = "Option::is_none")]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub elastic_slip: Option<f64>,
     /// Increments of the heating step (pressure and temperature) and of the stroke.
+    #[serde(default = "defaults::heat_increments")]
     pub heat_increments: usize,
+    #[serde(default = "defaults::increments")]
     pub increments: usize,
     /// After the stroke, a further step takes tube B's end back to where it started.
+    #[serde(default)]
     pub cycle: bool,
     /// How Newton's convergence is judged.
+    #[serde(default)]
     pub convergence: crate::model::Convergence,
     /// Elements through each ply's thickness, and their length along the ply meridian (mm).
+    #[serde(default = "defaults::ply_elements")]
     pub ply_elements: usize,
+    #[serde(default = "defaults::one")]
     pub ply_element_length: f64,
     /// Elements through the tube and sleeve walls, and their length along them (mm).
+    #[serde(default = "defaults::wall_elements")]
     pub wall_elements: usize,
+    #[serde(default = "defaults::wall_element_length")]
     pub wall_element_length: f64,
     /// Fields of every N-th increment in the results file (and of the last of each step).
+    #[serde(default = "defaults::output_every")]
     pub output_every: usize,
     /// The width of the visualisation fields' floats.
+    #[serde(default)]
     pub output_precision: crate::model::Precision,
 }
 
 impl Default for JointSpec {
+    /// Every key at its default (a specification without `[joint]`).
     fn default() -> Self {
-        JointSpec {
-            tube_thickness: None,
-            tube_length: None,
-            sleeve_thickness: None,
-            sleeve_overlap: None,
-            // a sharp end presses into tube B's bore between two of its nodes, and the fit's
-            // force then alternates with the end's place between them: with sleeve friction
-            // the quick joint's end reaction zig-zagged by 0.26 % from increment to increment
-            // (0.03 % crowned; docs/performance.md)
-            sleeve_crown: 0.2,
-            sleeve_crown_length: 8.0,
-            penalty: 1.0e4,
-            friction_plies: 0.0,
-            friction_sleeve: 0.0,
-            // measured on the quick joint's cycle with mu = 0.2 between the plies (cutbacks,
-            // against 4 frictionless): 1e4 (the normal penalty) fails at 98 % of the stroke,
-            // 1000 takes 31, 300 takes 17, 100 takes 15. At 300 the elastic slip at the Coulomb
-            // limit, mu p / eps_T, is 0.7 % of the quick mesh's 2 mm ply elements at p = 10 MPa,
-            // about Abaqus' default allowance (0.5 % of the element length)
-            tangential_penalty: 300.0,
-            elastic_slip: None,
-            heat_increments: 2,
-            increments: 240,
-            cycle: false,
-            convergence: crate::model::Convergence::default(),
-            ply_elements: 2,
-            ply_element_length: 1.0,
-            wall_elements: 3,
-            wall_element_length: 4.0,
-            output_every: 1,
-            output_precision: crate::model::Precision::Single,
-        }
+        toml::Table::new().try_into().expect("every [joint] key has a default")
     }
 }
 
+/// The defaults of the keys that are not zero, false or none.
+mod defaults {
+    pub fn sleeve_crown() -> f64 {
+        0.2
+    }
+    pub fn sleeve_crown_length() -> f64 {
+        8.0
+    }
+    pub fn penalty() -> f64 {
+        1.0e4
+    }
+    pub fn tangential_penalty() -> f64 {
+        300.0
+    }
+    pub fn heat_increments() -> usize {
+        2
+    }
+    pub fn increments() -> usize {
+        240
+    }
+    pub fn ply_elements() -> usize {
+        2
+    }
+    pub fn one() -> f64 {
+        1.0
+    }
+    pub fn wall_elements() -> usize {
+        3
+    }
+    pub fn wall_element_length() -> f64 {
+        4.0
+    }
+    pub fn output_every() -> usize {
+        1
+    }
+}
+
+/// The seed paper's joint (DN300, two 1 mm plies of AISI 304 at 200 degC and 6 bar, compressed
+/// 70 mm), its keys as a file gives them: every other key at its default.
+const SEED_JOINT: &str = r#"
+[bellows]
+inside_diameter = 320.0
+convolution_height = 20.0
+pitch = 24.0
+crest_radius = 5.0
+root_radius = 5.0
+convolutions = 6
+plies = 2
+ply_thickness = 1.0
+tangent_length = 20.0
+
+[material]
+name = "AISI 304"
+source = "the seed paper"
+youngs_modulus = 200000.0
+yield_stress = 300.0
+hardening_modulus = 1000.0
+thermal_expansion = 1.875e-5
+density = 8.0e-9   # AISI 304: 8.00 g/cm^3 (ASM Handbook)
+
+[design]
+pressure = 0.6
+temperature = 200.0
+axial_compression = 70.0
+"#;
+
 impl DesignSpec {
-    /// The seed paper's joint (DN300, two 1 mm plies of AISI 304 at 200 degC and 6 bar,
-    /// compressed 70 mm): what `slideline bellows` runs, and what `--params` and the flags
+    /// The seed paper's joint: what `slideline bellows` runs, and what `--params` and the flags
     /// change. It has no allowable stress and no cycles: the code check, no verdict.
     pub fn seed() -> Self {
-        DesignSpec {
-            title: String::new(),
-            text: String::new(),
-            bellows: BellowsSpec {
-                inside_diameter: 320.0,
-                convolution_height: 20.0,
-                pitch: 24.0,
-                crest_radius: 5.0,
-                root_radius: 5.0,
-                convolutions: 6,
-                plies: 2,
-                ply_thickness: 1.0,
-                tangent_length: 20.0,
-                forming: Forming::AsFormed,
-                coefficients: None,
-            },
-            material: MaterialSpec {
-                name: "AISI 304".into(),
-                source: "the seed paper".into(),
-                youngs_modulus: Property::Value(200_000.0),
-                room_temperature_modulus: None,
-                poissons_ratio: 0.3,
-                yield_stress: Property::Value(300.0),
-                allowable_stress: None,
-                hardening_modulus: 1000.0,
-                backstresses: Vec::new(),
-                thermal_expansion: Property::Value(1.875e-5),
-                // AISI 304: 8.00 g/cm^3 (ASM Handbook)
-                density: Some(8.0e-9),
-            },
-            design: DesignConditions {
-                pressure: 0.6,
-                temperature: 200.0,
-                axial_compression: Some(70.0),
-                axial_extension: None,
-                lateral: 0.0,
-                angular: 0.0,
-                cycles: None,
-            },
-            code: CodeChoices::default(),
-            joint: JointSpec::default(),
-        }
+        toml::from_str(SEED_JOINT).expect("the seed joint's keys are a joint (a unit test reads them)")
     }
 
     /// A design specification (`--spec`): the data sheet's keys required, the code's data
