@@ -5,7 +5,8 @@
 //! sleeve in contact). Reported per call and as elements per second; compare with the linear
 //! solve of the same iteration in scripts/profile-bellows.sh.
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
-use slideline::bellows::joint::{model, BellowsParams};
+use slideline::bellows::joint::model;
+use slideline::bellows::spec::DesignSpec;
 use slideline::decomposition::{DofMap, Partition};
 use slideline::petsc::{PetscSession, VecOps, Vector};
 use slideline::solve::contact::affinity::partition_affinity;
@@ -15,7 +16,7 @@ use slideline::solve::problem::{initial_history, Problem, StepStart};
 
 fn assembly(c: &mut Criterion) {
     let session = PetscSession::initialize(&[]).expect("PETSc");
-    let m = model(&BellowsParams::default()).expect("bellows model");
+    let m = model(&DesignSpec::seed()).expect("bellows model");
     let partition = Partition::new(&session, &m.mesh, &partition_affinity(&m)).expect("partition");
     let nodes = m.mesh.coords.len();
     let loads = StepLoads::new(&m, 0, None, &vec![[0.0; 2]; nodes]);

@@ -50,7 +50,8 @@ fn kernels(c: &mut Criterion) {
 }
 
 fn contact(c: &mut Criterion) {
-    use slideline::bellows::joint::{mesh, BellowsParams};
+    use slideline::bellows::joint::mesh;
+    use slideline::bellows::spec::DesignSpec;
     use slideline::contact::integrated::weighted_gaps_into;
     use slideline::contact::node_to_edge::{edge_residual_and_tangent, project_on_edge, ContactLaw};
     use slideline::contact::search::EdgeGrid;
@@ -75,7 +76,8 @@ fn contact(c: &mut Criterion) {
     // per slave node of the bellows' ply interface, at the quick, default and fine ply meshes
     let mut g = c.benchmark_group("contact surface");
     for (name, through, length) in [("quick", 1, 2.0), ("default", 2, 1.0), ("fine", 3, 0.5)] {
-        let p = BellowsParams { ply_elements: through, ply_element_length: length, ..Default::default() };
+        let mut p = DesignSpec::seed();
+        (p.joint.ply_elements, p.joint.ply_element_length) = (through, length);
         let (m, sets) = mesh(&p).unwrap();
         let slave = ContactSurface::new(&m, &sets.surfaces["ply2_inner"]);
         let master = ContactSurface::new(&m, &sets.surfaces["ply1_outer"]);

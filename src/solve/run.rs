@@ -161,7 +161,7 @@ pub fn run(session: &PetscSession, model: &Model, options: &RunOptions) -> Resul
 
 /// Heat step `h` solved and its answer written (collective).
 fn heat_step(ctx: &mut RunContext<'_, '_>, h: &crate::model::heat::HeatStep) -> Result<crate::records::heat::HeatAnswer> {
-    let answer = crate::solve::procedures::conduction::solve(ctx.session, ctx.model, ctx.partition, h)?;
+    let answer = crate::solve::procedures::conduction::solve(ctx, h)?;
     let written = ctx.results.write_heat(h, &answer, ctx.partition, ctx.model.is_axisymmetric());
     stop_all_on_write_error(ctx.session.world(), &ctx.options.output, written)?;
     ctx.progress.note(&format!("heat step '{}': solved", h.name));
@@ -192,14 +192,14 @@ fn start_general(ctx: &mut RunContext<'_, '_>, resume: Option<RestartPoint>) -> 
 /// driver (`perturbation` for a response, `modes` for an eigenproblem), its answer written
 /// (collective).
 fn perturbation(ctx: &mut RunContext<'_, '_>, general: &GeneralSteps, p: &Perturbation) -> Result<PerturbationAnswer> {
-    let (session, model, partition) = (ctx.session, ctx.model, ctx.partition);
+    let (session, partition) = (ctx.session, ctx.partition);
     let Some(state) = general.base_state() else {
         return Err(Error::input(format!("perturbation step '{}': this run converged no increment of a general step to be its base state", p.name)));
     };
     let answer = match p.analysis {
-        Analysis::Response => crate::solve::procedures::perturbation::response(session, model, partition, &state, p, false)?,
-        Analysis::Frequency { eigenvalues } => crate::solve::procedures::modes::frequency(session, model, partition, &state, p, eigenvalues)?,
-        Analysis::Buckle { eigenvalues } => crate::solve::procedures::modes::buckle(session, model, partition, &state, p, eigenvalues)?,
+        Analysis::Response => crate::solve::procedures::perturbation::response(ctx, &state, p, false)?,
+        Analysis::Frequency { eigenvalues } => crate::solve::procedures::modes::frequency(ctx, &state, p, eigenvalues)?,
+        Analysis::Buckle { eigenvalues } => crate::solve::procedures::modes::buckle(ctx, &state, p, eigenvalues)?,
     };
     // notes on what an answer means belong with it, --quiet or not
     for note in answer.notes.iter().filter(|_| session.world().rank() == 0) {

@@ -9,16 +9,16 @@ use crate::element::conduction::{conduction_matrix, heat_flux};
 use crate::element::solid::NODES;
 use crate::error::{Error, Result};
 use crate::model::heat::HeatStep;
-use crate::model::Model;
 use crate::petsc::sys::PetscInt;
-use crate::petsc::PetscSession;
 use crate::records::heat::{HeatAnswer, HeatFlow};
+use crate::solve::context::RunContext;
 use crate::solve::procedures::linear_system::{amplitudes_of, assemble, solve_once, Amplitude, Block};
 use mpi::collective::SystemOperation;
 use mpi::traits::*;
 
 /// Solves heat step `step` (collective). A node in no element keeps the initial temperature.
-pub fn solve(session: &PetscSession, model: &Model, partition: &Partition, step: &HeatStep) -> Result<HeatAnswer> {
+pub(in crate::solve) fn solve(ctx: &RunContext<'_, '_>, step: &HeatStep) -> Result<HeatAnswer> {
+    let (session, model, partition) = (ctx.session, ctx.model, ctx.partition);
     let world = session.world();
     let mesh = &model.mesh;
     let nodes = mesh.coords.len();

@@ -21,6 +21,7 @@ use crate::model::Model;
 use crate::petsc::eigen::{nearest, Pencil};
 use crate::petsc::PetscSession;
 use crate::records::perturbation::{EigenMode, PerturbationAnswer};
+use crate::solve::context::RunContext;
 use crate::solve::procedures::linear_system::{amplitudes_of, assemble, Amplitude, Block};
 use crate::solve::procedures::perturbation::{
     current_positions, model_size, number, prescribed_amplitudes, pressure_stiffness_blocks, response, stiffness_blocks, BaseState,
@@ -174,14 +175,8 @@ fn answer(step: &Perturbation, modes: Vec<EigenMode>, count: usize) -> Perturbat
 }
 
 /// A frequency step (collective).
-pub fn frequency(
-    session: &PetscSession,
-    model: &Model,
-    partition: &Partition,
-    base: &BaseState<'_>,
-    step: &Perturbation,
-    count: usize,
-) -> Result<PerturbationAnswer> {
+pub(in crate::solve) fn frequency(ctx: &RunContext<'_, '_>, base: &BaseState<'_>, step: &Perturbation, count: usize) -> Result<PerturbationAnswer> {
+    let (session, model, partition) = (ctx.session, ctx.model, ctx.partition);
     let world = session.world();
     let current = current_positions(model, base);
     let (stiffness, _) = stiffness_blocks(model, partition, base, &current, step)?;
@@ -220,14 +215,8 @@ pub fn frequency(
 }
 
 /// A buckle step (collective).
-pub fn buckle(
-    session: &PetscSession,
-    model: &Model,
-    partition: &Partition,
-    base: &BaseState<'_>,
-    step: &Perturbation,
-    count: usize,
-) -> Result<PerturbationAnswer> {
+pub(in crate::solve) fn buckle(ctx: &RunContext<'_, '_>, base: &BaseState<'_>, step: &Perturbation, count: usize) -> Result<PerturbationAnswer> {
+    let (session, model, partition) = (ctx.session, ctx.model, ctx.partition);
     let current = current_positions(model, base);
     // the stress increment of the step's load: its axisymmetric response about the base state
     let load = Perturbation {
@@ -239,7 +228,7 @@ pub fn buckle(
         without_contact: step.without_contact.clone(),
         analysis: Analysis::Response,
     };
-    let increment = response(session, model, partition, base, &load, true)?;
+    let increment = response(ctx, base, &load, true)?;
     let (stiffness, materials) = stiffness_blocks(model, partition, base, &current, step)?;
     // K_D: the stress increment's initial stress, and the step's pressures' load stiffness
     // where they follow the surface; B = -K_D

@@ -34,9 +34,9 @@ use crate::error::{Error, Result};
 use crate::model::perturbation::Perturbation;
 use crate::model::Model;
 use crate::petsc::sys::PetscInt;
-use crate::petsc::PetscSession;
 use crate::records::perturbation::{PerturbationAnswer, SetReaction};
 use crate::solve::contact::BaseContact;
+use crate::solve::context::RunContext;
 use crate::solve::procedures::linear_system::{amplitudes_of, assemble, solve_once, Amplitude, Block};
 use mpi::collective::SystemOperation;
 use mpi::traits::*;
@@ -161,14 +161,8 @@ pub(in crate::solve) fn stresses(
 
 /// The response to the step's prescribed amplitudes and harmonic pressures; `hold_twist` holds
 /// every U_t at zero (an axisymmetric load's solve, whose twist is decoupled).
-pub(in crate::solve) fn response(
-    session: &PetscSession,
-    model: &Model,
-    partition: &Partition,
-    base: &BaseState<'_>,
-    step: &Perturbation,
-    hold_twist: bool,
-) -> Result<PerturbationAnswer> {
+pub(in crate::solve) fn response(ctx: &RunContext<'_, '_>, base: &BaseState<'_>, step: &Perturbation, hold_twist: bool) -> Result<PerturbationAnswer> {
+    let (session, model, partition) = (ctx.session, ctx.model, ctx.partition);
     let world = session.world();
     let nodes = model.mesh.coords.len();
     let current = current_positions(model, base);
