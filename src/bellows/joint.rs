@@ -471,11 +471,13 @@ pub fn model(p: &DesignSpec) -> Result<Model> {
         steps.push(GeneralStep::new("return", p.joint.increments, vec![hold("moving_end", Component::Z, 0.0)]));
     }
     let source_text = p.to_toml();
-    let model = Model {
+    // the plies as formed, where the joint gives them so, beside the annealed tubes and sleeve
+    let formed = p.formed_plies()?.map(|plasticity| Material { name: "plies_as_formed".into(), plasticity: Some(plasticity), ..material.clone() });
+    let mut model = Model {
         node_sets: sets.node_sets,
         element_sets: sets.element_sets,
         surfaces: sets.surfaces,
-        materials: vec![material],
+        materials: std::iter::once(material).chain(formed.clone()).collect(),
         // after a cutback the increment grows back after anything up to 12 Newton iterations
         // (set when the plies took 8-11 per increment; kept, as the cycle studies were measured
         // with it)
@@ -487,6 +489,13 @@ pub fn model(p: &DesignSpec) -> Result<Model> {
         source_text,
         ..Model::on_mesh(mesh)
     };
+    if formed.is_some() {
+        for k in 1..=p.bellows.plies {
+            for &e in &model.element_sets[&format!("ply{k}")] {
+                model.element_material[e] = 1;
+            }
+        }
+    }
     model.validate()?;
     Ok(model)
 }

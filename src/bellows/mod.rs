@@ -14,6 +14,7 @@ pub mod report;
 pub mod spec;
 pub mod stability;
 mod stations;
+pub mod twin;
 pub mod vibration;
 pub mod workflow;
 

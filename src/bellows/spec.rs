@@ -128,9 +128,18 @@ pub struct MaterialSpec {
     /// seed joint has none, and gets the code check without a verdict).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub allowable_stress: Option<Property>,
-    /// The finite-element plies' linear hardening (0: perfectly plastic).
+    /// The finite-element joint's linear hardening (0: perfectly plastic): with `yield_stress`,
+    /// the annealed curve, the tubes' and sleeve's, and the plies' unless they are given as formed.
     #[serde(default)]
     pub hardening_modulus: f64,
+    /// The plies as formed (cold-worked), for the finite-element plies: their true stress (MPa)
+    /// against plastic strain at the design temperature, `[[0.0, sigma_y], [ep, sigma], ...]`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub formed_curve: Option<Vec<[f64; 2]>>,
+    /// Or the plies' cold work: the plastic strain forming left in them, the annealed curve
+    /// taken on from there (needs a hardening modulus).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub cold_work: Option<f64>,
     /// The cyclic stress-strain curve as kinematic hardening (Armstrong-Frederick terms):
     /// `--dba`'s fatigue check runs with it (none: no fatigue check).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]

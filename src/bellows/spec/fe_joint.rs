@@ -90,6 +90,52 @@ impl DesignSpec {
         self.material.thermal_expansion.at(self.design.temperature, "thermal_expansion").unwrap_or(f64::NAN)
     }
 
+    /// The plies' hardening as the finite elements take it: as formed (the `formed_curve`, or the
+    /// annealed curve from the `cold_work` on), None where the plies are annealed (the tubes'
+    /// curve).
+    pub fn formed_plies(&self) -> Result<Option<crate::model::Plasticity>> {
+        let m = &self.material;
+        let bad = |key: &str, why: String| Error::input(format!("bellows: material.{key}: {why}"));
+        match (&m.formed_curve, m.cold_work) {
+            (None, None) => Ok(None),
+            (Some(_), Some(_)) => Err(bad("cold_work", "give one of formed_curve and cold_work".into())),
+            (Some(curve), None) => {
+                let points: Vec<(f64, f64)> = curve.iter().map(|&[ep, s]| (ep, s)).collect();
+                crate::model::Plasticity::table(&points).map(Some).map_err(|why| bad("formed_curve", why))
+            }
+            (None, Some(ep)) => {
+                if !(ep > 0.0 && ep.is_finite()) {
+                    return Err(bad("cold_work", format!("a plastic strain > 0, got {}", crate::error::shown(ep))));
+                }
+                if m.hardening_modulus <= 0.0 {
+                    return Err(bad(
+                        "cold_work",
+                        "the annealed curve has no hardening (hardening_modulus 0): cold work raises nothing; give the plies' formed_curve".into(),
+                    ));
+                }
+                Ok(Some(crate::model::Plasticity::linear(self.yield_stress() + m.hardening_modulus * ep, m.hardening_modulus)))
+            }
+        }
+    }
+
+    /// What the finite-element plies are made of, for a table: annealed or as formed.
+    pub fn plies_label(&self) -> String {
+        let m = &self.material;
+        match (&m.formed_curve, m.cold_work) {
+            (Some(c), _) => format!("as formed: the given curve, yield {} MPa", crate::error::shown(c.first().map_or(f64::NAN, |p| p[1]))),
+            (None, Some(ep)) => format!(
+                "as formed: the annealed curve from {} % cold work on, yield {} MPa",
+                crate::error::shown(100.0 * ep),
+                crate::error::shown(self.yield_stress() + m.hardening_modulus * ep)
+            ),
+            (None, None) => format!(
+                "annealed: yield {} MPa, hardening {} MPa, nominal thickness",
+                crate::error::shown(self.yield_stress()),
+                crate::error::shown(m.hardening_modulus)
+            ),
+        }
+    }
+
     pub fn density(&self) -> f64 {
         self.material.density.unwrap_or(SEED_DENSITY)
     }
@@ -227,6 +273,7 @@ impl DesignSpec {
             }
         }
         self.validate_convolution()?;
+        self.formed_plies()?;
         self.validate_walls()
     }
 
