@@ -1,7 +1,7 @@
 //! Where the finite-element joint departs from the joint the code's formulas assume: the
 //! plies' material (the formulas take them as formed and thinned by forming), plies that yield
 //! under the design pressure alone, and a stroke that the convolutions do not share evenly (the
-//! formulas share it evenly). A section after the closing table, kept in the results file.
+//! formulas share it evenly). The closing table's last section, made again from the file.
 
 use super::spec::DesignSpec;
 use crate::error::Result;
@@ -14,9 +14,6 @@ pub const UNEVEN_SHARE: f64 = 1.5;
 /// The plastic strain above which the joint is said to yield: a point just touching the yield
 /// surface is not (the DN400 joint with 15 % cold work reached 2.9e-6 under its pressure).
 pub const YIELDED: f64 = 1e-4;
-
-/// The section's title (its table in the results file).
-pub const TWIN: &str = "finite-element joint";
 
 /// The section from the run's history and fields in `reader`.
 pub fn section(p: &DesignSpec, reader: &ResultsReader) -> Result<String> {

@@ -308,9 +308,6 @@ pub fn report(job: &BellowsJob, before: &BeforeTheRun, summary: &RunSummary) -> 
     if let Some((_, table)) = verdict {
         tables.push((super::report::CODE_VERDICT, table.clone()));
     }
-    if fields {
-        tables.push((super::twin::TWIN, super::twin::section(params, &reader)?));
-    }
     if let Some((movements, at_rest)) = rest {
         let operating = super::flexibility::from_run(params, *movements, &summary.perturbations, &reader)?;
         tables.push(("flexibility", super::report::flexibility_section(params, code, *movements, at_rest, Some(&operating))));

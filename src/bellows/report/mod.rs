@@ -102,6 +102,8 @@ pub struct BellowsReport {
     /// Whether the code check's section closes the table; not where a design specification's
     /// verdict follows it (the verdict has the same stresses, and the life the design rests on).
     pub code_section: bool,
+    /// The finite-element joint set beside the code's (`bellows::twin`), after a blank line.
+    pub twin: String,
 }
 
 /// Axial reaction of the moving end, N per sector, compression positive.
@@ -256,6 +258,7 @@ impl BellowsReport {
             energy: history.last().and_then(|r| r.energy),
             seed: p.is_seed_joint(),
             code_section: true,
+            twin: crate::bellows::twin::section(p, reader)?,
         })
     }
 
@@ -342,6 +345,8 @@ impl BellowsReport {
         if let Some(c) = self.code.as_ref().filter(|_| self.code_section) {
             t.push_str(&code_section(c));
         }
+        t.push('\n');
+        t.push_str(&self.twin);
         t
     }
 }
