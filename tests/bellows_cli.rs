@@ -16,6 +16,9 @@ fn bad_flags_are_refused_before_any_solve() {
         (vec!["--ply-thickness", "-1"], "ply thickness"),
         (vec!["--plies", "0"], "plies"),
         (vec!["--convolutions", "0"], "convolutions must be at least 1"),
+        // a thicker pack on the same tori's inside radii needs a wider pitch, and is told why
+        (vec!["--plies", "3"], "a pitch of 24 is less than 4 x the torus radius = 26"),
+        (vec!["--plies", "3"], "its inside radius plus half the ply pack: 5 + 1.5 mm at the root"),
         (vec!["--torus-radius", "0.9", "--pitch", "3.6"], "torus radius"),
         (vec!["--height", "8"], "height"),
         (vec!["--friction-plies", "-0.1"], "friction between the plies"),

@@ -341,9 +341,11 @@ impl DesignSpec {
         if self.bellows.pitch < 2.0 * (rr + rc) - 1e-9 {
             let radii = if one_radius { "4 x the torus radius" } else { "2 (root radius + crest radius)" };
             return Err(Error::input(format!(
-                "bellows: a pitch of {} is less than {radii} = {}: U-shaped convolutions' sidewalls would fold back over each other",
+                "bellows: a pitch of {} is less than {radii} = {}: U-shaped convolutions' sidewalls would fold back over each other (a torus's mid-surface radius is its inside radius plus half the ply pack: {} + {} mm at the root)",
                 crate::error::shown(self.bellows.pitch),
-                crate::error::shown(2.0 * (rr + rc))
+                crate::error::shown(2.0 * (rr + rc)),
+                crate::error::shown(self.bellows.root_radius),
+                crate::error::shown(pack / 2.0)
             )));
         }
         if self.sidewall() < 0.0 {
