@@ -62,6 +62,9 @@ fn bellows_command(args: &cli::BellowsArgs, sub: Option<&clap::ArgMatches>) -> E
     if args.check_only {
         return cli::check_only(&params, &args.petsc);
     }
+    if let (true, Err(e)) = (args.form, params.validate_forming()) {
+        return fail(&e, launched_as_rank_zero());
+    }
     // the movements of the flexibility perturbations, if any
     let movements = match args.movements(&params) {
         Ok(m) => m,
@@ -73,7 +76,8 @@ fn bellows_command(args: &cli::BellowsArgs, sub: Option<&clap::ArgMatches>) -> E
             return fail(&e, launched_as_rank_zero());
         }
         // no MPI needed: every rank would write the same file
-        return match slideline::bellows::joint::model(&params).and_then(|m| model::inp::write(&m, &params.fe_title(), path)) {
+        let built = if args.form { slideline::bellows::forming::model(&params) } else { slideline::bellows::joint::model(&params) };
+        return match built.and_then(|m| model::inp::write(&m, &params.fe_title(), path)) {
             Ok(()) => {
                 println!("deck written to {}", path.display());
                 ExitCode::SUCCESS
@@ -108,6 +112,11 @@ fn bellows_command(args: &cli::BellowsArgs, sub: Option<&clap::ArgMatches>) -> E
         };
     }
     let job = args.job(params, movements);
+    if args.form {
+        let result = workflow::form(&session, &job);
+        warn_unused_options(&session, root && !is_bad_input(&result));
+        return finish(result, root, |summary| workflow::forming_report(&job, summary));
+    }
     let before = match workflow::before_the_run(&session, &job) {
         Ok(before) => before,
         Err(e) => return fail(&e, root),

@@ -8,6 +8,7 @@
 pub mod convolution;
 pub mod finite_element;
 pub mod flexibility;
+pub mod forming;
 pub mod joint;
 pub mod membrane;
 pub mod report;

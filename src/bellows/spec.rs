@@ -19,6 +19,7 @@ use crate::error::{Error, Result};
 use serde::{Deserialize, Serialize};
 
 mod fe_joint;
+pub mod forming;
 pub mod keys;
 mod rules;
 
@@ -41,6 +42,9 @@ pub struct DesignSpec {
     pub code: CodeChoices,
     #[serde(default)]
     pub joint: JointSpec,
+    /// How the bellows is hydroformed (`--form`).
+    #[serde(default, skip_serializing_if = "forming::FormingSpec::is_default")]
+    pub forming: forming::FormingSpec,
 }
 
 /// The bellows' dimensions (mm), as a data sheet gives them.

@@ -200,6 +200,26 @@ pub fn run(session: &PetscSession, job: &BellowsJob) -> Result<RunSummary> {
     )
 }
 
+/// `--form`: the bellows hydroformed from a straight tube, its four steps (collective).
+pub fn form(session: &PetscSession, job: &BellowsJob) -> Result<RunSummary> {
+    let model = super::forming::model(&job.params)?;
+    crate::solve::run(
+        session,
+        &model,
+        &RunOptions { output: job.output.clone(), progress: !job.quiet, verbose: job.verbose, monitor: job.monitor, restart: job.restart.clone() },
+    )
+}
+
+/// The forming's table from its results file, printed and kept in it (rank 0, after the run).
+pub fn forming_report(job: &BellowsJob, _summary: &RunSummary) -> Result<()> {
+    use super::forming::measure::{table, Formed};
+    let reader = ResultsReader::open(&job.output)?;
+    let table = table(&job.params, &Formed::read(&job.params, &reader)?);
+    drop(reader);
+    println!("\n{table}");
+    crate::io::assessment::write_tables(&job.output, &[(super::forming::measure::TABLE, table)])
+}
+
 /// How far `--dba`'s limit load raises the design pressure looking for the collapse: the
 /// convolutions of a joint that passes the code's in-plane check (at about 2.3 Sy) hold several
 /// times their design pressure.

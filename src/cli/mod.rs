@@ -187,6 +187,12 @@ pub struct BellowsArgs {
     /// checks.
     #[arg(long, requires = "spec", conflicts_with_all = ["check_only", "restart", "joint.cycle"])]
     pub dba: bool,
+    /// Instead of the joint's run, hydroform its bellows from a straight tube (the `[forming]`
+    /// table, docs/bellows.md "Forming"): pressure between die plates, the dies closed to the
+    /// pitch, the pressure let out and the dies drawn out; prints the formed bellows beside its
+    /// target (height, pitch, crest and root thickness, volume, plastic strain).
+    #[arg(long, conflicts_with_all = ["check_only", "dba", "joint.cycle", "squirm", "assess", "frequencies", "lateral", "angular", "report"])]
+    pub form: bool,
     /// After the run, write the design report: one self-contained HTML file (the
     /// specification, the code's verdict, the finite-element tables, the mesh, the pictures).
     #[arg(long, value_name = "FILE.html", conflicts_with = "check_only")]

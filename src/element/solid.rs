@@ -192,6 +192,12 @@ impl ElementGeometry {
         self.section
     }
 
+    /// The element's volume (per radian in axisymmetry, over its thickness in a plane section):
+    /// the sum of its points' measures.
+    pub fn volume(&self) -> f64 {
+        self.weights.iter().sum()
+    }
+
     /// Mean out-of-plane measure of the element, its volume over its area in the (r, z)
     /// plane: the mean radius in axisymmetry, the thickness in a plane section.
     pub fn mean_measure(&self) -> f64 {
