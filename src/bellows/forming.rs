@@ -12,6 +12,7 @@
 //! The figures of what was formed are `forming::measure`'s.
 
 pub mod measure;
+pub mod service;
 
 use super::spec::forming::FORMING_TEMPERATURE;
 use super::spec::DesignSpec;
@@ -26,8 +27,12 @@ use std::f64::consts::PI;
 /// Elements around a die's nose (a half circle).
 const NOSE_ELEMENTS: usize = 16;
 
-/// How far past the crests the dies are drawn out at the end, mm (beyond the convolution height).
-const DRAW_CLEAR: f64 = 2.0;
+/// The forming's steps: the service's follow them.
+pub const FORMING_STEPS: usize = 5;
+
+/// How far past the crests the dies are drawn out at the end, mm (beyond the convolution height):
+/// clear of the crests through the service's stroke.
+const DRAW_CLEAR: f64 = 5.0;
 
 /// The forming's dimensions, from the joint.
 #[derive(Clone, Copy, Debug)]
@@ -162,7 +167,27 @@ fn die_profile(g: &FormingGeometry, h: f64) -> Vec<([f64; 2], [f64; 2])> {
     path
 }
 
-/// The forming's model: the annealed tube, its four steps.
+/// The formed bellows in service, continuing the forming's file from its end: the design
+/// pressure inside with the far tangent held where the springback left it (`sprung`, its axial
+/// displacement) (`pressure`), then the stroke (`compress`); the forming's model with these two
+/// steps after its own.
+pub fn service_model(p: &DesignSpec, sprung: f64) -> Result<Model> {
+    let mut m = model(p)?;
+    let hold = |value: f64| vec![PrescribedDisplacement { node_set: "tangent_b".into(), component: Component::Z, value }];
+    let pressure = GeneralStep {
+        pressures: vec![Pressure { surface: "ply1_inner".into(), value: p.design.pressure }],
+        ..GeneralStep::new(SERVICE_STEPS[0], 4, hold(sprung))
+    };
+    let compress = GeneralStep::new(SERVICE_STEPS[1], p.joint.increments, hold(sprung - p.displacement()));
+    m.steps.extend([pressure, compress].map(Step::General));
+    m.validate()?;
+    Ok(m)
+}
+
+/// The service's steps, after the forming's five.
+pub const SERVICE_STEPS: [&str; 2] = ["pressure", "compress"];
+
+/// The forming's model: the annealed tube, its five steps.
 pub fn model(p: &DesignSpec) -> Result<Model> {
     p.validate_forming()?;
     let g = FormingGeometry::of(p);
@@ -201,12 +226,18 @@ pub fn model(p: &DesignSpec) -> Result<Model> {
         .map(|k| pair(format!("ply{k}_ply{}", k + 1), format!("ply{}_inner", k + 1), &format!("ply{k}_outer"), true, ContactIntegration::Segment))
         .collect();
     contacts.push(pair("dies".into(), format!("ply{n}_outer"), "dies", false, ContactIntegration::Segment));
+    // the convolutions' faces on each other in service (in the model from the start: a restart
+    // keeps its contact pairs)
+    let [outside, inside] = super::joint::FOLD_PAIRS;
+    contacts.push(pair(outside.into(), format!("ply{n}_outer"), &format!("ply{n}_outer"), false, ContactIntegration::Segment));
+    contacts.push(pair(inside.into(), "ply1_inner".into(), "ply1_inner", false, ContactIntegration::Segment));
     let set = |s: &str, component: Component, value: f64| PrescribedDisplacement { node_set: s.into(), component, value };
-    let dies = |radial: f64, closed: bool| -> Vec<PrescribedDisplacement> {
+    // the dies out by `radial`, at `pitch` apart (the straight tube's developed length at first)
+    let dies = |radial: f64, pitch: f64| -> Vec<PrescribedDisplacement> {
         (0..=g.convolutions)
             .flat_map(|k| {
                 let name = format!("die{k}");
-                [set(&name, Component::R, radial), set(&name, Component::Z, if closed { g.die_travel(k) } else { 0.0 })]
+                [set(&name, Component::R, radial), set(&name, Component::Z, k as f64 * (pitch - g.developed))]
             })
             .collect()
     };
@@ -216,15 +247,18 @@ pub fn model(p: &DesignSpec) -> Result<Model> {
     };
     let pressure = |value: f64| vec![Pressure { surface: "ply1_inner".into(), value }];
     let forming_pressure = p.forming_pressure()?;
-    let bulge = GeneralStep { pressures: pressure(p.bulge_pressure()?), ..GeneralStep::new("bulge", 4, [clamps(0.0), dies(0.0, false)].concat()) };
+    let bulge = GeneralStep { pressures: pressure(p.bulge_pressure()?), ..GeneralStep::new("bulge", 4, [clamps(0.0), dies(0.0, g.developed)].concat()) };
     let settle = GeneralStep { pressures: pressure(forming_pressure), ..GeneralStep::new("settle", 2, Vec::new()) };
-    let close = GeneralStep::new("close", p.forming_increments(), [clamps(end), dies(0.0, true)].concat());
+    let close = GeneralStep::new("close", p.forming_increments(), [clamps(end), dies(0.0, g.closed_pitch)].concat());
     let release = GeneralStep { pressures: pressure(0.0), ..GeneralStep::new("release", 4, Vec::new()) };
     // the dies drawn out past the crests, the far tangent free to spring back along the axis
-    let draw = p.bellows.convolution_height + DRAW_CLEAR;
-    let springback_bcs =
-        [vec![set("tangent_a", Component::R, 0.0), set("tangent_a", Component::Z, 0.0), set("tangent_b", Component::R, 0.0)], dies(draw, true)].concat();
-    let springback = GeneralStep { release_constraints: true, ..GeneralStep::new("springback", 20, springback_bcs) };
+    // (opening the dies first does not help: the bellows springs less than they open, and the
+    // last dies drag their convolutions; measured on the seed joint, 334 increments for 35)
+    let free = vec![set("tangent_a", Component::R, 0.0), set("tangent_a", Component::Z, 0.0), set("tangent_b", Component::R, 0.0)];
+    let springback = GeneralStep {
+        release_constraints: true,
+        ..GeneralStep::new("springback", 20, [free, dies(p.bellows.convolution_height + DRAW_CLEAR, g.closed_pitch)].concat())
+    };
     // the dies move as prescribed at every node: their material only has to be something (elastic,
     // that no return map runs there); their stresses mean nothing (drawn out radially, a ring
     // is stretched in hoop)

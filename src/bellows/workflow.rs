@@ -200,24 +200,41 @@ pub fn run(session: &PetscSession, job: &BellowsJob) -> Result<RunSummary> {
     )
 }
 
-/// `--form`: the bellows hydroformed from a straight tube, its four steps (collective).
+/// `--form`: the bellows hydroformed from a straight tube (its five steps, into the output),
+/// then the formed bellows in service (the design pressure and the stroke, continuing the
+/// forming's file into [`service_path`]) (collective).
 pub fn form(session: &PetscSession, job: &BellowsJob) -> Result<RunSummary> {
-    let model = super::forming::model(&job.params)?;
-    crate::solve::run(
-        session,
-        &model,
-        &RunOptions { output: job.output.clone(), progress: !job.quiet, verbose: job.verbose, monitor: job.monitor, restart: job.restart.clone() },
-    )
+    let p = &job.params;
+    let options =
+        |output: PathBuf, restart: Option<RestartFrom>| RunOptions { output, progress: !job.quiet, verbose: job.verbose, monitor: job.monitor, restart };
+    let forming = super::forming::model(p)?;
+    let formed = crate::solve::run(session, &forming, &options(job.output.clone(), job.restart.clone()))?;
+    // where the springback left the far tangent: the service holds it there
+    let tangent_b = &forming.node_sets["tangent_b"];
+    let sprung = tangent_b.iter().map(|&n| formed.displacement[n][1]).sum::<f64>() / tangent_b.len() as f64;
+    let service = super::forming::service_model(p, sprung)?;
+    let path = service_path(&job.output);
+    crate::output_path::check_output_path(&path, None)?;
+    crate::solve::run(session, &service, &options(path, Some(RestartFrom { file: job.output.clone(), increment: None })))
 }
 
-/// The forming's table from its results file, printed and kept in it (rank 0, after the run).
+/// The service's results file beside the forming's: `STEM_service.h5`.
+pub fn service_path(output: &Path) -> PathBuf {
+    let stem = output.file_stem().unwrap_or_default().to_string_lossy();
+    output.with_file_name(format!("{stem}_service.h5"))
+}
+
+/// The forming's and the service's tables from their results files, printed and kept in the
+/// forming's (rank 0, after the runs).
 pub fn forming_report(job: &BellowsJob, _summary: &RunSummary) -> Result<()> {
-    use super::forming::measure::{table, Formed};
-    let reader = ResultsReader::open(&job.output)?;
-    let table = table(&job.params, &Formed::read(&job.params, &reader)?);
-    drop(reader);
-    println!("\n{table}");
-    crate::io::assessment::write_tables(&job.output, &[(super::forming::measure::TABLE, table)])
+    use super::forming::{measure, service};
+    let p = &job.params;
+    let (formed, serving) = (ResultsReader::open(&job.output)?, ResultsReader::open(&service_path(&job.output))?);
+    let forming = measure::table(p, &measure::Formed::read(p, &formed)?);
+    let in_service = service::table(p, &service::Service::read(&formed, &serving)?);
+    drop((formed, serving));
+    println!("\n{forming}\n{in_service}");
+    crate::io::assessment::write_tables(&job.output, &[(measure::TABLE, forming), (service::TABLE, in_service)])
 }
 
 /// How far `--dba`'s limit load raises the design pressure looking for the collapse: the

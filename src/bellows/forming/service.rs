@@ -1,0 +1,96 @@
+//! The formed bellows in service: what the design pressure and the stroke did to it, read from
+//! the service's file (which continues the forming's), and its table.
+
+use super::FORMING_STEPS;
+use crate::bellows::spec::DesignSpec;
+use crate::error::{Error, Result};
+use crate::io::reader::ResultsReader;
+use std::f64::consts::PI;
+
+/// The name of the service's table in the forming's results file.
+pub const TABLE: &str = "formed bellows in service";
+
+/// The formed bellows under the design pressure and through the stroke (forces over the full
+/// ring, N; rates N/mm).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Service {
+    /// The largest plastic strain the design pressure added to what forming left.
+    pub pressure_strain: f64,
+    /// The axial force the bellows bears on the far tangent (positive pushing it away, the
+    /// reaction's opposite) at the stroke's start (the pressure's thrust) and end.
+    pub force_before: f64,
+    pub force_after: f64,
+    /// The axial rate over the stroke's first increment, and the secant over the whole stroke.
+    pub initial_rate: f64,
+    pub secant_rate: f64,
+    /// The largest plastic strain the stroke added.
+    pub stroke_strain: f64,
+}
+
+/// The last complete increment of general step `step` (1-based) in `reader`.
+fn end_of_step(reader: &ResultsReader, step: usize) -> Result<String> {
+    let names = reader.increments()?;
+    names
+        .iter()
+        .rev()
+        .find(|n| reader.increment_attr(n, "step").ok() == Some(step as f64))
+        .cloned()
+        .ok_or_else(|| Error::input(format!("{}: no increment of step {step}", reader.path().display())))
+}
+
+/// The largest nodal increase of the equivalent plastic strain from `before` to `after`.
+fn added_strain(before: &[f64], after: &[f64]) -> f64 {
+    before.iter().zip(after).map(|(a, b)| b - a).fold(0.0, f64::max)
+}
+
+impl Service {
+    /// From the forming's file `formed` and the service's `service` (its steps the forming's
+    /// [`FORMING_STEPS`], then `SERVICE_STEPS`).
+    pub fn read(formed: &ResultsReader, service: &ResultsReader) -> Result<Service> {
+        let ep = |r: &ResultsReader, inc: &str| r.field(inc, "equivalent_plastic_strain");
+        let formed_end = formed.increments()?.pop().ok_or_else(|| Error::input("the forming's file has no increment"))?;
+        let (pressure, stroke) = (FORMING_STEPS + 1, FORMING_STEPS + 2);
+        let (pressed, stroked) = (end_of_step(service, pressure)?, end_of_step(service, stroke)?);
+        let (e0, e1, e2) = (ep(formed, &formed_end)?, ep(service, &pressed)?, ep(service, &stroked)?);
+        let rows: Vec<_> = service.history_rows()?.into_iter().map(|(_, r)| r).filter(|r| r.step == stroke).collect();
+        let at = |r: &crate::io::HistoryRow| -> Option<(f64, f64)> {
+            let f = r.reactions.iter().find(|(s, _)| s == "tangent_b")?.1[1];
+            let u = r.set_displacements.iter().find(|(s, _)| s == "tangent_b")?.1[1];
+            Some((2.0 * PI * f, u))
+        };
+        let points: Vec<(f64, f64)> = rows.iter().filter_map(at).collect();
+        let pressure_rows: Vec<_> = service.history_rows()?.into_iter().map(|(_, r)| r).filter(|r| r.step == pressure).collect();
+        let start = pressure_rows.last().and_then(at).ok_or_else(|| Error::input(format!("{}: no end of the pressure step", service.path().display())))?;
+        let (first, last) = match (points.first(), points.last()) {
+            (Some(&a), Some(&b)) => (a, b),
+            _ => return Err(Error::input(format!("{}: the stroke has no increment", service.path().display()))),
+        };
+        // the force the bellows bears on the far tangent (the reaction's opposite): the
+        // pressure's thrust, then the stroke's compression on top
+        let rate = |(f0, u0): (f64, f64), (f1, u1): (f64, f64)| (f1 - f0) / (u1 - u0);
+        Ok(Service {
+            pressure_strain: added_strain(&e0, &e1),
+            force_before: -start.0,
+            force_after: -last.0,
+            initial_rate: rate(start, first),
+            secant_rate: rate(start, last),
+            stroke_strain: added_strain(&e1, &e2),
+        })
+    }
+}
+
+/// The service's table.
+pub fn table(p: &DesignSpec, s: &Service) -> String {
+    let mut out = format!(
+        "the formed bellows in service (its tangents clamped, {} MPa inside, then {} mm of stroke; the forming's material, its\n  \
+         thickness, cold work and residual stress carried on):\n",
+        crate::error::shown(p.design.pressure),
+        crate::error::shown(p.displacement())
+    );
+    let row = |label: &str, value: String| format!("  {label:<62} {value}\n");
+    out += &row("plastic strain the design pressure added, %", format!("{:.4}", 100.0 * s.pressure_strain));
+    out += &row("end force, N: under the pressure, at the stroke's end", format!("{:.1}, {:.1}", s.force_before, s.force_after));
+    out += &row("axial rate, N/mm: the stroke's first increment, its secant", format!("{:.1}, {:.1}", s.initial_rate, s.secant_rate));
+    out += &row("plastic strain the stroke added (largest), %", format!("{:.2}", 100.0 * s.stroke_strain));
+    out
+}
