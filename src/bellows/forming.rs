@@ -1,15 +1,16 @@
 //! The bellows hydroformed from a straight tube (`bellows --form`): the tube of n nested plies
 //! (each its own body, the interfaces in contact), its ends clamped as tangents, between die
-//! plates at every root. Internal pressure bulges the tube between the dies (step `bulge`),
-//! the dies close axially to the pitch with the pressure held (`close`), the pressure is let
-//! out (`release`) and the dies drawn out radially past the crests with the far end let go
-//! (`springback`): what is left is the formed bellows, its thinning, cold work and residual
-//! stress. The dies are rigid: every node of a die plate moves as prescribed.
+//! plates at every root. Internal pressure bulges the tube between the dies (step `bulge`, then
+//! `settle` to the forming pressure), the dies close axially to the pitch with the pressure
+//! held (`close`), the pressure is let out (`release`) and the dies drawn out radially past the
+//! crests with the far tangent let go (`springback`): what is left is the formed bellows, its
+//! thinning, cold work and residual stress. The dies are rigid: every node of a die plate
+//! moves as prescribed. [`service_model`] puts the formed bellows in service after these steps.
 //!
 //! Geometry: the tube's inside at the bellows' inside radius Db / 2 (the pack on the tangents),
 //! its convoluted part N developed lengths long; die k's plate (2 rir thick, a full-round nose
 //! of radius rir) first touches the tube's outside at z = Lt + k L, closing to Lt + k (q - c).
-//! The figures of what was formed are `forming::measure`'s.
+//! The figures of what was formed are `forming::measure`'s, of its service `forming::service`'s.
 
 pub mod measure;
 pub mod service;
