@@ -25,6 +25,9 @@ pub struct Formed {
     /// The pack's thickness at each crest top and at each root between two convolutions.
     pub crest_thickness: Vec<f64>,
     pub root_thickness: Vec<f64>,
+    /// Each ply's thickness at the crest tops (the inside ply first), the mean over the
+    /// convolutions.
+    pub crest_ply_thickness: Vec<f64>,
     /// Each ply's volume after forming over its volume before, less one.
     pub volume_change: Vec<f64>,
     /// The largest equivalent plastic strain, and its mean over the crest tops' and roots'
@@ -90,6 +93,18 @@ impl Formed {
                 }
             }
         }
+        // each ply's own, between its faces' tops in each convolution
+        let mut crest_ply_thickness = Vec::new();
+        for k in 1..=n {
+            let (i_nodes, o_nodes) = (reader.node_set(&format!("ply{k}_inner"))?, reader.node_set(&format!("ply{k}_outer"))?);
+            let per: Vec<f64> = (0..g.convolutions)
+                .map(|c| {
+                    let (a, b) = (z0 + c as f64 * g.developed, z0 + (c + 1) as f64 * g.developed);
+                    x[extreme(&within(&o_nodes, a, b), true)][0] - x[extreme(&within(&i_nodes, a, b), true)][0]
+                })
+                .collect();
+            crest_ply_thickness.push(mean(&per));
+        }
         // the convoluted length: from the first tangent's end to the second's start
         let tangent_b = reader.node_set("tangent_b")?;
         let start_b = tangent_b.iter().map(|&k| x[k][1]).fold(f64::INFINITY, f64::min);
@@ -105,6 +120,7 @@ impl Formed {
             crest_spacings: crest_z.windows(2).map(|w| w[1] - w[0]).collect(),
             crest_thickness,
             root_thickness,
+            crest_ply_thickness,
             volume_change,
             max_plastic_strain: max_ep,
             crest_plastic_strain: if crest_ep.is_empty() { f64::NAN } else { mean(&crest_ep) },
@@ -162,6 +178,8 @@ pub fn table(p: &DesignSpec, f: &Formed) -> String {
     out += &row("  crest to crest, mm", String::new(), range(&f.crest_spacings));
     out += &row("pack thickness at the crests, mm (EJMA's n tp)", format!("{tp:.4}"), format!("{:.4} ({})", f.crest(), range(&f.crest_thickness)));
     out += &row("pack thickness at the roots, mm (nominal n t)", format!("{:.4}", g.pack), format!("{:.4} ({})", f.root(), range(&f.root_thickness)));
+    let plies: Vec<String> = f.crest_ply_thickness.iter().map(|t| format!("{t:.4}")).collect();
+    out += &row("each ply at the crests, inside first, mm (EJMA's tp)", format!("{:.4}", tp / p.bellows.plies as f64), plies.join(", "));
     let volumes: Vec<String> = f.volume_change.iter().map(|v| format!("{:+.3}", pct(*v))).collect();
     out += &row("each ply's volume change, %", "0".into(), volumes.join(", "));
     out += &row(
