@@ -102,3 +102,26 @@ fn the_developed_length_follows_the_target_convolution() {
         assert!((p.convolution_meridian() - per).abs() < 1e-9, "pitch {pitch}: {} against the mesher's {per}", p.convolution_meridian());
     }
 }
+
+/// A restart from an increment of the forming (the closing's 54th, run-wide #60) continues it
+/// bit for bit on 1 rank, and the formed bellows' service after it is the uninterrupted run's:
+/// the same history, bit for bit.
+#[test]
+fn a_restart_from_the_forming_continues_it_bit_for_bit() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("two.toml");
+    std::fs::write(&file, "[bellows]\nconvolutions = 2\n[design]\naxial_compression = 10.0\n").unwrap();
+    let run = |extra: &[&str]| {
+        let out = command_in(dir.path(), 1).args(["bellows", "--form", "--quick", "-q", "--params"]).arg(&file).args(extra).output().unwrap();
+        assert!(out.status.success(), "{}{}", String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr));
+    };
+    let path = |name: &str| dir.path().join(name).to_string_lossy().into_owned();
+    run(&["-o", &path("full.h5")]);
+    run(&["--restart", &path("full.h5"), "--increment", "60", "-o", &path("from60.h5")]);
+    common::assert_continues(&dir.path().join("full.h5"), &dir.path().join("from60.h5"), 60);
+    let (a, b) = (common::Results::open(&dir.path().join("full_service.h5")), common::Results::open(&dir.path().join("from60_service.h5")));
+    for name in ["reaction_tangent_b_z", "displacement_tangent_b_z", "max_equivalent_plastic_strain", "newton_iterations"] {
+        let (x, y) = (a.history(name), b.history(name));
+        assert!(x.len() > 60 && x.len() == y.len() && x.iter().zip(&y).all(|(p, q)| p.to_bits() == q.to_bits()), "service {name}: {x:?} vs {y:?}");
+    }
+}

@@ -189,8 +189,10 @@ pub struct BellowsArgs {
     pub dba: bool,
     /// Instead of the joint's run, hydroform its bellows from a straight tube (the `[forming]`
     /// table, docs/bellows.md "Forming"): pressure between die plates, the dies closed to the
-    /// pitch, the pressure let out and the dies drawn out; prints the formed bellows beside its
-    /// target (height, pitch, crest and root thickness, volume, plastic strain).
+    /// pitch, the pressure let out and the dies drawn out; then the formed bellows under the
+    /// design pressure and stroke (OUTPUT_service.h5, continuing the forming's file). Prints
+    /// the formed bellows beside its target (height, pitch, crest and root thickness, volume,
+    /// plastic strain) and what the service did to it.
     #[arg(long, conflicts_with_all = ["check_only", "dba", "joint.cycle", "squirm", "assess", "frequencies", "lateral", "angular", "report"])]
     pub form: bool,
     /// After the run, write the design report: one self-contained HTML file (the
