@@ -33,6 +33,11 @@ const NOSE_ELEMENTS: usize = 16;
 /// took 299 with 150 cutbacks, 86 s on the quick mesh; asked in 100, 100 and none, 23 s.
 const SPRINGBACK_INCREMENTS: usize = 100;
 
+/// How many times `--form` forms the bellows at most: a first forming, then, where its w or
+/// q misses the target by more than [`measure::TOLERANCE`], again with the tube and the dies
+/// corrected by what it missed (the maker's tool tryout).
+pub const TRYOUTS: usize = 3;
+
 /// The forming's steps: the service's follow them.
 pub const FORMING_STEPS: usize = 5;
 

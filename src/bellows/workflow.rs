@@ -204,15 +204,34 @@ pub fn run(session: &PetscSession, job: &BellowsJob) -> Result<RunSummary> {
 /// then the formed bellows in service (the design pressure and the stroke, continuing the
 /// forming's file into [`service_path`]) (collective).
 pub fn form(session: &PetscSession, job: &BellowsJob) -> Result<RunSummary> {
-    let p = &job.params;
+    use super::forming::{measure::Formed, TRYOUTS};
     let options =
         |output: PathBuf, restart: Option<RestartFrom>| RunOptions { output, progress: !job.quiet, verbose: job.verbose, monitor: job.monitor, restart };
-    let forming = super::forming::model(p)?;
-    let formed = crate::solve::run(session, &forming, &options(job.output.clone(), job.restart.clone()))?;
+    let root = session.world().rank() == 0;
+    let mut p = job.params.clone();
+    // the tool tryout: formed again with the tube and the dies corrected where the formed w or q
+    // misses the target by more than the tolerance (a restart continues its one forming)
+    let tryouts = if job.restart.is_some() { 1 } else { TRYOUTS };
+    let mut tryout = 1;
+    let (forming, formed) = loop {
+        let forming = super::forming::model(&p)?;
+        let formed = crate::solve::run(session, &forming, &options(job.output.clone(), job.restart.clone()))?;
+        let figures = Formed::read(&p, &ResultsReader::open(&job.output)?)?;
+        match figures.corrected(&p).filter(|_| tryout < tryouts) {
+            None => break (forming, formed),
+            Some(next) => {
+                if root && !job.quiet {
+                    println!("{}", figures.tryout_line(&p, &next));
+                }
+                p = next;
+                tryout += 1;
+            }
+        }
+    };
     // where the springback left the far tangent: the service holds it there
     let tangent_b = &forming.node_sets["tangent_b"];
     let sprung = tangent_b.iter().map(|&n| formed.displacement[n][1]).sum::<f64>() / tangent_b.len() as f64;
-    let service = super::forming::service_model(p, sprung)?;
+    let service = super::forming::service_model(&p, sprung)?;
     let path = service_path(&job.output);
     crate::output_path::check_output_path(&path, None)?;
     crate::solve::run(session, &service, &options(path, Some(RestartFrom { file: job.output.clone(), increment: None })))
@@ -228,8 +247,9 @@ pub fn service_path(output: &Path) -> PathBuf {
 /// forming's (rank 0, after the runs).
 pub fn forming_report(job: &BellowsJob, _summary: &RunSummary) -> Result<()> {
     use super::forming::{measure, service};
-    let p = &job.params;
     let (formed, serving) = (ResultsReader::open(&job.output)?, ResultsReader::open(&service_path(&job.output))?);
+    // the joint as last formed (a tryout corrects the tube and the dies): the file's own
+    let p = &DesignSpec::from_deck(&formed.text_attr("deck")?, &format!("{}: its deck", job.output.display()))?;
     let forming = measure::table(p, &measure::Formed::read(p, &formed)?);
     let in_service = service::table(p, &service::Service::read(&formed, &serving)?);
     drop((formed, serving));

@@ -37,6 +37,13 @@ pub struct Formed {
     pub root_plastic_strain: f64,
 }
 
+/// How far the formed w and q may miss the target's, a fraction, before a tryout forms again.
+pub const TOLERANCE: f64 = 0.02;
+
+/// A convolution's height gained per mm of tube: its two sidewalls share the tube (the seed's
+/// 53.70 mm formed w 18.78, 56.12 mm 20.04: 0.52).
+const HEIGHT_PER_LENGTH: f64 = 0.5;
+
 fn mean(v: &[f64]) -> f64 {
     v.iter().sum::<f64>() / v.len() as f64
 }
@@ -53,6 +60,35 @@ impl Formed {
 
     pub fn root(&self) -> f64 {
         mean(&self.root_thickness)
+    }
+
+    /// The joint to form again where this forming's w or q misses the target's by more than
+    /// [`TOLERANCE`]: the developed length longer by the height missed over
+    /// [`HEIGHT_PER_LENGTH`], the dies closing shorter by the pitch missed.
+    pub fn corrected(&self, p: &DesignSpec) -> Option<DesignSpec> {
+        let (w, q) = (p.bellows.convolution_height, p.bellows.pitch);
+        if (self.height() / w - 1.0).abs() <= TOLERANCE && (self.pitch / q - 1.0).abs() <= TOLERANCE {
+            return None;
+        }
+        let mut next = p.clone();
+        next.forming.developed_length = Some(p.developed_length() + (w - self.height()) / HEIGHT_PER_LENGTH);
+        next.forming.overclose = Some((p.overclose() + self.pitch - q).max(0.0));
+        next.validate_forming().ok().map(|_| next)
+    }
+
+    /// The line a tryout prints: what was formed, what is formed next.
+    pub fn tryout_line(&self, p: &DesignSpec, next: &DesignSpec) -> String {
+        format!(
+            "forming: w {:.3} mm for {}, q {:.3} mm for {}: formed again from {:.2} mm of tube a convolution (was {:.2}), the dies closed {:.2} mm short of the pitch (was {:.2})",
+            self.height(),
+            p.bellows.convolution_height,
+            self.pitch,
+            p.bellows.pitch,
+            next.developed_length(),
+            p.developed_length(),
+            next.overclose(),
+            p.overclose()
+        )
     }
 
     /// The figures of the file's last increment (the forming's end).
