@@ -218,12 +218,12 @@ pub fn model(p: &DesignSpec) -> Result<Model> {
         tangential_penalty: p.joint.elastic_slip.is_none().then_some(p.joint.tangential_penalty),
         elastic_slip: p.joint.elastic_slip,
     });
-    let pair = |name: String, slave: String, master: &str, two_pass: bool, integration: ContactIntegration| ContactPair {
+    let pair = |name: String, slave: String, master: &str, two_pass: bool| ContactPair {
         name,
         slave,
         master: master.to_string(),
         two_pass,
-        integration,
+        integration: ContactIntegration::Segment,
         penalty: Penalty::Stiffness(p.forming_penalty()),
         capture_distance: (2.0 * g.ply).max(2.0 * p.joint.ply_element_length),
         augmented_lagrangian: None,
@@ -233,15 +233,14 @@ pub fn model(p: &DesignSpec) -> Result<Model> {
         slave_nodes: None,
     };
     let n = p.bellows.plies;
-    let mut contacts: Vec<ContactPair> = (1..n)
-        .map(|k| pair(format!("ply{k}_ply{}", k + 1), format!("ply{}_inner", k + 1), &format!("ply{k}_outer"), true, ContactIntegration::Segment))
-        .collect();
-    contacts.push(pair("dies".into(), format!("ply{n}_outer"), "dies", false, ContactIntegration::Segment));
+    let mut contacts: Vec<ContactPair> =
+        (1..n).map(|k| pair(format!("ply{k}_ply{}", k + 1), format!("ply{}_inner", k + 1), &format!("ply{k}_outer"), true)).collect();
+    contacts.push(pair("dies".into(), format!("ply{n}_outer"), "dies", false));
     // the convolutions' faces on each other in service (in the model from the start: a restart
     // keeps its contact pairs)
     let [outside, inside] = super::joint::FOLD_PAIRS;
-    contacts.push(pair(outside.into(), format!("ply{n}_outer"), &format!("ply{n}_outer"), false, ContactIntegration::Segment));
-    contacts.push(pair(inside.into(), "ply1_inner".into(), "ply1_inner", false, ContactIntegration::Segment));
+    contacts.push(pair(outside.into(), format!("ply{n}_outer"), &format!("ply{n}_outer"), false));
+    contacts.push(pair(inside.into(), "ply1_inner".into(), "ply1_inner", false));
     let set = |s: &str, component: Component, value: f64| PrescribedDisplacement { node_set: s.into(), component, value };
     // the dies out by `radial`, at `pitch` apart (the straight tube's developed length at first)
     let dies = |radial: f64, pitch: f64| -> Vec<PrescribedDisplacement> {
