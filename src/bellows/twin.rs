@@ -65,7 +65,7 @@ fn yield_under_pressure(p: &DesignSpec, rows: &[(String, HistoryRow)]) -> Option
 /// note where one takes more than [`UNEVEN_SHARE`] times the mean. None without a stroke or
 /// without that increment's fields.
 fn stroke_shares(p: &DesignSpec, reader: &ResultsReader, rows: &[(String, HistoryRow)]) -> Result<Option<String>> {
-    let Some(end) = rows.iter().map(|(_, r)| r).filter(|r| r.step == 2).last() else { return Ok(None) };
+    let Some(end) = rows.iter().rev().map(|(_, r)| r).find(|r| r.step == 2) else { return Ok(None) };
     let group = format!("{:06}", end.number);
     if p.displacement() == 0.0 || !reader.has_displacement(&group) {
         return Ok(None);
