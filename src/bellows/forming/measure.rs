@@ -146,10 +146,11 @@ impl Formed {
         let start_b = tangent_b.iter().map(|&k| x[k][1]).fold(f64::INFINITY, f64::min);
         let pitch = (start_b - z0) / g.convolutions as f64;
         let volume_change = (1..=n).map(|k| ply_volume_change(reader, &x0, &x, &format!("ply{k}"))).collect::<Result<Vec<f64>>>()?;
-        let max_ep = ep.as_ref().map_or(f64::NAN, |ep| {
-            let plies: Vec<usize> = (1..=n).flat_map(|k| reader.node_set(&format!("ply{k}")).unwrap_or_default()).collect();
-            plies.iter().map(|&k| ep[k]).fold(0.0, f64::max)
-        });
+        let mut plies = Vec::new();
+        for k in 1..=n {
+            plies.extend(reader.node_set(&format!("ply{k}"))?);
+        }
+        let max_ep = ep.as_ref().map_or(f64::NAN, |ep| plies.iter().map(|&k| ep[k]).fold(0.0, f64::max));
         Ok(Formed {
             heights,
             pitch,

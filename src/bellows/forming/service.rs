@@ -52,15 +52,20 @@ impl Service {
         let (pressure, stroke) = (FORMING_STEPS + 1, FORMING_STEPS + 2);
         let (pressed, stroked) = (end_of_step(service, pressure)?, end_of_step(service, stroke)?);
         let (e0, e1, e2) = (ep(formed, &formed_end)?, ep(service, &pressed)?, ep(service, &stroked)?);
-        let rows: Vec<_> = service.history_rows()?.into_iter().map(|(_, r)| r).filter(|r| r.step == stroke).collect();
+        let history: Vec<crate::io::HistoryRow> = service.history_rows()?.into_iter().map(|(_, r)| r).collect();
+        let rows: Vec<&crate::io::HistoryRow> = history.iter().filter(|r| r.step == stroke).collect();
         let at = |r: &crate::io::HistoryRow| -> Option<(f64, f64)> {
             let f = r.reactions.iter().find(|(s, _)| s == "tangent_b")?.1[1];
             let u = r.set_displacements.iter().find(|(s, _)| s == "tangent_b")?.1[1];
             Some((2.0 * PI * f, u))
         };
-        let points: Vec<(f64, f64)> = rows.iter().filter_map(at).collect();
-        let pressure_rows: Vec<_> = service.history_rows()?.into_iter().map(|(_, r)| r).filter(|r| r.step == pressure).collect();
-        let start = pressure_rows.last().and_then(at).ok_or_else(|| Error::input(format!("{}: no end of the pressure step", service.path().display())))?;
+        let points: Vec<(f64, f64)> = rows.iter().filter_map(|r| at(r)).collect();
+        let start = history
+            .iter()
+            .rev()
+            .find(|r| r.step == pressure)
+            .and_then(at)
+            .ok_or_else(|| Error::input(format!("{}: no end of the pressure step", service.path().display())))?;
         let (first, last) = match (points.first(), points.last()) {
             (Some(&a), Some(&b)) => (a, b),
             _ => return Err(Error::input(format!("{}: the stroke has no increment", service.path().display()))),
