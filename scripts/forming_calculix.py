@@ -1,0 +1,97 @@
+#!/usr/bin/env python3
+"""The forming as CalculiX and slideline each ran the same deck, side by side at every time
+both reached: the ply's displacement (largest, and the largest difference between the two at
+one node), each bulge's crest (the ply's outside radius at its highest point) and the ply's
+thickness there, and the largest equivalent plastic strain at the nodes. Used by
+scripts/compare-forming-calculix.sh; needs h5py (python3-h5py).
+
+usage: forming_calculix.py JOB.frd JOB.inp SLIDELINE.h5
+"""
+import math
+import sys
+
+import h5py
+
+
+def frd_blocks(path):
+    """{time: {name: {node: [values]}}} of an ASCII .frd file's result blocks."""
+    out, current, time = {}, None, None
+    for line in open(path):
+        if line.startswith("  100CL"):
+            time = float(line[12:24])
+        elif line.startswith(" -4"):
+            current = out.setdefault(time, {}).setdefault(line.split()[1], {})
+        elif line.startswith(" -1") and current is not None:
+            # fixed width: ' -1', the node (10 characters), the values (12 each)
+            body = line[13:].rstrip("\n")
+            current[int(line[3:13])] = [float(body[k:k + 12]) for k in range(0, len(body) - 11, 12)]
+        elif line.startswith(" -3"):
+            current = None
+    return out
+
+
+def inp_sets(path, names):
+    """{name: [node]} of the deck's *NSET cards named."""
+    sets, name = {}, None
+    for line in open(path):
+        if line.startswith("*"):
+            card = line.upper()
+            name = None
+            if card.startswith("*NSET") and "NSET=" in card:
+                key = card.split("NSET=")[1].split(",")[0].strip()
+                if key in names:
+                    name = key
+                    sets[name] = []
+        elif name:
+            sets[name] += [int(v) for v in line.replace(",", " ").split()]
+    return sets
+
+
+def crests(coordinates, displacement, outer, inner):
+    """Each convolution's crest: (z, outside radius, ply thickness there) at the outside nodes
+    radially highest between their neighbours along the meridian (the straight tube's axial
+    order), over 1 mm above the lowest."""
+    at = lambda n: (coordinates[n][0] + displacement[n][0], coordinates[n][1] + displacement[n][1])
+    line = [at(n) for n in sorted(outer, key=lambda n: coordinates[n][1])]
+    low = min(r for r, _ in line)
+    inside = [at(n) for n in inner]
+    out = []
+    for k in range(1, len(line) - 1):
+        r, z = line[k]
+        if r > low + 1.0 and r >= line[k - 1][0] and r > line[k + 1][0]:
+            out.append((z, r, min(math.hypot(r - ri, z - zi) for ri, zi in inside)))
+    return out
+
+
+def main(frd, inp, h5):
+    ccx = frd_blocks(frd)
+    sets = inp_sets(inp, {"PLY1", "PLY1_OUTER", "PLY1_INNER"})
+    f = h5py.File(h5, "r")
+    ids = list(f["mesh/node_ids"][:])
+    index = {n: k for k, n in enumerate(ids)}
+    coordinates = {n: f["mesh/coordinates"][k] for n, k in index.items()}
+    increments = {round(float(g.attrs["time"]), 9): g for g in f["increments"].values() if g.attrs.get("complete", 1)}
+    ply = sets["PLY1"]
+    print(f"{'time':>9} {'|u| max, mm':>24} {'max |du| / max |u|':>19} {'crests: r, mm (CalculiX / slideline)':>40} "
+          f"{'thickness there, mm':>30} {'PEEQ max, %':>16}")
+    for time in sorted(t for t in ccx if "DISP" in ccx[t]):
+        group = increments.get(round(time, 9))
+        if group is None:
+            continue
+        u_sl = {n: group["nodal/displacement"][index[n]] for n in ply}
+        u_cx = {n: ccx[time]["DISP"][n][:2] for n in ply}
+        umax = [max(math.hypot(*u[n]) for n in ply) for u in (u_cx, u_sl)]
+        du = max(math.hypot(u_cx[n][0] - u_sl[n][0], u_cx[n][1] - u_sl[n][1]) for n in ply)
+        c = [crests(coordinates, u, sets["PLY1_OUTER"], sets["PLY1_INNER"]) for u in (u_cx, u_sl)]
+        pe_cx = max(ccx[time]["PE"][n][0] for n in ply) if "PE" in ccx[time] else float("nan")
+        pe_sl = max(group["nodal/equivalent_plastic_strain"][index[n]] for n in ply)
+        radii = "  ".join(f"{a[1]:.3f}/{b[1]:.3f}" for a, b in zip(*c))
+        thick = "  ".join(f"{a[2]:.4f}/{b[2]:.4f}" for a, b in zip(*c))
+        print(f"{time:9.4f} {umax[0]:11.4f} / {umax[1]:9.4f} {du / umax[1]:19.2e} {radii:>40} {thick:>30} "
+              f"{100 * pe_cx:7.3f} / {100 * pe_sl:6.3f}")
+
+
+if __name__ == "__main__":
+    if len(sys.argv) != 4:
+        sys.exit(__doc__)
+    main(*sys.argv[1:])
