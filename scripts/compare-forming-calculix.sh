@@ -29,7 +29,7 @@ command -v ccx >/dev/null || { echo "installing CalculiX (calculix-ccx)" >&2; ap
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1 OMPI_MCA_rmaps_base_oversubscribe=1
 (cd "$here" && cargo build --release --quiet)
 slideline="$here/target/release/slideline"
-python="${SLIDELINE_PYTHON:-python3}"
+python="${SLIDELINE_PYTHON:-/usr/bin/python3}"
 if [ -n "$keep" ]; then work="$keep"; mkdir -p "$work"; else work="$(mktemp -d)"; trap 'rm -rf "$work"' EXIT; fi
 cd "$work"
 if [ -z "$params" ]; then

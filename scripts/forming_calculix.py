@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
 """The forming as CalculiX and slideline each ran the same deck, side by side at every time
-both reached: the ply's displacement (largest, and the largest difference between the two at
-one node), each bulge's crest (the ply's outside radius at its highest point) and the ply's
-thickness there, and the largest equivalent plastic strain at the nodes. Used by
+both reached, ply by ply: its displacement (largest, and the largest difference between the
+two at one node), each convolution's crest (the ply's outside radius at its highest point) and
+the ply's thickness there, and the largest equivalent plastic strain at its nodes. Used by
 scripts/compare-forming-calculix.sh; needs h5py (python3-h5py).
 
 usage: forming_calculix.py JOB.frd JOB.inp SLIDELINE.h5
@@ -65,30 +65,33 @@ def crests(coordinates, displacement, outer, inner):
 
 def main(frd, inp, h5):
     ccx = frd_blocks(frd)
-    sets = inp_sets(inp, {"PLY1", "PLY1_OUTER", "PLY1_INNER"})
     f = h5py.File(h5, "r")
+    plies = sorted(k for k in f["mesh/node_sets"].keys() if k.startswith("PLY") and k[3:].isdigit())
+    sets = inp_sets(inp, set(plies) | {f"{k}_{side}" for k in plies for side in ("OUTER", "INNER")})
     ids = list(f["mesh/node_ids"][:])
     index = {n: k for k, n in enumerate(ids)}
     coordinates = {n: f["mesh/coordinates"][k] for n, k in index.items()}
     increments = {round(float(g.attrs["time"]), 9): g for g in f["increments"].values() if g.attrs.get("complete", 1)}
-    ply = sets["PLY1"]
-    print(f"{'time':>9} {'|u| max, mm':>24} {'max |du| / max |u|':>19} {'crests: r, mm (CalculiX / slideline)':>40} "
-          f"{'thickness there, mm':>30} {'PEEQ max, %':>16}")
+    every = [n for k in plies for n in sets[k]]
+    print(f"{'time':>7} {'ply':>5} {'|u| max, mm':>19} {'max |du| / max |u|':>19} {'crests: r, mm (CalculiX/slideline)':>36} "
+          f"{'thickness there, mm':>28} {'PEEQ max, %':>16}")
     for time in sorted(t for t in ccx if "DISP" in ccx[t]):
         group = increments.get(round(time, 9))
         if group is None:
             continue
-        u_sl = {n: group["nodal/displacement"][index[n]] for n in ply}
-        u_cx = {n: ccx[time]["DISP"][n][:2] for n in ply}
-        umax = [max(math.hypot(*u[n]) for n in ply) for u in (u_cx, u_sl)]
-        du = max(math.hypot(u_cx[n][0] - u_sl[n][0], u_cx[n][1] - u_sl[n][1]) for n in ply)
-        c = [crests(coordinates, u, sets["PLY1_OUTER"], sets["PLY1_INNER"]) for u in (u_cx, u_sl)]
-        pe_cx = max(ccx[time]["PE"][n][0] for n in ply) if "PE" in ccx[time] else float("nan")
-        pe_sl = max(group["nodal/equivalent_plastic_strain"][index[n]] for n in ply)
-        radii = "  ".join(f"{a[1]:.3f}/{b[1]:.3f}" for a, b in zip(*c))
-        thick = "  ".join(f"{a[2]:.4f}/{b[2]:.4f}" for a, b in zip(*c))
-        print(f"{time:9.4f} {umax[0]:11.4f} / {umax[1]:9.4f} {du / umax[1]:19.2e} {radii:>40} {thick:>30} "
-              f"{100 * pe_cx:7.3f} / {100 * pe_sl:6.3f}")
+        u_sl = {n: group["nodal/displacement"][index[n]] for n in every}
+        u_cx = {n: ccx[time]["DISP"][n][:2] for n in every}
+        for k in plies:
+            ply = sets[k]
+            umax = [max(math.hypot(*u[n]) for n in ply) for u in (u_cx, u_sl)]
+            du = max(math.hypot(u_cx[n][0] - u_sl[n][0], u_cx[n][1] - u_sl[n][1]) for n in ply)
+            c = [crests(coordinates, u, sets[k + "_OUTER"], sets[k + "_INNER"]) for u in (u_cx, u_sl)]
+            pe_cx = max(ccx[time]["PE"][n][0] for n in ply) if "PE" in ccx[time] else float("nan")
+            pe_sl = max(group["nodal/equivalent_plastic_strain"][index[n]] for n in ply)
+            radii = " ".join(f"{a[1]:.3f}/{b[1]:.3f}" for a, b in zip(*c))
+            thick = " ".join(f"{a[2]:.4f}/{b[2]:.4f}" for a, b in zip(*c))
+            print(f"{time:7.4f} {k.lower():>5} {umax[0]:8.4f} / {umax[1]:8.4f} {du / umax[1]:19.2e} {radii:>36} {thick:>28} "
+                  f"{100 * pe_cx:7.3f} / {100 * pe_sl:6.3f}")
 
 
 if __name__ == "__main__":

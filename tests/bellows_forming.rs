@@ -42,7 +42,7 @@ fn bad_forming_inputs_are_refused_by_key_before_any_work() {
 fn formed(table: &str, label: &str) -> Vec<f64> {
     let line = table.lines().find(|l| l.trim_start().starts_with(label)).unwrap_or_else(|| panic!("no row {label}: {table}"));
     let rest = &line[line.find(label).unwrap() + label.len()..];
-    let numbers: Vec<f64> = rest.split(|c: char| c.is_whitespace() || c == ',' || c == '(').filter_map(|w| w.parse::<f64>().ok()).collect();
+    let numbers: Vec<f64> = rest.split(|c: char| c.is_whitespace() || c == ',' || c == ';' || c == '(').filter_map(|w| w.parse::<f64>().ok()).collect();
     numbers
 }
 
@@ -87,6 +87,12 @@ fn a_formed_bellows_keeps_its_volume_and_thins_at_its_crests() {
     assert!(plies.len() == 3 && plies[1] < plies[2], "the inner ply thins most: {table}");
     let (w, q) = (formed(table, "convolution height w"), formed(table, "pitch q"));
     assert!((w[1] / 20.0 - 1.0).abs() < 0.03 && (q[1] / 24.0 - 1.0).abs() < 0.03, "{table}");
+    // the crest's hoop stretch alone, ln((r + w) / r) = ln(181 / 161) = 11.7 %, is the least
+    // equivalent plastic strain through the pack there (isochoric: eps_eq >= |eps_theta|);
+    // bending adds to it, and the largest anywhere is larger still
+    let ep = formed(table, "plastic strain, %: largest; through the pack at crests, roots");
+    let hoop = 100.0 * (181.0f64 / 161.0).ln();
+    assert!(ep.len() == 3 && ep[1] > hoop && ep[1] < 2.0 * hoop && ep[0] >= ep[1], "{table}");
     // in service, the formed bellows (cold-worked by forming) does not yield under the 0.6 MPa,
     // and its first stiffness is the seed paper's EJMA rate (16.16 N/mm per 2.5-degree sector
     // for six convolutions: 2327 N/mm over the ring, 6981 for two) within 20 %

@@ -38,7 +38,7 @@ fn end_of_step(reader: &ResultsReader, step: usize) -> Result<String> {
         .ok_or_else(|| Error::input(format!("{}: no increment of step {step}", reader.path().display())))
 }
 
-/// The largest nodal increase of the equivalent plastic strain from `before` to `after`.
+/// The largest increase of the equivalent plastic strain at a Gauss point from `before` to `after`.
 fn added_strain(before: &[f64], after: &[f64]) -> f64 {
     before.iter().zip(after).map(|(a, b)| b - a).fold(0.0, f64::max)
 }
