@@ -46,6 +46,11 @@ pub trait NonlinearProblem {
     fn force_sums(&self) -> [f64; 2] {
         [0.0, 0.0]
     }
+    /// The model's size in the unknowns' unit (its largest distance from the origin): the
+    /// field test's floor on the corrections scales with it (0: CalculiX's absolute floor).
+    fn model_size(&self) -> f64 {
+        0.0
+    }
     /// The unit of the residual's forces, for the monitor's lines.
     fn force_unit(&self) -> &'static str {
         "N/rad"

@@ -63,13 +63,12 @@ impl FieldContext {
             let correction_max = work.norm_max()?;
             work.difference(&x, &start)?;
             let increment_max = work.norm_max()?;
-            let solution_max = x.norm_max()?;
             let local = problem.force_sums();
             let mut global = [0.0; 2];
             world.all_reduce_into(&local[..], &mut global[..], SystemOperation::sum());
             let average_force = if global[1] > 0.0 { global[0] / global[1] } else { 0.0 };
             self.last_average_force = average_force;
-            let m = IterateMeasures { residual_max, correction_max, increment_max, solution_max, average_force };
+            let m = IterateMeasures { residual_max, correction_max, increment_max, model_size: problem.model_size(), average_force };
             let verdict = field_converged(&self.ratios, it, &m, self.average.with(average_force), &self.residuals);
             if say {
                 let (residual_bound, correction_bound, _) = field_bounds(&self.ratios, it, &m, self.average.with(average_force));

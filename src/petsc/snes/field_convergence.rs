@@ -22,18 +22,18 @@ pub struct FieldRatios {
     /// R_l: a residual this small against the time average passes without the correction
     /// check (a linear increment).
     pub linear: f64,
-    /// An increment that changes the solution by less than this share of its largest value
-    /// is idle (a step that holds its loads): its corrections are judged against that share
-    /// instead of the increment's own change, which may be round-off. Without it, a step that
-    /// changed nothing never converged where a friction node chattered between stick and slip
-    /// at 1e-7 mm (the forming's `settle` with friction: bound 7e-9 mm, 25 iterations, cut
-    /// back to nothing); CalculiX's own absolute floor, 1e-8, is below that chatter.
-    pub idle_share: f64,
+    /// A correction below this share of the model's size passes whatever the increment moved:
+    /// CalculiX's absolute floor (c_max < 1e-8) made relative to the model, whose units it
+    /// does not know. A step that holds its loads moves nothing, and its corrections are then
+    /// judged against round-off: the forming's `settle` with friction never converged, a die
+    /// node chattering between stick and slip at 1e-7 mm against a bound of 7e-9 mm (25
+    /// iterations, cut back to nothing); its model is 240 mm across, a floor of 2.4e-6 mm.
+    pub size_floor: f64,
 }
 
 impl Default for FieldRatios {
     fn default() -> Self {
-        FieldRatios { residual: 0.005, residual_late: 0.02, late_after: 9, correction: 0.02, zero_flux: 1e-5, zero_flux_correction: 1e-3, linear: 1e-8, idle_share: 1e-4 }
+        FieldRatios { residual: 0.005, residual_late: 0.02, late_after: 9, correction: 0.02, zero_flux: 1e-5, zero_flux_correction: 1e-3, linear: 1e-8, size_floor: 1e-8 }
     }
 }
 
@@ -46,8 +46,8 @@ pub struct IterateMeasures {
     pub correction_max: f64,
     /// Largest change of an unknown since the start of the increment, Delta u_max.
     pub increment_max: f64,
-    /// Largest unknown of the iterate (the total displacement), u_max.
-    pub solution_max: f64,
+    /// The model's size (its largest distance from the origin), in the unknowns' unit.
+    pub model_size: f64,
     /// Average magnitude of the element (and contact) nodal forces, q-bar.
     pub average_force: f64,
 }
@@ -86,7 +86,7 @@ pub fn field_bounds(ratios: &FieldRatios, iteration: usize, m: &IterateMeasures,
     } else {
         (ratios.residual_late, ratios.correction)
     };
-    (c1 * time_average, c2 * m.increment_max.max(ratios.idle_share * m.solution_max), zero_flux)
+    (c1 * time_average, c2 * m.increment_max, zero_flux)
 }
 
 /// Whether iteration `iteration` (1 for the first Newton step) has converged; `earlier` holds
@@ -106,7 +106,7 @@ pub fn field_converged(ratios: &FieldRatios, iteration: usize, m: &IterateMeasur
         || estimate < correction_bound
         || m.residual_max <= ratios.linear * time_average
         || zero_flux
-        || m.correction_max < 1e-8
+        || m.correction_max < (ratios.size_floor * m.model_size).max(1e-8)
 }
 
 #[cfg(test)]
@@ -114,7 +114,7 @@ mod tests {
     use super::*;
 
     fn measures(residual_max: f64, correction_max: f64) -> IterateMeasures {
-        IterateMeasures { residual_max, correction_max, increment_max: 1.0, solution_max: 1.0, average_force: 100.0 }
+        IterateMeasures { residual_max, correction_max, increment_max: 1.0, model_size: 1.0, average_force: 100.0 }
     }
 
     #[test]
@@ -141,22 +141,22 @@ mod tests {
         // a residual at 1e-9 of the average passes whatever the correction
         assert!(field_converged(&r, 1, &measures(1e-7, 0.5), 100.0, &[1.0]));
         // zero flux: the residual must be below 1e-5 of the time average
-        let idle = IterateMeasures { residual_max: 2e-3, correction_max: 0.5, increment_max: 1.0, solution_max: 1.0, average_force: 1e-4 };
+        let idle = IterateMeasures { residual_max: 2e-3, correction_max: 0.5, increment_max: 1.0, model_size: 1.0, average_force: 1e-4 };
         assert!(!field_converged(&r, 1, &idle, 100.0, &[1.0]));
         assert!(field_converged(&r, 1, &IterateMeasures { residual_max: 5e-4, ..idle }, 100.0, &[1.0]));
     }
 
     #[test]
-    fn an_idle_increment_judges_its_corrections_against_the_solution() {
+    fn a_correction_below_the_models_size_floor_passes() {
         let r = FieldRatios::default();
-        // the forming's settle with friction: the solution 0.22 mm, the increment 3e-7 mm, a
-        // stick-slip chatter of 1e-7 mm: converged (bound 0.02 x 1e-4 x 0.22 = 4.4e-7 mm)
-        let settle = IterateMeasures { residual_max: 0.4, correction_max: 9.7e-8, increment_max: 3e-7, solution_max: 0.22, average_force: 100.0 };
-        assert!(field_converged(&r, 3, &settle, 100.0, &[0.8, 0.4]));
-        // the same correction in an increment that moves: judged against the increment
-        assert!(!field_converged(&r, 3, &IterateMeasures { correction_max: 2e-3, increment_max: 0.05, ..settle }, 100.0, &[0.8, 0.4]));
-        // a correction of 1e-6 of a 0.22 mm solution is still too much for an idle increment
-        assert!(!field_converged(&r, 3, &IterateMeasures { correction_max: 1e-6, ..settle }, 100.0, &[0.8, 0.4]));
+        // the forming's settle with friction: the increment 3e-7 mm, a stick-slip chatter of
+        // 1e-7 mm, the model 240 mm across (floor 2.4e-6 mm): converged
+        let settle = IterateMeasures { residual_max: 0.4, correction_max: 9.7e-8, increment_max: 3e-7, model_size: 240.0, average_force: 100.0 };
+        assert!(field_converged(&r, 3, &settle, 100.0, &[0.5, 0.4]));
+        // the same in a model of unit size: below CalculiX's floor only under 1e-8
+        assert!(!field_converged(&r, 3, &IterateMeasures { model_size: 1.0, ..settle }, 100.0, &[0.5, 0.4]));
+        // a correction of 1e-5 mm in that increment is not round-off
+        assert!(!field_converged(&r, 3, &IterateMeasures { correction_max: 1e-5, ..settle }, 100.0, &[0.5, 0.4]));
     }
 
     #[test]

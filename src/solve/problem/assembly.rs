@@ -36,6 +36,10 @@ impl NonlinearProblem for Problem<'_, '_> {
         std::mem::take(&mut self.structure_changed)
     }
 
+    fn model_size(&self) -> f64 {
+        self.model.mesh.coords.iter().map(|x| x[0].hypot(x[1])).fold(0.0, f64::max)
+    }
+
     fn force_unit(&self) -> &'static str {
         if self.model.is_axisymmetric() {
             "N/rad"
