@@ -67,7 +67,7 @@ def main(frd, inp, h5):
     ccx = frd_blocks(frd)
     f = h5py.File(h5, "r")
     plies = sorted(k for k in f["mesh/node_sets"].keys() if k.startswith("PLY") and k[3:].isdigit())
-    sets = inp_sets(inp, set(plies) | {f"{k}_{side}" for k in plies for side in ("OUTER", "INNER")})
+    sets = inp_sets(inp, set(plies) | {f"{k}_{side}" for k in plies for side in ("OUTER", "INNER")} | {"TANGENT_B"})
     ids = list(f["mesh/node_ids"][:])
     index = {n: k for k, n in enumerate(ids)}
     coordinates = {n: f["mesh/coordinates"][k] for n, k in index.items()}
@@ -75,6 +75,7 @@ def main(frd, inp, h5):
     every = [n for k in plies for n in sets[k]]
     print(f"{'time':>7} {'ply':>5} {'|u| max, mm':>19} {'max |du| / max |u|':>19} {'crests: r, mm (CalculiX/slideline)':>36} "
           f"{'thickness there, mm':>28} {'PEEQ max, %':>16}")
+    last = None
     for time in sorted(t for t in ccx if "DISP" in ccx[t]):
         group = increments.get(round(time, 9))
         if group is None:
@@ -92,6 +93,12 @@ def main(frd, inp, h5):
             thick = " ".join(f"{a[2]:.4f}/{b[2]:.4f}" for a, b in zip(*c))
             print(f"{time:7.4f} {k.lower():>5} {umax[0]:8.4f} / {umax[1]:8.4f} {du / umax[1]:19.2e} {radii:>36} {thick:>28} "
                   f"{100 * pe_cx:7.3f} / {100 * pe_sl:6.3f}")
+        last = (time, group)
+    if last and "TANGENT_B" in sets:
+        time, group = last
+        far = sets["TANGENT_B"]
+        uz = [sum(u[n][1] for n in far) / len(far) for u in ({n: ccx[time]["DISP"][n] for n in far}, {n: group["nodal/displacement"][index[n]] for n in far})]
+        print(f"the far tangent's axial displacement at {time:.4f}: CalculiX {uz[0]:.3f} mm, slideline {uz[1]:.3f} mm")
 
 
 if __name__ == "__main__":
