@@ -33,7 +33,16 @@ pub struct FieldRatios {
 
 impl Default for FieldRatios {
     fn default() -> Self {
-        FieldRatios { residual: 0.005, residual_late: 0.02, late_after: 9, correction: 0.02, zero_flux: 1e-5, zero_flux_correction: 1e-3, linear: 1e-8, size_floor: 1e-8 }
+        FieldRatios {
+            residual: 0.005,
+            residual_late: 0.02,
+            late_after: 9,
+            correction: 0.02,
+            zero_flux: 1e-5,
+            zero_flux_correction: 1e-3,
+            linear: 1e-8,
+            size_floor: 1e-8,
+        }
     }
 }
 
