@@ -14,11 +14,7 @@ set -euo pipefail
 here="$(cd "$(dirname "$0")/.." && pwd)"
 dir="${1:?usage: scripts/calculix-test-decks.sh DIR [DECK ...]}"
 shift
-command -v ccx >/dev/null || { echo "installing CalculiX (calculix-ccx)"; apt-get install -y calculix-ccx >/dev/null; }
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1
-[ -x "$here/target/release/slideline" ] || (cd "$here" && cargo build --release --quiet)
-slideline="$here/target/release/slideline"
-python="${SLIDELINE_PYTHON:-/usr/bin/python3}"
+source "$(dirname "$0")/calculix-setup.sh"
 work="$here/out/calculix-test-decks"
 mkdir -p "$work"
 if [ $# -gt 0 ]; then decks=("$@"); else decks=(); for f in "$dir"/*.inp; do decks+=("$(basename "$f" .inp)"); done; fi

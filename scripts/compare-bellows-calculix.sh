@@ -9,7 +9,6 @@
 #   other flags for other cases (the full default case takes CalculiX about an hour here).
 #   --keep DIR  run in DIR and keep the files (deck, .dat, .frd, results)
 set -euo pipefail
-here="$(cd "$(dirname "$0")/.." && pwd)"
 flags=() keep=""
 while [ $# -gt 0 ]; do
     case "$1" in
@@ -19,12 +18,8 @@ while [ $# -gt 0 ]; do
     esac
 done
 [ ${#flags[@]} -gt 0 ] || flags=(--quick)
-command -v ccx >/dev/null || { echo "installing CalculiX (calculix-ccx)" >&2; apt-get install -y calculix-ccx >/dev/null; }
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1 OMPI_MCA_rmaps_base_oversubscribe=1
-(cd "$here" && cargo build --release --quiet)
-slideline="$here/target/release/slideline"
-if [ -n "$keep" ]; then work="$keep"; mkdir -p "$work"; else work="$(mktemp -d)"; trap 'rm -rf "$work"' EXIT; fi
-cd "$work"
+source "$(dirname "$0")/calculix-setup.sh"
+work_in "$keep"
 
 "$slideline" bellows "${flags[@]}" --export-inp joint.inp > /dev/null
 seconds() { local t0=$EPOCHREALTIME; "$@"; python3 -c "print(f'{$EPOCHREALTIME - $t0:.1f}')"; }

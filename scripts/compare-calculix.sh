@@ -23,10 +23,7 @@ if [ -z "$deck" ] || [ -z "$set_name" ] || [ ! -f "$deck" ]; then
     echo "usage: scripts/compare-calculix.sh MODEL.inp --set NAME [--store]" >&2
     exit 2
 fi
-command -v ccx >/dev/null || { echo "installing CalculiX (calculix-ccx)"; apt-get install -y calculix-ccx >/dev/null; }
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1
-[ -x "$here/target/release/slideline" ] || (cd "$here" && cargo build --release --quiet)
-slideline="$here/target/release/slideline"
+source "$(dirname "$0")/calculix-setup.sh"
 
 job="$(basename "$deck" .inp)"
 deck_dir="$(cd "$(dirname "$deck")" && pwd)"

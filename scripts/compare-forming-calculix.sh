@@ -15,7 +15,6 @@
 #   any flag replaces --quick).
 #   --keep DIR  run in DIR and keep the files (deck, .dat, .frd, results)
 set -euo pipefail
-here="$(cd "$(dirname "$0")/.." && pwd)"
 params="" flags=() keep=""
 while [ $# -gt 0 ]; do
     case "$1" in
@@ -26,13 +25,8 @@ while [ $# -gt 0 ]; do
     esac
 done
 [ ${#flags[@]} -gt 0 ] || flags=(--quick)
-command -v ccx >/dev/null || { echo "installing CalculiX (calculix-ccx)" >&2; apt-get install -y calculix-ccx >/dev/null; }
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1 OMPI_MCA_rmaps_base_oversubscribe=1
-(cd "$here" && cargo build --release --quiet)
-slideline="$here/target/release/slideline"
-python="${SLIDELINE_PYTHON:-/usr/bin/python3}"
-if [ -n "$keep" ]; then work="$keep"; mkdir -p "$work"; else work="$(mktemp -d)"; trap 'rm -rf "$work"' EXIT; fi
-cd "$work"
+source "$(dirname "$0")/calculix-setup.sh"
+work_in "$keep"
 if [ -z "$params" ]; then
     params="$work/forming.toml"
     printf '[bellows]\nconvolutions = 2\nplies = 1\nply_thickness = 2.0\n[design]\naxial_compression = 10.0\n[forming]\nfriction = 0.05\n' > "$params"
