@@ -167,9 +167,10 @@ impl Formed {
         let mut max_ep = f64::NAN;
         if let Ok(gauss) = reader.field(&last, "equivalent_plastic_strain") {
             let points = gauss.len() / reader.connectivity()?.len().max(1);
+            max_ep = 0.0;
             for k in 1..=n {
                 for e in reader.element_set(&format!("ply{k}"))? {
-                    max_ep = gauss[e * points..(e + 1) * points].iter().copied().fold(max_ep.max(0.0), f64::max);
+                    max_ep = gauss[e * points..(e + 1) * points].iter().copied().fold(max_ep, f64::max);
                 }
             }
         }
