@@ -10,7 +10,7 @@
 #
 # usage: scripts/compare-forming-calculix.sh [PARAMS.toml] [BELLOWS FLAGS...] [--keep DIR]
 #   default: one ply of 2 mm, two of the seed's convolutions, friction 0.05 on the dies, the
-#   quick mesh (CalculiX about 4 minutes here; without friction it stalls in the closing:
+#   quick mesh (CalculiX 4 to 7 minutes here; without friction it stalls in the closing:
 #   docs/bellows.md); give mesh flags for the mesh study (the default mesh: --ply-elements 2;
 #   any flag replaces --quick).
 #   --keep DIR  run in DIR and keep the files (deck, .dat, .frd, results)
