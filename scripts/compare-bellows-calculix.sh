@@ -40,7 +40,8 @@ for k, line in enumerate(lines):
     if "total force (fx,fy,fz) for set MOVING_END" in line:
         time = float(line.split()[-1])
         theirs.append((time, -float(lines[k + 2].split()[1]) * sector))
-rows = list(csv.DictReader(open("bellows.csv")))
+# the CSV's header cells carry their units ("time [s]"): key the columns by name alone
+rows = [{k.split(" [")[0]: v for k, v in r.items()} for r in csv.DictReader(open("bellows.csv"))]
 ours = [(float(r["time"]), -float(r["reaction_moving_end_z"]) * 2.5 * math.pi / 180.0) for r in rows]
 
 def at(curve, time):
