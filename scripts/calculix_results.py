@@ -25,21 +25,29 @@ def dat_forces(path, set_name):
     return out
 
 
+def frd_blocks(path):
+    """{time: {name: {node: [values]}}} of an ASCII .frd file's result blocks."""
+    out, current, time = {}, None, None
+    for line in open(path):
+        if line.startswith("  100CL"):
+            time = float(line[12:24])
+        elif line.startswith(" -4"):
+            current = out.setdefault(time, {}).setdefault(line.split()[1], {})
+        elif line.startswith(" -1") and current is not None:
+            # fixed width: ' -1', the node (10 characters), the values (12 each)
+            body = line[13:].rstrip("\n")
+            current[int(line[3:13])] = [float(body[k:k + 12]) for k in range(0, len(body) - 11, 12)]
+        elif line.startswith(" -3"):
+            current = None
+    return out
+
+
 def frd_last(path):
     """(max von Mises, max |u_r|, max |u_z|) of the last DISP and STRESS blocks of an ASCII
     .frd file (x is r, y is z)."""
-    blocks, current, name = {}, None, None
-    for line in open(path):
-        if line.startswith(" -4"):
-            name = line.split()[1]
-            current = []
-            blocks[name] = current
-        elif line.startswith(" -1") and current is not None:
-            # fixed-width: ' -1' + node (10 chars) + values (12 chars each)
-            body = line[13:].rstrip("\n")
-            current.append([float(body[k:k + 12]) for k in range(0, len(body) - 11, 12)])
-        elif line.startswith(" -3"):
-            current = None
+    blocks = {}
+    for time in sorted(frd_blocks(path).items(), key=lambda t: t[0]):
+        blocks.update({name: list(values.values()) for name, values in time[1].items()})
     ur = max(abs(v[0]) for v in blocks["DISP"])
     uz = max(abs(v[1]) for v in blocks["DISP"])
     mises = 0.0

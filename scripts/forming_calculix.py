@@ -12,22 +12,7 @@ import sys
 
 import h5py
 
-
-def frd_blocks(path):
-    """{time: {name: {node: [values]}}} of an ASCII .frd file's result blocks."""
-    out, current, time = {}, None, None
-    for line in open(path):
-        if line.startswith("  100CL"):
-            time = float(line[12:24])
-        elif line.startswith(" -4"):
-            current = out.setdefault(time, {}).setdefault(line.split()[1], {})
-        elif line.startswith(" -1") and current is not None:
-            # fixed width: ' -1', the node (10 characters), the values (12 each)
-            body = line[13:].rstrip("\n")
-            current[int(line[3:13])] = [float(body[k:k + 12]) for k in range(0, len(body) - 11, 12)]
-        elif line.startswith(" -3"):
-            current = None
-    return out
+from calculix_results import frd_blocks
 
 
 def inp_sets(path, names):

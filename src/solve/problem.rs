@@ -122,6 +122,8 @@ pub struct Problem<'s, 'm> {
     layout: JacobianLayout,
     /// Whether a Jacobian has replaced the matrix's structure since the solver last asked.
     structure_changed: bool,
+    /// The mesh's largest distance from the origin (the field test's correction floor).
+    model_size: f64,
     /// Round-off floor (squared, this rank) of the last residual.
     roundoff: f64,
     /// Sum of the magnitudes of the element and contact nodal forces of the last residual,
@@ -267,6 +269,7 @@ impl<'s, 'm> Problem<'s, 'm> {
             last: None,
             layout,
             structure_changed: false,
+            model_size: model.mesh.coords.iter().map(|x| x[0].hypot(x[1])).fold(0.0, f64::max),
             roundoff: 0.0,
             force_sums: [0.0, 0.0],
             surface: SurfaceBranch::Elastic,

@@ -37,7 +37,7 @@ impl NonlinearProblem for Problem<'_, '_> {
     }
 
     fn model_size(&self) -> f64 {
-        self.model.mesh.coords.iter().map(|x| x[0].hypot(x[1])).fold(0.0, f64::max)
+        self.model_size
     }
 
     fn force_unit(&self) -> &'static str {
