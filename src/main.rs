@@ -115,7 +115,11 @@ fn bellows_command(args: &cli::BellowsArgs, sub: Option<&clap::ArgMatches>) -> E
     if args.form {
         let result = workflow::form(&session, &job);
         warn_unused_options(&session, root && !is_bad_input(&result));
-        return finish(result, root, |summary| workflow::forming_report(&job, summary));
+        let (result, rest) = match result {
+            Ok(runs) => (Ok(runs.service), runs.rest),
+            Err(e) => (Err(e), None),
+        };
+        return finish(result, root, |summary| workflow::forming_report(&job, summary, rest.as_ref()));
     }
     let before = match workflow::before_the_run(&session, &job) {
         Ok(before) => before,

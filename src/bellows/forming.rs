@@ -19,6 +19,7 @@ use super::spec::forming::FORMING_TEMPERATURE;
 use super::spec::DesignSpec;
 use crate::error::Result;
 use crate::model::mesh::{mapped_block, Edge, Mesh, MeshSets};
+use crate::model::perturbation::{HarmonicComponent, HarmonicDisplacement, Perturbation};
 use crate::model::{
     Component, ContactIntegration, ContactPair, Friction, GeneralStep, Material, Model, OutputControls, Penalty, Predictor, PrescribedDisplacement, Pressure,
     Step, SteppingControls, Temperature,
@@ -153,8 +154,14 @@ pub fn mesh(p: &DesignSpec) -> Result<(Mesh, MeshSets)> {
     let plies: Vec<usize> = (1..=p.bellows.plies).flat_map(|k| sets.node_sets[&format!("ply{k}")].clone()).collect();
     let on = |pred: &dyn Fn(f64) -> bool| -> Vec<usize> { plies.iter().copied().filter(|&n| pred(mesh.coords[n][1])).collect() };
     let (a, b) = (on(&|z| z <= z0 + eps), on(&|z| z >= z1 - eps));
+    // the joint's names, which its perturbation steps hold and load (`formed_perturbations`)
+    sets.node_sets.insert("fixed_end".into(), a.clone());
+    sets.node_sets.insert("moving_end".into(), b.clone());
     sets.node_sets.insert("tangent_a".into(), a);
     sets.node_sets.insert("tangent_b".into(), b);
+    sets.node_sets.insert("all".into(), (0..mesh.coords.len()).collect());
+    let wetted = sets.surfaces["ply1_inner"].clone();
+    sets.add_surface(&mesh, "wetted", wetted);
     Ok((mesh, sets))
 }
 
@@ -182,7 +189,7 @@ fn die_profile(g: &FormingGeometry, h: f64) -> Vec<([f64; 2], [f64; 2])> {
 /// pressure inside with the far tangent held where the springback left it (`sprung`, its axial
 /// displacement) (`pressure`), then the stroke (`compress`); the forming's model with these two
 /// steps after its own.
-pub fn service_model(p: &DesignSpec, sprung: f64) -> Result<Model> {
+pub fn service_model(p: &DesignSpec, sprung: f64, perturbations: Vec<Perturbation>) -> Result<Model> {
     let mut m = model(p)?;
     let hold = |value: f64| vec![PrescribedDisplacement { node_set: "tangent_b".into(), component: Component::Z, value }];
     let pressure = GeneralStep {
@@ -191,8 +198,34 @@ pub fn service_model(p: &DesignSpec, sprung: f64) -> Result<Model> {
     };
     let compress = GeneralStep::new(SERVICE_STEPS[1], p.joint.increments, hold(sprung - p.displacement()));
     m.steps.extend([pressure, compress].map(Step::General));
+    m.set_perturbations(perturbations);
     m.validate()?;
     Ok(m)
+}
+
+/// The joint's perturbation steps `steps` (its stability's, frequencies', flexibility's) on the
+/// formed bellows: its tangents for the joint's tube ends (the sets of [`mesh`]), the dies held
+/// still (drawn out past the crests, their contact left out) and the contact pairs the formed
+/// bellows has not (the joint's guide sleeve) dropped.
+pub fn formed_perturbations(p: &DesignSpec, steps: Vec<Perturbation>) -> Vec<Perturbation> {
+    let plies = (1..p.bellows.plies).map(|k| format!("ply{k}_ply{}", k + 1));
+    let pairs: Vec<String> = super::joint::FOLD_PAIRS.iter().map(|s| s.to_string()).chain(plies).collect();
+    let held = |set: String| {
+        [HarmonicComponent::R, HarmonicComponent::Z, HarmonicComponent::T].map(|component| HarmonicDisplacement {
+            node_set: set.clone(),
+            component,
+            value: 0.0,
+        })
+    };
+    steps
+        .into_iter()
+        .map(|mut s| {
+            s.without_contact.retain(|name| pairs.contains(name));
+            s.without_contact.push("dies".into());
+            s.displacements.extend((0..=p.bellows.convolutions).flat_map(|k| held(format!("die{k}"))));
+            s
+        })
+        .collect()
 }
 
 /// The service's steps, after the forming's five.

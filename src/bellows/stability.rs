@@ -47,7 +47,7 @@ pub struct Stability {
     pub in_plane: Option<f64>,
     /// The harmonics n = 2 to [`HIGHEST_HARMONIC`] and their critical pressures.
     pub higher: Vec<(u32, Option<f64>)>,
-    /// For a harmonic whose eigenvalues found were all negative (buckling under an external
+    /// For a harmonic (1 the squirm, 0 in-plane, the higher) whose eigenvalues found were all negative (buckling under an external
     /// pressure), the pressure its internal critical pressure lies above: the state's pressure
     /// plus the largest of their magnitudes (the solver finds those nearest zero).
     pub above: Vec<(u32, f64)>,
@@ -86,7 +86,8 @@ pub fn from_answers(answers: &[(String, PerturbationAnswer)]) -> Result<Stabilit
     // the lowest positive load factor's critical pressure
     let critical = |name: &str| lowest_positive_mode(answers, name).and_then(|m| m.critical_pressures.first().map(|c| c.1));
     let higher: Vec<(u32, Option<f64>)> = (2..=HIGHEST_HARMONIC).map(|n| (n, critical(&higher_step(n)))).collect();
-    let above = higher.iter().filter(|(_, p)| p.is_none()).filter_map(|&(n, _)| lower_bound(answers, &higher_step(n)).map(|b| (n, b))).collect();
+    let harmonics = [(1, SQUIRM.to_string()), (0, IN_PLANE.to_string())].into_iter().chain((2..=HIGHEST_HARMONIC).map(|n| (n, higher_step(n))));
+    let above = harmonics.filter(|(_, step)| critical(step).is_none()).filter_map(|(n, step)| lower_bound(answers, &step).map(|b| (n, b))).collect();
     Ok(Stability { axial_rate, squirm: critical(SQUIRM), in_plane: critical(IN_PLANE), higher, above })
 }
 

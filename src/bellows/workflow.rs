@@ -200,11 +200,30 @@ pub fn run(session: &PetscSession, job: &BellowsJob) -> Result<RunSummary> {
     )
 }
 
+/// What `--form` ran: the formed bellows' service (its perturbation steps, if any, about the
+/// stroke's end) and, for `--squirm` and `--frequencies`, the same analyses at rest.
+pub struct FormedRuns {
+    pub service: RunSummary,
+    pub rest: Option<FormedAtRest>,
+}
+
+/// The perturbations at rest beside the formed bellows' service: the idealised joint's (nominal
+/// thickness, annealed, at rest as `bellows --squirm` analyses it), the formed bellows' after
+/// its springback (no pressure), and the code check of the idealised joint for its in-plane row.
+pub struct FormedAtRest {
+    pub code: Option<CodeCheck>,
+    pub ideal_stability: Option<Stability>,
+    pub ideal_frequencies: Option<Frequencies>,
+    /// The formed bellows' answers after the springback (their file `STEM_rest.h5`).
+    pub formed: RunSummary,
+}
+
 /// `--form`: the bellows hydroformed from a straight tube (its five steps, into the output),
 /// then the formed bellows in service (the design pressure and the stroke, continuing the
-/// forming's file into [`service_path`]) (collective).
-pub fn form(session: &PetscSession, job: &BellowsJob) -> Result<RunSummary> {
-    use super::forming::{measure::Formed, TRYOUTS};
+/// forming's file into [`service_path`]), with `--squirm`'s and `--frequencies`' perturbation
+/// steps about the stroke's end and about the formed bellows at rest (collective).
+pub fn form(session: &PetscSession, job: &BellowsJob) -> Result<FormedRuns> {
+    use super::forming::{formed_perturbations, measure::Formed, TRYOUTS};
     let options =
         |output: PathBuf, restart: Option<RestartFrom>| RunOptions { output, progress: !job.quiet, verbose: job.verbose, monitor: job.monitor, restart };
     let root = session.world().rank() == 0;
@@ -228,24 +247,61 @@ pub fn form(session: &PetscSession, job: &BellowsJob) -> Result<RunSummary> {
             }
         }
     };
+    // the joint's perturbation steps on the formed bellows, the axial rate's shared
+    let mut steps = Vec::new();
+    for more in [job.squirm.then(|| super::stability::steps(&p)), job.frequencies.then(|| super::vibration::steps(&p))].into_iter().flatten() {
+        let have: Vec<String> = steps.iter().map(|s: &crate::model::perturbation::Perturbation| s.name.clone()).collect();
+        steps.extend(more.into_iter().filter(|s| !have.contains(&s.name)));
+    }
+    let steps = formed_perturbations(&p, steps);
+    let rest = (!steps.is_empty())
+        .then(|| -> Result<FormedAtRest> {
+            let announce = |what: &str| {
+                if root && !job.quiet {
+                    println!("{what} ...");
+                }
+            };
+            announce("the idealised joint at rest (nominal thickness, annealed) and its perturbations");
+            let ideal_stability = job.squirm.then(|| super::stability::at_rest(session, &job.params, |_, _| {})).transpose()?;
+            let ideal_frequencies = job.frequencies.then(|| super::vibration::at_rest(session, &job.params)).transpose()?;
+            let code = code_check(session, &job.params).ok();
+            announce("the formed bellows at rest (after its springback) and its perturbations");
+            let mut at_rest = forming.clone();
+            at_rest.set_perturbations(steps.clone());
+            at_rest.validate()?;
+            let path = sibling_path(&job.output, "rest");
+            crate::output_path::check_output_path(&path, None)?;
+            let restart = Some(RestartFrom { file: job.output.clone(), increment: None });
+            let formed = crate::solve::run(session, &at_rest, &RunOptions { progress: false, ..options(path, restart) })?;
+            Ok(FormedAtRest { code, ideal_stability, ideal_frequencies, formed })
+        })
+        .transpose()?;
     // where the springback left the far tangent: the service holds it there
     let tangent_b = &forming.node_sets["tangent_b"];
     let sprung = tangent_b.iter().map(|&n| formed.displacement[n][1]).sum::<f64>() / tangent_b.len() as f64;
-    let service = super::forming::service_model(&p, sprung)?;
+    let service = super::forming::service_model(&p, sprung, steps)?;
     let path = service_path(&job.output);
     crate::output_path::check_output_path(&path, None)?;
-    crate::solve::run(session, &service, &options(path, Some(RestartFrom { file: job.output.clone(), increment: None })))
+    let service = crate::solve::run(session, &service, &options(path, Some(RestartFrom { file: job.output.clone(), increment: None })))?;
+    Ok(FormedRuns { service, rest })
 }
 
 /// The service's results file beside the forming's: `STEM_service.h5`.
 pub fn service_path(output: &Path) -> PathBuf {
-    let stem = output.file_stem().unwrap_or_default().to_string_lossy();
-    output.with_file_name(format!("{stem}_service.h5"))
+    sibling_path(output, "service")
 }
 
-/// The forming's and the service's tables from their results files, printed and kept in the
-/// forming's (rank 0, after the runs).
-pub fn forming_report(job: &BellowsJob, _summary: &RunSummary) -> Result<()> {
+/// `STEM_name.h5` beside the forming's results file (`--form`'s others: the service's, the
+/// formed bellows' perturbations at rest).
+pub fn sibling_path(output: &Path, name: &str) -> PathBuf {
+    let stem = output.file_stem().unwrap_or_default().to_string_lossy();
+    output.with_file_name(format!("{stem}_{name}.h5"))
+}
+
+/// The forming's and the service's tables from their results files, and the perturbations'
+/// where `--squirm` or `--frequencies` asked for them, printed and kept in the forming's
+/// (rank 0, after the runs).
+pub fn forming_report(job: &BellowsJob, service: &RunSummary, rest: Option<&FormedAtRest>) -> Result<()> {
     use super::forming::{measure, service};
     let (formed, serving) = (ResultsReader::open(&job.output)?, ResultsReader::open(&service_path(&job.output))?);
     // the joint as last formed (a tryout corrects the tube and the dies): the file's own
@@ -253,9 +309,35 @@ pub fn forming_report(job: &BellowsJob, _summary: &RunSummary) -> Result<()> {
     let forming = measure::table(p, &measure::Formed::read(p, &formed)?);
     let in_service = service::table(p, &service::Service::read(&formed, &serving)?);
     drop((formed, serving));
-    println!("\n{forming}\n{in_service}");
-    crate::io::assessment::write_tables(&job.output, &[(measure::TABLE, forming), (service::TABLE, in_service)])
+    let mut tables = vec![(measure::TABLE, forming), (service::TABLE, in_service)];
+    if let Some(rest) = rest {
+        // the formed bellows at rest: no pressure, no stroke (its convolved length the pitch's)
+        let mut resting = p.clone();
+        (resting.design.axial_compression, resting.design.axial_extension) = (Some(0.0), None);
+        let columns = ["idealised", "formed, rest", "formed, end"];
+        if let Some(ideal) = &rest.ideal_stability {
+            let states = [ideal, &super::stability::from_answers(&rest.formed.perturbations)?, &super::stability::from_answers(&service.perturbations)?];
+            let states: Vec<(&str, &Stability)> = columns.into_iter().zip(states).collect();
+            tables.push(("stability", format!("{}{FORMED_COLUMNS}", super::report::stability_columns(p, rest.code.as_ref(), &states))));
+        }
+        if let Some(ideal) = &rest.ideal_frequencies {
+            let states = [
+                ideal.clone(),
+                super::vibration::from_answers(&resting, &rest.formed.perturbations)?,
+                super::vibration::from_answers(p, &service.perturbations)?,
+            ];
+            let states: Vec<(&str, &Frequencies)> = columns.into_iter().zip(&states).collect();
+            tables.push(("frequencies", format!("{}{FORMED_COLUMNS}", super::report::frequencies_columns(p, &states))));
+        }
+    }
+    println!("\n{}", tables.iter().map(|(_, t)| t.as_str()).collect::<Vec<_>>().join("\n"));
+    crate::io::assessment::write_tables(&job.output, &tables)
 }
+
+/// What `--form`'s columns of the perturbation tables are.
+const FORMED_COLUMNS: &str = "  columns: the idealised joint (nominal plies, annealed, its tubes) at rest; the formed bellows (its tangents clamped,\n  \
+     the forming's thickness, cold work and residual stress, the forming's 20 degC material) after its springback, and at the\n  \
+     end of its service (the design pressure and the stroke)\n";
 
 /// How far `--dba`'s limit load raises the design pressure looking for the collapse: the
 /// convolutions of a joint that passes the code's in-plane check (at about 2.3 Sy) hold several

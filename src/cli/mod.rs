@@ -192,8 +192,10 @@ pub struct BellowsArgs {
     /// pitch, the pressure let out and the dies drawn out; then the formed bellows under the
     /// design pressure and stroke (OUTPUT_service.h5, continuing the forming's file). Prints
     /// the formed bellows beside its target (height, pitch, crest and root thickness, volume,
-    /// plastic strain) and what the service did to it.
-    #[arg(long, conflicts_with_all = ["check_only", "dba", "joint.cycle", "squirm", "assess", "frequencies", "lateral", "angular", "report"])]
+    /// plastic strain) and what the service did to it. With --squirm and --frequencies, their
+    /// analyses of the formed bellows at rest and at the service's end beside the idealised
+    /// joint's at rest.
+    #[arg(long, conflicts_with_all = ["check_only", "dba", "joint.cycle", "assess", "lateral", "angular", "report"])]
     pub form: bool,
     /// After the run, write the design report: one self-contained HTML file (the
     /// specification, the code's verdict, the finite-element tables, the mesh, the pictures).

@@ -24,7 +24,7 @@ mod mode_picture;
 mod sections;
 pub use code_tables::{code_section, verdict_table, CODE_VERDICT, EDITION};
 pub use mode_picture::mode_picture;
-pub use sections::{flexibility_section, frequencies_section, stability_section};
+pub use sections::{flexibility_section, frequencies_columns, frequencies_section, stability_columns, stability_section};
 
 /// The paper modelled a 2.5-degree sector; its forces are per sector.
 pub const SECTOR_RADIANS: f64 = 2.5 * PI / 180.0;

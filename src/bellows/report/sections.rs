@@ -82,32 +82,42 @@ pub fn flexibility_section(p: &DesignSpec, code: Option<&CodeCheck>, movements: 
 /// The stability section: the buckling pressures of the joint at rest and at the end of its run
 /// (both tubes' ends held) beside the codes' estimates with the same state's axial rate.
 pub fn stability_section(p: &DesignSpec, code: Option<&CodeCheck>, rest: &Stability, operating: &Stability) -> String {
+    stability_columns(p, code, &[("at rest", rest), ("operating", operating)])
+}
+
+/// The stability section over any states, one column each (`--form`'s: the idealised joint at
+/// rest, the formed bellows at rest and operating).
+pub fn stability_columns(p: &DesignSpec, code: Option<&CodeCheck>, states: &[(&str, &Stability)]) -> String {
     let mut t = String::from("\n  stability: buckling analyses of the joint (both tubes' ends held), the critical internal pressure, MPa\n");
-    t.push_str(&format!("  {:<58} {:>12} {:>12}\n", "", "at rest", "operating"));
+    let width = if states.len() > 2 { 13 } else { 12 };
+    let line = |what: &str, cells: Vec<String>| format!("  {what:<58}{}\n", cells.iter().map(|c| format!(" {c:>width$}")).collect::<String>());
+    t.push_str(&line("", states.iter().map(|(name, _)| name.to_string()).collect()));
     let cell = |v: Option<f64>| v.filter(|v| v.is_finite()).map_or("-".to_string(), |v| format!("{v:.2}"));
-    let mut row = |what: &str, pick: &dyn Fn(&Stability) -> Option<f64>| {
-        t.push_str(&format!("  {what:<58} {:>12} {:>12}\n", cell(pick(rest)), cell(pick(operating))));
+    // a harmonic's critical pressure, or where its nearest eigenvalues were all external
+    // pressures, the bound it lies above
+    let mode = |s: &Stability, n: u32, critical: Option<f64>| match (critical, s.above.iter().find(|a| a.0 == n)) {
+        (Some(p), _) => format!("{p:.2}"),
+        (None, Some(&(_, b))) => format!("> {b:.1}"),
+        (None, None) => "-".into(),
     };
-    row("axial rate Kb by finite elements, N/mm full ring", &|s| Some(s.axial_rate));
-    row("column instability (squirm), mode 1, finite elements", &|s| s.squirm);
-    row("  EJMA column formula 0.34 pi Kb / (N q), the same Kb", &|s| Some(column_estimates(p, s.axial_rate).0));
-    row("  the equivalent column, unfactored, 2 pi Kb / (N q)", &|s| Some(column_estimates(p, s.axial_rate).1));
-    row("in-plane instability, mode 0, finite elements", &|s| s.in_plane);
+    let mut row = |what: &str, pick: &dyn Fn(&Stability) -> String| {
+        t.push_str(&line(what, states.iter().map(|(_, s)| pick(s)).collect()));
+    };
+    row("axial rate Kb by finite elements, N/mm full ring", &|s| cell(Some(s.axial_rate)));
+    row("column instability (squirm), mode 1, finite elements", &|s| mode(s, 1, s.squirm));
+    row("  EJMA column formula 0.34 pi Kb / (N q), the same Kb", &|s| cell(Some(column_estimates(p, s.axial_rate).0)));
+    row("  the equivalent column, unfactored, 2 pi Kb / (N q)", &|s| cell(Some(column_estimates(p, s.axial_rate).1)));
+    row("in-plane instability, mode 0, finite elements", &|s| mode(s, 0, s.in_plane));
     let in_plane_code = code.map(|c| c.in_plane_instability);
-    row("  the code's in-plane formula (the code check's)", &|_| in_plane_code);
-    for (k, &(n, _)) in rest.higher.iter().enumerate() {
-        // a harmonic whose nearest eigenvalues were all external pressures: its bound
-        let cell = |s: &Stability| match (s.higher.get(k).and_then(|h| h.1), s.above.iter().find(|a| a.0 == n)) {
-            (Some(p), _) => format!("{p:.2}"),
-            (None, Some(&(_, b))) => format!("> {b:.1}"),
-            (None, None) => "-".into(),
-        };
-        t.push_str(&format!("  {:<58} {:>12} {:>12}\n", format!("crest and sidewall mode n = {n}, finite elements"), cell(rest), cell(operating)));
+    row("  the code's in-plane formula (the code check's)", &|_| cell(in_plane_code));
+    let harmonics: Vec<u32> = states.first().map(|(_, s)| s.higher.iter().map(|h| h.0).collect()).unwrap_or_default();
+    for (k, &n) in harmonics.iter().enumerate() {
+        row(&format!("crest and sidewall mode n = {n}, finite elements"), &|s| mode(s, n, s.higher.get(k).and_then(|h| h.1)));
     }
     let governing = |s: &Stability| s.governing().map_or("-".to_string(), |(n, p)| format!("n = {n}: {p:.2}"));
-    t.push_str(&format!("  {:<58} {:>12} {:>12}\n", "the lowest over the harmonics, finite elements", governing(rest), governing(operating)));
+    t.push_str(&line("the lowest over the harmonics, finite elements", states.iter().map(|(_, s)| governing(s)).collect()));
     let highest = crate::bellows::stability::HIGHEST_HARMONIC;
-    if [rest, operating].iter().any(|s| s.governing().is_some_and(|(n, _)| n == highest)) {
+    if states.iter().any(|(_, s)| s.governing().is_some_and(|(n, _)| n == highest)) {
         t.push_str(&format!("  note: the lowest pressure is the highest harmonic's (n = {highest}): those above it were not analysed\n"));
     }
     t.push_str(
@@ -122,15 +132,21 @@ pub fn stability_section(p: &DesignSpec, code: Option<&CodeCheck>, rest: &Stabil
 /// at the end of its run (both tubes' ends held) beside the analogies of EJMA's frequency
 /// formulas with the same state's axial rate, each with its ratio.
 pub fn frequencies_section(p: &DesignSpec, rest: &Frequencies, operating: &Frequencies) -> String {
+    frequencies_columns(p, &[("at rest", rest), ("operating", operating)])
+}
+
+/// The natural frequencies section over any states, one column each (`--form`'s: the idealised
+/// joint at rest, the formed bellows at rest and operating).
+pub fn frequencies_columns(p: &DesignSpec, columns: &[(&str, &Frequencies)]) -> String {
     let mut t = String::from("\n  natural frequencies: the joint with both tubes' ends held, Hz\n");
-    t.push_str(&format!("  {:<58} {:>12} {:>12}\n", "", "at rest", "operating"));
+    let line = |what: &str, cells: Vec<String>| format!("  {what:<58}{}\n", cells.iter().map(|c| format!(" {c:>12}")).collect::<String>());
+    t.push_str(&line("", columns.iter().map(|(name, _)| name.to_string()).collect()));
     let cell = |v: Option<f64>, digits: usize| v.filter(|v| v.is_finite()).map_or("-".to_string(), |v| format!("{v:.digits$}"));
     // each state's analogies once (the Rayleigh beam is a root search)
-    let states = [(rest, estimates(p, rest)), (operating, estimates(p, operating))];
-    let mass = states[0].1.mass;
+    let states: Vec<(&Frequencies, Estimates)> = columns.iter().map(|&(_, f)| (f, estimates(p, f))).collect();
+    let mass = states.first().map_or(f64::NAN, |s| s.1.mass);
     let mut row = |what: &str, pick: &dyn Fn(&Frequencies, Estimates) -> Option<f64>, digits: usize| {
-        let [a, b] = states.map(|(f, e)| cell(pick(f, e), digits));
-        t.push_str(&format!("  {what:<58} {a:>12} {b:>12}\n"));
+        t.push_str(&line(what, states.iter().map(|&(f, e)| cell(pick(f, e), digits)).collect()));
     };
     let ratio = |m: Option<Mode>, analogy: f64| m.map(|m| m.frequency / analogy);
     row("axial rate Kb by finite elements, N/mm full ring", &|f, _| Some(f.axial_rate), 1);
