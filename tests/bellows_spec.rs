@@ -111,6 +111,40 @@ fn the_inconel_report_gives_its_printed_stresses_area_and_squirm_pressure() {
     within(s2.limit, 0.7 * 147.2, 1e-9, "S2's limit Cwb S");
 }
 
+/// `formed_ply_thickness`: a ply's thickness as formed (measured, or a forming's) taken for
+/// EJMA's tp = t sqrt(Db / Dm) in every formula that has tp (EJMA 10th ed. C-1.2; ASME VIII-1
+/// 26-6), the tangent's S1 keeping t: with the chart coefficients given, tp 0.9 times EJMA's
+/// scales S2 and S3 by 1 / 0.9, S4 by 1 / 0.81, S5 by 0.81, S6 by 0.9 and the rate by 0.729
+/// (the sample report's tp 0.3 sqrt(130 / 140) = 0.28909 mm).
+#[test]
+fn a_formed_ply_thickness_given_takes_the_place_of_ejmas_tp() {
+    let spec = DesignSpec::from_file(&spec_file("ejma_sample_report.toml")).unwrap();
+    let ejma = spec.code_check(|_| panic!("the coefficients are given")).unwrap();
+    let tp = spec.geometry().ejma_formed_thickness();
+    within(tp, 0.3 * (130.0f64 / 140.0).sqrt(), 1e-12, "EJMA's tp, mm");
+    let mut formed = spec.clone();
+    formed.bellows.formed_ply_thickness = Some(0.9 * tp);
+    let check = formed.code_check(|_| panic!("the coefficients are given")).unwrap();
+    for (what, value, scale) in [
+        ("S1", check.s1 / ejma.s1, 1.0),
+        ("S2", check.s2 / ejma.s2, 1.0 / 0.9),
+        ("S3", check.s3 / ejma.s3, 1.0 / 0.9),
+        ("S4", check.s4 / ejma.s4, 1.0 / 0.81),
+        ("S5", check.s5 / ejma.s5, 0.81),
+        ("S6", check.s6 / ejma.s6, 0.9),
+        ("Kb", check.axial_rate / ejma.axial_rate, 0.729),
+    ] {
+        within(value, scale, 1e-12, what);
+    }
+    // the verdict says which tp it took
+    let dir = tempfile::tempdir().unwrap();
+    let given = check_only(&changed("ejma_sample_report.toml", "ply_thickness = 0.3", "ply_thickness = 0.3\nformed_ply_thickness = 0.26", dir.path()));
+    given.assert_ok();
+    assert!(given.stdout().contains("tp 0.2600 mm as formed (given; EJMA's t sqrt(Db / Dm) 0.2891 mm)"), "{}", given.stdout());
+    let thicker = check_only(&changed("ejma_sample_report.toml", "ply_thickness = 0.3", "ply_thickness = 0.3\nformed_ply_thickness = 0.31", dir.path()));
+    assert_rejected(&thicker, &["bellows.formed_ply_thickness", "tp = 0.31 mm", "give 0 < tp <= t = 0.3 mm"]);
+}
+
 #[test]
 fn bad_specifications_are_named() {
     let dir = tempfile::tempdir().unwrap();

@@ -22,6 +22,8 @@ pub struct UBellows {
     pub plies: usize,
     pub convolutions: usize,
     pub torus_radius: f64,
+    /// tp where it is known (measured, or a forming's); else EJMA's t sqrt(Db / Dm).
+    pub formed_ply_thickness: Option<f64>,
 }
 
 impl UBellows {
@@ -30,8 +32,16 @@ impl UBellows {
         self.inside_diameter + self.height + self.plies as f64 * self.ply_thickness
     }
 
-    /// tp = t sqrt(Db / Dm): the ply thinned by forming.
+    /// tp = t sqrt(Db / Dm): the ply thinned by forming (EJMA's), or the bellows' own where it
+    /// is known.
     pub fn formed_thickness(&self) -> f64 {
+        self.formed_ply_thickness.unwrap_or_else(|| self.ejma_formed_thickness())
+    }
+
+    /// EJMA's tp = t sqrt(Db / Dm): the ply thinned by forming, its thinning at the mean
+    /// diameter (a hoop stretch from Db to Dm at constant volume and equal meridional and
+    /// through-thickness strains).
+    pub fn ejma_formed_thickness(&self) -> f64 {
         self.ply_thickness * (self.inside_diameter / self.mean_diameter()).sqrt()
     }
 
@@ -288,7 +298,16 @@ mod tests {
     /// fiu 23010.85 lb/in, the bellows 3835.14 lb/in, Sf 43615.15 psi.
     #[test]
     fn the_ejma_calculator_worksheet() {
-        let b = UBellows { inside_diameter: 38.0, height: 1.095, pitch: 1.0, ply_thickness: 0.03, plies: 1, convolutions: 6, torus_radius: 0.25 };
+        let b = UBellows {
+            inside_diameter: 38.0,
+            height: 1.095,
+            pitch: 1.0,
+            ply_thickness: 0.03,
+            plies: 1,
+            convolutions: 6,
+            torus_radius: 0.25,
+            formed_ply_thickness: None,
+        };
         let (p, eb, e) = (14.5, 29.0e6, 0.315 / 6.0);
         to_printed_digits(b.mean_diameter(), "39.125");
         to_printed_digits(b.formed_thickness(), "0.0295655");
@@ -311,7 +330,16 @@ mod tests {
     /// 1.6, S4 33.4, S5 10.6, S6 1034.9 MPa): within 0.03 %.
     #[test]
     fn the_sample_ejma_report() {
-        let b = UBellows { inside_diameter: 130.0, height: 9.1, pitch: 8.0, ply_thickness: 0.3, plies: 3, convolutions: 18, torus_radius: 1.3 };
+        let b = UBellows {
+            inside_diameter: 130.0,
+            height: 9.1,
+            pitch: 8.0,
+            ply_thickness: 0.3,
+            plies: 3,
+            convolutions: 18,
+            torus_radius: 1.3,
+            formed_ply_thickness: None,
+        };
         assert!((b.mean_diameter() - 140.0).abs() < 1e-12);
         let tp = 0.29; // printed; tp = t sqrt(Db / Dm) = 0.289
         assert!((b.formed_thickness() - tp).abs() < 0.005);
@@ -345,7 +373,16 @@ mod tests {
     /// tp is rounded).
     #[test]
     fn the_inconel_report() {
-        let b = UBellows { inside_diameter: 2320.0, height: 50.0, pitch: 50.0, ply_thickness: 1.27, plies: 1, convolutions: 9, torus_radius: 12.5 };
+        let b = UBellows {
+            inside_diameter: 2320.0,
+            height: 50.0,
+            pitch: 50.0,
+            ply_thickness: 1.27,
+            plies: 1,
+            convolutions: 9,
+            torus_radius: 12.5,
+            formed_ply_thickness: None,
+        };
         to_printed_digits(b.formed_thickness(), "1.2562");
         to_printed_digits(b.c1(), "0.5");
         to_printed_digits(b.c2_from_pitch(), "0.4164");
@@ -413,7 +450,16 @@ mod tests {
     /// developed length; each mm of sidewall adds two.
     #[test]
     fn the_live_mass_is_the_developed_length_s() {
-        let b = UBellows { inside_diameter: 300.0, height: 12.0, pitch: 24.0, ply_thickness: 1.0, plies: 2, convolutions: 6, torus_radius: 6.0 };
+        let b = UBellows {
+            inside_diameter: 300.0,
+            height: 12.0,
+            pitch: 24.0,
+            ply_thickness: 1.0,
+            plies: 2,
+            convolutions: 6,
+            torus_radius: 6.0,
+            formed_ply_thickness: None,
+        };
         let shell = 8.0e-9 * PI * b.mean_diameter() * 2.0 * 6.0;
         assert!((b.live_mass(8.0e-9) - shell * 2.0 * PI * 6.0).abs() < 1e-12 * shell);
         let taller = UBellows { height: 20.0, ..b };
@@ -424,7 +470,16 @@ mod tests {
     /// each change that breaks one is named.
     #[test]
     fn conditions_of_applicability_name_what_is_violated() {
-        let b = UBellows { inside_diameter: 130.0, height: 9.1, pitch: 8.0, ply_thickness: 0.3, plies: 3, convolutions: 18, torus_radius: 1.3 };
+        let b = UBellows {
+            inside_diameter: 130.0,
+            height: 9.1,
+            pitch: 8.0,
+            ply_thickness: 0.3,
+            plies: 3,
+            convolutions: 18,
+            torus_radius: 1.3,
+            formed_ply_thickness: None,
+        };
         assert!(b.conditions_of_applicability().is_empty(), "{:?}", b.conditions_of_applicability());
         let broken = |b: UBellows, needle: &str| {
             let v = b.conditions_of_applicability();

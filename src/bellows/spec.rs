@@ -68,6 +68,11 @@ pub struct BellowsSpec {
     pub tangent_length: f64,
     #[serde(default = "as_formed")]
     pub forming: Forming,
+    /// tp, a ply's thickness as formed where it is known (measured on the bellows, or a
+    /// forming's): the code's formulas take it for EJMA's t sqrt(Db / Dm); the finite-element
+    /// joint keeps t (`--form` forms its own).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub formed_ply_thickness: Option<f64>,
     /// The chart coefficients [Cp, Cf, Cd] read off the code's charts; computed without them.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub coefficients: Option<[f64; 3]>,
@@ -421,6 +426,7 @@ impl DesignSpec {
             plies: b.plies,
             convolutions: b.convolutions,
             torus_radius: (rc + rr) / 2.0,
+            formed_ply_thickness: b.formed_ply_thickness,
         }
     }
 

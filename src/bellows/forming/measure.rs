@@ -213,7 +213,7 @@ pub fn table(p: &DesignSpec, f: &Formed) -> String {
         let (lo, hi) = v.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &x| (lo.min(x), hi.max(x)));
         format!("{lo:.3} to {hi:.3}")
     };
-    let tp = p.geometry().formed_thickness() * p.bellows.plies as f64;
+    let tp = p.geometry().ejma_formed_thickness() * p.bellows.plies as f64;
     let pct = |x: f64| 100.0 * x;
     let signed = |x: f64| format!("{:+.2} %", 100.0 * x);
     let mut out = format!(

@@ -4,6 +4,7 @@
 //! naming the failing checks.
 
 use crate::assessment::code::{CodeCheck, Source};
+use crate::assessment::formulas::UBellows;
 use crate::assessment::verdict::{Sense, Verdict};
 use crate::bellows::spec::DesignSpec;
 use crate::error::Result;
@@ -31,7 +32,7 @@ pub fn verdict_table(spec: &DesignSpec, check: &CodeCheck, verdict: &Verdict) ->
     line(format!("code check: {EDITION}"));
     let bs = &spec.bellows;
     line(format!(
-        "  bellows: Db {} mm, w {}, q {}, N {}, {} {} x {} mm, crest and root radii {} and {} mm inside (rm {:.3} mid-surface), {}; Dm {:.2} mm, tp {:.4} mm",
+        "  bellows: Db {} mm, w {}, q {}, N {}, {} {} x {} mm, crest and root radii {} and {} mm inside (rm {:.3} mid-surface), {}; Dm {:.2} mm, {}",
         bs.inside_diameter,
         bs.convolution_height,
         bs.pitch,
@@ -44,7 +45,7 @@ pub fn verdict_table(spec: &DesignSpec, check: &CodeCheck, verdict: &Verdict) ->
         (rc + rr) / 2.0,
         bs.forming.label(),
         b.mean_diameter(),
-        b.formed_thickness()
+        formed_thickness_label(&b)
     ));
     let m = &spec.material;
     let source = if m.source.is_empty() { String::new() } else { format!(" ({})", m.source) };
@@ -141,4 +142,12 @@ pub fn code_section(c: &CodeCheck) -> String {
         t.push_str(&format!("  note: {note}\n"));
     }
     t
+}
+
+/// tp as the code check takes it: EJMA's, or the bellows' own beside EJMA's.
+pub fn formed_thickness_label(b: &UBellows) -> String {
+    match b.formed_ply_thickness {
+        None => format!("tp {:.4} mm", b.formed_thickness()),
+        Some(tp) => format!("tp {tp:.4} mm as formed (given; EJMA's t sqrt(Db / Dm) {:.4} mm)", b.ejma_formed_thickness()),
+    }
 }

@@ -102,7 +102,7 @@ fn specification_section(s: &DesignSpec) -> Result<String> {
         ("convolutions N; plies n x thickness t", format!("{}; {} x {} mm", b.convolutions, b.plies, b.ply_thickness)),
         ("tangent length Lt", format!("{} mm", b.tangent_length)),
         ("forming", b.forming.label().into()),
-        ("mean diameter Dm, formed ply thickness tp", format!("{:.2} mm, {:.4} mm", g.mean_diameter(), g.formed_thickness())),
+        ("mean diameter Dm, formed ply thickness", format!("{:.2} mm, {}", g.mean_diameter(), super::code_tables::formed_thickness_label(&g))),
     ];
     let m = &s.material;
     let material: Vec<(&str, String)> = vec![

@@ -174,7 +174,7 @@ impl DesignSpec {
             ]
         };
         let seed = DesignSpec::seed();
-        let bellows = |s: &DesignSpec| super::BellowsSpec { coefficients: None, ..s.bellows.clone() };
+        let bellows = |s: &DesignSpec| super::BellowsSpec { coefficients: None, formed_ply_thickness: None, ..s.bellows.clone() };
         bellows(self) == bellows(&seed) && dimensions(self) == dimensions(&seed)
     }
 

@@ -36,6 +36,14 @@ impl DesignSpec {
                 return bad(key, "must be at least 1".into());
             }
         }
+        if let Some(tp) = b.formed_ply_thickness {
+            if !(tp > 0.0 && tp <= b.ply_thickness) {
+                return bad(
+                    "bellows.formed_ply_thickness",
+                    format!("tp = {} mm: a ply thins as it is formed: give 0 < tp <= t = {} mm", shown(tp), shown(b.ply_thickness)),
+                );
+            }
+        }
         if let Some(rule) = b.coefficients.and_then(|c| off_the_charts(&c)) {
             return bad("bellows.coefficients", rule);
         }
