@@ -101,10 +101,18 @@ fn a_formed_bellows_keeps_its_volume_and_thins_at_its_crests() {
     assert!(added[0] < 0.01, "{service}");
     let rates = formed(service, "axial rate, N/mm: the stroke's first increment, its secant");
     assert!((rates[0] / 6981.0 - 1.0).abs() < 0.2 && rates[1] < rates[0], "{service}");
+    // the code's formulas with the formed thickness: the crest's tp the forming table's pack over
+    // two plies, and S2 = P (w ...) / (2 n tp (...)) inversely as tp (ASME VIII-1 26-6.3.2)
+    let code = &text[text.find("the code's figures with the formed ply thickness").expect("the code's table")..];
+    let tp = formed(code, "ply thickness tp, mm");
+    assert!(tp.len() == 3 && (tp[0] - 0.9673).abs() < 1e-4 && (tp[1] - crest[1] / 2.0).abs() < 1e-4 && (tp[2] - root[1] / 2.0).abs() < 1e-4, "{code}");
+    let s2 = formed(code, "S2 hoop membrane, pressure, MPa");
+    assert!((s2[1] / s2[0] - tp[0] / tp[1]).abs() < 0.005, "{code}");
     // the tables are kept in the file for `slideline post`
     let post = command_in(dir.path(), 1).arg("post").arg(dir.path().join("two.h5")).output().unwrap();
     let printed = String::from_utf8_lossy(&post.stdout);
     assert!(printed.contains("the bellows as formed") && printed.contains("the formed bellows in service"), "{printed}");
+    assert!(printed.contains("the code's figures with the formed ply thickness"), "{printed}");
     assert!(dir.path().join("two_service.h5").exists());
 }
 

@@ -12,6 +12,7 @@
 //! of radius rir) first touches the tube's outside at z = Lt + k L, closing to Lt + k (q - c).
 //! The figures of what was formed are `forming::measure`'s, of its service `forming::service`'s.
 
+pub mod code;
 pub mod measure;
 pub mod service;
 

@@ -205,6 +205,8 @@ pub fn run(session: &PetscSession, job: &BellowsJob) -> Result<RunSummary> {
 pub struct FormedRuns {
     pub service: RunSummary,
     pub rest: Option<FormedAtRest>,
+    /// The code check with EJMA's tp and with the formed thicknesses.
+    pub code: Vec<super::forming::code::Column>,
 }
 
 /// The perturbations at rest beside the formed bellows' service: the idealised joint's (nominal
@@ -232,12 +234,12 @@ pub fn form(session: &PetscSession, job: &BellowsJob) -> Result<FormedRuns> {
     // misses the target by more than the tolerance (a restart continues its one forming)
     let tryouts = if job.restart.is_some() { 1 } else { TRYOUTS };
     let mut tryout = 1;
-    let (forming, formed) = loop {
+    let (forming, formed, figures) = loop {
         let forming = super::forming::model(&p)?;
         let formed = crate::solve::run(session, &forming, &options(job.output.clone(), job.restart.clone()))?;
         let figures = Formed::read(&p, &ResultsReader::open(&job.output)?)?;
         match figures.corrected(&p).filter(|_| tryout < tryouts) {
-            None => break (forming, formed),
+            None => break (forming, formed, figures),
             Some(next) => {
                 if root && !job.quiet {
                     println!("{}", figures.tryout_line(&p, &next));
@@ -283,7 +285,35 @@ pub fn form(session: &PetscSession, job: &BellowsJob) -> Result<FormedRuns> {
     let path = service_path(&job.output);
     crate::output_path::check_output_path(&path, None)?;
     let service = crate::solve::run(session, &service, &options(path, Some(RestartFrom { file: job.output.clone(), increment: None })))?;
-    Ok(FormedRuns { service, rest })
+    // as the joint's run: a joint the code's formulas cannot take has a note, not an error
+    let code = formed_code_check(session, &job.params, &figures).unwrap_or_else(|e| {
+        if root {
+            println!("note: no code check of the formed bellows: {e}");
+        }
+        Vec::new()
+    });
+    Ok(FormedRuns { service, rest, code })
+}
+
+/// The code check of joint `p` with EJMA's tp, and with the ply thickness its forming left at
+/// the crests and at the roots (`formed`'s, the mean over the plies), each with its chart
+/// coefficients and, for a design specification, its verdict (collective).
+fn formed_code_check(session: &PetscSession, p: &DesignSpec, formed: &super::forming::measure::Formed) -> Result<Vec<super::forming::code::Column>> {
+    let n = p.bellows.plies as f64;
+    let mean = |v: &[f64]| v.iter().sum::<f64>() / v.len() as f64;
+    let thicknesses = [("EJMA's tp", None), ("FE crest", Some(mean(&formed.crest_thickness) / n)), ("FE root", Some(mean(&formed.root_thickness) / n))];
+    thicknesses
+        .into_iter()
+        .map(|(label, tp)| {
+            let mut q = p.clone();
+            q.bellows.formed_ply_thickness = tp;
+            let (check, verdict) = match q.has_design_data() {
+                true => code_verdict(session, &q).map(|(c, v, _)| (c, Some(v)))?,
+                false => (code_check(session, &q)?, None),
+            };
+            Ok(super::forming::code::Column { label, tp: q.geometry().formed_thickness(), check, verdict })
+        })
+        .collect()
 }
 
 /// The service's results file beside the forming's: `STEM_service.h5`.
@@ -301,7 +331,7 @@ pub fn sibling_path(output: &Path, name: &str) -> PathBuf {
 /// The forming's and the service's tables from their results files, and the perturbations'
 /// where `--squirm` or `--frequencies` asked for them, printed and kept in the forming's
 /// (rank 0, after the runs).
-pub fn forming_report(job: &BellowsJob, service: &RunSummary, rest: Option<&FormedAtRest>) -> Result<()> {
+pub fn forming_report(job: &BellowsJob, service: &RunSummary, rest: Option<&FormedAtRest>, code: &[super::forming::code::Column]) -> Result<()> {
     use super::forming::{measure, service};
     let (formed, serving) = (ResultsReader::open(&job.output)?, ResultsReader::open(&service_path(&job.output))?);
     // the joint as last formed (a tryout corrects the tube and the dies): the file's own
@@ -310,6 +340,9 @@ pub fn forming_report(job: &BellowsJob, service: &RunSummary, rest: Option<&Form
     let in_service = service::table(p, &service::Service::read(&formed, &serving)?);
     drop((formed, serving));
     let mut tables = vec![(measure::TABLE, forming), (service::TABLE, in_service)];
+    if !code.is_empty() {
+        tables.push((super::forming::code::TABLE, super::forming::code::table(code)));
+    }
     if let Some(rest) = rest {
         // the formed bellows at rest: no pressure, no stroke (its convolved length the pitch's)
         let mut resting = p.clone();

@@ -192,7 +192,8 @@ pub struct BellowsArgs {
     /// pitch, the pressure let out and the dies drawn out; then the formed bellows under the
     /// design pressure and stroke (OUTPUT_service.h5, continuing the forming's file). Prints
     /// the formed bellows beside its target (height, pitch, crest and root thickness, volume,
-    /// plastic strain) and what the service did to it. With --squirm and --frequencies, their
+    /// plastic strain), what the service did to it and the code's figures with the formed
+    /// thickness beside EJMA's tp. With --squirm and --frequencies, their
     /// analyses of the formed bellows at rest and at the service's end beside the idealised
     /// joint's at rest.
     #[arg(long, conflicts_with_all = ["check_only", "dba", "joint.cycle", "assess", "lateral", "angular", "report"])]
