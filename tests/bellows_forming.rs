@@ -113,6 +113,9 @@ fn a_formed_bellows_keeps_its_volume_and_thins_at_its_crests() {
     let printed = String::from_utf8_lossy(&post.stdout);
     assert!(printed.contains("the bellows as formed") && printed.contains("the formed bellows in service"), "{printed}");
     assert!(printed.contains("the code's figures with the formed ply thickness"), "{printed}");
+    for picture in ["two_formed_thickness.png", "two_formed_plastic_strain.png", "two_formed_hoop_stress.png"] {
+        assert!(text.contains(picture) && std::fs::metadata(dir.path().join(picture)).is_ok_and(|m| m.len() > 10_000), "{picture}");
+    }
     assert!(dir.path().join("two_service.h5").exists());
 }
 

@@ -14,6 +14,7 @@
 
 pub mod code;
 pub mod measure;
+pub mod pictures;
 pub mod service;
 
 use super::spec::forming::FORMING_TEMPERATURE;

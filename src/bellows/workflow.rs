@@ -338,6 +338,7 @@ pub fn forming_report(job: &BellowsJob, service: &RunSummary, rest: Option<&Form
     let p = &DesignSpec::from_deck(&formed.text_attr("deck")?, &format!("{}: its deck", job.output.display()))?;
     let forming = measure::table(p, &measure::Formed::read(p, &formed)?);
     let in_service = service::table(p, &service::Service::read(&formed, &serving)?);
+    let pictures = super::forming::pictures::draw(p, &formed, &job.output)?;
     drop((formed, serving));
     let mut tables = vec![(measure::TABLE, forming), (service::TABLE, in_service)];
     if !code.is_empty() {
@@ -364,6 +365,9 @@ pub fn forming_report(job: &BellowsJob, service: &RunSummary, rest: Option<&Form
         }
     }
     println!("\n{}", tables.iter().map(|(_, t)| t.as_str()).collect::<Vec<_>>().join("\n"));
+    for (path, what) in pictures {
+        println!("picture: {} ({what})", path.display());
+    }
     crate::io::assessment::write_tables(&job.output, &tables)
 }
 
