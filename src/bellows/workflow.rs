@@ -210,10 +210,9 @@ pub struct FormedRuns {
 }
 
 /// The perturbations at rest beside the formed bellows' service: the idealised joint's (nominal
-/// thickness, annealed, at rest as `bellows --squirm` analyses it), the formed bellows' after
-/// its springback (no pressure), and the code check of the idealised joint for its in-plane row.
+/// thickness, annealed, at rest as `bellows --squirm` analyses it) and the formed bellows' after
+/// its springback (no pressure).
 pub struct FormedAtRest {
-    pub code: Option<CodeCheck>,
     pub ideal_stability: Option<Stability>,
     pub ideal_frequencies: Option<Frequencies>,
     /// The formed bellows' answers after the springback (their file `STEM_rest.h5`).
@@ -256,6 +255,13 @@ pub fn form(session: &PetscSession, job: &BellowsJob) -> Result<FormedRuns> {
         steps.extend(more.into_iter().filter(|s| !have.contains(&s.name)));
     }
     let steps = formed_perturbations(&p, steps);
+    // as the joint's run: a joint the code's formulas cannot take has a note, not an error
+    let code = formed_code_check(session, &job.params, &figures).unwrap_or_else(|e| {
+        if root {
+            println!("note: no code check of the formed bellows: {e}");
+        }
+        Vec::new()
+    });
     let rest = (!steps.is_empty())
         .then(|| -> Result<FormedAtRest> {
             let announce = |what: &str| {
@@ -266,7 +272,6 @@ pub fn form(session: &PetscSession, job: &BellowsJob) -> Result<FormedRuns> {
             announce("the idealised joint at rest (nominal thickness, annealed) and its perturbations");
             let ideal_stability = job.squirm.then(|| super::stability::at_rest(session, &job.params, |_, _| {})).transpose()?;
             let ideal_frequencies = job.frequencies.then(|| super::vibration::at_rest(session, &job.params)).transpose()?;
-            let code = code_check(session, &job.params).ok();
             announce("the formed bellows at rest (after its springback) and its perturbations");
             let mut at_rest = forming.clone();
             at_rest.set_perturbations(steps.clone());
@@ -275,7 +280,7 @@ pub fn form(session: &PetscSession, job: &BellowsJob) -> Result<FormedRuns> {
             crate::output_path::check_output_path(&path, None)?;
             let restart = Some(RestartFrom { file: job.output.clone(), increment: None });
             let formed = crate::solve::run(session, &at_rest, &RunOptions { progress: false, ..options(path, restart) })?;
-            Ok(FormedAtRest { code, ideal_stability, ideal_frequencies, formed })
+            Ok(FormedAtRest { ideal_stability, ideal_frequencies, formed })
         })
         .transpose()?;
     // where the springback left the far tangent: the service holds it there
@@ -285,13 +290,6 @@ pub fn form(session: &PetscSession, job: &BellowsJob) -> Result<FormedRuns> {
     let path = service_path(&job.output);
     crate::output_path::check_output_path(&path, None)?;
     let service = crate::solve::run(session, &service, &options(path, Some(RestartFrom { file: job.output.clone(), increment: None })))?;
-    // as the joint's run: a joint the code's formulas cannot take has a note, not an error
-    let code = formed_code_check(session, &job.params, &figures).unwrap_or_else(|e| {
-        if root {
-            println!("note: no code check of the formed bellows: {e}");
-        }
-        Vec::new()
-    });
     Ok(FormedRuns { service, rest, code })
 }
 
@@ -352,7 +350,7 @@ pub fn forming_report(job: &BellowsJob, service: &RunSummary, rest: Option<&Form
         if let Some(ideal) = &rest.ideal_stability {
             let states = [ideal, &super::stability::from_answers(&rest.formed.perturbations)?, &super::stability::from_answers(&service.perturbations)?];
             let states: Vec<(&str, &Stability)> = columns.into_iter().zip(states).collect();
-            tables.push(("stability", format!("{}{FORMED_COLUMNS}", super::report::stability_columns(p, rest.code.as_ref(), &states))));
+            tables.push(("stability", format!("{}{FORMED_COLUMNS}", super::report::stability_columns(p, code.first().map(|c| &c.check), &states))));
         }
         if let Some(ideal) = &rest.ideal_frequencies {
             let states = [

@@ -67,12 +67,12 @@ pub fn draw(p: &DesignSpec, reader: &ResultsReader, output: &Path) -> Result<Vec
         }
     }
     let window = Some(((z.0 - 2.0, z.1 + 2.0), (r.0 - 4.0, r.1 + 2.0)));
-    for (field, name, title, unit) in [
-        ("nodal/equivalent_plastic_strain", "formed_plastic_strain", "equivalent plastic strain after forming (the cold work), element means", "-"),
-        ("nodal/stress_tt", "formed_hoop_stress", "residual hoop stress after forming and springback, element means", "MPa"),
+    for (field, scale, name, title, unit) in [
+        ("nodal/equivalent_plastic_strain", 100.0, "formed_plastic_strain", "equivalent plastic strain after forming (the cold work), element means", "%"),
+        ("nodal/stress_tt", 1.0, "formed_hoop_stress", "residual hoop stress after forming and springback, element means", "MPa"),
     ] {
         let nodal = reader.field(&last, field)?;
-        let values: Vec<f64> = connectivity.iter().map(|c| c.iter().map(|&k| nodal[k]).sum::<f64>() / 8.0).collect();
+        let values: Vec<f64> = connectivity.iter().map(|c| scale * c.iter().map(|&k| nodal[k]).sum::<f64>() / 8.0).collect();
         let (lo, hi) = values.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| (a.min(v), b.max(v)));
         let path = picture(name);
         let picture = FieldPicture {
@@ -80,7 +80,7 @@ pub fn draw(p: &DesignSpec, reader: &ResultsReader, output: &Path) -> Result<Vec
             connectivity: &connectivity,
             displacement: &u,
             values: &values,
-            title: format!("The formed bellows: {title}, {lo:.3} to {hi:.3} {unit}"),
+            title: format!("The formed bellows: {title}, {lo:.1} to {hi:.1} {unit}"),
             value_label: unit.into(),
         };
         deformed_field(&path, &picture, &[window])?;
