@@ -113,13 +113,13 @@ fn bellows_command(args: &cli::BellowsArgs, sub: Option<&clap::ArgMatches>) -> E
     }
     let job = args.job(params, movements);
     if args.form {
-        let result = workflow::form(&session, &job);
+        let result = slideline::bellows::forming::workflow::form(&session, &job);
         warn_unused_options(&session, root && !is_bad_input(&result));
         let (result, rest, code) = match result {
             Ok(runs) => (Ok(runs.service), runs.rest, runs.code),
             Err(e) => (Err(e), None, Vec::new()),
         };
-        return finish(result, root, |summary| workflow::forming_report(&job, summary, rest.as_ref(), &code));
+        return finish(result, root, |summary| slideline::bellows::forming::workflow::report(&job, summary, rest.as_ref(), &code));
     }
     let before = match workflow::before_the_run(&session, &job) {
         Ok(before) => before,

@@ -42,7 +42,8 @@ fn bad_forming_inputs_are_refused_by_key_before_any_work() {
 fn formed(table: &str, label: &str) -> Vec<f64> {
     let line = table.lines().find(|l| l.trim_start().starts_with(label)).unwrap_or_else(|| panic!("no row {label}: {table}"));
     let rest = &line[line.find(label).unwrap() + label.len()..];
-    let numbers: Vec<f64> = rest.split(|c: char| c.is_whitespace() || c == ',' || c == ';' || c == '(').filter_map(|w| w.parse::<f64>().ok()).collect();
+    let numbers: Vec<f64> =
+        rest.split(|c: char| c.is_whitespace() || c == ',' || c == ';' || c == ':' || c == '(').filter_map(|w| w.parse::<f64>().ok()).collect();
     numbers
 }
 
@@ -101,6 +102,9 @@ fn a_formed_bellows_keeps_its_volume_and_thins_at_its_crests() {
     assert!(added[0] < 0.01, "{service}");
     let rates = formed(service, "axial rate, N/mm: the stroke's first increment, its secant");
     assert!((rates[0] / 6981.0 - 1.0).abs() < 0.2 && rates[1] < rates[0], "{service}");
+    // the stroke's strain range and its pseudo-elastic stress at the forming's modulus (200 GPa)
+    let life = formed(service, "the stroke's effective strain range, %: E x it, MPa; cycles");
+    assert!(life[0] > 0.0 && (life[1] / (2000.0 * life[0]) - 1.0).abs() < 1e-3, "{service}");
     // the code's formulas with the formed thickness: the crest's tp the forming table's pack over
     // two plies, and S2 = P (w ...) / (2 n tp (...)) inversely as tp (ASME VIII-1 26-6.3.2)
     let code = &text[text.find("the code's figures with the formed ply thickness").expect("the code's table")..];

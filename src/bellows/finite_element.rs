@@ -151,10 +151,16 @@ fn combine(p: &DesignSpec, pieces: &[ConvolutionPiece], pressure: &[PieceStation
 /// codes' curves are written in (EJMA's curve is fitted to strain-controlled tests so plotted),
 /// and the as-formed austenitic curve's cycles for it. None where the file lacks the strains.
 pub fn strain_life(r: &ResultsReader, modulus: f64) -> Result<Option<StrainLife>> {
+    strain_life_between(r, modulus, 1, 2)
+}
+
+/// [`strain_life`] between the ends of general steps `from` and `to` (1-based; the formed
+/// bellows' service: its pressure and its stroke, after the forming's steps).
+pub fn strain_life_between(r: &ResultsReader, modulus: f64, from: usize, to: usize) -> Result<Option<StrainLife>> {
     let names = r.increments()?;
     let end_of =
         |step: f64| names.iter().rev().find(|n| r.increment_attr(n, "step").ok() == Some(step) && r.increment_attr(n, "load_factor").ok() == Some(1.0));
-    let (Some(start), Some(end)) = (end_of(1.0), end_of(2.0)) else { return Ok(None) };
+    let (Some(start), Some(end)) = (end_of(from as f64), end_of(to as f64)) else { return Ok(None) };
     if !r.nodal_fields(end)?.iter().any(|n| n == "strain_rr") {
         return Ok(None);
     }

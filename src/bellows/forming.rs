@@ -16,6 +16,7 @@ pub mod code;
 pub mod measure;
 pub mod pictures;
 pub mod service;
+pub mod workflow;
 
 use super::spec::forming::FORMING_TEMPERATURE;
 use super::spec::DesignSpec;
@@ -240,7 +241,7 @@ pub fn model(p: &DesignSpec) -> Result<Model> {
     let (mesh, sets) = mesh(p)?;
     let material = Material {
         name: "annealed".into(),
-        youngs_modulus: p.material.youngs_modulus.at(FORMING_TEMPERATURE, "youngs_modulus")?,
+        youngs_modulus: p.forming_modulus()?,
         poissons_ratio: p.material.poissons_ratio,
         thermal_expansion: 0.0,
         plasticity: Some(p.forming_curve()?),

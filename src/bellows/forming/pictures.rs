@@ -7,12 +7,11 @@ use crate::bellows::spec::DesignSpec;
 use crate::error::{Error, Result};
 use crate::io::plots::{deformed_field, line_plot, Axes, Curve, FieldPicture};
 use crate::io::reader::ResultsReader;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
-/// The three pictures, `OUTPUT_formed_thickness.png`, `_formed_plastic_strain.png` and
-/// `_formed_hoop_stress.png` beside `output`, each with what it shows.
-pub fn draw(p: &DesignSpec, reader: &ResultsReader, output: &Path) -> Result<Vec<(PathBuf, String)>> {
-    let picture = |name: &str| crate::bellows::workflow::picture_path(output, name);
+/// The three pictures, `formed_thickness`, `formed_plastic_strain` and `formed_hoop_stress`
+/// (at `picture(name)`), each with what it shows.
+pub fn draw(p: &DesignSpec, reader: &ResultsReader, picture: impl Fn(&str) -> PathBuf) -> Result<Vec<(PathBuf, String)>> {
     let last = reader.increments()?.pop().ok_or_else(|| Error::input(format!("{}: no increment: nothing was formed", reader.path().display())))?;
     let (x0, u, conn) = (reader.coordinates()?, reader.displacement(&last)?, reader.connectivity()?);
     let x: Vec<[f64; 2]> = x0.iter().zip(&u).map(|(a, b)| [a[0] + b[0], a[1] + b[1]]).collect();

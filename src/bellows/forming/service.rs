@@ -25,6 +25,9 @@ pub struct Service {
     pub secant_rate: f64,
     /// The largest plastic strain the stroke added.
     pub stroke_strain: f64,
+    /// The stroke's largest effective strain range and its life by EJMA's as-formed curve (at
+    /// the forming's modulus).
+    pub life: Option<crate::assessment::fe_check::StrainLife>,
 }
 
 /// The last complete increment of general step `step` (1-based) in `reader`.
@@ -46,7 +49,7 @@ fn added_strain(before: &[f64], after: &[f64]) -> f64 {
 impl Service {
     /// From the forming's file `formed` and the service's `service` (its steps the forming's
     /// [`FORMING_STEPS`], then `SERVICE_STEPS`).
-    pub fn read(formed: &ResultsReader, service: &ResultsReader) -> Result<Service> {
+    pub fn read(p: &DesignSpec, formed: &ResultsReader, service: &ResultsReader) -> Result<Service> {
         let ep = |r: &ResultsReader, inc: &str| r.field(inc, "equivalent_plastic_strain");
         let formed_end = formed.increments()?.pop().ok_or_else(|| Error::input("the forming's file has no increment"))?;
         let (pressure, stroke) = (FORMING_STEPS + 1, FORMING_STEPS + 2);
@@ -80,6 +83,7 @@ impl Service {
             initial_rate: rate(start, first),
             secant_rate: rate(start, last),
             stroke_strain: added_strain(&e1, &e2),
+            life: crate::bellows::finite_element::strain_life_between(service, p.forming_modulus()?, pressure, stroke)?,
         })
     }
 }
@@ -97,5 +101,18 @@ pub fn table(p: &DesignSpec, s: &Service) -> String {
     out += &row("end force, N: under the pressure, at the stroke's end", format!("{:.1}, {:.1}", s.force_before, s.force_after));
     out += &row("axial rate, N/mm: the stroke's first increment, its secant", format!("{:.1}, {:.1}", s.initial_rate, s.secant_rate));
     out += &row("plastic strain the stroke added (largest), %", format!("{:.2}", 100.0 * s.stroke_strain));
+    if let Some(life) = &s.life {
+        let cycles = life.cycles.map_or("above the curve's endurance".to_string(), |n| format!("{n:.0}"));
+        out += &row(
+            "the stroke's effective strain range, %: E x it, MPa; cycles",
+            format!(
+                "{:.3}: {:.0}; {cycles} (EJMA's as-formed curve, at r {:.1}, z {:.1} mm before forming)",
+                100.0 * life.strain_range,
+                life.pseudo_stress,
+                life.at[0],
+                life.at[1]
+            ),
+        );
+    }
     out
 }

@@ -86,6 +86,12 @@ fn bad(key: &str, why: String) -> Error {
 }
 
 impl DesignSpec {
+    /// The plies' elastic modulus as formed and in the formed bellows' service: at the
+    /// forming's temperature (MPa).
+    pub fn forming_modulus(&self) -> Result<f64> {
+        self.material.youngs_modulus.at(FORMING_TEMPERATURE, "youngs_modulus")
+    }
+
     /// The annealed tube's hardening at room temperature: the forming's curve, Swift's law
     /// tabulated, or the `[material]`'s linear curve.
     pub fn forming_curve(&self) -> Result<crate::model::Plasticity> {
