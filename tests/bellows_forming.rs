@@ -117,6 +117,12 @@ fn a_formed_bellows_keeps_its_volume_and_thins_at_its_crests() {
     let printed = String::from_utf8_lossy(&post.stdout);
     assert!(printed.contains("the bellows as formed") && printed.contains("the formed bellows in service"), "{printed}");
     assert!(printed.contains("the code's figures with the formed ply thickness"), "{printed}");
+    // and not a joint's closing table (seen before: the forming's steps read as the joint's
+    // pressure and stroke, "the joint yields under the design pressure alone", NaN reactions)
+    assert!(!printed.contains("end reaction at") && !printed.contains("yields under the design pressure"), "{printed}");
+    let report = command_in(dir.path(), 1).arg("post").arg(dir.path().join("two.h5")).args(["--report", "two.html"]).output().unwrap();
+    let err = String::from_utf8_lossy(&report.stderr);
+    assert!(report.status.code() == Some(2) && err.contains("a `bellows --form` run's file: it has no design report yet"), "{err}");
     for picture in ["two_formed_thickness.png", "two_formed_plastic_strain.png", "two_formed_hoop_stress.png"] {
         assert!(text.contains(picture) && std::fs::metadata(dir.path().join(picture)).is_ok_and(|m| m.len() > 10_000), "{picture}");
     }

@@ -206,6 +206,11 @@ pub fn service_model(p: &DesignSpec, sprung: f64, perturbations: Vec<Perturbatio
     Ok(m)
 }
 
+/// Whether `r` is a `--form` run's file (the forming's or its service's): its mesh has the dies.
+pub fn is_forming_file(r: &crate::io::reader::ResultsReader) -> Result<bool> {
+    Ok(r.element_set_names()?.iter().any(|s| s == "die0"))
+}
+
 /// The joint's perturbation steps `steps` (its stability's, frequencies', flexibility's) on the
 /// formed bellows: its tangents for the joint's tube ends (the sets of [`mesh`]), the dies held
 /// still (drawn out past the crests, their contact left out) and the contact pairs the formed

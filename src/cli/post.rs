@@ -49,6 +49,12 @@ pub fn post(args: &PostArgs) -> Result<(), Error> {
     }
     let mut out = String::new();
     if let Some(path) = &args.report {
+        if slideline::bellows::forming::is_forming_file(&r)? {
+            return Err(Error::input(format!(
+                "{}: a `bellows --form` run's file: it has no design report yet (`slideline post FILE` prints its tables)",
+                args.file.display()
+            )));
+        }
         let closing = slideline::bellows::report::closing_table_from_file(&r)?;
         if closing.is_none() {
             return Err(Error::input(format!("{}: not a `slideline bellows` run's file: it has no design report", args.file.display())));

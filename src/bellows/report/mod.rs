@@ -485,10 +485,12 @@ impl BellowsReport {
 }
 
 /// The bellows closing table (slideline beside the paper, the code check) as the run printed
-/// it, from the file alone; None for a file that is not a `slideline bellows` run's.
+/// it, from the file alone; None for a file that is not a `slideline bellows` joint run's (a
+/// `--form` run's has its own tables: read as a joint's, its forming steps would be taken for
+/// the joint's pressure and stroke).
 pub fn closing_table_from_file(r: &ResultsReader) -> Result<Option<String>> {
     let deck = r.text_attr("deck")?;
-    if !deck.starts_with("# slideline bellows") || r.increments()?.is_empty() {
+    if !deck.starts_with("# slideline bellows") || r.increments()?.is_empty() || crate::bellows::forming::is_forming_file(r)? {
         return Ok(None);
     }
     let Ok(params) = crate::bellows::spec::DesignSpec::from_deck(&deck, &r.path().display().to_string()) else { return Ok(None) };
