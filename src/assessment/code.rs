@@ -140,6 +140,7 @@ impl CodeCheck {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::assessment::formulas::SAMPLE_REPORT;
 
     /// The sample EJMA report (worked-examples.md, example 2): 3 plies of 0.3 mm, Db 130, w 9.1,
     /// q 8, N 18, P 0.3 MPa, 27.5 mm equivalent axial movement, Eb 194 612 MPa, Cp 0.67, Cd 1.68
@@ -149,16 +150,7 @@ mod tests {
     /// within 1 %, and the cycles within 5 % (the curve is steep: 3.4 times St's deviation).
     #[test]
     fn the_sample_report_is_checked_as_printed() {
-        let b = UBellows {
-            inside_diameter: 130.0,
-            height: 9.1,
-            pitch: 8.0,
-            ply_thickness: 0.3,
-            plies: 3,
-            convolutions: 18,
-            torus_radius: 1.3,
-            formed_ply_thickness: None,
-        };
+        let b = SAMPLE_REPORT;
         let c = Coefficients { cp: 0.67, cf: 1.57, cd: 1.68 };
         let check = CodeCheck::new(
             &b,
@@ -178,16 +170,7 @@ mod tests {
 
     /// The sample report's bellows with `convolutions`, checked for a 2 mm stroke.
     fn small_stroke(convolutions: usize) -> CodeCheck {
-        let b = UBellows {
-            inside_diameter: 130.0,
-            height: 9.1,
-            pitch: 8.0,
-            ply_thickness: 0.3,
-            plies: 3,
-            convolutions,
-            torus_radius: 1.3,
-            formed_ply_thickness: None,
-        };
+        let b = UBellows { convolutions, ..SAMPLE_REPORT };
         let duty = Duty { pressure: 0.3, stroke: 2.0, modulus: 194_612.0, yield_stress: 206.8, tangent_length: 30.0, forming: Forming::AsFormed };
         CodeCheck::new(&b, Coefficients { cp: 0.67, cf: 1.57, cd: 1.68 }, Source::Computed, duty)
     }

@@ -278,6 +278,11 @@ pub fn rayleigh_lateral_frequency(axial_rate: f64, mass: f64, mean_diameter: f64
     0.5 * (lo + hi) / (2.0 * PI)
 }
 
+/// The sample EJMA report's bellows (DN130, 18 convolutions of 3 x 0.3 mm): the tests' own.
+#[cfg(test)]
+pub(crate) const SAMPLE_REPORT: UBellows =
+    UBellows { inside_diameter: 130.0, height: 9.1, pitch: 8.0, ply_thickness: 0.3, plies: 3, convolutions: 18, torus_radius: 1.3, formed_ply_thickness: None };
+
 #[cfg(test)]
 mod tests {
     //! Each test opens with its source (transcribed in ../shared/bellows-code/worked-examples.md)
@@ -330,16 +335,7 @@ mod tests {
     /// 1.6, S4 33.4, S5 10.6, S6 1034.9 MPa): within 0.03 %.
     #[test]
     fn the_sample_ejma_report() {
-        let b = UBellows {
-            inside_diameter: 130.0,
-            height: 9.1,
-            pitch: 8.0,
-            ply_thickness: 0.3,
-            plies: 3,
-            convolutions: 18,
-            torus_radius: 1.3,
-            formed_ply_thickness: None,
-        };
+        let b = SAMPLE_REPORT;
         assert!((b.mean_diameter() - 140.0).abs() < 1e-12);
         let tp = 0.29; // printed; tp = t sqrt(Db / Dm) = 0.289
         assert!((b.formed_thickness() - tp).abs() < 0.005);
@@ -470,16 +466,7 @@ mod tests {
     /// each change that breaks one is named.
     #[test]
     fn conditions_of_applicability_name_what_is_violated() {
-        let b = UBellows {
-            inside_diameter: 130.0,
-            height: 9.1,
-            pitch: 8.0,
-            ply_thickness: 0.3,
-            plies: 3,
-            convolutions: 18,
-            torus_radius: 1.3,
-            formed_ply_thickness: None,
-        };
+        let b = SAMPLE_REPORT;
         assert!(b.conditions_of_applicability().is_empty(), "{:?}", b.conditions_of_applicability());
         let broken = |b: UBellows, needle: &str| {
             let v = b.conditions_of_applicability();
