@@ -18,7 +18,7 @@ use crate::io::plots::{outline_picture, Panel, SegmentLayer};
 use crate::io::reader::ResultsReader;
 use crate::io::restart::RestartFrom;
 use crate::io::ResultsFile;
-use crate::model::Step;
+use crate::model::perturbation::Perturbation;
 use crate::petsc::PetscSession;
 use crate::solve::contact::affinity::partition_affinity;
 use crate::solve::{RunOptions, RunSummary};
@@ -175,23 +175,30 @@ pub fn before_the_run(session: &PetscSession, job: &BellowsJob) -> Result<Before
     Ok(BeforeTheRun { code, verdict, fe, rest, stable, vibrating })
 }
 
+/// The perturbation steps the job's flags ask for on joint `p`: the flexibility's movements,
+/// the stability's, the frequencies', each once (the axial rate's step is all three's).
+pub fn perturbation_steps(job: &BellowsJob, p: &DesignSpec) -> Vec<Perturbation> {
+    let lists = [
+        job.movements.map(|m| super::flexibility::steps(p, m)),
+        job.squirm.then(|| super::stability::steps(p)),
+        job.frequencies.then(|| super::vibration::steps(p)),
+    ];
+    let mut steps: Vec<Perturbation> = Vec::new();
+    for step in lists.into_iter().flatten().flatten() {
+        if !steps.iter().any(|s| s.name == step.name) {
+            steps.push(step);
+        }
+    }
+    steps
+}
+
 /// The elastic-plastic run of the joint, with the perturbation steps the flags ask for about
 /// its end (collective).
 pub fn run(session: &PetscSession, job: &BellowsJob) -> Result<RunSummary> {
     let params = &job.params;
     let mut m = super::joint::model(params)?;
     // the same perturbations about the run's end state
-    if let Some(movements) = job.movements {
-        m.set_perturbations(super::flexibility::steps(params, movements));
-    }
-    // the axial rate's step is shared by the flexibility's, the stability's and the
-    // frequencies'
-    let stability = job.squirm.then(|| super::stability::steps(params));
-    let vibration = job.frequencies.then(|| super::vibration::steps(params));
-    for more in stability.into_iter().chain(vibration) {
-        let have: Vec<String> = m.perturbations().map(|s| s.name.clone()).collect();
-        m.steps.extend(more.into_iter().filter(|s| !have.contains(&s.name)).map(Step::Perturbation));
-    }
+    m.set_perturbations(perturbation_steps(job, params));
     m.validate()?;
     crate::solve::run(
         session,

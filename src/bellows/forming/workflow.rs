@@ -8,7 +8,7 @@ use super::measure::Formed;
 use crate::bellows::spec::DesignSpec;
 use crate::bellows::stability::Stability;
 use crate::bellows::vibration::Frequencies;
-use crate::bellows::workflow::{code_check, code_verdict, picture_path, BellowsJob};
+use crate::bellows::workflow::{code_check, code_verdict, perturbation_steps, picture_path, BellowsJob};
 use crate::error::Result;
 use crate::io::reader::ResultsReader;
 use crate::io::restart::RestartFrom;
@@ -65,14 +65,8 @@ pub fn form(session: &PetscSession, job: &BellowsJob) -> Result<FormedRuns> {
             }
         }
     };
-    // the joint's perturbation steps on the formed bellows, the axial rate's shared
-    let mut steps = Vec::new();
-    for more in [job.squirm.then(|| crate::bellows::stability::steps(&p)), job.frequencies.then(|| crate::bellows::vibration::steps(&p))].into_iter().flatten()
-    {
-        let have: Vec<String> = steps.iter().map(|s: &crate::model::perturbation::Perturbation| s.name.clone()).collect();
-        steps.extend(more.into_iter().filter(|s| !have.contains(&s.name)));
-    }
-    let steps = formed_perturbations(&p, steps);
+    // the joint's perturbation steps on the formed bellows
+    let steps = formed_perturbations(&p, perturbation_steps(job, &p));
     // as the joint's run: a joint the code's formulas cannot take has a note, not an error
     let code = formed_code_check(session, &job.params, &figures).unwrap_or_else(|e| {
         if root {
