@@ -110,8 +110,7 @@ pub fn form(session: &PetscSession, job: &BellowsJob) -> Result<FormedRuns> {
 /// coefficients and, for a design specification, its verdict (collective).
 fn formed_code_check(session: &PetscSession, p: &DesignSpec, formed: &Formed) -> Result<Vec<Column>> {
     let n = p.bellows.plies as f64;
-    let mean = |v: &[f64]| v.iter().sum::<f64>() / v.len() as f64;
-    let thicknesses = [("EJMA's tp", None), ("FE crest", Some(mean(&formed.crest_thickness) / n)), ("FE root", Some(mean(&formed.root_thickness) / n))];
+    let thicknesses = [("EJMA's tp", None), ("FE crest", Some(formed.crest() / n)), ("FE root", Some(formed.root() / n))];
     thicknesses
         .into_iter()
         .map(|(label, tp)| {
